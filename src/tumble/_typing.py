@@ -1,0 +1,14 @@
+"""Type aliases shared by the package."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+FloatArray = NDArray[np.float64]
+"""A float64 array of any shape."""
+
+ArrayLike = Any
+"""Anything numpy can turn into a float array (scalar, sequence, array)."""

@@ -1,0 +1,128 @@
+"""Run a scenario's methods, compare them, and collect the warnings and predicted limits."""
+
+from __future__ import annotations
+
+import itertools
+import warnings
+from dataclasses import dataclass, field
+from typing import Any
+
+import xarray as xr
+
+from tumble._typing import FloatArray
+from tumble.analysis.compare import max_differences
+from tumble.errors import TumbleWarning
+from tumble.integrate import DEFAULT_ATOL, DEFAULT_RTOL, Trajectory, simulate
+from tumble.models.base import ModelRecord, ValidityIssue
+
+__all__ = ["RunRequest", "RunResult", "run", "to_dataset"]
+
+
+@dataclass(frozen=True)
+class RunRequest:
+    """Everything a run needs, as plain values (built from a scenario by :mod:`tumble.io`).
+
+    Attributes
+    ----------
+    model : ModelRecord
+        The model.
+    params, initial : model Params and State
+        Normalized parameters and initial state.
+    tau : ndarray
+        Sample times [model time unit].
+    methods : tuple of str
+        Methods to run, in order.
+    rtol, atol : float
+        Integration tolerances.
+    scaling : object, optional
+        Physical scaling (for physical-units scenarios), kept for the outputs.
+    """
+
+    model: ModelRecord
+    params: Any
+    initial: Any
+    tau: FloatArray
+    methods: tuple[str, ...]
+    rtol: float = DEFAULT_RTOL
+    atol: float = DEFAULT_ATOL
+    scaling: Any = None
+
+
+@dataclass(frozen=True)
+class RunResult:
+    """Datasets of every method, their differences, warnings and the predicted limits."""
+
+    request: RunRequest
+    datasets: dict[str, xr.Dataset]
+    trajectories: dict[str, Trajectory]
+    differences: dict[str, dict[str, float]]
+    issues: list[dict[str, Any]] = field(default_factory=list)
+    limits: dict[str, Any] = field(default_factory=dict)
+
+
+def to_dataset(model: ModelRecord, traj: Trajectory) -> xr.Dataset:
+    """Trajectory as an ``xarray.Dataset`` with units, long names and equations in ``attrs``."""
+    data_vars = {}
+    for col in model.columns[traj.method]:
+        attrs = {"units": col.units, "long_name": col.long_name, "equation": col.equation,
+                 "angle": int(col.angle)}
+        data_vars[col.name] = xr.DataArray(traj.columns[col.name], dims=("tau",), attrs=attrs)
+    ds = xr.Dataset(data_vars, coords={"tau": ("tau", traj.tau, {"units": "1",
+                                                                   "long_name": "time τ"})})
+    ds.attrs.update(model=model.name, method=traj.method, form=traj.form,
+                    wall_time_s=traj.wall_time, nfev=traj.nfev)
+    return ds
+
+
+def _merge_issues(found: dict[str, list[ValidityIssue]]) -> list[dict[str, Any]]:
+    """One entry per condition: its earliest time, and the methods that entered it."""
+    merged: dict[str, dict[str, Any]] = {}
+    for method, issues in found.items():
+        for issue in issues:
+            entry = merged.get(issue.condition)
+            if entry is None or issue.tau < entry["tau"]:
+                methods = entry["methods"] if entry else []
+                merged[issue.condition] = {"condition": issue.condition, "tau": issue.tau,
+                                           "message": issue.message, "methods": methods}
+            merged[issue.condition]["methods"].append(method)
+    return sorted(merged.values(), key=lambda e: e["tau"])
+
+
+def run(request: RunRequest) -> RunResult:
+    """Run every requested method and compare them.
+
+    Emits one :class:`~tumble.errors.TumbleWarning` per validity condition that an averaged or
+    closed-form trajectory enters (the same list goes to ``RunResult.issues``).
+
+    Parameters
+    ----------
+    request : RunRequest
+
+    Returns
+    -------
+    RunResult
+    """
+    model, p, st = request.model, request.params, request.initial
+    for method in request.methods:  # refuse before any work is done
+        model.check_method(p, method)
+    trajectories = {
+        m: simulate(model, p, st, request.tau, m, rtol=request.rtol, atol=request.atol)
+        for m in request.methods
+    }
+    datasets = {m: to_dataset(model, t) for m, t in trajectories.items()}
+    differences = {
+        f"{b}_vs_{a}": max_differences(datasets[b], datasets[a])
+        for a, b in itertools.combinations(request.methods, 2)
+    }
+    tau_end = float(request.tau[-1])
+    found = {
+        m: model.validity(p, st, t.slow, tau_end)
+        for m, t in trajectories.items()
+        if m in ("averaged", "closed_form")
+    }
+    issues = _merge_issues(found)
+    for issue in issues:
+        warnings.warn(issue["message"], TumbleWarning, stacklevel=2)
+    limits = model.limits(p, st)
+    return RunResult(request, datasets, trajectories, differences, issues, limits)
+

@@ -1,0 +1,88 @@
+"""Errors and warnings of tumble, and the range checks that raise them.
+
+Two kinds of trouble get two responses (STYLE.md section 5): input that cannot describe a
+valid run raises a :class:`TumbleError` subclass with a one-line message naming the field, the
+value and the allowed range; a valid run that enters a region where a method loses accuracy
+emits a :class:`TumbleWarning` and is never refused.
+"""
+
+from __future__ import annotations
+
+import math
+
+__all__ = [
+    "IntegrationError",
+    "ParameterError",
+    "ScenarioError",
+    "TumbleError",
+    "TumbleWarning",
+    "check_finite",
+    "check_range",
+]
+
+
+class TumbleError(Exception):
+    """Base class of every error tumble raises on purpose; ``exit_code`` is the CLI's."""
+
+    exit_code = 2
+
+
+class ParameterError(TumbleError, ValueError):
+    """A parameter or initial value outside its allowed range."""
+
+
+class ScenarioError(TumbleError):
+    """A scenario file that cannot be read or does not follow the scenario contract."""
+
+
+class IntegrationError(TumbleError, RuntimeError):
+    """An integration that failed, or a solution that left the real numbers (blow-up)."""
+
+    exit_code = 3
+
+
+class TumbleWarning(UserWarning):
+    """A valid run entered a region where a method is known to lose accuracy."""
+
+
+def _fmt(x: float) -> str:
+    return "inf" if x == math.inf else "-inf" if x == -math.inf else f"{x:g}"
+
+
+def check_finite(field: str, value: float) -> None:
+    """Raise :class:`ParameterError` unless ``value`` is a finite real number."""
+    if not math.isfinite(value):
+        raise ParameterError(f"{field} = {value!r} must be a finite number")
+
+
+def check_range(
+    field: str,
+    value: float,
+    *,
+    low: float = -math.inf,
+    high: float = math.inf,
+    low_open: bool = True,
+    high_open: bool = True,
+) -> None:
+    """Raise :class:`ParameterError` unless ``low < value < high`` (or ≤ where closed).
+
+    Parameters
+    ----------
+    field : str
+        Dotted name of the field, as a scenario file spells it (``parameters.eps``).
+    value : float
+        The value to check.
+    low, high : float
+        Bounds of the allowed interval.
+    low_open, high_open : bool
+        Whether each bound is excluded.
+    """
+    check_finite(field, value)
+    ok_low = value > low if low_open else value >= low
+    ok_high = value < high if high_open else value <= high
+    if not (ok_low and ok_high):
+        left = "(" if low_open else "["
+        right = ")" if high_open else "]"
+        raise ParameterError(
+            f"{field} = {value:g} is outside the allowed range {left}{_fmt(low)}, {_fmt(high)}{right}"
+        )

@@ -1,0 +1,15 @@
+"""Integration drivers: adaptive ODE solving and running a model's methods."""
+
+from tumble.integrate.ode import DEFAULT_ATOL, DEFAULT_RTOL, DenseSolution, check_times, integrate
+from tumble.integrate.simulate import Method, Trajectory, simulate
+
+__all__ = [
+    "DEFAULT_ATOL",
+    "DEFAULT_RTOL",
+    "DenseSolution",
+    "Method",
+    "Trajectory",
+    "check_times",
+    "integrate",
+    "simulate",
+]

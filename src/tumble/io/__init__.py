@@ -1,0 +1,16 @@
+"""Files and formats: scenario files in, CSV and JSON out."""
+
+from tumble.io.output import atomic_write, csv_text, render_outputs, summary, write_outputs
+from tumble.io.scenario import Scenario, load_scenario, parse_scenario, template
+
+__all__ = [
+    "Scenario",
+    "atomic_write",
+    "csv_text",
+    "load_scenario",
+    "parse_scenario",
+    "render_outputs",
+    "summary",
+    "template",
+    "write_outputs",
+]

@@ -1,0 +1,126 @@
+"""Output files of a run: CSV per method, summary.json, written atomically.
+
+Every file is first written to a temporary file in the target directory and then moved into
+place with ``os.replace``, so a reader never sees half a file and an interrupted run leaves the
+previous outputs intact. All texts are rendered before the first file is written.
+"""
+
+from __future__ import annotations
+
+import io
+import json
+import os
+import tempfile
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+import tumble
+from tumble.analysis import RunResult
+
+__all__ = ["atomic_write", "csv_text", "render_outputs", "summary", "write_outputs"]
+
+
+def atomic_write(path: str | Path, data: bytes) -> None:
+    """Write ``data`` to ``path`` through a temporary file and ``os.replace``."""
+    path = Path(path)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data)
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def csv_text(ds: xr.Dataset, extra: dict[str, np.ndarray] | None = None) -> str:
+    """CSV with header ``tau,<variables in dataset order>``, values to full precision."""
+    names = ["tau", *(str(v) for v in ds.data_vars)]
+    cols = [ds["tau"].values, *(ds[v].values for v in ds.data_vars)]
+    if extra:
+        names, cols = list(extra), list(extra.values())
+    buf = io.StringIO()
+    np.savetxt(buf, np.column_stack(cols), fmt="%.17g", delimiter=",", header=",".join(names),
+               comments="")
+    return buf.getvalue()
+
+
+def _jsonable(x: Any) -> Any:
+    if isinstance(x, dict):
+        return {str(k): _jsonable(v) for k, v in x.items()}
+    if isinstance(x, list | tuple):
+        return [_jsonable(v) for v in x]
+    if isinstance(x, np.ndarray):
+        return _jsonable(x.tolist())
+    if isinstance(x, np.generic):
+        x = x.item()
+    if isinstance(x, float) and not np.isfinite(x):
+        return "nan" if np.isnan(x) else ("inf" if x > 0 else "-inf")
+    return x
+
+
+def _final_state(ds: xr.Dataset) -> dict[str, float]:
+    return {"tau": float(ds["tau"].values[-1]), **{str(v): float(ds[v].values[-1]) for v in ds.data_vars}}
+
+
+def summary(result: RunResult, inputs: dict[str, Any], source: str) -> dict[str, Any]:
+    """The run summary: inputs, final states, differences, wall times, limits, warnings."""
+    req = result.request
+    p = req.params
+    out: dict[str, Any] = {
+        "tumble_version": tumble.__version__,
+        "model": req.model.name,
+        "paper": req.model.paper,
+        "scenario": source,
+        "inputs": inputs,
+        "derived": {name: getattr(p, name) for name in ("alpha", "beta", "gamma", "delta")
+                    if hasattr(p, name)},
+        "methods": {
+            m: {
+                "form": ds.attrs["form"],
+                "wall_time_s": ds.attrs["wall_time_s"],
+                "nfev": ds.attrs["nfev"],
+                "final": _final_state(ds),
+            }
+            for m, ds in result.datasets.items()
+        },
+        "max_differences": result.differences,
+        "predicted_limits": result.limits,
+        "warnings": result.issues,
+    }
+    if req.scaling is not None:
+        s = req.scaling
+        out["scaling"] = {"K0_Nms": s.K0, "T0_s": s.T0, "M0_Nm": s.M0, "eps": s.eps}
+    return _jsonable(out)
+
+
+def render_outputs(result: RunResult, inputs: dict[str, Any], source: str) -> dict[str, bytes]:
+    """File name → content of every text output of a run (CSV and summary.json)."""
+    files: dict[str, bytes] = {}
+    scaling = result.request.scaling
+    for method, ds in result.datasets.items():
+        files[f"{method}.csv"] = csv_text(ds).encode()
+        if scaling is not None:
+            si = {"t_s": scaling.time_from_tau(ds["tau"].values),
+                  "K_Nms": scaling.K0 * ds["k"].values}
+            si.update({str(v): ds[v].values for v in ds.data_vars if v != "k"})
+            files[f"{method}_si.csv"] = csv_text(ds, si).encode()
+    text = json.dumps(summary(result, inputs, source), indent=2, ensure_ascii=False)
+    files["summary.json"] = (text + "\n").encode()
+    return files
+
+
+def write_outputs(out_dir: str | Path, files: dict[str, bytes]) -> list[Path]:
+    """Create ``out_dir`` if needed and write every file atomically; return the paths."""
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    paths = []
+    for name, data in files.items():
+        atomic_write(out / name, data)
+        paths.append(out / name)
+    return paths

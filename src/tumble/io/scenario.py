@@ -1,0 +1,305 @@
+"""Scenario files: TOML, validated with pydantic, turned into a :class:`RunRequest`.
+
+The keys of a normalized resisting-medium scenario are a contract (issue 2); a physical-units
+variant replaces ``[parameters]`` by ``[physical]`` (SI) and uses seconds in ``[run]``.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
+from typing import Annotated, Any, Literal
+
+import numpy as np
+from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_validator
+
+from tumble.analysis import RunRequest
+from tumble.errors import ParameterError, ScenarioError
+from tumble.integrate import check_times
+from tumble.models import get_model, resisting_medium
+
+__all__ = ["Scenario", "load_scenario", "parse_scenario", "template"]
+
+Vector3 = Annotated[list[float], Field(min_length=3, max_length=3, description="3 numbers")]
+Vector4 = Annotated[list[float], Field(min_length=4, max_length=4, description="4 numbers")]
+Matrix3 = Annotated[
+    list[Vector3], Field(min_length=3, max_length=3, description="3 rows of 3 numbers")
+]
+ANGLES = ("rho", "sigma", "psi", "theta", "phi")
+
+
+class _Section(BaseModel):
+    model_config = ConfigDict(extra="forbid", strict=True)
+
+
+def _degrees_to_radians(data: Any, names: tuple[str, ...]) -> Any:
+    """Accept ``<angle>_deg`` keys (degrees) for the angles in ``names``."""
+    if not isinstance(data, dict):
+        return data
+    out = dict(data)
+    for name in names:
+        key = f"{name}_deg"
+        if key in out:
+            if name in out:
+                raise ValueError(f"give either {name} or {key}, not both")
+            value = out.pop(key)
+            if isinstance(value, int | float) and not isinstance(value, bool):
+                value = math.radians(value)
+            out[name] = value
+    return out
+
+
+class RunSection(_Section):
+    tau_end: float | None = Field(None, description="a time > 0")
+    tau: list[float] | None = Field(None, description="ascending times ≥ 0")
+    samples: int = Field(401, description="an integer ≥ 2")
+    methods: list[Literal["full", "averaged", "closed_form"]] | None = Field(
+        None, description='a non-empty list of "full", "averaged", "closed_form"'
+    )
+    rtol: float = Field(1e-10, description="a number in [1e-14, 1e-3]")
+    atol: float = Field(1e-12, description="a number in (0, 1e-3]")
+
+
+class PhysicalRunSection(_Section):
+    t_end_s: float | None = Field(None, description="a time > 0 [s]")
+    t_s: list[float] | None = Field(None, description="ascending times ≥ 0 [s]")
+    samples: int = Field(401, description="an integer ≥ 2")
+    methods: list[Literal["full", "averaged", "closed_form"]] | None = Field(
+        None, description='a non-empty list of "full", "averaged", "closed_form"'
+    )
+    rtol: float = Field(1e-10, description="a number in [1e-14, 1e-3]")
+    atol: float = Field(1e-12, description="a number in (0, 1e-3]")
+
+
+class RMParameters(_Section):
+    eps: float = Field(description="a number ≥ 0")
+    kappa: float = Field(description="a number in (-1, 1]")
+    a: Vector3 = Field(default_factory=lambda: [0.0, 0.0, 0.0], description="3 numbers")
+    b: Matrix3 = Field(default_factory=lambda: np.zeros((3, 3)).tolist(), description="3×3")
+    s: Matrix3 = Field(default_factory=lambda: np.zeros((3, 3)).tolist(), description="3×3")
+
+
+class RMInitial(_Section):
+    k: float = Field(1.0, description="a number > 0")
+    rho: float = Field(0.0, description="an angle in [0, π] [rad]")
+    sigma: float = Field(0.0, description="an angle [rad]")
+    psi: float = Field(0.0, description="an angle [rad]")
+    theta: float = Field(description="an angle in [0, π] [rad]")
+    phi: float = Field(0.0, description="an angle [rad]")
+
+    @model_validator(mode="before")
+    @classmethod
+    def _degrees(cls, data: Any) -> Any:
+        return _degrees_to_radians(data, ANGLES)
+
+
+class RMPhysical(_Section):
+    I1: float = Field(description="equatorial moment of inertia > 0 [kg m^2]")
+    I3: float = Field(description="polar moment of inertia in (0, 2 I1] [kg m^2]")
+    A: Vector3 = Field(default_factory=lambda: [0.0, 0.0, 0.0], description="3 moments [N m]")
+    B: Matrix3 = Field(default_factory=lambda: np.zeros((3, 3)).tolist(), description="3×3 [N m s]")
+    S: Matrix3 = Field(default_factory=lambda: np.zeros((3, 3)).tolist(), description="3×3 [N m s^2]")
+    M0: float | None = Field(None, description="a moment scale > 0 [N m]")
+
+
+class RMPhysicalInitial(_Section):
+    omega: Vector3 = Field(description="body angular velocity, 3 numbers [rad/s]")
+    quaternion: Vector4 | None = Field(None, description="attitude quaternion [q0, q1, q2, q3]")
+    rho: float | None = Field(None, description="an angle in [0, π] [rad]")
+    sigma: float | None = Field(None, description="an angle [rad]")
+    psi: float | None = Field(None, description="an angle [rad]")
+
+    @model_validator(mode="before")
+    @classmethod
+    def _degrees(cls, data: Any) -> Any:
+        return _degrees_to_radians(data, ("rho", "sigma", "psi"))
+
+
+class RMScenario(_Section):
+    model: Literal["resisting_medium"]
+    parameters: RMParameters
+    initial: RMInitial
+    run: RunSection
+
+
+class RMPhysicalScenario(_Section):
+    model: Literal["resisting_medium"]
+    physical: RMPhysical
+    initial: RMPhysicalInitial
+    run: PhysicalRunSection
+
+
+@dataclass(frozen=True)
+class Scenario:
+    """A validated scenario: the run it asks for, and its inputs as given."""
+
+    request: RunRequest
+    inputs: dict[str, Any]
+    source: str
+
+
+def _path(loc: tuple[int | str, ...]) -> str:
+    out = ""
+    for part in loc:
+        if isinstance(part, int):
+            out += f"[{part}]"
+        elif not str(part).startswith(("function-", "literal[", "list[", "float", "int")):
+            out += f".{part}" if out else str(part)
+    return out
+
+
+def _field_hint(schema: type[BaseModel], loc: tuple[int | str, ...]) -> tuple[str, list[str]]:
+    """Allowed range of the field at ``loc`` and the keys allowed beside it."""
+    cls: Any = schema
+    hint, siblings = "", list(schema.model_fields)
+    for part in loc:
+        if not (isinstance(cls, type) and issubclass(cls, BaseModel)):
+            break
+        if not isinstance(part, str) or part not in cls.model_fields:
+            break
+        siblings = list(cls.model_fields)
+        info = cls.model_fields[part]
+        hint = info.description or hint
+        ann = info.annotation
+        cls = next((a for a in getattr(ann, "__args__", ()) if isinstance(a, type)
+                    and issubclass(a, BaseModel)), ann)
+    return hint, siblings
+
+
+def _one_line(exc: ValidationError, schema: type[BaseModel]) -> str:
+    err = exc.errors(include_url=False)[0]
+    loc = tuple(err["loc"])
+    path = _path(loc) or "scenario"
+    hint, siblings = _field_hint(schema, loc)
+    kind = err["type"]
+    if kind == "missing":
+        return f"{path}: required key is missing" + (f" (expected {hint})" if hint else "")
+    if kind == "extra_forbidden":
+        return f"{path}: unknown key (allowed here: {', '.join(siblings)})"
+    msg = str(err["msg"]).removeprefix("Value error, ")
+    shown = repr(err.get("input"))
+    shown = shown if len(shown) <= 60 else shown[:57] + "..."
+    return f"{path} = {shown}: {msg}" + (f" (expected {hint})" if hint else "")
+
+
+def _validated(schema: type[BaseModel], data: dict[str, Any]) -> Any:
+    try:
+        return schema.model_validate(data)
+    except ValidationError as exc:
+        raise ScenarioError(_one_line(exc, schema)) from None
+
+
+def _times(run: Any, end_key: str, list_key: str) -> np.ndarray:
+    end, listed = getattr(run, end_key), getattr(run, list_key)
+    if (end is None) == (listed is None):
+        raise ScenarioError(f"run: give exactly one of {end_key} (with samples) or {list_key}")
+    if listed is not None:
+        return check_times(listed, field=f"run.{list_key}")
+    if not (math.isfinite(end) and end > 0.0):
+        raise ParameterError(f"run.{end_key} = {end:g} is outside the allowed range (0, inf)")
+    if run.samples < 2:
+        raise ParameterError(f"run.samples = {run.samples} is outside the allowed range [2, inf)")
+    return np.linspace(0.0, end, run.samples)
+
+
+def _tolerances(run: Any) -> tuple[float, float]:
+    if not 1e-14 <= run.rtol <= 1e-3:
+        raise ParameterError(f"run.rtol = {run.rtol:g} is outside the allowed range [1e-14, 1e-3]")
+    if not 0.0 < run.atol <= 1e-3:
+        raise ParameterError(f"run.atol = {run.atol:g} is outside the allowed range (0, 1e-3]")
+    return run.rtol, run.atol
+
+
+def _methods(run: Any, allowed: tuple[str, ...]) -> tuple[str, ...]:
+    methods = tuple(run.methods) if run.methods is not None else allowed
+    if not methods:
+        raise ScenarioError("run.methods: give at least one method (allowed: " + ", ".join(allowed) + ")")
+    if len(set(methods)) != len(methods):
+        raise ScenarioError(f"run.methods = {list(methods)}: each method at most once")
+    return methods
+
+
+def _resisting_medium(data: dict[str, Any]) -> tuple[RunRequest, dict[str, Any]]:
+    model = resisting_medium.MODEL
+    if "physical" in data:
+        if "parameters" in data:
+            raise ScenarioError("give either [parameters] (normalized) or [physical] (SI), not both")
+        sc = _validated(RMPhysicalScenario, data)
+        phys = resisting_medium.PhysicalParams(
+            I1=sc.physical.I1, I3=sc.physical.I3, A=sc.physical.A, B=sc.physical.B,
+            S=sc.physical.S, M0=sc.physical.M0,
+        )
+        ini = sc.initial
+        angles_given = [n for n in ("rho", "sigma", "psi") if getattr(ini, n) is not None]
+        if ini.quaternion is not None and angles_given:
+            raise ScenarioError("initial: give either quaternion or rho, sigma, psi, not both")
+        if ini.quaternion is None and len(angles_given) != 3:
+            raise ScenarioError("initial: give the attitude as quaternion or as all of rho, sigma, psi")
+        if ini.quaternion is not None and not np.any(ini.quaternion):
+            raise ParameterError("initial.quaternion = [0, 0, 0, 0] is not a rotation")
+        p, st, scaling = resisting_medium.normalize_physical(
+            phys, ini.omega, attitude=ini.quaternion, rho=ini.rho, sigma=ini.sigma, psi=ini.psi
+        )
+        t_s = _times(sc.run, "t_end_s", "t_s")
+        tau = scaling.tau_from_time(t_s)
+        run = sc.run
+    else:
+        sc = _validated(RMScenario, data)
+        par, ini = sc.parameters, sc.initial
+        p = resisting_medium.Params(eps=par.eps, kappa=par.kappa, a=par.a, b=par.b, s=par.s)
+        st = resisting_medium.State(k=ini.k, rho=ini.rho, sigma=ini.sigma, psi=ini.psi,
+                                    theta=ini.theta, phi=ini.phi)
+        tau, scaling, run = _times(sc.run, "tau_end", "tau"), None, sc.run
+    rtol, atol = _tolerances(run)
+    request = RunRequest(model, p, st, tau, _methods(run, model.methods), rtol, atol, scaling)
+    return request, sc.model_dump()
+
+
+_BUILDERS = {"resisting_medium": _resisting_medium}
+
+
+def parse_scenario(data: dict[str, Any], source: str = "<scenario>") -> Scenario:
+    """Validate a scenario given as a dict (as read from TOML).
+
+    Raises
+    ------
+    ScenarioError, ParameterError
+        With a one-line message naming the key and its allowed range.
+    """
+    if "model" not in data:
+        raise ScenarioError("model: required key is missing (allowed: " + ", ".join(_BUILDERS) + ")")
+    name = data["model"]
+    if not isinstance(name, str):
+        raise ScenarioError(f"model = {name!r}: expected a string")
+    get_model(name)  # unknown model → one line naming the allowed ones
+    request, inputs = _BUILDERS[name](data)
+    return Scenario(request, inputs, source)
+
+
+def load_scenario(path: str | Path) -> Scenario:
+    """Read and validate a TOML scenario file.
+
+    Parameters
+    ----------
+    path : str or Path
+        The scenario file.
+    """
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError as exc:
+        raise ScenarioError(f"{path}: cannot read the scenario ({exc.strerror})") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ScenarioError(f"{path}: not valid TOML ({exc})") from None
+    return parse_scenario(data, str(path))
+
+
+def template(model: str) -> str:
+    """A commented example scenario for ``model`` (what ``tumble init`` prints)."""
+    get_model(model)
+    return resources.files("tumble.io").joinpath("templates", f"{model}.toml").read_text("utf-8")

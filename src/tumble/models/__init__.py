@@ -1,0 +1,22 @@
+"""Paper models, one module each, registered by name (STYLE.md section 2)."""
+
+from __future__ import annotations
+
+from tumble.errors import ScenarioError
+from tumble.models import resisting_medium
+from tumble.models.base import ModelRecord
+
+__all__ = ["MODELS", "get_model", "resisting_medium"]
+
+MODELS: dict[str, ModelRecord] = {resisting_medium.MODEL.name: resisting_medium.MODEL}
+"""Every registered model, by the name a scenario's ``model`` key uses."""
+
+
+def get_model(name: str) -> ModelRecord:
+    """The registered model called ``name``; :class:`ScenarioError` if there is none."""
+    try:
+        return MODELS[name]
+    except KeyError:
+        raise ScenarioError(
+            f"model = {name!r} is not a known model (allowed: {', '.join(sorted(MODELS))})"
+        ) from None

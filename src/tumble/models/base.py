@@ -1,0 +1,109 @@
+"""The shape every paper model exposes to the rest of tumble (STYLE.md section 2).
+
+A model module provides plain numerics; this record tells the integration and analysis layers
+how to drive it: which state vectors its full and averaged forms use, how to convert them to
+the output columns, and which closed forms and validity checks it has.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+from tumble._typing import FloatArray
+
+__all__ = ["AveragedForm", "Column", "FullForm", "ModelRecord", "ValidityIssue"]
+
+
+@dataclass(frozen=True, slots=True)
+class Column:
+    """Metadata of one output column; exports and axis labels read it, never retype it."""
+
+    name: str
+    long_name: str
+    units: str
+    equation: str = ""
+    angle: bool = False  # compare modulo 2π
+    unwrap: bool = False  # reported as a continuous function of time (spec/medvedev.md §14)
+
+
+@dataclass(frozen=True, slots=True)
+class FullForm:
+    """One form of the full equations of motion.
+
+    ``rhs(t, y, p)`` is the right-hand side; ``from_slow(p, initial)`` builds the state vector;
+    ``to_columns(t, Y, p)`` turns states ``Y`` of shape (n, dim) into output columns.
+    """
+
+    name: str
+    equation: str
+    rhs: Callable[[float, FloatArray, Any], FloatArray]
+    from_slow: Callable[[Any, Any], FloatArray]
+    to_columns: Callable[[FloatArray, FloatArray, Any], dict[str, FloatArray]]
+
+
+@dataclass(frozen=True, slots=True)
+class AveragedForm:
+    """The averaged (evolution) equations in the coordinates used to integrate them."""
+
+    name: str
+    equation: str
+    rhs: Callable[[float, FloatArray, Any], FloatArray]
+    from_slow: Callable[[Any, Any], FloatArray]
+    to_columns: Callable[[FloatArray, FloatArray, Any, Any], dict[str, FloatArray]]
+
+
+@dataclass(frozen=True, slots=True)
+class ValidityIssue:
+    """A region where a method loses accuracy, entered first at time ``tau``."""
+
+    condition: str  # short stable identifier, e.g. "theta_crossing"
+    tau: float  # first time the condition holds [model time unit]
+    message: str  # one sentence for the user, citing the spec section
+
+
+@dataclass(frozen=True)
+class ModelRecord:
+    """Registry entry of a paper model.
+
+    Attributes
+    ----------
+    name : str
+        Registered name (the scenario's ``model`` key).
+    description : str
+        One line for ``tumble models``.
+    paper : str
+        Citation of the seed paper and the spec that supersedes it.
+    methods : tuple of str
+        Methods a scenario may request.
+    columns : mapping
+        Output columns of each method, in contract order.
+    full : FullForm
+        Default form of the full equations; ``full_forms`` lists every form by name.
+    averaged_form : callable
+        ``(p, initial) -> AveragedForm`` — the coordinates to integrate the averaged system in.
+    closed_form : callable
+        ``(p, initial, tau) -> columns``.
+    check_method : callable
+        ``(p, method) -> None``; raises ``ParameterError`` when a method cannot apply.
+    validity : callable
+        ``(p, initial, slow, tau_end) -> list[ValidityIssue]`` for an averaged trajectory given
+        as ``slow(tau) -> columns``.
+    limits : callable
+        ``(p, initial) -> dict`` of the paper's predicted limits as τ → ∞.
+    """
+
+    name: str
+    description: str
+    paper: str
+    methods: tuple[str, ...]
+    columns: Mapping[str, tuple[Column, ...]]
+    full: FullForm
+    full_forms: Mapping[str, FullForm]
+    averaged_form: Callable[[Any, Any], AveragedForm]
+    closed_form: Callable[[Any, Any, FloatArray], dict[str, FloatArray]]
+    check_method: Callable[[Any, str], None]
+    validity: Callable[[Any, Any, Callable[[FloatArray], dict[str, FloatArray]], float], list[ValidityIssue]]
+    limits: Callable[[Any, Any], dict[str, Any]]
+    extras: Mapping[str, Any] = field(default_factory=dict)

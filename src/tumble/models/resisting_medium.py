@@ -1,0 +1,1226 @@
+"""Fast-spinning symmetric gyroscope under a constant body-fixed moment in a resisting medium.
+
+A. V. Medvedev, *Motion of a fast-spinning gyroscope under a constant moment in a resisting
+medium* (1987), seed ``000_5a157e916f67cb33.txt``; ``spec/medvedev.md`` supersedes the seed
+where they differ (errata E1–E10). Equation numbers below are the paper's.
+
+Everything here is in the paper's normalized variables (1.3): time τ, angular momentum
+``k = |K|/K0``, inertia ``I1 = 1``, ``I3 = 1 + κ``, moment ``ε m`` with
+``m = a − b w − s (w ∘ |w|)``, body angular velocity ``w = (p, q, r)``. Angles follow spec §2:
+ρ, σ locate K in the inertial frame; ψ, ϑ, φ are the 3-1-3 Euler angles of the body in the
+K-frame. The averaged system and its closed forms are written in the slow time ``s = ε τ``
+internally and take τ at the interface.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+import numpy as np
+from scipy.optimize import brentq
+
+from tumble._typing import ArrayLike, FloatArray
+from tumble.bodies import RigidBody
+from tumble.dynamics import rigid_body_rhs
+from tumble.errors import IntegrationError, ParameterError, check_finite, check_range
+from tumble.models.base import AveragedForm, Column, FullForm, ModelRecord, ValidityIssue
+from tumble.rotations import (
+    attitude_from_kframe_angles,
+    kframe_angles_from_attitude,
+    matrix_to_quat,
+    quat_to_matrix,
+)
+from tumble.torques import ConstantBodyTorque, LinearDrag, QuadraticDrag, Torque
+
+__all__ = [
+    "MODEL",
+    "VALIDITY_RATIO",
+    "Params",
+    "PhysicalParams",
+    "Scaling",
+    "State",
+    "averaged_rhs",
+    "averaged_rhs_wv",
+    "axial_lower_double_root",
+    "axial_lower_exp",
+    "axial_lower_tan",
+    "axial_momentum",
+    "axial_upper_double_root",
+    "axial_upper_exp",
+    "axial_upper_tan",
+    "closed_form",
+    "crossing_time",
+    "equatorial_momentum",
+    "full_from_slow",
+    "full_rhs",
+    "invariants",
+    "moment_depends_on_phi",
+    "normalize_physical",
+    "osculating_from_slow",
+    "osculating_rhs",
+    "predicted_limits",
+    "slow_from_full",
+    "tan_theta_a3_zero_lower",
+    "tan_theta_a3_zero_upper",
+    "tan_theta_quadratic",
+    "validity",
+]
+
+VALIDITY_RATIO = 0.1
+"""Averaging is trusted while the slow rates stay below this fraction of the fast rates
+(spec §6: ``ε(|a|/k² + |b|/k + |s|) ≪ |κ cos ϑ|/(1+κ)``); beyond it a run is warned."""
+
+
+def _frozen(name: str, value: ArrayLike, shape: tuple[int, ...]) -> FloatArray:
+    arr = np.array(value, dtype=float)
+    if arr.shape != shape:
+        raise ParameterError(f"{name} must have shape {shape}, got {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ParameterError(f"{name} must contain finite numbers only, got {value!r}")
+    arr.setflags(write=False)
+    return arr
+
+
+@dataclass(frozen=True, eq=False)
+class Params:
+    """Normalized parameters of (1.3), spec/medvedev.md §4.
+
+    Parameters
+    ----------
+    eps : float
+        Small parameter ε = M0 I1 / K0² [1], ε ≥ 0 (0 gives the free Euler–Poinsot motion).
+    kappa : float
+        Oblateness κ with I3 = I1 (1 + κ) [1], in (−1, 1] (triangle inequality).
+    a : array_like, shape (3,)
+        Constant body-fixed moment a_i = A_i / M0 [1].
+    b : array_like, shape (3, 3)
+        Linear drag b_ij = B_ij / (M0 T0) [1]; any sign, off-diagonal entries allowed.
+    s : array_like, shape (3, 3)
+        Quadratic drag s_ij = S_ij / (M0 T0²) [1].
+    """
+
+    eps: float
+    kappa: float
+    a: FloatArray = field(default_factory=lambda: np.zeros(3))
+    b: FloatArray = field(default_factory=lambda: np.zeros((3, 3)))
+    s: FloatArray = field(default_factory=lambda: np.zeros((3, 3)))
+    _torque: Torque = field(init=False, repr=False)
+    _inertia: FloatArray = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        check_range("parameters.eps", float(self.eps), low=0.0, low_open=False)
+        check_range("parameters.kappa", float(self.kappa), low=-1.0, high=1.0, high_open=False)
+        object.__setattr__(self, "eps", float(self.eps))
+        object.__setattr__(self, "kappa", float(self.kappa))
+        object.__setattr__(self, "a", _frozen("parameters.a", self.a, (3,)))
+        object.__setattr__(self, "b", _frozen("parameters.b", self.b, (3, 3)))
+        object.__setattr__(self, "s", _frozen("parameters.s", self.s, (3, 3)))
+        # Built once: the full right-hand side calls it at every evaluation.
+        moment = ConstantBodyTorque(self.a) + LinearDrag(self.b) + QuadraticDrag(self.s)
+        object.__setattr__(self, "_torque", self.eps * moment)
+        object.__setattr__(self, "_inertia", np.array([1.0, 1.0, 1.0 + self.kappa]))
+
+    # Combinations of (2.2), spec §6.
+    @property
+    def alpha(self) -> float:
+        """α = (b11 + b22)/2 of (2.2) [1]."""
+        return 0.5 * float(self.b[0, 0] + self.b[1, 1])
+
+    @property
+    def beta(self) -> float:
+        """β = b33/(1 + κ) of (2.2) [1]."""
+        return float(self.b[2, 2]) / (1.0 + self.kappa)
+
+    @property
+    def gamma(self) -> float:
+        """γ = 4 (s11 + s22)/(3π) of (2.2), erratum E6 [1]."""
+        return 4.0 * float(self.s[0, 0] + self.s[1, 1]) / (3.0 * math.pi)
+
+    @property
+    def delta(self) -> float:
+        """δ = s33/(1 + κ)² of (2.2) [1]."""
+        return float(self.s[2, 2]) / (1.0 + self.kappa) ** 2
+
+    @property
+    def inertia(self) -> FloatArray:
+        """Normalized principal moments (1, 1, 1 + κ)."""
+        return self._inertia
+
+    @property
+    def torque(self) -> Torque:
+        """The moment ε m of (1.2) in normalized units, as a composable torque."""
+        return self._torque
+
+    def with_eps(self, eps: float) -> Params:
+        """The same medium at another ε (for error studies)."""
+        return replace(self, eps=eps)
+
+
+@dataclass(frozen=True)
+class State:
+    """Slow and fast variables (k, ρ, σ, ψ, ϑ, φ) of (1.3), spec §2 conventions [1, rad]."""
+
+    k: float
+    rho: float
+    sigma: float
+    psi: float
+    theta: float
+    phi: float
+
+    def __post_init__(self) -> None:
+        check_range("initial.k", self.k, low=0.0)
+        check_range("initial.theta", self.theta, low=0.0, high=math.pi, low_open=False, high_open=False)
+        check_range("initial.rho", self.rho, low=0.0, high=math.pi, low_open=False, high_open=False)
+        for name in ("sigma", "psi", "phi"):
+            check_finite(f"initial.{name}", getattr(self, name))
+
+    @property
+    def W(self) -> float:
+        """Axial component k cos ϑ of (2.3)."""
+        return self.k * math.cos(self.theta)
+
+    @property
+    def V(self) -> float:
+        """Equatorial component k sin ϑ ≥ 0 of (2.3)."""
+        return self.k * math.sin(self.theta)
+
+
+# ---------------------------------------------------------------------------------------------
+# Full model, form (a): Euler's equations + quaternion kinematics with the moment (1.2).
+
+
+def full_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
+    """Full equations of motion, Euler + quaternions with the moment (1.2), spec §4.
+
+    Parameters
+    ----------
+    t : float
+        Time τ [1].
+    y : ndarray, shape (7,)
+        ``[p, q, r, q0, q1, q2, q3]``: body angular velocity w [rad/τ] and attitude quaternion.
+    p : Params
+        Model parameters.
+    """
+    return rigid_body_rhs(t, y, p.inertia, p.torque)
+
+
+def _body_momentum(k: ArrayLike, theta: ArrayLike, phi: ArrayLike) -> FloatArray:
+    """k_b = k (sin ϑ sin φ, sin ϑ cos φ, cos ϑ): body components of k, spec §2."""
+    k, theta, phi = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (k, theta, phi)))
+    st = np.sin(theta)
+    return np.stack([k * st * np.sin(phi), k * st * np.cos(phi), k * np.cos(theta)], -1)
+
+
+def full_from_slow(p: Params, st: State) -> FloatArray:
+    """State vector of form (a) from (k, ρ, σ, ψ, ϑ, φ), spec §2 and §4.
+
+    Returns
+    -------
+    ndarray, shape (7,)
+        ``[w, q]`` with w = (k_b1, k_b2, k_b3/(1+κ)) and q the attitude Ξ(ρ, σ) C(ψ, ϑ, φ).
+    """
+    R = attitude_from_kframe_angles(st.rho, st.sigma, st.psi, st.theta, st.phi)
+    w = _body_momentum(st.k, st.theta, st.phi) / p.inertia
+    return np.concatenate([w, matrix_to_quat(R)])
+
+
+def slow_from_full(t: FloatArray, Y: FloatArray, p: Params) -> dict[str, FloatArray]:
+    """(k, ϑ, ρ, σ, ψ, φ) from states of form (a), with atan2 as in spec §4.
+
+    Parameters
+    ----------
+    t : ndarray, shape (n,)
+        Times τ [1] (unused; part of the form's interface).
+    Y : ndarray, shape (n, 7)
+        States ``[w, q]``.
+    p : Params
+        Model parameters.
+    """
+    Y = np.atleast_2d(Y)
+    kb = Y[:, :3] * p.inertia
+    k = np.linalg.norm(kb, axis=-1)
+    theta = np.arctan2(np.hypot(kb[:, 0], kb[:, 1]), kb[:, 2])
+    phi = np.arctan2(kb[:, 0], kb[:, 1])
+    R = quat_to_matrix(Y[:, 3:])
+    K_in = np.einsum("nij,nj->ni", R, kb)
+    rho, sigma, psi, _, _ = kframe_angles_from_attitude(R, K_in)
+    return {"k": k, "theta": theta, "rho": rho, "sigma": sigma, "psi": psi, "phi": phi}
+
+
+def invariants(Y: FloatArray, p: Params) -> dict[str, FloatArray]:
+    """First integrals of the unperturbed motion (ε = 0), spec §5 and §13 item 1.
+
+    Returns
+    -------
+    dict
+        ``k`` = |k| [1], ``energy`` = ½ (p² + q² + (1+κ) r²) [1], and the inertial components
+        ``K1, K2, K3`` of k [1].
+    """
+    Y = np.atleast_2d(Y)
+    w = Y[:, :3]
+    kb = w * p.inertia
+    K_in = np.einsum("nij,nj->ni", quat_to_matrix(Y[:, 3:]), kb)
+    return {
+        "k": np.linalg.norm(kb, axis=-1),
+        "energy": 0.5 * np.sum(w * kb, axis=-1),
+        "K1": K_in[:, 0],
+        "K2": K_in[:, 1],
+        "K3": K_in[:, 2],
+    }
+
+
+# ---------------------------------------------------------------------------------------------
+# Full model, form (b): the osculating-variable standard form (1.3).
+
+
+def _body_moment(p: Params, w: FloatArray) -> FloatArray:
+    """m = a − b w − s (w ∘ |w|) of (1.2), body axes, for w of shape (..., 3)."""
+    return p.a - w @ p.b.T - (w * np.abs(w)) @ p.s.T
+
+
+def _nodal_moment(p: Params, k: ArrayLike, theta: ArrayLike, phi: ArrayLike) -> FloatArray:
+    """μ = Rx(ϑ) Rz(φ) m_body (spec §3 identity) at the state (k, ϑ, φ); shape (..., 3)."""
+    kb = _body_momentum(k, theta, phi)
+    mb = _body_moment(p, kb / p.inertia)
+    theta, phi = np.asarray(theta, dtype=float), np.asarray(phi, dtype=float)
+    cf, sf, ct, st = np.cos(phi), np.sin(phi), np.cos(theta), np.sin(theta)
+    mb1, mb2, mb3 = mb[..., 0], mb[..., 1], mb[..., 2]
+    across = sf * mb1 + cf * mb2
+    return np.stack([cf * mb1 - sf * mb2, ct * across - st * mb3, st * across + ct * mb3], -1)
+
+
+def osculating_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
+    """Standard form (1.3) for (k, ρ, σ, ψ, ϑ, φ), with erratum E1 applied.
+
+    Singular where sin ϑ = 0 or sin ρ = 0 (spec §11); use :func:`full_rhs` there.
+
+    Parameters
+    ----------
+    t : float
+        Time τ [1].
+    y : ndarray, shape (6,)
+        ``[k, ρ, σ, ψ, ϑ, φ]`` [1, rad, rad, rad, rad, rad].
+    p : Params
+        Model parameters.
+    """
+    k, rho, _sigma, psi, theta, phi = y
+    mu1, mu2, mu3 = _nodal_moment(p, k, theta, phi)
+    cp, sp = math.cos(psi), math.sin(psi)
+    m1 = cp * mu1 - sp * mu2  # K-frame components, m_K = Rz(ψ) μ
+    m2 = sp * mu1 + cp * mu2
+    e = p.eps
+    return np.array(
+        [
+            e * mu3,
+            e * m1 / k,
+            e * m2 / (k * math.sin(rho)),
+            k - e / k * (mu1 / math.tan(theta) + m2 / math.tan(rho)),
+            e * mu2 / k,
+            -k * p.kappa / (1.0 + p.kappa) * math.cos(theta) + e * mu1 / (k * math.sin(theta)),
+        ]
+    )
+
+
+def osculating_from_slow(p: Params, st: State) -> FloatArray:
+    """State vector ``[k, ρ, σ, ψ, ϑ, φ]`` of form (1.3)."""
+    return np.array([st.k, st.rho, st.sigma, st.psi, st.theta, st.phi])
+
+
+def _osculating_columns(t: FloatArray, Y: FloatArray, p: Params) -> dict[str, FloatArray]:
+    Y = np.atleast_2d(Y)
+    names = ("k", "rho", "sigma", "psi", "theta", "phi")
+    return {name: Y[:, i] for i, name in enumerate(names)}
+
+
+# ---------------------------------------------------------------------------------------------
+# Averaged system (2.2) and its W, V form (2.3).
+
+
+def averaged_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
+    """Averaged equations (2.2) for (k, ϑ); ρ and σ are constant.
+
+    The a3 term of the ϑ-equation is evaluated as a3 sin ϑ / k, regular at ϑ = π/2 (spec §6).
+
+    Parameters
+    ----------
+    t : float
+        Time τ [1].
+    y : ndarray, shape (2,)
+        ``[k, ϑ]`` [1, rad].
+    p : Params
+        Model parameters.
+    """
+    k, theta = y
+    c, s = math.cos(theta), math.sin(theta)
+    ac, as_ = abs(c), abs(s)
+    a3 = float(p.a[2])
+    al, be, ga, de = p.alpha, p.beta, p.gamma, p.delta
+    dk = a3 * c - k * (al * s * s + be * c * c + k * (ga * s * s * as_ + de * c * c * ac))
+    dtheta = -(a3 * s / k + (al - be + k * (ga * as_ - de * ac)) * s * c)
+    return p.eps * np.array([dk, dtheta])
+
+
+def averaged_rhs_wv(t: float, y: FloatArray, p: Params) -> FloatArray:
+    """W, V form (2.3): dW/dτ = ε(a3 − βW − δW|W|), dV/dτ = −ε(αV + γV²).
+
+    Parameters
+    ----------
+    t : float
+        Time τ [1].
+    y : ndarray, shape (2,)
+        ``[W, V]`` = ``[k cos ϑ, k sin ϑ]`` [1].
+    p : Params
+        Model parameters.
+    """
+    W, V = y
+    return p.eps * np.array(
+        [float(p.a[2]) - p.beta * W - p.delta * W * abs(W), -(p.alpha * V + p.gamma * V * V)]
+    )
+
+
+def _averaged_columns_ktheta(
+    t: FloatArray, Y: FloatArray, p: Params, st: State
+) -> dict[str, FloatArray]:
+    Y = np.atleast_2d(Y)
+    n = Y.shape[0]
+    return {"k": Y[:, 0], "theta": Y[:, 1], "rho": np.full(n, st.rho), "sigma": np.full(n, st.sigma)}
+
+
+def _averaged_columns_wv(t: FloatArray, Y: FloatArray, p: Params, st: State) -> dict[str, FloatArray]:
+    Y = np.atleast_2d(Y)
+    n = Y.shape[0]
+    return {
+        "k": np.hypot(Y[:, 0], Y[:, 1]),
+        "theta": np.arctan2(Y[:, 1], Y[:, 0]),
+        "rho": np.full(n, st.rho),
+        "sigma": np.full(n, st.sigma),
+    }
+
+
+_AVERAGED_KTHETA = AveragedForm(
+    name="k_theta",
+    equation="(2.2)",
+    rhs=averaged_rhs,
+    from_slow=lambda p, st: np.array([st.k, st.theta]),
+    to_columns=_averaged_columns_ktheta,
+)
+_AVERAGED_WV = AveragedForm(
+    name="W_V",
+    equation="(2.3)",
+    rhs=averaged_rhs_wv,
+    from_slow=lambda p, st: np.array([st.W, st.V]),
+    to_columns=_averaged_columns_wv,
+)
+
+
+def _averaged_form(p: Params, st: State) -> AveragedForm:
+    # (2.2) is written in polar coordinates (k, ϑ): at V0 = 0 (ϑ0 = 0 or π) the solution may
+    # pass through k = 0, the polar singularity; (2.3) is the same system and regular there.
+    return _AVERAGED_WV if abs(math.sin(st.theta)) < 1e-12 else _AVERAGED_KTHETA
+
+
+# ---------------------------------------------------------------------------------------------
+# Closed forms, spec §8. Internally in slow time s = ε τ.
+#
+# Both components obey scalar Riccati equations. In a window where W keeps its sign, with
+# d = δ (W ≥ 0) or d = −δ (W < 0):  dW/ds = a3 − βW − dW².  V obeys dV/ds = −αV − γV².
+# Real roots: with r the root that stays bounded as d → 0 and λ = β + 2dr, u = W − r solves the
+# Bernoulli equation du/ds = −λu − du² (this is (2.4) for V, and (2.5)/(2.7) rewritten so that
+# neither d → 0 nor a double root loses digits). Complex roots: the tangent law (2.6)/(2.8), in
+# the division-free form of spec §8.5.
+
+
+def _bernoulli(u0: float, lam: float, d: float, s: FloatArray) -> FloatArray:
+    """Solution of du/ds = −λu − du², u(0) = u0 (no blow-up inside ``s`` assumed)."""
+    if lam >= 0.0:
+        growth = s if lam == 0.0 else -np.expm1(-lam * s) / lam  # (1 − e^{−λs})/λ
+        return u0 * np.exp(-lam * s) / (1.0 + d * u0 * growth)
+    # λ < 0: divide through by e^{−λs}, which grows, to avoid overflow.
+    return u0 / (np.exp(lam * s) + d * u0 * np.expm1(lam * s) / lam)
+
+
+def _bernoulli_blowup(u0: float, lam: float, d: float) -> float:
+    """Slow time at which the Bernoulli solution diverges, or inf."""
+    c = d * u0
+    if c >= 0.0:
+        return math.inf
+    e_star = -1.0 / c  # the denominator 1 + c (1 − e^{−λs})/λ vanishes there
+    if lam == 0.0:
+        return e_star
+    if lam > 0.0 and lam * e_star >= 1.0:
+        return math.inf
+    return -math.log1p(-lam * e_star) / lam
+
+
+@dataclass(frozen=True)
+class _Riccati:
+    """dW/ds = a3 − βW − dW² from W(0) = W0 (one sign window of (2.3))."""
+
+    W0: float
+    a3: float
+    beta: float
+    d: float
+
+    @property
+    def _disc(self) -> float:
+        return self.beta * self.beta + 4.0 * self.d * self.a3
+
+    def _root_rate(self) -> tuple[float, float]:
+        lam = math.sqrt(self._disc)
+        lam = lam if self.beta >= 0.0 else -lam
+        r = 0.0 if self.beta + lam == 0.0 else 2.0 * self.a3 / (self.beta + lam)
+        return r, lam
+
+    def __call__(self, s: FloatArray) -> FloatArray:
+        s = np.asarray(s, dtype=float)
+        a3, beta, d, W0 = self.a3, self.beta, self.d, self.W0
+        if d == 0.0:
+            if beta == 0.0:
+                return W0 + a3 * s
+            return W0 * np.exp(-beta * s) - a3 * np.expm1(-beta * s) / beta
+        if self._disc >= 0.0:
+            r, lam = self._root_rate()
+            return r + _bernoulli(W0 - r, lam, d, s)
+        # Complex roots: y = W + h obeys dy/dx = −(y² + μ²), x = d s (spec §8.5, tan branch).
+        h = beta / (2.0 * d)
+        mu = math.sqrt(-self._disc) / (2.0 * abs(d))
+        x = d * s
+        y0 = W0 + h
+        c = np.cos(mu * x)
+        sin_over_mu = x * np.sinc(mu * x / math.pi)
+        return (y0 * c - mu * mu * sin_over_mu) / (c + y0 * sin_over_mu) - h
+
+    def blowup(self) -> float:
+        """Slow time at which W diverges (inf if never)."""
+        if self.d == 0.0:
+            return math.inf
+        if self._disc >= 0.0:
+            r, lam = self._root_rate()
+            return _bernoulli_blowup(self.W0 - r, lam, self.d)
+        h = self.beta / (2.0 * self.d)
+        mu = math.sqrt(-self._disc) / (2.0 * abs(self.d))
+        theta0 = math.atan((self.W0 + h) / mu)
+        # y = μ tan(θ0 − μx) has its pole at θ0 − μx = ∓π/2, reached for x of the sign of d.
+        x_pole = (theta0 + math.pi / 2) / mu if self.d > 0 else (theta0 - math.pi / 2) / mu
+        return x_pole / self.d
+
+    def zero_crossing(self) -> float:
+        """Slow time at which W reaches 0 (inf if it does not), spec §8.4."""
+        a3, beta, d, W0 = self.a3, self.beta, self.d, self.W0
+        if W0 == 0.0 or a3 == 0.0 or (a3 > 0) == (W0 > 0):
+            return math.inf  # W = 0 is crossed only in the direction of a3
+        if d == 0.0:
+            if beta == 0.0:
+                s1 = -W0 / a3
+            else:
+                arg = -beta * W0 / a3
+                s1 = math.log1p(arg) / beta if arg > -1.0 else math.inf
+        elif self._disc >= 0.0:
+            r, lam = self._root_rate()
+            u0 = W0 - r
+            if u0 == 0.0:
+                return math.inf
+            e_star = W0 / (u0 * 0.5 * (lam + beta))  # u(s1) = −r
+            if e_star <= 0.0 or (lam > 0.0 and lam * e_star >= 1.0):
+                return math.inf
+            s1 = e_star if lam == 0.0 else -math.log1p(-lam * e_star) / lam
+        else:
+            h = beta / (2.0 * d)
+            mu = math.sqrt(-self._disc) / (2.0 * abs(d))
+            y0 = W0 + h
+            # (arctan(y0/μ) − arctan(h/μ))/μ without losing the branch (spec §8.4 table).
+            s1 = math.atan2(mu * (y0 - h), mu * mu + y0 * h) / mu / d
+        return s1 if (s1 > 0.0 and s1 < self.blowup()) else math.inf
+
+
+@dataclass(frozen=True)
+class _AxialSolution:
+    """W(s) over both sign windows, switching branch at the crossing (spec §8.4)."""
+
+    first: _Riccati | None  # None: W ≡ 0
+    s_cross: float
+    second: _Riccati | None
+    s_blowup: float
+
+    def __call__(self, s: FloatArray) -> FloatArray:
+        s = np.asarray(s, dtype=float)
+        if self.first is None:
+            return np.zeros_like(s)
+        out = np.empty_like(s)
+        before = s <= self.s_cross
+        out[before] = self.first(s[before])
+        if self.second is not None and np.any(~before):
+            out[~before] = self.second(s[~before] - self.s_cross)
+        return out
+
+
+def _axial_solution(W0: float, a3: float, beta: float, delta: float) -> _AxialSolution:
+    if W0 == 0.0 and a3 == 0.0:
+        return _AxialSolution(None, math.inf, None, math.inf)
+    side = math.copysign(1.0, W0) if W0 != 0.0 else math.copysign(1.0, a3)
+    # Lower hemisphere: −δW|W| = +δW², i.e. d = −δ (the "∓" of (2.3)).
+    first = _Riccati(W0, a3, beta, side * delta)
+    s_cross = first.zero_crossing()
+    if math.isinf(s_cross):
+        return _AxialSolution(first, math.inf, None, first.blowup())
+    second = _Riccati(0.0, a3, beta, -side * delta)
+    return _AxialSolution(first, s_cross, second, s_cross + second.blowup())
+
+
+def _slow_time(tau: ArrayLike, p: Params) -> FloatArray:
+    return p.eps * np.asarray(tau, dtype=float)
+
+
+def _check_no_blowup(s: FloatArray, s_blow: float, what: str, p: Params) -> None:
+    if s.size and np.max(s) >= s_blow:
+        raise IntegrationError(
+            f"the closed-form {what} diverges at τ = {s_blow / p.eps:.6g} (negative damping "
+            f"coefficients, spec §11); request times before it"
+        )
+
+
+def equatorial_momentum(tau: ArrayLike, V0: float, p: Params) -> FloatArray:
+    """V(τ) = k sin ϑ, closed form (2.4), valid in both hemispheres.
+
+    Parameters
+    ----------
+    tau : array_like
+        Times τ ≥ 0 [1].
+    V0 : float
+        Initial k0 sin ϑ0 ≥ 0 [1].
+    p : Params
+        Model parameters (α, γ, ε are used).
+
+    Returns
+    -------
+    ndarray
+        V at the requested times [1].
+    """
+    s = _slow_time(tau, p)
+    _check_no_blowup(s, _bernoulli_blowup(V0, p.alpha, p.gamma), "V = k sin ϑ of (2.4)", p)
+    return _bernoulli(V0, p.alpha, p.gamma, s)
+
+
+def axial_momentum(tau: ArrayLike, W0: float, p: Params) -> FloatArray:
+    """W(τ) = k cos ϑ, closed forms (2.5)–(2.8) with the branch switch of spec §8.4.
+
+    Each hemisphere's formula is used only while W keeps its sign; at the crossing time τ1 the
+    other hemisphere's formula continues from W = 0. Written in the well-conditioned forms of
+    spec §8.5 (algebraically identical to (2.5)–(2.8), the double roots and δ = 0).
+
+    Parameters
+    ----------
+    tau : array_like
+        Times τ ≥ 0 [1].
+    W0 : float
+        Initial k0 cos ϑ0 [1].
+    p : Params
+        Model parameters (a3, β, δ, ε are used).
+
+    Returns
+    -------
+    ndarray
+        W at the requested times [1].
+    """
+    s = _slow_time(tau, p)
+    sol = _axial_solution(W0, float(p.a[2]), p.beta, p.delta)
+    _check_no_blowup(s, sol.s_blowup, "W = k cos ϑ of (2.3)", p)
+    return sol(s)
+
+
+def crossing_time(W0: float, p: Params) -> float:
+    """Time τ1 at which the averaged W = k cos ϑ reaches 0 (ϑ = π/2), spec §8.4; inf if never.
+
+    Parameters
+    ----------
+    W0 : float
+        Initial k0 cos ϑ0 [1].
+    p : Params
+        Model parameters.
+    """
+    s1 = _axial_solution(W0, float(p.a[2]), p.beta, p.delta).s_cross
+    return math.inf if (math.isinf(s1) or p.eps == 0.0) else s1 / p.eps
+
+
+def closed_form(p: Params, st: State, tau: ArrayLike) -> dict[str, FloatArray]:
+    """Averaged motion in closed form: k, ϑ from (2.4)–(2.8) through W and V, ρ, σ constant.
+
+    ϑ = atan2(V, W) (spec §8.6: no trouble at ϑ = π/2, no α/β division).
+
+    Parameters
+    ----------
+    p : Params
+        Model parameters.
+    st : State
+        Initial state (ψ, φ unused).
+    tau : array_like
+        Times τ ≥ 0 [1].
+
+    Returns
+    -------
+    dict
+        Columns ``k``, ``theta``, ``rho``, ``sigma`` at the requested times.
+    """
+    tau = np.asarray(tau, dtype=float)
+    W = axial_momentum(tau, st.W, p)
+    V = equatorial_momentum(tau, st.V, p)
+    n = tau.shape
+    return {
+        "k": np.hypot(W, V),
+        "theta": np.arctan2(V, W),
+        "rho": np.full(n, st.rho),
+        "sigma": np.full(n, st.sigma),
+    }
+
+
+# The paper's printed formulas, one per case, each valid only in its window (spec §8).
+
+
+def _coeffs(p: Params) -> tuple[float, float, float, float]:
+    if p.delta == 0.0:
+        raise ParameterError("parameters.s[2][2] = 0: (2.5)–(2.8) need δ > 0; use axial_momentum")
+    return float(p.a[2]), p.beta, p.delta, p.beta / (2.0 * p.delta)
+
+
+def axial_upper_exp(tau: ArrayLike, W0: float, p: Params) -> FloatArray:
+    """(2.5) with erratum E3: k cos ϑ for W ≥ 0 when a3/δ > −h², h = β/(2δ).
+
+    Parameters
+    ----------
+    tau : array_like
+        Times τ [1], before any crossing of ϑ = π/2.
+    W0 : float
+        k0 cos ϑ0 ≥ 0 [1].
+    p : Params
+        Model parameters with δ > 0.
+    """
+    a3, be, de, h = _coeffs(p)
+    nu1_sq = h * h + a3 / de
+    if nu1_sq <= 0.0:
+        raise ParameterError(f"(2.5) needs a3/δ > −(β/2δ)², got ν1² = {nu1_sq:g}")
+    nu1 = math.sqrt(nu1_sq)
+    c1 = (2 * de * W0 + be - 2 * de * nu1) / (2 * de * W0 + be + 2 * de * nu1)
+    e = c1 * np.exp(-2 * p.eps * de * nu1 * np.asarray(tau, dtype=float))
+    return (2 * de * nu1 - be + (2 * de * nu1 + be) * e) / (2 * de * (1 - e))
+
+
+def axial_upper_tan(tau: ArrayLike, W0: float, p: Params) -> FloatArray:
+    """(2.6): k cos ϑ for W ≥ 0 when a3/δ < −h² (μ1² = −h² − a3/δ > 0)."""
+    a3, be, de, h = _coeffs(p)
+    mu1_sq = -h * h - a3 / de
+    if mu1_sq <= 0.0:
+        raise ParameterError(f"(2.6) needs a3/δ < −(β/2δ)², got μ1² = {mu1_sq:g}")
+    mu1 = math.sqrt(mu1_sq)
+    arg = math.atan((2 * de * W0 + be) / (2 * de * mu1)) - p.eps * de * mu1 * np.asarray(tau, dtype=float)
+    return (-be + 2 * de * mu1 * np.tan(arg)) / (2 * de)
+
+
+def axial_upper_double_root(tau: ArrayLike, W0: float, p: Params) -> FloatArray:
+    """Double root a3/δ = −h² of the upper branch: W = −h + y0/(1 + εδ y0 τ), y0 = W0 + h."""
+    _, _, de, h = _coeffs(p)
+    y0 = W0 + h
+    return -h + y0 / (1 + p.eps * de * y0 * np.asarray(tau, dtype=float))
+
+
+def axial_lower_exp(tau: ArrayLike, W0: float, p: Params) -> FloatArray:
+    """(2.7): k cos ϑ for W < 0 when a3/δ < h² (ν2² = h² − a3/δ > 0)."""
+    a3, be, de, h = _coeffs(p)
+    nu2_sq = h * h - a3 / de
+    if nu2_sq <= 0.0:
+        raise ParameterError(f"(2.7) needs a3/δ < (β/2δ)², got ν2² = {nu2_sq:g}")
+    nu2 = math.sqrt(nu2_sq)
+    c2 = (2 * de * (W0 - nu2) - be) / (2 * de * (W0 + nu2) - be)
+    e = c2 * np.exp(2 * p.eps * de * nu2 * np.asarray(tau, dtype=float))
+    return (2 * de * nu2 + be + (2 * de * nu2 - be) * e) / (2 * de * (1 - e))
+
+
+def axial_lower_tan(tau: ArrayLike, W0: float, p: Params) -> FloatArray:
+    """(2.8): k cos ϑ for W < 0 when a3/δ > h² (μ2² = a3/δ − h² > 0)."""
+    a3, be, de, h = _coeffs(p)
+    mu2_sq = a3 / de - h * h
+    if mu2_sq <= 0.0:
+        raise ParameterError(f"(2.8) needs a3/δ > (β/2δ)², got μ2² = {mu2_sq:g}")
+    mu2 = math.sqrt(mu2_sq)
+    arg = math.atan((2 * de * W0 - be) / (2 * de * mu2)) + p.eps * de * mu2 * np.asarray(tau, dtype=float)
+    return (be + 2 * de * mu2 * np.tan(arg)) / (2 * de)
+
+
+def axial_lower_double_root(tau: ArrayLike, W0: float, p: Params) -> FloatArray:
+    """Double root a3/δ = h² of the lower branch: W = h + y0/(1 − εδ y0 τ), y0 = W0 − h."""
+    _, _, de, h = _coeffs(p)
+    y0 = W0 - h
+    return h + y0 / (1 - p.eps * de * y0 * np.asarray(tau, dtype=float))
+
+
+def tan_theta_a3_zero_upper(tau: ArrayLike, k0: float, theta0: float, p: Params) -> FloatArray:
+    """(2.9): tan ϑ for a3 = 0, α, β > 0, 0 ≤ ϑ < π/2 (erratum E7)."""
+    t = np.asarray(tau, dtype=float)
+    al, be, ga, de, e = p.alpha, p.beta, p.gamma, p.delta, p.eps
+    num = be + de * k0 * math.cos(theta0) * (-np.expm1(-e * be * t))
+    den = al + ga * k0 * math.sin(theta0) * (-np.expm1(-e * al * t))
+    return al / be * math.tan(theta0) * num / den * np.exp(e * (be - al) * t)
+
+
+def tan_theta_a3_zero_lower(tau: ArrayLike, k0: float, theta0: float, p: Params) -> FloatArray:
+    """(2.10): tan ϑ for a3 = 0, α, β > 0, π/2 < ϑ ≤ π (tan ϑ < 0; ϑ = π + arctan)."""
+    t = np.asarray(tau, dtype=float)
+    al, be, ga, de, e = p.alpha, p.beta, p.gamma, p.delta, p.eps
+    w = de * k0 * math.cos(theta0)
+    num = w - (w - be) * np.exp(e * be * t)
+    den = al + ga * k0 * math.sin(theta0) * (-np.expm1(-e * al * t))
+    return al / be * math.tan(theta0) * num / den * np.exp(-e * al * t)
+
+
+def tan_theta_quadratic(tau: ArrayLike, k0: float, theta0: float, p: Params) -> FloatArray:
+    """Quadratic-only medium (a3 = α = β = 0), spec §8.7, both hemispheres (erratum E8).
+
+    tan ϑ = tan ϑ0 (1 + εδ k0 |cos ϑ0| τ)/(1 + εγ k0 sin ϑ0 τ).
+    """
+    t = np.asarray(tau, dtype=float)
+    num = 1 + p.eps * p.delta * k0 * abs(math.cos(theta0)) * t
+    den = 1 + p.eps * p.gamma * k0 * math.sin(theta0) * t
+    return math.tan(theta0) * num / den
+
+
+# ---------------------------------------------------------------------------------------------
+# Asymptotic conclusions, spec §9.
+
+
+def _scalar_limit(x0: float, side: float, f: Callable[[float], float], roots: list[float]) -> float:
+    """Limit of a monotone scalar flow dx/ds = f(x) from x0: the nearest root ahead, or ±inf."""
+    f0 = f(x0)
+    if f0 == 0.0:
+        return x0
+    direction = math.copysign(1.0, f0)
+    ahead = [r for r in roots if (r - x0) * direction > 0.0]
+    return min(ahead, key=lambda r: abs(r - x0)) if ahead else direction * math.inf
+
+
+def _riccati_roots(a3: float, beta: float, d: float) -> list[float]:
+    if d == 0.0:
+        return [a3 / beta] if beta != 0.0 else []
+    disc = beta * beta + 4.0 * d * a3
+    if disc < 0.0:
+        return []
+    sq = math.sqrt(disc)
+    return [(-beta + sq) / (2 * d), (-beta - sq) / (2 * d)]
+
+
+def _W_limit(W0: float, a3: float, beta: float, delta: float) -> float:
+    if W0 == 0.0 and a3 == 0.0:
+        return 0.0
+    side = math.copysign(1.0, W0) if W0 != 0.0 else math.copysign(1.0, a3)
+    start = W0
+    for _ in range(2):
+        d = side * delta
+        target = _scalar_limit(
+            start, side, lambda w, d=d: a3 - beta * w - d * w * w, _riccati_roots(a3, beta, d)
+        )
+        if side * target >= 0.0:
+            return target
+        side, start = -side, 0.0  # W reaches 0 first and continues in the other hemisphere
+    raise AssertionError("W crosses 0 at most once")  # pragma: no cover (a3 fixes the direction)
+
+
+def predicted_limits(p: Params, st: State) -> dict[str, Any]:
+    """Limits of ϑ and k of the averaged system as τ → ∞, spec §9 (the paper's conclusions).
+
+    Handles every sign of a3, the a3 = 0 split by β ≷ α, β = α, the quadratic-only medium,
+    degenerate and negative coefficients (by the phase line of each scalar equation of (2.3)).
+
+    Parameters
+    ----------
+    p : Params
+        Model parameters.
+    st : State
+        Initial state.
+
+    Returns
+    -------
+    dict
+        ``theta`` [rad] (None where undefined), ``k``, ``W``, ``V`` [1] (may be ±inf), and
+        ``statement``: which conclusion of spec §9 applies.
+    """
+    a3, al, be, ga, de = float(p.a[2]), p.alpha, p.beta, p.gamma, p.delta
+    W0, V0 = st.W, st.V
+    if p.eps == 0.0:
+        return {"theta": st.theta, "k": st.k, "W": W0, "V": V0, "statement": "ε = 0: no evolution"}
+    W_inf = _W_limit(W0, a3, be, de)
+    V_inf = _scalar_limit(V0, 1.0, lambda v: -(al * v + ga * v * v), [0.0] + ([-al / ga] if ga else []))
+    theta: float | None
+    if W_inf != 0.0 or V_inf != 0.0:
+        if math.isinf(W_inf) and math.isinf(V_inf):
+            theta, statement = None, "both W and V diverge: ϑ has no limit from (2.3) alone"
+        else:
+            theta = math.atan2(V_inf, W_inf)
+            statement = {1.0: "a3 > 0: ϑ → 0", -1.0: "a3 < 0: ϑ → π"}.get(
+                math.copysign(1.0, a3) if a3 else 0.0, "a3 = 0"
+            )
+            if V_inf != 0.0:
+                statement = "V does not decay (α = γ = 0 or self-excitation): ϑ → atan2(V∞, W∞)"
+    elif V0 == 0.0:
+        theta = 0.0 if math.copysign(1.0, W0) > 0 else math.pi
+        statement = "V0 = 0: the axis stays along ±K"
+    elif W0 == 0.0:
+        theta, statement = math.pi / 2, "W ≡ 0: ϑ stays π/2"
+    else:
+        # Both components decay (a3 = 0): the slower one wins. Asymptotic amplitudes follow from
+        # (2.4) and the a3 = 0 Riccati solution: V ~ αV0/(α+γV0) e^{−αs}, W ~ βW0/(β+δ|W0|) e^{−βs};
+        # a zero linear coefficient leaves an algebraic 1/(γs) or 1/(δs) decay.
+        if al > 0 and be > 0:
+            if be > al:
+                theta, statement = math.pi / 2, "a3 = 0, β > α: ϑ → π/2"
+            elif be < al:
+                theta = 0.0 if W0 > 0 else math.pi
+                statement = "a3 = 0, β < α: ϑ → 0 or π by hemisphere"
+            else:
+                theta = math.atan2(al * V0 / (al + ga * V0), be * W0 / (be + de * abs(W0)))
+                statement = "a3 = 0, β = α: tan ϑ∞ = tan ϑ0 (β + δ|W0|)/(α + γV0)"
+        elif be > 0:
+            theta, statement = math.pi / 2, "a3 = 0, β > 0 = α: ϑ → π/2"
+        elif al > 0:
+            theta = 0.0 if W0 > 0 else math.pi
+            statement = "a3 = 0, α > 0 = β: ϑ → 0 or π by hemisphere"
+        else:
+            theta = math.atan2(de, math.copysign(ga, W0))
+            statement = "quadratic-only medium: tan ϑ → ±δ/γ (spec §8.7, erratum E8)"
+    return {
+        "theta": theta,
+        "k": math.hypot(W_inf, V_inf),
+        "W": W_inf,
+        "V": V_inf,
+        "statement": statement,
+    }
+
+
+# ---------------------------------------------------------------------------------------------
+# Where averaging fails, spec §10 and §11.
+
+
+def moment_depends_on_phi(p: Params) -> bool:
+    """True if the k, ϑ equations of the full model depend on φ (spec §10.1 special case).
+
+    They do not (and then (2.2) is exact for k, ϑ, even across ϑ = π/2) when a1 = a2 = 0,
+    b11 = b22, b12 = −b21, b13 = b23 = b31 = b32 = 0, and s has no entry but s33.
+    """
+    a, b, s = p.a, p.b, p.s
+    s_other = s.copy()
+    s_other[2, 2] = 0.0
+    return bool(
+        a[0] != 0.0
+        or a[1] != 0.0
+        or b[0, 0] != b[1, 1]
+        or b[0, 1] + b[1, 0] != 0.0
+        or np.any(b[[0, 1, 2, 2], [2, 2, 0, 1]] != 0.0)
+        or np.any(s_other != 0.0)
+    )
+
+
+def _slow_rate_per_k(p: Params, k: FloatArray) -> FloatArray:
+    """Slow rate per unit k, ε(|a|/k² + c|b|/k + c²|s|), spec §6.
+
+    It bounds |dϑ/dτ|/k and |dk/dτ|/k² since |m| ≤ |a| + |b||w| + |s||w|² with
+    |w| ≤ c k, c = 1/min(1, 1+κ); norms are Euclidean (matrix 2-norms).
+    """
+    c = 1.0 / min(1.0, 1.0 + p.kappa)
+    na = float(np.linalg.norm(p.a))
+    nb = float(np.linalg.norm(p.b, 2))
+    ns = float(np.linalg.norm(p.s, 2))
+    with np.errstate(divide="ignore"):
+        return p.eps * (na / k**2 + c * nb / k + c * c * ns)
+
+
+def _first_time(
+    condition: Callable[[FloatArray], FloatArray], grid: FloatArray
+) -> float | None:
+    """First τ on ``grid`` where ``condition(τ) > 0``, refined by root finding; None if never."""
+    values = condition(grid)
+    hits = np.flatnonzero(values > 0.0)
+    if hits.size == 0:
+        return None
+    i = int(hits[0])
+    if i == 0:
+        return float(grid[0])
+    return float(brentq(lambda t: float(condition(np.array([t]))[0]), grid[i - 1], grid[i], xtol=1e-12))
+
+
+def validity(
+    p: Params,
+    st: State,
+    slow: Callable[[FloatArray], dict[str, FloatArray]],
+    tau_end: float,
+) -> list[ValidityIssue]:
+    """Regions of spec §10–§11 that an averaged trajectory enters, with the first τ of each.
+
+    Parameters
+    ----------
+    p : Params
+        Model parameters.
+    st : State
+        Initial state.
+    slow : callable
+        ``slow(tau) -> {"k": ..., "theta": ...}`` along the averaged trajectory.
+    tau_end : float
+        End of the run [1].
+
+    Returns
+    -------
+    list of ValidityIssue
+        ``theta_crossing`` (ϑ = π/2 passed with a φ-dependent moment: O(√ε) after it, §10.2),
+        ``phi_not_fast`` (slow rates not small against |κ cos ϑ|/(1+κ), §6, §10.3),
+        ``spin_not_fast`` (k too small: slow rates not small against the precession rate k,
+        §10.5), ``through_k_zero`` (ϑ0 ∈ {0, π} and W changes sign: k passes through 0, §11).
+    """
+    if p.eps == 0.0 or tau_end <= 0.0:
+        return []
+    issues: list[ValidityIssue] = []
+    grid = np.linspace(0.0, tau_end, 4001)
+    phi_dependent = moment_depends_on_phi(p)
+    tau1 = crossing_time(st.W, p)
+    crosses = tau1 <= tau_end
+    if st.W == 0.0 and float(p.a[2]) != 0.0:
+        tau1, crosses = 0.0, True  # starts on ϑ = π/2 and leaves it at once
+    if crosses and abs(math.sin(st.theta)) < 1e-12:
+        issues.append(
+            ValidityIssue(
+                "through_k_zero",
+                tau1,
+                f"ϑ0 is 0 or π and W = k cos ϑ changes sign at τ = {tau1:.6g}: the averaged "
+                "solution passes through k = 0 and ϑ jumps between 0 and π, outside the "
+                "validity of averaging (spec/medvedev.md §11)",
+            )
+        )
+    elif crosses and phi_dependent:
+        issues.append(
+            ValidityIssue(
+                "theta_crossing",
+                tau1,
+                f"the averaged trajectory crosses ϑ = π/2 at τ = {tau1:.6g}: φ stops rotating "
+                "there and, with a φ-dependent moment, the averaged model is only O(√ε) "
+                "accurate after the passage (spec/medvedev.md §10.2)",
+            )
+        )
+
+    def cols(t: FloatArray) -> tuple[FloatArray, FloatArray]:
+        c = slow(t)
+        return c["k"], c["theta"]
+
+    if phi_dependent:
+        def phi_slow(t: FloatArray) -> FloatArray:
+            k, theta = cols(t)
+            fast = np.abs(p.kappa * np.cos(theta)) / (1.0 + p.kappa)
+            return _slow_rate_per_k(p, k) - VALIDITY_RATIO * fast
+
+        t_phi = _first_time(phi_slow, grid)
+        if t_phi is not None:
+            issues.append(
+                ValidityIssue(
+                    "phi_not_fast",
+                    t_phi,
+                    f"from τ = {t_phi:.6g} the spin φ is no longer fast against the slow drift "
+                    f"(ε(|a|/k² + |b|/k + |s|) > {VALIDITY_RATIO:g}·|κ cos ϑ|/(1+κ)): averaging "
+                    "loses accuracy there (spec/medvedev.md §6, §10.3)",
+                )
+            )
+
+    def spin_slow(t: FloatArray) -> FloatArray:
+        k, _ = cols(t)
+        return _slow_rate_per_k(p, k) - VALIDITY_RATIO
+
+    t_spin = _first_time(spin_slow, grid)
+    if t_spin is not None:
+        k_at = float(cols(np.array([t_spin]))[0][0])
+        issues.append(
+            ValidityIssue(
+                "spin_not_fast",
+                t_spin,
+                f"from τ = {t_spin:.6g} (k = {k_at:.3g}) the body no longer spins fast against "
+                f"the moment (ε(|a|/k² + |b|/k + |s|) > {VALIDITY_RATIO:g}): the averaged model "
+                "is invalid as k → 0 (spec/medvedev.md §10.5)",
+            )
+        )
+    return issues
+
+
+def _check_method(p: Params, method: str) -> None:
+    if method in ("averaged", "closed_form") and p.kappa == 0.0:
+        raise ParameterError(
+            "parameters.kappa = 0 is outside the allowed range for the averaged and closed_form "
+            "methods (κ ≠ 0: a spherical inertia ellipsoid has no fast spin φ, spec §10.5); "
+            "use methods = [\"full\"]"
+        )
+
+
+# ---------------------------------------------------------------------------------------------
+# Physical units, spec §4.
+
+
+@dataclass(frozen=True, eq=False)
+class PhysicalParams:
+    """The body and the medium in SI units, converted with the scaling of spec §4.
+
+    Parameters
+    ----------
+    I1, I3 : float
+        Equatorial and polar moments of inertia [kg·m²], I3 ≤ 2 I1.
+    A : array_like, shape (3,)
+        Constant body-fixed moment [N·m].
+    B : array_like, shape (3, 3)
+        Linear drag [N·m·s].
+    S : array_like, shape (3, 3)
+        Quadratic drag [N·m·s²].
+    M0 : float, optional
+        Moment scale [N·m]; default max(|A_i|, |B_ij|/T0, |S_ij|/T0²) (spec §4).
+    """
+
+    I1: float
+    I3: float
+    A: FloatArray = field(default_factory=lambda: np.zeros(3))
+    B: FloatArray = field(default_factory=lambda: np.zeros((3, 3)))
+    S: FloatArray = field(default_factory=lambda: np.zeros((3, 3)))
+    M0: float | None = None
+
+    def __post_init__(self) -> None:
+        RigidBody.symmetric(self.I1, self.I3)  # positivity and the triangle inequality
+        object.__setattr__(self, "A", _frozen("physical.A", self.A, (3,)))
+        object.__setattr__(self, "B", _frozen("physical.B", self.B, (3, 3)))
+        object.__setattr__(self, "S", _frozen("physical.S", self.S, (3, 3)))
+        if self.M0 is not None:
+            check_range("physical.M0", self.M0, low=0.0)
+
+
+@dataclass(frozen=True)
+class Scaling:
+    """Scales of spec §4: K = K0 k, t = T0 τ, M = M0 m, ε = M0 I1 / K0²."""
+
+    K0: float  # [N·m·s]
+    T0: float  # [s]
+    M0: float  # [N·m]
+    eps: float  # [1]
+
+    def tau_from_time(self, t_s: ArrayLike) -> FloatArray:
+        """τ = t / T0 for times in seconds."""
+        return np.asarray(t_s, dtype=float) / self.T0
+
+    def time_from_tau(self, tau: ArrayLike) -> FloatArray:
+        """t = T0 τ [s]."""
+        return np.asarray(tau, dtype=float) * self.T0
+
+
+def normalize_physical(
+    phys: PhysicalParams,
+    omega0: ArrayLike,
+    *,
+    attitude: ArrayLike | None = None,
+    rho: float | None = None,
+    sigma: float | None = None,
+    psi: float | None = None,
+) -> tuple[Params, State, Scaling]:
+    """Normalized parameters and initial state of a physical scenario, spec §4.
+
+    K0 = |K(0)| (so k0 = 1), T0 = I1/K0, M0 as in :class:`PhysicalParams`, ε = M0 I1/K0²,
+    a = A/M0, b = B/(M0 T0), s = S/(M0 T0²), κ = I3/I1 − 1.
+
+    Parameters
+    ----------
+    phys : PhysicalParams
+        Body and medium [SI].
+    omega0 : array_like, shape (3,)
+        Initial body angular velocity (P0, Q0, R0) [rad/s]; not zero.
+    attitude : array_like, shape (4,), optional
+        Initial attitude quaternion (scalar first, body → inertial). Either this, or
+    rho, sigma, psi : float, optional
+        the direction of K in the inertial frame and the precession angle [rad]; ϑ0, φ0 always
+        come from the direction of K in the body.
+
+    Returns
+    -------
+    (Params, State, Scaling)
+    """
+    w0 = _frozen("initial.omega", omega0, (3,))
+    Kb = np.array([phys.I1, phys.I1, phys.I3]) * w0
+    K0 = float(np.linalg.norm(Kb))
+    if K0 == 0.0:
+        raise ParameterError("initial.omega = [0, 0, 0]: the body must rotate (K0 = |K(0)| > 0)")
+    T0 = phys.I1 / K0
+    M0 = phys.M0
+    if M0 is None:
+        M0 = max(float(np.max(np.abs(phys.A))), float(np.max(np.abs(phys.B))) / T0,
+                 float(np.max(np.abs(phys.S))) / T0**2)
+        if M0 == 0.0:
+            M0 = K0 / T0  # a free body: any scale will do
+    p = Params(
+        eps=M0 * phys.I1 / K0**2,
+        kappa=phys.I3 / phys.I1 - 1.0,
+        a=phys.A / M0,
+        b=phys.B / (M0 * T0),
+        s=phys.S / (M0 * T0**2),
+    )
+    theta0 = math.atan2(math.hypot(Kb[0], Kb[1]), Kb[2])
+    phi0 = math.atan2(Kb[0], Kb[1])
+    if attitude is not None:
+        R = quat_to_matrix(_frozen("initial.quaternion", attitude, (4,)))
+        r, sg, ps, _, _ = kframe_angles_from_attitude(R, R @ Kb)
+        st = State(1.0, float(r), float(sg), float(ps), theta0, phi0)
+    else:
+        if rho is None or sigma is None or psi is None:
+            raise ParameterError("initial: give either quaternion or all of rho, sigma, psi")
+        st = State(1.0, rho, sigma, psi, theta0, phi0)
+    return p, st, Scaling(K0=K0, T0=T0, M0=M0, eps=p.eps)
+
+
+# ---------------------------------------------------------------------------------------------
+# Registry record.
+
+_ANGLE = "rad"
+_COLUMNS_SLOW = (
+    Column("k", "angular momentum |K|/K0", "1", "(1.3)"),
+    Column("theta", "nutation angle ϑ between x3 and K", _ANGLE, "(1.3)", angle=False),
+    Column("rho", "polar angle ρ of K from X3", _ANGLE, "(1.3)"),
+    Column("sigma", "azimuth σ of K about X3", _ANGLE, "(1.3)", angle=True, unwrap=True),
+)
+_COLUMNS_FULL = (
+    *_COLUMNS_SLOW,
+    Column("psi", "precession angle ψ of x3 about K", _ANGLE, "(1.3)", angle=True, unwrap=True),
+    Column("phi", "proper rotation angle φ", _ANGLE, "(1.3)", angle=True, unwrap=True),
+)
+
+FULL_EULER = FullForm(
+    name="euler",
+    equation="Euler + quaternions with (1.2)",
+    rhs=full_rhs,
+    from_slow=full_from_slow,
+    to_columns=slow_from_full,
+)
+FULL_OSCULATING = FullForm(
+    name="osculating",
+    equation="(1.3)",
+    rhs=osculating_rhs,
+    from_slow=osculating_from_slow,
+    to_columns=_osculating_columns,
+)
+
+MODEL = ModelRecord(
+    name="resisting_medium",
+    description=(
+        "fast-spinning symmetric gyroscope, constant body-fixed moment + linear and quadratic "
+        "drag of a resisting medium"
+    ),
+    paper="A. V. Medvedev (1987), seed 000_5a157e916f67cb33; spec/medvedev.md",
+    methods=("full", "averaged", "closed_form"),
+    columns={
+        "full": _COLUMNS_FULL,
+        "averaged": _COLUMNS_SLOW,
+        "closed_form": _COLUMNS_SLOW,
+    },
+    full=FULL_EULER,
+    full_forms={"euler": FULL_EULER, "osculating": FULL_OSCULATING},
+    averaged_form=_averaged_form,
+    closed_form=closed_form,
+    check_method=_check_method,
+    validity=validity,
+    limits=predicted_limits,
+)

@@ -531,9 +531,10 @@ class _Riccati:
             h = beta / (2.0 * d)
             mu = math.sqrt(-self._disc) / (2.0 * abs(d))
             y0 = W0 + h
-            # (arctan(y0/μ) − arctan(h/μ))/μ without losing the branch (spec §8.4 table).
-            s1 = math.atan2(mu * (y0 - h), mu * mu + y0 * h) / mu / d
-        return s1 if (s1 > 0.0 and s1 < self.blowup()) else math.inf
+            # (arctan(y0/μ) − arctan(h/μ))/μ without losing the branch (spec §8.4 table);
+            # y0 − h is W0 itself, kept exact for a start near ϑ = π/2.
+            s1 = math.atan2(mu * W0, mu * mu + y0 * h) / mu / d
+        return s1 if (s1 >= 0.0 and s1 < self.blowup()) else math.inf
 
 
 @dataclass(frozen=True)

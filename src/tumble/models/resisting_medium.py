@@ -872,14 +872,16 @@ def predicted_limits(p: Params, st: State) -> dict[str, Any]:
         # (2.4) and the a3 = 0 Riccati solution: V ~ αV0/(α+γV0) e^{−αs}, W ~ βW0/(β+δ|W0|) e^{−βs};
         # a zero linear coefficient leaves an algebraic 1/(γs) or 1/(δs) decay.
         if al > 0 and be > 0:
-            if be > al:
-                theta, statement = math.pi / 2, "a3 = 0, β > α: ϑ → π/2"
-            elif be < al:
-                theta = 0.0 if W0 > 0 else math.pi
-                statement = "a3 = 0, β < α: ϑ → 0 or π by hemisphere"
-            else:
+            # β = α to round-off (e.g. b33/(1+κ) computed from b33 = α(1+κ)) is the β = α case:
+            # a difference of 1e-16 would only act after ετ ~ 1e16.
+            if math.isclose(al, be, rel_tol=1e-12):
                 theta = math.atan2(al * V0 / (al + ga * V0), be * W0 / (be + de * abs(W0)))
                 statement = "a3 = 0, β = α: tan ϑ∞ = tan ϑ0 (β + δ|W0|)/(α + γV0)"
+            elif be > al:
+                theta, statement = math.pi / 2, "a3 = 0, β > α: ϑ → π/2"
+            else:
+                theta = 0.0 if W0 > 0 else math.pi
+                statement = "a3 = 0, β < α: ϑ → 0 or π by hemisphere"
         elif be > 0:
             theta, statement = math.pi / 2, "a3 = 0, β > 0 = α: ϑ → π/2"
         elif al > 0:

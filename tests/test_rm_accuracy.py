@@ -4,8 +4,8 @@ import math
 
 import numpy as np
 import pytest
-
 from test_rm_closed_forms import medium, state
+
 from tumble.analysis import RunRequest, averaging_error_study, fitted_order, run
 from tumble.errors import ParameterError, TumbleWarning
 from tumble.integrate import simulate
@@ -17,16 +17,24 @@ EPS = [0.02, 0.01, 0.005]
 HEMISPHERE_CASES = {
     # a3 > 0 from ϑ0 < π/2: ϑ → 0 without crossing π/2; oblate; full B and S.
     "oblate_upper": (
-        rm.Params(eps=0.01, kappa=0.5, a=[0.1, -0.05, 0.3],
-                  b=[[0.2, 0.01, 0.02], [0.0, 0.25, 0.0], [0.03, 0.0, 0.1]],
-                  s=[[0.1, 0.0, 0.01], [0.0, 0.12, 0.0], [0.0, 0.02, 0.05]]),
+        rm.Params(
+            eps=0.01,
+            kappa=0.5,
+            a=[0.1, -0.05, 0.3],
+            b=[[0.2, 0.01, 0.02], [0.0, 0.25, 0.0], [0.03, 0.0, 0.1]],
+            s=[[0.1, 0.0, 0.01], [0.0, 0.12, 0.0], [0.0, 0.02, 0.05]],
+        ),
         rm.State(1.0, 1.2, 0.3, 0.2, 1.0, 0.1),
     ),
     # a3 < 0 from ϑ0 > π/2: ϑ → π; prolate; full B and S.
     "prolate_lower": (
-        rm.Params(eps=0.01, kappa=-0.4, a=[0.05, 0.1, -0.2],
-                  b=[[0.15, -0.02, 0.0], [0.03, 0.1, 0.01], [0.0, 0.02, 0.2]],
-                  s=[[0.05, 0.01, 0.0], [0.0, 0.08, 0.0], [0.01, 0.0, 0.1]]),
+        rm.Params(
+            eps=0.01,
+            kappa=-0.4,
+            a=[0.05, 0.1, -0.2],
+            b=[[0.15, -0.02, 0.0], [0.03, 0.1, 0.01], [0.0, 0.02, 0.2]],
+            s=[[0.05, 0.01, 0.0], [0.0, 0.08, 0.0], [0.01, 0.0, 0.1]],
+        ),
         rm.State(1.2, 2.0, -1.0, 1.0, 2.2, -0.5),
     ),
 }
@@ -67,7 +75,9 @@ def test_averaging_across_pi_half_is_only_sqrt_eps_accurate():
             cf = simulate(M, p, st, tau, "closed_form")
             after = tau > tau1 + 0.5 / eps
             for var in ("k", "theta"):
-                worst = max(worst, float(np.max(np.abs(full.columns[var] - cf.columns[var])[after])))
+                worst = max(
+                    worst, float(np.max(np.abs(full.columns[var] - cf.columns[var])[after]))
+                )
         errors.append(worst)
     errors = np.array(errors)
     ratio_eps = errors / np.array(eps_values)
@@ -99,8 +109,13 @@ def test_run_warns_on_pi_half_crossing_and_records_it():
 
 
 def test_no_crossing_warning_when_averaging_is_exact():
-    p = rm.Params(eps=0.02, kappa=0.6, a=[0.0, 0.0, 0.4], b=np.diag([0.1, 0.1, 0.3]),
-                  s=np.diag([0.0, 0.0, 0.2]))
+    p = rm.Params(
+        eps=0.02,
+        kappa=0.6,
+        a=[0.0, 0.0, 0.4],
+        b=np.diag([0.1, 0.1, 0.3]),
+        s=np.diag([0.0, 0.0, 0.2]),
+    )
     st = rm.State(1.0, 1.0, 0.0, 0.0, 2.5, 0.3)
     issues = rm.validity(p, st, lambda t: rm.closed_form(p, st, t), 100.0)
     assert rm.crossing_time(st.W, p) < 100.0 and issues == []
@@ -121,7 +136,7 @@ def test_k_to_zero_is_warned():
 def test_kappa_zero_refuses_averaged_methods():
     p = rm.Params(eps=0.01, kappa=0.0, a=[0, 0, 0.1])
     st = state(1.0, 1.0)
-    with pytest.raises(ParameterError, match="parameters.kappa = 0"):
+    with pytest.raises(ParameterError, match=r"parameters\.kappa = 0"):
         run(RunRequest(M, p, st, np.linspace(0, 10, 11), ("full", "averaged")))
     run(RunRequest(M, p, st, np.linspace(0, 10, 11), ("full",)))  # the full model is fine
 
@@ -153,8 +168,12 @@ def test_predicted_limits_against_long_averaged_runs(name, p, st):
 
 
 FULL_LIMIT_CASES = [
-    ("a3 > 0 from below", medium(0.3, 0.3, 0.1, 0.2, a3=0.4, eps=0.05, a12=(0.05, 0.03)),
-     state(1.0, 2.4), 600.0),
+    (
+        "a3 > 0 from below",
+        medium(0.3, 0.3, 0.1, 0.2, a3=0.4, eps=0.05, a12=(0.05, 0.03)),
+        state(1.0, 2.4),
+        600.0,
+    ),
     ("a3 < 0", medium(0.3, 0.3, 0.1, 0.2, a3=-0.4, eps=0.05), state(1.0, 1.0), 600.0),
     ("a3 = 0, β > α", medium(0.1, 0.4, 0.05, 0.05, eps=0.05), state(1.0, 0.8), 600.0),
     ("a3 = 0, β < α", medium(0.4, 0.1, 0.05, 0.05, eps=0.05), state(1.0, 2.2), 600.0),
@@ -162,7 +181,9 @@ FULL_LIMIT_CASES = [
 ]
 
 
-@pytest.mark.parametrize("name,p,st,tau_end", FULL_LIMIT_CASES, ids=[c[0] for c in FULL_LIMIT_CASES])
+@pytest.mark.parametrize(
+    "name,p,st,tau_end", FULL_LIMIT_CASES, ids=[c[0] for c in FULL_LIMIT_CASES]
+)
 def test_paper_conclusions_hold_for_the_full_model(name, p, st, tau_end):
     """Spec §9 items 1–4 and §13.8 from long runs of the full model (ε = 0.05)."""
     lim = rm.predicted_limits(p, st)

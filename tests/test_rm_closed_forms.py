@@ -33,7 +33,13 @@ CASES = [
     ("(2.6) -> (2.7)", medium(0.1, 0.2, 0.1, 0.3, a3=-0.5), state(1.0, 0.8), 10.0, True),
     ("(2.7) a3 > 0 -> (2.5)", medium(0.1, 0.5, 0.1, 0.1, a3=0.2), state(1.5, 2.5), 10.0, True),
     ("(2.8) -> (2.5)", medium(0.2, 0.1, 0.1, 0.2, a3=0.6), state(1.0, 2.6), 10.0, True),
-    ("(2.5) small a3 < 0 -> (2.7)", medium(0.1, 0.6, 0.1, 0.1, a3=-0.05), state(1.0, 1.2), 10.0, True),
+    (
+        "(2.5) small a3 < 0 -> (2.7)",
+        medium(0.1, 0.6, 0.1, 0.1, a3=-0.05),
+        state(1.0, 1.2),
+        10.0,
+        True,
+    ),
     ("upper double root", medium(0.1, 0.2, 0.1, 0.1, a3=-0.1), state(1.0, 1.0), 10.0, True),
     ("lower double root", medium(0.1, 0.2, 0.1, 0.1, a3=0.1), state(1.0, 2.0), 10.0, True),
     ("near double root", medium(0.1, 0.2, 0.1, 0.1, a3=-0.1 + 1e-9), state(1.0, 1.0), 10.0, True),
@@ -71,18 +77,30 @@ def _printed_window(p, W0, tau):
     h = be / (2 * de)
     if W0 >= 0:
         nu_sq = h * h + a3 / de
-        f = (rm.axial_upper_exp if nu_sq > 1e-12 else
-             rm.axial_upper_tan if nu_sq < -1e-12 else rm.axial_upper_double_root)
+        f = (
+            rm.axial_upper_exp
+            if nu_sq > 1e-12
+            else rm.axial_upper_tan
+            if nu_sq < -1e-12
+            else rm.axial_upper_double_root
+        )
     else:
         nu_sq = h * h - a3 / de
-        f = (rm.axial_lower_exp if nu_sq > 1e-12 else
-             rm.axial_lower_tan if nu_sq < -1e-12 else rm.axial_lower_double_root)
+        f = (
+            rm.axial_lower_exp
+            if nu_sq > 1e-12
+            else rm.axial_lower_tan
+            if nu_sq < -1e-12
+            else rm.axial_lower_double_root
+        )
     return f(tau, W0, p)
 
 
-@pytest.mark.parametrize("name,p,st,horizon,crosses",
-                         [c for c in CASES if c[1].delta > 0 and c[2].W != 0 and "near" not in c[0]],
-                         ids=lambda c: c if isinstance(c, str) else "")
+@pytest.mark.parametrize(
+    "name,p,st,horizon,crosses",
+    [c for c in CASES if c[1].delta > 0 and c[2].W != 0 and "near" not in c[0]],
+    ids=lambda c: c if isinstance(c, str) else "",
+)
 def test_printed_formulas_equal_the_well_conditioned_form(name, p, st, horizon, crosses):
     """(2.5)–(2.8) and the double roots as printed (with E3) equal the §8.5 form in their window."""
     tau1 = rm.crossing_time(st.W, p)
@@ -103,21 +121,28 @@ def test_equatorial_component_is_2_4():
     assert np.allclose(rm.equatorial_momentum(tau, V0, p), printed, rtol=1e-13, atol=0)
     # α → 0 limit V0/(1 + εγV0τ), and α = γ = 0: V constant (spec §8.1).
     p0 = medium(0.0, 0.3, 0.1, 0.2)
-    assert np.allclose(rm.equatorial_momentum(tau, V0, p0), V0 / (1 + p0.eps * p0.gamma * V0 * tau),
-                       rtol=1e-14)
+    assert np.allclose(
+        rm.equatorial_momentum(tau, V0, p0), V0 / (1 + p0.eps * p0.gamma * V0 * tau), rtol=1e-14
+    )
     assert np.all(rm.equatorial_momentum(tau, V0, medium(beta=0.3)) == V0)
 
 
-@pytest.mark.parametrize("p,st", [(medium(0.2, 0.3, 0.1, 0.2), state(1.0, 0.7)),
-                                  (medium(0.3, 0.2, 0.1, 0.2), state(1.3, 0.4))])
+@pytest.mark.parametrize(
+    "p,st",
+    [(medium(0.2, 0.3, 0.1, 0.2), state(1.0, 0.7)), (medium(0.3, 0.2, 0.1, 0.2), state(1.3, 0.4))],
+)
 def test_tan_theta_a3_zero_upper_2_9(p, st):
     tau = np.linspace(0.0, 800.0, 81)
     theta = simulate(M, p, st, tau, "closed_form").columns["theta"]
-    assert np.allclose(rm.tan_theta_a3_zero_upper(tau, st.k, st.theta, p), np.tan(theta), rtol=1e-12)
+    assert np.allclose(
+        rm.tan_theta_a3_zero_upper(tau, st.k, st.theta, p), np.tan(theta), rtol=1e-12
+    )
 
 
-@pytest.mark.parametrize("p,st", [(medium(0.3, 0.2, 0.1, 0.2), state(1.0, 2.3)),
-                                  (medium(0.2, 0.3, 0.1, 0.2), state(1.3, 2.0))])
+@pytest.mark.parametrize(
+    "p,st",
+    [(medium(0.3, 0.2, 0.1, 0.2), state(1.0, 2.3)), (medium(0.2, 0.3, 0.1, 0.2), state(1.3, 2.0))],
+)
 def test_tan_theta_a3_zero_lower_2_10(p, st):
     tau = np.linspace(0.0, 800.0, 81)
     theta = simulate(M, p, st, tau, "closed_form").columns["theta"]
@@ -135,7 +160,11 @@ def test_quadratic_only_law_both_hemispheres(theta0):
     theta = simulate(M, p, st, tau, "closed_form").columns["theta"]
     tan = rm.tan_theta_quadratic(tau, st.k, st.theta, p)
     assert np.allclose(np.tan(theta), tan, rtol=1e-11)
-    limit = math.atan(p.delta / p.gamma) if theta0 < math.pi / 2 else math.pi - math.atan(p.delta / p.gamma)
+    limit = (
+        math.atan(p.delta / p.gamma)
+        if theta0 < math.pi / 2
+        else math.pi - math.atan(p.delta / p.gamma)
+    )
     # Algebraic approach ∝ 1/τ: at ετ = 1e4 the remaining gap is ~1e-4 of the initial one.
     assert abs(theta[-1] - limit) < 1e-3
     assert rm.predicted_limits(p, st)["theta"] == pytest.approx(limit, abs=1e-15)
@@ -153,9 +182,15 @@ def test_crossing_times_match_the_spec_table():
     rows.append((p, W0, math.log(c1 * (h + nu1) / (h - nu1)) / (2 * e * de * nu1)))
     p = medium(0.1, 0.2, 0.1, 0.3, a3=-0.5)  # (2.6) branch
     de, be, a3 = p.delta, p.beta, -0.5
-    mu1 = math.sqrt(-(be / (2 * de)) ** 2 - a3 / de)
-    rows.append((p, W0, (math.atan((2 * de * W0 + be) / (2 * de * mu1))
-                         - math.atan(be / (2 * de * mu1))) / (e * de * mu1)))
+    mu1 = math.sqrt(-((be / (2 * de)) ** 2) - a3 / de)
+    rows.append(
+        (
+            p,
+            W0,
+            (math.atan((2 * de * W0 + be) / (2 * de * mu1)) - math.atan(be / (2 * de * mu1)))
+            / (e * de * mu1),
+        )
+    )
     p = medium(0.1, 0.5, 0.1, 0.1, a3=0.2)  # W0 < 0, a3 > 0, (2.7) branch
     de, be, a3 = p.delta, p.beta, 0.2
     h, W0n = be / (2 * de), -0.7
@@ -165,8 +200,14 @@ def test_crossing_times_match_the_spec_table():
     p = medium(0.2, 0.1, 0.1, 0.2, a3=0.6)  # (2.8) branch
     de, be, a3 = p.delta, p.beta, 0.6
     mu2 = math.sqrt(a3 / de - (be / (2 * de)) ** 2)
-    rows.append((p, W0n, (math.atan((be - 2 * de * W0n) / (2 * de * mu2))
-                          - math.atan(be / (2 * de * mu2))) / (e * de * mu2)))
+    rows.append(
+        (
+            p,
+            W0n,
+            (math.atan((be - 2 * de * W0n) / (2 * de * mu2)) - math.atan(be / (2 * de * mu2)))
+            / (e * de * mu2),
+        )
+    )
     p = medium(0.1, 0.2, 0.1, 0.1, a3=-0.1)  # upper double root
     h = p.beta / (2 * p.delta)
     rows.append((p, W0, (1 / h - 1 / (W0 + h)) / (e * p.delta)))

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-
 from strategies import kappa, matrices, rho_regular, theta_regular, vectors
+
 from tumble.integrate import integrate, simulate
 from tumble.models import resisting_medium as rm
 
@@ -35,8 +35,9 @@ def test_invariants_at_zero_eps():
     assert np.max(np.abs(c["psi"] - (START.psi + k * tau))) < 1e-8
     phi_rate = -k * kap / (1 + kap) * math.cos(START.theta)
     assert np.max(np.abs(c["phi"] - (START.phi + phi_rate * tau))) < 1e-8
-    sol = integrate(lambda t, y: rm.full_rhs(t, y, p), rm.full_from_slow(p, START), 500.0,
-                    rtol=rtol, atol=1e-13)
+    sol = integrate(
+        lambda t, y: rm.full_rhs(t, y, p), rm.full_from_slow(p, START), 500.0, rtol=rtol, atol=1e-13
+    )
     inv = rm.invariants(sol(tau), p)
     for name, values in inv.items():  # |k|, energy and the inertial components of k
         assert np.max(np.abs(values - values[0])) < 1e-8, name
@@ -54,10 +55,16 @@ def test_full_from_slow_round_trip():
     [
         (GENERAL, START),
         # prolate body, lower hemisphere, a3 < 0
-        (rm.Params(eps=0.02, kappa=-0.4, a=[0.05, 0.1, -0.2],
-                   b=[[0.15, -0.02, 0.0], [0.03, 0.1, 0.01], [0.0, 0.02, 0.2]],
-                   s=[[0.05, 0.01, 0.0], [0.0, 0.08, 0.0], [0.01, 0.0, 0.1]]),
-         rm.State(k=1.2, rho=2.0, sigma=-1.0, psi=1.0, theta=2.2, phi=-0.5)),
+        (
+            rm.Params(
+                eps=0.02,
+                kappa=-0.4,
+                a=[0.05, 0.1, -0.2],
+                b=[[0.15, -0.02, 0.0], [0.03, 0.1, 0.01], [0.0, 0.02, 0.2]],
+                s=[[0.05, 0.01, 0.0], [0.0, 0.08, 0.0], [0.01, 0.0, 0.1]],
+            ),
+            rm.State(k=1.2, rho=2.0, sigma=-1.0, psi=1.0, theta=2.2, phi=-0.5),
+        ),
     ],
 )
 def test_two_full_forms_agree(p, st_):
@@ -114,9 +121,13 @@ def test_exact_case_full_equals_averaged_across_pi_half():
     """Spec §10.1/§13.7: a1 = a2 = 0, b11 = b22, b12 = −b21, other off-diagonals 0, S = s33 only:
     the k, ϑ equations of the full model do not depend on φ and coincide with (2.2), even
     through ϑ = π/2."""
-    p = rm.Params(eps=0.02, kappa=0.6, a=[0.0, 0.0, 0.4],
-                  b=[[0.1, 0.05, 0.0], [-0.05, 0.1, 0.0], [0.0, 0.0, 0.3]],
-                  s=[[0.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 0.2]])
+    p = rm.Params(
+        eps=0.02,
+        kappa=0.6,
+        a=[0.0, 0.0, 0.4],
+        b=[[0.1, 0.05, 0.0], [-0.05, 0.1, 0.0], [0.0, 0.0, 0.3]],
+        s=[[0.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 0.2]],
+    )
     assert not rm.moment_depends_on_phi(p)
     st_ = rm.State(k=1.0, rho=1.0, sigma=0.0, psi=0.0, theta=2.5, phi=0.3)
     tau = np.linspace(0.0, 2.0 / p.eps, 401)
@@ -131,8 +142,9 @@ def test_exact_case_full_equals_averaged_across_pi_half():
 def test_scale_invariance():
     """Spec §13.9: ε → cε with a, b, s → (a, b, s)/c changes nothing."""
     c = 4.0
-    p2 = rm.Params(eps=GENERAL.eps * c, kappa=GENERAL.kappa, a=GENERAL.a / c, b=GENERAL.b / c,
-                   s=GENERAL.s / c)
+    p2 = rm.Params(
+        eps=GENERAL.eps * c, kappa=GENERAL.kappa, a=GENERAL.a / c, b=GENERAL.b / c, s=GENERAL.s / c
+    )
     tau = np.linspace(0.0, 100.0, 51)
     a = simulate(M, GENERAL, START, tau, "full", rtol=1e-11, atol=1e-13)
     b = simulate(M, p2, START, tau, "full", rtol=1e-11, atol=1e-13)

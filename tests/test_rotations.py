@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
-
 from strategies import angle
+
 from tumble import rotations as rot
 
 # Round-off of a handful of 3×3 products and trig calls: a few ulps of 1.
@@ -36,8 +36,11 @@ def test_matrix_to_quat_at_half_turns():
 
 def test_quaternion_product_composes_rotations():
     p, q = random_quats(2, seed=3)
-    assert np.allclose(rot.quat_to_matrix(rot.quat_multiply(p, q)),
-                       rot.quat_to_matrix(p) @ rot.quat_to_matrix(q), atol=ROUNDOFF)
+    assert np.allclose(
+        rot.quat_to_matrix(rot.quat_multiply(p, q)),
+        rot.quat_to_matrix(p) @ rot.quat_to_matrix(q),
+        atol=ROUNDOFF,
+    )
 
 
 @given(angle, st.floats(1e-3, math.pi - 1e-3), angle)
@@ -63,11 +66,15 @@ def test_euler313_at_gimbal_lock(psi, theta, phi):
 def test_kframe_matches_spec_section_2():
     rho, sigma = 0.7, -2.1
     Xi = rot.kframe_matrix(rho, sigma)
-    e_K = np.array([math.sin(rho) * math.cos(sigma), math.sin(rho) * math.sin(sigma), math.cos(rho)])
+    e_K = np.array(
+        [math.sin(rho) * math.cos(sigma), math.sin(rho) * math.sin(sigma), math.cos(rho)]
+    )
     assert np.allclose(Xi[:, 2], e_K, atol=ROUNDOFF)
     # ξ1 = ∂e_K/∂ρ, ξ2 = (−sin σ, cos σ, 0); right-handed.
     h = 1e-6
-    d = (rot.kframe_matrix(rho + h, sigma)[:, 2] - rot.kframe_matrix(rho - h, sigma)[:, 2]) / (2 * h)
+    d = (rot.kframe_matrix(rho + h, sigma)[:, 2] - rot.kframe_matrix(rho - h, sigma)[:, 2]) / (
+        2 * h
+    )
     assert np.allclose(Xi[:, 0], d, atol=1e-9)  # central difference error O(h²)
     assert np.allclose(np.linalg.det(Xi), 1.0, atol=ROUNDOFF)
     # Body axis x3 and K in each other's frames, spec §2.
@@ -81,8 +88,12 @@ def test_kframe_matches_spec_section_2():
 @given(st.floats(0.01, math.pi - 0.01), angle, angle, st.floats(0.01, math.pi - 0.01), angle)
 def test_kframe_angles_round_trip(rho, sigma, psi, theta, phi):
     R = rot.attitude_from_kframe_angles(rho, sigma, psi, theta, phi)
-    K = R @ (np.array([math.sin(theta) * math.sin(phi), math.sin(theta) * math.cos(phi),
-                       math.cos(theta)]) * 2.5)
+    K = R @ (
+        np.array(
+            [math.sin(theta) * math.sin(phi), math.sin(theta) * math.cos(phi), math.cos(theta)]
+        )
+        * 2.5
+    )
     out = np.array(rot.kframe_angles_from_attitude(R, K))
     # K is built from body components, so ρ, σ come back; ψ, φ conditioned by 1/sin ϑ, 1/sin ρ.
     tol = ROUNDOFF * 10 / (math.sin(theta) * math.sin(rho))
@@ -93,7 +104,9 @@ def test_kframe_angles_round_trip(rho, sigma, psi, theta, phi):
 def test_kframe_angles_at_rho_singularity(rho):
     sigma, psi, theta, phi = 0.9, -0.4, 1.2, 2.2
     R = rot.attitude_from_kframe_angles(rho, sigma, psi, theta, phi)
-    K = R @ np.array([math.sin(theta) * math.sin(phi), math.sin(theta) * math.cos(phi), math.cos(theta)])
+    K = R @ np.array(
+        [math.sin(theta) * math.sin(phi), math.sin(theta) * math.cos(phi), math.cos(theta)]
+    )
     r2, s2, p2, t2, f2 = rot.kframe_angles_from_attitude(R, K)
     # Only σ + ψ (ρ = 0) or σ − ψ (ρ = π) is defined; the attitude is reproduced exactly.
     assert np.allclose(rot.attitude_from_kframe_angles(r2, s2, p2, t2, f2), R, atol=1e-12)

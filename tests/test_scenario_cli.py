@@ -143,7 +143,9 @@ tau = {(np.linspace(0.0, 30.0, 61) / T0).tolist()}
     assert sc.request.params.eps == pytest.approx(eps, rel=1e-15)
     out_p, out_n = tmp_path / "phys", tmp_path / "norm"
     for text, out in ((phys, out_p), (twin, out_n)):
-        res = runner.invoke(app, ["run", str(write(tmp_path, text, f"{out.name}.toml")), "-o", str(out)])
+        res = runner.invoke(
+            app, ["run", str(write(tmp_path, text, f"{out.name}.toml")), "-o", str(out)]
+        )
         assert res.exit_code == 0, res.output
     for method in ("full", "averaged", "closed_form"):
         hp, dp = read_csv(out_p / f"{method}.csv")
@@ -159,8 +161,12 @@ tau = {(np.linspace(0.0, 30.0, 61) / T0).tolist()}
 
 
 def test_physical_attitude_by_quaternion():
-    base = dict(model="resisting_medium", physical={"I1": 1.0, "I3": 1.5},
-                initial={"omega": [0.0, 0.6, 0.8]}, run={"t_end_s": 1.0})
+    base = dict(
+        model="resisting_medium",
+        physical={"I1": 1.0, "I3": 1.5},
+        initial={"omega": [0.0, 0.6, 0.8]},
+        run={"t_end_s": 1.0},
+    )
     base["initial"]["quaternion"] = [1.0, 0.0, 0.0, 0.0]
     sc = parse_scenario(base)
     st = sc.request.initial
@@ -171,24 +177,38 @@ def test_physical_attitude_by_quaternion():
 
 
 BAD = [
-    ('eps = 0.01', 'eps = -0.01', "parameters.eps = -0.01 is outside the allowed range [0, inf)"),
-    ('kappa = 0.5', 'kappa = 1.5', "parameters.kappa = 1.5 is outside the allowed range (-1, 1]"),
-    ('eps = 0.01\n', '', "parameters.eps: required key is missing"),
-    ('eps = 0.01', 'eps = "small"', "parameters.eps = 'small'"),
-    ('theta = 1.0', 'theta = 4.0', "initial.theta = 4 is outside the allowed range [0, 3.14159]"),
-    ('k = 1.0', 'k = 0.0', "initial.k = 0 is outside the allowed range (0, inf)"),
-    ('phi = 0.0', 'phi = 0.0\nomega = 3.0', "initial.omega: unknown key"),
+    ("eps = 0.01", "eps = -0.01", "parameters.eps = -0.01 is outside the allowed range [0, inf)"),
+    ("kappa = 0.5", "kappa = 1.5", "parameters.kappa = 1.5 is outside the allowed range (-1, 1]"),
+    ("eps = 0.01\n", "", "parameters.eps: required key is missing"),
+    ("eps = 0.01", 'eps = "small"', "parameters.eps = 'small'"),
+    ("theta = 1.0", "theta = 4.0", "initial.theta = 4 is outside the allowed range [0, 3.14159]"),
+    ("k = 1.0", "k = 0.0", "initial.k = 0 is outside the allowed range (0, inf)"),
+    ("phi = 0.0", "phi = 0.0\nomega = 3.0", "initial.omega: unknown key"),
     ('model = "resisting_medium"', 'model = "pendulum"', "model = 'pendulum' is not a known model"),
-    ('tau_end = 100.0\nsamples = 101', 'tau = [0.0, 2.0, 1.0]', "run.tau must be strictly ascending"),
-    ('samples = 101', 'samples = 1', "run.samples = 1 is outside the allowed range [2, inf)"),
-    ('a = [0.0, 0.0, 0.3]', 'a = [0.0, 0.3]', "parameters.a = [0.0, 0.3]"),
-    ('b = [[0.2, 0.0, 0.0], [0.0, 0.2, 0.0], [0.0, 0.0, 0.1]]', 'b = [[0.2, 0.0, 0.0]]',
-     "parameters.b"),
-    ('methods = ["full", "averaged", "closed_form"]', 'methods = ["full", "exact"]',
-     "run.methods[1] = 'exact'"),
-    ('kappa = 0.5', 'kappa = 0.0', "parameters.kappa = 0 is outside the allowed range for the averaged"),
-    ('theta = 1.0', 'theta = 1.0\ntheta_deg = 10.0', "give either theta or theta_deg"),
-    ('rtol = 1e-10', 'rtol = 0.5', "run.rtol = 0.5 is outside the allowed range"),
+    (
+        "tau_end = 100.0\nsamples = 101",
+        "tau = [0.0, 2.0, 1.0]",
+        "run.tau must be strictly ascending",
+    ),
+    ("samples = 101", "samples = 1", "run.samples = 1 is outside the allowed range [2, inf)"),
+    ("a = [0.0, 0.0, 0.3]", "a = [0.0, 0.3]", "parameters.a = [0.0, 0.3]"),
+    (
+        "b = [[0.2, 0.0, 0.0], [0.0, 0.2, 0.0], [0.0, 0.0, 0.1]]",
+        "b = [[0.2, 0.0, 0.0]]",
+        "parameters.b",
+    ),
+    (
+        'methods = ["full", "averaged", "closed_form"]',
+        'methods = ["full", "exact"]',
+        "run.methods[1] = 'exact'",
+    ),
+    (
+        "kappa = 0.5",
+        "kappa = 0.0",
+        "parameters.kappa = 0 is outside the allowed range for the averaged",
+    ),
+    ("theta = 1.0", "theta = 1.0\ntheta_deg = 10.0", "give either theta or theta_deg"),
+    ("rtol = 1e-10", "rtol = 0.5", "run.rtol = 0.5 is outside the allowed range"),
 ]
 
 
@@ -198,7 +218,9 @@ def test_bad_input_is_one_line_exit_2_and_writes_nothing(tmp_path, old, new, mes
     out = tmp_path / "out"
     out.mkdir()
     (out / "full.csv").write_text("previous results\n")
-    res = runner.invoke(app, ["run", str(write(tmp_path, CONTRACT.replace(old, new, 1))), "-o", str(out)])
+    res = runner.invoke(
+        app, ["run", str(write(tmp_path, CONTRACT.replace(old, new, 1))), "-o", str(out)]
+    )
     assert res.exit_code == 2
     text = res.stderr.strip()
     assert message in text, text
@@ -234,11 +256,18 @@ def test_examples_are_valid_scenarios(path):
 
 def test_console_script_warns_on_crossing(tmp_path):
     """The installed `tumble` prints the π/2 warning and lists it in summary.json."""
-    text = CONTRACT.replace("a = [0.0, 0.0, 0.3]", "a = [0.2, 0.1, 0.3]").replace(
-        "theta = 1.0", "theta = 2.0").replace("tau_end = 100.0", "tau_end = 200.0")
+    text = (
+        CONTRACT.replace("a = [0.0, 0.0, 0.3]", "a = [0.2, 0.1, 0.3]")
+        .replace("theta = 1.0", "theta = 2.0")
+        .replace("tau_end = 100.0", "tau_end = 200.0")
+    )
     out = tmp_path / "o"
-    proc = subprocess.run([sys.executable, "-m", "tumble.cli", "run", str(write(tmp_path, text)),
-                           "-o", str(out)], capture_output=True, text=True, check=False)
+    proc = subprocess.run(
+        [sys.executable, "-m", "tumble.cli", "run", str(write(tmp_path, text)), "-o", str(out)],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
     assert proc.returncode == 0, proc.stderr
     assert "crosses ϑ = π/2" in proc.stderr
     summary = json.loads((out / "summary.json").read_text())

@@ -39,8 +39,12 @@ def _guarded(work: Callable[[], Any]) -> Any:
     except Exception as exc:
         if os.environ.get("TUMBLE_DEBUG"):
             raise
-        err.print(f"[red]internal error:[/red] {type(exc).__name__}: {exc} "
-                  "(set TUMBLE_DEBUG=1 for a traceback)", highlight=False, soft_wrap=True)
+        err.print(
+            f"[red]internal error:[/red] {type(exc).__name__}: {exc} "
+            "(set TUMBLE_DEBUG=1 for a traceback)",
+            highlight=False,
+            soft_wrap=True,
+        )
         raise typer.Exit(1) from None
 
 
@@ -63,8 +67,13 @@ def run_cmd(
     for col in ("method", "form", "wall time [s]", "final k", "final ϑ [rad]"):
         table.add_column(col)
     for m, ds in result.datasets.items():
-        table.add_row(m, ds.attrs["form"], f"{ds.attrs['wall_time_s']:.3g}",
-                      f"{ds['k'].values[-1]:.6g}", f"{ds['theta'].values[-1]:.6g}")
+        table.add_row(
+            m,
+            ds.attrs["form"],
+            f"{ds.attrs['wall_time_s']:.3g}",
+            f"{ds['k'].values[-1]:.6g}",
+            f"{ds['theta'].values[-1]:.6g}",
+        )
     out.print(table)
     for pair, diffs in result.differences.items():
         text = ", ".join(f"{k} {v:.2e}" for k, v in diffs.items())
@@ -73,8 +82,10 @@ def run_cmd(
     if lim:
         theta = lim.get("theta")
         shown = "undefined" if theta is None else f"{theta:.6g} rad"
-        out.print(f"predicted limits: ϑ → {shown}, k → {lim.get('k'):.6g} ({lim.get('statement')})",
-                  highlight=False)
+        out.print(
+            f"predicted limits: ϑ → {shown}, k → {lim.get('k'):.6g} ({lim.get('statement')})",
+            highlight=False,
+        )
     out.print(f"outputs written to {out_dir}/", highlight=False)
 
 
@@ -84,11 +95,15 @@ def models_cmd() -> None:
     from tumble.models import MODELS
 
     for name, rec in MODELS.items():
-        out.print(f"[bold]{name}[/bold]: {rec.description}  [dim]({rec.paper})[/dim]", highlight=False)
+        out.print(
+            f"[bold]{name}[/bold]: {rec.description}  [dim]({rec.paper})[/dim]", highlight=False
+        )
 
 
 @app.command("init")
-def init_cmd(model: Annotated[str, typer.Argument(help="model name (see `tumble models`)")]) -> None:
+def init_cmd(
+    model: Annotated[str, typer.Argument(help="model name (see `tumble models`)")],
+) -> None:
     """Print a commented example scenario for MODEL."""
     from tumble.io import template
 

@@ -83,6 +83,5 @@ def check_range(
     if not (ok_low and ok_high):
         left = "(" if low_open else "["
         right = ")" if high_open else "]"
-        raise ParameterError(
-            f"{field} = {value:g} is outside the allowed range {left}{_fmt(low)}, {_fmt(high)}{right}"
-        )
+        allowed = f"{left}{_fmt(low)}, {_fmt(high)}{right}"
+        raise ParameterError(f"{field} = {value:g} is outside the allowed range {allowed}")

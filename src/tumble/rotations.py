@@ -86,9 +86,15 @@ def quat_to_matrix(q: ArrayLike) -> FloatArray:
     q0, q1, q2, q3 = np.moveaxis(quat_normalize(q), -1, 0)
     return np.stack(
         [
-            np.stack([1 - 2 * (q2 * q2 + q3 * q3), 2 * (q1 * q2 - q0 * q3), 2 * (q1 * q3 + q0 * q2)], -1),
-            np.stack([2 * (q1 * q2 + q0 * q3), 1 - 2 * (q1 * q1 + q3 * q3), 2 * (q2 * q3 - q0 * q1)], -1),
-            np.stack([2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), 1 - 2 * (q1 * q1 + q2 * q2)], -1),
+            np.stack(
+                [1 - 2 * (q2 * q2 + q3 * q3), 2 * (q1 * q2 - q0 * q3), 2 * (q1 * q3 + q0 * q2)], -1
+            ),
+            np.stack(
+                [2 * (q1 * q2 + q0 * q3), 1 - 2 * (q1 * q1 + q3 * q3), 2 * (q2 * q3 - q0 * q1)], -1
+            ),
+            np.stack(
+                [2 * (q1 * q3 - q0 * q2), 2 * (q2 * q3 + q0 * q1), 1 - 2 * (q1 * q1 + q2 * q2)], -1
+            ),
         ],
         axis=-2,
     )
@@ -117,20 +123,44 @@ def matrix_to_quat(R: ArrayLike) -> FloatArray:
         # pivot 0: q0
         s = np.sqrt(np.maximum(1.0 + tr, 0.0)) * 2.0
         q0 = np.stack(
-            [s / 4, (R[..., 2, 1] - R[..., 1, 2]) / s, (R[..., 0, 2] - R[..., 2, 0]) / s,
-             (R[..., 1, 0] - R[..., 0, 1]) / s], -1)
+            [
+                s / 4,
+                (R[..., 2, 1] - R[..., 1, 2]) / s,
+                (R[..., 0, 2] - R[..., 2, 0]) / s,
+                (R[..., 1, 0] - R[..., 0, 1]) / s,
+            ],
+            -1,
+        )
         s1 = np.sqrt(np.maximum(1.0 + R[..., 0, 0] - R[..., 1, 1] - R[..., 2, 2], 0.0)) * 2.0
         q1 = np.stack(
-            [(R[..., 2, 1] - R[..., 1, 2]) / s1, s1 / 4, (R[..., 0, 1] + R[..., 1, 0]) / s1,
-             (R[..., 0, 2] + R[..., 2, 0]) / s1], -1)
+            [
+                (R[..., 2, 1] - R[..., 1, 2]) / s1,
+                s1 / 4,
+                (R[..., 0, 1] + R[..., 1, 0]) / s1,
+                (R[..., 0, 2] + R[..., 2, 0]) / s1,
+            ],
+            -1,
+        )
         s2 = np.sqrt(np.maximum(1.0 - R[..., 0, 0] + R[..., 1, 1] - R[..., 2, 2], 0.0)) * 2.0
         q2 = np.stack(
-            [(R[..., 0, 2] - R[..., 2, 0]) / s2, (R[..., 0, 1] + R[..., 1, 0]) / s2, s2 / 4,
-             (R[..., 1, 2] + R[..., 2, 1]) / s2], -1)
+            [
+                (R[..., 0, 2] - R[..., 2, 0]) / s2,
+                (R[..., 0, 1] + R[..., 1, 0]) / s2,
+                s2 / 4,
+                (R[..., 1, 2] + R[..., 2, 1]) / s2,
+            ],
+            -1,
+        )
         s3 = np.sqrt(np.maximum(1.0 - R[..., 0, 0] - R[..., 1, 1] + R[..., 2, 2], 0.0)) * 2.0
         q3 = np.stack(
-            [(R[..., 1, 0] - R[..., 0, 1]) / s3, (R[..., 0, 2] + R[..., 2, 0]) / s3,
-             (R[..., 1, 2] + R[..., 2, 1]) / s3, s3 / 4], -1)
+            [
+                (R[..., 1, 0] - R[..., 0, 1]) / s3,
+                (R[..., 0, 2] + R[..., 2, 0]) / s3,
+                (R[..., 1, 2] + R[..., 2, 1]) / s3,
+                s3 / 4,
+            ],
+            -1,
+        )
         q = np.choose(pivot[..., None], [q0, q1, q2, q3])
     q = quat_normalize(q)
     return np.where(q[..., :1] < 0.0, -q, q)
@@ -140,14 +170,18 @@ def rot_x(a: ArrayLike) -> FloatArray:
     """Active rotation by angle ``a`` [rad] about x, shape (..., 3, 3)."""
     a = _arr(a)
     c, s, o, z = np.cos(a), np.sin(a), np.ones_like(a), np.zeros_like(a)
-    return np.stack([np.stack([o, z, z], -1), np.stack([z, c, -s], -1), np.stack([z, s, c], -1)], -2)
+    return np.stack(
+        [np.stack([o, z, z], -1), np.stack([z, c, -s], -1), np.stack([z, s, c], -1)], -2
+    )
 
 
 def rot_z(a: ArrayLike) -> FloatArray:
     """Active rotation by angle ``a`` [rad] about z, shape (..., 3, 3)."""
     a = _arr(a)
     c, s, o, z = np.cos(a), np.sin(a), np.ones_like(a), np.zeros_like(a)
-    return np.stack([np.stack([c, -s, z], -1), np.stack([s, c, z], -1), np.stack([z, z, o], -1)], -2)
+    return np.stack(
+        [np.stack([c, -s, z], -1), np.stack([s, c, z], -1), np.stack([z, z, o], -1)], -2
+    )
 
 
 def euler313_to_matrix(psi: ArrayLike, theta: ArrayLike, phi: ArrayLike) -> FloatArray:

@@ -9,11 +9,17 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from tumble._typing import FloatArray
+from tumble._typing import ArrayLike, FloatArray
 from tumble.integrate import DEFAULT_ATOL, DEFAULT_RTOL, simulate
 from tumble.models.base import ModelRecord
 
-__all__ = ["ErrorStudy", "angle_difference", "averaging_error_study", "fitted_order", "max_differences"]
+__all__ = [
+    "ErrorStudy",
+    "angle_difference",
+    "averaging_error_study",
+    "fitted_order",
+    "max_differences",
+]
 
 
 def angle_difference(x: FloatArray, y: FloatArray) -> FloatArray:
@@ -36,7 +42,7 @@ def max_differences(a: xr.Dataset, b: xr.Dataset) -> dict[str, float]:
     return out
 
 
-def fitted_order(eps: Sequence[float], err: Sequence[float]) -> float:
+def fitted_order(eps: ArrayLike, err: ArrayLike) -> float:
     """Slope of log(err) against log(ε), least squares: the measured order of accuracy."""
     return float(np.polyfit(np.log(np.asarray(eps)), np.log(np.asarray(err)), 1)[0])
 

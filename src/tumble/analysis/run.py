@@ -64,13 +64,23 @@ def to_dataset(model: ModelRecord, traj: Trajectory) -> xr.Dataset:
     """Trajectory as an ``xarray.Dataset`` with units, long names and equations in ``attrs``."""
     data_vars = {}
     for col in model.columns[traj.method]:
-        attrs = {"units": col.units, "long_name": col.long_name, "equation": col.equation,
-                 "angle": int(col.angle)}
+        attrs = {
+            "units": col.units,
+            "long_name": col.long_name,
+            "equation": col.equation,
+            "angle": int(col.angle),
+        }
         data_vars[col.name] = xr.DataArray(traj.columns[col.name], dims=("tau",), attrs=attrs)
-    ds = xr.Dataset(data_vars, coords={"tau": ("tau", traj.tau, {"units": "1",
-                                                                   "long_name": "time τ"})})
-    ds.attrs.update(model=model.name, method=traj.method, form=traj.form,
-                    wall_time_s=traj.wall_time, nfev=traj.nfev)
+    ds = xr.Dataset(
+        data_vars, coords={"tau": ("tau", traj.tau, {"units": "1", "long_name": "time τ"})}
+    )
+    ds.attrs.update(
+        model=model.name,
+        method=traj.method,
+        form=traj.form,
+        wall_time_s=traj.wall_time,
+        nfev=traj.nfev,
+    )
     return ds
 
 
@@ -82,8 +92,12 @@ def _merge_issues(found: dict[str, list[ValidityIssue]]) -> list[dict[str, Any]]
             entry = merged.get(issue.condition)
             if entry is None or issue.tau < entry["tau"]:
                 methods = entry["methods"] if entry else []
-                merged[issue.condition] = {"condition": issue.condition, "tau": issue.tau,
-                                           "message": issue.message, "methods": methods}
+                merged[issue.condition] = {
+                    "condition": issue.condition,
+                    "tau": issue.tau,
+                    "message": issue.message,
+                    "methods": methods,
+                }
             merged[issue.condition]["methods"].append(method)
     return sorted(merged.values(), key=lambda e: e["tau"])
 
@@ -125,4 +139,3 @@ def run(request: RunRequest) -> RunResult:
         warnings.warn(issue["message"], TumbleWarning, stacklevel=2)
     limits = model.limits(p, st)
     return RunResult(request, datasets, trajectories, differences, issues, limits)
-

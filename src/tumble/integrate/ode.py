@@ -91,10 +91,13 @@ def integrate(
         return DenseSolution(np.array([0.0]), 0, lambda t: np.repeat(y0[:, None], np.size(t), 1))
     with np.errstate(divide="raise", over="raise", invalid="raise"):
         try:
-            res = solve_ivp(rhs, (0.0, t_end), y0, method="DOP853", rtol=rtol, atol=atol,
-                            dense_output=True)
+            res = solve_ivp(
+                rhs, (0.0, t_end), y0, method="DOP853", rtol=rtol, atol=atol, dense_output=True
+            )
         except FloatingPointError as exc:
-            raise IntegrationError(f"{what}: arithmetic failure during integration ({exc})") from None
+            raise IntegrationError(
+                f"{what}: arithmetic failure during integration ({exc})"
+            ) from None
     if res.status < 0 or not np.all(np.isfinite(res.y)):
         t_fail = float(res.t[-1]) if res.t.size else 0.0
         raise IntegrationError(f"{what}: integration failed at t = {t_fail:.6g}: {res.message}")

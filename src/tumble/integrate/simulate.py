@@ -89,7 +89,7 @@ def simulate(
     p: Any,
     initial: Any,
     tau: ArrayLike,
-    method: Method,
+    method: str,
     *,
     rtol: float = DEFAULT_RTOL,
     atol: float = DEFAULT_ATOL,
@@ -130,18 +130,31 @@ def simulate(
     if method == "full":
         full = model.full if form is None else model.full_forms[form]
         y0 = full.from_slow(p, initial)
-        sol = integrate(lambda t, y: full.rhs(t, y, p), y0, t_end, rtol=rtol, atol=atol,
-                        what=f"{model.name} full equations {full.equation}")
+        sol = integrate(
+            lambda t, y: full.rhs(t, y, p),
+            y0,
+            t_end,
+            rtol=rtol,
+            atol=atol,
+            what=f"{model.name} full equations {full.equation}",
+        )
         cols = _sampled(model, method, sol, lambda t, Y: full.to_columns(t, Y, p), tau, initial)
         used, nfev = full.name, sol.nfev
         slow = lambda t: full.to_columns(t, sol(t), p)  # noqa: E731
     elif method == "averaged":
         avg = model.averaged_form(p, initial)
         y0 = avg.from_slow(p, initial)
-        sol = integrate(lambda t, y: avg.rhs(t, y, p), y0, t_end, rtol=rtol, atol=atol,
-                        what=f"{model.name} averaged equations {avg.equation}")
-        cols = _sampled(model, method, sol, lambda t, Y: avg.to_columns(t, Y, p, initial), tau,
-                        initial)
+        sol = integrate(
+            lambda t, y: avg.rhs(t, y, p),
+            y0,
+            t_end,
+            rtol=rtol,
+            atol=atol,
+            what=f"{model.name} averaged equations {avg.equation}",
+        )
+        cols = _sampled(
+            model, method, sol, lambda t, Y: avg.to_columns(t, Y, p, initial), tau, initial
+        )
         used, nfev = avg.name, sol.nfev
         slow = lambda t: avg.to_columns(t, sol(t), p, initial)  # noqa: E731
     else:

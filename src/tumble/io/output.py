@@ -45,8 +45,9 @@ def csv_text(ds: xr.Dataset, extra: dict[str, np.ndarray] | None = None) -> str:
     if extra:
         names, cols = list(extra), list(extra.values())
     buf = io.StringIO()
-    np.savetxt(buf, np.column_stack(cols), fmt="%.17g", delimiter=",", header=",".join(names),
-               comments="")
+    np.savetxt(
+        buf, np.column_stack(cols), fmt="%.17g", delimiter=",", header=",".join(names), comments=""
+    )
     return buf.getvalue()
 
 
@@ -65,7 +66,10 @@ def _jsonable(x: Any) -> Any:
 
 
 def _final_state(ds: xr.Dataset) -> dict[str, float]:
-    return {"tau": float(ds["tau"].values[-1]), **{str(v): float(ds[v].values[-1]) for v in ds.data_vars}}
+    return {
+        "tau": float(ds["tau"].values[-1]),
+        **{str(v): float(ds[v].values[-1]) for v in ds.data_vars},
+    }
 
 
 def summary(result: RunResult, inputs: dict[str, Any], source: str) -> dict[str, Any]:
@@ -78,8 +82,11 @@ def summary(result: RunResult, inputs: dict[str, Any], source: str) -> dict[str,
         "paper": req.model.paper,
         "scenario": source,
         "inputs": inputs,
-        "derived": {name: getattr(p, name) for name in ("alpha", "beta", "gamma", "delta")
-                    if hasattr(p, name)},
+        "derived": {
+            name: getattr(p, name)
+            for name in ("alpha", "beta", "gamma", "delta")
+            if hasattr(p, name)
+        },
         "methods": {
             m: {
                 "form": ds.attrs["form"],
@@ -106,8 +113,10 @@ def render_outputs(result: RunResult, inputs: dict[str, Any], source: str) -> di
     for method, ds in result.datasets.items():
         files[f"{method}.csv"] = csv_text(ds).encode()
         if scaling is not None:
-            si = {"t_s": scaling.time_from_tau(ds["tau"].values),
-                  "K_Nms": scaling.K0 * ds["k"].values}
+            si = {
+                "t_s": scaling.time_from_tau(ds["tau"].values),
+                "K_Nms": scaling.K0 * ds["k"].values,
+            }
             si.update({str(v): ds[v].values for v in ds.data_vars if v != "k"})
             files[f"{method}_si.csv"] = csv_text(ds, si).encode()
     text = json.dumps(summary(result, inputs, source), indent=2, ensure_ascii=False)

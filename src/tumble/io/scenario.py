@@ -101,7 +101,9 @@ class RMPhysical(_Section):
     I3: float = Field(description="polar moment of inertia in (0, 2 I1] [kg m^2]")
     A: Vector3 = Field(default_factory=lambda: [0.0, 0.0, 0.0], description="3 moments [N m]")
     B: Matrix3 = Field(default_factory=lambda: np.zeros((3, 3)).tolist(), description="3×3 [N m s]")
-    S: Matrix3 = Field(default_factory=lambda: np.zeros((3, 3)).tolist(), description="3×3 [N m s^2]")
+    S: Matrix3 = Field(
+        default_factory=lambda: np.zeros((3, 3)).tolist(), description="3×3 [N m s^2]"
+    )
     M0: float | None = Field(None, description="a moment scale > 0 [N m]")
 
 
@@ -164,8 +166,14 @@ def _field_hint(schema: type[BaseModel], loc: tuple[int | str, ...]) -> tuple[st
         info = cls.model_fields[part]
         hint = info.description or hint
         ann = info.annotation
-        cls = next((a for a in getattr(ann, "__args__", ()) if isinstance(a, type)
-                    and issubclass(a, BaseModel)), ann)
+        cls = next(
+            (
+                a
+                for a in getattr(ann, "__args__", ())
+                if isinstance(a, type) and issubclass(a, BaseModel)
+            ),
+            ann,
+        )
     return hint, siblings
 
 
@@ -216,7 +224,9 @@ def _tolerances(run: Any) -> tuple[float, float]:
 def _methods(run: Any, allowed: tuple[str, ...]) -> tuple[str, ...]:
     methods = tuple(run.methods) if run.methods is not None else allowed
     if not methods:
-        raise ScenarioError("run.methods: give at least one method (allowed: " + ", ".join(allowed) + ")")
+        raise ScenarioError(
+            "run.methods: give at least one method (allowed: " + ", ".join(allowed) + ")"
+        )
     if len(set(methods)) != len(methods):
         raise ScenarioError(f"run.methods = {list(methods)}: each method at most once")
     return methods
@@ -226,18 +236,26 @@ def _resisting_medium(data: dict[str, Any]) -> tuple[RunRequest, dict[str, Any]]
     model = resisting_medium.MODEL
     if "physical" in data:
         if "parameters" in data:
-            raise ScenarioError("give either [parameters] (normalized) or [physical] (SI), not both")
+            raise ScenarioError(
+                "give either [parameters] (normalized) or [physical] (SI), not both"
+            )
         sc = _validated(RMPhysicalScenario, data)
         phys = resisting_medium.PhysicalParams(
-            I1=sc.physical.I1, I3=sc.physical.I3, A=sc.physical.A, B=sc.physical.B,
-            S=sc.physical.S, M0=sc.physical.M0,
+            I1=sc.physical.I1,
+            I3=sc.physical.I3,
+            A=sc.physical.A,
+            B=sc.physical.B,
+            S=sc.physical.S,
+            M0=sc.physical.M0,
         )
         ini = sc.initial
         angles_given = [n for n in ("rho", "sigma", "psi") if getattr(ini, n) is not None]
         if ini.quaternion is not None and angles_given:
             raise ScenarioError("initial: give either quaternion or rho, sigma, psi, not both")
         if ini.quaternion is None and len(angles_given) != 3:
-            raise ScenarioError("initial: give the attitude as quaternion or as all of rho, sigma, psi")
+            raise ScenarioError(
+                "initial: give the attitude as quaternion or as all of rho, sigma, psi"
+            )
         if ini.quaternion is not None and not np.any(ini.quaternion):
             raise ParameterError("initial.quaternion = [0, 0, 0, 0] is not a rotation")
         p, st, scaling = resisting_medium.normalize_physical(
@@ -250,8 +268,9 @@ def _resisting_medium(data: dict[str, Any]) -> tuple[RunRequest, dict[str, Any]]
         sc = _validated(RMScenario, data)
         par, ini = sc.parameters, sc.initial
         p = resisting_medium.Params(eps=par.eps, kappa=par.kappa, a=par.a, b=par.b, s=par.s)
-        st = resisting_medium.State(k=ini.k, rho=ini.rho, sigma=ini.sigma, psi=ini.psi,
-                                    theta=ini.theta, phi=ini.phi)
+        st = resisting_medium.State(
+            k=ini.k, rho=ini.rho, sigma=ini.sigma, psi=ini.psi, theta=ini.theta, phi=ini.phi
+        )
         tau, scaling, run = _times(sc.run, "tau_end", "tau"), None, sc.run
     rtol, atol = _tolerances(run)
     request = RunRequest(model, p, st, tau, _methods(run, model.methods), rtol, atol, scaling)
@@ -270,7 +289,9 @@ def parse_scenario(data: dict[str, Any], source: str = "<scenario>") -> Scenario
         With a one-line message naming the key and its allowed range.
     """
     if "model" not in data:
-        raise ScenarioError("model: required key is missing (allowed: " + ", ".join(_BUILDERS) + ")")
+        raise ScenarioError(
+            "model: required key is missing (allowed: " + ", ".join(_BUILDERS) + ")"
+        )
     name = data["model"]
     if not isinstance(name, str):
         raise ScenarioError(f"model = {name!r}: expected a string")

@@ -104,6 +104,8 @@ class ModelRecord:
     averaged_form: Callable[[Any, Any], AveragedForm]
     closed_form: Callable[[Any, Any, FloatArray], dict[str, FloatArray]]
     check_method: Callable[[Any, str], None]
-    validity: Callable[[Any, Any, Callable[[FloatArray], dict[str, FloatArray]], float], list[ValidityIssue]]
+    validity: Callable[
+        [Any, Any, Callable[[FloatArray], dict[str, FloatArray]], float], list[ValidityIssue]
+    ]
     limits: Callable[[Any, Any], dict[str, Any]]
     extras: Mapping[str, Any] = field(default_factory=dict)

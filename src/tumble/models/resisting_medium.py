@@ -172,7 +172,9 @@ class State:
 
     def __post_init__(self) -> None:
         check_range("initial.k", self.k, low=0.0)
-        check_range("initial.theta", self.theta, low=0.0, high=math.pi, low_open=False, high_open=False)
+        check_range(
+            "initial.theta", self.theta, low=0.0, high=math.pi, low_open=False, high_open=False
+        )
         check_range("initial.rho", self.rho, low=0.0, high=math.pi, low_open=False, high_open=False)
         for name in ("sigma", "psi", "phi"):
             check_finite(f"initial.{name}", getattr(self, name))
@@ -386,10 +388,17 @@ def _averaged_columns_ktheta(
 ) -> dict[str, FloatArray]:
     Y = np.atleast_2d(Y)
     n = Y.shape[0]
-    return {"k": Y[:, 0], "theta": Y[:, 1], "rho": np.full(n, st.rho), "sigma": np.full(n, st.sigma)}
+    return {
+        "k": Y[:, 0],
+        "theta": Y[:, 1],
+        "rho": np.full(n, st.rho),
+        "sigma": np.full(n, st.sigma),
+    }
 
 
-def _averaged_columns_wv(t: FloatArray, Y: FloatArray, p: Params, st: State) -> dict[str, FloatArray]:
+def _averaged_columns_wv(
+    t: FloatArray, Y: FloatArray, p: Params, st: State
+) -> dict[str, FloatArray]:
     Y = np.atleast_2d(Y)
     n = Y.shape[0]
     return {
@@ -715,7 +724,9 @@ def axial_upper_tan(tau: ArrayLike, W0: float, p: Params) -> FloatArray:
     if mu1_sq <= 0.0:
         raise ParameterError(f"(2.6) needs a3/δ < −(β/2δ)², got μ1² = {mu1_sq:g}")
     mu1 = math.sqrt(mu1_sq)
-    arg = math.atan((2 * de * W0 + be) / (2 * de * mu1)) - p.eps * de * mu1 * np.asarray(tau, dtype=float)
+    arg = math.atan((2 * de * W0 + be) / (2 * de * mu1)) - p.eps * de * mu1 * np.asarray(
+        tau, dtype=float
+    )
     return (-be + 2 * de * mu1 * np.tan(arg)) / (2 * de)
 
 
@@ -745,7 +756,9 @@ def axial_lower_tan(tau: ArrayLike, W0: float, p: Params) -> FloatArray:
     if mu2_sq <= 0.0:
         raise ParameterError(f"(2.8) needs a3/δ > (β/2δ)², got μ2² = {mu2_sq:g}")
     mu2 = math.sqrt(mu2_sq)
-    arg = math.atan((2 * de * W0 - be) / (2 * de * mu2)) + p.eps * de * mu2 * np.asarray(tau, dtype=float)
+    arg = math.atan((2 * de * W0 - be) / (2 * de * mu2)) + p.eps * de * mu2 * np.asarray(
+        tau, dtype=float
+    )
     return (be + 2 * de * mu2 * np.tan(arg)) / (2 * de)
 
 
@@ -790,7 +803,7 @@ def tan_theta_quadratic(tau: ArrayLike, k0: float, theta0: float, p: Params) -> 
 # Asymptotic conclusions, spec §9.
 
 
-def _scalar_limit(x0: float, side: float, f: Callable[[float], float], roots: list[float]) -> float:
+def _scalar_limit(x0: float, f: Callable[[float], float], roots: list[float]) -> float:
     """Limit of a monotone scalar flow dx/ds = f(x) from x0: the nearest root ahead, or ±inf."""
     f0 = f(x0)
     if f0 == 0.0:
@@ -817,9 +830,11 @@ def _W_limit(W0: float, a3: float, beta: float, delta: float) -> float:
     start = W0
     for _ in range(2):
         d = side * delta
-        target = _scalar_limit(
-            start, side, lambda w, d=d: a3 - beta * w - d * w * w, _riccati_roots(a3, beta, d)
-        )
+
+        def rate(w: float, d: float = d) -> float:
+            return a3 - beta * w - d * w * w
+
+        target = _scalar_limit(start, rate, _riccati_roots(a3, beta, d))
         if side * target >= 0.0:
             return target
         side, start = -side, 0.0  # W reaches 0 first and continues in the other hemisphere
@@ -850,7 +865,7 @@ def predicted_limits(p: Params, st: State) -> dict[str, Any]:
     if p.eps == 0.0:
         return {"theta": st.theta, "k": st.k, "W": W0, "V": V0, "statement": "ε = 0: no evolution"}
     W_inf = _W_limit(W0, a3, be, de)
-    V_inf = _scalar_limit(V0, 1.0, lambda v: -(al * v + ga * v * v), [0.0] + ([-al / ga] if ga else []))
+    V_inf = _scalar_limit(V0, lambda v: -(al * v + ga * v * v), [0.0] + ([-al / ga] if ga else []))
     theta: float | None
     if W_inf != 0.0 or V_inf != 0.0:
         if math.isinf(W_inf) and math.isinf(V_inf):
@@ -936,9 +951,7 @@ def _slow_rate_per_k(p: Params, k: FloatArray) -> FloatArray:
         return p.eps * (na / k**2 + c * nb / k + c * c * ns)
 
 
-def _first_time(
-    condition: Callable[[FloatArray], FloatArray], grid: FloatArray
-) -> float | None:
+def _first_time(condition: Callable[[FloatArray], FloatArray], grid: FloatArray) -> float | None:
     """First τ on ``grid`` where ``condition(τ) > 0``, refined by root finding; None if never."""
     values = condition(grid)
     hits = np.flatnonzero(values > 0.0)
@@ -947,7 +960,9 @@ def _first_time(
     i = int(hits[0])
     if i == 0:
         return float(grid[0])
-    return float(brentq(lambda t: float(condition(np.array([t]))[0]), grid[i - 1], grid[i], xtol=1e-12))
+    return float(
+        brentq(lambda t: float(condition(np.array([t]))[0]), grid[i - 1], grid[i], xtol=1e-12)
+    )
 
 
 def validity(
@@ -1012,6 +1027,7 @@ def validity(
         return c["k"], c["theta"]
 
     if phi_dependent:
+
         def phi_slow(t: FloatArray) -> FloatArray:
             k, theta = cols(t)
             fast = np.abs(p.kappa * np.cos(theta)) / (1.0 + p.kappa)
@@ -1053,7 +1069,7 @@ def _check_method(p: Params, method: str) -> None:
         raise ParameterError(
             "parameters.kappa = 0 is outside the allowed range for the averaged and closed_form "
             "methods (κ ≠ 0: a spherical inertia ellipsoid has no fast spin φ, spec §10.5); "
-            "use methods = [\"full\"]"
+            'use methods = ["full"]'
         )
 
 
@@ -1151,8 +1167,11 @@ def normalize_physical(
     T0 = phys.I1 / K0
     M0 = phys.M0
     if M0 is None:
-        M0 = max(float(np.max(np.abs(phys.A))), float(np.max(np.abs(phys.B))) / T0,
-                 float(np.max(np.abs(phys.S))) / T0**2)
+        M0 = max(
+            float(np.max(np.abs(phys.A))),
+            float(np.max(np.abs(phys.B))) / T0,
+            float(np.max(np.abs(phys.S))) / T0**2,
+        )
         if M0 == 0.0:
             M0 = K0 / T0  # a free body: any scale will do
     p = Params(

@@ -13,7 +13,7 @@ if TYPE_CHECKING:
 
 __all__ = ["plot_comparison", "plot_methods"]
 
-_STYLE = {
+_STYLE: dict[str, dict[str, Any]] = {
     "full": {"color": "0.35", "lw": 0.8, "label": "full"},
     "averaged": {"color": "tab:blue", "lw": 2.0, "ls": "-", "label": "averaged"},
     "closed_form": {"color": "tab:orange", "lw": 1.2, "ls": "--", "label": "closed form"},
@@ -55,13 +55,24 @@ def plot_methods(
     for method, ds in datasets.items():
         if variable in ds:
             some = ds
-            ax.plot(ds["tau"].values, ds[variable].values, **_STYLE.get(method, {"label": method}))
+            style: dict[str, Any] = _STYLE.get(method, {"label": method})
+            ax.plot(ds["tau"].values, ds[variable].values, **style)
     for mark in marks:
         ax.axvline(float(mark["tau"]), color="tab:red", ls=":", lw=1.0)
-        ax.annotate(str(mark["condition"]), (float(mark["tau"]), 1.0), xycoords=("data", "axes fraction"),
-                    rotation=90, va="top", ha="right", fontsize=7, color="tab:red")
+        ax.annotate(
+            str(mark["condition"]),
+            (float(mark["tau"]), 1.0),
+            xycoords=("data", "axes fraction"),
+            rotation=90,
+            va="top",
+            ha="right",
+            fontsize=7,
+            color="tab:red",
+        )
     if some is not None:
-        ax.set_xlabel(f"{some['tau'].attrs.get('long_name', 'τ')} [{some['tau'].attrs.get('units', '')}]")
+        ax.set_xlabel(
+            f"{some['tau'].attrs.get('long_name', 'τ')} [{some['tau'].attrs.get('units', '')}]"
+        )
         ax.set_ylabel(_label(some[variable]))
     ax.grid(True, alpha=0.3)
     return ax

@@ -2,8 +2,8 @@
 
 import numpy as np
 import pytest
-
 from test_rm_accuracy import HEMISPHERE_CASES
+
 from tumble.analysis import averaging_error_study
 from tumble.models import resisting_medium as rm
 

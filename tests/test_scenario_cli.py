@@ -78,6 +78,7 @@ def test_run_writes_the_contract_outputs(tmp_path):
     assert summary["predicted_limits"]["theta"] == 0.0
     assert (out / "comparison.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     assert not [f for f in os.listdir(out) if f.endswith(".tmp")]
+    assert (out / "full.csv").stat().st_mode & 0o044  # readable by others, as with open()
 
 
 def test_explicit_times_are_honoured(tmp_path):
@@ -183,7 +184,7 @@ BAD = [
     ("eps = 0.01", 'eps = "small"', "parameters.eps = 'small'"),
     ("theta = 1.0", "theta = 4.0", "initial.theta = 4 is outside the allowed range [0, 3.14159]"),
     ("k = 1.0", "k = 0.0", "initial.k = 0 is outside the allowed range (0, inf)"),
-    ("phi = 0.0", "phi = 0.0\nomega = 3.0", "initial.omega: unknown key"),
+    ("phi = 0.0", "phi = 0.0\nomega = 3.0", "initial.omega: unknown key (allowed here: k, rho,"),
     ('model = "resisting_medium"', 'model = "pendulum"', "model = 'pendulum' is not a known model"),
     (
         "tau_end = 100.0\nsamples = 101",

@@ -160,9 +160,9 @@ def _field_hint(schema: type[BaseModel], loc: tuple[int | str, ...]) -> tuple[st
     for part in loc:
         if not (isinstance(cls, type) and issubclass(cls, BaseModel)):
             break
+        siblings = list(cls.model_fields)  # the keys allowed in the section ``part`` is in
         if not isinstance(part, str) or part not in cls.model_fields:
             break
-        siblings = list(cls.model_fields)
         info = cls.model_fields[part]
         hint = info.description or hint
         ann = info.annotation

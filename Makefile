@@ -1,0 +1,58 @@
+# tumble — developer entry points. Needs only python3 >= 3.11 and network access to PyPI.
+#
+#   make demo    run every scenario in examples/ (outputs under out/<name>/)
+#   make test    the test suite without the slow studies (what CI runs: .ci/run)
+#   make bench   the slow studies only (pytest -m slow)
+#   make lint    ruff, mypy and the import-layer contract
+#   make clean   remove outputs and caches (keeps .venv; `make distclean` removes it too)
+
+PYTHON ?= python3
+VENV   := .venv
+BIN    := $(VENV)/bin
+
+# Stamp files: the editable install reruns only when pyproject.toml changes
+# (or the virtualenv was recreated).
+TEST_STAMP := $(VENV)/.installed-test
+DEV_STAMP  := $(VENV)/.installed-dev
+
+EXAMPLES := $(wildcard examples/*.toml)
+
+.PHONY: demo test bench lint clean distclean
+.DELETE_ON_ERROR:
+
+$(BIN)/python:
+	$(PYTHON) -m venv $(VENV)
+
+$(TEST_STAMP): pyproject.toml | $(BIN)/python
+	$(BIN)/python -m pip install -e ".[test]"
+	touch $@
+
+$(DEV_STAMP): pyproject.toml $(TEST_STAMP)
+	$(BIN)/python -m pip install -e ".[test,dev]"
+	touch $@
+
+demo: $(TEST_STAMP)
+	@set -e; for f in $(EXAMPLES); do \
+		name=$$(basename "$$f" .toml); \
+		echo "== $$f -> out/$$name"; \
+		$(BIN)/tumble run "$$f" -o "out/$$name"; \
+	done
+
+test: $(TEST_STAMP)
+	$(BIN)/python -m pytest -m "not slow" -q
+
+bench: $(TEST_STAMP)
+	$(BIN)/python -m pytest -m slow -q
+
+lint: $(DEV_STAMP)
+	$(BIN)/ruff check src tests
+	$(BIN)/mypy src
+	$(BIN)/lint-imports
+
+clean:
+	rm -rf out build dist .pytest_cache .hypothesis .mypy_cache .ruff_cache .import_linter_cache
+	find . -path ./$(VENV) -prune -o \( -name __pycache__ -o -name '*.egg-info' \) -type d -prune \
+		-exec rm -rf {} +
+
+distclean: clean
+	rm -rf $(VENV)

@@ -5,6 +5,7 @@ import math
 import numpy as np
 import pytest
 from test_rm_closed_forms import medium, state
+from test_rm_forms import GENERAL, START
 
 from tumble.analysis import RunRequest, averaging_error_study, fitted_order, run
 from tumble.errors import ParameterError, TumbleWarning
@@ -16,16 +17,7 @@ EPS = [0.02, 0.01, 0.005]
 
 HEMISPHERE_CASES = {
     # a3 > 0 from ϑ0 < π/2: ϑ → 0 without crossing π/2; oblate; full B and S.
-    "oblate_upper": (
-        rm.Params(
-            eps=0.01,
-            kappa=0.5,
-            a=[0.1, -0.05, 0.3],
-            b=[[0.2, 0.01, 0.02], [0.0, 0.25, 0.0], [0.03, 0.0, 0.1]],
-            s=[[0.1, 0.0, 0.01], [0.0, 0.12, 0.0], [0.0, 0.02, 0.05]],
-        ),
-        rm.State(1.0, 1.2, 0.3, 0.2, 1.0, 0.1),
-    ),
+    "oblate_upper": (GENERAL, START),
     # a3 < 0 from ϑ0 > π/2: ϑ → π; prolate; full B and S.
     "prolate_lower": (
         rm.Params(

@@ -17,7 +17,7 @@ import numpy as np
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import ParameterError
 from tumble.integrate.ode import DEFAULT_ATOL, DEFAULT_RTOL, DenseSolution, check_times, integrate
-from tumble.models.base import ModelRecord
+from tumble.models.base import AveragedForm, FullForm, ModelRecord
 
 __all__ = ["Method", "Trajectory", "simulate"]
 
@@ -127,39 +127,46 @@ def simulate(
     model.check_method(p, method)
     start = time.perf_counter()
     t_end = float(tau[-1])
-    if method == "full":
-        full = model.full if form is None else model.full_forms[form]
-        y0 = full.from_slow(p, initial)
+    if method in ("full", "averaged"):
+        eq: FullForm | AveragedForm
+        if method == "full":
+            if form is not None and form not in model.full_forms:
+                raise ParameterError(
+                    f"form = {form!r} is not a full form of {model.name} "
+                    f"(allowed: {', '.join(model.full_forms)})"
+                )
+            eq = full = model.full if form is None else model.full_forms[form]
+            kind = "full equations"
+
+            def to_columns(t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
+                return full.to_columns(t, Y, p)
+        else:
+            eq = avg = model.averaged_form(p, initial)
+            kind = "averaged equations"
+
+            def to_columns(t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
+                return avg.to_columns(t, Y, p, initial)
+
         sol = integrate(
-            lambda t, y: full.rhs(t, y, p),
-            y0,
+            lambda t, y: eq.rhs(t, y, p),
+            eq.from_slow(p, initial),
             t_end,
             rtol=rtol,
             atol=atol,
-            what=f"{model.name} full equations {full.equation}",
+            what=f"{model.name} {kind} {eq.equation}",
         )
-        cols = _sampled(model, method, sol, lambda t, Y: full.to_columns(t, Y, p), tau, initial)
-        used, nfev = full.name, sol.nfev
-        slow = lambda t: full.to_columns(t, sol(t), p)  # noqa: E731
-    elif method == "averaged":
-        avg = model.averaged_form(p, initial)
-        y0 = avg.from_slow(p, initial)
-        sol = integrate(
-            lambda t, y: avg.rhs(t, y, p),
-            y0,
-            t_end,
-            rtol=rtol,
-            atol=atol,
-            what=f"{model.name} averaged equations {avg.equation}",
-        )
-        cols = _sampled(
-            model, method, sol, lambda t, Y: avg.to_columns(t, Y, p, initial), tau, initial
-        )
-        used, nfev = avg.name, sol.nfev
-        slow = lambda t: avg.to_columns(t, sol(t), p, initial)  # noqa: E731
+        cols = _sampled(model, method, sol, to_columns, tau, initial)
+        used, nfev = eq.name, sol.nfev
+
+        def slow(t: FloatArray) -> dict[str, FloatArray]:
+            return to_columns(t, sol(t))
+
     else:
         cols = model.closed_form(p, initial, tau)
         used, nfev = "closed_form", 0
-        slow = lambda t: model.closed_form(p, initial, t)  # noqa: E731
+
+        def slow(t: FloatArray) -> dict[str, FloatArray]:
+            return model.closed_form(p, initial, t)
+
     wall = time.perf_counter() - start
     return Trajectory(tau, cols, method, used, wall, nfev, slow)

@@ -8,7 +8,7 @@ the output columns, and which closed forms and validity checks it has.
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 from tumble._typing import FloatArray
@@ -108,4 +108,3 @@ class ModelRecord:
         [Any, Any, Callable[[FloatArray], dict[str, FloatArray]], float], list[ValidityIssue]
     ]
     limits: Callable[[Any, Any], dict[str, Any]]
-    extras: Mapping[str, Any] = field(default_factory=dict)

@@ -18,11 +18,13 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
-from tumble.errors import ParameterError
+from tumble.errors import ParameterError, check_range
+from tumble.rotations import quat_to_matrix
 
 __all__ = [
     "CallableTorque",
     "ConstantBodyTorque",
+    "EddyCurrentTorque",
     "LinearDrag",
     "QuadraticDrag",
     "ScaledTorque",
@@ -164,3 +166,49 @@ class CallableTorque(Torque):
 
     def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
         return np.asarray(self.function(t, q, omega), dtype=float)
+
+
+@dataclass(frozen=True, eq=False)
+class EddyCurrentTorque(Torque):
+    """Eddy-current moment on a spherical conductor in a conical rotating field, (1.2)/(1.3).
+
+    ``M_ξ = k_f H_ξ × (H_ξ × Ω_ξ + dH_ξ/dt) = −M0 [(Ω_ξ − ω ξ3)]_⊥H``, spec/martynenko.md §3:
+    minus ``M0 = k_f H²`` times the component, perpendicular to the field, of the body's angular
+    velocity relative to the field. The field direction is
+    ``(sin β cos ωt, sin β sin ωt, cos β)`` in inertial axes.
+
+    Parameters
+    ----------
+    M0 : float
+        Torque factor k_f H² ≥ 0 [moment·time/rad]; in the nondimensional form (1.5) this is ε.
+    omega : float
+        Field rotation rate about ξ3 [rad/time]; 0 is a static field.
+    beta : float
+        Angle between the field and ξ3 [rad], in [0, π].
+    """
+
+    M0: float
+    omega: float
+    beta: float
+
+    def __post_init__(self) -> None:
+        check_range("M0", self.M0, low=0.0, low_open=False)
+        check_range("omega", self.omega)
+        check_range("beta", self.beta, low=0.0, high=np.pi, low_open=False, high_open=False)
+
+    def field_direction(self, t: ArrayLike) -> FloatArray:
+        """Unit field direction in inertial axes at time ``t``, (1.1); shape (..., 3)."""
+        wt = self.omega * np.asarray(t, dtype=float)
+        sb, cb = np.sin(self.beta), np.cos(self.beta)
+        return np.stack([sb * np.cos(wt), sb * np.sin(wt), np.full_like(wt, cb)], -1)
+
+    def inertial(self, t: float, omega_inertial: ArrayLike) -> FloatArray:
+        """The moment (1.3) in inertial axes for the inertial angular velocity Ω_ξ."""
+        h = self.field_direction(t)
+        w = np.array(omega_inertial, dtype=float)
+        w[..., 2] -= self.omega  # Ω_ξ − ω ξ3: rotation relative to the field
+        return self.M0 * (h * np.sum(h * w, axis=-1, keepdims=True) - w)
+
+    def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
+        A = quat_to_matrix(q)
+        return A.T @ self.inertial(t, A @ omega)

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -55,6 +55,32 @@ def check_times(tau: ArrayLike, *, field: str = "run.tau") -> FloatArray:
     return t
 
 
+class _Piecewise:
+    """Dense output of consecutive segments [t_i, t_(i+1)] (restarts at breakpoints)."""
+
+    def __init__(self, starts: list[float], sols: list[Any]) -> None:
+        self.starts = np.asarray(starts[1:], dtype=float)
+        self.sols = sols
+
+    def __call__(self, t: FloatArray) -> FloatArray:
+        t = np.atleast_1d(t)
+        which = np.searchsorted(self.starts, t, side="right")
+        out = np.empty((self.sols[0](t[:1]).shape[0], t.size))
+        for i, sol in enumerate(self.sols):
+            mask = which == i
+            if np.any(mask):
+                out[:, mask] = sol(t[mask])
+        return out
+
+
+def _event(g: Callable[[float, FloatArray], float]) -> Callable[[float, FloatArray], float]:
+    def event(t: float, y: FloatArray) -> float:
+        return g(t, y)
+
+    event.terminal = True  # type: ignore[attr-defined]
+    return event
+
+
 def integrate(
     rhs: Callable[[float, FloatArray], FloatArray],
     y0: ArrayLike,
@@ -63,6 +89,7 @@ def integrate(
     rtol: float = DEFAULT_RTOL,
     atol: float = DEFAULT_ATOL,
     what: str = "the equations of motion",
+    breakpoints: Sequence[Callable[[float, FloatArray], float]] = (),
 ) -> DenseSolution:
     """Integrate ``dy/dt = rhs(t, y)`` from t = 0 to ``t_end`` with DOP853 and dense output.
 
@@ -78,6 +105,10 @@ def integrate(
         Relative and absolute local error tolerances.
     what : str
         Name of the system, for error messages.
+    breakpoints : sequence of callables
+        Functions ``g(t, y)`` whose zero the solution crosses at most once and where ``rhs`` is
+        not smooth (e.g. a separatrix). The step is stopped exactly at the crossing and the
+        integration restarts there, so no step straddles the non-smooth point.
 
     Raises
     ------
@@ -89,16 +120,43 @@ def integrate(
         raise IntegrationError(f"{what}: the initial state is not finite: {y0}")
     if t_end == 0.0:
         return DenseSolution(np.array([0.0]), 0, lambda t: np.repeat(y0[:, None], np.size(t), 1))
-    with np.errstate(divide="raise", over="raise", invalid="raise"):
-        try:
-            res = solve_ivp(
-                rhs, (0.0, t_end), y0, method="DOP853", rtol=rtol, atol=atol, dense_output=True
-            )
-        except FloatingPointError as exc:
+    # A breakpoint the start sits on is already passed.
+    pending = [g for g in breakpoints if g(0.0, y0) != 0.0]
+    starts, sols, steps, nfev = [0.0], [], [np.array([0.0])], 0
+    t0, y = 0.0, y0
+    while True:
+        with np.errstate(divide="raise", over="raise", invalid="raise"):
+            try:
+                res = solve_ivp(
+                    rhs,
+                    (t0, t_end),
+                    y,
+                    method="DOP853",
+                    rtol=rtol,
+                    atol=atol,
+                    dense_output=True,
+                    events=[_event(g) for g in pending] or None,
+                )
+            except FloatingPointError as exc:
+                raise IntegrationError(
+                    f"{what}: arithmetic failure during integration ({exc})"
+                ) from None
+        if res.status < 0 or not np.all(np.isfinite(res.y)):
+            t_fail = float(res.t[-1]) if res.t.size else t0
             raise IntegrationError(
-                f"{what}: arithmetic failure during integration ({exc})"
-            ) from None
-    if res.status < 0 or not np.all(np.isfinite(res.y)):
-        t_fail = float(res.t[-1]) if res.t.size else 0.0
-        raise IntegrationError(f"{what}: integration failed at t = {t_fail:.6g}: {res.message}")
-    return DenseSolution(np.asarray(res.t), int(res.nfev), res.sol)
+                f"{what}: integration failed at t = {t_fail:.6g}: {res.message}"
+            )
+        sols.append(res.sol)
+        steps.append(np.asarray(res.t[1:]))
+        nfev += int(res.nfev)
+        if res.status != 1:
+            break
+        fired = next(i for i, ev in enumerate(res.t_events) if ev.size)
+        t0, y = float(res.t_events[fired][0]), np.asarray(res.y_events[fired][0])
+        pending.pop(fired)
+        if t0 >= t_end:
+            break
+        starts.append(t0)
+    if len(sols) == 1:
+        return DenseSolution(np.concatenate(steps), nfev, sols[0])
+    return DenseSolution(np.unique(np.concatenate(steps)), nfev, _Piecewise(starts, sols))

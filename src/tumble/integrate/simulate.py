@@ -154,6 +154,7 @@ def simulate(
             rtol=rtol,
             atol=atol,
             what=f"{model.name} {kind} {eq.equation}",
+            breakpoints=eq.breakpoints if isinstance(eq, AveragedForm) else (),
         )
         cols = _sampled(model, method, sol, to_columns, tau, initial)
         used, nfev = eq.name, sol.nfev

@@ -11,9 +11,20 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
+import numpy as np
+from scipy.optimize import brentq
+
 from tumble._typing import FloatArray
 
-__all__ = ["AveragedForm", "Column", "FullForm", "ModelRecord", "ValidityIssue"]
+__all__ = [
+    "AveragedForm",
+    "Column",
+    "FullForm",
+    "ModelRecord",
+    "StationaryMotion",
+    "ValidityIssue",
+    "first_time",
+]
 
 
 @dataclass(frozen=True, slots=True)
@@ -52,6 +63,9 @@ class AveragedForm:
     rhs: Callable[[float, FloatArray, Any], FloatArray]
     from_slow: Callable[[Any, Any], FloatArray]
     to_columns: Callable[[FloatArray, FloatArray, Any, Any], dict[str, FloatArray]]
+    # Functions g(t, y) whose zero the solution crosses at most once, where the right-hand side
+    # is not smooth (a separatrix): the integration stops there and restarts.
+    breakpoints: tuple[Callable[[float, FloatArray], float], ...] = ()
 
 
 @dataclass(frozen=True, slots=True)
@@ -61,6 +75,32 @@ class ValidityIssue:
     condition: str  # short stable identifier, e.g. "theta_crossing"
     tau: float  # first time the condition holds [model time unit]
     message: str  # one sentence for the user, citing the spec section
+
+
+@dataclass(frozen=True)
+class StationaryMotion:
+    """A stationary motion of a full form, and the local coordinates to linearize it in.
+
+    ``embed(x)`` maps local coordinates (zero at the stationary motion) to a state of the full
+    form, exactly to first order in ``x``; ``tangent(y, dy)`` maps a state rate to the rates of
+    the local coordinates. Both, and ``rhs``, must accept complex arrays (the Jacobian is taken
+    by complex-step differentiation). Coordinates outside ``keep`` must not feed back into the
+    others (they only add roots of their own, e.g. a free phase).
+    """
+
+    name: str
+    equation: str
+    state: FloatArray
+    rhs: Callable[[float, Any, Any], Any]
+    embed: Callable[[Any], Any]
+    tangent: Callable[[Any, Any], Any]
+    coordinates: tuple[str, ...]
+    keep: tuple[int, ...]
+    leading: float = 1.0  # the characteristic polynomial is reported as leading·det(λE − J)
+    coefficients: FloatArray | None = None  # closed form, highest power first
+    approx_roots: Any = None  # complex ndarray: the paper's approximate roots
+    approx_note: str = ""  # where the approximation is invalid
+    structural_zero: bool = False  # the closed-form constant coefficient is exactly zero
 
 
 @dataclass(frozen=True)
@@ -92,6 +132,13 @@ class ModelRecord:
         as ``slow(tau) -> columns``.
     limits : callable
         ``(p, initial) -> dict`` of the paper's predicted limits as τ → ∞.
+    stationary : callable, optional
+        ``p -> StationaryMotion``: the stationary motion whose stability the paper analyses.
+    diagnostics : callable, optional
+        ``(p, initial, columns) -> columns``: extra per-sample quantities of an averaged run
+        (e.g. the fast frequencies), written beside it; ``diagnostic_columns`` describes them.
+    figure : str
+        File name of the run's figure.
     """
 
     name: str
@@ -108,3 +155,29 @@ class ModelRecord:
         [Any, Any, Callable[[FloatArray], dict[str, FloatArray]], float], list[ValidityIssue]
     ]
     limits: Callable[[Any, Any], dict[str, Any]]
+    stationary: Callable[[Any], StationaryMotion] | None = None
+    diagnostics: Callable[[Any, Any, dict[str, FloatArray]], dict[str, FloatArray]] | None = None
+    diagnostic_columns: tuple[Column, ...] = ()
+    figure: str = "comparison.png"
+
+
+def first_time(condition: Callable[[FloatArray], FloatArray], grid: FloatArray) -> float | None:
+    """First τ on ``grid`` where ``condition(τ) > 0``, refined by root finding; None if never.
+
+    Parameters
+    ----------
+    condition : callable
+        Vectorized ``condition(tau) -> values``; the region is where the values are positive.
+    grid : ndarray
+        Ascending times to scan [model time unit]; the first crossing is then bracketed.
+    """
+    values = condition(grid)
+    hits = np.flatnonzero(values > 0.0)
+    if hits.size == 0:
+        return None
+    i = int(hits[0])
+    if i == 0:
+        return float(grid[0])
+    return float(
+        brentq(lambda t: float(condition(np.array([t]))[0]), grid[i - 1], grid[i], xtol=1e-12)
+    )

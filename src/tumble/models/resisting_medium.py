@@ -26,7 +26,14 @@ from tumble._typing import ArrayLike, FloatArray
 from tumble.bodies import RigidBody
 from tumble.dynamics import rigid_body_rhs
 from tumble.errors import IntegrationError, ParameterError, check_finite, check_range
-from tumble.models.base import AveragedForm, Column, FullForm, ModelRecord, ValidityIssue
+from tumble.models.base import (
+    AveragedForm,
+    Column,
+    FullForm,
+    ModelRecord,
+    ValidityIssue,
+    first_time,
+)
 from tumble.rotations import (
     attitude_from_kframe_angles,
     kframe_angles_from_attitude,
@@ -951,20 +958,6 @@ def _slow_rate_per_k(p: Params, k: FloatArray) -> FloatArray:
         return p.eps * (na / k**2 + c * nb / k + c * c * ns)
 
 
-def _first_time(condition: Callable[[FloatArray], FloatArray], grid: FloatArray) -> float | None:
-    """First τ on ``grid`` where ``condition(τ) > 0``, refined by root finding; None if never."""
-    values = condition(grid)
-    hits = np.flatnonzero(values > 0.0)
-    if hits.size == 0:
-        return None
-    i = int(hits[0])
-    if i == 0:
-        return float(grid[0])
-    return float(
-        brentq(lambda t: float(condition(np.array([t]))[0]), grid[i - 1], grid[i], xtol=1e-12)
-    )
-
-
 def validity(
     p: Params,
     st: State,
@@ -1033,7 +1026,7 @@ def validity(
             fast = np.abs(p.kappa * np.cos(theta)) / (1.0 + p.kappa)
             return _slow_rate_per_k(p, k) - VALIDITY_RATIO * fast
 
-        t_phi = _first_time(phi_slow, grid)
+        t_phi = first_time(phi_slow, grid)
         if t_phi is not None:
             issues.append(
                 ValidityIssue(
@@ -1049,7 +1042,7 @@ def validity(
         k, _ = cols(t)
         return _slow_rate_per_k(p, k) - VALIDITY_RATIO
 
-    t_spin = _first_time(spin_slow, grid)
+    t_spin = first_time(spin_slow, grid)
     if t_spin is not None:
         k_at = float(cols(np.array([t_spin]))[0][0])
         issues.append(

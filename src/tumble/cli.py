@@ -53,7 +53,7 @@ def run_cmd(
     scenario: Annotated[Path, typer.Argument(help="TOML scenario file")],
     out_dir: Annotated[Path, typer.Option("-o", "--out", help="output directory")] = Path("out"),
 ) -> None:
-    """Run a scenario: CSV per method, summary.json and comparison.png in OUT."""
+    """Run a scenario: CSV per method, summary.json and a figure in OUT."""
     from tumble.runner import run_scenario
 
     with warnings.catch_warnings(record=True) as caught:
@@ -63,16 +63,17 @@ def run_cmd(
         if issubclass(w.category, TumbleWarning):
             err.print(f"[yellow]warning:[/yellow] {w.message}", highlight=False, soft_wrap=True)
 
-    table = Table(title=f"{result.request.model.name} — {scenario}", title_justify="left")
-    for col in ("method", "form", "wall time [s]", "final k", "final ϑ [rad]"):
+    model = result.request.model
+    shown = model.plot_variables
+    table = Table(title=f"{model.name} — {scenario}", title_justify="left")
+    for col in ("method", "form", "wall time [s]", *(f"final {v}" for v in shown)):
         table.add_column(col)
     for m, ds in result.datasets.items():
         table.add_row(
             m,
             ds.attrs["form"],
             f"{ds.attrs['wall_time_s']:.3g}",
-            f"{ds['k'].values[-1]:.6g}",
-            f"{ds['theta'].values[-1]:.6g}",
+            *(f"{ds[v].values[-1]:.6g}" for v in shown),
         )
     out.print(table)
     for pair, diffs in result.differences.items():
@@ -80,12 +81,11 @@ def run_cmd(
         out.print(f"max |difference| {pair}: {text}", highlight=False)
     lim = result.limits
     if lim:
-        theta = lim.get("theta")
-        shown = "undefined" if theta is None else f"{theta:.6g} rad"
-        out.print(
-            f"predicted limits: ϑ → {shown}, k → {lim.get('k'):.6g} ({lim.get('statement')})",
-            highlight=False,
+        text = ", ".join(
+            f"{v} → {'undefined' if lim[v] is None else f'{lim[v]:.6g}'}" for v in shown if v in lim
         )
+        note = lim.get("statement") or lim.get("end_state")
+        out.print(f"predicted limits: {text}" + (f" ({note})" if note else ""), highlight=False)
     out.print(f"outputs written to {out_dir}/", highlight=False)
 
 

@@ -21,7 +21,14 @@ __all__ = ["run_scenario"]
 def _comparison_png(result: RunResult, title: str) -> bytes:
     import matplotlib.pyplot as plt
 
-    fig = plot_comparison(result.datasets, marks=result.issues, title=title)
+    model = result.request.model
+    fig = plot_comparison(
+        result.datasets,
+        variables=model.plot_variables,
+        diagnostics=result.diagnostics.get("averaged"),
+        marks=result.issues,
+        title=title,
+    )
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=130)
     plt.close(fig)
@@ -32,7 +39,8 @@ def run_scenario(scenario: str | Path, out_dir: str | Path) -> RunResult:
     """Validate a scenario file, run it, and write its outputs to ``out_dir``.
 
     Writes ``<method>.csv`` for every method (plus ``<method>_si.csv`` for physical-units
-    scenarios), ``summary.json`` and ``comparison.png``. Nothing is written unless the whole
+    scenarios and ``averaged_diagnostics.csv`` where the model has diagnostics),
+    ``summary.json`` and the model's figure (``comparison.png``, ``evolution.png``). Nothing is written unless the whole
     run succeeds; each file is replaced atomically.
 
     Parameters
@@ -50,6 +58,6 @@ def run_scenario(scenario: str | Path, out_dir: str | Path) -> RunResult:
     result = run(sc.request)
     files = render_outputs(result, sc.inputs, sc.source)
     title = f"{sc.request.model.name}: {Path(sc.source).name}"
-    files["comparison.png"] = _comparison_png(result, title)
+    files[sc.request.model.figure] = _comparison_png(result, title)
     write_outputs(out_dir, files)
     return result

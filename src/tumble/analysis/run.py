@@ -13,7 +13,7 @@ from tumble._typing import FloatArray
 from tumble.analysis.compare import max_differences
 from tumble.errors import TumbleWarning
 from tumble.integrate import DEFAULT_ATOL, DEFAULT_RTOL, Trajectory, simulate
-from tumble.models.base import ModelRecord, ValidityIssue
+from tumble.models.base import Column, ModelRecord, ValidityIssue
 
 __all__ = ["RunRequest", "RunResult", "run", "to_dataset"]
 
@@ -50,7 +50,11 @@ class RunRequest:
 
 @dataclass(frozen=True)
 class RunResult:
-    """Datasets of every method, their differences, warnings and the predicted limits."""
+    """Datasets of every method, their differences, warnings and the predicted limits.
+
+    ``diagnostics`` holds, per averaged method, the model's extra per-sample quantities (e.g.
+    the fast frequencies of the rotating-field model).
+    """
 
     request: RunRequest
     datasets: dict[str, xr.Dataset]
@@ -58,22 +62,34 @@ class RunResult:
     differences: dict[str, dict[str, float]]
     issues: list[dict[str, Any]] = field(default_factory=list)
     limits: dict[str, Any] = field(default_factory=dict)
+    diagnostics: dict[str, xr.Dataset] = field(default_factory=dict)
+
+
+def _columns_dataset(
+    columns: tuple[Column, ...], values: dict[str, FloatArray], tau: FloatArray
+) -> xr.Dataset:
+    """Columns as a Dataset on ``tau``, with units, long names and equations in ``attrs``."""
+    data_vars = {
+        col.name: xr.DataArray(
+            values[col.name],
+            dims=("tau",),
+            attrs={
+                "units": col.units,
+                "long_name": col.long_name,
+                "equation": col.equation,
+                "angle": int(col.angle),
+            },
+        )
+        for col in columns
+    }
+    return xr.Dataset(
+        data_vars, coords={"tau": ("tau", tau, {"units": "1", "long_name": "time τ"})}
+    )
 
 
 def to_dataset(model: ModelRecord, traj: Trajectory) -> xr.Dataset:
     """Trajectory as an ``xarray.Dataset`` with units, long names and equations in ``attrs``."""
-    data_vars = {}
-    for col in model.columns[traj.method]:
-        attrs = {
-            "units": col.units,
-            "long_name": col.long_name,
-            "equation": col.equation,
-            "angle": int(col.angle),
-        }
-        data_vars[col.name] = xr.DataArray(traj.columns[col.name], dims=("tau",), attrs=attrs)
-    ds = xr.Dataset(
-        data_vars, coords={"tau": ("tau", traj.tau, {"units": "1", "long_name": "time τ"})}
-    )
+    ds = _columns_dataset(model.columns[traj.method], traj.columns, traj.tau)
     ds.attrs.update(
         model=model.name,
         method=traj.method,
@@ -138,4 +154,9 @@ def run(request: RunRequest) -> RunResult:
     for issue in issues:
         warnings.warn(issue["message"], TumbleWarning, stacklevel=2)
     limits = model.limits(p, st)
-    return RunResult(request, datasets, trajectories, differences, issues, limits)
+    diagnostics = {}
+    if model.diagnostics is not None and "averaged" in trajectories:
+        traj = trajectories["averaged"]
+        values = model.diagnostics(p, st, traj.columns)
+        diagnostics["averaged"] = _columns_dataset(model.diagnostic_columns, values, traj.tau)
+    return RunResult(request, datasets, trajectories, differences, issues, limits, diagnostics)

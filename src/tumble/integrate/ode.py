@@ -11,8 +11,15 @@ from scipy.integrate import solve_ivp
 
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import IntegrationError, ParameterError
+from tumble.models.base import Breakpoint
 
-__all__ = ["DEFAULT_ATOL", "DEFAULT_RTOL", "DenseSolution", "check_times", "integrate"]
+__all__ = [
+    "DEFAULT_ATOL",
+    "DEFAULT_RTOL",
+    "DenseSolution",
+    "check_times",
+    "integrate",
+]
 
 DEFAULT_RTOL = 1e-10
 DEFAULT_ATOL = 1e-12
@@ -89,7 +96,7 @@ def integrate(
     rtol: float = DEFAULT_RTOL,
     atol: float = DEFAULT_ATOL,
     what: str = "the equations of motion",
-    breakpoints: Sequence[Callable[[float, FloatArray], float]] = (),
+    breakpoints: Sequence[Breakpoint] = (),
 ) -> DenseSolution:
     """Integrate ``dy/dt = rhs(t, y)`` from t = 0 to ``t_end`` with DOP853 and dense output.
 
@@ -105,10 +112,11 @@ def integrate(
         Relative and absolute local error tolerances.
     what : str
         Name of the system, for error messages.
-    breakpoints : sequence of callables
-        Functions ``g(t, y)`` whose zero the solution crosses at most once and where ``rhs`` is
-        not smooth (e.g. a separatrix). The step is stopped exactly at the crossing and the
-        integration restarts there, so no step straddles the non-smooth point.
+    breakpoints : sequence of Breakpoint
+        Surfaces the solution crosses at most once and where ``rhs`` is not smooth (e.g. a
+        separatrix). The step is stopped exactly at the crossing and the integration restarts
+        there (through the breakpoint's restart map), so no step straddles the non-smooth
+        point.
 
     Raises
     ------
@@ -121,7 +129,7 @@ def integrate(
     if t_end == 0.0:
         return DenseSolution(np.array([0.0]), 0, lambda t: np.repeat(y0[:, None], np.size(t), 1))
     # A breakpoint the start sits on is already passed.
-    pending = [g for g in breakpoints if g(0.0, y0) != 0.0]
+    pending = [b for b in breakpoints if b.condition(0.0, y0) != 0.0]
     starts, sols, steps, nfev = [0.0], [], [np.array([0.0])], 0
     t0, y = 0.0, y0
     while True:
@@ -135,7 +143,7 @@ def integrate(
                     rtol=rtol,
                     atol=atol,
                     dense_output=True,
-                    events=[_event(g) for g in pending] or None,
+                    events=[_event(b.condition) for b in pending] or None,
                 )
             except FloatingPointError as exc:
                 raise IntegrationError(
@@ -153,7 +161,9 @@ def integrate(
             break
         fired = next(i for i, ev in enumerate(res.t_events) if ev.size)
         t0, y = float(res.t_events[fired][0]), np.asarray(res.y_events[fired][0])
-        pending.pop(fired)
+        restart = pending.pop(fired).restart
+        if restart is not None:
+            y = np.asarray(restart(t0, y), dtype=float)
         if t0 >= t_end:
             break
         starts.append(t0)

@@ -86,11 +86,7 @@ def summary(result: RunResult, inputs: dict[str, Any], source: str) -> dict[str,
         "paper": req.model.paper,
         "scenario": source,
         "inputs": inputs,
-        "derived": {
-            name: getattr(p, name)
-            for name in ("alpha", "beta", "gamma", "delta")
-            if hasattr(p, name)
-        },
+        "derived": p.derived() if hasattr(p, "derived") else {},
         "methods": {
             m: {
                 "form": ds.attrs["form"],
@@ -104,9 +100,20 @@ def summary(result: RunResult, inputs: dict[str, Any], source: str) -> dict[str,
         "predicted_limits": result.limits,
         "warnings": result.issues,
     }
+    if result.diagnostics:
+        out["diagnostics"] = {
+            m: {
+                str(v): {
+                    "min": float(np.min(ds[v].values)),
+                    "max": float(np.max(ds[v].values)),
+                    "long_name": ds[v].attrs.get("long_name", ""),
+                }
+                for v in ds.data_vars
+            }
+            for m, ds in result.diagnostics.items()
+        }
     if req.scaling is not None:
-        s = req.scaling
-        out["scaling"] = {"K0_Nms": s.K0, "T0_s": s.T0, "M0_Nm": s.M0, "eps": s.eps}
+        out["scaling"] = req.scaling.summary()
     return _jsonable(out)
 
 
@@ -117,12 +124,11 @@ def render_outputs(result: RunResult, inputs: dict[str, Any], source: str) -> di
     for method, ds in result.datasets.items():
         files[f"{method}.csv"] = csv_text(ds).encode()
         if scaling is not None:
-            si = {
-                "t_s": scaling.time_from_tau(ds["tau"].values),
-                "K_Nms": scaling.K0 * ds["k"].values,
-            }
-            si.update({str(v): ds[v].values for v in ds.data_vars if v != "k"})
+            cols = {str(v): ds[v].values for v in ds.data_vars}
+            si = scaling.si_columns(cols, ds["tau"].values)
             files[f"{method}_si.csv"] = csv_text(ds, si).encode()
+    for method, ds in result.diagnostics.items():
+        files[f"{method}_diagnostics.csv"] = csv_text(ds).encode()
     text = json.dumps(summary(result, inputs, source), indent=2, ensure_ascii=False)
     files["summary.json"] = (text + "\n").encode()
     return files

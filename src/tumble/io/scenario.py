@@ -1,7 +1,8 @@
 """Scenario files: TOML, validated with pydantic, turned into a :class:`RunRequest`.
 
-The keys of a normalized resisting-medium scenario are a contract (issue 2); a physical-units
-variant replaces ``[parameters]`` by ``[physical]`` (SI) and uses seconds in ``[run]``.
+The keys of the normalized scenarios of each model are a contract (issues 2 and 3); a
+physical-units variant replaces ``[parameters]`` by ``[physical]`` (SI) and uses seconds in
+``[run]``.
 """
 
 from __future__ import annotations
@@ -19,7 +20,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_valida
 from tumble.analysis import RunRequest
 from tumble.errors import ParameterError, ScenarioError
 from tumble.integrate import check_times
-from tumble.models import get_model, resisting_medium
+from tumble.models import get_model, resisting_medium, rotating_field
 
 __all__ = ["Scenario", "load_scenario", "parse_scenario", "template"]
 
@@ -134,6 +135,66 @@ class RMPhysicalScenario(_Section):
     run: PhysicalRunSection
 
 
+class RFParameters(_Section):
+    inertia: Vector3 = Field(description="3 principal moments > 0 obeying the triangle inequality")
+    beta: float = Field(description="an angle in [0, π] [rad]")
+    eps: float = Field(description="a number > 0")
+
+    @model_validator(mode="before")
+    @classmethod
+    def _degrees(cls, data: Any) -> Any:
+        return _degrees_to_radians(data, ("beta",))
+
+
+class RFInitial(_Section):
+    z: Vector3 | None = Field(None, description="body angular velocity over ω, 3 numbers")
+    gamma: Matrix3 | None = Field(None, description="3 rows of the rotation Γ (v_η = Γ v_x)")
+    L: float | None = Field(None, description="a number > 0")
+    rho: float | None = Field(None, description="an angle in [0, π] [rad]")
+    sigma: float | None = Field(None, description="an angle [rad]")
+    k2: float | None = Field(None, description="a number in [0, 1]")
+    regime: Literal["x3", "x1"] = Field("x3", description='"x3" or "x1"')
+    u0: float = Field(0.0, description="a phase u of (3.1)")
+    psi0: float = Field(0.0, description="an angle [rad]")
+
+    @model_validator(mode="before")
+    @classmethod
+    def _degrees(cls, data: Any) -> Any:
+        return _degrees_to_radians(data, ("rho", "sigma", "psi0"))
+
+
+class RFScenario(_Section):
+    model: Literal["rotating_field"]
+    parameters: RFParameters
+    initial: RFInitial
+    run: RunSection
+
+
+class RFPhysical(_Section):
+    inertia: Vector3 = Field(description="3 principal moments > 0 [kg m^2]")
+    k_f: float = Field(description="eddy-current factor > 0 [N m s/(A/m)^2]")
+    H: float = Field(description="field strength > 0 [A/m]")
+    omega: float = Field(description="field rotation rate > 0 [rad/s]")
+    beta: float = Field(description="an angle in [0, π] [rad]")
+
+    @model_validator(mode="before")
+    @classmethod
+    def _degrees(cls, data: Any) -> Any:
+        return _degrees_to_radians(data, ("beta",))
+
+
+class RFPhysicalInitial(_Section):
+    Omega: Vector3 = Field(description="body angular velocity, 3 numbers [rad/s]")
+    gamma: Matrix3 = Field(description="3 rows of the body → inertial rotation")
+
+
+class RFPhysicalScenario(_Section):
+    model: Literal["rotating_field"]
+    physical: RFPhysical
+    initial: RFPhysicalInitial
+    run: PhysicalRunSection
+
+
 @dataclass(frozen=True)
 class Scenario:
     """A validated scenario: the run it asks for, and its inputs as given."""
@@ -229,6 +290,13 @@ def _methods(run: Any, allowed: tuple[str, ...]) -> tuple[str, ...]:
         )
     if len(set(methods)) != len(methods):
         raise ScenarioError(f"run.methods = {list(methods)}: each method at most once")
+    for m in methods:
+        if m not in allowed:
+            raise ScenarioError(
+                f"run.methods: {m!r} is not a method of this model (allowed: "
+                + ", ".join(allowed)
+                + ")"
+            )
     return methods
 
 
@@ -277,7 +345,56 @@ def _resisting_medium(data: dict[str, Any]) -> tuple[RunRequest, dict[str, Any]]
     return request, sc.model_dump()
 
 
-_BUILDERS = {"resisting_medium": _resisting_medium}
+def _rf_initial(p: rotating_field.Params, ini: RFInitial) -> rotating_field.State:
+    elements = ("L", "rho", "sigma", "k2")
+    given = [n for n in elements if getattr(ini, n) is not None]
+    direct = [n for n in ("z", "gamma") if getattr(ini, n) is not None]
+    if direct and given:
+        raise ScenarioError(
+            "initial: give either z and gamma, or the slow elements L, rho, sigma, k2 "
+            f"(with regime, u0, psi0), not both (got {', '.join(direct + given)})"
+        )
+    if direct:
+        if len(direct) != 2:
+            raise ScenarioError("initial: z and gamma go together (give both)")
+        return rotating_field.State(ini.z, ini.gamma)
+    if len(given) != len(elements):
+        missing = [n for n in elements if n not in given]
+        raise ScenarioError(
+            "initial: give z and gamma, or all of L, rho, sigma, k2 "
+            f"(missing: {', '.join(missing)})"
+        )
+    return rotating_field.state_from_elements(
+        p, ini.L, ini.rho, ini.sigma, ini.k2, ini.regime, u0=ini.u0, psi0=ini.psi0
+    )
+
+
+def _rotating_field(data: dict[str, Any]) -> tuple[RunRequest, dict[str, Any]]:
+    model = rotating_field.MODEL
+    if "physical" in data:
+        if "parameters" in data:
+            raise ScenarioError(
+                "give either [parameters] (normalized) or [physical] (SI), not both"
+            )
+        sc = _validated(RFPhysicalScenario, data)
+        ph = sc.physical
+        phys = rotating_field.PhysicalParams(ph.inertia, ph.k_f, ph.H, ph.omega, ph.beta)
+        p, st, scaling = rotating_field.normalize_physical(
+            phys, sc.initial.Omega, sc.initial.gamma
+        )
+        tau = scaling.tau_from_time(_times(sc.run, "t_end_s", "t_s"))
+    else:
+        sc = _validated(RFScenario, data)
+        par = sc.parameters
+        p = rotating_field.Params(par.inertia, par.beta, par.eps)
+        st = _rf_initial(p, sc.initial)
+        tau, scaling = _times(sc.run, "tau_end", "tau"), None
+    rtol, atol = _tolerances(sc.run)
+    request = RunRequest(model, p, st, tau, _methods(sc.run, model.methods), rtol, atol, scaling)
+    return request, sc.model_dump()
+
+
+_BUILDERS = {"resisting_medium": _resisting_medium, "rotating_field": _rotating_field}
 
 
 def parse_scenario(data: dict[str, Any], source: str = "<scenario>") -> Scenario:

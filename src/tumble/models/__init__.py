@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 from tumble.errors import ScenarioError
-from tumble.models import resisting_medium
+from tumble.models import resisting_medium, rotating_field
 from tumble.models.base import ModelRecord
 
-__all__ = ["MODELS", "get_model", "resisting_medium"]
+__all__ = ["MODELS", "get_model", "resisting_medium", "rotating_field"]
 
-MODELS: dict[str, ModelRecord] = {resisting_medium.MODEL.name: resisting_medium.MODEL}
+MODELS: dict[str, ModelRecord] = {
+    m.name: m for m in (resisting_medium.MODEL, rotating_field.MODEL)
+}
 """Every registered model, by the name a scenario's ``model`` key uses."""
 
 

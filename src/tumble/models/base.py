@@ -18,6 +18,7 @@ from tumble._typing import FloatArray
 
 __all__ = [
     "AveragedForm",
+    "Breakpoint",
     "Column",
     "FullForm",
     "ModelRecord",
@@ -54,6 +55,20 @@ class FullForm:
     to_columns: Callable[[FloatArray, FloatArray, Any], dict[str, FloatArray]]
 
 
+@dataclass(frozen=True)
+class Breakpoint:
+    """A surface ``condition(t, y) = 0`` that the solution crosses at most once, where the
+    right-hand side is not smooth (a separatrix).
+
+    The integration stops exactly there and restarts from ``restart(t, y)`` (default: the same
+    state). A restart map lets a solution leave a non-Lipschitz point it would otherwise stick
+    to (e.g. the spurious k² ≡ 1 solution on a separatrix).
+    """
+
+    condition: Callable[[float, FloatArray], float]
+    restart: Callable[[float, FloatArray], FloatArray] | None = None
+
+
 @dataclass(frozen=True, slots=True)
 class AveragedForm:
     """The averaged (evolution) equations in the coordinates used to integrate them."""
@@ -63,9 +78,7 @@ class AveragedForm:
     rhs: Callable[[float, FloatArray, Any], FloatArray]
     from_slow: Callable[[Any, Any], FloatArray]
     to_columns: Callable[[FloatArray, FloatArray, Any, Any], dict[str, FloatArray]]
-    # Functions g(t, y) whose zero the solution crosses at most once, where the right-hand side
-    # is not smooth (a separatrix): the integration stops there and restarts.
-    breakpoints: tuple[Callable[[float, FloatArray], float], ...] = ()
+    breakpoints: tuple[Breakpoint, ...] = ()  # non-smooth surfaces: stop and restart there
 
 
 @dataclass(frozen=True, slots=True)
@@ -101,6 +114,9 @@ class StationaryMotion:
     approx_roots: Any = None  # complex ndarray: the paper's approximate roots
     approx_note: str = ""  # where the approximation is invalid
     structural_zero: bool = False  # the closed-form constant coefficient is exactly zero
+    # Members of a one-parameter family of stationary motions this one belongs to (e.g. the
+    # free phase of a co-rotation), by parameter value; None if isolated.
+    family: Callable[[float], StationaryMotion] | None = None
 
 
 @dataclass(frozen=True)
@@ -139,6 +155,8 @@ class ModelRecord:
         (e.g. the fast frequencies), written beside it; ``diagnostic_columns`` describes them.
     figure : str
         File name of the run's figure.
+    plot_variables : tuple of str
+        Columns drawn in the figure, one panel each.
     """
 
     name: str
@@ -159,6 +177,7 @@ class ModelRecord:
     diagnostics: Callable[[Any, Any, dict[str, FloatArray]], dict[str, FloatArray]] | None = None
     diagnostic_columns: tuple[Column, ...] = ()
     figure: str = "comparison.png"
+    plot_variables: tuple[str, ...] = ("k", "theta")
 
 
 def first_time(condition: Callable[[FloatArray], FloatArray], grid: FloatArray) -> float | None:

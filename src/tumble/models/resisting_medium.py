@@ -151,6 +151,10 @@ class Params:
         """δ = s33/(1 + κ)² of (2.2) [1]."""
         return float(self.s[2, 2]) / (1.0 + self.kappa) ** 2
 
+    def derived(self) -> dict[str, float]:
+        """The combinations α, β, γ, δ of (2.2), for summaries."""
+        return {"alpha": self.alpha, "beta": self.beta, "gamma": self.gamma, "delta": self.delta}
+
     @property
     def inertia(self) -> FloatArray:
         """Normalized principal moments (1, 1, 1 + κ)."""
@@ -1120,6 +1124,16 @@ class Scaling:
     def time_from_tau(self, tau: ArrayLike) -> FloatArray:
         """t = T0 τ [s]."""
         return np.asarray(tau, dtype=float) * self.T0
+
+    def si_columns(self, cols: dict[str, FloatArray], tau: FloatArray) -> dict[str, FloatArray]:
+        """Columns in SI: t [s], K [N·m·s]; angles unchanged."""
+        out = {"t_s": self.time_from_tau(tau), "K_Nms": self.K0 * cols["k"]}
+        out.update({name: v for name, v in cols.items() if name != "k"})
+        return out
+
+    def summary(self) -> dict[str, float]:
+        """The scales, for summary.json."""
+        return {"K0_Nms": self.K0, "T0_s": self.T0, "M0_Nm": self.M0, "eps": self.eps}
 
 
 def normalize_physical(

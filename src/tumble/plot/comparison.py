@@ -81,20 +81,51 @@ def plot_methods(
 def plot_comparison(
     datasets: Mapping[str, xr.Dataset],
     *,
+    variables: Sequence[str] = ("k", "theta"),
+    diagnostics: xr.Dataset | None = None,
     marks: Sequence[Mapping[str, Any]] = (),
     title: str = "",
 ) -> Figure:
-    """Two-panel figure: k and ϑ against τ for every method, warnings marked."""
+    """One panel per variable against τ for every method, warnings marked.
+
+    Parameters
+    ----------
+    datasets : mapping
+        Method name → Dataset.
+    variables : sequence of str
+        Variables to draw, one panel each.
+    diagnostics : Dataset, optional
+        Extra per-sample quantities of the averaged run (e.g. fast frequencies), drawn
+        together in a last panel.
+    marks : sequence of mappings
+        Warnings with ``tau`` and ``condition``.
+    title : str
+        Figure title.
+    """
     import matplotlib
 
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
 
-    fig, (ax_k, ax_t) = plt.subplots(2, 1, sharex=True, figsize=(8, 6), layout="constrained")
-    plot_methods(datasets, "k", marks=marks, ax=ax_k)
-    plot_methods(datasets, "theta", marks=marks, ax=ax_t)
-    ax_k.set_xlabel("")
-    ax_k.legend(loc="best", fontsize=8)
+    n = len(variables) + (diagnostics is not None)
+    fig, axes = plt.subplots(
+        n, 1, sharex=True, figsize=(8, 2.0 + 2.0 * n), layout="constrained", squeeze=False
+    )
+    axs = list(axes[:, 0])
+    for ax, var in zip(axs, variables, strict=False):
+        plot_methods(datasets, var, marks=marks, ax=ax)
+    if diagnostics is not None:
+        ax = axs[-1]
+        for name in diagnostics.data_vars:
+            da = diagnostics[name]
+            ax.plot(diagnostics["tau"].values, da.values, lw=1.2, label=da.attrs["long_name"])
+        ax.set_ylabel(f"averaged run [{next(iter(diagnostics.data_vars.values())).attrs['units']}]")
+        ax.set_xlabel(f"{diagnostics['tau'].attrs['long_name']} [{diagnostics['tau'].attrs['units']}]")
+        ax.legend(loc="best", fontsize=8)
+        ax.grid(True, alpha=0.3)
+    for ax in axs[:-1]:
+        ax.set_xlabel("")
+    axs[0].legend(loc="best", fontsize=8)
     if title:
         fig.suptitle(title, fontsize=10)
     return fig

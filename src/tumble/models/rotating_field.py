@@ -1,0 +1,1217 @@
+"""Triaxial conducting body in a rotating magnetic field: eddy-current torque, stability of the
+stationary rotation, and the averaged transient.
+
+Yu. G. Martynenko, *On the stability of stationary rotations of a rigid body in a magnetic
+field* (1979), seed ``002_6c0d72cdb918d198.txt``; ``spec/martynenko.md`` supersedes the seed
+where they differ (errata 1–7 of its §14: the Γ′ equation of (1.5) and the sign in (3.6) among
+them). Equation numbers below are the paper's.
+
+Variables (spec §2, §4): time τ = ωt, body angular velocity z = Ω/ω, ε = M0/ω with M0 = k_f H²
+(in the units of the moments of inertia), Γ the body → field-frame rotation (v_η = Γ v_x). The
+full model keeps the user's axis labels (the stationary rotation is about body axis x3). The
+averaged transient (§§8–10) needs I1 < I2 < I3: it relabels the axes internally by a proper
+permutation, and its outputs (L, ρ, σ, T, k²) do not depend on the labels. ``regime = "x3"``
+means the angular momentum encircles the axis of the largest moment, ``"x1"`` the smallest.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Literal
+
+import numpy as np
+from scipy.special import ellipe, ellipj, ellipk
+
+from tumble._typing import ArrayLike, FloatArray
+from tumble.bodies import RigidBody
+from tumble.dynamics import rigid_body_rhs
+from tumble.errors import ParameterError, check_range
+from tumble.models.base import (
+    AveragedForm,
+    Breakpoint,
+    Column,
+    FullForm,
+    ModelRecord,
+    StationaryMotion,
+    ValidityIssue,
+    first_time,
+)
+from tumble.rotations import (
+    euler313_to_matrix,
+    kframe_matrix,
+    matrix_to_quat,
+    quat_to_matrix,
+    rot_z,
+)
+from tumble.torques import EddyCurrentTorque
+from tumble.unperturbed import (
+    energy_from_modulus,
+    fast_frequencies,
+    mean_square_rate,
+    modulus_squared,
+)
+
+__all__ = [
+    "GAMMA_TOL",
+    "MODEL",
+    "Params",
+    "PhysicalParams",
+    "Scaling",
+    "State",
+    "approximate_roots",
+    "averaged_rhs",
+    "averaged_rhs_k2",
+    "averaged_rhs_vector",
+    "characteristic_coefficients",
+    "field_average",
+    "final_nutation_decay_rate",
+    "full_from_slow",
+    "full_rhs",
+    "inertial_rhs",
+    "invariants",
+    "linear_matrix",
+    "normalize_physical",
+    "predicted_limits",
+    "slow_from_full",
+    "stationary",
+    "state_from_elements",
+    "validity",
+]
+
+GAMMA_TOL = 1e-9
+"""An initial Γ is accepted as a rotation when |Γ Γᵀ − E| ≤ this (then re-orthonormalized)."""
+
+VALIDITY_RATIO = 0.1
+"""``ε/I ≪ 1`` and ``fast ≫ slow`` are taken to hold while the ratio stays below this value."""
+
+RESONANCE_ORDERS = (2, 2)
+"""Largest |n1|, |n2| of the resonances m = n1 ν1 + n2 ν2 (m = 1, 2) that are watched, §12."""
+
+_XI3 = np.array([0.0, 0.0, 1.0])
+
+
+def proper_sorting(inertia: ArrayLike) -> FloatArray:
+    """Signed permutation S (det +1) with S diag(I) Sᵀ sorted ascending, spec §8 and §16.
+
+    ``v_sorted = S v_user``; a transposition gets one axis reversed to stay proper.
+
+    Parameters
+    ----------
+    inertia : array_like, shape (3,)
+        Principal moments in the user's labels [inertia unit].
+    """
+    order = np.argsort(np.asarray(inertia, dtype=float), kind="stable")
+    S = np.eye(3)[order]
+    if np.linalg.det(S) < 0.0:
+        S[2] = -S[2]
+    return S
+
+
+def _frozen(name: str, value: ArrayLike, shape: tuple[int, ...]) -> FloatArray:
+    arr = np.array(value, dtype=float)
+    if arr.shape != shape:
+        raise ParameterError(f"{name} must have shape {shape}, got {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ParameterError(f"{name} must contain finite numbers only, got {value!r}")
+    arr.setflags(write=False)
+    return arr
+
+
+@dataclass(frozen=True, eq=False)
+class Params:
+    """Nondimensional parameters of (1.5), spec/martynenko.md §4.
+
+    Parameters
+    ----------
+    inertia : array_like, shape (3,)
+        Principal moments (I1, I2, I3) in the user's axis labels, in the same unit as ``eps``
+        [inertia unit]; positive and satisfying the triangle inequality (a thin plate
+        I3 = I1 + I2 is allowed). The stationary rotation analysed is about x3.
+    beta : float
+        Angle between the field and its rotation axis ξ3 [rad], in [0, π] (β = 0: a static field
+        along ξ3; β = π/2: a field rotating in a plane).
+    eps : float
+        ε = M0/ω = k_f H²/ω > 0 [inertia unit]; the small parameter is ε/I_i.
+    """
+
+    inertia: FloatArray
+    beta: float
+    eps: float
+    # Derived once: the right-hand sides run at every step.
+    sorting: FloatArray = field(init=False, repr=False)  # S: v_sorted = S v_user, det S = +1
+    sorted_inertia: tuple[float, float, float] = field(init=False, repr=False)
+    h: FloatArray = field(init=False, repr=False)  # field direction in the field frame
+    torque: EddyCurrentTorque = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        inertia = _frozen("parameters.inertia", self.inertia, (3,))
+        RigidBody(*inertia.tolist())  # positive, triangle inequality
+        check_range("parameters.beta", float(self.beta), low=0.0, high=math.pi, low_open=False,
+                    high_open=False)
+        check_range("parameters.eps", float(self.eps), low=0.0)
+        object.__setattr__(self, "inertia", inertia)
+        object.__setattr__(self, "beta", float(self.beta))
+        object.__setattr__(self, "eps", float(self.eps))
+        S = proper_sorting(inertia)
+        S.setflags(write=False)
+        object.__setattr__(self, "sorting", S)
+        srt = np.abs(S) @ inertia
+        object.__setattr__(self, "sorted_inertia", tuple(float(v) for v in srt))
+        h = np.array([math.sin(self.beta), 0.0, math.cos(self.beta)])
+        h.setflags(write=False)
+        object.__setattr__(self, "h", h)
+        object.__setattr__(self, "torque", EddyCurrentTorque(self.eps, 1.0, self.beta))
+
+    @property
+    def s2(self) -> float:
+        """sin²β [1]."""
+        return math.sin(self.beta) ** 2
+
+    @property
+    def c2(self) -> float:
+        """cos²β [1]."""
+        return math.cos(self.beta) ** 2
+
+    @property
+    def small_parameter(self) -> float:
+        """ε / min I_i: the true small parameter of the averaging (spec §4) [1]."""
+        return self.eps / float(np.min(self.inertia))
+
+    def derived(self) -> dict[str, float]:
+        """ε/min I and ω0² of (2.6), for summaries."""
+        I1, I2, I3 = self.inertia.tolist()
+        return {
+            "small_parameter": self.small_parameter,
+            "omega0_squared": (I3 - I2) * (I3 - I1) / (I1 * I2),
+        }
+
+    def with_eps(self, eps: float) -> Params:
+        """The same body and field with another ε."""
+        return Params(self.inertia, self.beta, eps)
+
+
+def _as_rotation(name: str, gamma: ArrayLike) -> FloatArray:
+    G = _frozen(name, gamma, (3, 3))
+    defect = float(np.max(np.abs(G @ G.T - np.eye(3))))
+    if defect > GAMMA_TOL or np.linalg.det(G) <= 0.0:
+        raise ParameterError(
+            f"{name} is not a rotation matrix: max |Γ Γᵀ − E| = {defect:.3g} (allowed ≤ "
+            f"{GAMMA_TOL:g}) and det Γ = {np.linalg.det(G):.6g} (must be +1)"
+        )
+    G = quat_to_matrix(matrix_to_quat(G))  # the nearest rotation, to round-off
+    G.setflags(write=False)
+    return G
+
+
+@dataclass(frozen=True, eq=False)
+class State:
+    """A full state at τ = 0, spec §16.
+
+    Parameters
+    ----------
+    z : array_like, shape (3,)
+        Body absolute angular velocity over the field rate, Ω/ω, user axes [1].
+    gamma : array_like, shape (3, 3)
+        Γ: body → field frame (v_η = Γ v_x); at τ = 0 the field frame is the inertial one.
+        A rotation to within :data:`GAMMA_TOL`.
+    """
+
+    z: FloatArray
+    gamma: FloatArray
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "z", _frozen("initial.z", self.z, (3,)))
+        object.__setattr__(self, "gamma", _as_rotation("initial.gamma", self.gamma))
+
+    def slow(self, p: Params) -> dict[str, float]:
+        """Slow variables L, ρ, σ, T, k² of this state, §9."""
+        cols = slow_from_full(np.zeros(1), full_from_slow(p, self)[None, :], p)
+        return {k: float(v[0]) for k, v in cols.items()}
+
+
+# ---------------------------------------------------------------------------------------------
+# Full equations (1.4), (1.5).
+
+
+def _hat(v: Any) -> Any:
+    return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]], dtype=v.dtype)
+
+
+def full_rhs(t: float, y: Any, p: Params) -> Any:
+    """Right-hand side of the rotating-frame form (1.5), with the corrected Γ′ (erratum 3).
+
+    ``I z′ + z × I z = ε Γᵀ ĥĥ (Γ z − ξ3)``, ``Γ′ = Γ ẑ − ξ̂3 Γ``.
+
+    Parameters
+    ----------
+    t : float
+        Time τ = ωt [1] (the system is autonomous).
+    y : ndarray, shape (12,)
+        ``[z1, z2, z3, Γ11, Γ12, …, Γ33]`` (Γ by rows) [1]. Complex input is allowed (for
+        complex-step Jacobians).
+    p : Params
+
+    Returns
+    -------
+    ndarray, shape (12,)
+        dy/dτ.
+    """
+    z = y[:3]
+    G = y[3:].reshape(3, 3)
+    Iz = p.inertia * z
+    rel = G @ z - _XI3  # angular velocity relative to the field, field-frame components
+    m_eta = p.h * (p.h @ rel) - rel  # ĥĥ v = h (h·v) − v
+    dz = (np.cross(Iz, z) + p.eps * (G.T @ m_eta)) / p.inertia
+    dG = G @ _hat(z) - _hat(_XI3) @ G
+    return np.concatenate([dz, dG.ravel()])
+
+
+def inertial_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
+    """Right-hand side of the inertial form (1.4) in τ: Euler's equations with the eddy-current
+    moment (1.3), and quaternion kinematics of A (body → inertial).
+
+    Parameters
+    ----------
+    t : float
+        Time τ = ωt [1] (the field direction depends on it explicitly).
+    y : ndarray, shape (7,)
+        ``[z1, z2, z3, q0, q1, q2, q3]`` [1].
+    p : Params
+
+    Returns
+    -------
+    ndarray, shape (7,)
+    """
+    return rigid_body_rhs(t, y, p.inertia, p.torque)
+
+
+def full_from_slow(p: Params, st: State) -> FloatArray:
+    """State vector of (1.5) at τ = 0: ``[z, Γ by rows]``."""
+    return np.concatenate([st.z, st.gamma.ravel()])
+
+
+def _inertial_from_slow(p: Params, st: State) -> FloatArray:
+    """State vector of (1.4) at τ = 0: ``[z, q]`` with A(0) = Γ(0) (B(0) = E)."""
+    return np.concatenate([st.z, matrix_to_quat(st.gamma)])
+
+
+def _columns_from_momentum(
+    L_xi: FloatArray, T: FloatArray, p: Params, sigma0: float | None = None
+) -> dict[str, FloatArray]:
+    """L, ρ, σ, T, k² from the inertial angular momentum and the energy, §9, §16."""
+    L = np.linalg.norm(L_xi, axis=-1)
+    perp = np.hypot(L_xi[..., 0], L_xi[..., 1])
+    rho = np.arctan2(perp, L_xi[..., 2])
+    sigma = np.arctan2(L_xi[..., 1], L_xi[..., 0])
+    if sigma0 is not None:
+        sigma = np.where(perp > 0.0, sigma, sigma0)  # σ undefined on the axis: keep it
+    k2 = np.array([modulus_squared(*p.sorted_inertia, Li, Ti)[0] for Li, Ti in zip(L, T)])
+    return {"L": L, "rho": rho, "sigma": sigma, "T": T, "k2": k2}
+
+
+def slow_from_full(t: FloatArray, Y: FloatArray, p: Params) -> dict[str, FloatArray]:
+    """Slow variables and z of full states of (1.5), spec §9:
+
+    ``L_η = Γ I z``, ``L = |L_η|``, ``ρ = arccos(L_η3/L)``, ``σ = atan2(L_η2, L_η1) + τ``,
+    ``T = ½ z·Iz``, k² of the current regime.
+
+    Parameters
+    ----------
+    t : ndarray, shape (n,)
+        Times τ [1].
+    Y : ndarray, shape (n, 12)
+        States of (1.5).
+    p : Params
+
+    Returns
+    -------
+    dict
+        ``L, rho, sigma, T, k2, z1, z2, z3`` [1, rad, rad, 1, 1, 1, 1, 1].
+    """
+    z = Y[:, :3]
+    G = Y[:, 3:].reshape(-1, 3, 3)
+    L_eta = np.einsum("nij,nj->ni", G, p.inertia * z)
+    L_xi = np.einsum("nji,nj->ni", rot_z(-np.asarray(t)), L_eta)  # v_ξ = Bᵀ(τ) v_η
+    return _full_columns(L_xi, z, p)
+
+
+def _full_columns(L_xi: FloatArray, z: FloatArray, p: Params) -> dict[str, FloatArray]:
+    T = 0.5 * np.sum(p.inertia * z * z, axis=1)
+    cols = _columns_from_momentum(L_xi, T, p)
+    cols.update(z1=z[:, 0], z2=z[:, 1], z3=z[:, 2])
+    return cols
+
+
+def _inertial_columns(t: FloatArray, Y: FloatArray, p: Params) -> dict[str, FloatArray]:
+    z = Y[:, :3]
+    L_xi = np.einsum("nij,nj->ni", quat_to_matrix(Y[:, 3:]), p.inertia * z)
+    return _full_columns(L_xi, z, p)
+
+
+def invariants(Y: FloatArray, p: Params) -> dict[str, FloatArray]:
+    """Energy T = ½ z·Iz and |L| of states of (1.5): constant when ε = 0 (free body).
+
+    Also ``orthogonality`` = max |Γ Γᵀ − E|, which the exact flow keeps at zero.
+    """
+    z = Y[:, :3]
+    G = Y[:, 3:].reshape(-1, 3, 3)
+    return {
+        "T": 0.5 * np.sum(p.inertia * z * z, axis=1),
+        "L": np.linalg.norm(p.inertia * z, axis=1),
+        "orthogonality": np.max(np.abs(G @ np.swapaxes(G, 1, 2) - np.eye(3)), axis=(1, 2)),
+    }
+
+
+# ---------------------------------------------------------------------------------------------
+# Initial states from the slow elements, §9.
+
+
+def _rate_from_elements(
+    I: tuple[float, float, float], L: float, k2: float, regime: str, u: float
+) -> FloatArray:
+    """Body angular velocity (3.1) at phase u, sorted axes; regime x1 by the index swap."""
+    I1, I2, I3 = I
+    sn, cn, dn, _ = ellipj(u, k2)
+    k = math.sqrt(k2)
+    if regime == "x3":
+        I0 = I3 * (I2 - I1) + I1 * (I3 - I2) * k2
+        return np.array(
+            [
+                L * k * math.sqrt((I3 - I2) / (I1 * I0)) * cn,
+                L * k * math.sqrt((I3 - I1) / (I2 * I0)) * sn,
+                L * math.sqrt((I2 - I1) / (I3 * I0)) * dn,
+            ]
+        )
+    # Regime x1: indices 1 and 3 swapped; every ratio below is of two negatives (erratum 7).
+    I0 = I1 * (I2 - I3) + I3 * (I1 - I2) * k2
+    return np.array(
+        [
+            L * math.sqrt((I2 - I3) / (I1 * I0)) * dn,
+            L * k * math.sqrt((I1 - I3) / (I2 * I0)) * sn,
+            L * k * math.sqrt((I1 - I2) / (I3 * I0)) * cn,
+        ]
+    )
+
+
+def state_from_elements(
+    p: Params,
+    L: float,
+    rho: float,
+    sigma: float,
+    k2: float,
+    regime: Literal["x3", "x1"] = "x3",
+    *,
+    u0: float = 0.0,
+    psi0: float = 0.0,
+) -> State:
+    """A full state with prescribed slow elements, spec §9.
+
+    z is (3.1) at phase ``u0``; Γ(0) = C(σ, ρ) Rz(ψ0) Rx(θ) Rz(φ) P, where C(σ, ρ) takes ζ3 to
+    the direction of L (§9), (ψ0, θ, φ) are the classical Euler angles of the body relative to
+    the ζ frame (body components of L/|L| = (sin θ sin φ, sin θ cos φ, cos θ) in the axes P
+    that make the polhode's polar axis the third), and ψ0 is the precession phase.
+
+    Parameters
+    ----------
+    p : Params
+    L : float
+        Angular momentum |Iz| > 0 [inertia unit].
+    rho, sigma : float
+        Polar angle of L from ξ3, in [0, π], and its inertial azimuth [rad].
+    k2 : float
+        Modulus squared of the regime, in [0, 1] [1].
+    regime : {"x3", "x1"}
+        The axis (largest / smallest moment) the angular momentum encircles in the body.
+    u0 : float
+        Phase u = ν(τ − τ0) of (3.1) at τ = 0 [1].
+    psi0 : float
+        Precession phase of the body about L at τ = 0 [rad].
+    """
+    check_range("initial.L", L, low=0.0)
+    check_range("initial.rho", rho, low=0.0, high=math.pi, low_open=False, high_open=False)
+    check_range("initial.sigma", sigma)
+    check_range("initial.k2", k2, low=0.0, high=1.0, low_open=False, high_open=False)
+    check_range("initial.u0", u0)
+    check_range("initial.psi0", psi0)
+    if regime not in ("x3", "x1"):
+        raise ParameterError(f'initial.regime = {regime!r} must be "x3" or "x1"')
+    I1, I2, I3 = p.sorted_inertia
+    if (regime == "x3" and I1 == I2) or (regime == "x1" and I2 == I3) or I1 == I3:
+        raise ParameterError(
+            f"initial.k2 does not fix the energy of a body with equal moments {p.inertia.tolist()} "
+            f"in regime {regime}: give initial.z and initial.gamma instead"
+        )
+    z_sorted = _rate_from_elements(p.sorted_inertia, L, k2, regime, u0)
+    Ls = np.array(p.sorted_inertia) * z_sorted
+    # Axes whose third is the polar axis: identity for x3; cyclic (x2, x3, x1) for x1.
+    P = np.eye(3) if regime == "x3" else np.array([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0, 0]])
+    e = P @ Ls / L
+    theta = math.atan2(math.hypot(e[0], e[1]), e[2])
+    phi = math.atan2(e[0], e[1])
+    G_sorted = kframe_matrix(rho, sigma) @ euler313_to_matrix(psi0, theta, phi) @ P
+    S = p.sorting
+    return State(S.T @ z_sorted, G_sorted @ S)
+
+
+# ---------------------------------------------------------------------------------------------
+# Averaged equations (3.5)–(3.7) and the vector form, spec §10.
+
+
+def field_average(p: Params) -> FloatArray:
+    """D = mean of Bᵀ ĥĥ B over the field phase, spec §10: −diag((1+c²)/2, (1+c²)/2, s²)."""
+    a = 0.5 * (1.0 + p.c2)
+    return -np.array([a, a, p.s2])
+
+
+def _A(p: Params, sin2_rho: float) -> float:
+    return 2.0 * (1.0 + p.c2) + (1.0 - 3.0 * p.c2) * sin2_rho
+
+
+def averaged_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
+    """(3.5) and the corrected (3.6) (erratum 5): the T-form, state ``[L, ρ, σ, T]``.
+
+    ``L′ = ε{−[1 + c² + (1 − 3c²) cos²ρ] T/L + s² cos ρ}``,
+    ``L ρ′ = ε[(1 − 3c²) sin ρ cos ρ T/L − s² sin ρ]``, ``σ′ = 0``,
+    ``T′ = ε{−¼[2(1 + c²) + (1 − 3c²) sin²ρ]⟨z²⟩ + (1 − 3c²)(1 − 3cos²ρ) T²/L²
+    + 2 s² cos ρ T/L}``, with c = cos β, s = sin β and ⟨z²⟩ of (3.6) (spec §8).
+
+    Singular at L = 0 (use :func:`averaged_rhs_vector` there).
+
+    Parameters
+    ----------
+    t : float
+        Time τ [1] (unused: autonomous).
+    y : ndarray, shape (4,)
+        ``[L, rho, sigma, T]`` [1, rad, rad, 1].
+    p : Params
+
+    Returns
+    -------
+    ndarray, shape (4,)
+    """
+    L, rho, _, T = (float(v) for v in y)
+    c2, s2, eps = p.c2, p.s2, p.eps
+    cr, sr = math.cos(rho), math.sin(rho)
+    q = 1.0 - 3.0 * c2
+    z2 = mean_square_rate(*p.sorted_inertia, L, T)
+    dL = eps * (-(1.0 + c2 + q * cr * cr) * T / L + s2 * cr)
+    drho = eps * (q * sr * cr * T / L - s2 * sr) / L
+    dT = eps * (
+        -0.25 * _A(p, sr * sr) * z2 + q * (1.0 - 3.0 * cr * cr) * T * T / (L * L) + 2.0 * s2 * cr * T / L
+    )
+    return np.array([dL, drho, 0.0, dT])
+
+
+def _kappa(I1: float, I2: float, I3: float) -> float:
+    return (2.0 * I1 * I3 - I1 * I2 - I2 * I3) / (I2 * (I3 - I1))
+
+
+def modulus_rate(p: Params, k2: float, sin2_rho: float, regime: str) -> float:
+    """dk²/dτ of (3.7), in the regime's own labels (x1: indices 1 and 3 swapped).
+
+    ``dk²/dτ = ε (I3 − I1)/(4 I1 I3) · A · F(k²)``, ``A = 2(1 + c²) + (1 − 3c²) sin²ρ``,
+    ``F = (1 − κ)(1 − k²) − [(1 − κ) + (1 + κ) k²] E(k)/K(k)``.
+
+    Parameters
+    ----------
+    p : Params
+    k2 : float
+        Modulus squared of the regime, in [0, 1] [1].
+    sin2_rho : float
+        sin²ρ [1].
+    regime : {"x3", "x1"}
+
+    Returns
+    -------
+    float
+        dk²/dτ [1].
+    """
+    I1, I2, I3 = p.sorted_inertia
+    if regime == "x1":
+        I1, I3 = I3, I1
+    kappa = _kappa(I1, I2, I3)
+    e_over_k = 0.0 if k2 >= 1.0 else float(ellipe(k2) / ellipk(k2))
+    F = (1.0 - kappa) * (1.0 - k2) - ((1.0 - kappa) + (1.0 + kappa) * k2) * e_over_k
+    return p.eps * (I3 - I1) / (4.0 * I1 * I3) * _A(p, sin2_rho) * F
+
+
+def averaged_rhs_k2(t: float, y: FloatArray, p: Params, regime: str = "x3") -> FloatArray:
+    """(3.5) and (3.7): the k²-form, state ``[L, ρ, σ, k²]`` in a fixed regime.
+
+    T follows from the T substitution of §8. Needs a regime switch at k² = 1 (the caller's).
+
+    Parameters
+    ----------
+    t : float
+        Time τ [1].
+    y : ndarray, shape (4,)
+        ``[L, rho, sigma, k2]``.
+    p : Params
+    regime : {"x3", "x1"}
+
+    Returns
+    -------
+    ndarray, shape (4,)
+    """
+    L, rho, sigma, k2 = (float(v) for v in y)
+    k2c = min(max(k2, 0.0), 1.0)  # round-off outside [0, 1]
+    T = energy_from_modulus(*p.sorted_inertia, L, k2c, regime)
+    out = averaged_rhs(t, np.array([L, rho, sigma, T]), p)
+    out[3] = modulus_rate(p, k2c, math.sin(rho) ** 2, regime)
+    return out
+
+
+def averaged_rhs_vector(t: float, y: FloatArray, p: Params) -> FloatArray:
+    """The regular vector form of the averaged system, spec §10, state ``[L_ξ, r]``.
+
+    ``dL_ξ/dτ = ε (r D L_ξ + sin²β ξ3)`` with ``r = 2T/L²``, and
+    ``dr/dτ = (ε A / 2)(r² − ⟨z²⟩/L²)`` (the identity after (3.6)); ⟨z²⟩/L² depends on r only.
+    No 1/L and no polar-angle singularity: it carries L through 0 and ρ through 0 and π.
+
+    Parameters
+    ----------
+    t : float
+        Time τ [1].
+    y : ndarray, shape (4,)
+        ``[L_ξ1, L_ξ2, L_ξ3, r]`` [inertia unit, 1/inertia unit].
+    p : Params
+
+    Returns
+    -------
+    ndarray, shape (4,)
+    """
+    l1, l2, l3, r = (float(v) for v in y)
+    d = field_average(p)
+    L2 = l1 * l1 + l2 * l2 + l3 * l3
+    sin2_rho = (l1 * l1 + l2 * l2) / L2 if L2 > 0.0 else 0.0
+    g = mean_square_rate(*p.sorted_inertia, 1.0, 0.5 * r)  # ⟨z²⟩/L² at L = 1
+    eps = p.eps
+    return np.array(
+        [
+            eps * r * d[0] * l1,
+            eps * r * d[1] * l2,
+            eps * (r * d[2] * l3 + p.s2),
+            0.5 * eps * _A(p, sin2_rho) * (r * r - g),
+        ]
+    )
+
+
+def _initial_sigma(p: Params, st: State) -> float:
+    L_xi = st.gamma @ (p.inertia * st.z)
+    return float(math.atan2(L_xi[1], L_xi[0]))
+
+
+def _vector_from_slow(p: Params, st: State) -> FloatArray:
+    L_xi = st.gamma @ (p.inertia * st.z)
+    L2 = float(L_xi @ L_xi)
+    if L2 > 0.0:
+        r = float(st.z @ (p.inertia * st.z)) / L2
+    else:
+        # At rest r = 2T/L² is the limit along the direction L grows in (ξ3, body Γᵀξ3).
+        e = st.gamma.T @ _XI3
+        r = float(e @ (e / p.inertia))
+    return np.array([*L_xi, r])
+
+
+def _r_to_k2(p: Params, r: ArrayLike) -> FloatArray:
+    # k² of the current regime as a function of r = 2T/L² only (L = 1).
+    return np.array([modulus_squared(*p.sorted_inertia, 1.0, 0.5 * ri)[0] for ri in np.ravel(r)])
+
+
+def _vector_columns(t: FloatArray, Y: FloatArray, p: Params, st: State) -> dict[str, FloatArray]:
+    L_xi, r = Y[:, :3], Y[:, 3]
+    L = np.linalg.norm(L_xi, axis=1)
+    perp = np.hypot(L_xi[:, 0], L_xi[:, 1])
+    sigma = np.where(perp > 0.0, np.arctan2(L_xi[:, 1], L_xi[:, 0]), _initial_sigma(p, st))
+    return {
+        "L": L,
+        "rho": np.arctan2(perp, L_xi[:, 2]),
+        "sigma": sigma,
+        "T": 0.5 * r * L * L,
+        "k2": _r_to_k2(p, r),
+    }
+
+
+SEPARATRIX_STEP = 1e-10
+"""Relative step in r = 2T/L² taken across the separatrix when the averaged run restarts there.
+
+On the separatrix r = 1/I2 the averaged r′ vanishes with infinite slope: r ≡ 1/I2 is a spurious
+solution (spec §10, "k² ≡ 1"), and the physical one leaves it in finite time. The restart moves
+to the side r decreases toward; the time this skips is ~ SEPARATRIX_STEP·ln(1/SEPARATRIX_STEP)
+of the slow scale, far below the integration tolerance."""
+
+
+def _step_over_separatrix(t: float, y: FloatArray) -> FloatArray:
+    # r decreases along every averaged solution (d(2T/L²)/dτ ≤ 0, spec §10): step to r < 1/I2.
+    out = np.array(y, dtype=float)
+    out[3] *= 1.0 - SEPARATRIX_STEP
+    return out
+
+
+def _averaged_form(p: Params, st: State) -> AveragedForm:
+    I1, I2, I3 = p.sorted_inertia
+    breakpoints: tuple[Breakpoint, ...] = ()
+    if I1 < I2 < I3:
+        breakpoints = (Breakpoint(lambda t, y: float(y[3]) - 1.0 / I2, _step_over_separatrix),)
+    return AveragedForm(
+        name="vector",
+        equation="(3.5)-(3.7), vector form of spec §10",
+        rhs=averaged_rhs_vector,
+        from_slow=_vector_from_slow,
+        to_columns=_vector_columns,
+        breakpoints=breakpoints,
+    )
+
+
+# ---------------------------------------------------------------------------------------------
+# Stationary rotation and its linearization (2.1)–(2.6).
+
+
+def linear_matrix(p: Params) -> FloatArray:
+    """The 5×5 matrix of the linearized system (2.4) in (x1, x2, x3, γ1, γ2).
+
+    Parameters
+    ----------
+    p : Params
+
+    Returns
+    -------
+    ndarray, shape (5, 5)
+        J with (x, γ)′ = J (x, γ) [1].
+    """
+    I1, I2, I3 = p.inertia.tolist()
+    e, c2, s2 = p.eps, p.c2, p.s2
+    sc = 0.5 * e * math.sin(2.0 * p.beta)
+    return np.array(
+        [
+            [-e * c2 / I1, -(I3 - I2) / I1, sc / I1, 0.0, -e * c2 / I1],
+            [(I3 - I1) / I2, -e / I2, 0.0, e / I2, 0.0],
+            [sc / I3, 0.0, -e * s2 / I3, 0.0, sc / I3],
+            [1.0, 0.0, 0.0, 0.0, 1.0],
+            [0.0, 1.0, 0.0, -1.0, 0.0],
+        ]
+    )
+
+
+def characteristic_coefficients(p: Params) -> FloatArray:
+    """Coefficients a0 … a5 of the characteristic polynomial (2.5), highest power first.
+
+    Exact for every ε (spec §6); ``a0 = I1 I2 I3``.
+
+    Parameters
+    ----------
+    p : Params
+
+    Returns
+    -------
+    ndarray, shape (6,)
+    """
+    I1, I2, I3 = p.inertia.tolist()
+    e, c2, s2 = p.eps, p.c2, p.s2
+    d2, d1 = I3 - I2, I3 - I1
+    return np.array(
+        [
+            I1 * I2 * I3,
+            e * (I1 * I3 + I1 * I2 * s2 + I2 * I3 * c2),
+            I1 * I2 * I3 + d2 * d1 * I3 + e * e * (I1 * s2 + I3 * c2),
+            e * I3 * d2 + e * (d2 * d1 + I1 * I2) * s2 + e * I3 * d1 * c2,
+            d2 * d1 * I3 + e * e * d2 * s2,
+            e * d2 * d1 * s2,
+        ]
+    )
+
+
+def approximate_roots(p: Params) -> np.ndarray:
+    """First-order roots (2.6), error O(ε²) where the unperturbed roots are simple.
+
+    ``λ1 = −ε s²/I3``, ``λ2,3 = ±iω0 − (ε/2)[(I3 − I2)/(I2 I3) + (I3 − I1)/(I1 I3) c²]``,
+    ``λ4,5 = ±i − ε (1 + c²)/(2 I3)``, ``ω0² = (I3 − I2)(I3 − I1)/(I1 I2)``; for ω0² < 0 (middle
+    axis) ±iω0 is the real pair ∓|ω0|.
+
+    Parameters
+    ----------
+    p : Params
+
+    Returns
+    -------
+    ndarray of complex, shape (5,)
+    """
+    I1, I2, I3 = p.inertia.tolist()
+    e, c2, s2 = p.eps, p.c2, p.s2
+    w02 = (I3 - I2) * (I3 - I1) / (I1 * I2)
+    iw0 = 1j * math.sqrt(w02) if w02 >= 0.0 else complex(math.sqrt(-w02))
+    d23 = -0.5 * e * ((I3 - I2) / (I2 * I3) + (I3 - I1) / (I1 * I3) * c2)
+    d45 = -e * (1.0 + c2) / (2.0 * I3)
+    return np.array([-e * s2 / I3, iw0 + d23, -iw0 + d23, 1j + d45, -1j + d45])
+
+
+def _approx_note(p: Params) -> str:
+    I1, I2, I3 = p.inertia.tolist()
+    w02 = (I3 - I2) * (I3 - I1) / (I1 * I2)
+    small = p.eps / min(I1, I2, I3)
+    if w02 == 0.0:
+        return "(2.6) is invalid: I3 equals another moment, ω0 = 0 is a double root (§6)"
+    if abs(math.sqrt(abs(w02)) - 1.0) <= small / VALIDITY_RATIO and w02 > 0.0:
+        return (
+            "(2.6) is invalid: near a thin plate I3 ≈ I1 + I2 the roots ±iω0 and ±i (nearly) "
+            "coincide, so the first-order corrections can be wrong at O(ε) (§6)"
+        )
+    if small > VALIDITY_RATIO:
+        return f"(2.6) is a small-ε approximation; ε/min I = {small:.3g} is not small (§6)"
+    return ""
+
+
+def stationary(p: Params, phase: float = 0.0) -> StationaryMotion:
+    """The stationary co-rotation (2.1) about body x3 and its linearization chart (2.2).
+
+    The co-rotations form a family Γ = R3(φ), z = ξ3 (spec §5): the body's phase φ relative to
+    the field is free. The paper linearizes at φ = 0 (Γ = E), where (2.5) and (2.6) hold; at
+    other phases the field lies in another plane of the body and the decay rates differ (the
+    family is reported by :attr:`StationaryMotion.family`).
+
+    Parameters
+    ----------
+    p : Params
+    phase : float
+        φ of Γ = R3(φ) [rad]; 0 is the paper's (2.1).
+
+    Returns
+    -------
+    StationaryMotion
+        Local coordinates (x1, x2, x3, γ1, γ2, γ3) with z = ξ3 + x, Γ = R3(φ)(E + γ̂); γ3 (the
+        free phase) decouples, so stability is decided on the first five (§5).
+    """
+    R = rot_z(phase)
+
+    def embed(x: Any) -> Any:
+        # Exact to first order in x, which is all the Jacobian at the stationary point needs.
+        return np.concatenate([_XI3 + x[:3], (R @ (np.eye(3) + _hat(x[3:6]))).ravel()])
+
+    def tangent(y: Any, dy: Any) -> Any:
+        # γ̂′ = the skew part of R3(φ)ᵀ Γ′ (first order at Γ = R3(φ)).
+        W = R.T @ dy[3:].reshape(3, 3)
+        W = 0.5 * (W - W.T)
+        return np.concatenate([dy[:3], [W[2, 1], W[0, 2], W[1, 0]]])
+
+    paper = phase == 0.0
+    coeffs = characteristic_coefficients(p) if paper else None
+    return StationaryMotion(
+        name="co-rotation about body x3 (2.1)" + ("" if paper else f", phase {phase:.6g} rad"),
+        equation="(1.5) linearized as (2.3)/(2.4)",
+        state=np.concatenate([_XI3, R.ravel()]),
+        rhs=full_rhs,
+        embed=embed,
+        tangent=tangent,
+        coordinates=("x1", "x2", "x3", "gamma1", "gamma2", "gamma3"),
+        keep=(0, 1, 2, 3, 4),
+        leading=float(np.prod(p.inertia)),
+        coefficients=coeffs,
+        approx_roots=approximate_roots(p) if paper else None,
+        approx_note=_approx_note(p) if paper else "",
+        structural_zero=bool(characteristic_coefficients(p)[5] == 0.0),
+        family=(lambda phi: stationary(p, phi)) if paper else None,
+    )
+
+
+# ---------------------------------------------------------------------------------------------
+# Validity, frequencies and predicted limits, spec §§11–13.
+
+
+def _frequencies(p: Params, cols: dict[str, FloatArray]) -> dict[str, FloatArray]:
+    nu = np.array(
+        [fast_frequencies(*p.sorted_inertia, L, T) for L, T in zip(cols["L"], cols["T"])]
+    )
+    return {"nu1": nu[:, 0], "nu2": nu[:, 1]}
+
+
+def diagnostics(p: Params, st: State, cols: dict[str, FloatArray]) -> dict[str, FloatArray]:
+    """Fast frequencies along an averaged solution, spec §8 and §15.
+
+    Parameters
+    ----------
+    p : Params
+    st : State
+    cols : dict
+        Averaged columns (``L``, ``T``).
+
+    Returns
+    -------
+    dict
+        ``nu1`` (polhode frequency 2πν/4K) and ``nu2`` (mean precession rate about L), in units
+        of the field rate [1].
+    """
+    return _frequencies(p, cols)
+
+
+def _resonances() -> list[tuple[int, int, int]]:
+    n1max, n2max = RESONANCE_ORDERS
+    out = []
+    for m in (1, 2):
+        for n2 in range(-n2max, n2max + 1):
+            for n1 in range(-n1max, n1max + 1):
+                if (n1, n2) != (0, 0) and (m, n1, n2) != (1, -1, 1):
+                    out.append((m, n1, n2))
+    return out
+
+
+def validity(
+    p: Params,
+    st: State,
+    slow: Any,
+    tau_end: float,
+) -> list[ValidityIssue]:
+    """Regions of spec §12 that an averaged trajectory enters, with the first τ of each.
+
+    Parameters
+    ----------
+    p : Params
+    st : State
+    slow : callable
+        ``slow(tau) -> columns`` along the averaged trajectory.
+    tau_end : float
+        End of the run [1].
+
+    Returns
+    -------
+    list of ValidityIssue
+        ``eps_not_small`` (ε/min I > 0.1), ``separatrix`` (L² = 2T I2 crossed: ν1 → 0),
+        ``momentum_small`` (L so small that the fast frequencies are not fast), ``resonance``
+        (m = n1 ν1 + n2 ν2 for m = 1, 2, |n1|, |n2| ≤ 2, crossed or approached within
+        √(ε/min I)), ``co_rotation`` (the final stage, |ν2 − ν1 − 1| ≤ ε/min I, where the
+        body's phase relative to the field is slow and (3.7) over-predicts the nutation decay of
+        a triaxial body; (2.6) gives the true rate).
+    """
+    issues: list[ValidityIssue] = []
+    small = p.small_parameter
+    if small > VALIDITY_RATIO:
+        issues.append(
+            ValidityIssue(
+                "eps_not_small",
+                0.0,
+                f"ε/min I = {small:.3g} is not small (> {VALIDITY_RATIO:g}): the averaged "
+                "equations do not apply; only the full model and the linear stability results "
+                "are exact (spec/martynenko.md §12)",
+            )
+        )
+    if tau_end <= 0.0:
+        return issues
+    grid = np.linspace(0.0, tau_end, 2001)
+    cols = slow(grid)
+    I1, I2, I3 = p.sorted_inertia
+    L, T = cols["L"], cols["T"]
+    if I1 < I2 < I3:
+        side = np.sign(L * L - 2.0 * T * I2)
+        flips = np.flatnonzero(side[1:] * side[:-1] < 0.0)
+        if flips.size:
+
+            def gap(t: FloatArray) -> FloatArray:
+                c = slow(t)
+                return side[0] * (c["L"] ** 2 - 2.0 * c["T"] * I2)
+
+            tau_s = first_time(lambda t: -gap(t), grid)
+            issues.append(
+                ValidityIssue(
+                    "separatrix",
+                    float(tau_s if tau_s is not None else grid[flips[0] + 1]),
+                    "the averaged motion crosses the separatrix L² = 2T·I2 at τ = {:.6g}: the "
+                    "polhode frequency ν1 → 0 there, averaging is locally invalid (the error "
+                    "usually stays first order; theory allows ε|ln ε|) (spec/martynenko.md §12)"
+                    .format(tau_s if tau_s is not None else grid[flips[0] + 1]),
+                )
+            )
+    # Fast frequencies ~ L/I3 against the slow rates ~ ε/I1.
+    L_small = I3 * small / VALIDITY_RATIO
+
+    def momentum_small(t: FloatArray) -> FloatArray:
+        return L_small - slow(t)["L"]
+
+    tau_l = first_time(momentum_small, grid)
+    if tau_l is not None:
+        issues.append(
+            ValidityIssue(
+                "momentum_small",
+                tau_l,
+                f"from τ = {tau_l:.6g} L < {L_small:.3g}: the fast frequencies are no longer "
+                "fast against the slow drift, averaging is locally invalid; the vector form "
+                "carries L through 0, but k² after such a passage is not predicted "
+                "(spec/martynenko.md §12)",
+            )
+        )
+    nu = _frequencies(p, cols)
+    moving = L > L_small
+    width = math.sqrt(small)
+    first: tuple[float, float, tuple[int, int, int]] | None = None
+    dtau = grid[1] - grid[0]
+    for m, n1, n2 in _resonances():
+        det = n1 * nu["nu1"] + n2 * nu["nu2"] - m
+        near = moving & (np.abs(det) <= width)
+        crossed = moving[1:] & moving[:-1] & (det[1:] * det[:-1] < 0.0)
+        candidates = [int(i) for i in np.flatnonzero(near)[:1]]
+        candidates += [int(i) + 1 for i in np.flatnonzero(crossed)[:1]]
+        if candidates:
+            i = min(candidates)
+            if first is None or grid[i] < first[0]:
+                first = (float(grid[i]), float(np.count_nonzero(near)) * dtau, (m, n1, n2))
+    if first is not None:
+        tau_r, linger, (m, n1, n2) = first
+        # Lingering over a tenth of the slow scale 1/(ε/min I) or more: the resonant terms act
+        # as long as the averaged ones, O(1) effect (spec §12).
+        effect = (
+            "it lingers there long enough to put averaged k² and T off by O(1)"
+            if linger >= VALIDITY_RATIO / small
+            else "a passage shifts averaged k² and T by O(√ε) at most"
+        )
+        issues.append(
+            ValidityIssue(
+                "resonance",
+                tau_r,
+                f"at τ ≈ {tau_r:.6g} the averaged motion meets the resonance {m} = {n1}·ν1 "
+                f"{'+' if n2 >= 0 else '−'} {abs(n2)}·ν2 (field harmonic vs polhode ν1 and "
+                f"precession ν2) and stays within √(ε/min I) of it for Δτ ≈ {linger:.3g}: "
+                f"{effect}; L and ρ stay O(ε)-accurate (spec/martynenko.md §12)",
+            )
+        )
+    det_co = np.abs(nu["nu2"] - nu["nu1"] - 1.0)
+    co = np.flatnonzero(moving & (det_co <= small))
+    if co.size:
+        tau_c = float(grid[co[0]])
+        issues.append(
+            ValidityIssue(
+                "co_rotation",
+                tau_c,
+                f"from τ ≈ {tau_c:.6g} the body nearly co-rotates with the field (|ν2 − ν1 − 1| "
+                "≤ ε/min I): the phase relative to the field is slow, independent averaging "
+                "fails, and (3.7) over-predicts the final nutation decay of a triaxial body; "
+                "the true rate is 2 Re λ2,3 of (2.6) (spec/martynenko.md §12)",
+            )
+        )
+    return issues
+
+
+def final_nutation_decay_rate(p: Params, phase: float = 0.0) -> float:
+    """Decay rate of k² (∝ nutation amplitude²) at co-rotation with phase φ, 2 Re λ2,3.
+
+    ``2 Re λ2,3 = −ε [a (cos²φ + c² sin²φ) + b (c² cos²φ + sin²φ)]`` with
+    ``a = (I3 − I2)/(I2 I3)``, ``b = (I3 − I1)/(I1 I3)`` (body x3 the largest axis, user
+    labels). At φ = 0 this is (2.6); the co-rotations Γ = R3(φ) form a family (§5) and the
+    phase a body settles at decides its final rate. The mean over φ is the linearization of
+    (3.7) at k → 0, ρ = 0, −ε (1 + c²)(a + b)/2: averaging over the field phase is exact for
+    this rate only on average (spec §12 compares with φ = 0 alone). Derived here by first-order
+    perturbation of the linearization at Γ = R3(φ); tests check it against the exact roots.
+
+    Parameters
+    ----------
+    p : Params
+    phase : float
+        φ [rad].
+
+    Returns
+    -------
+    float
+        d ln k²/dτ [1/τ], first order in ε.
+    """
+    I1, I2, I3 = p.inertia.tolist()
+    a, b = (I3 - I2) / (I2 * I3), (I3 - I1) / (I1 * I3)
+    cp, sp = math.cos(phase) ** 2, math.sin(phase) ** 2
+    return -p.eps * (a * (cp + p.c2 * sp) + b * (p.c2 * cp + sp))
+
+
+def predicted_limits(p: Params, st: State) -> dict[str, Any]:
+    """End state of the averaged system, spec §11, and the final nutation decay rates, §12.
+
+    For β ≠ 0: ρ → 0, k² → 0, L → I_max (co-rotation about the largest axis), T → I_max/2.
+    For β = 0: L_ξ3 is conserved, ρ → 0 or π by the initial hemisphere, L → |L_ξ3(0)|.
+
+    Parameters
+    ----------
+    p : Params
+    st : State
+
+    Returns
+    -------
+    dict
+    """
+    I1, I2, I3 = p.sorted_inertia
+    out: dict[str, Any] = {"sigma": _initial_sigma(p, st), "k2": 0.0}
+    if p.s2 > 0.0:
+        out.update(L=I3, rho=0.0, T=0.5 * I3, end_state="co-rotation about the largest axis")
+    else:
+        L3 = float((st.gamma @ (p.inertia * st.z))[2])
+        out.update(
+            L=abs(L3),
+            rho=0.0 if L3 > 0 else (math.pi if L3 < 0 else float("nan")),
+            T=0.5 * L3 * L3 / I3,
+            end_state="spin about the static field along ξ3 (β = 0)",
+        )
+    # Nutation decay at the end: linearization of (3.7) vs 2 Re λ2,3 at the final phase, §12.
+    if I3 > I1:
+        rates = [final_nutation_decay_rate(p, phi) for phi in (0.0, 0.5 * math.pi)]
+        out["nutation_decay_rate_averaged"] = -p.eps * (1.0 + p.c2) / 2.0 * (
+            (I3 - I2) / (I2 * I3) + (I3 - I1) / (I1 * I3)
+        )
+        out["nutation_decay_rate_phase0"] = rates[0]
+        out["nutation_decay_rate_range"] = [min(rates), max(rates)]
+    return out
+
+
+# ---------------------------------------------------------------------------------------------
+# Physical units, spec §4.
+
+
+@dataclass(frozen=True, eq=False)
+class PhysicalParams:
+    """The body and the field in SI units.
+
+    Parameters
+    ----------
+    inertia : array_like, shape (3,)
+        Principal moments [kg·m²].
+    k_f : float
+        Eddy-current factor of (1.2) [N·m·s/(A/m)²], > 0.
+    H : float
+        Field strength [A/m], > 0.
+    omega : float
+        Field rotation rate [rad/s], > 0.
+    beta : float
+        Field cone angle [rad], in [0, π].
+    """
+
+    inertia: FloatArray
+    k_f: float
+    H: float
+    omega: float
+    beta: float
+
+    def __post_init__(self) -> None:
+        inertia = _frozen("physical.inertia", self.inertia, (3,))
+        RigidBody(*inertia.tolist())
+        object.__setattr__(self, "inertia", inertia)
+        check_range("physical.k_f", self.k_f, low=0.0)
+        check_range("physical.H", self.H, low=0.0)
+        check_range("physical.omega", self.omega, low=0.0)
+
+
+@dataclass(frozen=True)
+class Scaling:
+    """τ = ω t, z = Ω/ω, moments over I_ref = max I_i, ε = k_f H²/(ω I_ref) (spec §4)."""
+
+    omega: float  # [rad/s]
+    I_ref: float  # [kg·m²]
+    eps: float  # [1]
+
+    def tau_from_time(self, t_s: ArrayLike) -> FloatArray:
+        """τ = ω t for times in seconds."""
+        return np.asarray(t_s, dtype=float) * self.omega
+
+    def time_from_tau(self, tau: ArrayLike) -> FloatArray:
+        """t = τ/ω [s]."""
+        return np.asarray(tau, dtype=float) / self.omega
+
+    def summary(self) -> dict[str, float]:
+        """The scales, for summary.json."""
+        return {"omega_rad_s": self.omega, "I_ref_kgm2": self.I_ref, "eps": self.eps}
+
+    def si_columns(self, cols: dict[str, FloatArray], tau: FloatArray) -> dict[str, FloatArray]:
+        """Columns in SI: t [s], L [kg·m²/s], T [J], Ω [rad/s]; angles and k² unchanged."""
+        out = {"t_s": self.time_from_tau(tau)}
+        for name, values in cols.items():
+            if name == "L":
+                out["L_kgm2_s"] = self.I_ref * self.omega * values
+            elif name == "T":
+                out["T_J"] = self.I_ref * self.omega**2 * values
+            elif name in ("z1", "z2", "z3"):
+                out[f"Omega{name[1]}_rad_s"] = self.omega * values
+            else:
+                out[name] = values
+        return out
+
+
+def normalize_physical(
+    phys: PhysicalParams, Omega0: ArrayLike, gamma0: ArrayLike
+) -> tuple[Params, State, Scaling]:
+    """Nondimensional parameters and initial state of a physical scenario (spec §4).
+
+    Parameters
+    ----------
+    phys : PhysicalParams
+    Omega0 : array_like, shape (3,)
+        Body angular velocity at t = 0 [rad/s].
+    gamma0 : array_like, shape (3, 3)
+        Body → inertial rotation at t = 0 (rows).
+
+    Returns
+    -------
+    (Params, State, Scaling)
+    """
+    I_ref = float(np.max(phys.inertia))
+    eps = phys.k_f * phys.H**2 / (phys.omega * I_ref)
+    p = Params(phys.inertia / I_ref, phys.beta, eps)
+    st = State(_frozen("initial.Omega", Omega0, (3,)) / phys.omega, gamma0)
+    return p, st, Scaling(phys.omega, I_ref, eps)
+
+
+# ---------------------------------------------------------------------------------------------
+# Registry record.
+
+_COLUMNS_SLOW = (
+    Column("L", "angular momentum |L|", "1", "(3.5)"),
+    Column("rho", "polar angle ρ of L from ξ3", "rad", "(3.5)"),
+    Column("sigma", "inertial azimuth σ of L", "rad", "(3.5)", angle=True, unwrap=True),
+    Column("T", "kinetic energy T", "1", "(3.6)"),
+    Column("k2", "Euler–Poinsot modulus k² of the current regime", "1", "(3.7)"),
+)
+_COLUMNS_FULL = (
+    *_COLUMNS_SLOW,
+    Column("z1", "body angular velocity z1 = Ω1/ω", "1", "(1.5)"),
+    Column("z2", "body angular velocity z2 = Ω2/ω", "1", "(1.5)"),
+    Column("z3", "body angular velocity z3 = Ω3/ω", "1", "(1.5)"),
+)
+_DIAGNOSTICS = (
+    Column("nu1", "polhode frequency ν1 = 2πν/4K", "1", "§8"),
+    Column("nu2", "mean precession rate ν2 about L", "1", "§8"),
+)
+
+FULL_ROTATING = FullForm(
+    name="rotating",
+    equation="(1.5)",
+    rhs=full_rhs,
+    from_slow=full_from_slow,
+    to_columns=slow_from_full,
+)
+FULL_INERTIAL = FullForm(
+    name="inertial",
+    equation="(1.4) with quaternions",
+    rhs=inertial_rhs,
+    from_slow=_inertial_from_slow,
+    to_columns=_inertial_columns,
+)
+
+
+def _closed_form(p: Params, st: State, tau: FloatArray) -> dict[str, FloatArray]:
+    raise ParameterError("rotating_field has no closed_form method (allowed: full, averaged)")
+
+
+def _check_method(p: Params, method: str) -> None:
+    return None
+
+
+MODEL = ModelRecord(
+    name="rotating_field",
+    description="triaxial conducting body in a rotating magnetic field (eddy-current torque)",
+    paper="Yu. G. Martynenko (1979), seed 002_6c0d72cdb918d198; spec/martynenko.md",
+    methods=("full", "averaged"),
+    columns={"full": _COLUMNS_FULL, "averaged": _COLUMNS_SLOW},
+    full=FULL_ROTATING,
+    full_forms={"rotating": FULL_ROTATING, "inertial": FULL_INERTIAL},
+    averaged_form=_averaged_form,
+    closed_form=_closed_form,
+    check_method=_check_method,
+    validity=validity,
+    limits=predicted_limits,
+    stationary=stationary,
+    diagnostics=diagnostics,
+    diagnostic_columns=_DIAGNOSTICS,
+    figure="evolution.png",
+    plot_variables=("L", "rho", "T", "k2"),
+)

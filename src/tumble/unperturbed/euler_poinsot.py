@@ -1,0 +1,933 @@
+"""Euler–Poinsot motion: the torque-free rigid body in Jacobi elliptic functions, eq. (3.1).
+
+§8 of spec/martynenko.md (Yu. G. Martynenko 1979, seed 002; the spec supersedes the seed
+where they differ, errata #7 of its §14 for regime x1). Time is the paper's τ and z the body
+angular velocity, in any consistent units: every rate below is in rad per unit of τ.
+
+Conventions
+-----------
+* Moments sorted I1 ≤ I2 ≤ I3 ("sorted axes"). Bodies given in another order are relabelled
+  by a *proper* signed permutation of axes (a cyclic one, or a transposition with the first
+  sorted axis reversed), so that attitudes stay rotations; results come back in the user's
+  axes.
+* With d1 = L² − 2T·I1 ≥ 0, d2 = L² − 2T·I2, d3 = 2T·I3 − L² ≥ 0 the regime is
+  ``"x3"`` (d2 > 0, polhode around x3), ``"x1"`` (d2 < 0, around x1) or ``"separatrix"``
+  when |d2| ≤ :data:`SEPARATRIX_RTOL`·L²; ``"symmetric"`` when I1 = I2 or I2 = I3,
+  ``"sphere"`` when I1 = I3, ``"rest"`` when L = 0 (exact equalities: the triaxial formulas
+  below are well conditioned up to them).
+* k2 is the modulus squared of the current regime (x3 formula of §8, or the 1↔3-swapped
+  one, errata #7), so 0 ≤ k2 ≤ 1; k2 = 1 on the separatrix and 0 for symmetric bodies.
+* Orientation (§8, "Frequencies of the fast motion"): 3-1-3 Euler angles of the body
+  relative to a frame whose third axis is along L, ``body → L-frame = Rz(ψ) Rx(θ) Rz(φ) · P``
+  with P a proper signed permutation that puts the polar axis of the polhode third (x3 in
+  regime x3; (x2, x3, x1) in regime x1). Then the body components of L are
+  L(sin θ sin φ, sin θ cos φ, cos θ), and ψ̇ = L(2T − I_c z_c²)/(L² − I_c² z_c²).
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass, field
+from typing import Literal
+
+import numpy as np
+from scipy import special
+
+from tumble._typing import ArrayLike, FloatArray
+from tumble.bodies import RigidBody
+from tumble.errors import ParameterError, TumbleWarning, check_finite
+from tumble.rotations import matrix_to_quat, quat_conjugate, quat_multiply, quat_to_matrix
+from tumble.unperturbed.elliptic import _ellipf_sc, _ellippi_mc, _ellippi_sc
+
+__all__ = [
+    "ENERGY_RTOL",
+    "SEPARATRIX_RTOL",
+    "EulerPoinsot",
+    "Regime",
+    "energy_from_modulus",
+    "fast_frequencies",
+    "mean_square_rate",
+    "modulus_squared",
+    "regime",
+]
+
+Regime = Literal["x3", "x1", "separatrix", "symmetric", "sphere", "rest"]
+
+SEPARATRIX_RTOL = 1e-12
+"""A state is on the separatrix when |L² − 2T·I2| ≤ SEPARATRIX_RTOL·L². This is the
+round-off level of L² − 2T·I2 computed from a state given to a few ulps (times the margin
+of 1e4 for states that were themselves computed): inside it the sign of d2, hence the
+regime, is not determined by the data."""
+
+ENERGY_RTOL = 1e-9
+"""(L, T) pairs may violate 2T·I1 ≤ L² ≤ 2T·I3 by this fraction of L² (round-off or an
+integrator's step error at the pure rotations k2 = 0); they are clipped onto the range.
+Larger violations describe no motion and raise :class:`~tumble.errors.ParameterError`."""
+
+_ATTITUDE_ATOL = 1e-9  # ‖A Aᵀ − E‖ allowed for attitude0 (a rotation given to ~1e-9)
+
+
+# --------------------------------------------------------------------------------------
+# (L, T) → regime, modulus, averages, frequencies (scalars; called at every model step)
+# --------------------------------------------------------------------------------------
+
+
+def _check_sorted(I1: float, I2: float, I3: float) -> None:
+    for name, value in (("I1", I1), ("I2", I2), ("I3", I3)):
+        check_finite(f"inertia.{name}", value)
+        if value <= 0.0:
+            raise ParameterError(f"inertia.{name} = {value:g} is outside the allowed range (0, inf)")
+    if not I1 <= I2 <= I3:
+        raise ParameterError(
+            f"inertia = ({I1:g}, {I2:g}, {I3:g}) must be sorted, I1 ≤ I2 ≤ I3 (sorted axes)"
+        )
+
+
+def _classify(
+    I1: float, I2: float, I3: float, L: float, T: float
+) -> tuple[Regime, float, float, float]:
+    """Regime and the clipped differences d1 = L² − 2T·I1, d2 = L² − 2T·I2, d3 = 2T·I3 − L²."""
+    _check_sorted(I1, I2, I3)
+    check_finite("L", L)
+    check_finite("T", T)
+    if L < 0.0 or T < 0.0:
+        raise ParameterError(f"L = {L:g}, T = {T:g}: both must be ≥ 0")
+    L2 = L * L
+    d1, d2, d3 = L2 - 2.0 * T * I1, L2 - 2.0 * T * I2, 2.0 * T * I3 - L2
+    slack = ENERGY_RTOL * L2
+    if d1 < -slack or d3 < -slack:
+        raise ParameterError(
+            f"L² = {L2:g} is outside the allowed range [2T·I1, 2T·I3] = "
+            f"[{2 * T * I1:g}, {2 * T * I3:g}] of a rigid body with energy T = {T:g}"
+        )
+    d1, d3 = max(d1, 0.0), max(d3, 0.0)
+    if L == 0.0:
+        return "rest", 0.0, 0.0, 0.0
+    if I1 == I3:
+        return "sphere", d1, d2, d3
+    if I1 == I2 or I2 == I3:
+        return "symmetric", d1, d2, d3
+    if abs(d2) <= SEPARATRIX_RTOL * L2:
+        return "separatrix", d1, d2, d3
+    return ("x3" if d2 > 0.0 else "x1"), d1, d2, d3
+
+
+def _side_modulus(
+    side: str, I1: float, I2: float, I3: float, d1: float, d2: float, d3: float
+) -> tuple[float, float]:
+    """(m, mc = 1 − m) of regime ``side`` ("x3": d2 ≥ 0, "x1": d2 ≤ 0), each from its own
+    formula so that mc keeps its digits near the separatrix (§8 and errata #7)."""
+    if side == "x3":
+        den = (I3 - I2) * d1
+        m, mc = (I2 - I1) * d3 / den, (I3 - I1) * d2 / den
+    else:
+        den = (I2 - I1) * d3
+        m, mc = (I3 - I2) * d1 / den, -(I3 - I1) * d2 / den
+    return min(max(m, 0.0), 1.0), min(max(mc, 0.0), 1.0)
+
+
+def _side(reg: Regime, I1: float, I2: float, d2: float) -> str:
+    """Which set of formulas applies: x3 (polar axis x3) or x1 (polar axis x1)."""
+    if reg == "symmetric":
+        return "x3" if I1 == I2 else "x1"
+    if reg == "separatrix":
+        return "x3" if d2 >= 0.0 else "x1"
+    return reg
+
+
+def _jacobi_means(m: float, mc: float) -> tuple[float, float]:
+    """Period averages (⟨cn²⟩, ⟨dn²⟩) = ((E − mc K)/(m K), E/K), §8 "Period averages".
+
+    Carlson forms K = R_F(0, mc, 1), E = 2 R_G(0, mc, 1), K − E = (m/3) R_D(0, mc, 1): no
+    0/0 at m = 0 and no overflow at m = 1, where both averages vanish (E/K → 0).
+    """
+    if mc == 0.0:
+        return 0.0, 0.0
+    rf = float(special.elliprf(0.0, mc, 1.0))
+    dn2 = 2.0 * float(special.elliprg(0.0, mc, 1.0)) / rf
+    if m <= 0.5:
+        cn2 = 1.0 - float(special.elliprd(0.0, mc, 1.0)) / (3.0 * rf)
+    else:
+        cn2 = (dn2 - mc) / m  # E/K ≫ mc near m = 1: no cancellation
+    return cn2, dn2
+
+
+def _pi_over_k(n: float, mc: float) -> float:
+    """Π(n | m)/K(m) for n ≤ 0; its limit 1/(1 − n) at m = 1 (both integrals diverge)."""
+    if mc == 0.0:
+        return 1.0 / (1.0 - n)
+    rf = float(special.elliprf(0.0, mc, 1.0))
+    return 1.0 + n / 3.0 * float(special.elliprj(0.0, mc, 1.0, 1.0 - n)) / rf
+
+
+def _characteristic(side: str, I1: float, I2: float, I3: float) -> float:
+    """n of ψ̇ = L/I_c ± L(I3 − I1)/(I1 I3) / (1 − n sn²u); independent of k (§8)."""
+    if side == "x3":
+        return -I3 * (I2 - I1) / (I1 * (I3 - I2)) if I2 != I1 else 0.0
+    return -I1 * (I3 - I2) / (I3 * (I2 - I1)) if I2 != I3 else 0.0
+
+
+def _u_rate(side: str, I1: float, I2: float, I3: float, d1: float, d3: float) -> float:
+    """ν of (3.1): sqrt(d1 (I3 − I2)/(I1 I2 I3)), or with 1 ↔ 3 swapped (errata #7)."""
+    if side == "x3":
+        return math.sqrt(d1 * (I3 - I2) / (I1 * I2 * I3)) if I2 != I3 else 0.0
+    return math.sqrt(d3 * (I2 - I1) / (I1 * I2 * I3)) if I2 != I1 else 0.0
+
+
+def _symmetric_u_rate(I1: float, I2: float, I3: float, d1: float, d3: float) -> float:
+    """|φ̇| = |z_c (I_a − I_c)/I_a| of regular precession (limit of ν at k = 0)."""
+    if I1 == I2:
+        return math.sqrt(d1 * (I3 - I1) / (I1 * I1 * I3))
+    return math.sqrt(d3 * (I3 - I1) / (I1 * I3 * I3))
+
+
+def _mean_precession(side: str, I1: float, I2: float, I3: float, L: float, mc: float) -> float:
+    """ν2 = ⟨ψ̇⟩ = L/I3 + L(I3 − I1)/(I1 I3) Π(n|m)/K (x3); 1 ↔ 3 with a minus sign (x1)."""
+    n = _characteristic(side, I1, I2, I3)
+    ratio = _pi_over_k(n, mc)
+    if side == "x3":
+        return L / I3 + L * (I3 - I1) / (I1 * I3) * ratio
+    return L / I1 - L * (I3 - I1) / (I1 * I3) * ratio
+
+
+def regime(inertia_sorted: ArrayLike, L: float, T: float) -> Regime:
+    """Regime of the Euler–Poinsot motion with given L and T, §8 and §16 of spec/martynenko.md.
+
+    Parameters
+    ----------
+    inertia_sorted : array_like, shape (3,)
+        Principal moments I1 ≤ I2 ≤ I3 [inertia unit].
+    L : float
+        Angular momentum magnitude [inertia unit · rad/τ].
+    T : float
+        Kinetic energy ½ z·Iz [inertia unit · (rad/τ)²].
+
+    Returns
+    -------
+    {"x3", "x1", "separatrix", "symmetric", "sphere", "rest"}
+        See the module docstring; separatrix means |L² − 2T·I2| ≤ SEPARATRIX_RTOL·L².
+
+    Raises
+    ------
+    ParameterError
+        Moments not positive and sorted, or L² outside [2T·I1, 2T·I3] by more than
+        ENERGY_RTOL·L².
+    """
+    I1, I2, I3 = (float(x) for x in np.asarray(inertia_sorted, dtype=float).reshape(3))
+    return _classify(I1, I2, I3, float(L), float(T))[0]
+
+
+def modulus_squared(I1: float, I2: float, I3: float, L: float, T: float) -> tuple[float, Regime]:
+    """Modulus squared k² of (3.1) for the current regime, and the regime, §8 and errata #7.
+
+    Regime x3 (L² > 2T·I2): k² = (I2 − I1)(2T·I3 − L²) / ((I3 − I2)(L² − 2T·I1)); regime x1:
+    the same with indices 1 and 3 exchanged, k̃² = (I3 − I2)(L² − 2T·I1) /
+    ((I2 − I1)(2T·I3 − L²)) = 1/k²_x3. Either way 0 ≤ k2 ≤ 1.
+
+    Parameters
+    ----------
+    I1, I2, I3 : float
+        Principal moments, I1 ≤ I2 ≤ I3 [inertia unit].
+    L : float
+        Angular momentum magnitude [inertia unit · rad/τ].
+    T : float
+        Kinetic energy [inertia unit · (rad/τ)²].
+
+    Returns
+    -------
+    k2 : float
+        k² [1]: 1 on the separatrix; 0 for symmetric bodies, the sphere and rest (where
+        k² carries no information).
+    regime : str
+        As :func:`regime`.
+    """
+    reg, d1, d2, d3 = _classify(I1, I2, I3, L, T)
+    if reg in ("rest", "sphere", "symmetric"):
+        return 0.0, reg
+    if reg == "separatrix":
+        return 1.0, reg
+    return _side_modulus(reg, I1, I2, I3, d1, d2, d3)[0], reg
+
+
+def energy_from_modulus(
+    I1: float, I2: float, I3: float, L: float, k2: float, regime: Regime
+) -> float:
+    """Kinetic energy from L and k², the "T substitution" of §8 (inverse of modulus_squared).
+
+    Regime x3: 2T = L² [(I2 − I1) + k²(I3 − I2)] / I0, I0 = I3(I2 − I1) + I1(I3 − I2)k²;
+    regime x1: the same with indices 1 and 3 exchanged; separatrix: 2T = L²/I2.
+
+    Parameters
+    ----------
+    I1, I2, I3 : float
+        Principal moments, I1 ≤ I2 ≤ I3 [inertia unit].
+    L : float
+        Angular momentum magnitude [inertia unit · rad/τ].
+    k2 : float
+        Modulus squared of ``regime`` [1], 0 ≤ k2 ≤ 1 (ignored on the separatrix).
+    regime : {"x3", "x1", "separatrix", "sphere", "rest"}
+        Regime k2 belongs to.
+
+    Returns
+    -------
+    float
+        T [inertia unit · (rad/τ)²].
+
+    Raises
+    ------
+    ParameterError
+        k2 outside [0, 1]; ``regime`` "symmetric", or "x3"/"x1" for a body with two equal
+        moments (k² ≡ 0 there and does not determine T); "sphere" for a non-spherical
+        body; "rest" with L ≠ 0.
+    """
+    _check_sorted(I1, I2, I3)
+    check_finite("L", L)
+    if L < 0.0:
+        raise ParameterError(f"L = {L:g} is outside the allowed range [0, inf)")
+    check_finite("k2", k2)
+    if not 0.0 <= k2 <= 1.0:
+        raise ParameterError(f"k2 = {k2:g} is outside the allowed range [0, 1]")
+    L2 = L * L
+    if regime == "rest":
+        if L != 0.0:
+            raise ParameterError(f"regime = 'rest' needs L = 0, got L = {L:g}")
+        return 0.0
+    if regime == "sphere":
+        if I1 != I3:
+            raise ParameterError(f"regime = 'sphere' needs I1 = I3, got ({I1:g}, {I2:g}, {I3:g})")
+        return 0.5 * L2 / I1
+    if regime == "separatrix":
+        return 0.5 * L2 / I2
+    if regime not in ("x3", "x1"):
+        raise ParameterError(
+            f"regime = {regime!r} is not one of 'x3', 'x1', 'separatrix', 'sphere', 'rest' "
+            "(k² does not determine T for a symmetric body)"
+        )
+    if I1 == I2 or I2 == I3:
+        raise ParameterError(
+            f"inertia = ({I1:g}, {I2:g}, {I3:g}) has two equal moments: k² ≡ 0 and does not "
+            "determine T (use the T-form of §10)"
+        )
+    if regime == "x3":
+        return 0.5 * L2 * ((I2 - I1) + k2 * (I3 - I2)) / (I3 * (I2 - I1) + I1 * (I3 - I2) * k2)
+    return 0.5 * L2 * ((I3 - I2) + k2 * (I2 - I1)) / (I1 * (I3 - I2) + I3 * (I2 - I1) * k2)
+
+
+def mean_square_rate(I1: float, I2: float, I3: float, L: float, T: float) -> float:
+    """Period average ⟨|z|²⟩ over the Euler–Poinsot motion, (3.6) with §8 "Degenerate inertia".
+
+    Evaluated as ⟨z²⟩ = 2T/I2 + [(I2 − I1) ⟨z1²⟩ − (I3 − I2) ⟨z3²⟩]/I2 (from 2T = Σ I_i z_i²),
+    which equals (3.6) in regime x3 and its 1 ↔ 3 swap in regime x1, stays well conditioned
+    near the symmetric and spherical limits, and reduces to the symmetric-body formula
+    z⊥² + z_c² for I1 = I2 or I2 = I3. Inside the separatrix band the formula of the side of
+    L² − 2T·I2 is used with the actual modulus, so the value is continuous; at k = 1 it is
+    2T/I2 (E/K = 0 there, evaluated without overflow). The approach to that value is only
+    logarithmic, ∝ E/K ≈ 1/ln(4/k') (k' = sqrt(1 − k²)).
+
+    Parameters
+    ----------
+    I1, I2, I3 : float
+        Principal moments, I1 ≤ I2 ≤ I3 [inertia unit].
+    L : float
+        Angular momentum magnitude [inertia unit · rad/τ].
+    T : float
+        Kinetic energy [inertia unit · (rad/τ)²].
+
+    Returns
+    -------
+    float
+        ⟨z1² + z2² + z3²⟩ [(rad/τ)²]; L²/I² for a sphere, 0 at rest.
+    """
+    reg, d1, d2, d3 = _classify(I1, I2, I3, L, T)
+    if reg == "rest":
+        return 0.0
+    if reg == "sphere":
+        return L * L / (I2 * I2)
+    side = _side(reg, I1, I2, d2)
+    m, mc = (0.0, 1.0) if reg == "symmetric" else _side_modulus(side, I1, I2, I3, d1, d2, d3)
+    cn2, dn2 = _jacobi_means(m, mc)
+    w1 = (I2 - I1) * d3 / (I1 * (I3 - I1))  # (I2 − I1) · max z1²
+    w3 = (I3 - I2) * d1 / (I3 * (I3 - I1))  # (I3 − I2) · max z3²
+    if side == "x3":  # z1 ∝ cn u, z3 ∝ dn u
+        return 2.0 * T / I2 + (w1 * cn2 - w3 * dn2) / I2
+    return 2.0 * T / I2 + (w1 * dn2 - w3 * cn2) / I2  # x1: z1 ∝ dn u, z3 ∝ cn u
+
+
+def fast_frequencies(I1: float, I2: float, I3: float, L: float, T: float) -> tuple[float, float]:
+    """Frequencies of the fast motion, §8 "Frequencies of the fast motion" (and §12).
+
+    ν1 = 2πν/(4K) is the polhode frequency (angular frequency of z in body axes) and
+    ν2 = ⟨ψ̇⟩ the mean precession rate of the body about L, in closed form
+    ν2 = L/I3 + L(I3 − I1)/(I1 I3) · Π(n | k²)/K(k²), n = −I3(I2 − I1)/(I1(I3 − I2)) in
+    regime x3, and ν2 = L/I1 − L(I3 − I1)/(I1 I3) · Π(ñ | k̃²)/K(k̃²),
+    ñ = −I1(I3 − I2)/(I3(I2 − I1)) in regime x1.
+
+    Parameters
+    ----------
+    I1, I2, I3 : float
+        Principal moments, I1 ≤ I2 ≤ I3 [inertia unit].
+    L : float
+        Angular momentum magnitude [inertia unit · rad/τ].
+    T : float
+        Kinetic energy [inertia unit · (rad/τ)²].
+
+    Returns
+    -------
+    nu1, nu2 : float
+        [rad/τ]. Continuous across the separatrix, where ν1 → 0 (logarithmically) and
+        ν2 → L/I2. At k = 0 they are the limits k → 0: ν1 = z3 ω0 with ω0 of (2.6) and
+        ν2 = z3 (1 + ω0) in regime x3. Symmetric bodies: ν1 = |z_c (I_a − I_c)/I_a|,
+        ν2 = L/I_a (regular precession). Sphere: (0, L/I); rest: (0, 0).
+    """
+    reg, d1, d2, d3 = _classify(I1, I2, I3, L, T)
+    if reg == "rest":
+        return 0.0, 0.0
+    if reg == "sphere":
+        return 0.0, L / I2
+    side = _side(reg, I1, I2, d2)
+    if reg == "symmetric":
+        return _symmetric_u_rate(I1, I2, I3, d1, d3), _mean_precession(side, I1, I2, I3, L, 1.0)
+    _, mc = _side_modulus(side, I1, I2, I3, d1, d2, d3)
+    nu = _u_rate(side, I1, I2, I3, d1, d3)
+    nu1 = 0.0 if mc == 0.0 else 0.5 * math.pi * nu / float(special.elliprf(0.0, mc, 1.0))
+    return nu1, _mean_precession(side, I1, I2, I3, L, mc)
+
+
+# --------------------------------------------------------------------------------------
+# The motion itself
+# --------------------------------------------------------------------------------------
+
+
+def _qz(a: FloatArray) -> FloatArray:
+    """Quaternion of Rz(a)."""
+    z = np.zeros_like(a)
+    return np.stack([np.cos(0.5 * a), z, z, np.sin(0.5 * a)], -1)
+
+
+def _qx(a: FloatArray) -> FloatArray:
+    """Quaternion of Rx(a)."""
+    z = np.zeros_like(a)
+    return np.stack([np.cos(0.5 * a), np.sin(0.5 * a), z, z], -1)
+
+
+def _wrap(x: FloatArray) -> FloatArray:
+    """x reduced to [−π, π]."""
+    return x - 2.0 * math.pi * np.rint(x / (2.0 * math.pi))
+
+
+def _sech(u: FloatArray) -> FloatArray:
+    e = np.exp(-np.abs(u))  # no overflow for large |u|
+    return 2.0 * e / (1.0 + e * e)
+
+
+def _jacobi_quarter(v: FloatArray, m: float, mc: float) -> tuple[FloatArray, ...]:
+    """sn, cn, dn of 0 ≤ v ≤ K/2: scipy's amplitude polished by Newton on F(φ | m) = v.
+
+    On [0, K/2] F'(φ) = 1/dn ≤ (1 − m)^(−1/4), so Newton is well conditioned, and scipy's
+    start is good to O(1 − m) even where ellipj uses its expansion in 1 − m (m > 1 − 1e-9).
+    Above φ = π/4 the iteration runs on χ = π/2 − φ, which keeps the digits of a small cn
+    (χ → 0 as v → K/2 → ∞ for m → 1).
+    """
+    sn, cn, _, _ = special.ellipj(v, m)
+    phi, chi = np.arctan2(sn, cn), np.arctan2(cn, sn)
+    upper = phi > 0.25 * math.pi
+    for _ in range(3):  # quadratic convergence: ~1e-7 → 1e-11 → round-off
+        s = np.where(upper, np.cos(chi), np.sin(phi))
+        c = np.where(upper, np.sin(chi), np.cos(phi))
+        dn = np.sqrt(c * c + mc * s * s)
+        step = (_ellipf_sc(s, c, mc) - v) * dn
+        phi, chi = phi - step, chi + step
+    s = np.where(upper, np.cos(chi), np.sin(phi))
+    c = np.where(upper, np.sin(chi), np.cos(phi))
+    return s, c, np.sqrt(c * c + mc * s * s)  # dn without the cancellation of 1 − m sn²
+
+
+def _jacobi(u: FloatArray, m: float, mc: float, K: float) -> tuple[FloatArray, ...]:
+    """Reduced Jacobi functions of u, parameter m (mc = 1 − m): (sn u_r, cn u_r, dn u, j).
+
+    u = 2jK + u_r with |u_r| ≤ K, so sn u = (−1)^j sn u_r, cn u = (−1)^j cn u_r ≥ ... and
+    am u = jπ + am u_r with |am u_r| ≤ π/2 (cn u_r ≥ 0). |u_r| > K/2 is reflected to
+    v = K − |u_r| ≤ K/2 with sn(K − v) = cd v, cn(K − v) = k' sd v, dn(K − v) = k' nd v
+    (k' = sqrt(mc)): the small values of cn and dn near u = K keep their digits for any
+    mc > 0, where scipy's ellipj alone loses them (its expansion for mc < 1e-9). On the
+    separatrix (mc = 0): sn = tanh u, cn = dn = sech u, j = 0.
+    """
+    if mc == 0.0:
+        return np.tanh(u), _sech(u), _sech(u), np.zeros_like(u)
+    j = np.rint(u / (2.0 * K))
+    ur = u - 2.0 * K * j
+    a = np.minimum(np.abs(ur), K)
+    far = a > 0.5 * K
+    sv, cv, dv = _jacobi_quarter(np.where(far, K - a, a), m, mc)
+    kc = math.sqrt(mc)
+    sn = np.where(far, cv / dv, sv) * np.sign(ur)
+    cn = np.where(far, kc * sv / dv, cv)
+    dn = np.where(far, kc / dv, dv)
+    return sn, cn, dn, j
+
+
+def _u_from_sn_cn(sn: float, cn: float, mc: float, K: float) -> float:
+    """u in (−2K, 2K] with (sn u, cn u) ∝ (sn, cn): F(am | m) from the pair, not the angle."""
+    r = math.hypot(sn, cn)
+    s, c = sn / r, cn / r
+    f = float(_ellipf_sc(s, abs(c), mc))
+    if c >= 0.0:
+        return f
+    return math.copysign(2.0 * K, s) - f  # F(π − φ) = 2K − F(φ) on the far half
+
+
+@dataclass(frozen=True)
+class _Still:
+    """Uniform rotation (or rest) about the body axis along L: ψ = |z| τ, θ = φ = 0."""
+
+    rate: float
+
+    def evaluate(self, tau: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+        zp = np.zeros(tau.shape + (3,))
+        zp[..., 2] = self.rate
+        zero = np.zeros_like(tau)
+        return zp, self.rate * tau, zero, zero
+
+
+@dataclass(frozen=True)
+class _Precession:
+    """Regular precession of a symmetric body in its p-frame (polar axis third).
+
+    φ = φ0 + φ̇ τ with φ̇ = z_c (I_a − I_c)/I_a, θ constant, ψ = L τ/I_a (§8 "Degenerate
+    inertia"); z_p = (r sin φ, r cos φ, z_c).
+    """
+
+    Ia: float
+    Ic: float
+    L: float
+    r: float
+    zc: float
+    phi0: float
+
+    def evaluate(self, tau: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+        phi = self.phi0 + self.zc * (self.Ia - self.Ic) / self.Ia * tau
+        zp = np.stack([self.r * np.sin(phi), self.r * np.cos(phi), np.full_like(phi, self.zc)], -1)
+        theta = np.full_like(tau, math.atan2(self.Ia * self.r, self.Ic * self.zc))
+        return zp, self.L / self.Ia * tau, theta, phi
+
+
+@dataclass(frozen=True)
+class _Elliptic:
+    """Triaxial motion (3.1) in its branch frame (dn component > 0), regime x3, x1 or the
+    separatrix (x3 form with m = 1).
+
+    Amplitudes a_cn, a_sn, a_dn multiply cn u, sn u, dn u; in regime x3 they are the
+    components (z1, z2, z3), in regime x1 (z3, z2, z1). u = ν τ + u0.
+    """
+
+    side: str  # "x3" or "x1"
+    I: tuple[float, float, float]  # sorted moments
+    L: float
+    m: float
+    mc: float
+    K: float
+    nu: float
+    u0: float
+    a_cn: float
+    a_sn: float
+    a_dn: float
+    n: float  # characteristic of ψ̇
+    Pi: float  # complete Π(n | m) (inf on the separatrix, unused there)
+
+    def _psi_integral(self, u: FloatArray) -> tuple[FloatArray, ...]:
+        """sn u, cn u, dn u, am u and G(u) = ∫0^u du'/(1 − n sn²u') = Π(n; am u | m).
+
+        G(u) = 2jΠ(n | m) + Π(n; am u_r | m), the latter from (sn u_r, cn u_r) directly;
+        on the separatrix G = [u + b atan(b tanh u)]/(1 − n), n = −b².
+        """
+        sn, cn, dn, j = _jacobi(u, self.m, self.mc, self.K)
+        if self.mc == 0.0:
+            b = math.sqrt(-self.n)
+            G = (u + b * np.arctan(b * np.tanh(u))) / (1.0 - self.n)
+            return sn, cn, dn, np.arctan2(sn, cn), G
+        G = 2.0 * j * self.Pi + _ellippi_sc(self.n, sn, cn, self.mc)
+        am = np.arctan2(sn, cn) + math.pi * j
+        sign = 1.0 - 2.0 * np.mod(j, 2.0)
+        return sign * sn, sign * cn, dn, am, G
+
+    def evaluate(self, tau: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+        I1, I2, I3 = self.I
+        u = self.nu * tau + self.u0
+        sn, cn, dn, am, G = self._psi_integral(u)
+        zcn, zsn, zdn = self.a_cn * cn, self.a_sn * sn, self.a_dn * dn
+        dG = G - self._psi_integral(np.asarray(self.u0))[4]
+        coeff = self.L * (I3 - I1) / (I1 * I3 * self.nu)
+        if self.side == "x3":
+            # p-frame = branch frame: (a, b, c) = (z1 ∝ cn, z2 ∝ sn, z3 ∝ dn)
+            zp = np.stack([zcn, zsn, zdn], -1)
+            Ia, Ib, Ic = I1, I2, I3
+            psi = self.L / I3 * tau + coeff * dG
+            phi_ref = 0.5 * math.pi - am  # φ = atan2(I1 a_cn cos am, I2 a_sn sin am) ≈ π/2 − am
+        else:
+            # p-frame = (x2, x3, x1) of the branch frame: (z2 ∝ sn, z3 ∝ cn, z1 ∝ dn)
+            zp = np.stack([zsn, zcn, zdn], -1)
+            Ia, Ib, Ic = I2, I3, I1
+            psi = self.L / I1 * tau - coeff * dG
+            phi_ref = am  # φ = atan2(I2 a_sn sin am, I3 a_cn cos am) ≈ am
+        la, lb, lc = Ia * zp[..., 0], Ib * zp[..., 1], Ic * zp[..., 2]
+        theta = np.arctan2(np.hypot(la, lb), lc)
+        # φ and its reference stay in the same quadrant: unwrap to a continuous angle.
+        phi = phi_ref + _wrap(np.arctan2(la, lb) - phi_ref)
+        return zp, psi, theta, phi
+
+
+_Kernel = _Still | _Precession | _Elliptic
+
+
+def _frame_with_third_row(v: FloatArray) -> FloatArray:
+    """A rotation matrix whose third row is v/|v|."""
+    l = v / np.linalg.norm(v)
+    e = np.zeros(3)
+    e[int(np.argmin(np.abs(l)))] = 1.0
+    r1 = np.cross(e, l)
+    r1 /= np.linalg.norm(r1)
+    return np.stack([r1, np.cross(l, r1), l])
+
+
+def _sorting_matrix(inertia: FloatArray) -> FloatArray:
+    """Proper signed permutation Q with (Q v)_i = ± v_order[i], moments ascending."""
+    order = np.argsort(inertia, kind="stable")
+    Q = np.eye(3)[order]
+    if np.linalg.det(Q) < 0.0:
+        Q[0] *= -1.0  # a transposition: reverse the first sorted axis to keep det = +1
+    return Q
+
+
+_CYCLE_TO_X1 = np.array([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]])
+"""(x1, x2, x3) → (x2, x3, x1): puts the polar axis x1 of regime x1 third."""
+
+
+def _check_attitude(A: FloatArray) -> None:
+    if A.shape != (3, 3) or not np.all(np.isfinite(A)):
+        raise ParameterError("attitude0 must be a finite 3×3 rotation matrix")
+    err = float(np.max(np.abs(A @ A.T - np.eye(3))))
+    if err > _ATTITUDE_ATOL or np.linalg.det(A) <= 0.0:
+        raise ParameterError(
+            f"attitude0 is not a proper rotation: max |A Aᵀ − E| = {err:g} (allowed "
+            f"{_ATTITUDE_ATOL:g}), det = {np.linalg.det(A):g} (must be > 0)"
+        )
+
+
+def _build_kernel(
+    Is: tuple[float, float, float], zs: FloatArray, L: float, T: float
+) -> tuple[Regime, float, float, float, float, float, _Kernel, FloatArray]:
+    """Regime, k2, ν, period, ν1, ν2, kernel and P (sorted axes → p-frame) of a state."""
+    I1, I2, I3 = Is
+    z1, z2, z3 = (float(x) for x in zs)
+    if L == 0.0:
+        return "rest", 0.0, 0.0, math.inf, 0.0, 0.0, _Still(0.0), np.eye(3)
+    # d's from the components: sums of non-negative terms, no cancellation (except d2).
+    d1 = I2 * (I2 - I1) * z2 * z2 + I3 * (I3 - I1) * z3 * z3
+    d3 = I1 * (I3 - I1) * z1 * z1 + I2 * (I3 - I2) * z2 * z2
+    d2 = I3 * (I3 - I2) * z3 * z3 - I1 * (I2 - I1) * z1 * z1
+    speed = float(np.linalg.norm(zs))
+
+    def still(reg: Regime, k2: float, nu: float, period: float, nu1: float, nu2: float) -> tuple:
+        P = _frame_with_third_row(np.array(Is) * zs)
+        return reg, k2, nu, period, nu1, nu2, _Still(speed), P
+
+    if I1 == I3:
+        return still("sphere", 0.0, 0.0, math.inf, 0.0, L / I2)
+    if I1 == I2 or I2 == I3:
+        side = "x3" if I1 == I2 else "x1"
+        nu = _symmetric_u_rate(I1, I2, I3, d1, d3)
+        period = 2.0 * math.pi / nu if nu > 0.0 else math.inf
+        nu2 = _mean_precession(side, I1, I2, I3, L, 1.0)
+        P = np.eye(3) if side == "x3" else _CYCLE_TO_X1
+        za, zb, zc = P @ zs
+        Ia, Ic = (I1, I3) if side == "x3" else (I3, I1)
+        if za == 0.0 and zb == 0.0 or zc == 0.0:
+            return still("symmetric", 0.0, nu, period, nu, nu2)
+        kern = _Precession(Ia, Ic, L, math.hypot(za, zb), zc, math.atan2(za, zb))
+        return "symmetric", 0.0, nu, period, nu, nu2, kern, P
+
+    sep = abs(d2) <= SEPARATRIX_RTOL * L * L
+    side = "x3" if d2 > 0.0 else "x1"
+    m, mc = _side_modulus(side, I1, I2, I3, d1, d2, d3)
+    if sep and (z1 == 0.0 and z3 == 0.0 or (z1 == 0.0 or z3 == 0.0) and mc == 0.0):
+        # Rotation about x2 (also when the other small component underflows in d2).
+        nu = _u_rate("x3", I1, I2, I3, d1, d3)
+        return still("separatrix", 1.0, nu, math.inf, 0.0, L / I2)
+    if sep and z1 != 0.0 and z3 != 0.0:
+        # Asymptotic motion (m = 1), x3 form; half-turns make z1 > 0 and z3 > 0.
+        s1, s3 = math.copysign(1.0, z1), math.copysign(1.0, z3)
+        S = np.diag([s1, s1 * s3, s3])
+        b1, b2, b3 = S @ zs
+        a_cn = math.sqrt(d3 / (I1 * (I3 - I1)))
+        a_sn = math.sqrt(d3 / (I2 * (I3 - I2)))
+        a_dn = math.sqrt(d1 / (I3 * (I3 - I1)))
+        nu = _u_rate("x3", I1, I2, I3, d1, d3)
+        # sn/cn = tanh/sech = sinh u0: u0 = asinh(s/c), as logarithms (c may be tiny).
+        s0, c0 = b2 / a_sn, b1 / a_cn
+        u0 = math.copysign(math.log(abs(s0) + math.hypot(s0, c0)) - math.log(c0), s0)
+        n = _characteristic("x3", I1, I2, I3)
+        kern = _Elliptic("x3", Is, L, 1.0, 0.0, math.inf, nu, u0, a_cn, a_sn, a_dn, n, math.inf)
+        return "separatrix", 1.0, nu, math.inf, 0.0, L / I2, kern, S
+    # Regular regimes; also the separatrix band with z1 = 0 or z3 = 0, where the asymptotic
+    # solution does not pass: there the periodic motion of the actual state is used.
+    nu = _u_rate(side, I1, I2, I3, d1, d3)
+    K = float(special.elliprf(0.0, mc, 1.0))
+    nu1 = 0.5 * math.pi * nu / K
+    nu2 = _mean_precession(side, I1, I2, I3, L, mc)
+    reg: Regime = "separatrix" if sep else side  # type: ignore[assignment]
+    k2 = 1.0 if sep else m
+    period = math.inf if sep else 4.0 * K / nu
+    if side == "x3":
+        if d3 == 0.0:  # k = 0: uniform rotation about x3
+            return still(reg, k2, nu, period, nu1, nu2)
+        S = np.diag([1.0, math.copysign(1.0, z3), math.copysign(1.0, z3)])  # make z3 > 0
+        b1, b2, b3 = S @ zs
+        a_cn = math.sqrt(d3 / (I1 * (I3 - I1)))
+        a_sn = math.sqrt(d3 / (I2 * (I3 - I2)))
+        a_dn = math.sqrt(d1 / (I3 * (I3 - I1)))
+        sn0, cn0 = b2 / a_sn, b1 / a_cn
+        P = S
+    else:
+        if d1 == 0.0:  # k = 0: uniform rotation about x1
+            return still(reg, k2, nu, period, nu1, nu2)
+        S = np.diag([math.copysign(1.0, z1), math.copysign(1.0, z1), 1.0])  # make z1 > 0
+        b1, b2, b3 = S @ zs
+        a_cn = math.sqrt(d1 / (I3 * (I3 - I1)))
+        a_sn = math.sqrt(d1 / (I2 * (I2 - I1)))
+        a_dn = math.sqrt(d3 / (I1 * (I3 - I1)))
+        sn0, cn0 = b2 / a_sn, b3 / a_cn
+        P = _CYCLE_TO_X1 @ S
+    u0 = _u_from_sn_cn(sn0, cn0, mc, K)
+    n = _characteristic(side, I1, I2, I3)
+    Pi = float(_ellippi_mc(np.asarray(n), np.asarray(mc)))
+    kern = _Elliptic(side, Is, L, m, mc, K, nu, u0, a_cn, a_sn, a_dn, n, Pi)
+    return reg, k2, nu, period, nu1, nu2, kern, P
+
+
+@dataclass(frozen=True, eq=False)
+class EulerPoinsot:
+    """Torque-free motion of a rigid body, (3.1) of spec/martynenko.md §8, in closed form.
+
+    Build it with :meth:`from_state`. All angles in rad, rates in rad/τ.
+
+    Attributes
+    ----------
+    inertia : ndarray, shape (3,)
+        Principal moments in the user's axis order [inertia unit].
+    z0 : ndarray, shape (3,)
+        Body angular velocity at τ = 0, user's axes [rad/τ].
+    attitude0 : ndarray, shape (3, 3)
+        Body → inertial rotation at τ = 0.
+    L : float
+        Angular momentum |I z| [inertia unit · rad/τ].
+    T : float
+        Kinetic energy ½ z·Iz [inertia unit · (rad/τ)²].
+    regime : {"x3", "x1", "separatrix", "symmetric", "sphere", "rest"}
+        See the module docstring.
+    k2 : float
+        Modulus squared of the current regime [1]; 1 on the separatrix, 0 for symmetric
+        bodies, the sphere and rest.
+    nu : float
+        u-rate ν of (3.1), u = ν(τ − τ0) [rad/τ]; |φ̇| for a symmetric body, 0 for the sphere
+        and rest.
+    period : float
+        Period of z in body axes, 4K/ν [τ]: inf on the separatrix, for the sphere and at rest;
+        2π/|φ̇| for a symmetric body (inf if φ̇ = 0). At k2 = 0 it is the limit 2π/ν.
+    nu1, nu2 : float
+        Fast frequencies of §8: polhode frequency 2πν/(4K) and mean precession rate ⟨ψ̇⟩
+        [rad/τ], as :func:`fast_frequencies` (on the separatrix 0 and L/I2, the values of
+        its asymptotic motion).
+    lframe : ndarray, shape (3, 3)
+        Columns: the axes of the L-frame in inertial components (third column L/|L|).
+    polar_frame : ndarray, shape (3, 3)
+        P: user body components → p-frame components (polar axis third); proper.
+
+    Notes
+    -----
+    On the separatrix (|L² − 2T·I2| ≤ SEPARATRIX_RTOL·L²) the motion is the asymptotic one,
+    (3.1) with m = 1, through the point of the separatrix nearest z0: ω(0) reproduces z0
+    to O(sqrt(|L² − 2T·I2|)/L)·|z0| (at most ~1e-6 |z0| close to the axis x2). In that band
+    a state with exactly z1 = 0 or z3 = 0 (sorted axes), through which no asymptotic
+    motion passes, uses the periodic solution of its own (L, T) instead.
+    """
+
+    inertia: FloatArray
+    z0: FloatArray
+    attitude0: FloatArray
+    L: float
+    T: float
+    regime: Regime
+    k2: float
+    nu: float
+    period: float
+    nu1: float
+    nu2: float
+    lframe: FloatArray = field(repr=False)
+    polar_frame: FloatArray = field(repr=False)
+    _kernel: _Kernel = field(repr=False)
+    _q_lframe: FloatArray = field(repr=False)
+    _q_polar: FloatArray = field(repr=False)
+    _scale: float = field(repr=False)
+
+    @classmethod
+    def from_state(
+        cls, inertia: ArrayLike, z0: ArrayLike, attitude0: ArrayLike | None = None
+    ) -> EulerPoinsot:
+        """Free motion through the body angular velocity z0 and attitude attitude0 at τ = 0.
+
+        Parameters
+        ----------
+        inertia : array_like, shape (3,)
+            Principal moments (I1, I2, I3) in any order [inertia unit]; positive, triangle
+            inequality (:class:`~tumble.bodies.RigidBody`).
+        z0 : array_like, shape (3,)
+            Body angular velocity at τ = 0 in the same axes [rad/τ]; finite.
+        attitude0 : array_like, shape (3, 3), optional
+            Body → inertial rotation at τ = 0 (default identity); orthonormal to 1e-9.
+
+        Returns
+        -------
+        EulerPoinsot
+
+        Warns
+        -----
+        TumbleWarning
+            On the separatrix L² = 2T·I2: the motion is asymptotic (period infinite).
+        """
+        I_user = np.asarray(inertia, dtype=float).reshape(-1)
+        if I_user.shape != (3,):
+            raise ParameterError(f"inertia must have 3 moments, got {I_user.size}")
+        RigidBody(*(float(x) for x in I_user))  # positive moments, triangle inequality
+        z_user = np.asarray(z0, dtype=float).reshape(-1)
+        if z_user.shape != (3,):
+            raise ParameterError(f"z0 must have 3 components, got {z_user.size}")
+        for i, zi in enumerate(z_user):
+            check_finite(f"z0[{i}]", float(zi))
+        A0 = np.eye(3) if attitude0 is None else np.asarray(attitude0, dtype=float)
+        _check_attitude(A0)
+
+        Q = _sorting_matrix(I_user)
+        Is_arr = np.sort(I_user)
+        Is = (float(Is_arr[0]), float(Is_arr[1]), float(Is_arr[2]))
+        # The motion of s·ẑ is that of ẑ at time s·τ, scaled by s: build it for the
+        # largest component 1, so that squares neither overflow nor underflow.
+        scale = float(np.max(np.abs(z_user)))
+        zs = Q @ z_user / (scale if scale > 0.0 else 1.0)
+        Lvec = Is_arr * zs
+        L = float(np.linalg.norm(Lvec))
+        T = 0.5 * float(zs @ Lvec)
+        reg, k2, nu, period, nu1, nu2, kern, P_sorted = _build_kernel(Is, zs, L, T)
+        if reg == "separatrix":
+            warnings.warn(
+                f"the state is on the separatrix L² = 2T·I2 (|L² − 2T·I2| ≤ "
+                f"{SEPARATRIX_RTOL:g}·L²): the Euler–Poinsot motion is asymptotic to the "
+                "rotation about the middle axis and its period is infinite",
+                TumbleWarning,
+                stacklevel=2,
+            )
+        P = P_sorted @ Q
+        q_polar = matrix_to_quat(P)
+        q_a0 = matrix_to_quat(A0)
+        _, psi0, theta0, phi0 = kern.evaluate(np.zeros(()))
+        q_g0 = quat_multiply(quat_multiply(_qz(psi0), _qx(theta0)), quat_multiply(_qz(phi0), q_polar))
+        q_lframe = quat_multiply(q_a0, quat_conjugate(q_g0))
+        return cls(
+            inertia=I_user.copy(),
+            z0=z_user.copy(),
+            attitude0=A0.copy(),
+            L=scale * L,
+            T=scale * scale * T,
+            regime=reg,
+            k2=k2,
+            nu=scale * nu,
+            period=period / scale if scale > 0.0 else math.inf,
+            nu1=scale * nu1,
+            nu2=scale * nu2,
+            lframe=quat_to_matrix(q_lframe),
+            polar_frame=P,
+            _kernel=kern,
+            _q_lframe=q_lframe,
+            _q_polar=q_polar,
+            _scale=scale,
+        )
+
+    def _tau(self, tau: ArrayLike) -> FloatArray:
+        t = np.asarray(tau, dtype=float)
+        if not np.all(np.isfinite(t)):
+            raise ParameterError("tau must be finite")
+        return np.asarray(self._scale * t, dtype=float)  # the kernel's time (unit largest |z_i|)
+
+    def omega(self, tau: ArrayLike) -> FloatArray:
+        """Body angular velocity z(τ) in the user's axes, (3.1).
+
+        Parameters
+        ----------
+        tau : array_like
+            Times [τ], any shape.
+
+        Returns
+        -------
+        ndarray, shape tau.shape + (3,)
+            [rad/τ].
+        """
+        zp = self._kernel.evaluate(self._tau(tau))[0]
+        return np.asarray(self._scale * (zp @ self.polar_frame), dtype=float)  # s Pᵀ z_p
+
+    def euler_angles(self, tau: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """3-1-3 angles (ψ, θ, φ) of the p-frame relative to the L-frame, §8.
+
+        body → L-frame = Rz(ψ) Rx(θ) Rz(φ) · polar_frame. ψ and φ are continuous
+        (unwrapped), ψ(0) = 0, ψ̇ = L(2T − I_c z_c²)/(L² − I_c² z_c²), computed in closed form
+        with Π(n; am u | k²). For a uniform rotation (k2 = 0, or a symmetric body spinning
+        about a principal axis) θ = φ = 0 and ψ = |z| τ.
+
+        Parameters
+        ----------
+        tau : array_like
+            Times [τ].
+
+        Returns
+        -------
+        psi, theta, phi : ndarray, shape tau.shape
+            [rad].
+        """
+        _, psi, theta, phi = self._kernel.evaluate(self._tau(tau))
+        return psi, theta, phi
+
+    def quaternion(self, tau: ArrayLike) -> FloatArray:
+        """Attitude quaternion q(τ) (scalar first, body → inertial), continuous in τ.
+
+        Parameters
+        ----------
+        tau : array_like
+            Times [τ].
+
+        Returns
+        -------
+        ndarray, shape tau.shape + (4,)
+            q(0) equals ``matrix_to_quat(attitude0)`` up to round-off.
+        """
+        _, psi, theta, phi = self._kernel.evaluate(self._tau(tau))
+        q = quat_multiply(_qz(psi), _qx(theta))
+        q = quat_multiply(q, quat_multiply(_qz(phi), self._q_polar))
+        return quat_multiply(self._q_lframe, q)
+
+    def attitude(self, tau: ArrayLike) -> FloatArray:
+        """Attitude matrix A(τ), body (user's axes) → inertial, A(0) = attitude0.
+
+        Parameters
+        ----------
+        tau : array_like
+            Times [τ].
+
+        Returns
+        -------
+        ndarray, shape tau.shape + (3, 3)
+        """
+        return quat_to_matrix(self.quaternion(tau))
+
+    @property
+    def angular_momentum(self) -> FloatArray:
+        """Inertial components of the (constant) angular momentum [inertia unit · rad/τ]."""
+        return np.asarray(self.L * self.lframe[:, 2], dtype=float)

@@ -159,7 +159,7 @@ def test_rho_is_not_monotone_for_a_fast_spin():
     eps = 0.02
     p = rf.Params(BODY, math.pi / 2, eps)
     st0 = rf.state_from_elements(p, 3.0 * 2.2, 0.3, 0.0, 0.1, "x3")  # z3 ≈ 3: T/L ≈ 1.5
-    tau, full, avg = averaged_vs_full(p, st0, 60.0, samples=121)
+    _tau, full, avg = averaged_vs_full(p, st0, 60.0, samples=121)
     for traj in (avg, full):
         # ρ′ ≈ ε sin ρ (cos ρ T/L − 1)/L ≈ 4e-4: ρ grows by ~0.02 over τ = 60, while the
         # full model's O(ε) wobble of ρ is ~0.005.
@@ -265,14 +265,14 @@ def test_phase_dependent_decay_rate_matches_the_exact_roots(beta):
 
 def test_mean_square_rate_continuity_used_by_the_vector_form():
     """⟨z²⟩/L² is a function of r = 2T/L² only, continuous through the separatrix (spec §10)."""
-    I = (1.0, 1.6, 2.2)
-    r_star = 1.0 / I[1]
-    left = mean_square_rate(*I, 1.0, 0.5 * r_star * (1 - 1e-12))
-    right = mean_square_rate(*I, 1.0, 0.5 * r_star * (1 + 1e-12))
+    moments = (1.0, 1.6, 2.2)
+    r_star = 1.0 / moments[1]
+    left = mean_square_rate(*moments, 1.0, 0.5 * r_star * (1 - 1e-12))
+    right = mean_square_rate(*moments, 1.0, 0.5 * r_star * (1 + 1e-12))
     # E/K → 0 like 1/ln(1/δ): at δ = 1e-12 the one-sided values differ by ~1e-2 relative.
     assert left == pytest.approx(right, rel=5e-2)
-    assert mean_square_rate(*I, 2.0, 0.5 * 4.0 * 0.5) == pytest.approx(
-        4.0 * mean_square_rate(*I, 1.0, 0.5 * 0.5), rel=1e-13
+    assert mean_square_rate(*moments, 2.0, 0.5 * 4.0 * 0.5) == pytest.approx(
+        4.0 * mean_square_rate(*moments, 1.0, 0.5 * 0.5), rel=1e-13
     )
 
 
@@ -288,9 +288,7 @@ def test_averaged_run_reports_frequencies_and_warnings():
     issues = {i.condition: i.tau for i in rf.validity(p, st0, avg.slow, 300.0)}
     assert "separatrix" in issues and 150.0 < issues["separatrix"] < 250.0
     big = rf.Params(BODY, 1.0, 0.5)
-    assert "eps_not_small" in {
-        i.condition for i in rf.validity(big, st0, avg.slow, 300.0)
-    }
+    assert "eps_not_small" in {i.condition for i in rf.validity(big, st0, avg.slow, 300.0)}
 
 
 def test_sphere_and_symmetric_bodies_run_averaged():
@@ -298,7 +296,7 @@ def test_sphere_and_symmetric_bodies_run_averaged():
     for inertia in ((1.0, 1.0, 1.5), (1.0, 1.5, 1.5), (1.2, 1.2, 1.2)):
         p = rf.Params(inertia, 1.0, 0.01)
         st0 = rf.State([0.3, -0.2, 1.4], np.eye(3))
-        tau, full, avg = averaged_vs_full(p, st0, 100.0, samples=101)
+        _tau, full, avg = averaged_vs_full(p, st0, 100.0, samples=101)
         # Over τ = 1/ε the first-order error stays below a few ε.
         assert np.max(np.abs(full.columns["L"] - avg.columns["L"])) < 3 * p.eps
         assert np.max(np.abs(full.columns["T"] - avg.columns["T"])) < 3 * p.eps
@@ -308,7 +306,7 @@ def test_body_at_rest_is_spun_up():
     """L = 0 at τ = 0: r = 2T/L² is the limit along ξ3; the vector form starts regularly."""
     p = rf.Params(BODY, 1.0, 0.02)
     st0 = rf.State([0.0, 0.0, 0.0], np.eye(3))
-    tau, full, avg = averaged_vs_full(p, st0, 100.0, samples=101)
+    _tau, full, avg = averaged_vs_full(p, st0, 100.0, samples=101)
     assert avg.columns["L"][-1] > 0.5
     assert np.max(np.abs(full.columns["L"] - avg.columns["L"])) < 5 * p.eps
 
@@ -319,8 +317,6 @@ def test_integration_restarts_at_the_separatrix():
     form = rf.MODEL.averaged_form(p, rf.state_from_elements(p, 1.5, 0.6, 0.0, 0.5, "x1"))
     assert len(form.breakpoints) == 1
     y0 = form.from_slow(p, rf.state_from_elements(p, 1.5, 0.6, 0.0, 0.5, "x1"))
-    sol = integrate(
-        lambda t, y: form.rhs(t, y, p), y0, 300.0, breakpoints=form.breakpoints
-    )
+    sol = integrate(lambda t, y: form.rhs(t, y, p), y0, 300.0, breakpoints=form.breakpoints)
     r = sol(np.linspace(0.0, 300.0, 301))[:, 3]
     assert r[0] > 0.5 > r[-1]  # crossed r = 1/I2 = 0.5

@@ -40,8 +40,8 @@ def run_scenario(scenario: str | Path, out_dir: str | Path) -> RunResult:
 
     Writes ``<method>.csv`` for every method (plus ``<method>_si.csv`` for physical-units
     scenarios and ``averaged_diagnostics.csv`` where the model has diagnostics),
-    ``summary.json`` and the model's figure (``comparison.png``, ``evolution.png``). Nothing is written unless the whole
-    run succeeds; each file is replaced atomically.
+    ``summary.json`` and the model's figure (``comparison.png``, ``evolution.png``). Nothing is
+    written unless the whole run succeeds; each file is replaced atomically.
 
     Parameters
     ----------

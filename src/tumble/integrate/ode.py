@@ -151,9 +151,7 @@ def integrate(
                 ) from None
         if res.status < 0 or not np.all(np.isfinite(res.y)):
             t_fail = float(res.t[-1]) if res.t.size else t0
-            raise IntegrationError(
-                f"{what}: integration failed at t = {t_fail:.6g}: {res.message}"
-            )
+            raise IntegrationError(f"{what}: integration failed at t = {t_fail:.6g}: {res.message}")
         sols.append(res.sol)
         steps.append(np.asarray(res.t[1:]))
         nfev += int(res.nfev)

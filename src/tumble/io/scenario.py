@@ -357,15 +357,16 @@ def _rf_initial(p: rotating_field.Params, ini: RFInitial) -> rotating_field.Stat
     if direct:
         if len(direct) != 2:
             raise ScenarioError("initial: z and gamma go together (give both)")
-        return rotating_field.State(ini.z, ini.gamma)
+        return rotating_field.State(np.array(ini.z), np.array(ini.gamma))
     if len(given) != len(elements):
         missing = [n for n in elements if n not in given]
         raise ScenarioError(
             "initial: give z and gamma, or all of L, rho, sigma, k2 "
             f"(missing: {', '.join(missing)})"
         )
+    L, rho, sigma, k2 = (float(getattr(ini, n)) for n in elements)  # all given (checked)
     return rotating_field.state_from_elements(
-        p, ini.L, ini.rho, ini.sigma, ini.k2, ini.regime, u0=ini.u0, psi0=ini.psi0
+        p, L, rho, sigma, k2, ini.regime, u0=ini.u0, psi0=ini.psi0
     )
 
 
@@ -379,9 +380,7 @@ def _rotating_field(data: dict[str, Any]) -> tuple[RunRequest, dict[str, Any]]:
         sc = _validated(RFPhysicalScenario, data)
         ph = sc.physical
         phys = rotating_field.PhysicalParams(ph.inertia, ph.k_f, ph.H, ph.omega, ph.beta)
-        p, st, scaling = rotating_field.normalize_physical(
-            phys, sc.initial.Omega, sc.initial.gamma
-        )
+        p, st, scaling = rotating_field.normalize_physical(phys, sc.initial.Omega, sc.initial.gamma)
         tau = scaling.tau_from_time(_times(sc.run, "t_end_s", "t_s"))
     else:
         sc = _validated(RFScenario, data)

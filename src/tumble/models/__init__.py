@@ -8,9 +8,7 @@ from tumble.models.base import ModelRecord
 
 __all__ = ["MODELS", "get_model", "resisting_medium", "rotating_field"]
 
-MODELS: dict[str, ModelRecord] = {
-    m.name: m for m in (resisting_medium.MODEL, rotating_field.MODEL)
-}
+MODELS: dict[str, ModelRecord] = {m.name: m for m in (resisting_medium.MODEL, rotating_field.MODEL)}
 """Every registered model, by the name a scenario's ``model`` key uses."""
 
 

@@ -20,7 +20,6 @@ from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
-from scipy.optimize import brentq
 
 from tumble._typing import ArrayLike, FloatArray
 from tumble.bodies import RigidBody

@@ -74,8 +74,8 @@ __all__ = [
     "normalize_physical",
     "predicted_limits",
     "slow_from_full",
-    "stationary",
     "state_from_elements",
+    "stationary",
     "validity",
 ]
 
@@ -147,8 +147,14 @@ class Params:
     def __post_init__(self) -> None:
         inertia = _frozen("parameters.inertia", self.inertia, (3,))
         RigidBody(*inertia.tolist())  # positive, triangle inequality
-        check_range("parameters.beta", float(self.beta), low=0.0, high=math.pi, low_open=False,
-                    high_open=False)
+        check_range(
+            "parameters.beta",
+            float(self.beta),
+            low=0.0,
+            high=math.pi,
+            low_open=False,
+            high_open=False,
+        )
         check_range("parameters.eps", float(self.eps), low=0.0)
         object.__setattr__(self, "inertia", inertia)
         object.__setattr__(self, "beta", float(self.beta))
@@ -306,7 +312,9 @@ def _columns_from_momentum(
     sigma = np.arctan2(L_xi[..., 1], L_xi[..., 0])
     if sigma0 is not None:
         sigma = np.where(perp > 0.0, sigma, sigma0)  # σ undefined on the axis: keep it
-    k2 = np.array([modulus_squared(*p.sorted_inertia, Li, Ti)[0] for Li, Ti in zip(L, T)])
+    k2 = np.array(
+        [modulus_squared(*p.sorted_inertia, Li, Ti)[0] for Li, Ti in zip(L, T, strict=True)]
+    )
     return {"L": L, "rho": rho, "sigma": sigma, "T": T, "k2": k2}
 
 
@@ -368,10 +376,10 @@ def invariants(Y: FloatArray, p: Params) -> dict[str, FloatArray]:
 
 
 def _rate_from_elements(
-    I: tuple[float, float, float], L: float, k2: float, regime: str, u: float
+    inertia: tuple[float, float, float], L: float, k2: float, regime: str, u: float
 ) -> FloatArray:
     """Body angular velocity (3.1) at phase u, sorted axes; regime x1 by the index swap."""
-    I1, I2, I3 = I
+    I1, I2, I3 = inertia
     sn, cn, dn, _ = ellipj(u, k2)
     k = math.sqrt(k2)
     if regime == "x3":
@@ -498,7 +506,9 @@ def averaged_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
     dL = eps * (-(1.0 + c2 + q * cr * cr) * T / L + s2 * cr)
     drho = eps * (q * sr * cr * T / L - s2 * sr) / L
     dT = eps * (
-        -0.25 * _A(p, sr * sr) * z2 + q * (1.0 - 3.0 * cr * cr) * T * T / (L * L) + 2.0 * s2 * cr * T / L
+        -0.25 * _A(p, sr * sr) * z2
+        + q * (1.0 - 3.0 * cr * cr) * T * T / (L * L)
+        + 2.0 * s2 * cr * T / L
     )
     return np.array([dL, drho, 0.0, dT])
 
@@ -536,7 +546,9 @@ def modulus_rate(p: Params, k2: float, sin2_rho: float, regime: str) -> float:
     return p.eps * (I3 - I1) / (4.0 * I1 * I3) * _A(p, sin2_rho) * F
 
 
-def averaged_rhs_k2(t: float, y: FloatArray, p: Params, regime: str = "x3") -> FloatArray:
+def averaged_rhs_k2(
+    t: float, y: FloatArray, p: Params, regime: Literal["x3", "x1"] = "x3"
+) -> FloatArray:
     """(3.5) and (3.7): the k²-form, state ``[L, ρ, σ, k²]`` in a fixed regime.
 
     T follows from the T substitution of §8. Needs a regime switch at k² = 1 (the caller's).
@@ -820,7 +832,10 @@ def stationary(p: Params, phase: float = 0.0) -> StationaryMotion:
 
 def _frequencies(p: Params, cols: dict[str, FloatArray]) -> dict[str, FloatArray]:
     nu = np.array(
-        [fast_frequencies(*p.sorted_inertia, L, T) for L, T in zip(cols["L"], cols["T"])]
+        [
+            fast_frequencies(*p.sorted_inertia, L, T)
+            for L, T in zip(cols["L"], cols["T"], strict=True)
+        ]
     )
     return {"nu1": nu[:, 0], "nu2": nu[:, 1]}
 
@@ -909,15 +924,16 @@ def validity(
                 c = slow(t)
                 return side[0] * (c["L"] ** 2 - 2.0 * c["T"] * I2)
 
-            tau_s = first_time(lambda t: -gap(t), grid)
+            found = first_time(lambda t: -gap(t), grid)
+            tau_s = float(found if found is not None else grid[flips[0] + 1])
             issues.append(
                 ValidityIssue(
                     "separatrix",
-                    float(tau_s if tau_s is not None else grid[flips[0] + 1]),
-                    "the averaged motion crosses the separatrix L² = 2T·I2 at τ = {:.6g}: the "
-                    "polhode frequency ν1 → 0 there, averaging is locally invalid (the error "
-                    "usually stays first order; theory allows ε|ln ε|) (spec/martynenko.md §12)"
-                    .format(tau_s if tau_s is not None else grid[flips[0] + 1]),
+                    tau_s,
+                    f"the averaged motion crosses the separatrix L² = 2T·I2 at τ = {tau_s:.6g}: "
+                    "the polhode frequency ν1 → 0 there, averaging is locally invalid (the "
+                    "error usually stays first order; theory allows ε|ln ε|) "
+                    "(spec/martynenko.md §12)",
                 )
             )
     # Fast frequencies ~ L/I3 against the slow rates ~ ε/I1.
@@ -1047,8 +1063,8 @@ def predicted_limits(p: Params, st: State) -> dict[str, Any]:
     # Nutation decay at the end: linearization of (3.7) vs 2 Re λ2,3 at the final phase, §12.
     if I3 > I1:
         rates = [final_nutation_decay_rate(p, phi) for phi in (0.0, 0.5 * math.pi)]
-        out["nutation_decay_rate_averaged"] = -p.eps * (1.0 + p.c2) / 2.0 * (
-            (I3 - I2) / (I2 * I3) + (I3 - I1) / (I1 * I3)
+        out["nutation_decay_rate_averaged"] = (
+            -p.eps * (1.0 + p.c2) / 2.0 * ((I3 - I2) / (I2 * I3) + (I3 - I1) / (I1 * I3))
         )
         out["nutation_decay_rate_phase0"] = rates[0]
         out["nutation_decay_rate_range"] = [min(rates), max(rates)]

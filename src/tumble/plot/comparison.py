@@ -120,7 +120,9 @@ def plot_comparison(
             da = diagnostics[name]
             ax.plot(diagnostics["tau"].values, da.values, lw=1.2, label=da.attrs["long_name"])
         ax.set_ylabel(f"averaged run [{next(iter(diagnostics.data_vars.values())).attrs['units']}]")
-        ax.set_xlabel(f"{diagnostics['tau'].attrs['long_name']} [{diagnostics['tau'].attrs['units']}]")
+        ax.set_xlabel(
+            f"{diagnostics['tau'].attrs['long_name']} [{diagnostics['tau'].attrs['units']}]"
+        )
         ax.legend(loc="best", fontsize=8)
         ax.grid(True, alpha=0.3)
     for ax in axs[:-1]:

@@ -231,19 +231,19 @@ def test_mean_precession_rate(I, k2, reg):
     assert (ep.nu1, ep.nu2) == pytest.approx((nu1, nu2), rel=1e-13 + 1e-15 * ep.L**2 / abs(d2))
     if k2 == 0.0:
         return
-    assert nu1 == pytest.approx(2 * math.pi / ep.period, rel=1e-14)
+    assert ep.nu1 == pytest.approx(2 * math.pi / ep.period, rel=1e-14)
     order = np.argsort(I, kind="stable")
     Zs = period_samples(ep)[:, order]
     c = 2 if reg == "x3" else 0
     Ic, zc = Is[c], Zs[:, c]
     psi_dot = ep.L * (2 * ep.T - Ic * zc**2) / (ep.L**2 - Ic**2 * zc**2)
     # Same spectral accuracy as above; the 1e-10.
-    assert nu2 == pytest.approx(trapezoid_mean(psi_dot), rel=1e-10)
+    assert ep.nu2 == pytest.approx(trapezoid_mean(psi_dot), rel=1e-10)
     tau = np.array([0.0, 0.37, 5.1])
     psi_a = ep.euler_angles(tau)[0]
     psi_b = ep.euler_angles(tau + ep.period)[0]
     # Π(n; am u + π) − Π(n; am u) = 2Π(n|m): exact up to the round-off of ψ ~ 10 rad.
-    assert np.allclose((psi_b - psi_a) / ep.period, nu2, rtol=1e-12)
+    assert np.allclose((psi_b - psi_a) / ep.period, ep.nu2, rtol=1e-12)
 
 
 @pytest.mark.parametrize("reg", ["x3", "x1"])

@@ -11,7 +11,7 @@ import sys
 import warnings
 from collections.abc import Callable
 from pathlib import Path
-from typing import Annotated, Any
+from typing import Annotated, Any, Literal
 
 import typer
 from rich.console import Console
@@ -109,6 +109,154 @@ def init_cmd(
 
     text = _guarded(lambda: template(model))
     sys.stdout.write(text)
+
+
+def _beta_rad(beta: float, beta_deg: bool) -> float:
+    """β from the command line: radians, or degrees with ``--beta-deg`` (checked in degrees)."""
+    import math
+
+    from tumble.errors import check_range
+
+    if not beta_deg:
+        return beta
+    check_range("--beta", beta, low=0.0, high=180.0, low_open=False, high_open=False)
+    return math.radians(beta)
+
+
+def _complex(z: complex) -> str:
+    return f"{z.real:+.10g} {'+' if z.imag >= 0 else '−'} {abs(z.imag):.10g}i"
+
+
+@app.command("stability")
+def stability_cmd(
+    inertia: Annotated[
+        tuple[float, float, float],
+        typer.Option("--inertia", help="principal moments I1 I2 I3; the rotation is about x3"),
+    ],
+    beta: Annotated[float, typer.Option("--beta", help="field cone angle β [rad], in [0, π]")],
+    eps: Annotated[float, typer.Option("--eps", help="ε = M0/ω > 0 [units of the moments]")],
+    beta_deg: Annotated[bool, typer.Option("--beta-deg", help="β is in degrees")] = False,
+    as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
+) -> None:
+    """Stability of the co-rotation about x3 in a rotating field, (2.5)/(2.6) and spec §16."""
+    from tumble.analysis.stability import analyze, match_roots
+    from tumble.models import rotating_field as rf
+
+    def work() -> tuple[Any, Any]:
+        p = rf.Params(inertia, _beta_rad(beta, beta_deg), eps)
+        return p, analyze(rf.MODEL, p)
+
+    p, rep = _guarded(work)
+    if as_json:
+        import json
+
+        doc = {
+            "model": rf.MODEL.name,
+            "parameters": {"inertia": p.inertia.tolist(), "beta": p.beta, "eps": p.eps},
+            **rep.to_dict(),
+        }
+        sys.stdout.write(json.dumps(doc, ensure_ascii=False) + "\n")
+        return
+
+    out.print(
+        f"[bold]{rep.motion}[/bold]: I = {tuple(p.inertia.tolist())}, β = {p.beta:.6g} rad, "
+        f"ε = {p.eps:.6g}",
+        highlight=False,
+    )
+    coeffs = Table(title="characteristic polynomial (2.5)", title_justify="left")
+    for col in ("", "closed form (2.5)", "from the Jacobian"):
+        coeffs.add_column(col, justify="right")
+    for k, (a, b) in enumerate(zip(rep.coefficients, rep.coefficients_jacobian, strict=True)):
+        coeffs.add_row(f"a{k}", f"{a:.15g}", f"{b:.15g}")
+    out.print(coeffs)
+    roots = Table(title="roots: exact (2.5) and first order (2.6)", title_justify="left")
+    for col in ("exact λ", "(2.6)", "|difference|"):
+        roots.add_column(col, justify="right")
+    approx = rep.approx_roots
+    order = None if approx is None else match_roots(rep.roots, approx)
+    for i, z in enumerate(rep.roots):
+        if order is None:
+            roots.add_row(_complex(z), "", "")
+        else:
+            a = approx[order[i]]
+            roots.add_row(_complex(z), _complex(a), f"{abs(z - a):.3g}")
+    out.print(roots)
+    colour = {"asymptotically stable": "green", "critical": "yellow", "unstable": "red"}
+    out.print(
+        f"[{colour[rep.classification]}]{rep.classification}[/]: max Re λ = {rep.max_real:.6g}",
+        highlight=False,
+    )
+    for note in ([rep.approx_note] if rep.approx_note else []) + list(rep.notes):
+        out.print(f"[dim]note:[/dim] {note}", highlight=False, soft_wrap=True)
+
+
+@app.command("stability-map")
+def stability_map_cmd(
+    output: Annotated[Path, typer.Option("-o", "--output", help="figure file (.png, .pdf, .svg)")],
+    over: Annotated[
+        Literal["inertia", "beta-eps"],
+        typer.Option("--over", help="axes: I1/I3 × I2/I3, or β × ε at a fixed body"),
+    ] = "inertia",
+    inertia: Annotated[
+        tuple[float, float, float] | None,
+        typer.Option("--inertia", help="body of the beta-eps map (default 1 1.5 2)"),
+    ] = None,
+    beta: Annotated[
+        float | None, typer.Option("--beta", help="β of the inertia map [rad] (default π/4)")
+    ] = None,
+    eps: Annotated[
+        float | None, typer.Option("--eps", help="ε of the inertia map (default 0.05)")
+    ] = None,
+    beta_deg: Annotated[bool, typer.Option("--beta-deg", help="β is in degrees")] = False,
+    n: Annotated[int, typer.Option("--n", help="grid points per axis")] = 41,
+    netcdf: Annotated[
+        Path | None, typer.Option("--netcdf", help="also write the map as netCDF")
+    ] = None,
+) -> None:
+    """Map the stability of the co-rotation about x3 over a parameter grid (spec §§5–7)."""
+    from rich.progress import Progress
+
+    from tumble.analysis.stability_maps import rotating_field_map
+    from tumble.errors import ParameterError
+    from tumble.io.output import atomic_write
+    from tumble.plot import stability_map_bytes
+
+    fmt = output.suffix.lower().lstrip(".")
+
+    def work() -> dict[Path, bytes]:
+        if fmt not in ("png", "pdf", "svg"):
+            raise ParameterError(
+                f"--output = {output} must end in .png, .pdf or .svg (the figure format)"
+            )
+        if over == "beta-eps" and (beta is not None or eps is not None):
+            raise ParameterError(
+                "--beta and --eps do not apply to --over beta-eps (β and ε are its axes)"
+            )
+        if over == "inertia" and inertia is not None:
+            raise ParameterError(
+                "--inertia does not apply to --over inertia (I1/I3 and I2/I3 are its axes)"
+            )
+        b = None if beta is None else _beta_rad(beta, beta_deg)
+        with Progress(console=err, transient=True) as bar:
+            task = bar.add_task(f"stability map over {over}", total=n * n)
+            ds = rotating_field_map(
+                over,
+                inertia=inertia,
+                beta=b,
+                eps=eps,
+                n=n,
+                progress=lambda done, total: bar.update(task, completed=done, total=total),
+            )
+        files = {output: stability_map_bytes(ds, fmt)}
+        if netcdf is not None:
+            files[netcdf] = bytes(ds.to_netcdf(engine="scipy"))
+        for path, data in files.items():
+            path.parent.mkdir(parents=True, exist_ok=True)
+            atomic_write(path, data)
+        return files
+
+    files = _guarded(work)
+    out.print(f"written: {', '.join(str(f) for f in files)}", highlight=False)
 
 
 def main() -> None:

@@ -157,8 +157,7 @@ def characteristic_polynomial(J: FloatArray, leading: float = 1.0) -> FloatArray
     coeffs = [1.0]
     for k in range(1, n + 1):
         total = math.fsum(
-            float(np.linalg.det(J[np.ix_(idx, idx)]))
-            for idx in itertools.combinations(range(n), k)
+            float(np.linalg.det(J[np.ix_(idx, idx)])) for idx in itertools.combinations(range(n), k)
         )
         coeffs.append((-1) ** k * total)
     return leading * np.array(coeffs)
@@ -310,6 +309,8 @@ class StabilityReport:
     family_max_real : (float, float) or None
         Range of max Re λ over the one-parameter family the motion belongs to (e.g. the free
         phase of a co-rotation), sampled at :data:`FAMILY_SAMPLES` members; None if isolated.
+    uncertainty : ndarray or None
+        Rounding bound of each root (:func:`root_uncertainty`) [1/time].
     """
 
     motion: str
@@ -323,6 +324,7 @@ class StabilityReport:
     jacobian: FloatArray
     notes: list[str] = field(default_factory=list)
     family_max_real: tuple[float, float] | None = None
+    uncertainty: FloatArray | None = None
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready: ``coefficients`` [a0…], ``roots`` and ``approx_roots`` as [re, im]."""
@@ -342,11 +344,16 @@ class StabilityReport:
             "family_max_real_part": None
             if self.family_max_real is None
             else list(self.family_max_real),
+            "root_uncertainty": None
+            if self.uncertainty is None
+            else [float(u) for u in self.uncertainty],
             "notes": list(self.notes),
         }
 
 
-def analyze(model: ModelRecord, p: Any, *, tol: float = CRITICAL_TOL) -> StabilityReport:
+def analyze(
+    model: ModelRecord, p: Any, *, tol: float = CRITICAL_TOL, family: bool = True
+) -> StabilityReport:
     """Linear stability of the model's stationary motion at parameters ``p``.
 
     Parameters
@@ -356,6 +363,9 @@ def analyze(model: ModelRecord, p: Any, *, tol: float = CRITICAL_TOL) -> Stabili
     p : model Params
     tol : float
         Band of max Re λ counted as zero [1/time].
+    family : bool
+        Also scan the family the motion belongs to (:data:`FAMILY_SAMPLES` more
+        linearizations); False analyses the model's own member only.
 
     Returns
     -------
@@ -368,9 +378,16 @@ def analyze(model: ModelRecord, p: Any, *, tol: float = CRITICAL_TOL) -> Stabili
     from_jacobian = characteristic_polynomial(J, motion.leading)
     coeffs = from_jacobian if motion.coefficients is None else np.asarray(motion.coefficients)
     roots = polynomial_roots(coeffs)
+    uncertainty = root_uncertainty(coeffs, roots)
     notes = []
     max_real = float(np.max(roots.real))
-    label = classify(roots, tol)
+    label = classify(roots, tol, uncertainty)
+    if label != classify(roots, tol):
+        worst = float(np.max(uncertainty[np.abs(roots.real) <= tol + uncertainty]))
+        notes.append(
+            f"a real part is within its rounding uncertainty (±{worst:.2g}) of zero (a nearly "
+            "multiple root): the verdict cannot be sharper than critical"
+        )
     if motion.structural_zero:
         notes.append(
             "the constant coefficient is exactly zero: a structural zero root (a continuum of "
@@ -379,14 +396,15 @@ def analyze(model: ModelRecord, p: Any, *, tol: float = CRITICAL_TOL) -> Stabili
         if label == "asymptotically stable":  # rounding cannot make it stable
             label = "critical"
     family_range = None
-    if motion.family is not None:
+    if family and motion.family is not None:
         leads, labels = [], set()
         for phase in np.linspace(0.0, 2.0 * np.pi, FAMILY_SAMPLES, endpoint=False):
             member = motion.family(float(phase))
             _, Jm = linearize(member, p)
-            r = polynomial_roots(characteristic_polynomial(Jm, member.leading))
+            cm = characteristic_polynomial(Jm, member.leading)
+            r = polynomial_roots(cm)
             leads.append(float(np.max(r.real)))
-            labels.add(classify(r, tol))
+            labels.add(classify(r, tol, root_uncertainty(cm, r)))
         family_range = (min(leads), max(leads))
         if family_range[1] - family_range[0] > tol:
             notes.append(
@@ -408,6 +426,7 @@ def analyze(model: ModelRecord, p: Any, *, tol: float = CRITICAL_TOL) -> Stabili
         J,
         notes,
         family_range,
+        uncertainty,
     )
 
 
@@ -419,6 +438,8 @@ def stability_grid(
     *,
     attrs: dict[str, Any] | None = None,
     tol: float = CRITICAL_TOL,
+    family: bool = False,
+    progress: Callable[[int, int], None] | None = None,
 ) -> xr.Dataset:
     """Classification and leading Re λ over a 2-D parameter grid.
 
@@ -434,6 +455,11 @@ def stability_grid(
         Dataset attributes (the fixed parameters).
     tol : float
         Band of max Re λ counted as zero.
+    family : bool
+        Scan the family of every point too (see :func:`analyze`); off by default, since it
+        multiplies the cost by :data:`FAMILY_SAMPLES` + 1: the map is of the model's own member.
+    progress : callable, optional
+        ``progress(done, total)`` after each grid point (e.g. to drive a progress bar).
 
     Returns
     -------
@@ -444,14 +470,18 @@ def stability_grid(
     xs, ys = np.asarray(x[1], dtype=float), np.asarray(y[1], dtype=float)
     code = np.full((ys.size, xs.size), -1, dtype=int)
     lead = np.full((ys.size, xs.size), np.nan)
-    for (i, yv), (j, xv) in itertools.product(enumerate(ys), enumerate(xs)):
+    total = code.size
+    for k, ((i, yv), (j, xv)) in enumerate(itertools.product(enumerate(ys), enumerate(xs))):
         try:
             p = make_params(float(xv), float(yv))
         except TumbleError:
-            continue  # outside the domain: recorded as code −1
-        rep = analyze(model, p, tol=tol)
-        code[i, j] = CLASSES.index(rep.classification)
-        lead[i, j] = rep.max_real
+            p = None  # outside the domain: recorded as code −1
+        if p is not None:
+            rep = analyze(model, p, tol=tol, family=family)
+            code[i, j] = CLASSES.index(rep.classification)
+            lead[i, j] = rep.max_real
+        if progress is not None:
+            progress(k + 1, total)
     ds = xr.Dataset(
         {
             "classification": (
@@ -461,9 +491,8 @@ def stability_grid(
                     "long_name": "classification",
                     "units": "1",
                     "flag_values": "-1 0 1 2",
-                    "flag_meanings": "outside_domain " + " ".join(
-                        c.replace(" ", "_") for c in CLASSES
-                    ),
+                    "flag_meanings": "outside_domain "
+                    + " ".join(c.replace(" ", "_") for c in CLASSES),
                 },
             ),
             "max_real": (
@@ -474,5 +503,5 @@ def stability_grid(
         },
         coords={x[0]: (x[0], xs, x[2]), y[0]: (y[0], ys, y[2])},
     )
-    ds.attrs.update(model=model.name, critical_tol=tol, **(attrs or {}))
+    ds.attrs.update(model=model.name, critical_tol=tol, family_scanned=int(family), **(attrs or {}))
     return ds

@@ -1,5 +1,18 @@
 """Figures. Plot functions take data and an optional Axes and compute no physics."""
 
 from tumble.plot.comparison import plot_comparison, plot_methods
+from tumble.plot.stability import (
+    plot_classification,
+    plot_leading_real_part,
+    plot_stability_map,
+    stability_map_bytes,
+)
 
-__all__ = ["plot_comparison", "plot_methods"]
+__all__ = [
+    "plot_classification",
+    "plot_comparison",
+    "plot_leading_real_part",
+    "plot_methods",
+    "plot_stability_map",
+    "stability_map_bytes",
+]

@@ -1,5 +1,6 @@
 """Elliptic integrals of the third kind (tumble.unperturbed.elliptic) against quadrature."""
 
+import itertools
 import math
 
 import numpy as np
@@ -32,8 +33,7 @@ def pi_quad(n, phi, m):
 
     edges = [*np.arange(0.0, abs(phi), HALF_PI), abs(phi)]
     total = sum(
-        quad(f, a, b, epsabs=0.0, epsrel=1e-13, limit=200)[0]
-        for a, b in zip(edges[:-1], edges[1:], strict=True)
+        quad(f, a, b, epsabs=0.0, epsrel=1e-13, limit=200)[0] for a, b in itertools.pairwise(edges)
     )
     return math.copysign(total, phi)
 

@@ -15,7 +15,6 @@ from typer.testing import CliRunner
 
 from tumble.cli import app
 from tumble.io import load_scenario, parse_scenario, template
-from tumble.models import resisting_medium as rm
 
 ROOT = Path(__file__).resolve().parents[1]
 runner = CliRunner()

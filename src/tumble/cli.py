@@ -1,4 +1,4 @@
-"""Command-line interface: ``tumble run | models | init``.
+"""Command-line interface: ``tumble run | models | init | stability | stability-map``.
 
 Commands only translate arguments: the work is done by library functions a notebook can call.
 Bad input prints one red line to stderr and exits 2; a failed integration exits 3.
@@ -139,11 +139,13 @@ def stability_cmd(
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
 ) -> None:
     """Stability of the co-rotation about x3 in a rotating field, (2.5)/(2.6) and spec §16."""
+    import numpy as np
+
     from tumble.analysis.stability import analyze, match_roots
     from tumble.models import rotating_field as rf
 
     def work() -> tuple[Any, Any]:
-        p = rf.Params(inertia, _beta_rad(beta, beta_deg), eps)
+        p = rf.Params(np.array(inertia), _beta_rad(beta, beta_deg), eps)
         return p, analyze(rf.MODEL, p)
 
     p, rep = _guarded(work)
@@ -171,7 +173,7 @@ def stability_cmd(
     out.print(coeffs)
     roots = Table(title="roots: exact (2.5) and first order (2.6)", title_justify="left")
     for col in ("exact λ", "(2.6)", "|difference|"):
-        roots.add_column(col, justify="right")
+        roots.add_column(col, justify="right", no_wrap=True)
     approx = rep.approx_roots
     order = None if approx is None else match_roots(rep.roots, approx)
     for i, z in enumerate(rep.roots):
@@ -237,7 +239,7 @@ def stability_map_cmd(
                 "--inertia does not apply to --over inertia (I1/I3 and I2/I3 are its axes)"
             )
         b = None if beta is None else _beta_rad(beta, beta_deg)
-        with Progress(console=err, transient=True) as bar:
+        with Progress(console=err, transient=True, disable=not err.is_terminal) as bar:
             task = bar.add_task(f"stability map over {over}", total=n * n)
             ds = rotating_field_map(
                 over,

@@ -19,14 +19,14 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
 import numpy as np
 import xarray as xr
 
-from tumble._typing import FloatArray
+from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import ParameterError, TumbleError
 from tumble.models.base import ModelRecord, StationaryMotion
 
@@ -63,7 +63,7 @@ _COEFF_ULPS = 8.0
 rounds a handful of times per coefficient."""
 
 
-def jacobian(f: Callable[[Any], Any], x0: Sequence[float]) -> FloatArray:
+def jacobian(f: Callable[[Any], Any], x0: ArrayLike) -> FloatArray:
     """Jacobian of ``f`` at ``x0`` by complex-step differentiation.
 
     ``∂f/∂x_j = Im f(x0 + i h e_j) / h`` is exact to round-off for real-analytic ``f`` written
@@ -80,10 +80,10 @@ def jacobian(f: Callable[[Any], Any], x0: Sequence[float]) -> FloatArray:
     -------
     ndarray, shape (len(f(x0)), len(x0))
     """
-    x0 = np.asarray(x0, dtype=float)
+    base = np.asarray(x0, dtype=float)
     cols = []
-    for j in range(x0.size):
-        x = x0.astype(complex)
+    for j in range(base.size):
+        x = base.astype(complex)
         x[j] += 1j * _COMPLEX_STEP
         cols.append(np.imag(np.asarray(f(x))) / _COMPLEX_STEP)
     return np.column_stack(cols)
@@ -163,7 +163,7 @@ def characteristic_polynomial(J: FloatArray, leading: float = 1.0) -> FloatArray
     return leading * np.array(coeffs)
 
 
-def polynomial_roots(coeffs: Sequence[float]) -> np.ndarray:
+def polynomial_roots(coeffs: ArrayLike) -> np.ndarray:
     """Roots of a real polynomial (highest power first), polished by Newton's method.
 
     Exact zero trailing coefficients give exact zero roots (structural zeros stay zero).
@@ -196,7 +196,7 @@ def polynomial_roots(coeffs: Sequence[float]) -> np.ndarray:
     return roots[np.argsort(-roots.real, kind="stable")]
 
 
-def root_uncertainty(coeffs: Sequence[float], roots: Sequence[complex]) -> FloatArray:
+def root_uncertainty(coeffs: ArrayLike, roots: ArrayLike) -> FloatArray:
     """First-order bound on how far rounding of the coefficients can move each root.
 
     ``|δλ| ≈ u_c · Σ|a_k| |λ|^(n−k) / |P′(λ)|`` with u_c = :data:`_COEFF_ULPS` machine ε: large
@@ -221,17 +221,17 @@ def root_uncertainty(coeffs: Sequence[float], roots: Sequence[complex]) -> Float
     zeros = len(c) - 1 - int(np.flatnonzero(c)[-1]) if np.any(c) else len(c) - 1
     size = np.polyval(np.abs(c), np.abs(r))
     slope = np.abs(np.polyval(np.polyder(c), r))
-    with np.errstate(divide="ignore"):
-        bound = np.where(slope > 0.0, _COEFF_ULPS * np.finfo(float).eps * size / slope, np.inf)
+    bound = np.full(r.shape, np.inf)
+    np.divide(_COEFF_ULPS * np.finfo(float).eps * size, slope, out=bound, where=slope > 0.0)
     if zeros:
         bound = np.where(r == 0.0, 0.0, bound)
     return np.asarray(bound, dtype=float)
 
 
 def classify(
-    roots: Sequence[complex],
+    roots: ArrayLike,
     tol: float = CRITICAL_TOL,
-    uncertainty: Sequence[float] | None = None,
+    uncertainty: ArrayLike | None = None,
 ) -> Classification:
     """``"unstable"``, ``"critical"`` or ``"asymptotically stable"`` from the roots.
 
@@ -254,7 +254,7 @@ def classify(
     return "asymptotically stable"
 
 
-def match_roots(roots: Sequence[complex], approx: Sequence[complex]) -> np.ndarray:
+def match_roots(roots: ArrayLike, approx: ArrayLike) -> np.ndarray:
     """Order ``approx`` so that its i-th entry is the one nearest to ``roots[i]``.
 
     Pairs exact roots with approximate ones (e.g. (2.6)) by minimizing the total distance.
@@ -433,8 +433,8 @@ def analyze(
 def stability_grid(
     model: ModelRecord,
     make_params: Callable[[float, float], Any],
-    x: tuple[str, Sequence[float], dict[str, str]],
-    y: tuple[str, Sequence[float], dict[str, str]],
+    x: tuple[str, ArrayLike, dict[str, str]],
+    y: tuple[str, ArrayLike, dict[str, str]],
     *,
     attrs: dict[str, Any] | None = None,
     tol: float = CRITICAL_TOL,

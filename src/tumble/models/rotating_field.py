@@ -50,6 +50,7 @@ from tumble.unperturbed import (
     fast_frequencies,
     mean_square_rate,
     modulus_squared,
+    proper_sorting,
 )
 
 __all__ = [
@@ -89,23 +90,6 @@ RESONANCE_ORDERS = (2, 2)
 """Largest |n1|, |n2| of the resonances m = n1 ν1 + n2 ν2 (m = 1, 2) that are watched, §12."""
 
 _XI3 = np.array([0.0, 0.0, 1.0])
-
-
-def proper_sorting(inertia: ArrayLike) -> FloatArray:
-    """Signed permutation S (det +1) with S diag(I) Sᵀ sorted ascending, spec §8 and §16.
-
-    ``v_sorted = S v_user``; a transposition gets one axis reversed to stay proper.
-
-    Parameters
-    ----------
-    inertia : array_like, shape (3,)
-        Principal moments in the user's labels [inertia unit].
-    """
-    order = np.argsort(np.asarray(inertia, dtype=float), kind="stable")
-    S = np.eye(3)[order]
-    if np.linalg.det(S) < 0.0:
-        S[2] = -S[2]
-    return S
 
 
 def _frozen(name: str, value: ArrayLike, shape: tuple[int, ...]) -> FloatArray:
@@ -764,7 +748,7 @@ def _approx_note(p: Params) -> str:
     small = p.eps / min(I1, I2, I3)
     if w02 == 0.0:
         return "(2.6) is invalid: I3 equals another moment, ω0 = 0 is a double root (§6)"
-    if abs(math.sqrt(abs(w02)) - 1.0) <= small / VALIDITY_RATIO and w02 > 0.0:
+    if abs(math.sqrt(abs(w02)) - 1.0) <= small and w02 > 0.0:  # (2.6) needs ε/I ≪ |1 − ω0|
         return (
             "(2.6) is invalid: near a thin plate I3 ≈ I1 + I2 the roots ±iω0 and ±i (nearly) "
             "coincide, so the first-order corrections can be wrong at O(ε) (§6)"

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import textwrap
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
@@ -24,7 +25,8 @@ def _label(da: xr.DataArray) -> str:
     units = da.attrs.get("units", "")
     eq = da.attrs.get("equation", "")
     name = da.attrs.get("long_name", da.name)
-    return f"{name} [{units}]" + (f"  {eq}" if eq and eq != "(1.3)" else "")
+    text = f"{name} [{units}]" + (f"  {eq}" if eq and eq != "(1.3)" else "")
+    return textwrap.fill(text, 32)  # long names on two lines, so stacked panels do not collide
 
 
 def plot_methods(
@@ -119,7 +121,8 @@ def plot_comparison(
         for name in diagnostics.data_vars:
             da = diagnostics[name]
             ax.plot(diagnostics["tau"].values, da.values, lw=1.2, label=da.attrs["long_name"])
-        ax.set_ylabel(f"averaged run [{next(iter(diagnostics.data_vars.values())).attrs['units']}]")
+        first = next(iter(diagnostics.data_vars.values()))
+        ax.set_ylabel(f"averaged run [{first.attrs['units']}]")
         ax.set_xlabel(
             f"{diagnostics['tau'].attrs['long_name']} [{diagnostics['tau'].attrs['units']}]"
         )

@@ -16,6 +16,7 @@ from tumble.unperturbed.euler_poinsot import (
     fast_frequencies,
     mean_square_rate,
     modulus_squared,
+    proper_sorting,
     regime,
 )
 
@@ -30,5 +31,6 @@ __all__ = [
     "fast_frequencies",
     "mean_square_rate",
     "modulus_squared",
+    "proper_sorting",
     "regime",
 ]

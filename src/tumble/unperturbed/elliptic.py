@@ -30,6 +30,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import NDArray
 from scipy import special
 
 from tumble._typing import ArrayLike, FloatArray
@@ -44,7 +45,7 @@ def _floats(*args: ArrayLike) -> list[FloatArray]:
     return [np.asarray(a, dtype=float) for a in np.broadcast_arrays(*args)]
 
 
-def _reject(field: str, values: FloatArray, ok: FloatArray, allowed: str) -> None:
+def _reject(field: str, values: FloatArray, ok: NDArray[np.bool_], allowed: str) -> None:
     """Raise for the first element of ``values`` where ``ok`` is False."""
     if not np.all(ok):
         bad = float(values[~ok].flat[0])
@@ -67,13 +68,13 @@ def _ellippi_sc(n: ArrayLike, s: ArrayLike, c: ArrayLike, mc: ArrayLike) -> Floa
     """Π(n; φ | m) for |φ| ≤ π/2 from s = sin φ, c = cos φ ≥ 0 (unchecked).
 
     Taking (s, c) rather than φ keeps the digits of a small c (φ near ±π/2, where the
-    integrand is large when m ≈ 1), which φ itself cannot hold.
+    integrand is large when m ≈ 1 or n ≈ 1), which φ itself cannot hold.
     """
     s, c = np.asarray(s, dtype=float), np.asarray(c, dtype=float)
     c2, s2 = c * c, s * s
     d2 = c2 + mc * s2  # Δ² without the cancellation of 1 − m s² near m = 1
     rf = special.elliprf(c2, d2, 1.0)
-    rj = special.elliprj(c2, d2, 1.0, 1.0 - n * s2)
+    rj = special.elliprj(c2, d2, 1.0, c2 + (1.0 - n) * s2)  # 1 − n s², also for n → 1
     return np.asarray(s * rf + n / 3.0 * (s * s2) * rj, dtype=float)
 
 
@@ -106,16 +107,6 @@ def _ellippi_inc_mc(n: FloatArray, phi: FloatArray, mc: FloatArray) -> FloatArra
     return np.asarray(out, dtype=float)
 
 
-def _ellipf_inc_mc(phi: FloatArray, mc: FloatArray) -> FloatArray:
-    """F(φ | m) for any real φ from mc = 1 − m (unchecked; |φ| ≤ π/2 where mc = 0)."""
-    j, phir = _split_amplitude(phi)
-    out = _ellipf_sc(np.sin(phir), np.cos(phir), mc)
-    wrap = j != 0.0
-    if np.any(wrap):
-        out = out + np.where(wrap, 2.0 * j * special.elliprf(0.0, np.where(wrap, mc, 1.0), 1.0), 0)
-    return np.asarray(out, dtype=float)
-
-
 def ellippi_inc(n: ArrayLike, phi: ArrayLike, m: ArrayLike) -> FloatArray:
     """Incomplete elliptic integral of the third kind Π(n; φ | m), for any real φ.
 
@@ -145,7 +136,9 @@ def ellippi_inc(n: ArrayLike, phi: ArrayLike, m: ArrayLike) -> FloatArray:
     _check_n_m(n_, m_)
     _reject("phi", phi_, np.isfinite(phi_), "(-inf, inf)")
     singular = (n_ == 1.0) | (m_ == 1.0)
-    _reject("phi (with n = 1 or m = 1)", phi_, ~singular | (np.abs(phi_) <= _HALF_PI), "[-π/2, π/2]")
+    _reject(
+        "phi (with n = 1 or m = 1)", phi_, ~singular | (np.abs(phi_) <= _HALF_PI), "[-π/2, π/2]"
+    )
     return _ellippi_inc_mc(n_, phi_, 1.0 - m_)
 
 

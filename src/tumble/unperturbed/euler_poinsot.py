@@ -12,11 +12,17 @@ Conventions
   axes.
 * With d1 = L² − 2T·I1 ≥ 0, d2 = L² − 2T·I2, d3 = 2T·I3 − L² ≥ 0 the regime is
   ``"x3"`` (d2 > 0, polhode around x3), ``"x1"`` (d2 < 0, around x1) or ``"separatrix"``
-  when |d2| ≤ :data:`SEPARATRIX_RTOL`·L²; ``"symmetric"`` when I1 = I2 or I2 = I3,
-  ``"sphere"`` when I1 = I3, ``"rest"`` when L = 0 (exact equalities: the triaxial formulas
-  below are well conditioned up to them).
+  when |d2| ≤ :data:`SEPARATRIX_RTOL`·L²; ``"symmetric"`` when I1 = I2 or I2 = I3 and
+  ``"sphere"`` when I1 = I3 (equal to :data:`DEGENERATE_RTOL`); ``"rest"`` when L = 0.
 * k2 is the modulus squared of the current regime (x3 formula of §8, or the 1↔3-swapped
   one, errata #7), so 0 ≤ k2 ≤ 1; k2 = 1 on the separatrix and 0 for symmetric bodies.
+* Separatrix band. Labels and summary numbers take their separatrix values there
+  (k2 = 1, period = inf, ν1 = 0, ν2 = L/I2), but the averages and frequencies of the
+  module functions use the actual k'² = 1 − k² (they are continuous, with a logarithmic
+  approach), and :class:`EulerPoinsot` follows the state itself: the periodic solution of
+  its own k'² when L² ≠ 2T·I2 in floating point, the asymptotic one ((3.1) with m = 1)
+  when L² = 2T·I2 exactly. Jacobi functions stay accurate for any k'² > 0 (see
+  :func:`_jacobi`).
 * Orientation (§8, "Frequencies of the fast motion"): 3-1-3 Euler angles of the body
   relative to a frame whose third axis is along L, ``body → L-frame = Rz(ψ) Rx(θ) Rz(φ) · P``
   with P a proper signed permutation that puts the polar axis of the polhode third (x3 in
@@ -41,6 +47,7 @@ from tumble.rotations import matrix_to_quat, quat_conjugate, quat_multiply, quat
 from tumble.unperturbed.elliptic import _ellipf_sc, _ellippi_mc, _ellippi_sc
 
 __all__ = [
+    "DEGENERATE_RTOL",
     "ENERGY_RTOL",
     "SEPARATRIX_RTOL",
     "EulerPoinsot",
@@ -49,22 +56,29 @@ __all__ = [
     "fast_frequencies",
     "mean_square_rate",
     "modulus_squared",
+    "proper_sorting",
     "regime",
 ]
 
 Regime = Literal["x3", "x1", "separatrix", "symmetric", "sphere", "rest"]
 
 SEPARATRIX_RTOL = 1e-12
-"""A state is on the separatrix when |L² − 2T·I2| ≤ SEPARATRIX_RTOL·L². This is the
-round-off level of L² − 2T·I2 computed from a state given to a few ulps (times the margin
-of 1e4 for states that were themselves computed): inside it the sign of d2, hence the
-regime, is not determined by the data."""
+"""A state is on the separatrix when |L² − 2T·I2| ≤ SEPARATRIX_RTOL·L². L² − 2T·I2 from a
+state known to a few ulps carries ~1e-16·L² of round-off, and ~1e-12·L² after an integration
+at rtol ~1e-12: inside the band its sign, hence the regime, is not determined by the data."""
+
+DEGENERATE_RTOL = 1e-12
+"""Two principal moments count as equal when they differ by ≤ DEGENERATE_RTOL·I3 (all
+three when I3 − I1 ≤ 2·DEGENERATE_RTOL·I3). With it each regime x3, x1 spans more than
+SEPARATRIX_RTOL·L² in L² − 2T·I2, so the separatrix band never swallows a whole regime;
+the symmetric formulas used for such bodies are off by O(DEGENERATE_RTOL)."""
 
 ENERGY_RTOL = 1e-9
 """(L, T) pairs may violate 2T·I1 ≤ L² ≤ 2T·I3 by this fraction of L² (round-off or an
 integrator's step error at the pure rotations k2 = 0); they are clipped onto the range.
 Larger violations describe no motion and raise :class:`~tumble.errors.ParameterError`."""
 
+_MC_FLOOR = 1e-300  # k'² below this is the separatrix itself (|d2| ≲ 1e-300 L²)
 _ATTITUDE_ATOL = 1e-9  # ‖A Aᵀ − E‖ allowed for attitude0 (a rotation given to ~1e-9)
 
 
@@ -77,38 +91,56 @@ def _check_sorted(I1: float, I2: float, I3: float) -> None:
     for name, value in (("I1", I1), ("I2", I2), ("I3", I3)):
         check_finite(f"inertia.{name}", value)
         if value <= 0.0:
-            raise ParameterError(f"inertia.{name} = {value:g} is outside the allowed range (0, inf)")
+            raise ParameterError(
+                f"inertia.{name} = {value:g} is outside the allowed range (0, inf)"
+            )
     if not I1 <= I2 <= I3:
         raise ParameterError(
             f"inertia = ({I1:g}, {I2:g}, {I3:g}) must be sorted, I1 ≤ I2 ≤ I3 (sorted axes)"
         )
 
 
+def _symmetry(I1: float, I2: float, I3: float) -> str:
+    """Degeneracy: "sphere", "x3" (I1 = I2, axis x3), "x1" (I2 = I3) or "" (triaxial)."""
+    tol = DEGENERATE_RTOL * I3
+    if I3 - I1 <= 2.0 * tol:
+        return "sphere"
+    if I2 - I1 <= tol:
+        return "x3"
+    if I3 - I2 <= tol:
+        return "x1"
+    return ""
+
+
 def _classify(
     I1: float, I2: float, I3: float, L: float, T: float
 ) -> tuple[Regime, float, float, float]:
-    """Regime and the clipped differences d1 = L² − 2T·I1, d2 = L² − 2T·I2, d3 = 2T·I3 − L²."""
+    """Regime and d1 = 1 − r·I1, d2 = 1 − r·I2, d3 = r·I3 − 1 with r = 2T/L², i.e. the
+    differences L² − 2T·I1, L² − 2T·I2, 2T·I3 − L² over L² (scale-free: no underflow of
+    L² for tiny states); d1, d3 clipped at 0."""
     _check_sorted(I1, I2, I3)
     check_finite("L", L)
     check_finite("T", T)
     if L < 0.0 or T < 0.0:
         raise ParameterError(f"L = {L:g}, T = {T:g}: both must be ≥ 0")
-    L2 = L * L
-    d1, d2, d3 = L2 - 2.0 * T * I1, L2 - 2.0 * T * I2, 2.0 * T * I3 - L2
-    slack = ENERGY_RTOL * L2
-    if d1 < -slack or d3 < -slack:
+    if L == 0.0:
+        if T != 0.0:
+            raise ParameterError(f"T = {T:g} must be 0 when L = 0 (a body at rest)")
+        return "rest", 0.0, 0.0, 0.0
+    r = 2.0 * T / L / L
+    d1, d2, d3 = 1.0 - r * I1, 1.0 - r * I2, r * I3 - 1.0
+    if d1 < -ENERGY_RTOL or d3 < -ENERGY_RTOL:
         raise ParameterError(
-            f"L² = {L2:g} is outside the allowed range [2T·I1, 2T·I3] = "
-            f"[{2 * T * I1:g}, {2 * T * I3:g}] of a rigid body with energy T = {T:g}"
+            f"2T/L² = {r:g} is outside the allowed range [1/I3, 1/I1] = "
+            f"[{1 / I3:g}, {1 / I1:g}] of a rigid body (L = {L:g}, T = {T:g})"
         )
     d1, d3 = max(d1, 0.0), max(d3, 0.0)
-    if L == 0.0:
-        return "rest", 0.0, 0.0, 0.0
-    if I1 == I3:
+    sym = _symmetry(I1, I2, I3)
+    if sym == "sphere":
         return "sphere", d1, d2, d3
-    if I1 == I2 or I2 == I3:
+    if sym:
         return "symmetric", d1, d2, d3
-    if abs(d2) <= SEPARATRIX_RTOL * L2:
+    if abs(d2) <= SEPARATRIX_RTOL:
         return "separatrix", d1, d2, d3
     return ("x3" if d2 > 0.0 else "x1"), d1, d2, d3
 
@@ -117,20 +149,23 @@ def _side_modulus(
     side: str, I1: float, I2: float, I3: float, d1: float, d2: float, d3: float
 ) -> tuple[float, float]:
     """(m, mc = 1 − m) of regime ``side`` ("x3": d2 ≥ 0, "x1": d2 ≤ 0), each from its own
-    formula so that mc keeps its digits near the separatrix (§8 and errata #7)."""
+    formula so that mc keeps its digits near the separatrix (§8 and errata #7). mc below
+    _MC_FLOOR counts as 0 (K = R_F(0, mc, 1) overflows for subnormal mc)."""
     if side == "x3":
         den = (I3 - I2) * d1
         m, mc = (I2 - I1) * d3 / den, (I3 - I1) * d2 / den
     else:
         den = (I2 - I1) * d3
         m, mc = (I3 - I2) * d1 / den, -(I3 - I1) * d2 / den
-    return min(max(m, 0.0), 1.0), min(max(mc, 0.0), 1.0)
+    if mc < _MC_FLOOR:
+        return 1.0, 0.0
+    return min(max(m, 0.0), 1.0), min(mc, 1.0)
 
 
-def _side(reg: Regime, I1: float, I2: float, d2: float) -> str:
+def _side(reg: Regime, I1: float, I2: float, I3: float, d2: float) -> str:
     """Which set of formulas applies: x3 (polar axis x3) or x1 (polar axis x1)."""
     if reg == "symmetric":
-        return "x3" if I1 == I2 else "x1"
+        return _symmetry(I1, I2, I3)
     if reg == "separatrix":
         return "x3" if d2 >= 0.0 else "x1"
     return reg
@@ -173,13 +208,6 @@ def _u_rate(side: str, I1: float, I2: float, I3: float, d1: float, d3: float) ->
     if side == "x3":
         return math.sqrt(d1 * (I3 - I2) / (I1 * I2 * I3)) if I2 != I3 else 0.0
     return math.sqrt(d3 * (I2 - I1) / (I1 * I2 * I3)) if I2 != I1 else 0.0
-
-
-def _symmetric_u_rate(I1: float, I2: float, I3: float, d1: float, d3: float) -> float:
-    """|φ̇| = |z_c (I_a − I_c)/I_a| of regular precession (limit of ν at k = 0)."""
-    if I1 == I2:
-        return math.sqrt(d1 * (I3 - I1) / (I1 * I1 * I3))
-    return math.sqrt(d3 * (I3 - I1) / (I1 * I3 * I3))
 
 
 def _mean_precession(side: str, I1: float, I2: float, I3: float, L: float, mc: float) -> float:
@@ -293,8 +321,9 @@ def energy_from_modulus(
         if L != 0.0:
             raise ParameterError(f"regime = 'rest' needs L = 0, got L = {L:g}")
         return 0.0
+    sym = _symmetry(I1, I2, I3)
     if regime == "sphere":
-        if I1 != I3:
+        if sym != "sphere":
             raise ParameterError(f"regime = 'sphere' needs I1 = I3, got ({I1:g}, {I2:g}, {I3:g})")
         return 0.5 * L2 / I1
     if regime == "separatrix":
@@ -304,7 +333,7 @@ def energy_from_modulus(
             f"regime = {regime!r} is not one of 'x3', 'x1', 'separatrix', 'sphere', 'rest' "
             "(k² does not determine T for a symmetric body)"
         )
-    if I1 == I2 or I2 == I3:
+    if sym:
         raise ParameterError(
             f"inertia = ({I1:g}, {I2:g}, {I3:g}) has two equal moments: k² ≡ 0 and does not "
             "determine T (use the T-form of §10)"
@@ -344,14 +373,14 @@ def mean_square_rate(I1: float, I2: float, I3: float, L: float, T: float) -> flo
         return 0.0
     if reg == "sphere":
         return L * L / (I2 * I2)
-    side = _side(reg, I1, I2, d2)
+    side = _side(reg, I1, I2, I3, d2)
     m, mc = (0.0, 1.0) if reg == "symmetric" else _side_modulus(side, I1, I2, I3, d1, d2, d3)
     cn2, dn2 = _jacobi_means(m, mc)
-    w1 = (I2 - I1) * d3 / (I1 * (I3 - I1))  # (I2 − I1) · max z1²
-    w3 = (I3 - I2) * d1 / (I3 * (I3 - I1))  # (I3 − I2) · max z3²
+    w1 = (I2 - I1) * d3 / (I1 * (I3 - I1))  # (I2 − I1) · max z1² / L²
+    w3 = (I3 - I2) * d1 / (I3 * (I3 - I1))  # (I3 − I2) · max z3² / L²
     if side == "x3":  # z1 ∝ cn u, z3 ∝ dn u
-        return 2.0 * T / I2 + (w1 * cn2 - w3 * dn2) / I2
-    return 2.0 * T / I2 + (w1 * dn2 - w3 * cn2) / I2  # x1: z1 ∝ dn u, z3 ∝ cn u
+        return 2.0 * T / I2 + L * (L * (w1 * cn2 - w3 * dn2)) / I2
+    return 2.0 * T / I2 + L * (L * (w1 * dn2 - w3 * cn2)) / I2  # x1: z1 ∝ dn u, z3 ∝ cn u
 
 
 def fast_frequencies(I1: float, I2: float, I3: float, L: float, T: float) -> tuple[float, float]:
@@ -385,11 +414,11 @@ def fast_frequencies(I1: float, I2: float, I3: float, L: float, T: float) -> tup
         return 0.0, 0.0
     if reg == "sphere":
         return 0.0, L / I2
-    side = _side(reg, I1, I2, d2)
+    side = _side(reg, I1, I2, I3, d2)
+    nu = L * _u_rate(side, I1, I2, I3, d1, d3)  # d's are over L²
     if reg == "symmetric":
-        return _symmetric_u_rate(I1, I2, I3, d1, d3), _mean_precession(side, I1, I2, I3, L, 1.0)
+        return nu, _mean_precession(side, I1, I2, I3, L, 1.0)
     _, mc = _side_modulus(side, I1, I2, I3, d1, d2, d3)
-    nu = _u_rate(side, I1, I2, I3, d1, d3)
     nu1 = 0.0 if mc == 0.0 else 0.5 * math.pi * nu / float(special.elliprf(0.0, mc, 1.0))
     return nu1, _mean_precession(side, I1, I2, I3, L, mc)
 
@@ -479,12 +508,12 @@ def _u_from_sn_cn(sn: float, cn: float, mc: float, K: float) -> float:
 
 @dataclass(frozen=True)
 class _Still:
-    """Uniform rotation (or rest) about the body axis along L: ψ = |z| τ, θ = φ = 0."""
+    """Uniform rotation (or rest) about z0 (∥ L, a principal axis): ψ = |z| τ, θ = φ = 0."""
 
     rate: float
 
     def evaluate(self, tau: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
-        zp = np.zeros(tau.shape + (3,))
+        zp = np.zeros((*tau.shape, 3))
         zp[..., 2] = self.rate
         zero = np.zeros_like(tau)
         return zp, self.rate * tau, zero, zero
@@ -522,7 +551,7 @@ class _Elliptic:
     """
 
     side: str  # "x3" or "x1"
-    I: tuple[float, float, float]  # sorted moments
+    moments: tuple[float, float, float]  # sorted I1 ≤ I2 ≤ I3
     L: float
     m: float
     mc: float
@@ -552,7 +581,7 @@ class _Elliptic:
         return sign * sn, sign * cn, dn, am, G
 
     def evaluate(self, tau: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
-        I1, I2, I3 = self.I
+        I1, I2, I3 = self.moments
         u = self.nu * tau + self.u0
         sn, cn, dn, am, G = self._psi_integral(u)
         zcn, zsn, zdn = self.a_cn * cn, self.a_sn * sn, self.a_dn * dn
@@ -582,17 +611,25 @@ _Kernel = _Still | _Precession | _Elliptic
 
 def _frame_with_third_row(v: FloatArray) -> FloatArray:
     """A rotation matrix whose third row is v/|v|."""
-    l = v / np.linalg.norm(v)
+    unit = v / np.linalg.norm(v)
     e = np.zeros(3)
-    e[int(np.argmin(np.abs(l)))] = 1.0
-    r1 = np.cross(e, l)
+    e[int(np.argmin(np.abs(unit)))] = 1.0
+    r1 = np.cross(e, unit)
     r1 /= np.linalg.norm(r1)
-    return np.stack([r1, np.cross(l, r1), l])
+    return np.stack([r1, np.cross(unit, r1), unit])
 
 
-def _sorting_matrix(inertia: FloatArray) -> FloatArray:
-    """Proper signed permutation Q with (Q v)_i = ± v_order[i], moments ascending."""
-    order = np.argsort(inertia, kind="stable")
+def proper_sorting(inertia: ArrayLike) -> FloatArray:
+    """Signed permutation Q (det +1) with Q diag(I) Qᵀ sorted ascending, spec §8 and §16.
+
+    ``v_sorted = Q v_user``; a transposition gets one axis reversed to stay proper.
+
+    Parameters
+    ----------
+    inertia : array_like, shape (3,)
+        Principal moments in the user's labels [inertia unit].
+    """
+    order = np.argsort(np.asarray(inertia, dtype=float), kind="stable")
     Q = np.eye(3)[order]
     if np.linalg.det(Q) < 0.0:
         Q[0] *= -1.0  # a transposition: reverse the first sorted axis to keep det = +1
@@ -617,7 +654,11 @@ def _check_attitude(A: FloatArray) -> None:
 def _build_kernel(
     Is: tuple[float, float, float], zs: FloatArray, L: float, T: float
 ) -> tuple[Regime, float, float, float, float, float, _Kernel, FloatArray]:
-    """Regime, k2, ν, period, ν1, ν2, kernel and P (sorted axes → p-frame) of a state."""
+    """Regime, k2, ν, period, ν1, ν2, kernel and P (sorted axes → p-frame) of a state.
+
+    The state is normalised (largest |z_i| in [½, 1)), so squares neither overflow nor
+    underflow except for components negligible against 1.
+    """
     I1, I2, I3 = Is
     z1, z2, z3 = (float(x) for x in zs)
     if L == 0.0:
@@ -628,76 +669,77 @@ def _build_kernel(
     d2 = I3 * (I3 - I2) * z3 * z3 - I1 * (I2 - I1) * z1 * z1
     speed = float(np.linalg.norm(zs))
 
-    def still(reg: Regime, k2: float, nu: float, period: float, nu1: float, nu2: float) -> tuple:
-        P = _frame_with_third_row(np.array(Is) * zs)
+    def uniform(reg: Regime, k2: float, nu: float, period: float, nu1: float, nu2: float) -> tuple:
+        # z0 along a principal axis (or a sphere): uniform rotation about z0 (∥ L).
+        P = _frame_with_third_row(zs)
         return reg, k2, nu, period, nu1, nu2, _Still(speed), P
 
-    if I1 == I3:
-        return still("sphere", 0.0, 0.0, math.inf, 0.0, L / I2)
-    if I1 == I2 or I2 == I3:
-        side = "x3" if I1 == I2 else "x1"
-        nu = _symmetric_u_rate(I1, I2, I3, d1, d3)
-        period = 2.0 * math.pi / nu if nu > 0.0 else math.inf
-        nu2 = _mean_precession(side, I1, I2, I3, L, 1.0)
-        P = np.eye(3) if side == "x3" else _CYCLE_TO_X1
-        za, zb, zc = P @ zs
-        Ia, Ic = (I1, I3) if side == "x3" else (I3, I1)
-        if za == 0.0 and zb == 0.0 or zc == 0.0:
-            return still("symmetric", 0.0, nu, period, nu, nu2)
-        kern = _Precession(Ia, Ic, L, math.hypot(za, zb), zc, math.atan2(za, zb))
-        return "symmetric", 0.0, nu, period, nu, nu2, kern, P
+    sym = _symmetry(I1, I2, I3)
+    if sym == "sphere":
+        return uniform("sphere", 0.0, 0.0, math.inf, 0.0, L / I2)
+    if sym:
+        # Regular precession about the symmetry axis c, I_a the mean of the equal pair.
+        P = np.eye(3) if sym == "x3" else _CYCLE_TO_X1
+        za, zb, zc = (float(x) for x in P @ zs)
+        Ia, Ic = (0.5 * (I1 + I2), I3) if sym == "x3" else (0.5 * (I2 + I3), I1)
+        nu = abs(zc * (Ia - Ic) / Ia)  # |φ̇|: the limit k → 0 of ν, = ν1
+        period = 2.0 * math.pi / nu if nu > 1e-300 else math.inf  # > 1e-300: no overflow
+        if (za == 0.0 and zb == 0.0) or zc == 0.0:
+            return uniform("symmetric", 0.0, nu, period, nu, L / Ia)
+        kern: _Kernel = _Precession(Ia, Ic, L, math.hypot(za, zb), zc, math.atan2(za, zb))
+        return "symmetric", 0.0, nu, period, nu, L / Ia, kern, P
 
+    # Separatrix band: the attributes take their separatrix values (k2 = 1, period = inf,
+    # ν1 = 0, ν2 = L/I2); the motion follows the state itself.
     sep = abs(d2) <= SEPARATRIX_RTOL * L * L
     side = "x3" if d2 > 0.0 else "x1"
     m, mc = _side_modulus(side, I1, I2, I3, d1, d2, d3)
-    if sep and (z1 == 0.0 and z3 == 0.0 or (z1 == 0.0 or z3 == 0.0) and mc == 0.0):
-        # Rotation about x2 (also when the other small component underflows in d2).
+    if mc == 0.0:  # exactly on the separatrix (up to _MC_FLOOR)
         nu = _u_rate("x3", I1, I2, I3, d1, d3)
-        return still("separatrix", 1.0, nu, math.inf, 0.0, L / I2)
-    if sep and z1 != 0.0 and z3 != 0.0:
-        # Asymptotic motion (m = 1), x3 form; half-turns make z1 > 0 and z3 > 0.
+        # Asymptotic motion (3.1) with m = 1, x3 form; half-turns make z1 ≥ 0, z3 ≥ 0.
         s1, s3 = math.copysign(1.0, z1), math.copysign(1.0, z3)
         S = np.diag([s1, s1 * s3, s3])
-        b1, b2, b3 = S @ zs
+        b1, b2, _ = (float(x) for x in S @ zs)
         a_cn = math.sqrt(d3 / (I1 * (I3 - I1)))
         a_sn = math.sqrt(d3 / (I2 * (I3 - I2)))
         a_dn = math.sqrt(d1 / (I3 * (I3 - I1)))
-        nu = _u_rate("x3", I1, I2, I3, d1, d3)
+        s0, c0 = b2 / a_sn, (b1 / a_cn if a_cn > 0.0 else 0.0)
+        if c0 == 0.0 or z3 == 0.0:  # on it, z1 = 0 ⇔ z3 = 0: rotation about x2
+            return uniform("separatrix", 1.0, nu, math.inf, 0.0, L / I2)
         # sn/cn = tanh/sech = sinh u0: u0 = asinh(s/c), as logarithms (c may be tiny).
-        s0, c0 = b2 / a_sn, b1 / a_cn
         u0 = math.copysign(math.log(abs(s0) + math.hypot(s0, c0)) - math.log(c0), s0)
         n = _characteristic("x3", I1, I2, I3)
         kern = _Elliptic("x3", Is, L, 1.0, 0.0, math.inf, nu, u0, a_cn, a_sn, a_dn, n, math.inf)
         return "separatrix", 1.0, nu, math.inf, 0.0, L / I2, kern, S
-    # Regular regimes; also the separatrix band with z1 = 0 or z3 = 0, where the asymptotic
-    # solution does not pass: there the periodic motion of the actual state is used.
+
     nu = _u_rate(side, I1, I2, I3, d1, d3)
     K = float(special.elliprf(0.0, mc, 1.0))
-    nu1 = 0.5 * math.pi * nu / K
-    nu2 = _mean_precession(side, I1, I2, I3, L, mc)
-    reg: Regime = "separatrix" if sep else side  # type: ignore[assignment]
-    k2 = 1.0 if sep else m
-    period = math.inf if sep else 4.0 * K / nu
+    if sep:
+        reg: Regime = "separatrix"
+        k2, period, nu1, nu2 = 1.0, math.inf, 0.0, L / I2
+    else:
+        reg = "x3" if side == "x3" else "x1"
+        k2, period = m, 4.0 * K / nu
+        nu1, nu2 = 0.5 * math.pi * nu / K, _mean_precession(side, I1, I2, I3, L, mc)
     if side == "x3":
-        if d3 == 0.0:  # k = 0: uniform rotation about x3
-            return still(reg, k2, nu, period, nu1, nu2)
         S = np.diag([1.0, math.copysign(1.0, z3), math.copysign(1.0, z3)])  # make z3 > 0
-        b1, b2, b3 = S @ zs
+        b1, b2, b3 = (float(x) for x in S @ zs)
         a_cn = math.sqrt(d3 / (I1 * (I3 - I1)))
         a_sn = math.sqrt(d3 / (I2 * (I3 - I2)))
         a_dn = math.sqrt(d1 / (I3 * (I3 - I1)))
-        sn0, cn0 = b2 / a_sn, b1 / a_cn
+        bcn, bsn = b1, b2
         P = S
     else:
-        if d1 == 0.0:  # k = 0: uniform rotation about x1
-            return still(reg, k2, nu, period, nu1, nu2)
         S = np.diag([math.copysign(1.0, z1), math.copysign(1.0, z1), 1.0])  # make z1 > 0
-        b1, b2, b3 = S @ zs
+        b1, b2, b3 = (float(x) for x in S @ zs)
         a_cn = math.sqrt(d1 / (I3 * (I3 - I1)))
         a_sn = math.sqrt(d1 / (I2 * (I2 - I1)))
         a_dn = math.sqrt(d3 / (I1 * (I3 - I1)))
-        sn0, cn0 = b2 / a_sn, b3 / a_cn
+        bcn, bsn = b3, b2
         P = _CYCLE_TO_X1 @ S
+    if a_cn == 0.0 or a_sn == 0.0:  # k = 0 (to underflow): uniform rotation about the pole
+        return uniform(reg, k2, nu, period, nu1, nu2)
+    sn0, cn0 = bsn / a_sn, bcn / a_cn
     u0 = _u_from_sn_cn(sn0, cn0, mc, K)
     n = _characteristic(side, I1, I2, I3)
     Pi = float(_ellippi_mc(np.asarray(n), np.asarray(mc)))
@@ -745,11 +787,16 @@ class EulerPoinsot:
 
     Notes
     -----
-    On the separatrix (|L² − 2T·I2| ≤ SEPARATRIX_RTOL·L²) the motion is the asymptotic one,
-    (3.1) with m = 1, through the point of the separatrix nearest z0: ω(0) reproduces z0
-    to O(sqrt(|L² − 2T·I2|)/L)·|z0| (at most ~1e-6 |z0| close to the axis x2). In that band
-    a state with exactly z1 = 0 or z3 = 0 (sorted axes), through which no asymptotic
-    motion passes, uses the periodic solution of its own (L, T) instead.
+    Separatrix band (|L² − 2T·I2| ≤ SEPARATRIX_RTOL·L²): regime "separatrix", one
+    TumbleWarning, and k2 = 1, period = inf, nu1 = 0, nu2 = L/I2. ω(τ) and A(τ) still follow
+    the state: exactly on the separatrix (L² = 2T·I2 in floating point) they are the
+    asymptotic motion, (3.1) with m = 1 (sn = tanh, cn = dn = sech), tending to the rotation
+    about x2; otherwise the periodic motion of the state's own modulus, which the band
+    cannot distinguish from it for ~K/ν ≳ 14/ν but which stays exact for the given z0.
+
+    Accuracy: ω(τ) to a few ulps of |z| for any k'² = 1 − k² > 0 (Jacobi functions are
+    evaluated on a quarter period and reflected, see :func:`_jacobi`); ψ(τ) to ~1e-16/k'
+    rad near the middle axis when k' is tiny (the amplitude there is resolved to 1e-16).
     """
 
     inertia: FloatArray
@@ -807,12 +854,14 @@ class EulerPoinsot:
         A0 = np.eye(3) if attitude0 is None else np.asarray(attitude0, dtype=float)
         _check_attitude(A0)
 
-        Q = _sorting_matrix(I_user)
+        Q = proper_sorting(I_user)
         Is_arr = np.sort(I_user)
         Is = (float(Is_arr[0]), float(Is_arr[1]), float(Is_arr[2]))
-        # The motion of s·ẑ is that of ẑ at time s·τ, scaled by s: build it for the
-        # largest component 1, so that squares neither overflow nor underflow.
-        scale = float(np.max(np.abs(z_user)))
+        # The motion of s·ẑ is that of ẑ at time s·τ, scaled by s: build it for the largest
+        # |component| in [½, 1), so that squares neither overflow nor underflow. s is a power
+        # of 2: the scaling is exact (a state exactly on the separatrix stays on it).
+        biggest = float(np.max(np.abs(z_user)))
+        scale = math.ldexp(1.0, math.frexp(biggest)[1]) if biggest > 0.0 else 0.0
         zs = Q @ z_user / (scale if scale > 0.0 else 1.0)
         Lvec = Is_arr * zs
         L = float(np.linalg.norm(Lvec))
@@ -820,9 +869,9 @@ class EulerPoinsot:
         reg, k2, nu, period, nu1, nu2, kern, P_sorted = _build_kernel(Is, zs, L, T)
         if reg == "separatrix":
             warnings.warn(
-                f"the state is on the separatrix L² = 2T·I2 (|L² − 2T·I2| ≤ "
-                f"{SEPARATRIX_RTOL:g}·L²): the Euler–Poinsot motion is asymptotic to the "
-                "rotation about the middle axis and its period is infinite",
+                f"the motion is on the separatrix L² = 2T·I2 (|L² − 2T·I2| ≤ "
+                f"{SEPARATRIX_RTOL:g}·L²): it is asymptotic to the rotation about the middle "
+                "axis and its period is infinite (ν1 = 0: averaging is invalid, spec §12)",
                 TumbleWarning,
                 stacklevel=2,
             )
@@ -830,7 +879,9 @@ class EulerPoinsot:
         q_polar = matrix_to_quat(P)
         q_a0 = matrix_to_quat(A0)
         _, psi0, theta0, phi0 = kern.evaluate(np.zeros(()))
-        q_g0 = quat_multiply(quat_multiply(_qz(psi0), _qx(theta0)), quat_multiply(_qz(phi0), q_polar))
+        q_g0 = quat_multiply(
+            quat_multiply(_qz(psi0), _qx(theta0)), quat_multiply(_qz(phi0), q_polar)
+        )
         q_lframe = quat_multiply(q_a0, quat_conjugate(q_g0))
         return cls(
             inertia=I_user.copy(),

@@ -172,7 +172,8 @@ def test_classification_by_axis(inertia, beta, eps):
     # Smallest axis: the leading roots are a complex pair with Re > 0 (slow oscillatory growth).
     rep = _report((mid, large, small), beta, eps)
     assert rep.classification == "unstable"
-    assert rep.roots[0].imag != 0.0 and rep.roots[1] == np.conj(rep.roots[0])
+    if eps / small < 0.1:  # the (2.6) picture; for ε/I of order 1 the pair may turn real
+        assert rep.roots[0].imag != 0.0 and rep.roots[1] == np.conj(rep.roots[0])
 
 
 @pytest.mark.parametrize("beta", [0.3, math.pi / 4, 1.2, math.pi / 2])

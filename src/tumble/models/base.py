@@ -14,7 +14,8 @@ from typing import Any
 import numpy as np
 from scipy.optimize import brentq
 
-from tumble._typing import FloatArray
+from tumble._typing import ArrayLike, FloatArray
+from tumble.errors import ParameterError
 
 __all__ = [
     "AveragedForm",
@@ -25,6 +26,7 @@ __all__ = [
     "StationaryMotion",
     "ValidityIssue",
     "first_time",
+    "frozen_array",
 ]
 
 
@@ -200,3 +202,15 @@ def first_time(condition: Callable[[FloatArray], FloatArray], grid: FloatArray) 
     return float(
         brentq(lambda t: float(condition(np.array([t]))[0]), grid[i - 1], grid[i], xtol=1e-12)
     )
+
+
+def frozen_array(name: str, value: ArrayLike, shape: tuple[int, ...]) -> FloatArray:
+    """``value`` as a read-only float array of ``shape``; ParameterError naming ``name`` if it
+    has another shape or a non-finite entry."""
+    arr = np.array(value, dtype=float)
+    if arr.shape != shape:
+        raise ParameterError(f"{name} must have shape {shape}, got {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ParameterError(f"{name} must contain finite numbers only, got {value!r}")
+    arr.setflags(write=False)
+    return arr

@@ -32,6 +32,7 @@ from tumble.models.base import (
     ModelRecord,
     ValidityIssue,
     first_time,
+    frozen_array,
 )
 from tumble.rotations import (
     attitude_from_kframe_angles,
@@ -80,16 +81,6 @@ VALIDITY_RATIO = 0.1
 (spec §6: ``ε(|a|/k² + |b|/k + |s|) ≪ |κ cos ϑ|/(1+κ)``); beyond it a run is warned."""
 
 
-def _frozen(name: str, value: ArrayLike, shape: tuple[int, ...]) -> FloatArray:
-    arr = np.array(value, dtype=float)
-    if arr.shape != shape:
-        raise ParameterError(f"{name} must have shape {shape}, got {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise ParameterError(f"{name} must contain finite numbers only, got {value!r}")
-    arr.setflags(write=False)
-    return arr
-
-
 @dataclass(frozen=True, eq=False)
 class Params:
     """Normalized parameters of (1.3), spec/medvedev.md §4.
@@ -121,9 +112,9 @@ class Params:
         check_range("parameters.kappa", float(self.kappa), low=-1.0, high=1.0, high_open=False)
         object.__setattr__(self, "eps", float(self.eps))
         object.__setattr__(self, "kappa", float(self.kappa))
-        object.__setattr__(self, "a", _frozen("parameters.a", self.a, (3,)))
-        object.__setattr__(self, "b", _frozen("parameters.b", self.b, (3, 3)))
-        object.__setattr__(self, "s", _frozen("parameters.s", self.s, (3, 3)))
+        object.__setattr__(self, "a", frozen_array("parameters.a", self.a, (3,)))
+        object.__setattr__(self, "b", frozen_array("parameters.b", self.b, (3, 3)))
+        object.__setattr__(self, "s", frozen_array("parameters.s", self.s, (3, 3)))
         # Built once: the full right-hand side calls it at every evaluation.
         moment = ConstantBodyTorque(self.a) + LinearDrag(self.b) + QuadraticDrag(self.s)
         object.__setattr__(self, "_torque", self.eps * moment)
@@ -1100,9 +1091,9 @@ class PhysicalParams:
 
     def __post_init__(self) -> None:
         RigidBody.symmetric(self.I1, self.I3)  # positivity and the triangle inequality
-        object.__setattr__(self, "A", _frozen("physical.A", self.A, (3,)))
-        object.__setattr__(self, "B", _frozen("physical.B", self.B, (3, 3)))
-        object.__setattr__(self, "S", _frozen("physical.S", self.S, (3, 3)))
+        object.__setattr__(self, "A", frozen_array("physical.A", self.A, (3,)))
+        object.__setattr__(self, "B", frozen_array("physical.B", self.B, (3, 3)))
+        object.__setattr__(self, "S", frozen_array("physical.S", self.S, (3, 3)))
         if self.M0 is not None:
             check_range("physical.M0", self.M0, low=0.0)
 
@@ -1165,7 +1156,7 @@ def normalize_physical(
     -------
     (Params, State, Scaling)
     """
-    w0 = _frozen("initial.omega", omega0, (3,))
+    w0 = frozen_array("initial.omega", omega0, (3,))
     Kb = np.array([phys.I1, phys.I1, phys.I3]) * w0
     K0 = float(np.linalg.norm(Kb))
     if K0 == 0.0:
@@ -1190,7 +1181,7 @@ def normalize_physical(
     theta0 = math.atan2(math.hypot(Kb[0], Kb[1]), Kb[2])
     phi0 = math.atan2(Kb[0], Kb[1])
     if attitude is not None:
-        R = quat_to_matrix(_frozen("initial.quaternion", attitude, (4,)))
+        R = quat_to_matrix(frozen_array("initial.quaternion", attitude, (4,)))
         r, sg, ps, _, _ = kframe_angles_from_attitude(R, R @ Kb)
         st = State(1.0, float(r), float(sg), float(ps), theta0, phi0)
     else:

@@ -36,6 +36,7 @@ from tumble.models.base import (
     StationaryMotion,
     ValidityIssue,
     first_time,
+    frozen_array,
 )
 from tumble.rotations import (
     euler313_to_matrix,
@@ -92,16 +93,6 @@ RESONANCE_ORDERS = (2, 2)
 _XI3 = np.array([0.0, 0.0, 1.0])
 
 
-def _frozen(name: str, value: ArrayLike, shape: tuple[int, ...]) -> FloatArray:
-    arr = np.array(value, dtype=float)
-    if arr.shape != shape:
-        raise ParameterError(f"{name} must have shape {shape}, got {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise ParameterError(f"{name} must contain finite numbers only, got {value!r}")
-    arr.setflags(write=False)
-    return arr
-
-
 @dataclass(frozen=True, eq=False)
 class Params:
     """Nondimensional parameters of (1.5), spec/martynenko.md §4.
@@ -129,7 +120,7 @@ class Params:
     torque: EddyCurrentTorque = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
-        inertia = _frozen("parameters.inertia", self.inertia, (3,))
+        inertia = frozen_array("parameters.inertia", self.inertia, (3,))
         RigidBody(*inertia.tolist())  # positive, triangle inequality
         check_range(
             "parameters.beta",
@@ -182,7 +173,7 @@ class Params:
 
 
 def _as_rotation(name: str, gamma: ArrayLike) -> FloatArray:
-    G = _frozen(name, gamma, (3, 3))
+    G = frozen_array(name, gamma, (3, 3))
     defect = float(np.max(np.abs(G @ G.T - np.eye(3))))
     if defect > GAMMA_TOL or np.linalg.det(G) <= 0.0:
         raise ParameterError(
@@ -211,7 +202,7 @@ class State:
     gamma: FloatArray
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "z", _frozen("initial.z", self.z, (3,)))
+        object.__setattr__(self, "z", frozen_array("initial.z", self.z, (3,)))
         object.__setattr__(self, "gamma", _as_rotation("initial.gamma", self.gamma))
 
     def slow(self, p: Params) -> dict[str, float]:
@@ -1084,7 +1075,7 @@ class PhysicalParams:
     beta: float
 
     def __post_init__(self) -> None:
-        inertia = _frozen("physical.inertia", self.inertia, (3,))
+        inertia = frozen_array("physical.inertia", self.inertia, (3,))
         RigidBody(*inertia.tolist())
         object.__setattr__(self, "inertia", inertia)
         check_range("physical.k_f", self.k_f, low=0.0)
@@ -1147,7 +1138,7 @@ def normalize_physical(
     I_ref = float(np.max(phys.inertia))
     eps = phys.k_f * phys.H**2 / (phys.omega * I_ref)
     p = Params(phys.inertia / I_ref, phys.beta, eps)
-    st = State(_frozen("initial.Omega", Omega0, (3,)) / phys.omega, gamma0)
+    st = State(frozen_array("initial.Omega", Omega0, (3,)) / phys.omega, gamma0)
     return p, st, Scaling(phys.omega, I_ref, eps)
 
 

@@ -2,13 +2,13 @@
 
 from __future__ import annotations
 
-import csv
 import json
 import math
 from pathlib import Path
 
 import numpy as np
 import pytest
+from files import read_csv, write
 from typer.testing import CliRunner
 
 from tumble.cli import app
@@ -52,18 +52,6 @@ psi0_deg = 10.0
 [run]
 tau = [0.0, 1.0, 2.5, 10.0]
 """
-
-
-def write(tmp_path, text, name="s.toml"):
-    path = tmp_path / name
-    path.write_text(text)
-    return path
-
-
-def read_csv(path):
-    with open(path) as fh:
-        rows = list(csv.reader(fh))
-    return rows[0], np.array(rows[1:], dtype=float)
 
 
 def test_run_writes_the_contract_outputs(tmp_path):

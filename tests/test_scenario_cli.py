@@ -1,6 +1,5 @@
 """Scenario files, the CLI contract, outputs and bad input."""
 
-import csv
 import json
 import math
 import os
@@ -11,6 +10,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from files import read_csv, write
 from typer.testing import CliRunner
 
 from tumble.cli import app
@@ -41,18 +41,6 @@ methods = ["full", "averaged", "closed_form"]
 rtol = 1e-10
 atol = 1e-12
 """
-
-
-def write(tmp_path, text, name="s.toml"):
-    path = tmp_path / name
-    path.write_text(text)
-    return path
-
-
-def read_csv(path):
-    with open(path) as fh:
-        rows = list(csv.reader(fh))
-    return rows[0], np.array(rows[1:], dtype=float)
 
 
 def test_run_writes_the_contract_outputs(tmp_path):

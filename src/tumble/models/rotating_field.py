@@ -277,16 +277,12 @@ def _inertial_from_slow(p: Params, st: State) -> FloatArray:
     return np.concatenate([st.z, matrix_to_quat(st.gamma)])
 
 
-def _columns_from_momentum(
-    L_xi: FloatArray, T: FloatArray, p: Params, sigma0: float | None = None
-) -> dict[str, FloatArray]:
+def _columns_from_momentum(L_xi: FloatArray, T: FloatArray, p: Params) -> dict[str, FloatArray]:
     """L, ρ, σ, T, k² from the inertial angular momentum and the energy, §9, §16."""
     L = np.linalg.norm(L_xi, axis=-1)
     perp = np.hypot(L_xi[..., 0], L_xi[..., 1])
     rho = np.arctan2(perp, L_xi[..., 2])
     sigma = np.arctan2(L_xi[..., 1], L_xi[..., 0])
-    if sigma0 is not None:
-        sigma = np.where(perp > 0.0, sigma, sigma0)  # σ undefined on the axis: keep it
     k2 = np.array(
         [modulus_squared(*p.sorted_inertia, Li, Ti)[0] for Li, Ti in zip(L, T, strict=True)]
     )

@@ -116,7 +116,7 @@ class Params:
     # Derived once: the right-hand sides run at every step.
     sorting: FloatArray = field(init=False, repr=False)  # S: v_sorted = S v_user, det S = +1
     sorted_inertia: tuple[float, float, float] = field(init=False, repr=False)
-    h: FloatArray = field(init=False, repr=False)  # field direction in the field frame
+    hh: FloatArray = field(init=False, repr=False)  # ĥĥ = hhᵀ − E in the field frame
     torque: EddyCurrentTorque = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
@@ -139,9 +139,12 @@ class Params:
         object.__setattr__(self, "sorting", S)
         srt = np.abs(S) @ inertia
         object.__setattr__(self, "sorted_inertia", tuple(float(v) for v in srt))
-        h = np.array([math.sin(self.beta), 0.0, math.cos(self.beta)])
-        h.setflags(write=False)
-        object.__setattr__(self, "h", h)
+        # ĥĥ = h hᵀ − E for h = (sin β, 0, cos β), with −cos²β and −sin²β written directly
+        # (1 − sin²β by subtraction loses relative accuracy for β near 0 or π).
+        sb, cb = math.sin(self.beta), math.cos(self.beta)
+        hh = np.array([[-cb * cb, 0.0, sb * cb], [0.0, -1.0, 0.0], [sb * cb, 0.0, -sb * sb]])
+        hh.setflags(write=False)
+        object.__setattr__(self, "hh", hh)
         object.__setattr__(self, "torque", EddyCurrentTorque(self.eps, 1.0, self.beta))
 
     @property
@@ -242,7 +245,7 @@ def full_rhs(t: float, y: Any, p: Params) -> Any:
     G = y[3:].reshape(3, 3)
     Iz = p.inertia * z
     rel = G @ z - _XI3  # angular velocity relative to the field, field-frame components
-    m_eta = p.h * (p.h @ rel) - rel  # ĥĥ v = h (h·v) − v
+    m_eta = p.hh @ rel
     dz = (np.cross(Iz, z) + p.eps * (G.T @ m_eta)) / p.inertia
     dG = G @ _hat(z) - _hat(_XI3) @ G
     return np.concatenate([dz, dG.ravel()])

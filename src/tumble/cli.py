@@ -73,7 +73,7 @@ def run_cmd(
             m,
             ds.attrs["form"],
             f"{ds.attrs['wall_time_s']:.3g}",
-            *(f"{ds[v].values[-1]:.6g}" for v in shown),
+            *(f"{ds[v].values[-1]:.6g}" if v in ds else "—" for v in shown),
         )
     out.print(table)
     for pair, diffs in result.differences.items():
@@ -86,6 +86,19 @@ def run_cmd(
         )
         note = lim.get("statement") or lim.get("end_state")
         out.print(f"predicted limits: {text}" + (f" ({note})" if note else ""), highlight=False)
+    extra = result.report.summary
+    if extra.get("max_envelope_discrepancy") is not None:
+        out.print(
+            f"max envelope discrepancy (θmax, relative): {extra['max_envelope_discrepancy']:.3%}",
+            highlight=False,
+        )
+    if "root_case" in extra:
+        out.print(
+            f"root case {extra['root_case']}, k² = {extra['k2']:.6g}, "
+            f"θ ∈ [{extra['theta_min']:.6g}, {extra['theta_max']:.6g}] rad, "
+            f"period {extra['period']:.6g}",
+            highlight=False,
+        )
     out.print(f"outputs written to {out_dir}/", highlight=False)
 
 

@@ -10,25 +10,46 @@ from __future__ import annotations
 
 import io
 from pathlib import Path
+from typing import Any
+
+import numpy as np
 
 from tumble.analysis import RunResult, run
 from tumble.io import load_scenario, render_outputs, write_outputs
-from tumble.plot import plot_comparison
+from tumble.plot import plot_comparison, plot_envelope
 
 __all__ = ["run_scenario"]
 
 
-def _comparison_png(result: RunResult, title: str) -> bytes:
+def _pressure_curve(result: RunResult) -> tuple[Any, Any, str] | None:
+    """a(t)/a(0) = Q(εt)/Q(0) of a perturbed nonlinear-moment run whose pressure varies."""
+    for ds in result.datasets.values():
+        if "a" in ds and ds["a"].values[0] != 0.0 and np.ptp(ds["a"].values) > 0.0:
+            return ds["tau"].values, ds["a"].values / ds["a"].values[0], "Q(εt)/Q(0) = a(t)/a(0)"
+    return None
+
+
+def _figure_png(result: RunResult, title: str) -> bytes:
     import matplotlib.pyplot as plt
 
     model = result.request.model
-    fig = plot_comparison(
-        result.datasets,
-        variables=model.plot_variables,
-        diagnostics=result.diagnostics.get("averaged"),
-        marks=result.issues,
-        title=title,
-    )
+    if model.plot_kind == "envelope":
+        _header, rows = result.report.tables.get("full_extrema", ((), []))
+        fig = plot_envelope(
+            result.datasets,
+            extrema=rows,
+            pressure=_pressure_curve(result),
+            marks=result.issues,
+            title=title,
+        )
+    else:
+        fig = plot_comparison(
+            result.datasets,
+            variables=model.plot_variables,
+            diagnostics=result.diagnostics.get("averaged"),
+            marks=result.issues,
+            title=title,
+        )
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=130)
     plt.close(fig)
@@ -58,6 +79,6 @@ def run_scenario(scenario: str | Path, out_dir: str | Path) -> RunResult:
     result = run(sc.request)
     files = render_outputs(result, sc.inputs, sc.source)
     title = f"{sc.request.model.name}: {Path(sc.source).name}"
-    files[sc.request.model.figure] = _comparison_png(result, title)
+    files[sc.request.model.figure] = _figure_png(result, title)
     write_outputs(out_dir, files)
     return result

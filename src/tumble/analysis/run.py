@@ -13,7 +13,7 @@ from tumble._typing import FloatArray
 from tumble.analysis.compare import max_differences
 from tumble.errors import TumbleWarning
 from tumble.integrate import DEFAULT_ATOL, DEFAULT_RTOL, Trajectory, simulate
-from tumble.models.base import Column, ModelRecord, ValidityIssue
+from tumble.models.base import Column, ModelRecord, Report, ValidityIssue
 
 __all__ = ["RunRequest", "RunResult", "run", "to_dataset"]
 
@@ -53,7 +53,8 @@ class RunResult:
     """Datasets of every method, their differences, warnings and the predicted limits.
 
     ``diagnostics`` holds, per averaged method, the model's extra per-sample quantities (e.g.
-    the fast frequencies of the rotating-field model).
+    the fast frequencies of the rotating-field model); ``report`` the model's extra tables and
+    summary keys (e.g. the extrema of the nonlinear-moment model).
     """
 
     request: RunRequest
@@ -63,10 +64,11 @@ class RunResult:
     issues: list[dict[str, Any]] = field(default_factory=list)
     limits: dict[str, Any] = field(default_factory=dict)
     diagnostics: dict[str, xr.Dataset] = field(default_factory=dict)
+    report: Report = field(default_factory=Report)
 
 
 def _columns_dataset(
-    columns: tuple[Column, ...], values: dict[str, FloatArray], tau: FloatArray
+    columns: tuple[Column, ...], values: dict[str, FloatArray], tau: FloatArray, time_name: str
 ) -> xr.Dataset:
     """Columns as a Dataset on ``tau``, with units, long names and equations in ``attrs``."""
     data_vars = {
@@ -82,14 +84,17 @@ def _columns_dataset(
         )
         for col in columns
     }
-    return xr.Dataset(
-        data_vars, coords={"tau": ("tau", tau, {"units": "1", "long_name": "time τ"})}
-    )
+    # The coordinate is "tau" for every model; its attrs carry the paper's own time name.
+    symbol = {"tau": "τ"}.get(time_name, time_name)
+    time_attrs = {"units": "1", "long_name": f"time {symbol}", "name": time_name}
+    return xr.Dataset(data_vars, coords={"tau": ("tau", tau, time_attrs)})
 
 
-def to_dataset(model: ModelRecord, traj: Trajectory) -> xr.Dataset:
+def to_dataset(model: ModelRecord, traj: Trajectory, p: Any) -> xr.Dataset:
     """Trajectory as an ``xarray.Dataset`` with units, long names and equations in ``attrs``."""
-    ds = _columns_dataset(model.columns[traj.method], traj.columns, traj.tau)
+    ds = _columns_dataset(
+        model.method_columns(p, traj.method), traj.columns, traj.tau, model.time_name
+    )
     ds.attrs.update(
         model=model.name,
         method=traj.method,
@@ -139,7 +144,7 @@ def run(request: RunRequest) -> RunResult:
         m: simulate(model, p, st, request.tau, m, rtol=request.rtol, atol=request.atol)
         for m in request.methods
     }
-    datasets = {m: to_dataset(model, t) for m, t in trajectories.items()}
+    datasets = {m: to_dataset(model, t, p) for m, t in trajectories.items()}
     differences = {
         f"{b}_vs_{a}": max_differences(datasets[b], datasets[a])
         for a, b in itertools.combinations(request.methods, 2)
@@ -158,5 +163,10 @@ def run(request: RunRequest) -> RunResult:
     if model.diagnostics is not None and "averaged" in trajectories:
         traj = trajectories["averaged"]
         values = model.diagnostics(p, st, traj.columns)
-        diagnostics["averaged"] = _columns_dataset(model.diagnostic_columns, values, traj.tau)
-    return RunResult(request, datasets, trajectories, differences, issues, limits, diagnostics)
+        diagnostics["averaged"] = _columns_dataset(
+            model.diagnostic_columns, values, traj.tau, model.time_name
+        )
+    report = model.report(p, st, trajectories) if model.report is not None else Report()
+    return RunResult(
+        request, datasets, trajectories, differences, issues, limits, diagnostics, report
+    )

@@ -88,6 +88,21 @@ def _event(g: Callable[[float, FloatArray], float]) -> Callable[[float, FloatArr
     return event
 
 
+def _inside(
+    rhs: Callable[[float, FloatArray], FloatArray], t0: float, t1: float
+) -> Callable[[float, FloatArray], FloatArray]:
+    """``rhs`` evaluated strictly inside [t0, t1]: a stage that lands on a segment end (a time
+    breakpoint, where a forcing has a kink) must see the forcing of its own segment, not the
+    other side's. The shift, 1e-12 relative, is far below any tolerance of the solver."""
+    delta = 1e-12 * max(1.0, abs(t0), abs(t1))
+    lo, hi = t0 + delta, t1 - delta
+
+    def f(t: float, y: FloatArray) -> FloatArray:
+        return rhs(min(max(t, lo), hi), y)
+
+    return f
+
+
 def integrate(
     rhs: Callable[[float, FloatArray], FloatArray],
     y0: ArrayLike,
@@ -115,8 +130,8 @@ def integrate(
     breakpoints : sequence of Breakpoint
         Surfaces the solution crosses at most once and where ``rhs`` is not smooth (e.g. a
         separatrix). The step is stopped exactly at the crossing and the integration restarts
-        there (through the breakpoint's restart map), so no step straddles the non-smooth
-        point.
+        there (through the breakpoint's restart map). Breakpoints at known times (a kink in a
+        prescribed forcing) split the interval, so no step straddles them.
 
     Raises
     ------
@@ -128,22 +143,35 @@ def integrate(
         raise IntegrationError(f"{what}: the initial state is not finite: {y0}")
     if t_end == 0.0:
         return DenseSolution(np.array([0.0]), 0, lambda t: np.repeat(y0[:, None], np.size(t), 1))
-    # A breakpoint the start sits on is already passed.
-    pending = [b for b in breakpoints if b.condition(0.0, y0) != 0.0]
+    # Known times split the interval; a surface the start sits on is already passed.
+    times = {float(b.time) for b in breakpoints if b.time is not None}
+    stops = sorted(t for t in times if 0.0 < t < t_end)
+    stops.append(t_end)
+    pending = [
+        b
+        for b in breakpoints
+        if b.time is None and b.condition is not None and b.condition(0.0, y0) != 0.0
+    ]
     starts, sols, steps, nfev = [0.0], [], [np.array([0.0])], 0
     t0, y = 0.0, y0
+    first_step: float | None = None
     while True:
+        seg_end = next(s for s in stops if s > t0)
+        if first_step is not None:
+            first_step = min(first_step, seg_end - t0)
+        f = _inside(rhs, t0, seg_end) if stops[0] < t_end else rhs
         with np.errstate(divide="raise", over="raise", invalid="raise"):
             try:
                 res = solve_ivp(
-                    rhs,
-                    (t0, t_end),
+                    f,
+                    (t0, seg_end),
                     y,
                     method="DOP853",
                     rtol=rtol,
                     atol=atol,
                     dense_output=True,
-                    events=[_event(b.condition) for b in pending] or None,
+                    events=[_event(b.condition) for b in pending if b.condition] or None,
+                    first_step=first_step,
                 )
             except FloatingPointError as exc:
                 raise IntegrationError(
@@ -155,15 +183,23 @@ def integrate(
         sols.append(res.sol)
         steps.append(np.asarray(res.t[1:]))
         nfev += int(res.nfev)
-        if res.status != 1:
+        # Restart with the step size the solver had reached (the last step is cut short by
+        # the stop, so take the one before): its own initial guess can be orders of magnitude
+        # too small, and regrowing the step costs hundreds of evaluations.
+        h = float(res.t[-2] - res.t[-3]) if res.t.size > 2 else 0.0
+        if res.status == 1:
+            fired = next(i for i, ev in enumerate(res.t_events) if ev.size)
+            t0, y = float(res.t_events[fired][0]), np.asarray(res.y_events[fired][0])
+            restart = pending.pop(fired).restart
+            if restart is not None:
+                y = np.asarray(restart(t0, y), dtype=float)
+        elif seg_end < t_end:
+            t0, y = seg_end, np.asarray(res.y[:, -1])
+        else:
             break
-        fired = next(i for i, ev in enumerate(res.t_events) if ev.size)
-        t0, y = float(res.t_events[fired][0]), np.asarray(res.y_events[fired][0])
-        restart = pending.pop(fired).restart
-        if restart is not None:
-            y = np.asarray(restart(t0, y), dtype=float)
         if t0 >= t_end:
             break
+        first_step = h if h > 0.0 else None
         starts.append(t0)
     if len(sols) == 1:
         return DenseSolution(np.concatenate(steps), nfev, sols[0])

@@ -15,7 +15,7 @@ from typing import Any, Literal
 import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
-from tumble.errors import ParameterError
+from tumble.errors import IntegrationError, ParameterError
 from tumble.integrate.ode import DEFAULT_ATOL, DEFAULT_RTOL, DenseSolution, check_times, integrate
 from tumble.models.base import AveragedForm, FullForm, ModelRecord
 
@@ -42,6 +42,9 @@ class Trajectory:
         Right-hand-side evaluations (0 for closed forms).
     slow : callable
         ``slow(tau) -> columns`` anywhere in ``[0, tau[-1]]``, for validity checks.
+    steps : ndarray
+        The integrator's step times (empty for closed forms): a grid that resolves every fast
+        oscillation, for locating extrema.
     """
 
     tau: FloatArray
@@ -51,13 +54,14 @@ class Trajectory:
     wall_time: float
     nfev: int
     slow: Callable[[FloatArray], dict[str, FloatArray]] = field(repr=False)
+    steps: FloatArray = field(default_factory=lambda: np.empty(0), repr=False)
 
 
 def _unwrap_columns(
-    model: ModelRecord, method: str, cols: dict[str, FloatArray], initial: Any
+    model: ModelRecord, p: Any, method: str, cols: dict[str, FloatArray], initial: Any
 ) -> None:
     """Make angle columns continuous, starting from the initial value (spec §14), not mod 2π."""
-    for c in model.columns[method]:
+    for c in model.method_columns(p, method):
         if c.unwrap and c.name in cols:
             angle = np.unwrap(cols[c.name])
             start = getattr(initial, c.name, angle[0])
@@ -66,6 +70,7 @@ def _unwrap_columns(
 
 def _sampled(
     model: ModelRecord,
+    p: Any,
     method: str,
     sol: DenseSolution,
     to_columns: Callable[[FloatArray, FloatArray], dict[str, FloatArray]],
@@ -79,7 +84,7 @@ def _sampled(
     """
     grid, index = np.unique(np.concatenate([sol.ts, tau]), return_inverse=True)
     cols = to_columns(grid, sol(grid))
-    _unwrap_columns(model, method, cols, initial)
+    _unwrap_columns(model, p, method, cols, initial)
     at = index[sol.ts.size :]
     return {name: values[at] for name, values in cols.items()}
 
@@ -147,27 +152,33 @@ def simulate(
             def to_columns(t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
                 return avg.to_columns(t, Y, p, initial)
 
-        sol = integrate(
-            lambda t, y: eq.rhs(t, y, p),
-            eq.from_slow(p, initial),
-            t_end,
-            rtol=rtol,
-            atol=atol,
-            what=f"{model.name} {kind} {eq.equation}",
-            breakpoints=eq.breakpoints if isinstance(eq, AveragedForm) else (),
-        )
-        cols = _sampled(model, method, sol, to_columns, tau, initial)
-        used, nfev = eq.name, sol.nfev
+        try:
+            sol = integrate(
+                lambda t, y: eq.rhs(t, y, p),
+                eq.from_slow(p, initial),
+                t_end,
+                rtol=rtol,
+                atol=atol,
+                what=f"{model.name} {kind} {eq.equation}",
+                breakpoints=eq.breakpoints if isinstance(eq, AveragedForm) else (),
+            )
+        except IntegrationError as exc:
+            reason = eq.failure() if isinstance(eq, AveragedForm) and eq.failure else None
+            if reason is None:
+                raise
+            raise IntegrationError(f"{exc}; last refused state: {reason}") from None
+        cols = _sampled(model, p, method, sol, to_columns, tau, initial)
+        used, nfev, steps = eq.name, sol.nfev, sol.ts
 
         def slow(t: FloatArray) -> dict[str, FloatArray]:
             return to_columns(t, sol(t))
 
     else:
         cols = model.closed_form(p, initial, tau)
-        used, nfev = "closed_form", 0
+        used, nfev, steps = "closed_form", 0, np.empty(0)
 
         def slow(t: FloatArray) -> dict[str, FloatArray]:
             return model.closed_form(p, initial, t)
 
     wall = time.perf_counter() - start
-    return Trajectory(tau, cols, method, used, wall, nfev, slow)
+    return Trajectory(tau, cols, method, used, wall, nfev, slow, steps)

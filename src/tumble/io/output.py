@@ -20,7 +20,14 @@ import xarray as xr
 import tumble
 from tumble.analysis import RunResult
 
-__all__ = ["atomic_write", "csv_text", "render_outputs", "summary", "write_outputs"]
+__all__ = [
+    "atomic_write",
+    "csv_text",
+    "render_outputs",
+    "summary",
+    "table_text",
+    "write_outputs",
+]
 
 
 def atomic_write(path: str | Path, data: bytes) -> None:
@@ -42,9 +49,14 @@ def atomic_write(path: str | Path, data: bytes) -> None:
         raise
 
 
+def _time_name(ds: xr.Dataset) -> str:
+    """The paper's name of the time coordinate (``tau`` or ``t``)."""
+    return str(ds["tau"].attrs.get("name", "tau"))
+
+
 def csv_text(ds: xr.Dataset, extra: dict[str, np.ndarray] | None = None) -> str:
-    """CSV with header ``tau,<variables in dataset order>``, values to full precision."""
-    names = ["tau", *(str(v) for v in ds.data_vars)]
+    """CSV with header ``<time>,<variables in dataset order>``, values to full precision."""
+    names = [_time_name(ds), *(str(v) for v in ds.data_vars)]
     cols = [ds["tau"].values, *(ds[v].values for v in ds.data_vars)]
     if extra:
         names, cols = list(extra), list(extra.values())
@@ -69,9 +81,21 @@ def _jsonable(x: Any) -> Any:
     return x
 
 
+def table_text(header: tuple[str, ...], rows: list[tuple[Any, ...]]) -> str:
+    """CSV of a table with mixed columns: strings as given, floats to full precision."""
+
+    def cell(v: Any) -> str:
+        if isinstance(v, float | np.floating):
+            return f"{float(v):.17g}"
+        return str(v)
+
+    lines = [",".join(header), *(",".join(cell(v) for v in row) for row in rows)]
+    return "\n".join(lines) + "\n"
+
+
 def _final_state(ds: xr.Dataset) -> dict[str, float]:
     return {
-        "tau": float(ds["tau"].values[-1]),
+        _time_name(ds): float(ds["tau"].values[-1]),
         **{str(v): float(ds[v].values[-1]) for v in ds.data_vars},
     }
 
@@ -114,6 +138,7 @@ def summary(result: RunResult, inputs: dict[str, Any], source: str) -> dict[str,
         }
     if req.scaling is not None:
         out["scaling"] = req.scaling.summary()
+    out.update(result.report.summary)
     return _jsonable(out)
 
 
@@ -129,6 +154,8 @@ def render_outputs(result: RunResult, inputs: dict[str, Any], source: str) -> di
             files[f"{method}_si.csv"] = csv_text(ds, si).encode()
     for method, ds in result.diagnostics.items():
         files[f"{method}_diagnostics.csv"] = csv_text(ds).encode()
+    for name, (header, rows) in result.report.tables.items():
+        files[f"{name}.csv"] = table_text(header, rows).encode()
     text = json.dumps(summary(result, inputs, source), indent=2, ensure_ascii=False)
     files["summary.json"] = (text + "\n").encode()
     return files

@@ -20,7 +20,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_valida
 from tumble.analysis import RunRequest
 from tumble.errors import ParameterError, ScenarioError
 from tumble.integrate import check_times
-from tumble.models import get_model, resisting_medium, rotating_field
+from tumble.models import get_model, nonlinear_moment, resisting_medium, rotating_field
 
 __all__ = ["Scenario", "load_scenario", "parse_scenario", "template"]
 
@@ -393,7 +393,119 @@ def _rotating_field(data: dict[str, Any]) -> tuple[RunRequest, dict[str, Any]]:
     return request, sc.model_dump()
 
 
-_BUILDERS = {"resisting_medium": _resisting_medium, "rotating_field": _rotating_field}
+class NMParameters(_Section):
+    mu: float = Field(description="C/A, a number in (0, 2]")
+    a: float = Field(description="sinθ coefficient of M0/A at t = 0, a finite number [1/t^2]")
+    b: float = Field(description="sin2θ coefficient of M0/A at t = 0, a finite number [1/t^2]")
+
+
+class NMPressureTable(_Section):
+    tau: list[float] = Field(description="ascending slow times τ = εt, from ≤ 0")
+    Q: list[float] = Field(description="pressure values > 0, one per τ")
+
+
+class NMPerturbation(_Section):
+    eps: float = Field(description="a number in (0, 1)")
+    d: float = Field(0.0, description="pitch damping, a finite number [1/t]")
+    nu: float = Field(0.0, description="roll damping, a finite number [1/t]")
+    pressure: Literal["constant", "exp"] | list[list[float]] | NMPressureTable = Field(
+        "constant",
+        description='"constant", "exp", a table [[τ, Q], ...] or {tau = [...], Q = [...]}',
+    )
+
+
+class NMInitial(_Section):
+    theta: float = Field(description="an angle in (0, π) [rad]")
+    theta_dot: float = Field(0.0, description="θ' at t = 0, a finite number [rad/t]")
+    psi: float = Field(0.0, description="an angle [rad]")
+    phi: float = Field(0.0, description="an angle [rad]")
+    R: float = Field(0.0, description="R = Cr/A, a finite number [1/t]")
+    G: float = Field(0.0, description="G = K·e_z/A, a finite number [1/t]")
+
+    @model_validator(mode="before")
+    @classmethod
+    def _degrees(cls, data: Any) -> Any:
+        return _degrees_to_radians(data, ("theta", "psi", "phi"))
+
+
+class NMRunSection(_Section):
+    t_end: float | None = Field(None, description="a time > 0 [t]")
+    t: list[float] | None = Field(None, description="ascending times ≥ 0 [t]")
+    samples: int = Field(2001, description="an integer ≥ 2")
+    methods: list[Literal["full", "averaged", "closed_form"]] | None = Field(
+        None, description='a non-empty list of "full", "closed_form", "averaged"'
+    )
+    averaged_init: Literal["exact", "corrected"] = Field(
+        "exact", description='"exact" or "corrected"'
+    )
+    averaged_form: Literal["energy", "theta_max", "theta_min"] = Field(
+        "energy", description='"energy", "theta_max" or "theta_min"'
+    )
+    rtol: float = Field(1e-10, description="a number in [1e-14, 1e-3]")
+    atol: float = Field(1e-12, description="a number in (0, 1e-3]")
+
+
+class NMScenario(_Section):
+    model: Literal["nonlinear_moment"]
+    parameters: NMParameters
+    perturbation: NMPerturbation | None = None
+    initial: NMInitial
+    run: NMRunSection
+
+
+def _pressure(value: Any) -> nonlinear_moment.Pressure:
+    if isinstance(value, str):
+        return nonlinear_moment.Pressure(value)  # type: ignore[arg-type]
+    if isinstance(value, NMPressureTable):
+        return nonlinear_moment.Pressure("table", tuple(value.tau), tuple(value.Q))
+    if not all(len(row) == 2 for row in value):
+        raise ScenarioError("perturbation.pressure: a table is a list of [τ, Q] pairs")
+    return nonlinear_moment.Pressure(
+        "table", tuple(r[0] for r in value), tuple(r[1] for r in value)
+    )
+
+
+def _nonlinear_moment(data: dict[str, Any]) -> tuple[RunRequest, dict[str, Any]]:
+    model = nonlinear_moment.MODEL
+    sc = _validated(NMScenario, data)
+    par, pert, ini, run = sc.parameters, sc.perturbation, sc.initial, sc.run
+    if pert is not None and not (math.isfinite(pert.eps) and 0.0 < pert.eps < 1.0):
+        raise ParameterError(f"perturbation.eps = {pert.eps:g} is outside the allowed range (0, 1)")
+    p = nonlinear_moment.Params(
+        mu=par.mu,
+        a=par.a,
+        b=par.b,
+        eps=pert.eps if pert else 0.0,
+        d=pert.d if pert else 0.0,
+        nu=pert.nu if pert else 0.0,
+        pressure=_pressure(pert.pressure) if pert else nonlinear_moment.Pressure(),
+        averaged_form=run.averaged_form,
+        averaged_init=run.averaged_init,
+    )
+    st = nonlinear_moment.State(
+        theta=ini.theta, theta_dot=ini.theta_dot, psi=ini.psi, phi=ini.phi, R=ini.R, G=ini.G
+    )
+    t = _times(run, "t_end", "t")
+    if p.eps * t[-1] > p.pressure.tau_max:
+        raise ParameterError(
+            f"perturbation.pressure table covers τ ≤ {p.pressure.tau_max:g}, but the run "
+            f"reaches τ = eps·t = {p.eps * t[-1]:g}"
+        )
+    default = ("full", "averaged") if p.perturbed else ("full", "closed_form")
+    methods = _methods(run, model.methods) if run.methods is not None else default
+    for m in methods:
+        model.check_method(p, m)  # closed_form needs ε = 0, averaged needs ε > 0
+    rtol, atol = _tolerances(run)
+    nonlinear_moment.orbit_of(p, st)  # no motion (e.g. a separatrix) → one line, before any run
+    request = RunRequest(model, p, st, t, methods, rtol, atol)
+    return request, sc.model_dump()
+
+
+_BUILDERS = {
+    "resisting_medium": _resisting_medium,
+    "rotating_field": _rotating_field,
+    "nonlinear_moment": _nonlinear_moment,
+}
 
 
 def parse_scenario(data: dict[str, Any], source: str = "<scenario>") -> Scenario:

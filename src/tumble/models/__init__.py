@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 from tumble.errors import ScenarioError
-from tumble.models import resisting_medium, rotating_field
+from tumble.models import nonlinear_moment, resisting_medium, rotating_field
 from tumble.models.base import ModelRecord
 
-__all__ = ["MODELS", "get_model", "resisting_medium", "rotating_field"]
+__all__ = ["MODELS", "get_model", "nonlinear_moment", "resisting_medium", "rotating_field"]
 
-MODELS: dict[str, ModelRecord] = {m.name: m for m in (resisting_medium.MODEL, rotating_field.MODEL)}
+MODELS: dict[str, ModelRecord] = {
+    m.name: m for m in (resisting_medium.MODEL, rotating_field.MODEL, nonlinear_moment.MODEL)
+}
 """Every registered model, by the name a scenario's ``model`` key uses."""
 
 

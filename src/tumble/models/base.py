@@ -8,7 +8,7 @@ the output columns, and which closed forms and validity checks it has.
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -23,6 +23,7 @@ __all__ = [
     "Column",
     "FullForm",
     "ModelRecord",
+    "Report",
     "StationaryMotion",
     "ValidityIssue",
     "first_time",
@@ -64,11 +65,19 @@ class Breakpoint:
 
     The integration stops exactly there and restarts from ``restart(t, y)`` (default: the same
     state). A restart map lets a solution leave a non-Lipschitz point it would otherwise stick
-    to (e.g. the spurious k² ≡ 1 solution on a separatrix).
+    to (e.g. the spurious k² ≡ 1 solution on a separatrix); one that raises stops the run
+    there. A breakpoint at a known time (``Breakpoint.at_time``) splits the integration
+    interval there instead, so that no step ever straddles it.
     """
 
-    condition: Callable[[float, FloatArray], float]
+    condition: Callable[[float, FloatArray], float] | None
     restart: Callable[[float, FloatArray], FloatArray] | None = None
+    time: float | None = None  # a known time instead of a condition (a kink in a forcing)
+
+    @classmethod
+    def at_time(cls, t: float) -> Breakpoint:
+        """A breakpoint at a fixed time ``t`` (the integration is split there)."""
+        return cls(None, None, float(t))
 
 
 @dataclass(frozen=True, slots=True)
@@ -81,6 +90,9 @@ class AveragedForm:
     from_slow: Callable[[Any, Any], FloatArray]
     to_columns: Callable[[FloatArray, FloatArray, Any, Any], dict[str, FloatArray]]
     breakpoints: tuple[Breakpoint, ...] = ()  # non-smooth surfaces: stop and restart there
+    # The reason the right-hand side last refused a state (it returned NaN so the solver would
+    # reject the step); reported if the integration then fails.
+    failure: Callable[[], str | None] | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -122,6 +134,20 @@ class StationaryMotion:
 
 
 @dataclass(frozen=True)
+class Report:
+    """Model-specific results of a run beyond the per-method columns.
+
+    ``tables`` maps a file stem (e.g. ``"full_extrema"``) to its header and rows; ``summary``
+    holds keys added at the top level of ``summary.json``.
+    """
+
+    tables: Mapping[str, tuple[tuple[str, ...], list[tuple[Any, ...]]]] = field(
+        default_factory=dict
+    )
+    summary: Mapping[str, Any] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
 class ModelRecord:
     """Registry entry of a paper model.
 
@@ -159,6 +185,15 @@ class ModelRecord:
         File name of the run's figure.
     plot_variables : tuple of str
         Columns drawn in the figure, one panel each.
+    time_name : str
+        Name of the time column in the output files (the paper's time variable).
+    columns_for : callable, optional
+        ``p -> columns``: output columns that depend on the parameters (e.g. perturbed and
+        unperturbed runs write different columns); overrides ``columns`` when given.
+    report : callable, optional
+        ``(p, initial, trajectories) -> Report``: extra tables and summary keys of a run.
+    plot_kind : {"comparison", "envelope"}
+        Which figure the run draws.
     """
 
     name: str
@@ -180,6 +215,15 @@ class ModelRecord:
     diagnostic_columns: tuple[Column, ...] = ()
     figure: str = "comparison.png"
     plot_variables: tuple[str, ...] = ("k", "theta")
+    time_name: str = "tau"
+    columns_for: Callable[[Any], Mapping[str, tuple[Column, ...]]] | None = None
+    report: Callable[[Any, Any, Mapping[str, Any]], Report] | None = None
+    plot_kind: str = "comparison"
+
+    def method_columns(self, p: Any, method: str) -> tuple[Column, ...]:
+        """Output columns of ``method`` for parameters ``p``."""
+        columns = self.columns if self.columns_for is None else self.columns_for(p)
+        return columns[method]
 
 
 def first_time(condition: Callable[[FloatArray], FloatArray], grid: FloatArray) -> float | None:

@@ -1,6 +1,7 @@
 """Figures. Plot functions take data and an optional Axes and compute no physics."""
 
 from tumble.plot.comparison import plot_comparison, plot_methods
+from tumble.plot.envelope import plot_envelope
 from tumble.plot.stability import (
     plot_classification,
     plot_leading_real_part,
@@ -11,6 +12,7 @@ from tumble.plot.stability import (
 __all__ = [
     "plot_classification",
     "plot_comparison",
+    "plot_envelope",
     "plot_leading_real_part",
     "plot_methods",
     "plot_stability_map",

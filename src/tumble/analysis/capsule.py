@@ -1,0 +1,314 @@
+"""The entry-capsule application of the nonlinear-moment paper (spec/serov.md §9–§10).
+
+A ballistic descent (:mod:`tumble.entry`) gives the dynamic pressure q(t); the capsule's
+modified-Newtonian moment, fitted as Cm ≈ c1 sinα + c2 sin2α, gives
+a(t) = q(t) S D c1 / A and b(t) = q(t) S D c2 / A of (1.5). The attitude motion about the
+velocity direction (θ the total angle of attack) is then integrated in full and by Volosov's
+averaged equations, and their envelopes compared.
+
+Modelling assumptions (the paper's): the attitude does not affect the trajectory (zero lift,
+constant drag coefficient), the rotation of the velocity vector is neglected (e_z fixed), and
+aerodynamic damping is left out (d = ν = 0), so the envelope changes only through q(t).
+
+Usable from a notebook::
+
+    from tumble.analysis.capsule import capsule_attitude
+    run = capsule_attitude()
+    print(run.envelope["max_relative"], run.cost_ratio)
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass, field
+from typing import Any, Literal
+
+import numpy as np
+from scipy.interpolate import make_interp_spline
+from scipy.optimize import brentq
+
+from tumble._typing import FloatArray
+from tumble.entry import (
+    SOYUZ_CLASS,
+    STANDARD,
+    Capsule,
+    Descent,
+    MomentFit,
+    descend,
+    fit_moment,
+)
+from tumble.errors import ParameterError, check_range
+from tumble.integrate import Trajectory, simulate
+from tumble.models import nonlinear_moment as nm
+
+__all__ = ["Q_SPACING", "CapsuleAttitude", "capsule_attitude", "descent_eps"]
+
+Q_SPACING = 0.25
+"""Largest node spacing of the dynamic-pressure splines [s]."""
+
+
+@dataclass(frozen=True)
+class CapsuleAttitude:
+    """Full and averaged attitude motion of a capsule along its descent.
+
+    Times ``t`` of the trajectories count from ``t_start`` of the descent [s].
+
+    Attributes
+    ----------
+    capsule : Capsule
+        The capsule (inertias possibly scaled).
+    fit : MomentFit
+        Its moment fit c1, c2 (1.5).
+    descent : Descent
+        The trajectory.
+    t_start, t_end : float
+        Window of the descent the attitude is integrated over [s].
+    params : nonlinear_moment.Params
+        The model: a, b at t_start [1/s²], ε = 1/(t_end − t_start) [1/s], Q(τ) = q/q(t_start).
+    initial : nonlinear_moment.State
+        Initial attitude state.
+    trajectories : dict
+        Method → Trajectory (``full``, ``averaged``).
+    extrema : list
+        Every θ extremum of the full motion, rows (kind, k, t, θ, R, G).
+    envelope : dict
+        :func:`~tumble.models.nonlinear_moment.envelope_discrepancy` of the averaged envelope.
+    eps_descent : float
+        The descent's true small parameter: max over the window of T(t)·|q'(t)|/q(t), the
+        relative change of the dynamic pressure per small-amplitude nutation period [1].
+    """
+
+    capsule: Capsule
+    fit: MomentFit
+    descent: Descent
+    t_start: float
+    t_end: float
+    params: nm.Params
+    initial: nm.State
+    trajectories: dict[str, Trajectory] = field(repr=False)
+    extrema: list[tuple[str, int, float, float, float, float]] = field(repr=False)
+    envelope: dict[str, Any]
+    eps_descent: float
+
+    @property
+    def wall_time(self) -> dict[str, float]:
+        """Seconds spent by each method [s]."""
+        return {m: t.wall_time for m, t in self.trajectories.items()}
+
+    @property
+    def cost_ratio(self) -> float | None:
+        """Wall time of the full run over that of the averaged run [1]."""
+        w = self.wall_time
+        if "full" not in w or "averaged" not in w:
+            return None
+        return w["full"] / w["averaged"]
+
+    def q(self, t: FloatArray) -> FloatArray:
+        """Dynamic pressure at attitude time t (from t_start) [Pa]."""
+        return np.asarray(self.descent.q_at(self.t_start + np.asarray(t, dtype=float)))
+
+
+def _small_amplitude_period(capsule: Capsule, fit: MomentFit, q: FloatArray) -> FloatArray:
+    """2π/√(−(a + 2b)) at dynamic pressure q: the nutation period about θ = 0 [s]."""
+    k = -(fit.c1 + 2.0 * fit.c2) * q * capsule.S * capsule.D / capsule.A
+    if np.any(k <= 0.0):
+        raise ParameterError(
+            "the capsule is not statically stable at α = 0 (c1 + 2c2 ≥ 0): no nutation period"
+        )
+    return 2.0 * math.pi / np.sqrt(k)
+
+
+def _layer_crossings(descent: Descent, t0: float, t1: float) -> list[float]:
+    """Times in (t0, t1) where the descent crosses an altitude at which dρ/dh jumps [s]."""
+
+    def h(t: float) -> float:
+        return float(np.atleast_2d(descent.state(t))[0, 2])
+
+    inside = descent.t[(descent.t > t0) & (descent.t < t1)]
+    grid = np.concatenate([[t0], inside, [t1]])
+    heights = np.array([h(t) for t in grid])
+    out = []
+    for hk in STANDARD.kinks:
+        d = heights - hk
+        for i in np.flatnonzero(d[:-1] * d[1:] < 0.0):
+            out.append(float(brentq(lambda t, hk=hk: h(t) - hk, grid[i], grid[i + 1], xtol=1e-12)))
+    return sorted(out)
+
+
+class _PiecewiseSpline:
+    """q(t)/q0 as quintic splines between kinks, in τ = (t − t_start)/(t_end − t_start)."""
+
+    def __init__(self, descent: Descent, edges: FloatArray, q0: float) -> None:
+        t0, span = float(edges[0]), float(edges[-1] - edges[0])
+        self.inner = (edges[1:-1] - t0) / span
+        self.pieces = []
+        for a, b in itertools.pairwise(edges):
+            n = max(8, math.ceil((b - a) / Q_SPACING) + 1)
+            nodes = np.linspace(a, b, n)
+            spline = make_interp_spline((nodes - t0) / span, descent.q_at(nodes) / q0, k=5)
+            self.pieces.append((spline, spline.derivative()))
+
+    def _eval(self, tau: FloatArray, which: int) -> FloatArray:
+        t = np.asarray(tau, dtype=float)
+        idx = np.searchsorted(self.inner, t, side="right")
+        if t.ndim == 0:
+            return np.asarray(self.pieces[int(idx)][which](t))
+        out = np.empty_like(t)
+        for i in np.unique(idx):
+            out[idx == i] = self.pieces[i][which](t[idx == i])
+        return out
+
+    def value(self, tau: FloatArray) -> FloatArray:
+        return self._eval(tau, 0)
+
+    def rate(self, tau: FloatArray) -> FloatArray:
+        return self._eval(tau, 1)
+
+
+def descent_eps(capsule: Capsule, fit: MomentFit, descent: Descent, t: FloatArray) -> FloatArray:
+    """T(t)·|q'(t)|/q(t): relative change of q per small-amplitude nutation period [1].
+
+    Parameters
+    ----------
+    capsule : Capsule
+    fit : MomentFit
+    descent : Descent
+    t : ndarray
+        Descent times [s].
+    """
+    q = np.asarray(descent.q_at(t))
+    return _small_amplitude_period(capsule, fit, q) * np.abs(descent.dqdt(t)) / q
+
+
+def capsule_attitude(
+    capsule: Capsule = SOYUZ_CLASS,
+    *,
+    V0: float = 7600.0,
+    gamma0: float = math.radians(-2.0),
+    h0: float = 100e3,
+    h_end: float = 10e3,
+    eps_start: float = 0.3,
+    theta0: float = math.radians(60.0),
+    spin: float = math.radians(5.0),
+    inertia_scale: float = 1.0,
+    averaged_init: Literal["exact", "corrected"] = "corrected",
+    methods: tuple[str, ...] = ("full", "averaged"),
+    samples: int = 2001,
+    rtol: float = 1e-10,
+    averaged_rtol: float = 1e-7,
+) -> CapsuleAttitude:
+    """Attitude of an uncontrolled capsule during its descent: full vs averaged, spec §10.
+
+    The attitude run starts when the descent's small parameter T·|q'|/q first falls to
+    ``eps_start`` (earlier, q changes too much within a nutation period for any averaging), at
+    rest in the transverse plane (θ' = 0, no transverse rate) with roll rate ``spin``, and ends
+    at altitude ``h_end``.
+
+    Parameters
+    ----------
+    capsule : Capsule
+        Geometry, mass and inertias (default: the illustrative Soyuz-class capsule).
+    V0, gamma0, h0 : float
+        Entry speed [m/s], flight-path angle [rad] (negative: descending), altitude [m].
+    h_end : float
+        Altitude where the run ends [m].
+    eps_start : float
+        T·|q'|/q at which the attitude run starts [1], in (0, 1).
+    theta0 : float
+        Initial total angle of attack [rad], in (0, π).
+    spin : float
+        Initial roll rate r [rad/s].
+    inertia_scale : float
+        Factor applied to A and C (changes the nutation period by √factor, and so the
+        descent's ε, without changing the trajectory) [1].
+    averaged_init : {"exact", "corrected"}
+        Initialisation of the averaged run (spec §7).
+    methods : tuple of str
+        ``"full"`` and/or ``"averaged"``.
+    samples : int
+        Output samples over the window.
+    rtol : float
+        Tolerance of the full integration and of the descent.
+    averaged_rtol : float
+        Tolerance of the averaged integration (its own error is O(ε) or O(ε²), far above).
+
+    Returns
+    -------
+    CapsuleAttitude
+    """
+    check_range("theta0", theta0, low=0.0, high=math.pi)
+    check_range("eps_start", eps_start, low=0.0, high=1.0)
+    check_range("inertia_scale", inertia_scale, low=0.0)
+    if inertia_scale != 1.0:
+        from dataclasses import replace
+
+        capsule = replace(capsule, A=capsule.A * inertia_scale, C=capsule.C * inertia_scale)
+    fit = fit_moment(capsule)
+    descent = descend(capsule, V0, gamma0, h0, h_end=h_end, rtol=rtol)
+    t_grid = descent.t
+    eps_d = descent_eps(capsule, fit, descent, t_grid)
+    below = np.flatnonzero(eps_d <= eps_start)
+    if below.size == 0:
+        raise ParameterError(
+            f"eps_start = {eps_start:g}: the descent's T·|q'|/q never falls that low "
+            f"(minimum {float(np.min(eps_d)):.3g})"
+        )
+    i = int(below[0])
+    t_start = (
+        float(t_grid[0])
+        if i == 0
+        else float(
+            brentq(
+                lambda t: float(descent_eps(capsule, fit, descent, np.array([t]))[0]) - eps_start,
+                t_grid[i - 1],
+                t_grid[i],
+            )
+        )
+    )
+    t_end = float(t_grid[-1])
+    span = t_end - t_start
+    q0 = float(descent.q_at(t_start))
+    eps = 1.0 / span
+
+    # Q(τ) as quintic interpolating splines of the descent's q, one per altitude layer of the
+    # atmosphere (dρ/dh, hence dq/dt, jumps where the lapse rate changes), and dQ/dτ as their
+    # derivative: one cheap function, smooth between those few kinks, shared by the full and
+    # the averaged runs; the averaged run is split at each kink (Pressure.breaks). (The
+    # descent's dense output itself costs ~1 ms per call.)
+    breaks = _layer_crossings(descent, t_start, t_end)
+    profile = _PiecewiseSpline(descent, np.array([t_start, *breaks, t_end]), q0)
+    Q, dQ = profile.value, profile.rate
+    scale = capsule.S * capsule.D / capsule.A
+    p = nm.Params(
+        mu=capsule.C / capsule.A,
+        a=q0 * scale * fit.c1,
+        b=q0 * scale * fit.c2,
+        eps=eps,
+        pressure=nm.Pressure(
+            "function",
+            function=Q,
+            derivative=dQ,
+            tau_end=1.0,
+            breaks=tuple((tb - t_start) / span for tb in breaks),
+        ),
+        averaged_init=averaged_init,
+    )
+    R0 = p.mu * spin
+    st = nm.State(theta=theta0, theta_dot=0.0, R=R0, G=R0 * math.cos(theta0))
+    t = np.linspace(0.0, span, samples)
+    trajectories = {
+        m: simulate(nm.MODEL, p, st, t, m, rtol=rtol if m == "full" else averaged_rtol, atol=1e-12)
+        for m in methods
+    }
+    rows = nm.extrema(trajectories["full"], p) if "full" in trajectories else []
+    env = (
+        nm.envelope_discrepancy(rows, trajectories["averaged"])
+        if rows and "averaged" in trajectories
+        else {}
+    )
+    window = np.linspace(t_start, t_end, 2001)
+    eps_desc = float(np.max(descent_eps(capsule, fit, descent, window)))
+    return CapsuleAttitude(
+        capsule, fit, descent, t_start, t_end, p, st, trajectories, rows, env, eps_desc
+    )

@@ -32,6 +32,7 @@ from tumble._typing import FloatArray
 from tumble.entry import (
     SOYUZ_CLASS,
     STANDARD,
+    AtmosphereModel,
     Capsule,
     Descent,
     MomentFit,
@@ -42,7 +43,7 @@ from tumble.errors import ParameterError, check_range
 from tumble.integrate import Trajectory, simulate
 from tumble.models import nonlinear_moment as nm
 
-__all__ = ["Q_SPACING", "CapsuleAttitude", "capsule_attitude", "descent_eps"]
+__all__ = ["Q_SPACING", "CapsuleAttitude", "capsule_attitude", "capsule_study", "descent_eps"]
 
 Q_SPACING = 0.25
 """Largest node spacing of the dynamic-pressure splines [s]."""
@@ -119,7 +120,9 @@ def _small_amplitude_period(capsule: Capsule, fit: MomentFit, q: FloatArray) -> 
     return 2.0 * math.pi / np.sqrt(k)
 
 
-def _layer_crossings(descent: Descent, t0: float, t1: float) -> list[float]:
+def _layer_crossings(
+    descent: Descent, atmosphere: AtmosphereModel, t0: float, t1: float
+) -> list[float]:
     """Times in (t0, t1) where the descent crosses an altitude at which dρ/dh jumps [s]."""
 
     def h(t: float) -> float:
@@ -129,7 +132,7 @@ def _layer_crossings(descent: Descent, t0: float, t1: float) -> list[float]:
     grid = np.concatenate([[t0], inside, [t1]])
     heights = np.array([h(t) for t in grid])
     out = []
-    for hk in STANDARD.kinks:
+    for hk in atmosphere.kinks:
         d = heights - hk
         for i in np.flatnonzero(d[:-1] * d[1:] < 0.0):
             out.append(float(brentq(lambda t, hk=hk: h(t) - hk, grid[i], grid[i + 1], xtol=1e-12)))
@@ -188,21 +191,25 @@ def capsule_attitude(
     gamma0: float = math.radians(-2.0),
     h0: float = 100e3,
     h_end: float = 10e3,
+    atmosphere: AtmosphereModel = STANDARD,
     eps_start: float = 0.3,
+    t_start: float | None = None,
     theta0: float = math.radians(60.0),
+    theta_dot0: float = -0.3,
     spin: float = math.radians(5.0),
     inertia_scale: float = 1.0,
     averaged_init: Literal["exact", "corrected"] = "corrected",
     methods: tuple[str, ...] = ("full", "averaged"),
     samples: int = 2001,
+    averaged_samples: int = 201,
     rtol: float = 1e-10,
-    averaged_rtol: float = 1e-7,
+    averaged_rtol: float = 1e-6,
 ) -> CapsuleAttitude:
     """Attitude of an uncontrolled capsule during its descent: full vs averaged, spec §10.
 
     The attitude run starts when the descent's small parameter T·|q'|/q first falls to
     ``eps_start`` (earlier, q changes too much within a nutation period for any averaging), at
-    rest in the transverse plane (θ' = 0, no transverse rate) with roll rate ``spin``, and ends
+    nutation rate ``theta_dot0``, no precession rate (ψ' = 0) and roll rate ``spin``, and ends
     at altitude ``h_end``.
 
     Parameters
@@ -213,10 +220,20 @@ def capsule_attitude(
         Entry speed [m/s], flight-path angle [rad] (negative: descending), altitude [m].
     h_end : float
         Altitude where the run ends [m].
+    atmosphere : AtmosphereModel
+        The atmosphere (default: ICAO 1993 with its isothermal extension; its lapse-rate
+        changes make dq/dt jump at a few altitudes, each an abrupt O(ε) change of the forcing
+        that the averaged run cannot anticipate).
     eps_start : float
         T·|q'|/q at which the attitude run starts [1], in (0, 1).
+    t_start : float, optional
+        Descent time at which the attitude run starts [s] (overrides ``eps_start``; to compare
+        capsules over the same window).
     theta0 : float
         Initial total angle of attack [rad], in (0, π).
+    theta_dot0 : float
+        Initial rate of the total angle of attack [rad/s] (the default, mid-swing, is where the
+        paper's initialisation is least accurate; 0 starts at a turning point).
     spin : float
         Initial roll rate r [rad/s].
     inertia_scale : float
@@ -227,11 +244,16 @@ def capsule_attitude(
     methods : tuple of str
         ``"full"`` and/or ``"averaged"``.
     samples : int
-        Output samples over the window.
+        Output samples of the full run over the window (its extrema are located on the
+        integrator's steps, independently of the samples).
+    averaged_samples : int
+        Output samples of the averaged run (its envelope is smooth; the discrepancy is
+        evaluated on the dense solution at every extremum of the full run).
     rtol : float
         Tolerance of the full integration and of the descent.
     averaged_rtol : float
-        Tolerance of the averaged integration (its own error is O(ε) or O(ε²), far above).
+        Tolerance of the averaged integration (the averaging error, O(ε) or O(ε²), is far
+        larger).
 
     Returns
     -------
@@ -245,27 +267,31 @@ def capsule_attitude(
 
         capsule = replace(capsule, A=capsule.A * inertia_scale, C=capsule.C * inertia_scale)
     fit = fit_moment(capsule)
-    descent = descend(capsule, V0, gamma0, h0, h_end=h_end, rtol=rtol)
+    descent = descend(capsule, V0, gamma0, h0, h_end=h_end, atmosphere=atmosphere, rtol=rtol)
     t_grid = descent.t
     eps_d = descent_eps(capsule, fit, descent, t_grid)
     below = np.flatnonzero(eps_d <= eps_start)
-    if below.size == 0:
+    if below.size == 0 and t_start is None:
         raise ParameterError(
             f"eps_start = {eps_start:g}: the descent's T·|q'|/q never falls that low "
             f"(minimum {float(np.min(eps_d)):.3g})"
         )
-    i = int(below[0])
-    t_start = (
-        float(t_grid[0])
-        if i == 0
-        else float(
-            brentq(
-                lambda t: float(descent_eps(capsule, fit, descent, np.array([t]))[0]) - eps_start,
-                t_grid[i - 1],
-                t_grid[i],
+    if t_start is None:
+        i = int(below[0])
+        t_start = (
+            float(t_grid[0])
+            if i == 0
+            else float(
+                brentq(
+                    lambda t: (
+                        float(descent_eps(capsule, fit, descent, np.array([t]))[0]) - eps_start
+                    ),
+                    t_grid[i - 1],
+                    t_grid[i],
+                )
             )
         )
-    )
+    check_range("t_start", t_start, low=0.0, high=float(t_grid[-1]), low_open=False)
     t_end = float(t_grid[-1])
     span = t_end - t_start
     q0 = float(descent.q_at(t_start))
@@ -276,7 +302,7 @@ def capsule_attitude(
     # derivative: one cheap function, smooth between those few kinks, shared by the full and
     # the averaged runs; the averaged run is split at each kink (Pressure.breaks). (The
     # descent's dense output itself costs ~1 ms per call.)
-    breaks = _layer_crossings(descent, t_start, t_end)
+    breaks = _layer_crossings(descent, atmosphere, t_start, t_end)
     profile = _PiecewiseSpline(descent, np.array([t_start, *breaks, t_end]), q0)
     Q, dQ = profile.value, profile.rate
     scale = capsule.S * capsule.D / capsule.A
@@ -295,12 +321,13 @@ def capsule_attitude(
         averaged_init=averaged_init,
     )
     R0 = p.mu * spin
-    st = nm.State(theta=theta0, theta_dot=0.0, R=R0, G=R0 * math.cos(theta0))
-    t = np.linspace(0.0, span, samples)
-    trajectories = {
-        m: simulate(nm.MODEL, p, st, t, m, rtol=rtol if m == "full" else averaged_rtol, atol=1e-12)
-        for m in methods
-    }
+    st = nm.State(theta=theta0, theta_dot=theta_dot0, R=R0, G=R0 * math.cos(theta0))
+    trajectories = {}
+    for m in methods:
+        n = samples if m == "full" else averaged_samples
+        tol = rtol if m == "full" else averaged_rtol
+        t = np.linspace(0.0, span, n)
+        trajectories[m] = simulate(nm.MODEL, p, st, t, m, rtol=tol, atol=1e-12)
     rows = nm.extrema(trajectories["full"], p) if "full" in trajectories else []
     env = (
         nm.envelope_discrepancy(rows, trajectories["averaged"])
@@ -312,3 +339,67 @@ def capsule_attitude(
     return CapsuleAttitude(
         capsule, fit, descent, t_start, t_end, p, st, trajectories, rows, env, eps_desc
     )
+
+
+def capsule_study(
+    scales: tuple[float, ...] = (1.0 / 64.0, 1.0 / 16.0, 0.25, 1.0),
+    *,
+    capsule: Capsule = SOYUZ_CLASS,
+    eps_start: float = 0.3,
+    theta_dot0: float = -0.3,
+    **kwargs: Any,
+) -> list[dict[str, Any]]:
+    """Envelope discrepancy and cost ratio against the descent's ε, spec §10 (ii)–(iii).
+
+    The window is fixed by the unscaled capsule (its T·|q'|/q falls to ``eps_start``); the
+    inertias are then scaled by each factor, which multiplies the nutation period, and so the
+    descent's ε, by √factor without changing the trajectory. Both initialisations run.
+
+    Parameters
+    ----------
+    scales : tuple of float
+        Inertia factors [1].
+    capsule : Capsule
+    eps_start : float
+        Start criterion of the window for the unscaled capsule [1].
+    theta_dot0 : float
+        Initial nutation rate of the unscaled capsule [rad/s].
+    **kwargs
+        Passed to :func:`capsule_attitude` (entry conditions, θ0, spin, tolerances).
+
+    Returns
+    -------
+    list of dict
+        Per scale: ``scale``, ``eps_descent``, ``n_maxima``, and per initialisation
+        ``discrepancy_<init>`` (max relative θmax discrepancy) and ``cost_ratio_<init>`` (full
+        over averaged wall time), with ``wall_full_s``, ``wall_averaged_<init>_s``.
+    """
+    base = capsule_attitude(capsule, eps_start=eps_start, methods=(), **kwargs)
+    rows = []
+    for scale in scales:
+        row: dict[str, Any] = {"scale": scale}
+        full_traj: Trajectory | None = None
+        for init in ("exact", "corrected"):
+            methods = ("averaged",) if full_traj is not None else ("full", "averaged")
+            run = capsule_attitude(
+                capsule,
+                t_start=base.t_start,
+                theta_dot0=theta_dot0 / math.sqrt(scale),
+                inertia_scale=scale,
+                averaged_init=init,  # type: ignore[arg-type]
+                methods=methods,
+                **kwargs,
+            )
+            if full_traj is None:
+                full_traj = run.trajectories["full"]
+                rows_ext = run.extrema
+                row["eps_descent"] = run.eps_descent
+                row["n_maxima"] = sum(1 for r in rows_ext if r[0] == "max")
+                row["wall_full_s"] = full_traj.wall_time
+            avg = run.trajectories["averaged"]
+            env = nm.envelope_discrepancy(rows_ext, avg)
+            row[f"discrepancy_{init}"] = env["max_relative"]
+            row[f"wall_averaged_{init}_s"] = avg.wall_time
+            row[f"cost_ratio_{init}"] = full_traj.wall_time / avg.wall_time
+        rows.append(row)
+    return rows

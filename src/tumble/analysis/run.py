@@ -68,7 +68,11 @@ class RunResult:
 
 
 def _columns_dataset(
-    columns: tuple[Column, ...], values: dict[str, FloatArray], tau: FloatArray, time_name: str
+    columns: tuple[Column, ...],
+    values: dict[str, FloatArray],
+    tau: FloatArray,
+    time_name: str,
+    time_units: str = "1",
 ) -> xr.Dataset:
     """Columns as a Dataset on ``tau``, with units, long names and equations in ``attrs``."""
     data_vars = {
@@ -86,14 +90,18 @@ def _columns_dataset(
     }
     # The coordinate is "tau" for every model; its attrs carry the paper's own time name.
     symbol = {"tau": "τ"}.get(time_name, time_name)
-    time_attrs = {"units": "1", "long_name": f"time {symbol}", "name": time_name}
+    time_attrs = {"units": time_units, "long_name": f"time {symbol}", "name": time_name}
     return xr.Dataset(data_vars, coords={"tau": ("tau", tau, time_attrs)})
 
 
 def to_dataset(model: ModelRecord, traj: Trajectory, p: Any) -> xr.Dataset:
     """Trajectory as an ``xarray.Dataset`` with units, long names and equations in ``attrs``."""
     ds = _columns_dataset(
-        model.method_columns(p, traj.method), traj.columns, traj.tau, model.time_name
+        model.method_columns(p, traj.method),
+        traj.columns,
+        traj.tau,
+        model.time_name,
+        model.time_units,
     )
     ds.attrs.update(
         model=model.name,
@@ -164,7 +172,7 @@ def run(request: RunRequest) -> RunResult:
         traj = trajectories["averaged"]
         values = model.diagnostics(p, st, traj.columns)
         diagnostics["averaged"] = _columns_dataset(
-            model.diagnostic_columns, values, traj.tau, model.time_name
+            model.diagnostic_columns, values, traj.tau, model.time_name, model.time_units
         )
     report = model.report(p, st, trajectories) if model.report is not None else Report()
     return RunResult(

@@ -185,8 +185,8 @@ class ModelRecord:
         File name of the run's figure.
     plot_variables : tuple of str
         Columns drawn in the figure, one panel each.
-    time_name : str
-        Name of the time column in the output files (the paper's time variable).
+    time_name, time_units : str
+        Name and unit of the time column in the output files (the paper's time variable).
     columns_for : callable, optional
         ``p -> columns``: output columns that depend on the parameters (e.g. perturbed and
         unperturbed runs write different columns); overrides ``columns`` when given.
@@ -216,6 +216,7 @@ class ModelRecord:
     figure: str = "comparison.png"
     plot_variables: tuple[str, ...] = ("k", "theta")
     time_name: str = "tau"
+    time_units: str = "1"
     columns_for: Callable[[Any], Mapping[str, tuple[Column, ...]]] | None = None
     report: Callable[[Any, Any, Mapping[str, Any]], Report] | None = None
     plot_kind: str = "comparison"

@@ -1271,6 +1271,7 @@ MODEL = ModelRecord(
     figure="envelope.png",
     plot_variables=("theta", "theta_max", "theta_min", "R", "G"),
     time_name="t",
+    time_units="t",
     columns_for=_columns_for,
     report=report,
     plot_kind="envelope",

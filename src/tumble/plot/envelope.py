@@ -116,7 +116,15 @@ def plot_envelope(
         ax2.set_ylabel(label, color="tab:green")
         handles.append(line)
         labels.append(label)
-    ax.legend(handles, labels, loc="best", fontsize=8)
+    ax.legend(
+        handles,
+        labels,
+        loc="upper center",
+        bbox_to_anchor=(0.5, -0.14),
+        ncol=3,
+        fontsize=8,
+        frameon=False,
+    )
     if title:
         ax.set_title(title, fontsize=10)
     return fig

@@ -285,3 +285,29 @@ def test_averaging_refuses_to_cross_a_separatrix():
     assert nm.barrier_energies(0.0, 0.0, 0.0, -1.0) == pytest.approx([0.0], abs=1e-15)
     with pytest.raises(IntegrationError, match="separatrix"):
         simulate(nm.MODEL, p, s0, np.linspace(0.0, 400.0, 11), "averaged")
+
+
+def test_averaged_rhs_is_continuous_where_the_roots_turn_complex():
+    # Spec §9: along a run the outer roots may pass from a complex pair (case 2) to real ones
+    # (case 1); the right-hand side must not jump there. Locate the switch in E by bisection.
+    p0, _ = CASES["double_well"]
+    p = _perturbed(p0, 0.01, pressure=nm.Pressure("exp"))
+    R, G = 0.4, 0.6
+
+    def case(E: float) -> int:
+        return NutationOrbit.from_energy(p.mu, p.a, p.b, R, G, E, u_hint=0.75).root_case
+
+    lo, hi = 0.27, 0.52
+    assert (case(lo), case(hi)) == (1, 2)
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if case(mid) == 1 else (lo, mid)
+    rates = []
+    for E in (lo - 1e-9, lo, hi, hi + 1e-9):
+        rates.append(nm.averaged_rhs(0.0, np.array([E, R, G, p.a, p.b]), p, u_hint=0.75))
+    rates = np.array(rates)
+    slope = np.abs(rates[0] - rates[-1]) / (hi - lo + 2e-9)
+    # Across an interval of ~2e-9 in E the rates change only at their (bounded) slope: no
+    # jump. The bound allows 1e-6 relative of the rate on top (conditioning at the switch).
+    jump = np.max(np.abs(rates[1] - rates[2]))
+    assert jump < 1e-6 * float(np.max(np.abs(rates))) + float(np.max(slope)) * (hi - lo)

@@ -4,6 +4,8 @@
   amplitude (Carlson's forms).
 * :mod:`~tumble.unperturbed.euler_poinsot`: the torque-free rigid body (3.1) of
   spec/martynenko.md §8, its averages and fast frequencies.
+* :mod:`~tumble.unperturbed.symmetric_body`: the symmetric body under the moment
+  A(a·sinθ + b·sin2θ), (1.9)–(1.13) of spec/serov.md, and its period averages (§8).
 """
 
 from tumble.unperturbed.elliptic import ellippi, ellippi_inc
@@ -19,18 +21,32 @@ from tumble.unperturbed.euler_poinsot import (
     proper_sorting,
     regime,
 )
+from tumble.unperturbed.symmetric_body import (
+    SEPARATRIX_TOL,
+    NutationOrbit,
+    effective_potential,
+    energy,
+    potential_slope,
+    quartic_coefficients,
+)
 
 __all__ = [
     "ENERGY_RTOL",
     "SEPARATRIX_RTOL",
+    "SEPARATRIX_TOL",
     "EulerPoinsot",
+    "NutationOrbit",
     "Regime",
+    "effective_potential",
     "ellippi",
     "ellippi_inc",
+    "energy",
     "energy_from_modulus",
     "fast_frequencies",
     "mean_square_rate",
     "modulus_squared",
+    "potential_slope",
     "proper_sorting",
+    "quartic_coefficients",
     "regime",
 ]

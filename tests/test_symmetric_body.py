@@ -1,19 +1,22 @@
 """Symmetric body under M0(θ) = A(a sinθ + b sin2θ): the closed forms (1.9)–(1.13) and the
 averages of §8 of spec/serov.md, against direct integration of (1.1) and against quadrature."""
 
+import contextlib
 import functools
 import itertools
 import math
+from unittest import mock
 
 import numpy as np
 import pytest
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.integrate import quad, solve_ivp
 from strategies import theta_regular
 
 from tumble.errors import IntegrationError, ParameterError
 from tumble.rotations import euler313_to_matrix, matrix_to_euler313, matrix_to_quat, quat_to_matrix
+from tumble.unperturbed import symmetric_body
 from tumble.unperturbed.symmetric_body import (
     SEPARATRIX_TOL,
     NutationOrbit,
@@ -619,3 +622,157 @@ def test_random_states_build_or_raise_and_never_give_nan(mu, a, b, R, G, theta, 
     )
     E = float(energy(theta, theta_dot, R, G, a, b))
     assert orbit.E == pytest.approx(E, rel=1e-12, abs=1e-12)  # the same formula, reordered
+
+
+# --------------------------------------------------------------------------------------
+# Fast path of the constructors (module notes, "Fast path") against the careful path
+# --------------------------------------------------------------------------------------
+
+EPS = float(np.finfo(float).eps)
+
+
+@contextlib.contextmanager
+def fast_path_log():
+    """Record whether each fast-path attempt succeeded (True) or deferred (False)."""
+    log = []
+    real_points, real_interval = (
+        symmetric_body._fast_turning_points,
+        symmetric_body._fast_interval,
+    )
+
+    def points(*args):
+        out = real_points(*args)
+        log.append(out is not None)
+        return out
+
+    def interval(*args):
+        out = real_interval(*args)
+        log.append(out is not None)
+        return out
+
+    with (
+        mock.patch.object(symmetric_body, "_fast_turning_points", points),
+        mock.patch.object(symmetric_body, "_fast_interval", interval),
+    ):
+        yield log
+
+
+@contextlib.contextmanager
+def careful_path_only():
+    """The constructors with the fast path declining everywhere: its own fallback."""
+    with (
+        mock.patch.object(symmetric_body, "_fast_turning_points", return_value=None),
+        mock.patch.object(symmetric_body, "_fast_interval", return_value=None),
+    ):
+        yield
+
+
+def constructions(mu, a, b, R, G, th, thd):
+    """from_state, from_turning_point at θmax and θmin, from_energy with the mid-well hint."""
+    orbit = NutationOrbit.from_state(mu, a, b, R, G, th, thd)
+    return {
+        "state": lambda: NutationOrbit.from_state(mu, a, b, R, G, th, thd, PSI0, PHI0),
+        "theta_max": lambda: NutationOrbit.from_turning_point(mu, a, b, R, G, orbit.theta_max),
+        "theta_min": lambda: NutationOrbit.from_turning_point(mu, a, b, R, G, orbit.theta_min),
+        "energy": lambda: NutationOrbit.from_energy(
+            mu, a, b, R, G, orbit.E, 0.5 * (orbit.u1 + orbit.u2)
+        ),
+    }
+
+
+def root_band(orbit, u):
+    """Round-off band of a root u of f: |f| evaluation error over |f'(u)|, (1.7)."""
+    g = quartic_coefficients(orbit.R, orbit.G, orbit.a, orbit.b, orbit.E)
+    noise = 16 * EPS * sum(abs(gi) * abs(u) ** i for i, gi in enumerate(g))
+    slope = abs(sum(i * gi * u ** (i - 1) for i, gi in enumerate(g) if i > 0))
+    return noise / slope + EPS if slope > 0 else math.inf
+
+
+TYPICAL = [n for n in CASES if not n.startswith(("G = ", "steady"))] + ["serov typical"]
+CASES_FAST = {**CASES, "serov typical": (0.9, -1.3, -7.5, 0.1, 0.05, 1.0, 0.0)}
+
+
+@pytest.mark.parametrize("name", TYPICAL)
+def test_fast_path_is_taken_and_agrees_with_the_careful_path(name):
+    """Ordinary orbits (both root cases, double wells, b = 0, turning starts) take the fast
+    path in every constructor, and it reproduces the careful path to round-off."""
+    for kind, build in constructions(*CASES_FAST[name]).items():
+        with fast_path_log() as log:
+            fast = build()
+        assert log and all(log), (kind, log)
+        with careful_path_only():
+            careful = build()
+        assert (fast.kind, fast.root_case) == (careful.kind, careful.root_case)
+        for u_fast, u_careful in ((fast.u1, careful.u1), (fast.u2, careful.u2)):
+            # Both find the root of the same polynomial within its round-off band (measured
+            # ≤ 2 bands apart over 5e4 random orbits).
+            assert abs(u_fast - u_careful) <= 8 * root_band(careful, u_careful), kind
+        # Everything else is the same code on those roots: measured ≤ 2e-14 relative on these
+        # orbits; 1e-12 leaves room for the roots' round-off amplified by 1/(1 − k²).
+        for attr in ("k2", "mc", "beta", "period", "mean_psidot", "mean_phidot"):
+            x, y = getattr(fast, attr), getattr(careful, attr)
+            scale = abs(fast.R) + abs(fast.G) if attr.startswith("mean") else abs(y)
+            assert abs(x - y) <= 1e-12 * max(scale, 1e-300), (kind, attr)
+        t = np.linspace(-1.0, 2.0, 13) * careful.period
+        for fn in ("theta", "psi", "phi"):
+            # Those relative errors of the phase, over three periods: measured ≤ 2.1e-13 rad.
+            np.testing.assert_allclose(getattr(fast, fn)(t), getattr(careful, fn)(t), atol=1e-11)
+
+
+@settings(max_examples=150, deadline=None)
+@given(
+    mu=st.floats(0.1, 2.0),
+    a=coef,
+    b=coef,
+    R=momentum,
+    G=st.one_of(momentum, st.just("R"), st.just("-R")),
+    theta=theta_regular,
+    theta_dot=st.one_of(st.just(0.0), st.floats(-3.0, 3.0)),
+)
+def test_fast_and_careful_paths_agree_on_random_orbits(mu, a, b, R, G, theta, theta_dot):
+    """Same errors, same kind and root case, the same turning points within their round-off
+    band, wherever the fast path is taken or not (it defers near double roots, at G ≈ ±R, …)."""
+    G = R if G == "R" else -R if G == "-R" else G
+    try:
+        builds = constructions(mu, a, b, R, G, theta, theta_dot)
+    except ParameterError:
+        return
+    for kind, build in builds.items():
+        outcome = []
+        for context in (contextlib.nullcontext, careful_path_only):
+            with context():
+                try:
+                    outcome.append(build())
+                except ParameterError as exc:
+                    outcome.append(str(exc))
+        fast, careful = outcome
+        if isinstance(fast, str) or isinstance(careful, str):
+            assert fast == careful, kind
+            continue
+        assert fast.kind == careful.kind, kind
+        if careful.k2 < 1e-6:
+            continue  # the root case switches at k² = 0 (§14): either label is right there
+        assert fast.root_case == careful.root_case, kind
+        for u_fast, u_careful in ((fast.u1, careful.u1), (fast.u2, careful.u2)):
+            # As in the test above: measured ≤ 2 bands apart.
+            assert abs(u_fast - u_careful) <= 8 * root_band(careful, u_careful), kind
+        if careful.mc > 1e-3 and careful.k2 > 1e-3:
+            # Away from the separatrix and from steady precession: measured ≤ 4e-13.
+            assert fast.period == pytest.approx(careful.period, rel=1e-10), kind
+
+
+def test_moments_near_steady_precession_in_case_2():
+    # A product form of 1 − k² rounded to 1 + 2e-16 here and made ∂R_J/∂p divide by zero.
+    o = NutationOrbit.from_state(
+        1.7522901835609088,
+        0.8059973706408966,
+        -0.8530550611215253,
+        0.6170258848712767,
+        1.2727004542067633,
+        1.6200536658000266,
+        0.0,
+    )
+    assert 0.0 <= o.k2 and o.mc <= 1.0
+    # k² ≈ 1e-21: the orbit is a steady precession to round-off, so ⟨u⟩ = cos θ0 to ~1e-12.
+    assert o.mean_u_power(1) == pytest.approx(o.average(lambda th, thd: np.cos(th)), rel=1e-12)
+    assert o.mean_u_power(2) == pytest.approx(o.average(lambda th, thd: np.cos(th) ** 2), rel=1e-12)

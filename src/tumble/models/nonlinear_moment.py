@@ -535,7 +535,19 @@ def builtin_perturbation(p: Params) -> Perturbation:
 def _potential_gradient(u: FloatArray, z: FloatArray) -> FloatArray:
     """W^z = ∂W/∂z = (W_R, W_G, W_a, W_b) of (2.3), spec §9, shape (4, n)."""
     R, G = z[0], z[1]
-    h = (G - R * u) / (1.0 - u * u)
+    # (G − Ru)/(1 − u²) = ½[(G + R)/(1 + u) + (G − R)/(1 − u)] (1.12): a pole term whose
+    # coefficient vanishes (G = ±R, the axis passing through ±e_z) is dropped, not 0/0.
+    h = np.zeros_like(u, dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        for c, d in ((G + R, 1.0 + u), (G - R, 1.0 - u)):
+            if c != 0.0:
+                h = h + 0.5 * c / d
+    if not np.all(np.isfinite(h)):
+        raise IntegrationError(
+            f"W_R, W_G = ∓(G − Ru)/(1 − u²) are singular on this orbit (G = {G:.3g}, "
+            f"R = {R:.3g}): it passes through θ = 0 or π to round-off, where the numeric "
+            "averages cannot be formed"
+        )
     return np.array([-u * h, h, u, u * u])
 
 

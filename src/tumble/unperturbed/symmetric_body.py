@@ -45,6 +45,11 @@ come from deflation (stable quadratic formula; a root at infinity for b = 0 is c
 2b·root). The root case is 2 when the discriminant of the deflated quadratic is negative
 beyond round-off (§14). Both forms agree where the case switches.
 
+For ordinary orbits a fast path finds the same turning points by safeguarded Newton
+iterations and certifies them by that deflation (section "Fast path" below); wherever its
+checks fail the bracketing above decides. The Jacobi phase data of t = 0, needed by ψ(t)
+and φ(t) only, are computed on first use.
+
 Jacobi functions come from :func:`tumble.unperturbed.euler_poinsot._jacobi` (reduction to a
 quarter period with Newton polishing), accurate up to the separatrix; incomplete integrals use
 the quasi-periodic reduction of §5.
@@ -54,17 +59,17 @@ Limits of the data: see :data:`SEPARATRIX_TOL`, which refuses 1 − k² below 1e
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Literal
+from typing import Literal, NamedTuple
 
 import numpy as np
 from scipy import optimize, special
 
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import IntegrationError, ParameterError, check_finite, check_range
-from tumble.unperturbed.elliptic import _ellipf_sc
 from tumble.unperturbed.euler_poinsot import _jacobi
 
 __all__ = [
@@ -233,6 +238,9 @@ def quartic_coefficients(R: float, G: float, a: float, b: float, E: float) -> Fl
 
 
 def _horner(c: tuple[float, ...], x: float) -> float:
+    if len(c) == 5:  # the quartics of this module, unrolled (the same operations)
+        c0, c1, c2, c3, c4 = c
+        return (((c4 * x + c3) * x + c2) * x + c1) * x + c0
     acc = 0.0
     for ci in reversed(c):
         acc = acc * x + ci
@@ -240,6 +248,9 @@ def _horner(c: tuple[float, ...], x: float) -> float:
 
 
 def _dhorner(c: tuple[float, ...], x: float) -> float:
+    if len(c) == 5:
+        _, c1, c2, c3, c4 = c
+        return ((4 * c4 * x + 3 * c3) * x + 2 * c2) * x + c1
     acc = 0.0
     for i in range(len(c) - 1, 0, -1):
         acc = acc * x + i * c[i]
@@ -248,7 +259,15 @@ def _dhorner(c: tuple[float, ...], x: float) -> float:
 
 def _noise(c: tuple[float, ...], x: float) -> float:
     """Round-off level of _horner(c, x): a few ulps of Σ|c_i x^i|."""
-    return 16.0 * _EPS * sum(abs(ci) * abs(x) ** i for i, ci in enumerate(c))
+    ax = abs(x)
+    if len(c) == 5:
+        c0, c1, c2, c3, c4 = c
+        return (
+            16.0
+            * _EPS
+            * (abs(c0) + abs(c1) * ax + abs(c2) * ax**2 + abs(c3) * ax**3 + abs(c4) * ax**4)
+        )
+    return 16.0 * _EPS * sum(abs(ci) * ax**i for i, ci in enumerate(c))
 
 
 def _critical_points(c: tuple[float, ...], lo: float, hi: float) -> list[float]:
@@ -392,8 +411,386 @@ def _refine_pole_distance(e: tuple[float, ...], eps0: float) -> float:
 
 
 # --------------------------------------------------------------------------------------
+# Fast path for the turning points (plain floats, certified, else the careful path)
+# --------------------------------------------------------------------------------------
+#
+# The careful path brackets every root on a monotone piece of f, between critical points
+# from np.roots, and refines it by brentq: robust, but ~0.5 ms per orbit, and the averaged
+# equations build an orbit at every right-hand side. The fast path finds the same turning
+# points by Newton's method safeguarded by bisection on a sign-change bracket whose end
+# values are exact (c(0) and f(±1) = −(G ∓ R)², §3) and then *certifies* them: deflating the
+# two turning points leaves a quadratic whose roots (the other two roots of f) must lie at a
+# distance of at least _FAST_MARGIN × (u1 − u2) from [u2, u1] in the complex plane. Then f > 0
+# on (u2, u1) and nowhere else nearby, so they are the roots the careful path brackets, to
+# round-off (measured: as close to the exact roots of the same floating-point polynomial as
+# the careful ones). from_energy first finds the well the same way as _allowed_intervals
+# does, with the critical points in closed form, when every critical value and f(±1) are
+# clearly nonzero. Anything else (a near-double root: separatrix, steady precession, an
+# energy at round-off level of a minimum of W; f(±1) at round-off level, G ≈ ±R; f'(u0) at
+# round-off level at a turning start; a closed form it cannot trust; a failed iteration)
+# returns None, and the careful path decides, with its own results and error messages.
+
+_FAST_MARGIN = 1e-3  # other roots this far (relative to u1 − u2) from the interval: certified
+_FAST_CLEAR = 1e3  # a value counts as nonzero when this many times its round-off bound
+_FAST_EDGE = 1e-9  # from_energy: roots this far outside [−1, 1] are certainly outside
+_FAST_LEAD = 1e-3  # cubic p' with |leading| below this × the others: divide the huge root out
+_FAST_CUBIC = 1e-4  # … and below this, if that fails, no closed form at all (None)
+_FAST_MAXITER = 200  # Newton–bisection steps before giving up (bisection alone needs ≤ ~1100)
+
+_Side = tuple[tuple[float, ...], float, float]  # one side of u0: (c(±δ) or c(±δ)/δ, at 0, at ±1)
+
+
+def _bracket_root(c: tuple[float, ...], pos: float, neg: float, x: float) -> float | None:
+    """Root of the polynomial c between pos (c > 0) and neg (c < 0), starting at x between.
+
+    Newton steps while they stay inside the bracket and shrink fast enough, else bisection
+    (rtsafe). Stops when a step is below 2 ulp of x, or when Newton stops converging with
+    c(x) at its round-off level (the last step has put x within the actual evaluation error
+    over the slope of the root): the root to round-off, like brentq with rtol = 4ε in
+    :func:`_root_between`. None if it does not settle.
+    """
+    last = abs(neg - pos)
+    c0, c1, c2, c3, c4 = (*c, 0.0, 0.0)[:5] if len(c) < 5 else c  # degree ≤ 4, unrolled
+    a0, a1, a2, a3, a4 = abs(c0), abs(c1), abs(c2), abs(c3), abs(c4)
+    for _ in range(_FAST_MAXITER):
+        fx = (((c4 * x + c3) * x + c2) * x + c1) * x + c0
+        slope = ((4.0 * c4 * x + 3.0 * c3) * x + 2.0 * c2) * x + c1
+        ax = abs(x)
+        mag = (((a4 * ax + a3) * ax + a2) * ax + a1) * ax + a0
+        if fx == 0.0:
+            return x
+        if fx > 0.0:
+            pos = x
+        else:
+            neg = x
+        lo, hi = (pos, neg) if pos < neg else (neg, pos)
+        nxt = x - fx / slope if slope != 0.0 else lo
+        if not lo < nxt < hi or abs(nxt - x) > 0.5 * last:
+            if abs(fx) <= 4.0 * _EPS * mag:
+                return x  # Newton jitters in the round-off band of c: x is the root
+            nxt = 0.5 * (lo + hi)
+        last = abs(nxt - x)
+        x = nxt
+        if last <= 2.0 * _EPS * abs(x):
+            return x
+    return None
+
+
+def _regula_falsi(lo: float, f_lo: float, hi: float, f_hi: float) -> float:
+    """Secant point of a sign-change bracket, kept strictly inside it."""
+    x = lo + (hi - lo) * (f_lo / (f_lo - f_hi))
+    return x if min(lo, hi) < x < max(lo, hi) else 0.5 * (lo + hi)
+
+
+def _clear_of(c4: float, q1: float, q0: float, lo: float, hi: float, margin: float) -> bool:
+    """Whether every root of c4 z² + q1 z + q0 is farther than margin from [lo, hi] in ℂ."""
+
+    def far(re: float, im: float) -> bool:
+        gap = lo - re if re < lo else (re - hi if re > hi else 0.0)
+        return math.hypot(gap, im) > margin
+
+    if c4 == 0.0:
+        if q1 == 0.0:
+            return q0 != 0.0  # a nonzero constant: no root
+        return far(-q0 / q1, 0.0)
+    disc = q1 * q1 - 4.0 * c4 * q0
+    if not math.isfinite(disc):
+        return False
+    if disc < 0.0:
+        return far(-q1 / (2.0 * c4), math.sqrt(-disc) / (2.0 * abs(c4)))
+    qq = -0.5 * (q1 + math.copysign(math.sqrt(disc), q1))
+    if qq == 0.0:
+        return False  # q1 = q0 = 0: a double root at 0
+    return far(qq / c4, 0.0) and far(q0 / qq, 0.0)
+
+
+def _deflate(c: tuple[float, ...], d1: float, d2: float) -> tuple[float, float, float]:
+    """(c4, q1, q0) with c = (δ − d1)(δ − d2)(c4 δ² + q1 δ + q0), as in :func:`_build`."""
+    s, pr = d1 + d2, d1 * d2
+    q1 = c[3] + c[4] * s
+    return c[4], q1, c[2] + s * q1 - c[4] * pr
+
+
+def _certified(c: tuple[float, ...], d1: float, d2: float) -> bool:
+    """Whether f > 0 on (d2, d1) with no other root of c nearby (deflation, as in _build)."""
+    width = d1 - d2
+    if not width > 0.0:
+        return False
+    c4, q1, q0 = _deflate(c, d1, d2)
+    mid = 0.5 * (d1 + d2)
+    # c = (δ − d1)(δ − d2) q(δ): c > 0 between the roots needs q < 0 there
+    return (c4 * mid + q1) * mid + q0 < 0.0 and _clear_of(c4, q1, q0, d2, d1, _FAST_MARGIN * width)
+
+
+def _inner_pair(c: tuple[float, ...], d1: float, d2: float) -> tuple[float, float] | None:
+    """The two other roots of c if both are real and on one side of 0 inside (d2, d1).
+
+    Then the bracketed search has found a root beyond the first one (a double well whose
+    other well lies between u0 and ±1): the first root is the one of the pair nearer to 0.
+    """
+    c4, q1, q0 = _deflate(c, d1, d2)
+    if c4 == 0.0:
+        return None
+    disc = q1 * q1 - 4.0 * c4 * q0
+    if not disc > 0.0:
+        return None
+    qq = -0.5 * (q1 + math.copysign(math.sqrt(disc), q1))
+    if qq == 0.0:
+        return None
+    z1, z2 = sorted((qq / c4, q0 / qq))
+    return (z1, z2) if d2 < z1 and z2 < d1 and (z1 > 0.0) == (z2 > 0.0) else None
+
+
+def _fast_turning_points(
+    c: tuple[float, ...],
+    dp: float,
+    dm: float,
+    end_up: float,
+    end_dn: float,
+    side: Literal["lower"] | None,
+    c1_noise: float,
+    d1_guess: float | None,
+) -> tuple[float, float] | None:
+    """(δ1, δ2) of :func:`_build` by the fast path, or None (section notes above).
+
+    c: f(u0 + δ) with c0 = c(0) exact; dp = 1 − u0, dm = 1 + u0; end_up, end_dn = f(±1).
+    On each side the root is searched on (0, dp) or (0, dm) of c(±δ) (of c(±δ)/δ at a
+    turning start: the same sign for δ > 0). If the deflation then shows the two other roots
+    between 0 and the root found, the search is repeated up to the midpoint of that pair
+    (where c < 0 is checked), from the one nearer to 0.
+    """
+    if not all(math.isfinite(x) for x in c):
+        return None
+    if not (end_up < -_FAST_CLEAR * _noise(c, dp) and end_dn < -_FAST_CLEAR * _noise(c, -dm)):
+        return None  # f(±1) at round-off level (G ≈ ±R): the careful path's case
+    try:
+        c0, c1 = c[0], c[1]
+        up: _Side | None
+        dn: _Side | None
+        if c0 > 0.0:
+            up, dn = (c, c0, end_up), (_reflect(c), c0, end_dn)
+        elif c0 == 0.0 and abs(c1) > _FAST_CLEAR * c1_noise:
+            # Turning start: δ = 0 is a root; the other turning point is the first root on
+            # the side where f rises (§3).
+            if c1 > 0.0:
+                up, dn = (c[1:], c1, end_up / dp), None
+            elif side is None:
+                up, dn = None, (_reflect(c)[1:], -c1, end_dn / dm)
+            else:
+                return None  # "lower" with f'(u2) < 0: the careful path's steady fallback
+        else:
+            return None
+
+        def search(spec: _Side, end: float, f_end: float, x0: float | None) -> float | None:
+            poly, f0, _ = spec
+            start = _regula_falsi(0.0, f0, end, f_end) if x0 is None else x0
+            return _bracket_root(poly, 0.0, end, start)
+
+        guess = d1_guess if d1_guess is not None and 0.0 < d1_guess < dp else None
+        r1 = 0.0 if up is None else search(up, dp, up[2], guess)
+        r2 = 0.0 if dn is None else search(dn, dm, dn[2], None)
+        for _ in range(3):
+            if r1 is None or r2 is None:
+                return None
+            d1, d2 = r1, -r2
+            pair = _inner_pair(c, d1, d2)
+            if pair is None:
+                break
+            z1, z2 = pair
+            mid = 0.5 * (z1 + z2)
+            if mid > 0.0 and up is not None:
+                f_mid = _horner(up[0], mid)
+                r1 = search(up, mid, f_mid, z1) if f_mid < 0.0 else None
+            elif mid < 0.0 and dn is not None:
+                f_mid = _horner(dn[0], -mid)
+                r2 = search(dn, -mid, f_mid, -z2) if f_mid < 0.0 else None
+            else:
+                return None
+        else:
+            return None
+        if not (d1 < dp and -d2 < dm and _certified(c, d1, d2)):
+            return None
+        return d1, d2
+    except (ArithmeticError, ValueError):  # pragma: no cover - plain-float overflow guard
+        return None
+
+
+def _quadratic_real_parts(q2: float, q1: float, q0: float) -> list[float]:
+    """Real parts of the roots of q2 x² + q1 x + q0 (q2 ≠ 0), stable quadratic formula."""
+    disc = q1 * q1 - 4.0 * q2 * q0
+    if disc < 0.0:
+        return [-q1 / (2.0 * q2)]
+    qq = -0.5 * (q1 + math.copysign(math.sqrt(disc), q1))
+    return [qq / q2, q0 / qq] if qq != 0.0 else [0.0]
+
+
+def _cubic_real_parts(d0: float, d1: float, d2: float, d3: float) -> list[float] | None:
+    """Real parts of the roots of d0 x³ + d1 x² + d2 x + d3 (d0 ≠ 0), unpolished; None if unsure.
+
+    Trigonometric or Cardano form. With |d0| small against the others (small |b|) that form
+    loses the small roots to cancellation: then the one huge root, Newton-refined from
+    −d1/d0, is divided out backwards (stable for the largest root) and the small ones come
+    from the quotient.
+    """
+    big = max(abs(d1), abs(d2), abs(d3))
+    if abs(d0) < _FAST_LEAD * big and d1 != 0.0:
+        asc = (d3, d2, d1, d0)
+        r = -d1 / d0
+        for _ in range(8):
+            slope = _dhorner(asc, r)
+            if slope == 0.0:
+                break
+            step = _horner(asc, r) / slope
+            r -= step
+            if abs(step) <= 1e-14 * abs(r):
+                q0 = -d3 / r
+                q1 = (q0 - d2) / r
+                small = _quadratic_real_parts((q1 - d1) / r, q1, q0)
+                if max(abs(x) for x in small) <= 0.1 * abs(r):
+                    return [r, *small]
+                break
+        if abs(d0) < _FAST_CUBIC * big:
+            return None  # two large roots and a tiny d0: neither form is reliable
+    A, B, C = d1 / d0, d2 / d0, d3 / d0
+    Q = (A * A - 3.0 * B) / 9.0
+    Rq = (2.0 * A * A * A - 9.0 * A * B + 27.0 * C) / 54.0
+    shift = A / 3.0
+    Q3 = Q * Q * Q
+    if Rq * Rq < Q3:  # three real roots
+        th = math.acos(max(-1.0, min(1.0, Rq / math.sqrt(Q3))))
+        r = -2.0 * math.sqrt(Q)
+        third = 2.0 * math.pi / 3.0
+        return [r * math.cos(th / 3.0 + k * third) - shift for k in (-1, 0, 1)]
+    S = -math.copysign(math.cbrt(abs(Rq) + math.sqrt(Rq * Rq - Q3)), Rq)
+    T = Q / S if S != 0.0 else 0.0
+    return [S + T - shift, -0.5 * (S + T) - shift]
+
+
+def _fast_critical_points(c: tuple[float, ...], lo: float, hi: float) -> list[float] | None:
+    """:func:`_critical_points` of a quartic c with p' solved in closed form, not by np.roots.
+
+    Real parts of complex pairs are kept and the same Newton polishing follows, as there.
+    None when the closed form is unsure (:func:`_cubic_real_parts`).
+    """
+    e1, e2, e3, e4 = c[1], 2.0 * c[2], 3.0 * c[3], 4.0 * c[4]  # ascending coefficients of p'
+    d = [e4, e3, e2, e1]
+    while d and abs(d[0]) <= 1e-18 * max(abs(x) for x in d):
+        d.pop(0)
+    raw: list[float] | None
+    if len(d) < 2:
+        return []
+    if len(d) == 4:
+        raw = _cubic_real_parts(d[0], d[1], d[2], d[3])
+        if raw is None or not all(math.isfinite(x) for x in raw):
+            return None
+    elif len(d) == 3:
+        raw = _quadratic_real_parts(d[0], d[1], d[2])
+    else:
+        raw = [-d[1] / d[0]]
+    out = []
+    for x in raw:
+        if not lo - 4e-3 * (1.0 + abs(x)) < x < hi + 4e-3 * (1.0 + abs(x)):
+            continue  # three polishing steps of ≤ 1e-3 (1 + |x|) cannot bring it inside
+        for _ in range(3):
+            slope = (3.0 * e4 * x + 2.0 * e3) * x + e2
+            if slope == 0.0:
+                break
+            step = (((e4 * x + e3) * x + e2) * x + e1) / slope
+            if not math.isfinite(step) or abs(step) > 1e-3 * (1.0 + abs(x)):
+                break
+            x -= step
+        if lo < x < hi:
+            out.append(x)
+    return sorted(out)
+
+
+def _fast_interval(
+    g: tuple[float, ...], R: float, G: float, u_hint: float
+) -> tuple[float, float] | None:
+    """The allowed interval of from_energy by the fast path, or None (section notes above).
+
+    The walk of :func:`_allowed_intervals` over the monotone pieces of f between its critical
+    points, certified when every critical value in (−1, 1) is clearly nonzero (no well at
+    round-off level, so that function's special cases do not arise) and the sign changes are
+    all the roots of f in [−1, 1]: four (f has no more), or two whose deflation leaves no
+    root within _FAST_EDGE of [−1, 1]. Of two wells only the roots of the chosen one are
+    refined when their brackets already decide the choice (the nearest to u_hint, the lower
+    one on a tie, as there).
+    """
+    if not all(math.isfinite(x) for x in g):
+        return None
+    end_dn, end_up = -((G + R) ** 2), -((G - R) ** 2)  # f(−1), f(1): exact (§3)
+    clear = _FAST_CLEAR * 16.0 * _EPS * sum(abs(x) for x in g)  # ≥ that × _noise on [−1, 1]
+    if not (end_dn < -clear and end_up < -clear):
+        return None  # f(±1) at round-off level (G ≈ ±R): the careful path's case
+    try:
+        crit = _fast_critical_points(g, -1.0, 1.0)
+        if crit is None:
+            return None
+        vals = [_horner(g, x) for x in crit]
+        if any(abs(v) <= clear for v in vals):
+            return None
+        pts, fv = [-1.0, *crit, 1.0], [end_dn, *vals, end_up]
+        brackets = [
+            (pts[i], fv[i], pts[i + 1], fv[i + 1])
+            for i in range(len(pts) - 1)
+            if (fv[i] > 0.0) != (fv[i + 1] > 0.0)
+        ]
+
+        def refine(k: int) -> float | None:
+            x0, f0, x1, f1 = brackets[k]
+            pos, neg = (x0, x1) if f0 > 0.0 else (x1, x0)
+            return _bracket_root(g, pos, neg, _regula_falsi(x0, f0, x1, f1))
+
+        if len(brackets) == 4:
+            # Four sign changes: all roots of f are real and each is alone in its bracket.
+            # Distance of a well (lo, hi) to u_hint, max(lo − u_hint, u_hint − hi, 0), is
+            # bounded through the brackets of lo (k) and hi (k + 1).
+            def bounds(k: int) -> tuple[float, float]:
+                lo_a, lo_b = brackets[k][0], brackets[k][2]
+                hi_a, hi_b = brackets[k + 1][0], brackets[k + 1][2]
+                least = max(lo_a - u_hint, u_hint - hi_b, 0.0)
+                return least, max(lo_b - u_hint, u_hint - hi_a, 0.0)
+
+            (least0, most0), (least1, most1) = bounds(0), bounds(2)
+            if most0 < least1:
+                wells = [0]
+            elif most1 < least0:
+                wells = [2]
+            else:
+                wells = [0, 2]
+            found = []
+            for k in wells:
+                lo_k, hi_k = refine(k), refine(k + 1)
+                if lo_k is None or hi_k is None:
+                    return None
+                found.append((lo_k, hi_k))
+            lo, hi = min(found, key=lambda iv: max(iv[0] - u_hint, u_hint - iv[1], 0.0))
+            c4, q1, q0 = _deflate(g, lo, hi)
+        elif len(brackets) == 2:
+            lo_0, hi_0 = refine(0), refine(1)
+            if lo_0 is None or hi_0 is None:
+                return None
+            lo, hi = lo_0, hi_0
+            c4, q1, q0 = _deflate(g, lo, hi)
+            if not _clear_of(c4, q1, q0, -1.0, 1.0, _FAST_EDGE):
+                return None  # two more roots in [−1, 1]: a well the walk has missed
+        else:
+            return None  # no motion with this energy: the careful path raises
+        # The other roots well away from the well (no separatrix, no near-double root).
+        return (lo, hi) if _clear_of(c4, q1, q0, lo, hi, _FAST_MARGIN * (hi - lo)) else None
+    except (ArithmeticError, ValueError):  # pragma: no cover - plain-float overflow guard
+        return None
+
+
+# --------------------------------------------------------------------------------------
 # Carlson pieces
 # --------------------------------------------------------------------------------------
+
+
+def _ellipf_scalar(s: float, c: float, mc: float) -> float:
+    """F(φ | m) from s = sin φ, c = cos φ ≥ 0: :func:`_ellipf_sc` for plain floats."""
+    return s * float(special.elliprf(c * c, c * c + mc * s * s, 1.0))
 
 
 def _rj_complete(mc: float, p: float) -> float:
@@ -442,8 +839,10 @@ def _lam_integral(sin_g: FloatArray, dn: FloatArray, lam: float) -> FloatArray:
 # --------------------------------------------------------------------------------------
 
 
-@dataclass(frozen=True)
-class _Point:
+# NamedTuples, not frozen dataclasses: as immutable, and several are built per orbit.
+
+
+class _Point(NamedTuple):
     """A turning point: u, 1 − u and 1 + u, each to full relative accuracy."""
 
     u: float
@@ -460,8 +859,7 @@ class _Point:
         return self.u - rho
 
 
-@dataclass(frozen=True)
-class _Chart:
+class _Chart(NamedTuple):
     """u = (A (1 − σ) + B ν σ)/((1 − σ) + ν σ); Jacobi argument βt + τ0 + offset."""
 
     A: _Point
@@ -470,9 +868,12 @@ class _Chart:
     offset: float  # 0 (main chart) or K (case 1, anchored at the other turning point)
 
 
-@dataclass(frozen=True)
-class _Pole:
-    """∫0^t dt/(u − ρ) = sec·t + (cper/β)·[kS (S − S0) − (Λ − Λ0)] (Λ only in case 2)."""
+class _Pole(NamedTuple):
+    """∫0^t dt/(u − ρ) = sec·t + (cper/β)·[kS (S − S0) − (Λ − Λ0)] (Λ only in case 2).
+
+    S0 = S(γ0) and Λ0 = Λ(γ0) belong to the phase at t = 0 and are needed only by ψ(t), φ(t):
+    they are computed on first use (:attr:`NutationOrbit._pole_starts`, :func:`_pole_start`).
+    """
 
     sec: float
     cper: float
@@ -481,8 +882,6 @@ class _Pole:
     Sc: float  # S(π/2) = R_J(0, 1 − k², 1, p)/3
     lam: float  # case 2 only
     chart: _Chart  # case 1: whose Jacobi argument
-    S0: float
-    L0: float
 
     def mean(self, K: float) -> float:
         return self.sec + self.cper * self.kS * self.Sc / K
@@ -634,7 +1033,7 @@ class NutationOrbit:
             An input out of range, or a motion at a separatrix (1 − k² < SEPARATRIX_TOL,
             including a start at an unstable equilibrium), or a body at rest with a = b = 0.
         """
-        return cls._from_state(mu, a, b, R, G, theta, theta_dot, psi, phi, "theta")
+        return cls._from_state(mu, a, b, R, G, theta, theta_dot, psi, phi, "theta", True)
 
     @classmethod
     def _from_state(
@@ -649,9 +1048,12 @@ class NutationOrbit:
         psi: float,
         phi: float,
         theta_name: str,
+        fast: bool,
     ) -> NutationOrbit:
         mu, a, b, R, G, psi, phi = _check_common(mu, a, b, R, G, psi, phi)
-        th = float(_theta_array(float(theta), theta_name))
+        th = float(theta)
+        if not (math.isfinite(th) and 0.0 < th < math.pi):  # as _theta_array, for a scalar
+            raise ParameterError(f"{theta_name} = {th:g} is outside the allowed range (0, π)")
         check_finite("theta_dot", float(theta_dot))
         u0 = math.cos(th)
         dp, dm = 2.0 * math.sin(0.5 * th) ** 2, 2.0 * math.cos(0.5 * th) ** 2
@@ -661,7 +1063,8 @@ class NutationOrbit:
         h0 = 0.5 * td * td + e0 * e0 / (2.0 * s0sq)
         E = h0 + a * u0 + b * u0 * u0
         direction = 0 if td == 0.0 else (1 if td > 0.0 else -1)
-        return _build(mu, a, b, R, G, E, psi, phi, u0, dp, dm, h0, s0sq * td * td, direction, None)
+        c0 = s0sq * td * td
+        return _build(mu, a, b, R, G, E, psi, phi, u0, dp, dm, h0, c0, direction, None, None, fast)
 
     @classmethod
     def from_turning_point(
@@ -701,7 +1104,7 @@ class NutationOrbit:
         ParameterError
             As :meth:`from_state`.
         """
-        return cls._from_state(mu, a, b, R, G, theta_ext, 0.0, psi, phi, "theta_ext")
+        return cls._from_state(mu, a, b, R, G, theta_ext, 0.0, psi, phi, "theta_ext", True)
 
     @classmethod
     def from_energy(
@@ -736,12 +1139,23 @@ class NutationOrbit:
             No motion with this energy (E below the minimum of W beyond round-off), a
             separatrix, or an input out of range.
         """
+        return cls._from_energy(mu, a, b, R, G, E, u_hint, True)
+
+    @classmethod
+    def _from_energy(
+        cls, mu: float, a: float, b: float, R: float, G: float, E: float, u_hint: float, fast: bool
+    ) -> NutationOrbit:
         mu, a, b, R, G, _, _ = _check_common(mu, a, b, R, G, 0.0, 0.0)
         check_finite("E", float(E))
         check_finite("u_hint", float(u_hint))
         E, u_hint = float(E), float(u_hint)
-        g = tuple(float(x) for x in quartic_coefficients(R, G, a, b, E))
-        intervals = _allowed_intervals(g, R, G)
+        # g of quartic_coefficients (1.7), as plain floats
+        g = (2.0 * E - G * G, 2.0 * (G * R - a), -2.0 * b - R * R - 2.0 * E, 2.0 * a, 2.0 * b)
+        quick = _fast_interval(g, R, G, u_hint) if fast else None
+        # An uncertified interval (a well at round-off level, f(±1) ≈ 0, a separatrix, …) may
+        # also be beyond what u2 as a root of f resolves: then the careful path throughout.
+        fast = quick is not None
+        intervals = [quick] if quick is not None else _allowed_intervals(g, R, G)
         if not intervals:
             raise ParameterError(
                 f"E = {E:g} is below the minimum of the effective potential W(θ) (1.6) for "
@@ -756,7 +1170,7 @@ class NutationOrbit:
             u0 = lo
             dp, dm = 1.0 - u0, 1.0 + u0
             h0 = E - a * u0 - b * u0 * u0
-            return _build(mu, a, b, R, G, E, 0.0, 0.0, u0, dp, dm, h0, 0.0, 0, "steady")
+            return _build(mu, a, b, R, G, E, 0.0, 0.0, u0, dp, dm, h0, 0.0, 0, "steady", None, fast)
         u0 = lo
         dp, dm = 1.0 - u0, 1.0 + u0
         if 0.0 < dm < _POLE_REFINE:  # θmax near π: 1 + u2 again about u = −1 (f(−1) exact)
@@ -768,7 +1182,7 @@ class NutationOrbit:
                 dm = refined
                 u0, dp = dm - 1.0, 2.0 - dm
         h0 = E - a * u0 - b * u0 * u0
-        return _build(mu, a, b, R, G, E, 0.0, 0.0, u0, dp, dm, h0, 0.0, 0, "lower")
+        return _build(mu, a, b, R, G, E, 0.0, 0.0, u0, dp, dm, h0, 0.0, 0, "lower", hi - u0, fast)
 
     # ----------------------------------------------------------------------------------
     # Evaluation
@@ -900,18 +1314,32 @@ class NutationOrbit:
         _, om, op = self._theta_from(sig, sigc)
         return self._theta_dot_from(jac, sig, sigc, om, op)
 
+    @functools.cached_property
+    def _pole_starts(self) -> tuple[tuple[float, float], ...]:
+        """(S0, Λ0) of each pole of :attr:`_poles`: the phase data of t = 0, on first use."""
+        if not self._poles or self.kind == "steady":
+            return tuple((0.0, 0.0) for _ in self._poles)
+        jac0 = self._jac(np.zeros(()))
+        return tuple(_pole_start(self, pole, jac0) for _, _, pole in self._poles)
+
     def _pole_integral(
-        self, pole: _Pole, tt: FloatArray, jac: _Jac, jac_k: _Jac | None
+        self,
+        pole: _Pole,
+        start: tuple[float, float],
+        tt: FloatArray,
+        jac: _Jac,
+        jac_k: _Jac | None,
     ) -> FloatArray:
         """∫0^t dt'/(u − ρ) for one pole, (1.13) in the anchor-based form of the module notes."""
         if self.kind == "steady":
             return np.asarray(pole.sec * tt, dtype=float)
+        S0, L0 = start
         jj = jac if pole.chart.offset == 0.0 or jac_k is None else jac_k
         S = _s_integral(jj.sn, jj.cn, jj.dn, jj.j, pole.p, pole.Sc)
-        per = pole.kS * (S - pole.S0)
+        per = pole.kS * (S - S0)
         if self.root_case == 2:
             sign = 1.0 - 2.0 * np.mod(jj.j, 2.0)
-            per = per - (_lam_integral(sign * jj.sn, jj.dn, pole.lam) - pole.L0)
+            per = per - (_lam_integral(sign * jj.sn, jj.dn, pole.lam) - L0)
         return np.asarray(pole.sec * tt + pole.cper / self.beta * per, dtype=float)
 
     def _angles(self, t: ArrayLike) -> tuple[FloatArray, FloatArray]:
@@ -921,11 +1349,11 @@ class NutationOrbit:
         if self._poles:
             jac = None if self.kind == "steady" else self._jac(tt)
             jac_k = None if jac is None or self._other is None else self._shifted(jac)
-            for w_psi, w_phi, pole in self._poles:
+            for (w_psi, w_phi, pole), start in zip(self._poles, self._pole_starts, strict=True):
                 if jac is None:
                     integral = np.asarray(pole.sec * tt, dtype=float)
                 else:
-                    integral = self._pole_integral(pole, tt, jac, jac_k)
+                    integral = self._pole_integral(pole, start, tt, jac, jac_k)
                 psi = psi + w_psi * integral
                 phi = phi + w_phi * integral
         phi = phi + self.R * (1.0 / self.mu - 1.0) * tt
@@ -1428,11 +1856,14 @@ def _build(
     c0: float,
     direction: int,
     side: Literal["lower", "steady"] | None,
+    d1_guess: float | None = None,
+    fast: bool = True,
 ) -> NutationOrbit:
     """The orbit about u0 (δ = u − u0), from f(u0 + δ) = Σ c_i δ^i with c0 exact.
 
     direction: sign of θ'(0) (0 at a turning point); side: "lower" forces u0 = u2, "steady"
-    forces the steady precession at u0, None chooses the side by f'(u0) (§3).
+    forces the steady precession at u0, None chooses the side by f'(u0) (§3). d1_guess: an
+    estimate of u1 − u0 for the fast path; fast = False forces the careful path (tests).
     """
     s0sq = dp * dm
     e0 = G - R * u0
@@ -1451,31 +1882,15 @@ def _build(
     c1_noise = 16.0 * _EPS * (abs(2.0 * s0sq * h1) + abs(4.0 * u0 * h0) + abs(2.0 * R * e0))
     if turning and side is None and abs(c1) <= c1_noise and c2 < 0.0:
         side = "steady"
-    crit = _critical_points(c, -dm, dp)
-    crit_up, crit_dn = crit, [-x for x in reversed(crit)]  # the latter: of c(−x)
+    quick = None
+    if fast and side != "steady":
+        quick = _fast_turning_points(c, dp, dm, end_up, end_dn, side, c1_noise, d1_guess)
     if side == "steady":
         d1 = d2 = 0.0
-    elif not turning:
-        d1 = _first_root(c, c0, dp, end_up, crit_up)
-        d2 = -_first_root(_reflect(c), c0, dm, end_dn, crit_dn)
+    elif quick is not None:
+        d1, d2 = quick
     else:
-        if side == "lower":
-            up = True
-        elif c1 != 0.0:
-            up = c1 > 0.0  # f'(u0) > 0: u0 = u2, the motion is above (§3)
-        elif c2 < 0.0:
-            up = True  # double root with f'' < 0: steady precession (found as d1 = 0 below)
-        else:
-            raise ParameterError(
-                f"theta = {math.degrees(math.acos(max(-1.0, min(1.0, u0)))):g}° with theta_dot = 0 "
-                "is an unstable (or degenerate) equilibrium: the motion is at a separatrix or at "
-                "rest (1 − k² = 0)"
-            )
-        if up:
-            d1, d2 = _first_root(c, 0.0, dp, end_up, crit_up) if c1 >= 0.0 else 0.0, 0.0
-        else:
-            d2 = -_first_root(_reflect(c), 0.0, dm, end_dn, crit_dn) if c1 <= 0.0 else 0.0
-            d1 = 0.0
+        d1, d2 = _careful_turning_points(c, dp, dm, end_up, end_dn, turning, side, u0)
 
     # 1 − u1 and 1 + u2: the difference dp − δ1 loses digits when θmin is near 0 (θmax near
     # π); then they come again from the expansion about ±1, where f(±1) is exact. Each route's
@@ -1541,7 +1956,9 @@ def _build(
             f"the motion is at a separatrix: the roots of f(u) are numerically degenerate "
             f"(k² = {m:.3g}, allowed [0, 1 − SEPARATRIX_TOL])"
         )
-    m, mc = max(m, 0.0), max(mc, 0.0)
+    # Clamp to [0, 1]: a product form can round to 1 + 2e-16 near k = 0 (case 2), which
+    # would make the removable singularities of §8 exact zero divisions.
+    m, mc = min(max(m, 0.0), 1.0), min(max(mc, 0.0), 1.0)
     if mc < SEPARATRIX_TOL:
         raise ParameterError(
             f"the motion is at a separatrix: 1 − k² = {mc:.3g} is below SEPARATRIX_TOL = "
@@ -1569,7 +1986,7 @@ def _build(
         sig0 = -d2 / den if den > 0.0 else 0.0
         sigc0 = nu_max * d1 / den if den > 0.0 else 1.0
         sgn = -1.0 if direction > 0 else 1.0
-        tau0 = float(_ellipf_sc(sgn * math.sqrt(sig0), math.sqrt(sigc0), mc))
+        tau0 = _ellipf_scalar(sgn * math.sqrt(sig0), math.sqrt(sigc0), mc)
     else:
         main = _Chart(A=p1, B=p2, nu=xi, offset=0.0)
         other = None
@@ -1581,9 +1998,9 @@ def _build(
         sin_g0 = 2.0 * math.sqrt(s0 * sc0)
         cos_g0 = sc0 - s0
         if cos_g0 >= 0.0:
-            tau0 = sgn * float(_ellipf_sc(sin_g0, cos_g0, mc))
+            tau0 = sgn * _ellipf_scalar(sin_g0, cos_g0, mc)
         else:
-            tau0 = sgn * (2.0 * K - float(_ellipf_sc(sin_g0, -cos_g0, mc)))
+            tau0 = sgn * (2.0 * K - _ellipf_scalar(sin_g0, -cos_g0, mc))
 
     theta_min = 2.0 * math.atan2(math.sqrt(p1.om), math.sqrt(p1.op))
     theta_max = 2.0 * math.atan2(math.sqrt(p2.om), math.sqrt(p2.op))
@@ -1625,18 +2042,54 @@ def _build(
     # A turning point within _POLE_TOUCH of ±1 (θ within ~1e-140 rad of 0 or π, G ∓ R ~ 1e-140)
     # is beyond the range of R_J: that term is treated as absent too (continuous branch).
     poles: list[tuple[float, float, _Pole]] = []
-    jac0 = orbit._jac(np.zeros(()))
     if G + R != 0.0 and p2.op > _POLE_TOUCH:
-        poles.append((0.5 * (G + R), 0.5 * (G + R), _make_pole(orbit, -1.0, jac0)))
+        poles.append((0.5 * (G + R), 0.5 * (G + R), _make_pole(orbit, -1.0)))
     if G - R != 0.0 and p1.om > _POLE_TOUCH:
-        poles.append((-0.5 * (G - R), 0.5 * (G - R), _make_pole(orbit, 1.0, jac0)))
-    rate_psi = sum(wp * pole.mean(K) for wp, _, pole in poles)
-    rate_phi = sum(wf * pole.mean(K) for _, wf, pole in poles) + R * (1.0 / mu - 1.0)
+        poles.append((-0.5 * (G - R), 0.5 * (G - R), _make_pole(orbit, 1.0)))
+    means = [pole.mean(K) for _, _, pole in poles]
+    rate_psi = sum(wp * mk for (wp, _, _), mk in zip(poles, means, strict=True))
+    rate_phi = sum(wf * mk for (_, wf, _), mk in zip(poles, means, strict=True))
+    rate_phi += R * (1.0 / mu - 1.0)
     roots.flags.writeable = False  # a frozen orbit
     object.__setattr__(orbit, "_poles", tuple(poles))
     object.__setattr__(orbit, "mean_psidot", float(rate_psi))
     object.__setattr__(orbit, "mean_phidot", float(rate_phi))
     return orbit
+
+
+def _careful_turning_points(
+    c: tuple[float, ...],
+    dp: float,
+    dm: float,
+    end_up: float,
+    end_dn: float,
+    turning: bool,
+    side: Literal["lower"] | None,
+    u0: float,
+) -> tuple[float, float]:
+    """(δ1, δ2) of :func:`_build` on the monotone pieces of c between its critical points."""
+    c1, c2 = c[1], c[2]
+    crit = _critical_points(c, -dm, dp)
+    crit_up, crit_dn = crit, [-x for x in reversed(crit)]  # the latter: of c(−x)
+    if not turning:
+        d1 = _first_root(c, c[0], dp, end_up, crit_up)
+        d2 = -_first_root(_reflect(c), c[0], dm, end_dn, crit_dn)
+        return d1, d2
+    if side == "lower":
+        up = True
+    elif c1 != 0.0:
+        up = c1 > 0.0  # f'(u0) > 0: u0 = u2, the motion is above (§3)
+    elif c2 < 0.0:
+        up = True  # double root with f'' < 0: steady precession (found as d1 = 0 below)
+    else:
+        raise ParameterError(
+            f"theta = {math.degrees(math.acos(max(-1.0, min(1.0, u0)))):g}° with theta_dot = 0 "
+            "is an unstable (or degenerate) equilibrium: the motion is at a separatrix or at "
+            "rest (1 − k² = 0)"
+        )
+    if up:
+        return (_first_root(c, 0.0, dp, end_up, crit_up) if c1 >= 0.0 else 0.0), 0.0
+    return 0.0, (-_first_root(_reflect(c), 0.0, dm, end_dn, crit_dn) if c1 <= 0.0 else 0.0)
 
 
 def _label(r_small: float, r_big: float, d1: float, d2: float) -> tuple[float, float, bool, bool]:
@@ -1721,7 +2174,7 @@ def _case2_modulus(
     return m, mc, (-c4 * r1) * r2, r1 / r2
 
 
-def _make_pole(orbit: NutationOrbit, rho: float, jac0: _Jac | None = None) -> _Pole:
+def _make_pole(orbit: NutationOrbit, rho: float) -> _Pole:
     """Coefficients of ∫dt/(u − ρ) (module notes; (1.13) with errata 7–9 in case 2)."""
     mc, m = orbit.mc, orbit.k2
     p1, p2 = orbit._p1, orbit._p2
@@ -1737,11 +2190,6 @@ def _make_pole(orbit: NutationOrbit, rho: float, jac0: _Jac | None = None) -> _P
         if not r > 0.0:
             raise ParameterError(f"rho = {rho:g} is a turning point: ⟨1/(u − ρ)⟩ diverges")
         Sc = _rj_complete(mc, r) / 3.0
-        # S at t = 0 by the same path as at any t (ψ(0) = ψ0 exactly).
-        if jac0 is None:
-            jac0 = orbit._jac(np.zeros(()))
-        j0 = jac0 if ch.offset == 0.0 else orbit._shifted(jac0)
-        S0 = float(_s_integral(j0.sn, j0.cn, j0.dn, j0.j, r, Sc))
         return _Pole(
             sec=1.0 / dA,
             cper=ch.nu * (ch.A.d - ch.B.d) / (dA * dA),
@@ -1750,8 +2198,6 @@ def _make_pole(orbit: NutationOrbit, rho: float, jac0: _Jac | None = None) -> _P
             Sc=Sc,
             lam=0.0,
             chart=ch,
-            S0=S0,
-            L0=0.0,
         )
     ch = orbit._main
     xi = ch.nu
@@ -1763,11 +2209,6 @@ def _make_pole(orbit: NutationOrbit, rho: float, jac0: _Jac | None = None) -> _P
     p = (r + 1.0) ** 2 / (4.0 * r)  # 1 + ŵ
     Sc = _rj_complete(mc, p) / 3.0
     lam = math.sqrt(m + what)
-    if jac0 is None:
-        jac0 = orbit._jac(np.zeros(()))
-    sign = 1.0 - 2.0 * float(np.mod(jac0.j, 2.0))
-    S0 = float(_s_integral(jac0.sn, jac0.cn, jac0.dn, jac0.j, p, Sc))
-    L0 = float(_lam_integral(np.asarray(sign * jac0.sn), jac0.dn, lam))
     return _Pole(
         sec=(e1 + e2) / (2.0 * e1 * e2),
         cper=(p1.d - p2.d) / (2.0 * e1 * e2),
@@ -1776,6 +2217,15 @@ def _make_pole(orbit: NutationOrbit, rho: float, jac0: _Jac | None = None) -> _P
         Sc=Sc,
         lam=lam,
         chart=ch,
-        S0=S0,
-        L0=L0,
     )
+
+
+def _pole_start(orbit: NutationOrbit, pole: _Pole, jac0: _Jac) -> tuple[float, float]:
+    """(S0, Λ0) of ``pole`` at t = 0, by the same path as at any t (ψ(0) = ψ0 exactly)."""
+    if orbit.root_case == 1:
+        j0 = jac0 if pole.chart.offset == 0.0 else orbit._shifted(jac0)
+        return float(_s_integral(j0.sn, j0.cn, j0.dn, j0.j, pole.p, pole.Sc)), 0.0
+    sign = 1.0 - 2.0 * float(np.mod(jac0.j, 2.0))
+    S0 = float(_s_integral(jac0.sn, jac0.cn, jac0.dn, jac0.j, pole.p, pole.Sc))
+    L0 = float(_lam_integral(np.asarray(sign * jac0.sn), jac0.dn, pole.lam))
+    return S0, L0

@@ -14,8 +14,7 @@ from tumble.entry import ExponentialAtmosphere
 @pytest.fixture(scope="module")
 def capsule_runs():
     return {
-        init: capsule_attitude(averaged_init=init, samples=401)
-        for init in ("exact", "corrected")
+        init: capsule_attitude(averaged_init=init, samples=401) for init in ("exact", "corrected")
     }
 
 

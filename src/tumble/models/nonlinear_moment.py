@@ -170,26 +170,24 @@ class Pressure:
 
     def value(self, tau: ArrayLike) -> FloatArray:
         """Q(τ) [1]."""
-        t = np.asarray(tau, dtype=float)
-        if self.kind == "constant":
-            return np.ones_like(t)
-        if self.kind == "exp":
-            return np.exp(t)
-        self._check(t)
-        if self.function is not None:
-            return np.asarray(self.function(t), dtype=float)
-        return np.interp(t, self.tau, self.Q)
+        return self._evaluate(tau, derivative=False)
 
     def rate(self, tau: ArrayLike) -> FloatArray:
         """dQ/dτ [1]; for a table the slope of the segment τ lies in (right-continuous)."""
+        return self._evaluate(tau, derivative=True)
+
+    def _evaluate(self, tau: ArrayLike, *, derivative: bool) -> FloatArray:
         t = np.asarray(tau, dtype=float)
         if self.kind == "constant":
-            return np.zeros_like(t)
+            return np.zeros_like(t) if derivative else np.ones_like(t)
         if self.kind == "exp":
             return np.exp(t)
         self._check(t)
-        if self.derivative is not None:
-            return np.asarray(self.derivative(t), dtype=float)
+        fn = self.derivative if derivative else self.function
+        if fn is not None:
+            return np.asarray(fn(t), dtype=float)
+        if not derivative:
+            return np.interp(t, self.tau, self.Q)
         knots = np.asarray(self.tau)
         slopes = np.diff(self.Q) / np.diff(knots)
         i = np.clip(np.searchsorted(knots, t, side="right") - 1, 0, slopes.size - 1)

@@ -12,7 +12,7 @@ if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-__all__ = ["plot_comparison", "plot_methods"]
+__all__ = ["mark_warnings", "plot_comparison", "plot_methods"]
 
 _STYLE: dict[str, dict[str, Any]] = {
     "full": {"color": "0.35", "lw": 0.8, "label": "full"},
@@ -27,6 +27,22 @@ def _label(da: xr.DataArray) -> str:
     name = da.attrs.get("long_name", da.name)
     text = f"{name} [{units}]" + (f"  {eq}" if eq and eq != "(1.3)" else "")
     return textwrap.fill(text, 32)  # long names on two lines, so stacked panels do not collide
+
+
+def mark_warnings(ax: Axes, marks: Sequence[Mapping[str, Any]]) -> None:
+    """Draw each warning (``tau``, ``condition``) as a labelled vertical dotted line."""
+    for mark in marks:
+        ax.axvline(float(mark["tau"]), color="tab:red", ls=":", lw=1.0)
+        ax.annotate(
+            str(mark["condition"]),
+            (float(mark["tau"]), 1.0),
+            xycoords=("data", "axes fraction"),
+            rotation=90,
+            va="top",
+            ha="right",
+            fontsize=7,
+            color="tab:red",
+        )
 
 
 def plot_methods(
@@ -59,18 +75,7 @@ def plot_methods(
             some = ds
             style: dict[str, Any] = _STYLE.get(method, {"label": method})
             ax.plot(ds["tau"].values, ds[variable].values, **style)
-    for mark in marks:
-        ax.axvline(float(mark["tau"]), color="tab:red", ls=":", lw=1.0)
-        ax.annotate(
-            str(mark["condition"]),
-            (float(mark["tau"]), 1.0),
-            xycoords=("data", "axes fraction"),
-            rotation=90,
-            va="top",
-            ha="right",
-            fontsize=7,
-            color="tab:red",
-        )
+    mark_warnings(ax, marks)
     if some is not None:
         ax.set_xlabel(
             f"{some['tau'].attrs.get('long_name', 'τ')} [{some['tau'].attrs.get('units', '')}]"

@@ -9,6 +9,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import xarray as xr
 
+from tumble.plot.comparison import mark_warnings
+
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
@@ -93,18 +95,7 @@ def plot_envelope(
                 ls=ls,
                 label=f"θ{name[-3:]}, averaged (2.2)",
             )
-    for mark in marks:
-        ax.axvline(float(mark["tau"]), color="tab:red", ls=":", lw=1.0)
-        ax.annotate(
-            str(mark["condition"]),
-            (float(mark["tau"]), 1.0),
-            xycoords=("data", "axes fraction"),
-            rotation=90,
-            va="top",
-            ha="right",
-            fontsize=7,
-            color="tab:red",
-        )
+    mark_warnings(ax, marks)
     ax.set_xlabel(f"time {time_attrs.get('name', 't')} [{time_attrs.get('units', '')}]")
     ax.set_ylabel("nutation angle θ [deg]")
     ax.grid(True, alpha=0.3)

@@ -313,3 +313,16 @@ def test_averaged_rhs_is_continuous_where_the_roots_turn_complex():
     # jump. The bound allows 1e-6 relative of the rate on top (conditioning at the switch).
     jump = np.max(np.abs(rates[1] - rates[2]))
     assert jump < 1e-6 * float(np.max(np.abs(rates))) + float(np.max(slope)) * (hi - lo)
+
+
+def test_run_warns_when_eps_is_not_small():
+    from tumble.analysis import RunRequest, run
+    from tumble.errors import TumbleWarning
+
+    p0, s0 = CASES["double_well"]
+    p = _perturbed(p0, 0.3)  # ε·T ≈ 0.3 × 2.8 > EPS_PERIOD_LIMIT
+    req = RunRequest(nm.MODEL, p, s0, np.linspace(0.0, 5.0, 11), ("averaged",))
+    with pytest.warns(TumbleWarning, match="nutation period"):
+        result = run(req)
+    assert [i["condition"] for i in result.issues] == ["eps_not_small"]
+    assert result.issues[0]["tau"] == 0.0

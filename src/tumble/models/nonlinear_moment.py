@@ -234,6 +234,7 @@ class Params:
     pressure: Pressure = field(default_factory=Pressure)
     averaged_form: Literal["energy", "theta_max", "theta_min"] = "energy"
     averaged_init: Literal["exact", "corrected"] = "exact"
+    Q0: float = field(init=False, repr=False)  # Q(0), derived
 
     def __post_init__(self) -> None:
         check_range("parameters.mu", float(self.mu), low=0.0, high=2.0, high_open=False)
@@ -261,7 +262,7 @@ class Params:
             )
         for name in ("mu", "a", "b", "eps", "d", "nu"):
             object.__setattr__(self, name, float(getattr(self, name)))
-        object.__setattr__(self, "_Q0", float(self.pressure.value(0.0)))
+        object.__setattr__(self, "Q0", float(self.pressure.value(0.0)))
 
     @property
     def perturbed(self) -> bool:
@@ -270,17 +271,17 @@ class Params:
 
     def ab(self, t: ArrayLike) -> tuple[FloatArray, FloatArray]:
         """a(t), b(t) = (a, b)·Q(εt)/Q(0) [1/t²]."""
-        q = self.pressure.value(self.eps * np.asarray(t, dtype=float)) / self._Q0  # type: ignore[attr-defined]
+        q = self.pressure.value(self.eps * np.asarray(t, dtype=float)) / self.Q0
         return self.a * q, self.b * q
 
     def ab_rate(self, tau: ArrayLike) -> tuple[FloatArray, FloatArray]:
         """da/dτ, db/dτ = (a, b)·Q'(τ)/Q(0) [1/t²] (Φ_a, Φ_b of spec §9)."""
-        q = self.pressure.rate(np.asarray(tau, dtype=float)) / self._Q0  # type: ignore[attr-defined]
+        q = self.pressure.rate(np.asarray(tau, dtype=float)) / self.Q0
         return self.a * q, self.b * q
 
     def derived(self) -> dict[str, Any]:
         """Quantities worth recording beside the inputs."""
-        return {"perturbed": self.perturbed, "Q0": self._Q0}  # type: ignore[attr-defined]
+        return {"perturbed": self.perturbed, "Q0": self.Q0}
 
 
 @dataclass(frozen=True)
@@ -1119,17 +1120,22 @@ def validity(p: Params, st: State, slow: Any, t_end: float) -> list[ValidityIssu
     if not p.perturbed:
         return []
     grid = np.linspace(0.0, t_end, 801)
+    on_grid = slow(grid)  # one orbit per grid point, shared by both checks
+
+    def cols(t: FloatArray) -> dict[str, FloatArray]:
+        return on_grid if t is grid else slow(t)
+
     issues = []
     checks = (
         (
             "near_separatrix",
-            lambda t: NEAR_SEPARATRIX - (1.0 - slow(t)["k2"]),
+            lambda t: NEAR_SEPARATRIX - (1.0 - cols(t)["k2"]),
             f"the nutation nears a separatrix (1 − k² < {NEAR_SEPARATRIX:g}): the period "
             "grows without bound and averaging loses accuracy (spec §11)",
         ),
         (
             "eps_not_small",
-            lambda t: p.eps * slow(t)["period"] - EPS_PERIOD_LIMIT,
+            lambda t: p.eps * cols(t)["period"] - EPS_PERIOD_LIMIT,
             f"ε·T > {EPS_PERIOD_LIMIT:g}: the slow variables change noticeably within one "
             "nutation period, so averaging is not accurate (envelope error O(ε·T), spec §10)",
         ),

@@ -117,7 +117,7 @@ def test_numerator_of_2_2_equals_a_brute_force_time_average(name):
         pz = pert.phi_z(0.0, th, z)
         return float(
             pert.phi_theta(0.0, th, thd, z)[0] * thd[0]
-            + np.sum(pz[:, 0] * nm._potential_gradient(np.cos(th), z)[:, 0])
+            + np.sum(pz[:, 0] * nm.potential_gradient(np.cos(th), z)[:, 0])
         )
 
     brute = quad(g, 0.0, o.period, epsabs=1e-13, epsrel=1e-12, limit=200)[0] / o.period

@@ -32,6 +32,13 @@ from typing import Any, Literal
 import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
+from tumble.averaging.nutation import (
+    AVERAGE_RTOL,
+    Perturbation,
+    numeric_averages,
+    potential_gradient,
+    torque_perturbation,
+)
 from tumble.errors import IntegrationError, ParameterError, check_range
 from tumble.models.base import (
     AveragedForm,
@@ -67,12 +74,11 @@ __all__ = [
     "invariants",
     "numeric_averages",
     "orbit_of",
+    "potential_gradient",
     "reduced_rhs",
     "slow_from_full",
+    "torque_perturbation",
 ]
-
-AVERAGE_RTOL = 1e-12
-"""Relative tolerance of the adaptive quadrature over the nutation period (numeric averages)."""
 
 NEAR_SEPARATRIX = 1e-3
 """1 − k² below which an averaged run is warned that it nears a separatrix (spec §11)."""
@@ -480,28 +486,6 @@ def invariants(p: Params, Y: FloatArray) -> dict[str, FloatArray]:
 # The perturbation (2.1) in general, and the built-in one of spec §9.
 
 
-@dataclass(frozen=True)
-class Perturbation:
-    """A perturbation of (2.1): θ'' + F(θ, z) = εΦθ(θ, θ', z), z' = εΦz(θ, z), z = (R, G, a, b).
-
-    Both callables are vectorized over θ, θ' (z is the frozen slow state, τ = εt the slow
-    time).
-
-    Parameters
-    ----------
-    phi_theta : callable
-        ``(tau, theta, theta_dot, z) -> Φθ`` [1/t²].
-    phi_z : callable
-        ``(tau, theta, z) -> array of shape (4, n)``: Φ_R, Φ_G [1/t], Φ_a, Φ_b [1/t²].
-    name : str
-        For messages.
-    """
-
-    phi_theta: Callable[[float, FloatArray, FloatArray, FloatArray], FloatArray]
-    phi_z: Callable[[float, FloatArray, FloatArray], FloatArray]
-    name: str = "user"
-
-
 def builtin_perturbation(p: Params) -> Perturbation:
     """Φθ, Φz of the descending capsule, spec §9: pitch and roll damping, pressure Q(τ).
 
@@ -531,25 +515,6 @@ def builtin_perturbation(p: Params) -> Perturbation:
     return Perturbation(phi_theta, phi_z, name="spec §9 (pitch/roll damping, pressure)")
 
 
-def _potential_gradient(u: FloatArray, z: FloatArray) -> FloatArray:
-    """W^z = ∂W/∂z = (W_R, W_G, W_a, W_b) of (2.3), spec §9, shape (4, n)."""
-    R, G = z[0], z[1]
-    # (G − Ru)/(1 − u²) = ½[(G + R)/(1 + u) + (G − R)/(1 − u)] (1.12): a pole term whose
-    # coefficient vanishes (G = ±R, the axis passing through ±e_z) is dropped, not 0/0.
-    h = np.zeros_like(u, dtype=float)
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        for c, d in ((G + R, 1.0 + u), (G - R, 1.0 - u)):
-            if c != 0.0:
-                h = h + 0.5 * c / d
-    if not np.all(np.isfinite(h)):
-        raise IntegrationError(
-            f"W_R, W_G = ∓(G − Ru)/(1 − u²) are singular on this orbit (G = {G:.3g}, "
-            f"R = {R:.3g}): it passes through θ = 0 or π to round-off, where the numeric "
-            "averages cannot be formed"
-        )
-    return np.array([-u * h, h, u, u * u])
-
-
 def reduced_rhs(t: float, y: FloatArray, p: Params, perturbation: Perturbation) -> FloatArray:
     """The full model in the reduced form (1.3) and (2.1), for any perturbation.
 
@@ -575,8 +540,8 @@ def reduced_rhs(t: float, y: FloatArray, p: Params, perturbation: Perturbation) 
     s, c = math.sin(theta), math.cos(theta)
     F = float(potential_slope(theta, R, G, a, b))
     eps = p.eps
-    phi_th = float(perturbation.phi_theta(tau, np.array([theta]), np.array([theta_dot]), z)[0])
-    phi_z = np.asarray(perturbation.phi_z(tau, np.array([theta]), z), dtype=float)[:, 0]
+    ph, pz = perturbation.evaluate(tau, np.array([theta]), np.array([theta_dot]), z)
+    phi_th, phi_z = float(ph[0]), pz[:, 0]
     psid = (G - R * c) / (s * s)
     return np.array(
         [
@@ -605,67 +570,6 @@ def _builtin_reduced_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
 
 # ---------------------------------------------------------------------------------------------
 # Averaged equations (2.2)–(2.3).
-
-
-def numeric_averages(
-    orbit: NutationOrbit,
-    perturbation: Perturbation,
-    tau: float,
-    *,
-    rtol: float = AVERAGE_RTOL,
-    n_start: int = 16,
-    n_max: int = 1 << 14,
-) -> tuple[float, FloatArray]:
-    """⟨Φθθ' + Φz·W^z⟩ and ⟨Φz⟩ over one nutation period of ``orbit``, (2.3).
-
-    Periodic trapezoidal rule in the elliptic amplitude γ (spectrally accurate), doubling the
-    nodes until two results agree to ``rtol``.
-
-    Parameters
-    ----------
-    orbit : NutationOrbit
-        The frozen unperturbed motion.
-    perturbation : Perturbation
-    tau : float
-        Slow time τ = εt (frozen) [1].
-    rtol : float
-        Relative tolerance of the averages.
-
-    Returns
-    -------
-    g : float
-        ⟨Φθθ'⟩ + ⟨Φz·W^z⟩ [1/t³].
-    phi_z : ndarray, shape (4,)
-        ⟨Φz⟩.
-
-    Raises
-    ------
-    IntegrationError
-        If the averages do not converge by ``n_max`` nodes (a near-separatrix orbit).
-    """
-    z = np.array([orbit.R, orbit.G, orbit.a, orbit.b])
-
-    def averages(n: int) -> FloatArray:
-        _, theta, theta_dot, w = orbit.nodes(n)
-        u = np.cos(theta)
-        pz = np.asarray(perturbation.phi_z(tau, theta, z), dtype=float)
-        g = perturbation.phi_theta(tau, theta, theta_dot, z) * theta_dot
-        g = g + np.sum(pz * _potential_gradient(u, z), axis=0)
-        return np.concatenate([[w @ g], pz @ w])
-
-    n = n_start
-    old = averages(n)
-    while n < n_max:
-        n *= 2
-        new = averages(n)
-        scale = max(float(np.max(np.abs(new))), 1e-300)
-        if np.max(np.abs(new - old)) <= rtol * scale:
-            return float(new[0]), new[1:]
-        old = new
-    raise IntegrationError(
-        f"averages over the nutation period did not converge with {n_max} nodes "
-        f"(k² = {orbit.k2:.12g}, 1 − k² = {orbit.mc:.3g}): the motion is too near a separatrix"
-    )
 
 
 def _builtin_averages(orbit: NutationOrbit, p: Params, tau: float) -> tuple[float, FloatArray]:
@@ -782,7 +686,7 @@ def averaged_rhs(
                 f"averaged equations (2.2) at t = {t:.6g}: F(θext) = 0 (zero nutation "
                 'amplitude or an unstable equilibrium); use averaged_form = "energy"'
             )
-        w_e = _potential_gradient(np.array([u_e]), np.array([R, G, a, b]))[:, 0]
+        w_e = potential_gradient(np.array([u_e]), np.array([R, G, a, b]))[:, 0]
         rate = (g - float(phi_z @ w_e)) / F
     return p.eps * np.array([rate, *phi_z.tolist()])
 
@@ -826,15 +730,12 @@ def averaged_initial(
         if t_star < 0.0:
 
             def g(theta: FloatArray, theta_dot: FloatArray) -> FloatArray:
-                u = np.cos(theta)
-                pz = np.asarray(pert.phi_z(0.0, theta, z), dtype=float)
-                return pert.phi_theta(0.0, theta, theta_dot, z) * theta_dot + np.sum(
-                    pz * _potential_gradient(u, z), axis=0
-                )
+                ph, pz = pert.evaluate(0.0, theta, theta_dot, z)
+                return ph * theta_dot + np.sum(pz * potential_gradient(np.cos(theta), z), axis=0)
 
             def component(i: int) -> Callable[[FloatArray, FloatArray], FloatArray]:
                 def f(theta: FloatArray, theta_dot: FloatArray) -> FloatArray:
-                    return np.asarray(pert.phi_z(0.0, theta, z), dtype=float)[i]
+                    return pert.evaluate(0.0, theta, theta_dot, z)[1][i]
 
                 return f
 

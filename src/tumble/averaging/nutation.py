@@ -9,7 +9,6 @@ case). :func:`numeric_averages` then averages over the nutation period of the fr
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
@@ -18,7 +17,6 @@ import numpy as np
 
 from tumble._typing import FloatArray
 from tumble.averaging.quadrature import AVERAGE_RTOL, AveragingError, torus_mean
-from tumble.rotations import euler313_to_matrix, matrix_to_quat
 from tumble.unperturbed.symmetric_body import NutationOrbit
 
 __all__ = [
@@ -165,6 +163,7 @@ def torque_perturbation(
     ab_rate: Callable[[float], tuple[float, float]] | None = None,
     rtol: float = AVERAGE_RTOL,
     name: str = "torque",
+    vectorized: bool = True,
 ) -> Perturbation:
     """Φθ, Φz of (2.1) for a small body-axes torque, spec/serov.md §6.
 
@@ -177,8 +176,9 @@ def torque_perturbation(
     Parameters
     ----------
     torque : callable
-        ``torque(t, q, omega) -> δM/A`` [1/t²], called with one state at a time; ``t`` is
-        passed as the slow time τ.
+        ``torque(t, q, omega) -> δM/A`` [1/t²]; ``t`` is passed as the slow time τ. Called
+        with a batch of states (q of shape (N, 4), omega (N, 3), returning (N, 3)) when
+        ``vectorized``; otherwise, or if the result has another shape, one state at a time.
     mu : float
         C/A [1].
     ab_rate : callable, optional
@@ -187,43 +187,58 @@ def torque_perturbation(
         Tolerance of the average over ψ and φ.
     name : str
         For messages.
+    vectorized : bool
+        Whether to try batched calls first.
 
     Returns
     -------
     Perturbation
     """
 
-    def rates(tau: float, theta: float, theta_dot: float, z: FloatArray) -> FloatArray:
-        R, G = float(z[0]), float(z[1])
-        s, c = math.sin(theta), math.cos(theta)
-        psid = (G - R * c) / (s * s)
-
-        def on_torus(psi: FloatArray, phi: FloatArray) -> FloatArray:
-            psi_b, phi_b = np.broadcast_arrays(psi, phi)
-            out = np.empty((3, *psi_b.shape))
-            for idx in np.ndindex(psi_b.shape):
-                ps, ph = float(psi_b[idx]), float(phi_b[idx])
-                sp, cp = math.sin(ph), math.cos(ph)
-                omega = np.array(
-                    [psid * s * sp + theta_dot * cp, psid * s * cp - theta_dot * sp, R / mu]
-                )
-                q = matrix_to_quat(euler313_to_matrix(ps, theta, ph))
-                m = np.asarray(torque(tau, q, omega), dtype=float)
-                out[(0, *idx)] = m[0] * cp - m[1] * sp
-                out[(1, *idx)] = m[2]
-                out[(2, *idx)] = (m[0] * sp + m[1] * cp) * s + m[2] * c
-            return out
-
-        mean, _ = torus_mean(on_torus, 2, rtol=rtol, n_start=4, what=f"{name} over ψ and φ")
-        return mean
+    def call(tau: float, q: FloatArray, omega: FloatArray) -> FloatArray:
+        """The torque at a batch of states (shape (N, 4), (N, 3)) → (N, 3)."""
+        if vectorized:
+            m = np.asarray(torque(tau, q, omega), dtype=float)
+            if m.shape == omega.shape:
+                return m
+        one_by_one = [torque(tau, qi, wi) for qi, wi in zip(q, omega, strict=True)]
+        return np.array(one_by_one, dtype=float)
 
     def joint(tau: float, theta: FloatArray, theta_dot: FloatArray, z: FloatArray) -> FloatArray:
         th, thd = np.broadcast_arrays(np.asarray(theta, float), np.asarray(theta_dot, float))
-        out = np.zeros((5, th.size))
-        for i, (a, b) in enumerate(zip(th.ravel(), thd.ravel(), strict=True)):
-            out[:3, i] = rates(tau, float(a), float(b), z)
+        shape = th.shape
+        th, thd = th.ravel()[:, None, None], thd.ravel()[:, None, None]
+        R, G = float(z[0]), float(z[1])
+        s, c = np.sin(th), np.cos(th)
+        psid = (G - R * c) / (s * s)
+
+        def on_torus(psi: FloatArray, phi: FloatArray) -> FloatArray:
+            psi, phi = np.broadcast_arrays(psi, phi)
+            sp, cp = np.sin(phi), np.cos(phi)
+            w1 = psid * s * sp + thd * cp
+            w2 = psid * s * cp - thd * sp
+            w1, w2 = np.broadcast_arrays(w1, w2)
+            omega = np.stack([w1, w2, np.full(w1.shape, R / mu)], axis=-1)
+            # z–x–z angles → quaternion: q = qz(ψ) ⊗ qx(θ) ⊗ qz(φ).
+            h, up, um = 0.5 * th, 0.5 * (psi + phi), 0.5 * (psi - phi)
+            q = np.stack(
+                np.broadcast_arrays(
+                    np.cos(h) * np.cos(up),
+                    np.sin(h) * np.cos(um),
+                    np.sin(h) * np.sin(um),
+                    np.cos(h) * np.sin(up),
+                ),
+                axis=-1,
+            )
+            m = call(tau, q.reshape(-1, 4), omega.reshape(-1, 3)).reshape(omega.shape)
+            m1, m2, m3 = m[..., 0], m[..., 1], m[..., 2]
+            return np.stack([m1 * cp - m2 * sp, m3, (m1 * sp + m2 * cp) * s + m3 * c], axis=0)
+
+        mean, _ = torus_mean(on_torus, 2, rtol=rtol, n_start=4, what=f"{name} over ψ and φ")
+        out = np.zeros((5, mean.shape[1]))
+        out[:3] = mean
         if ab_rate is not None:
             out[3:, :] = np.asarray(ab_rate(tau), dtype=float)[:, None]
-        return out.reshape(5, *th.shape)
+        return out.reshape(5, *shape)
 
     return Perturbation(name=name, joint=joint)

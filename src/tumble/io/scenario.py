@@ -441,6 +441,9 @@ class NMRunSection(_Section):
     averaged_form: Literal["energy", "theta_max", "theta_min"] = Field(
         "energy", description='"energy", "theta_max" or "theta_min"'
     )
+    averaging: Literal["closed_form", "numeric"] = Field(
+        "closed_form", description='"closed_form" or "numeric"'
+    )
     rtol: float = Field(1e-10, description="a number in [1e-14, 1e-3]")
     atol: float = Field(1e-12, description="a number in (0, 1e-3]")
 
@@ -481,6 +484,7 @@ def _nonlinear_moment(data: dict[str, Any]) -> tuple[RunRequest, dict[str, Any]]
         pressure=_pressure(pert.pressure) if pert else nonlinear_moment.Pressure(),
         averaged_form=run.averaged_form,
         averaged_init=run.averaged_init,
+        averaging=run.averaging,
     )
     st = nonlinear_moment.State(
         theta=ini.theta, theta_dot=ini.theta_dot, psi=ini.psi, phi=ini.phi, R=ini.R, G=ini.G

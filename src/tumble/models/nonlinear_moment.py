@@ -67,6 +67,8 @@ __all__ = [
     "barrier_energies",
     "builtin_perturbation",
     "closed_form",
+    "damping_torque",
+    "engine_perturbation",
     "envelope_discrepancy",
     "extrema",
     "full_from_slow",
@@ -229,6 +231,10 @@ class Params:
     averaged_init : {"exact", "corrected"}
         Averaged initial state: the paper's (z̄, H̄ = the exact values) or the corrected one of
         spec §7.
+    averaging : {"closed_form", "numeric"}
+        How the averaged method forms ⟨·⟩: the closed forms of §8–§9 (K, E, Π), or the
+        general engine (:mod:`tumble.averaging.nutation`: the perturbation's torque averaged
+        numerically over ψ, φ and the nutation period).
     """
 
     mu: float
@@ -240,6 +246,7 @@ class Params:
     pressure: Pressure = field(default_factory=Pressure)
     averaged_form: Literal["energy", "theta_max", "theta_min"] = "energy"
     averaged_init: Literal["exact", "corrected"] = "exact"
+    averaging: Literal["closed_form", "numeric"] = "closed_form"
     Q0: float = field(init=False, repr=False)  # Q(0), derived
 
     def __post_init__(self) -> None:
@@ -260,6 +267,11 @@ class Params:
             raise ParameterError(
                 f"run.averaged_form = {self.averaged_form!r} is not a form "
                 '(allowed: "energy", "theta_max", "theta_min")'
+            )
+        if self.averaging not in ("closed_form", "numeric"):
+            raise ParameterError(
+                f"run.averaging = {self.averaging!r} is not a method of averaging "
+                '(allowed: "closed_form", "numeric")'
             )
         if self.averaged_init not in ("exact", "corrected"):
             raise ParameterError(
@@ -751,8 +763,40 @@ def averaged_initial(
     return H, z, orbit
 
 
+def damping_torque(p: Params) -> Callable[[float, FloatArray, FloatArray], FloatArray]:
+    """The damping of spec §9 as a body-axes torque per unit A and ε: −d(p, q, 0) − ν(0, 0, R).
+
+    Parameters
+    ----------
+    p : Params
+
+    Returns
+    -------
+    callable
+        ``(t, q, omega) -> δM/A`` [1/t²] (for ``torque_perturbation``).
+    """
+
+    def torque(t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
+        w = np.asarray(omega, dtype=float)  # one state (3,) or a batch (N, 3)
+        return np.stack([-p.d * w[..., 0], -p.d * w[..., 1], -p.nu * p.mu * w[..., 2]], -1)
+
+    return torque
+
+
+def engine_perturbation(p: Params) -> Perturbation:
+    """The perturbation of spec §9 for the general engine: its damping as a torque, its
+    pressure as the prescribed laws of a and b (``averaging = "numeric"``)."""
+    return torque_perturbation(
+        damping_torque(p),
+        p.mu,
+        ab_rate=lambda tau: (float(p.ab_rate(tau)[0]), float(p.ab_rate(tau)[1])),
+        name="spec §9 damping through the engine",
+    )
+
+
 def _averaged_form(p: Params, st: State) -> AveragedForm:
-    H, z, orbit = averaged_initial(p, st)
+    engine = engine_perturbation(p) if p.averaging == "numeric" else None
+    H, z, orbit = averaged_initial(p, st, engine)
     form = p.averaged_form
     u_hint = 0.5 * (orbit.u1 + orbit.u2)
     if form == "energy":
@@ -764,7 +808,7 @@ def _averaged_form(p: Params, st: State) -> AveragedForm:
 
     def rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
         try:
-            return averaged_rhs(t, y, p, form=form, u_hint=u_hint)
+            return averaged_rhs(t, y, p, form=form, u_hint=u_hint, perturbation=engine)
         except IntegrationError as exc:
             # A trial stage of a too-long step may leave the domain of the averaged system
             # (no motion with that energy). NaN makes the solver reject the step and retry a
@@ -1115,6 +1159,7 @@ def report(p: Params, st: State, trajectories: Mapping[str, Any]) -> Report:
             summary["envelope"] = env
     summary["averaged_init"] = p.averaged_init
     summary["averaged_form"] = p.averaged_form
+    summary["averaging"] = p.averaging
     summary["initial_orbit"] = limits(p, st)
     return Report(tables, summary)
 

@@ -24,7 +24,9 @@ from tumble.rotations import quat_to_matrix
 __all__ = [
     "CallableTorque",
     "ConstantBodyTorque",
+    "ConstantInertialTorque",
     "EddyCurrentTorque",
+    "GravityGradientTorque",
     "LinearDrag",
     "QuadraticDrag",
     "ScaledTorque",
@@ -212,3 +214,103 @@ class EddyCurrentTorque(Torque):
     def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
         A = quat_to_matrix(q)
         return A.T @ self.inertial(t, A @ omega)
+
+
+def _body_from_inertial(q: FloatArray, v: FloatArray) -> FloatArray:
+    """Body components Aᵀv of inertial vectors v for attitudes q (batched: (..., 4), (..., 3))."""
+    A = quat_to_matrix(np.asarray(q, dtype=float))
+    return np.einsum("...ji,...j->...i", A, v)
+
+
+@dataclass(frozen=True, eq=False)
+class ConstantInertialTorque(Torque):
+    """A moment fixed in inertial space (e.g. a thruster misaligned with nothing that turns,
+    solar pressure on a slowly tumbling body averaged over its shape): M_body = Aᵀ M.
+
+    Accepts batches: ``q`` of shape (..., 4) gives moments of shape (..., 3).
+
+    Parameters
+    ----------
+    moment : array_like, shape (3,)
+        Inertial components [moment unit].
+    """
+
+    moment: FloatArray
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "moment", _vector("moment", self.moment))
+
+    def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
+        q = np.asarray(q, dtype=float)
+        return _body_from_inertial(q, np.broadcast_to(self.moment, (*q.shape[:-1], 3)))
+
+
+@dataclass(frozen=True, eq=False)
+class GravityGradientTorque(Torque):
+    """Gravity-gradient moment on a body in a circular orbit: M = 3n² r̂ × (I r̂), body axes.
+
+    r̂ is the unit vector from the attracting centre to the body, in body axes; n the orbital
+    mean motion (n² = μ_E/r³). The orbit lies in the inertial plane normal to ``normal`` and
+    r̂(t) = cos(nt + u0) e1 + sin(nt + u0) e2, with (e1, e2, normal) right-handed and e1 the
+    projection of ξ1 on the orbit plane (of ξ2 if the normal is within 26° of ξ1). Accepts
+    batches of states.
+
+    Parameters
+    ----------
+    inertia : array_like, shape (3,)
+        Principal moments (I1, I2, I3) [inertia unit]; body axes are principal.
+    n : float
+        Orbital mean motion > 0 [rad/time].
+    normal : array_like, shape (3,)
+        Orbit normal in inertial axes (normalized here) [1].
+    u0 : float
+        Argument of latitude at t = 0 [rad].
+
+    References
+    ----------
+    The standard first-order expansion of the gravity field over the body, e.g. Wertz (ed.),
+    *Spacecraft Attitude Determination and Control*, §17.2.
+    """
+
+    inertia: FloatArray
+    n: float
+    normal: FloatArray = field(default_factory=lambda: np.array([0.0, 0.0, 1.0]))
+    u0: float = 0.0
+    basis: FloatArray = field(init=False, repr=False)  # rows e1, e2, normal (unit)
+
+    def __post_init__(self) -> None:
+        inertia = _vector("inertia", self.inertia)
+        if np.any(inertia <= 0.0):
+            raise ParameterError(f"inertia must be positive, got {inertia.tolist()}")
+        object.__setattr__(self, "inertia", inertia)
+        check_range("n", self.n, low=0.0)
+        normal = _vector("normal", self.normal)
+        norm = float(np.linalg.norm(normal))
+        if norm == 0.0:
+            raise ParameterError("normal must be a nonzero vector")
+        k = normal / norm
+        ref = np.array([1.0, 0.0, 0.0]) if abs(k[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
+        e1 = ref - (ref @ k) * k  # ξ1 (or ξ2) projected onto the orbit plane
+        e1 /= np.linalg.norm(e1)
+        e2 = np.cross(k, e1)
+        basis = np.array([e1, e2, k])
+        basis.setflags(write=False)
+        object.__setattr__(self, "normal", _vector("normal", k))
+        object.__setattr__(self, "basis", basis)
+
+    @property
+    def period(self) -> float:
+        """Orbital period 2π/n [time]."""
+        return 2.0 * np.pi / self.n
+
+    def radial(self, t: ArrayLike) -> FloatArray:
+        """r̂(t) in inertial axes, shape (..., 3)."""
+        u = self.n * np.asarray(t, dtype=float) + self.u0
+        e1, e2 = self.basis[0], self.basis[1]
+        return np.cos(u)[..., None] * e1 + np.sin(u)[..., None] * e2
+
+    def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
+        q = np.asarray(q, dtype=float)
+        r = np.broadcast_to(self.radial(t), (*q.shape[:-1], 3))
+        rb = _body_from_inertial(q, r)
+        return 3.0 * self.n**2 * np.cross(rb, self.inertia * rb)

@@ -66,3 +66,30 @@ def test_gravity_gradient_rejects_bad_input():
         GravityGradientTorque([1.0, -2.0, 3.0], n=1.0)
     with pytest.raises(ParameterError, match="normal"):
         GravityGradientTorque([1.0, 2.0, 3.0], n=1.0, normal=[0.0, 0.0, 0.0])
+
+
+def test_every_builtin_torque_accepts_batches():
+    from tumble.torques import (
+        ConstantBodyTorque,
+        EddyCurrentTorque,
+        LinearDrag,
+        QuadraticDrag,
+        ZeroTorque,
+    )
+
+    rng = np.random.default_rng(7)
+    q = rng.normal(size=(5, 4))
+    q /= np.linalg.norm(q, axis=1, keepdims=True)
+    w = rng.normal(size=(5, 3))
+    B, S = rng.normal(size=(3, 3)), rng.normal(size=(3, 3))
+    total = 0.5 * (ConstantBodyTorque([0.1, 0.2, 0.3]) + LinearDrag(B) + QuadraticDrag(S))
+    for torque in (
+        total,
+        ZeroTorque(),
+        EddyCurrentTorque(0.3, 1.0, 0.8),
+        total + EddyCurrentTorque(0.1, 0.0, 0.2),
+    ):
+        batch = torque(0.7, q, w)
+        single = np.array([torque(0.7, qi, wi) for qi, wi in zip(q, w, strict=True)])
+        assert batch.shape == (5, 3)
+        assert np.allclose(batch, single, atol=1e-14)

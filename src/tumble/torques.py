@@ -6,6 +6,9 @@ A torque is called as ``torque(t, q, omega)`` and returns the moment in **body a
 * ``q`` — attitude quaternion, scalar first, body → inertial (see :mod:`tumble.rotations`);
 * ``omega`` — body angular velocity, shape (3,) [rad per time unit].
 
+Every built-in torque also accepts batches (``q`` of shape (..., 4), ``omega`` (..., 3)) and
+returns moments of shape (..., 3): the averaging engine evaluates all quadrature nodes at once.
+
 Torques add (``t1 + t2``) and scale by numbers (``eps * t``), so the moment (1.2) of the
 resisting-medium paper is ``eps * (ConstantBodyTorque(a) + LinearDrag(b) + QuadraticDrag(s))``.
 """
@@ -76,7 +79,7 @@ class ZeroTorque(Torque):
     """No external moment (the free body)."""
 
     def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
-        return np.zeros(3)
+        return np.zeros(np.shape(omega))
 
 
 @dataclass(frozen=True, eq=False)
@@ -95,7 +98,7 @@ class ConstantBodyTorque(Torque):
         object.__setattr__(self, "moment", _vector("moment", self.moment))
 
     def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
-        return np.array(self.moment)
+        return np.array(np.broadcast_to(self.moment, np.shape(omega)))
 
 
 @dataclass(frozen=True, eq=False)
@@ -114,7 +117,7 @@ class LinearDrag(Torque):
         object.__setattr__(self, "B", _matrix("B", self.B))
 
     def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
-        return -(self.B @ omega)
+        return -(np.asarray(omega) @ self.B.T)
 
 
 @dataclass(frozen=True, eq=False)
@@ -133,7 +136,8 @@ class QuadraticDrag(Torque):
         object.__setattr__(self, "S", _matrix("S", self.S))
 
     def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
-        return -(self.S @ (omega * np.abs(omega)))
+        w = np.asarray(omega)
+        return -((w * np.abs(w)) @ self.S.T)
 
 
 @dataclass(frozen=True, eq=False)
@@ -143,9 +147,9 @@ class TorqueSum(Torque):
     terms: tuple[Torque, ...] = field(default=())
 
     def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
-        total = np.zeros(3)
+        total = np.zeros(np.shape(omega))
         for term in self.terms:
-            total += term(t, q, omega)
+            total = total + term(t, q, omega)
         return total
 
 
@@ -212,8 +216,9 @@ class EddyCurrentTorque(Torque):
         return self.M0 * (h * np.sum(h * w, axis=-1, keepdims=True) - w)
 
     def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
-        A = quat_to_matrix(q)
-        return A.T @ self.inertial(t, A @ omega)
+        A = quat_to_matrix(np.asarray(q, dtype=float))
+        w_inertial = np.einsum("...ij,...j->...i", A, omega)
+        return np.einsum("...ji,...j->...i", A, self.inertial(t, w_inertial))
 
 
 def _body_from_inertial(q: FloatArray, v: FloatArray) -> FloatArray:

@@ -1,8 +1,23 @@
 """Averaging any torque over the unperturbed motion (issue 5): plain numerics below the models.
 
 * :mod:`~tumble.averaging.quadrature`: adaptive periodic trapezoidal means over fast phases.
+* :mod:`~tumble.averaging.spinner`: the fast symmetric spinner of spec/medvedev.md (slow k, ρ,
+  σ, ϑ; averaged over ψ and φ).
+* :mod:`~tumble.averaging.triaxial`: the triaxial body of spec/martynenko.md (slow L_ξ, T;
+  averaged over the polhode, the precession about L and a periodic forcing).
+* :mod:`~tumble.averaging.nutation`: Volosov averaging over the nutation of spec/serov.md.
 """
 
 from tumble.averaging.quadrature import AVERAGE_RTOL, AveragingError, torus_mean
+from tumble.averaging.spinner import spinner_average
+from tumble.averaging.triaxial import nearest_resonance, triaxial_average, triaxial_average_vector
 
-__all__ = ["AVERAGE_RTOL", "AveragingError", "torus_mean"]
+__all__ = [
+    "AVERAGE_RTOL",
+    "AveragingError",
+    "nearest_resonance",
+    "spinner_average",
+    "torus_mean",
+    "triaxial_average",
+    "triaxial_average_vector",
+]

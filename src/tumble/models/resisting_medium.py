@@ -22,6 +22,7 @@ from typing import Any
 import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
+from tumble.averaging.spinner import body_momentum, standard_form
 from tumble.bodies import RigidBody
 from tumble.dynamics import rigid_body_rhs
 from tumble.errors import IntegrationError, ParameterError, check_finite, check_range
@@ -210,13 +211,6 @@ def full_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
     return rigid_body_rhs(t, y, p.inertia, p.torque)
 
 
-def _body_momentum(k: ArrayLike, theta: ArrayLike, phi: ArrayLike) -> FloatArray:
-    """k_b = k (sin ϑ sin φ, sin ϑ cos φ, cos ϑ): body components of k, spec §2."""
-    k, theta, phi = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (k, theta, phi)))
-    st = np.sin(theta)
-    return np.stack([k * st * np.sin(phi), k * st * np.cos(phi), k * np.cos(theta)], -1)
-
-
 def full_from_slow(p: Params, st: State) -> FloatArray:
     """State vector of form (a) from (k, ρ, σ, ψ, ϑ, φ), spec §2 and §4.
 
@@ -226,7 +220,7 @@ def full_from_slow(p: Params, st: State) -> FloatArray:
         ``[w, q]`` with w = (k_b1, k_b2, k_b3/(1+κ)) and q the attitude Ξ(ρ, σ) C(ψ, ϑ, φ).
     """
     R = attitude_from_kframe_angles(st.rho, st.sigma, st.psi, st.theta, st.phi)
-    w = _body_momentum(st.k, st.theta, st.phi) / p.inertia
+    w = body_momentum(st.k, st.theta, st.phi) / p.inertia
     return np.concatenate([w, matrix_to_quat(R)])
 
 
@@ -284,21 +278,11 @@ def _body_moment(p: Params, w: FloatArray) -> FloatArray:
     return p.a - w @ p.b.T - (w * np.abs(w)) @ p.s.T
 
 
-def _nodal_moment(p: Params, k: ArrayLike, theta: ArrayLike, phi: ArrayLike) -> FloatArray:
-    """μ = Rx(ϑ) Rz(φ) m_body (spec §3 identity) at the state (k, ϑ, φ); shape (..., 3)."""
-    kb = _body_momentum(k, theta, phi)
-    mb = _body_moment(p, kb / p.inertia)
-    theta, phi = np.asarray(theta, dtype=float), np.asarray(phi, dtype=float)
-    cf, sf, ct, st = np.cos(phi), np.sin(phi), np.cos(theta), np.sin(theta)
-    mb1, mb2, mb3 = mb[..., 0], mb[..., 1], mb[..., 2]
-    across = sf * mb1 + cf * mb2
-    return np.stack([cf * mb1 - sf * mb2, ct * across - st * mb3, st * across + ct * mb3], -1)
-
-
 def osculating_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
     """Standard form (1.3) for (k, ρ, σ, ψ, ϑ, φ), with erratum E1 applied.
 
-    Singular where sin ϑ = 0 or sin ρ = 0 (spec §11); use :func:`full_rhs` there.
+    The kinematics is :func:`tumble.averaging.spinner.standard_form`; this model supplies the
+    moment (1.2). Singular where sin ϑ = 0 or sin ρ = 0 (spec §11); use :func:`full_rhs` there.
 
     Parameters
     ----------
@@ -310,21 +294,8 @@ def osculating_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
         Model parameters.
     """
     k, rho, _sigma, psi, theta, phi = y
-    mu1, mu2, mu3 = _nodal_moment(p, k, theta, phi)
-    cp, sp = math.cos(psi), math.sin(psi)
-    m1 = cp * mu1 - sp * mu2  # K-frame components, m_K = Rz(ψ) μ
-    m2 = sp * mu1 + cp * mu2
-    e = p.eps
-    return np.array(
-        [
-            e * mu3,
-            e * m1 / k,
-            e * m2 / (k * math.sin(rho)),
-            k - e / k * (mu1 / math.tan(theta) + m2 / math.tan(rho)),
-            e * mu2 / k,
-            -k * p.kappa / (1.0 + p.kappa) * math.cos(theta) + e * mu1 / (k * math.sin(theta)),
-        ]
-    )
+    m = _body_moment(p, body_momentum(k, theta, phi) / p.inertia)
+    return standard_form(m, k, rho, psi, theta, phi, p.kappa, p.eps)
 
 
 def osculating_from_slow(p: Params, st: State) -> FloatArray:

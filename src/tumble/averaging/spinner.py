@@ -1,0 +1,502 @@
+"""Averaging over the fast spin of a symmetric body: the resisting-medium setting (issue 5).
+
+A. V. Medvedev (1987), seed 000; spec/medvedev.md supersedes the seed where they differ. In the
+normalized variables of (1.3) (I1 = 1, I3 = 1 + κ, time τ) a fast-spinning symmetric body under
+a small body moment ε m has the slow variables k, ρ, σ, ϑ and the fast phases ψ, φ. Along the
+unperturbed motion (2.1) at frozen slow variables the phases run uniformly round a 2-torus with
+the rates k and −kκ cos ϑ/(1 + κ); when these are not commensurate the time average along
+(2.1) is the mean over the torus, which :func:`spinner_average` computes by quadrature for any
+torque. For the moment (1.2) of the paper it reproduces (2.2).
+
+This module also holds the kinematics of the standard form (1.3), the part that does not depend
+on the moment law: :func:`body_momentum` and :func:`standard_form`.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Callable
+from typing import Any, NamedTuple
+
+import numpy as np
+
+from tumble._typing import ArrayLike, FloatArray
+from tumble.averaging.quadrature import AVERAGE_RTOL, AveragingError, torus_mean
+from tumble.errors import ParameterError, check_finite, check_range
+from tumble.rotations import SINGULAR_SIN, quat_multiply
+
+__all__ = [
+    "TorqueLike",
+    "body_momentum",
+    "spinner_average",
+    "standard_form",
+]
+
+TorqueLike = Callable[[float, Any, Any], Any]
+"""``torque(t, q, omega) -> body moment``, as in :mod:`tumble.torques` (any callable will do)."""
+
+_PSI_MAX = 256
+"""Most nodes in ψ: a torque that needs more varies on a finer angular scale than any smooth
+external field (its ψ-dependence comes only through the attitude)."""
+
+_PHI_MAX = 1 << 14
+"""Most nodes in φ. The quadratic law w ∘ |w| of (1.2) gives integrands like |sin φ|³, whose
+third derivative jumps: the trapezoidal error then falls only like n⁻⁴, so a relative 1e-12
+takes a few thousand nodes (spectral convergence needs a smooth torque)."""
+
+_PHI_START = 64
+"""φ nodes on which the ψ nodes are chosen, and the first φ grid of the average (64 resolves
+any smooth moment law of low degree in φ; a coarser start only adds doublings)."""
+
+
+# ---------------------------------------------------------------------------------------------
+# Kinematics of the standard form (1.3), independent of the moment law.
+
+
+def body_momentum(k: ArrayLike, theta: ArrayLike, phi: ArrayLike) -> FloatArray:
+    """k_b = k (sin ϑ sin φ, sin ϑ cos φ, cos ϑ): body components of k, spec/medvedev.md §2.
+
+    Parameters
+    ----------
+    k : array_like
+        Normalized angular momentum |K|/K0 [1].
+    theta, phi : array_like
+        Nutation angle ϑ and proper rotation φ [rad].
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        Body components [1]; the body rate is w = k_b / (1, 1, 1 + κ).
+    """
+    k, theta, phi = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (k, theta, phi)))
+    st = np.sin(theta)
+    return np.stack([k * st * np.sin(phi), k * st * np.cos(phi), k * np.cos(theta)], -1)
+
+
+def _nodal(
+    m: FloatArray, ct: ArrayLike, st: ArrayLike, cf: ArrayLike, sf: ArrayLike
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """μ = Rx(ϑ) Rz(φ) m from the cosines and sines of ϑ, φ (spec §3 identity).
+
+    μ is the moment in the frame turned back by ψ: the K-frame components of (1.3) are
+    m_K = Rz(ψ) μ (:func:`_kframe`), and μ3 = m3.
+    """
+    m1, m2, m3 = m[..., 0], m[..., 1], m[..., 2]
+    across = sf * m1 + cf * m2
+    return cf * m1 - sf * m2, ct * across - st * m3, st * across + ct * m3
+
+
+def _kframe(
+    mu1: FloatArray, mu2: FloatArray, cp: ArrayLike, sp: ArrayLike
+) -> tuple[FloatArray, FloatArray]:
+    """K-frame components m1, m2 = Rz(ψ) (μ1, μ2)."""
+    return cp * mu1 - sp * mu2, sp * mu1 + cp * mu2
+
+
+def standard_form(
+    m_body: ArrayLike,
+    k: ArrayLike,
+    rho: ArrayLike,
+    psi: ArrayLike,
+    theta: ArrayLike,
+    phi: ArrayLike,
+    kappa: float,
+    eps: float,
+) -> FloatArray:
+    """Rates of (k, ρ, σ, ψ, ϑ, φ) under the body moment ε m: the standard form (1.3).
+
+    Erratum E1 applied (k dρ/dτ = ε m1). Singular where sin ϑ = 0 or sin ρ = 0 (spec §11).
+
+    Parameters
+    ----------
+    m_body : array_like, shape (..., 3)
+        Normalized moment m in body axes [1] (without the factor ε).
+    k : array_like
+        |k| [1].
+    rho, psi, theta, phi : array_like
+        ρ, ψ, ϑ, φ [rad] (σ does not enter the rates).
+    kappa : float
+        Oblateness κ, I3 = 1 + κ [1].
+    eps : float
+        Small parameter ε [1].
+
+    Returns
+    -------
+    ndarray, shape (..., 6)
+        dk/dτ [1/τ], dρ/dτ, dσ/dτ, dψ/dτ, dϑ/dτ, dφ/dτ [rad/τ].
+    """
+    m = np.asarray(m_body, dtype=float)
+    k, rho, psi, theta, phi = (np.asarray(v, dtype=float) for v in (k, rho, psi, theta, phi))
+    ct, st = np.cos(theta), np.sin(theta)
+    mu1, mu2, mu3 = _nodal(m, ct, st, np.cos(phi), np.sin(phi))
+    m1, m2 = _kframe(mu1, mu2, np.cos(psi), np.sin(psi))
+    e_k = eps / k
+    return np.stack(
+        np.broadcast_arrays(
+            eps * mu3,
+            e_k * m1,
+            e_k * m2 / np.sin(rho),
+            k - e_k * (mu1 * ct / st + m2 / np.tan(rho)),
+            e_k * mu2,
+            -k * kappa / (1.0 + kappa) * ct + e_k * mu1 / st,
+        ),
+        -1,
+    )
+
+
+# ---------------------------------------------------------------------------------------------
+# The torque at many nodes at once.
+
+
+class _BodyMoment:
+    """A torque evaluated at n states at once: ``(q (n, 4), omega (n, 3)) -> (n, 3)``.
+
+    Batched calling convention: ``torque(t, q, omega)`` with q of shape (n, 4) and omega of
+    shape (n, 3) (leading batch axis, as every function of :mod:`tumble.rotations` accepts)
+    must return shape (n, 3), or (3,) for a moment that depends on neither. With
+    ``batched=None`` the first call tries this and compares two nodes with one-state calls;
+    a torque that raises, returns another shape or disagrees is then called one state at a
+    time, one Python call per node (one that works on batches only is trusted).
+    """
+
+    def __init__(self, torque: TorqueLike, t: float, batched: bool | None) -> None:
+        self.torque, self.t, self.batched = torque, t, batched
+
+    def _one(self, q: FloatArray, w: FloatArray) -> FloatArray:
+        m = np.asarray(self.torque(self.t, q, w), dtype=float)
+        if m.shape != (3,):
+            raise ParameterError(
+                f"torque returned shape {m.shape} for one state; it must return the 3 body "
+                "components of the moment"
+            )
+        return m
+
+    def _many(self, q: FloatArray, w: FloatArray) -> FloatArray | None:
+        """The batched call, or None if the torque does not follow the batched convention."""
+        n = q.shape[0]
+        try:
+            m = np.asarray(self.torque(self.t, q, w), dtype=float)
+        except Exception:  # a one-state callable fails on arrays in many ways
+            if self.batched:
+                raise
+            return None
+        if m.shape == (3,):
+            m = np.broadcast_to(m, (n, 3))
+        if m.shape != (n, 3):
+            if self.batched:
+                raise ParameterError(
+                    f"torque returned shape {m.shape} for {n} states; with batched=True it "
+                    f"must return ({n}, 3) or (3,)"
+                )
+            return None
+        if self.batched is None:
+            # Trust the batched result only if it matches one-state calls at two nodes (a
+            # one-state `B @ omega` could otherwise broadcast into something wrong). Not node
+            # 0: there φ = 0 and the first body rate vanishes.
+            probe = [1 % n, (n // 2 + 3) % n]
+            try:
+                one = np.array([self._one(q[i], w[i]) for i in probe])
+            except Exception:  # written for batches only: nothing to compare with
+                self.batched = True
+                return m
+            scale = float(np.max(np.abs(one))) + 1e-300
+            self.batched = bool(np.all(np.abs(m[probe] - one) <= 1e-12 * scale))
+            if not self.batched:
+                return None
+        return m
+
+    def __call__(self, q: FloatArray, w: FloatArray) -> FloatArray:
+        m = None if self.batched is False else self._many(q, w)
+        if m is None:
+            self.batched = False
+            m = np.array([self._one(q[i], w[i]) for i in range(q.shape[0])])
+        if not np.all(np.isfinite(m)):
+            raise AveragingError(
+                "the torque returned non-finite values on the unperturbed motion (2.1): "
+                "no average can be formed"
+            )
+        return m
+
+
+# ---------------------------------------------------------------------------------------------
+# The averaged system over the torus (ψ, φ).
+
+
+def _nodes(n: int, offset: float = 0.0) -> FloatArray:
+    """The phases (j + offset) 2π/n, j = 0 … n − 1 [rad]: trapezoidal nodes on a circle."""
+    return np.asarray((np.arange(n) + offset) * (2.0 * math.pi / n), dtype=np.float64)
+
+
+class _PsiGrid(NamedTuple):
+    """Nodes in ψ with what every φ grid needs from them."""
+
+    psi: FloatArray  # the nodes [rad], shape (n,)
+    attitude: FloatArray  # q = (cos φ/2, sin φ/2) @ attitude[i] at ψ_i, shape (n, 2, 4)
+    cos: FloatArray  # cos ψ, shape (n, 1)
+    sin: FloatArray  # sin ψ, shape (n, 1)
+
+
+class _Torus:
+    """The moment on the torus of (ψ, φ) at frozen slow variables (k, ρ, σ, ϑ)."""
+
+    def __init__(
+        self, moment: _BodyMoment, kappa: float, k: float, rho: float, sigma: float, theta: float
+    ) -> None:
+        self.moment, self.k, self.theta = moment, k, theta
+        self.ct, self.st = math.cos(theta), math.sin(theta)
+        # Body rate w = k_b / (1, 1, 1 + κ): the last component does not depend on φ.
+        self.kst, self.r = k * self.st, k * self.ct / (1.0 + kappa)
+        # Ξ(ρ, σ) = Rz(σ) Ry(ρ) (spec §2), so its quaternion is (cos σ/2, 0, 0, sin σ/2) ⊗
+        # (cos ρ/2, 0, sin ρ/2, 0); xi_left[j] = Ξ ⊗ (unit quaternion j), see :meth:`grid`.
+        cs, ss, cr, sr = (f(0.5 * x) for x in (sigma, rho) for f in (math.cos, math.sin))
+        xi = np.array([cs * cr, -ss * sr, cs * sr, ss * cr])
+        self.xi_left = quat_multiply(xi, np.eye(4))
+
+    def grid(self, psi: FloatArray) -> _PsiGrid:
+        """The ψ nodes ``psi`` prepared for :meth:`nodal`.
+
+        The attitude Ξ(ρ, σ) Rz(ψ) Rx(ϑ) Rz(φ) is the quaternion Ξ ⊗ e with e the 3-1-3
+        quaternion (cos ϑ/2 cos (ψ+φ)/2, sin ϑ/2 cos (ψ−φ)/2, sin ϑ/2 sin (ψ−φ)/2,
+        cos ϑ/2 sin (ψ+φ)/2), which is linear in (cos φ/2, sin φ/2); and Ξ ⊗ e = e @ xi_left
+        with xi_left[j] = Ξ ⊗ (unit quaternion j). So the whole attitude is one product per
+        node and no trigonometry is done on the (ψ, φ) grid.
+        """
+        ch, sh = math.cos(0.5 * self.theta), math.sin(0.5 * self.theta)
+        c, s = np.cos(0.5 * psi), np.sin(0.5 * psi)
+        e = np.empty((psi.size, 2, 4))
+        e[:, 0, 0], e[:, 0, 1], e[:, 0, 2], e[:, 0, 3] = ch * c, sh * c, sh * s, ch * s  # cos φ/2
+        e[:, 1, 0], e[:, 1, 1], e[:, 1, 2], e[:, 1, 3] = -ch * s, sh * s, -sh * c, ch * c  # sin φ/2
+        return _PsiGrid(psi, e @ self.xi_left, np.cos(psi)[:, None], np.sin(psi)[:, None])
+
+    def nodal(self, grid: _PsiGrid, phi: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """μ1, μ2, μ3 (spec §3) of the moment at the nodes ψ × φ, each (len(psi), len(phi))."""
+        half = np.stack([np.cos(0.5 * phi), np.sin(0.5 * phi)], -1)
+        cf = (half[:, 0] - half[:, 1]) * (half[:, 0] + half[:, 1])
+        sf = 2.0 * half[:, 0] * half[:, 1]
+        q = half @ grid.attitude  # (n_psi, n_phi, 4)
+        q *= np.where(q[..., :1] < 0.0, -1.0, 1.0)  # q0 ≥ 0, as matrix_to_quat returns it
+        shape = q.shape[:2]
+        w = np.empty((*shape, 3))
+        w[..., 0], w[..., 1], w[..., 2] = self.kst * sf, self.kst * cf, self.r
+        m = self.moment(q.reshape(-1, 4), w.reshape(-1, 3))
+        return _nodal(m.reshape(*shape, 3), self.ct, self.st, cf, sf)
+
+    @staticmethod
+    def slow(mu: tuple[FloatArray, FloatArray, FloatArray], grid: _PsiGrid) -> FloatArray:
+        """(μ3, m1, m2, μ2), shape (4, n_psi, n_phi): up to the factors ε, ε/k, ε/(k sin ρ),
+        ε/k the slow rates of (1.3)."""
+        mu1, mu2, mu3 = mu
+        m1, m2 = _kframe(mu1, mu2, grid.cos, grid.sin)
+        return np.stack([mu3, m1, m2, mu2])
+
+    @staticmethod
+    def independent(mu: tuple[FloatArray, FloatArray, FloatArray]) -> FloatArray:
+        """(μ3, ⟨m1⟩_ψ, ⟨m2⟩_ψ, μ2) from the first ψ row of a μ that does not depend on ψ.
+
+        Then m_K = Rz(ψ) μ averages to (0, 0, μ3) over ψ exactly.
+        """
+        zero = np.zeros_like(mu[2][0])
+        return np.stack([mu[2][0], zero, zero, mu[1][0]])
+
+    def resolve_psi(self, phi: FloatArray, rtol: float) -> tuple[_PsiGrid, bool, float, FloatArray]:
+        """The ψ nodes for the average over φ, chosen on the φ nodes ``phi``.
+
+        If μ does not depend on ψ at 8 nodes (any body-fixed law such as (1.2)), one ψ node
+        will do. Otherwise ψ-means R_n of :meth:`slow` with n = 2, 4, 8, … nodes (each level
+        adds the midpoints) are compared at every φ of ``phi`` until two successive levels, the
+        finer with at least 8 nodes, agree to ``rtol`` times the largest |μ|; the nodes are
+        those of the smallest level from which every later one agreed.
+
+        Returns
+        -------
+        grid : _PsiGrid
+            The ψ nodes.
+        independent : bool
+            Whether μ does not depend on ψ (then ``grid`` has the single node ψ = 0).
+        scale : float
+            max |μ| on the nodes [moment unit].
+        means : ndarray, shape (4, len(phi))
+            ψ-means of (μ3, m1, m2, μ2) at ``phi`` on ``grid``.
+        """
+        n = 8
+        grid = self.grid(_nodes(n))
+        mu = self.nodal(grid, phi)
+        scale = max(float(np.max(np.abs(c))) for c in mu)
+        if all(np.all(np.abs(c - c[:1]) <= rtol * scale) for c in mu):
+            return self.grid(np.zeros(1)), True, scale, self.independent(mu)
+        values = self.slow(mu, grid)
+        means = [values[:, ::4].mean(axis=1), values[:, ::2].mean(axis=1), values.mean(axis=1)]
+        while True:
+            tol = rtol * scale
+            agree = [bool(np.all(np.abs(b - a) <= tol)) for a, b in itertools.pairwise(means)]
+            if agree[-1]:
+                first = len(agree)
+                while first > 0 and agree[first - 1]:
+                    first -= 1
+                n_psi = 2 << first
+                return self.grid(_nodes(n_psi)), False, scale, means[first]
+            if n >= _PSI_MAX:
+                raise AveragingError(
+                    f"the average over ψ did not converge with {_PSI_MAX} nodes (k = {self.k:g}, "
+                    f"ϑ = {self.theta:g}): the torque varies too fast with the attitude"
+                )
+            mid = self.grid(_nodes(n, 0.5))
+            mu = self.nodal(mid, phi)
+            scale = max(scale, *(float(np.max(np.abs(c))) for c in mu))
+            means.append(0.5 * (means[-1] + self.slow(mu, mid).mean(axis=1)))
+            n *= 2
+
+    def psi_mean(self, grid: _PsiGrid, independent: bool, phi: FloatArray) -> FloatArray:
+        """ψ-means of (μ3, m1, m2, μ2) at the φ nodes ``phi``, shape (4, len(phi))."""
+        mu = self.nodal(grid, phi)
+        if independent:
+            return self.independent(mu)
+        return self.slow(mu, grid).mean(axis=1)
+
+
+def _check_state(
+    kappa: float, eps: float, k: float, rho: float, sigma: float, theta: float
+) -> None:
+    check_range("kappa", kappa, low=-1.0, high=1.0, high_open=False)
+    if kappa == 0.0:
+        raise ParameterError(
+            "kappa = 0 is outside the allowed range (−1, 0) ∪ (0, 1] of the spinner average: "
+            "a spherical inertia ellipsoid has no fast spin φ (spec/medvedev.md §10.5)"
+        )
+    check_range("eps", eps, low=0.0, low_open=False)
+    check_range("k", k, low=0.0)
+    check_finite("sigma", sigma)
+    for name, value in (("rho", rho), ("theta", theta)):
+        check_range(name, value, low=0.0, high=math.pi, low_open=False, high_open=False)
+        if abs(math.sin(value)) < SINGULAR_SIN:
+            raise ParameterError(
+                f"{name} = {value:g} is outside the allowed range (0, π) of the spinner "
+                f"average: sin {name} = 0 is a singularity of the standard form (1.3) "
+                "(spec/medvedev.md §11)"
+            )
+
+
+def _spinner_average(
+    torque: TorqueLike,
+    kappa: float,
+    eps: float,
+    k: float,
+    rho: float,
+    sigma: float,
+    theta: float,
+    t: float,
+    rtol: float,
+    batched: bool | None,
+) -> tuple[FloatArray, int, int]:
+    """:func:`spinner_average` and the nodes used in ψ and in φ."""
+    kappa, eps, k, rho, sigma, theta, t = map(float, (kappa, eps, k, rho, sigma, theta, t))
+    _check_state(kappa, eps, k, rho, sigma, theta)
+    check_finite("t", t)
+    check_range("rtol", rtol, low=0.0)
+    torus = _Torus(_BodyMoment(torque, t, batched), kappa, k, rho, sigma, theta)
+    first_phi = _nodes(_PHI_START)
+    grid, independent, scale, first = torus.resolve_psi(first_phi, rtol)
+
+    def psi_mean(phi: FloatArray) -> FloatArray:
+        # torus_mean starts on the grid that chose the ψ nodes: reuse those means.
+        if phi.shape == first_phi.shape and np.array_equal(phi, first_phi):
+            return first
+        return torus.psi_mean(grid, independent, phi)
+
+    mean, n_phi = torus_mean(
+        psi_mean,
+        1,
+        rtol=rtol,
+        atol=rtol * scale,
+        n_start=_PHI_START,
+        n_max=_PHI_MAX,
+        what=f"the average over φ (k = {k:g}, ϑ = {theta:g}, κ = {kappa:g})",
+    )
+    mu3, m1, m2, mu2 = mean
+    rates = eps * np.array([mu3, m1 / k, m2 / (k * math.sin(rho)), mu2 / k])
+    return rates, grid.psi.size, n_phi
+
+
+def spinner_average(
+    torque: TorqueLike,
+    kappa: float,
+    eps: float,
+    k: float,
+    rho: float,
+    sigma: float,
+    theta: float,
+    t: float = 0.0,
+    *,
+    rtol: float = AVERAGE_RTOL,
+    batched: bool | None = None,
+) -> FloatArray:
+    """Averaged rates (dk/dτ, dρ/dτ, dσ/dτ, dϑ/dτ) of (1.3) for any torque; (2.2) for (1.2).
+
+    The slow rates of the standard form (1.3) under the body moment ε m, with
+    ``m = torque(t, q, w)``, averaged over the fast phases ψ and φ of the unperturbed motion
+    (2.1) at frozen k, ρ, σ, ϑ and t: the mean over the 2-torus, i.e. the time average when
+    the rates k of ψ and −kκ cos ϑ/(1+κ) of φ are not commensurate (first-order averaging,
+    spec/medvedev.md §6; at ϑ = π/2 φ stops and the result is the limit of the average, §10.2).
+
+    The mean is a periodic trapezoidal rule on a product grid. The ψ nodes are chosen first,
+    on 64 values of φ: one node if the moment does not depend on ψ (any body-fixed law such
+    as (1.2); then ⟨dρ/dτ⟩ = ⟨dσ/dτ⟩ = 0 exactly), else the fewest of 2, 4, 8, … that resolve
+    the ψ-mean. Then the φ nodes are doubled by :func:`~tumble.averaging.quadrature.torus_mean`
+    until two results agree to ``rtol`` relative to the size of the moment on the torus. (The
+    2-D mode of ``torus_mean`` would refine ψ together with φ, while the quadratic law of (1.2)
+    needs a few thousand φ nodes, its integrand having a jump in the third derivative, and
+    one ψ node.) For (1.2) as a batched callable one call costs about 1.4 ms (0.5 ms without
+    the quadratic term); as the built-in one-state Torque objects, about 50 ms.
+
+    Parameters
+    ----------
+    torque : callable
+        ``torque(t, q, w) -> m``: the normalized moment m of (1.3) in body axes [1], without
+        the factor ε (for the model, ``Params.torque`` already includes ε: pass it with
+        ``eps=1``). ``q`` is the attitude quaternion (scalar first, body → inertial) of
+        Ξ(ρ, σ) C(ψ, ϑ, φ), with q0 ≥ 0 as ``resisting_medium.full_from_slow`` builds it;
+        ``w = (k sin ϑ sin φ, k sin ϑ cos φ, k cos ϑ/(1 + κ))`` is the body rate [rad/τ].
+        Called batched, with q of shape (n, 4) and w of shape (n, 3), returning shape (n, 3)
+        (or (3,) if constant); see ``batched``. Any :class:`~tumble.torques.Torque` will do
+        (today those take one state at a time).
+    kappa : float
+        Oblateness κ, I3 = I1 (1 + κ) [1], in (−1, 1], κ ≠ 0.
+    eps : float
+        Small parameter ε ≥ 0 [1].
+    k : float
+        |k| > 0 [1].
+    rho : float
+        Angle of K from the inertial axis X3 [rad], sin ρ ≠ 0.
+    sigma : float
+        Azimuth of K about X3 [rad].
+    theta : float
+        Nutation angle ϑ [rad], sin ϑ ≠ 0.
+    t : float
+        Time τ [1], frozen (an explicit time dependence is slow).
+    rtol : float
+        Tolerance of the quadrature, relative to the largest |m| on the torus.
+    batched : bool or None
+        True: the torque follows the batched convention (no check). False: call it one state
+        at a time (about 10 µs per node; thousands of nodes for non-smooth laws such as
+        (1.2)). None (default): try batched, check two nodes against one-state calls, and
+        fall back if the torque fails or disagrees.
+
+    Returns
+    -------
+    ndarray, shape (4,)
+        ⟨dk/dτ⟩ [1/τ], ⟨dρ/dτ⟩, ⟨dσ/dτ⟩, ⟨dϑ/dτ⟩ [rad/τ].
+
+    Raises
+    ------
+    ParameterError
+        κ = 0 (φ is not a fast phase), sin ϑ = 0 or sin ρ = 0 (the standard form (1.3) is
+        singular, spec §11), k ≤ 0, or a torque that returns the wrong shape.
+    AveragingError
+        The quadrature did not converge, or the torque is not finite on the torus.
+
+    References
+    ----------
+    A. V. Medvedev (1987), seed 000; spec/medvedev.md (1.3), (2.1), (2.2).
+    """
+    return _spinner_average(torque, kappa, eps, k, rho, sigma, theta, t, rtol, batched)[0]

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 import tomllib
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from importlib import resources
 from pathlib import Path
 from typing import Annotated, Any, Literal
@@ -62,6 +62,9 @@ class RunSection(_Section):
     )
     rtol: float = Field(1e-10, description="a number in [1e-14, 1e-3]")
     atol: float = Field(1e-12, description="a number in (0, 1e-3]")
+    averaging: Literal["closed_form", "numeric"] = Field(
+        "closed_form", description='"closed_form" or "numeric"'
+    )
 
 
 class PhysicalRunSection(_Section):
@@ -73,6 +76,9 @@ class PhysicalRunSection(_Section):
     )
     rtol: float = Field(1e-10, description="a number in [1e-14, 1e-3]")
     atol: float = Field(1e-12, description="a number in (0, 1e-3]")
+    averaging: Literal["closed_form", "numeric"] = Field(
+        "closed_form", description='"closed_form" or "numeric"'
+    )
 
 
 class RMParameters(_Section):
@@ -332,10 +338,13 @@ def _resisting_medium(data: dict[str, Any]) -> tuple[RunRequest, dict[str, Any]]
         t_s = _times(sc.run, "t_end_s", "t_s")
         tau = scaling.tau_from_time(t_s)
         run = sc.run
+        p = replace(p, averaging=run.averaging)
     else:
         sc = _validated(RMScenario, data)
         par, ini = sc.parameters, sc.initial
-        p = resisting_medium.Params(eps=par.eps, kappa=par.kappa, a=par.a, b=par.b, s=par.s)
+        p = resisting_medium.Params(
+            eps=par.eps, kappa=par.kappa, a=par.a, b=par.b, s=par.s, averaging=sc.run.averaging
+        )
         st = resisting_medium.State(
             k=ini.k, rho=ini.rho, sigma=ini.sigma, psi=ini.psi, theta=ini.theta, phi=ini.phi
         )
@@ -381,11 +390,12 @@ def _rotating_field(data: dict[str, Any]) -> tuple[RunRequest, dict[str, Any]]:
         ph = sc.physical
         phys = rotating_field.PhysicalParams(ph.inertia, ph.k_f, ph.H, ph.omega, ph.beta)
         p, st, scaling = rotating_field.normalize_physical(phys, sc.initial.Omega, sc.initial.gamma)
+        p = replace(p, averaging=sc.run.averaging)
         tau = scaling.tau_from_time(_times(sc.run, "t_end_s", "t_s"))
     else:
         sc = _validated(RFScenario, data)
         par = sc.parameters
-        p = rotating_field.Params(par.inertia, par.beta, par.eps)
+        p = rotating_field.Params(par.inertia, par.beta, par.eps, sc.run.averaging)
         st = _rf_initial(p, sc.initial)
         tau, scaling = _times(sc.run, "tau_end", "tau"), None
     rtol, atol = _tolerances(sc.run)

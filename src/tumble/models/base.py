@@ -26,6 +26,7 @@ __all__ = [
     "Report",
     "StationaryMotion",
     "ValidityIssue",
+    "check_averaging",
     "first_time",
     "frozen_array",
 ]
@@ -259,3 +260,17 @@ def frozen_array(name: str, value: ArrayLike, shape: tuple[int, ...]) -> FloatAr
         raise ParameterError(f"{name} must contain finite numbers only, got {value!r}")
     arr.setflags(write=False)
     return arr
+
+
+AVERAGING_METHODS = ("closed_form", "numeric")
+"""How an averaged method forms its right-hand side: the paper's closed form, or the general
+engine of :mod:`tumble.averaging` (the scenario key ``[run] averaging``)."""
+
+
+def check_averaging(value: str) -> None:
+    """ParameterError unless ``value`` is one of :data:`AVERAGING_METHODS`."""
+    if value not in AVERAGING_METHODS:
+        raise ParameterError(
+            f"run.averaging = {value!r} is not a method of averaging "
+            '(allowed: "closed_form", "numeric")'
+        )

@@ -48,6 +48,7 @@ from tumble.models.base import (
     ModelRecord,
     Report,
     ValidityIssue,
+    check_averaging,
     first_time,
 )
 from tumble.rotations import euler313_to_matrix, matrix_to_euler313, matrix_to_quat, quat_to_matrix
@@ -268,11 +269,7 @@ class Params:
                 f"run.averaged_form = {self.averaged_form!r} is not a form "
                 '(allowed: "energy", "theta_max", "theta_min")'
             )
-        if self.averaging not in ("closed_form", "numeric"):
-            raise ParameterError(
-                f"run.averaging = {self.averaging!r} is not a method of averaging "
-                '(allowed: "closed_form", "numeric")'
-            )
+        check_averaging(self.averaging)
         if self.averaged_init not in ("exact", "corrected"):
             raise ParameterError(
                 f"run.averaged_init = {self.averaged_init!r} is not an initialisation "

@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
-from tumble.averaging.spinner import body_momentum, standard_form
+from tumble.averaging.spinner import body_momentum, spinner_average, standard_form
 from tumble.bodies import RigidBody
 from tumble.dynamics import rigid_body_rhs
 from tumble.errors import IntegrationError, ParameterError, check_finite, check_range
@@ -32,6 +32,7 @@ from tumble.models.base import (
     FullForm,
     ModelRecord,
     ValidityIssue,
+    check_averaging,
     first_time,
     frozen_array,
 )
@@ -51,6 +52,7 @@ __all__ = [
     "Scaling",
     "State",
     "averaged_rhs",
+    "averaged_rhs_numeric",
     "averaged_rhs_wv",
     "axial_lower_double_root",
     "axial_lower_exp",
@@ -98,6 +100,9 @@ class Params:
         Linear drag b_ij = B_ij / (M0 T0) [1]; any sign, off-diagonal entries allowed.
     s : array_like, shape (3, 3)
         Quadratic drag s_ij = S_ij / (M0 T0²) [1].
+    averaging : {"closed_form", "numeric"}
+        How the averaged method forms its right-hand side: (2.2) in closed form, or the general
+        engine (:func:`tumble.averaging.spinner_average`, the moment (1.2) averaged over ψ, φ).
     """
 
     eps: float
@@ -105,12 +110,14 @@ class Params:
     a: FloatArray = field(default_factory=lambda: np.zeros(3))
     b: FloatArray = field(default_factory=lambda: np.zeros((3, 3)))
     s: FloatArray = field(default_factory=lambda: np.zeros((3, 3)))
+    averaging: str = "closed_form"
     _torque: Torque = field(init=False, repr=False)
     _inertia: FloatArray = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         check_range("parameters.eps", float(self.eps), low=0.0, low_open=False)
         check_range("parameters.kappa", float(self.kappa), low=-1.0, high=1.0, high_open=False)
+        check_averaging(self.averaging)
         object.__setattr__(self, "eps", float(self.eps))
         object.__setattr__(self, "kappa", float(self.kappa))
         object.__setattr__(self, "a", frozen_array("parameters.a", self.a, (3,)))
@@ -397,7 +404,41 @@ _AVERAGED_WV = AveragedForm(
 )
 
 
+def averaged_rhs_numeric(t: float, y: FloatArray, p: Params) -> FloatArray:
+    """The averaged equations from the general engine: the moment (1.2) averaged over ψ and φ
+    of the standard form (1.3) by quadrature (issue 5); equal to (2.2) to round-off.
+
+    Parameters
+    ----------
+    t : float
+        Time τ [1].
+    y : ndarray, shape (4,)
+        ``[k, ρ, σ, ϑ]`` [1, rad, rad, rad].
+    p : Params
+    """
+    k, rho, sigma, theta = (float(v) for v in y)
+    return spinner_average(p.torque, p.kappa, 1.0, k, rho, sigma, theta, t=t)
+
+
+def _averaged_columns_numeric(
+    t: FloatArray, Y: FloatArray, p: Params, st: State
+) -> dict[str, FloatArray]:
+    Y = np.atleast_2d(Y)
+    return {"k": Y[:, 0], "rho": Y[:, 1], "sigma": Y[:, 2], "theta": Y[:, 3]}
+
+
+_AVERAGED_NUMERIC = AveragedForm(
+    name="numeric",
+    equation="(1.3) averaged over ψ, φ by quadrature (tumble.averaging)",
+    rhs=averaged_rhs_numeric,
+    from_slow=lambda p, st: np.array([st.k, st.rho, st.sigma, st.theta]),
+    to_columns=_averaged_columns_numeric,
+)
+
+
 def _averaged_form(p: Params, st: State) -> AveragedForm:
+    if p.averaging == "numeric":
+        return _AVERAGED_NUMERIC
     # (2.2) is written in polar coordinates (k, ϑ): at V0 = 0 (ϑ0 = 0 or π) the solution may
     # pass through k = 0, the polar singularity; (2.3) is the same system and regular there.
     return _AVERAGED_WV if abs(math.sin(st.theta)) < 1e-12 else _AVERAGED_KTHETA

@@ -24,6 +24,7 @@ import numpy as np
 from scipy.special import ellipe, ellipj, ellipk
 
 from tumble._typing import ArrayLike, FloatArray
+from tumble.averaging.triaxial import triaxial_average_vector
 from tumble.bodies import RigidBody
 from tumble.dynamics import rigid_body_rhs
 from tumble.errors import ParameterError, check_range
@@ -35,6 +36,7 @@ from tumble.models.base import (
     ModelRecord,
     StationaryMotion,
     ValidityIssue,
+    check_averaging,
     first_time,
     frozen_array,
 )
@@ -64,6 +66,7 @@ __all__ = [
     "approximate_roots",
     "averaged_rhs",
     "averaged_rhs_k2",
+    "averaged_rhs_numeric",
     "averaged_rhs_vector",
     "characteristic_coefficients",
     "field_average",
@@ -108,11 +111,16 @@ class Params:
         along ξ3; β = π/2: a field rotating in a plane).
     eps : float
         ε = M0/ω = k_f H²/ω > 0 [inertia unit]; the small parameter is ε/I_i.
+    averaging : {"closed_form", "numeric"}
+        How the averaged method forms its right-hand side: (3.5)–(3.7) in closed form, or the
+        general engine (:func:`tumble.averaging.triaxial_average_vector`: the eddy-current
+        torque averaged over the polhode, the precession about L and the field's rotation).
     """
 
     inertia: FloatArray
     beta: float
     eps: float
+    averaging: str = "closed_form"
     # Derived once: the right-hand sides run at every step.
     sorting: FloatArray = field(init=False, repr=False)  # S: v_sorted = S v_user, det S = +1
     sorted_inertia: tuple[float, float, float] = field(init=False, repr=False)
@@ -131,6 +139,7 @@ class Params:
             high_open=False,
         )
         check_range("parameters.eps", float(self.eps), low=0.0)
+        check_averaging(self.averaging)
         object.__setattr__(self, "inertia", inertia)
         object.__setattr__(self, "beta", float(self.beta))
         object.__setattr__(self, "eps", float(self.eps))
@@ -172,7 +181,7 @@ class Params:
 
     def with_eps(self, eps: float) -> Params:
         """The same body and field with another ε."""
-        return Params(self.inertia, self.beta, eps)
+        return Params(self.inertia, self.beta, eps, self.averaging)
 
 
 def _as_rotation(name: str, gamma: ArrayLike) -> FloatArray:
@@ -635,15 +644,36 @@ def _step_over_separatrix(t: float, y: FloatArray) -> FloatArray:
     return out
 
 
+def averaged_rhs_numeric(t: float, y: FloatArray, p: Params) -> FloatArray:
+    """The vector form of the averaged equations from the general engine (issue 5): the
+    eddy-current torque averaged over the Euler–Poinsot motion and the field's rotation by
+    quadrature; equal to :func:`averaged_rhs_vector` to round-off away from the separatrix.
+
+    Parameters
+    ----------
+    t : float
+        Time τ [1].
+    y : ndarray, shape (4,)
+        ``[L_ξ1, L_ξ2, L_ξ3, r]``, r = 2T/L² [inertia unit, 1/inertia unit].
+    p : Params
+    """
+    return triaxial_average_vector(p.torque, p.inertia, y, t, forcing_period=2.0 * math.pi)
+
+
 def _averaged_form(p: Params, st: State) -> AveragedForm:
     I1, I2, I3 = p.sorted_inertia
     breakpoints: tuple[Breakpoint, ...] = ()
     if I1 < I2 < I3:
         breakpoints = (Breakpoint(lambda t, y: float(y[3]) - 1.0 / I2, _step_over_separatrix),)
+    numeric = p.averaging == "numeric"
     return AveragedForm(
-        name="vector",
-        equation="(3.5)-(3.7), vector form of spec §10",
-        rhs=averaged_rhs_vector,
+        name="numeric" if numeric else "vector",
+        equation=(
+            "(3.5)-(3.7) by quadrature (tumble.averaging)"
+            if numeric
+            else "(3.5)-(3.7), vector form of spec §10"
+        ),
+        rhs=averaged_rhs_numeric if numeric else averaged_rhs_vector,
         from_slow=_vector_from_slow,
         to_columns=_vector_columns,
         breakpoints=breakpoints,

@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from tumble._typing import FloatArray
-from tumble.averaging.quadrature import AVERAGE_RTOL, AveragingError, torus_mean
+from tumble.averaging.quadrature import AVERAGE_RTOL, AveragingError, BatchedTorque, torus_mean
 from tumble.unperturbed.symmetric_body import NutationOrbit
 
 __all__ = [
@@ -195,14 +195,7 @@ def torque_perturbation(
     Perturbation
     """
 
-    def call(tau: float, q: FloatArray, omega: FloatArray) -> FloatArray:
-        """The torque at a batch of states (shape (N, 4), (N, 3)) → (N, 3)."""
-        if vectorized:
-            m = np.asarray(torque(tau, q, omega), dtype=float)
-            if m.shape == omega.shape:
-                return m
-        one_by_one = [torque(tau, qi, wi) for qi, wi in zip(q, omega, strict=True)]
-        return np.array(one_by_one, dtype=float)
+    call = BatchedTorque(torque, None if vectorized else False, "the nutation (1.9)")
 
     def joint(tau: float, theta: FloatArray, theta_dot: FloatArray, z: FloatArray) -> FloatArray:
         th, thd = np.broadcast_arrays(np.asarray(theta, float), np.asarray(theta_dot, float))

@@ -22,7 +22,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
-from tumble.averaging.quadrature import AVERAGE_RTOL, AveragingError, torus_mean
+from tumble.averaging.quadrature import AVERAGE_RTOL, AveragingError, BatchedTorque, torus_mean
 from tumble.errors import ParameterError, check_finite, check_range
 from tumble.rotations import SINGULAR_SIN, quat_multiply
 
@@ -150,73 +150,14 @@ def standard_form(
 
 
 class _BodyMoment:
-    """A torque evaluated at n states at once: ``(q (n, 4), omega (n, 3)) -> (n, 3)``.
-
-    Batched calling convention: ``torque(t, q, omega)`` with q of shape (n, 4) and omega of
-    shape (n, 3) (leading batch axis, as every function of :mod:`tumble.rotations` accepts)
-    must return shape (n, 3), or (3,) for a moment that depends on neither. With
-    ``batched=None`` the first call tries this and compares two nodes with one-state calls;
-    a torque that raises, returns another shape or disagrees is then called one state at a
-    time, one Python call per node (one that works on batches only is trusted).
-    """
+    """The torque at the torus nodes at the frozen slow time t (see :class:`BatchedTorque`)."""
 
     def __init__(self, torque: TorqueLike, t: float, batched: bool | None) -> None:
-        self.torque, self.t, self.batched = torque, t, batched
-
-    def _one(self, q: FloatArray, w: FloatArray) -> FloatArray:
-        m = np.asarray(self.torque(self.t, q, w), dtype=float)
-        if m.shape != (3,):
-            raise ParameterError(
-                f"torque returned shape {m.shape} for one state; it must return the 3 body "
-                "components of the moment"
-            )
-        return m
-
-    def _many(self, q: FloatArray, w: FloatArray) -> FloatArray | None:
-        """The batched call, or None if the torque does not follow the batched convention."""
-        n = q.shape[0]
-        try:
-            m = np.asarray(self.torque(self.t, q, w), dtype=float)
-        except Exception:  # a one-state callable fails on arrays in many ways
-            if self.batched:
-                raise
-            return None
-        if m.shape == (3,):
-            m = np.broadcast_to(m, (n, 3))
-        if m.shape != (n, 3):
-            if self.batched:
-                raise ParameterError(
-                    f"torque returned shape {m.shape} for {n} states; with batched=True it "
-                    f"must return ({n}, 3) or (3,)"
-                )
-            return None
-        if self.batched is None:
-            # Trust the batched result only if it matches one-state calls at two nodes (a
-            # one-state `B @ omega` could otherwise broadcast into something wrong). Not node
-            # 0: there φ = 0 and the first body rate vanishes.
-            probe = [1 % n, (n // 2 + 3) % n]
-            try:
-                one = np.array([self._one(q[i], w[i]) for i in probe])
-            except Exception:  # written for batches only: nothing to compare with
-                self.batched = True
-                return m
-            scale = float(np.max(np.abs(one))) + 1e-300
-            self.batched = bool(np.all(np.abs(m[probe] - one) <= 1e-12 * scale))
-            if not self.batched:
-                return None
-        return m
+        self.t = t
+        self.call = BatchedTorque(torque, batched, "the unperturbed motion (2.1)")
 
     def __call__(self, q: FloatArray, w: FloatArray) -> FloatArray:
-        m = None if self.batched is False else self._many(q, w)
-        if m is None:
-            self.batched = False
-            m = np.array([self._one(q[i], w[i]) for i in range(q.shape[0])])
-        if not np.all(np.isfinite(m)):
-            raise AveragingError(
-                "the torque returned non-finite values on the unperturbed motion (2.1): "
-                "no average can be formed"
-            )
-        return m
+        return self.call(self.t, q, w)
 
 
 # ---------------------------------------------------------------------------------------------

@@ -53,14 +53,13 @@ import numpy as np
 from scipy import special
 
 from tumble._typing import ArrayLike, FloatArray
-from tumble.averaging.quadrature import AVERAGE_RTOL, AveragingError
+from tumble.averaging.quadrature import AVERAGE_RTOL, AveragingError, BatchedTorque
 from tumble.errors import ParameterError, TumbleWarning, check_finite, check_range
 from tumble.rotations import matrix_to_quat, quat_multiply
 from tumble.torques import (
     ConstantBodyTorque,
     ConstantInertialTorque,
     EddyCurrentTorque,
-    GravityGradientTorque,
     LinearDrag,
     QuadraticDrag,
     ScaledTorque,
@@ -125,22 +124,19 @@ def _rotate_back(A: FloatArray, v: FloatArray) -> FloatArray:
 class _Moment:
     """A torque on the product grid, in inertial components A M (broadcasting (n0, n1[, n2])).
 
-    The built-in torques of :mod:`tumble.torques` (exact types: a subclass may override
-    ``__call__``) are evaluated here with arrays that broadcast over the grid, the explicit
-    time included, and the inertial-form ones (eddy current (1.3), constant inertial moment)
-    without the round trip through body axes. Any other torque is called with the package's
-    batched convention, once per time node: ``torque(t, q, omega)`` with q of shape (N, 4)
-    and omega (N, 3) for the N = n0·n1 attitudes of the grid, returning (N, 3) or (3,).
-    ``batched=None`` tries that and checks two nodes against one-state calls (a one-state
-    ``B @ omega`` could broadcast into something wrong); a torque that raises, returns another
-    shape or disagrees is called one state at a time. ``batched=False`` calls the whole
-    torque, built-ins included, one state at a time (the reference for the fast paths).
+    Sums and multiples of built-in torques (exact types: a subclass may override
+    ``__call__``) are walked term by term: the inertial-form ones (eddy current (1.3), constant
+    inertial moment) are evaluated in inertial axes with the explicit time broadcast over the
+    forcing axis, the time-independent body ones in one batched call on the grid's rates. Any
+    other torque is called through :class:`BatchedTorque`, once per time node, with the N =
+    n0·n1 attitudes of the grid. ``batched=False`` calls the whole torque, built-ins included,
+    one state at a time (the reference for the fast paths).
     """
 
     def __init__(self, torque: Any, batched: bool | None) -> None:
         self.torque = torque
         self.batched = batched
-        self._leaf_batched: dict[int, bool | None] = {}
+        self._leaves: dict[int, BatchedTorque] = {}
 
     def inertial(self, t: FloatArray, g: _Grid) -> FloatArray:
         if self.batched is False:
@@ -168,15 +164,9 @@ class _Moment:
     def _body(self, torque: Any, t: FloatArray, g: _Grid) -> FloatArray:
         kind = type(torque)
         w = g.omega
-        if kind is ConstantBodyTorque:
-            return np.array(torque.moment)
-        if kind is LinearDrag:
-            return -_rotate(torque.B, w)
-        if kind is QuadraticDrag:
-            return -_rotate(torque.S, w * np.abs(w))
-        if kind is GravityGradientTorque:
-            rb = _rotate_back(g.A, torque.radial(t))  # r̂ in body axes
-            return 3.0 * torque.n**2 * np.cross(rb, torque.inertia * rb)
+        if kind in (ConstantBodyTorque, LinearDrag, QuadraticDrag):
+            # Time-independent and batch-aware: one call on the grid's body rates.
+            return np.asarray(torque(0.0, None, w), dtype=float)
         if kind in (ZeroTorque, ConstantInertialTorque, EddyCurrentTorque):
             return _rotate_back(g.A, self._inertial(torque, t, g))
         if kind is ScaledTorque:
@@ -200,62 +190,11 @@ class _Moment:
         return np.stack(per_time, axis=2)  # (n0, n1, n2, 3): t varies along the third axis
 
     def _call(self, torque: Any, t: float, q: FloatArray, w: FloatArray) -> FloatArray:
-        key = id(torque)
-        mode = False if self.batched is False else self._leaf_batched.get(key, self.batched)
-        m = None if mode is False else self._many(torque, t, q, w, mode)
-        if m is None:
-            self._leaf_batched[key] = False
-            m = np.array([_one(torque, t, q[i], w[i]) for i in range(q.shape[0])])
-        else:
-            self._leaf_batched[key] = True
-        if not np.all(np.isfinite(m)):
-            raise AveragingError(
-                "the torque returned non-finite values on the Euler–Poinsot motion (3.1): no "
-                "average can be formed"
-            )
-        return m
-
-    @staticmethod
-    def _many(
-        torque: Any, t: float, q: FloatArray, w: FloatArray, mode: bool | None
-    ) -> FloatArray | None:
-        """The batched call, or None if the torque does not follow the batched convention."""
-        n = q.shape[0]
-        try:
-            m = np.asarray(torque(t, q, w), dtype=float)
-        except Exception:  # a one-state callable fails on arrays in many ways
-            if mode:
-                raise
-            return None
-        if m.shape == (3,):
-            m = np.broadcast_to(m, (n, 3))
-        if m.shape != (n, 3):
-            if mode:
-                raise ParameterError(
-                    f"torque returned shape {m.shape} for {n} states; with batched=True it "
-                    f"must return ({n}, 3) or (3,)"
-                )
-            return None
-        if mode is None:
-            probe = [1 % n, (n // 2 + 3) % n]
-            try:
-                one = np.array([_one(torque, t, q[i], w[i]) for i in probe])
-            except Exception:  # written for batches only: nothing to compare with
-                return m
-            scale = float(np.max(np.abs(one))) + 1e-300
-            if not np.all(np.abs(m[probe] - one) <= 1e-12 * scale):
-                return None
-        return m
-
-
-def _one(torque: Any, t: float, q: FloatArray, w: FloatArray) -> FloatArray:
-    m = np.asarray(torque(t, q, w), dtype=float)
-    if m.shape != (3,):
-        raise ParameterError(
-            f"torque returned shape {m.shape} for one state; it must return the 3 body "
-            "components of the moment"
-        )
-    return m
+        call = self._leaves.get(id(torque))
+        if call is None:
+            call = BatchedTorque(torque, self.batched, "the Euler–Poinsot motion (3.1)")
+            self._leaves[id(torque)] = call
+        return call(t, q, w)
 
 
 # ---------------------------------------------------------------------------------------------

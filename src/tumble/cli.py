@@ -1,4 +1,4 @@
-"""Command-line interface: ``tumble run | models | init | stability | stability-map``.
+"""Command-line interface: ``tumble run | verify | models | init | stability | stability-map``.
 
 Commands only translate arguments: the work is done by library functions a notebook can call.
 Bad input prints one red line to stderr and exits 2; a failed integration exits 3.
@@ -59,9 +59,7 @@ def run_cmd(
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", TumbleWarning)
         result = _guarded(lambda: run_scenario(scenario, out_dir))
-    for w in caught:
-        if issubclass(w.category, TumbleWarning):
-            err.print(f"[yellow]warning:[/yellow] {w.message}", highlight=False, soft_wrap=True)
+    _print_warnings(caught)
 
     model = result.request.model
     shown = model.plot_variables
@@ -99,7 +97,63 @@ def run_cmd(
             f"period {extra['period']:.6g}",
             highlight=False,
         )
+    if result.verification is not None:
+        out.print(f"verify: {result.verification.verdict}", highlight=False, soft_wrap=True)
     out.print(f"outputs written to {out_dir}/", highlight=False)
+
+
+def _print_warnings(caught: list[warnings.WarningMessage]) -> None:
+    for w in caught:
+        if issubclass(w.category, TumbleWarning):
+            err.print(f"[yellow]warning:[/yellow] {w.message}", highlight=False, soft_wrap=True)
+
+
+@app.command("verify")
+def verify_cmd(
+    scenario: Annotated[Path, typer.Argument(help="TOML scenario file")],
+    out_dir: Annotated[Path, typer.Option("-o", "--out", help="output directory")] = Path(
+        "out/verify"
+    ),
+    strict: Annotated[
+        bool, typer.Option("--strict", help="exit 4 unless the verdict is first-order accurate")
+    ] = False,
+) -> None:
+    """Measure the averaging error: full and averaged at ε, ε/2, ε/4 over one slow horizon.
+
+    Writes verify.csv, verify_curves.csv, verify.json and verify.png to OUT and prints the
+    errors, the fitted orders and the verdict.
+    """
+    from tumble.runner import verify_scenario
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", TumbleWarning)
+        result = _guarded(lambda: verify_scenario(scenario, out_dir))
+    _print_warnings(caught)
+    symbol = {"tau": "τ"}.get(result.time_name, result.time_name)
+    table = Table(
+        title=f"verify {result.model} — {scenario} (slow horizon ε{symbol} = {result.horizon:.4g})",
+        title_justify="left",
+    )
+    table.add_column("variable")
+    for e in result.eps:
+        table.add_column(f"max error, ε = {e:.4g}", justify="right")
+    table.add_column("order", justify="right")
+    for v in result.variables:
+        order = result.orders[v]
+        table.add_row(
+            v,
+            *(f"{x:.3e}" for x in result.errors[v]),
+            "at tolerance" if order is None else f"{order:.2f}",
+        )
+    out.print(table)
+    for e, run in zip(result.eps, result.issues, strict=True):
+        for issue in run:
+            out.print(f"[dim]ε = {e:.4g}:[/dim] {issue['message']}", highlight=False)
+    colour = {"first-order": "green", "degraded": "yellow", "invalid": "red"}[result.status]
+    out.print(f"[{colour}]{result.verdict}[/]", highlight=False, soft_wrap=True)
+    out.print(f"outputs written to {out_dir}/", highlight=False)
+    if strict and result.status != "first-order":
+        raise typer.Exit(4)
 
 
 @app.command("models")

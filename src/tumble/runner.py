@@ -9,16 +9,17 @@ Usable from a notebook::
 from __future__ import annotations
 
 import io
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from tumble.analysis import RunResult, run
-from tumble.io import load_scenario, render_outputs, write_outputs
-from tumble.plot import plot_comparison, plot_envelope
+from tumble.analysis import RunResult, VerifyResult, run, verify
+from tumble.io import load_scenario, render_outputs, verify_outputs, write_outputs
+from tumble.plot import plot_comparison, plot_envelope, plot_verify
 
-__all__ = ["run_scenario"]
+__all__ = ["run_scenario", "verify_scenario"]
 
 
 def _pressure_curve(result: RunResult) -> tuple[Any, Any, str] | None:
@@ -30,7 +31,6 @@ def _pressure_curve(result: RunResult) -> tuple[Any, Any, str] | None:
 
 
 def _figure_png(result: RunResult, title: str) -> bytes:
-    import matplotlib.pyplot as plt
 
     model = result.request.model
     if model.plot_kind == "envelope":
@@ -50,6 +50,12 @@ def _figure_png(result: RunResult, title: str) -> bytes:
             marks=result.issues,
             title=title,
         )
+    return _png(fig)
+
+
+def _png(fig: Any) -> bytes:
+    import matplotlib.pyplot as plt
+
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=130)
     plt.close(fig)
@@ -61,8 +67,10 @@ def run_scenario(scenario: str | Path, out_dir: str | Path) -> RunResult:
 
     Writes ``<method>.csv`` for every method (plus ``<method>_si.csv`` for physical-units
     scenarios and ``averaged_diagnostics.csv`` where the model has diagnostics),
-    ``summary.json`` and the model's figure (``comparison.png``, ``evolution.png``). Nothing is
-    written unless the whole run succeeds; each file is replaced atomically.
+    ``summary.json`` and the model's figure (``comparison.png``, ``evolution.png``); with
+    ``[run] verify = true`` also the files of :func:`verify_scenario` and the verdict in
+    ``summary.json``. Nothing is written unless the whole run succeeds; each file is replaced
+    atomically.
 
     Parameters
     ----------
@@ -77,8 +85,38 @@ def run_scenario(scenario: str | Path, out_dir: str | Path) -> RunResult:
     """
     sc = load_scenario(scenario)
     result = run(sc.request)
-    files = render_outputs(result, sc.inputs, sc.source)
+    verification = verify(sc.request) if sc.request.verify else None
+    files = render_outputs(result, sc.inputs, sc.source, verification)
     title = f"{sc.request.model.name}: {Path(sc.source).name}"
     files[sc.request.model.figure] = _figure_png(result, title)
+    if verification is not None:
+        files["verify.png"] = _png(plot_verify(verification, title=f"verify {title}"))
+    write_outputs(out_dir, files)
+    return replace(result, verification=verification)
+
+
+def verify_scenario(scenario: str | Path, out_dir: str | Path) -> VerifyResult:
+    """Measure the averaging error of a scenario at ε, ε/2 and ε/4 and write its files.
+
+    Runs full and averaged at each ε over the scenario's slow horizon ε·t_end
+    (:func:`tumble.analysis.verify`) and writes ``verify.csv``, ``verify_curves.csv``,
+    ``verify.json`` and ``verify.png`` to ``out_dir``, atomically, once all runs are done.
+
+    Parameters
+    ----------
+    scenario : str or Path
+        TOML scenario file (its ``methods`` are ignored: full and averaged always run).
+    out_dir : str or Path
+        Output directory (created if needed).
+
+    Returns
+    -------
+    VerifyResult
+    """
+    sc = load_scenario(scenario)
+    result = verify(sc.request)
+    files = verify_outputs(result, sc.source)
+    title = f"verify {sc.request.model.name}: {Path(sc.source).name}"
+    files["verify.png"] = _png(plot_verify(result, title=title))
     write_outputs(out_dir, files)
     return result

@@ -15,8 +15,9 @@ resisting-medium paper is ``eps * (ConstantBodyTorque(a) + LinearDrag(b) + Quadr
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -35,6 +36,7 @@ __all__ = [
     "ScaledTorque",
     "Torque",
     "TorqueSum",
+    "UserTorque",
     "ZeroTorque",
 ]
 
@@ -172,6 +174,33 @@ class CallableTorque(Torque):
 
     def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
         return np.asarray(self.function(t, q, omega), dtype=float)
+
+
+@dataclass(frozen=True, eq=False)
+class UserTorque(Torque):
+    """A user function ``f(t, q, omega, params) -> body moment`` with its parameters.
+
+    The form a scenario names as ``torque = "module:function"`` (issue 5): ``params`` is the
+    scenario's ``[torque_params]`` table, passed unchanged. A function written with numpy
+    broadcasting over leading axes of ``q`` and ``omega`` is evaluated on whole quadrature
+    grids by the averaging engine; any other is called one state at a time.
+
+    Parameters
+    ----------
+    function : callable
+        ``f(t, q, omega, params)`` → body moment, shape (3,) [moment unit].
+    params : mapping
+        Passed as the fourth argument.
+    name : str
+        ``"module:function"``, for messages.
+    """
+
+    function: Callable[[float, Any, Any, Mapping[str, Any]], ArrayLike]
+    params: Mapping[str, Any] = field(default_factory=dict)
+    name: str = "user torque"
+
+    def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
+        return np.asarray(self.function(t, q, omega, self.params), dtype=float)
 
 
 @dataclass(frozen=True, eq=False)

@@ -36,6 +36,8 @@ class RunRequest:
         Integration tolerances.
     scaling : object, optional
         Physical scaling (for physical-units scenarios), kept for the outputs.
+    verify : bool
+        Also measure the averaging error at ε, ε/2, ε/4 (``[run] verify``, issue 5).
     """
 
     model: ModelRecord
@@ -46,6 +48,7 @@ class RunRequest:
     rtol: float = DEFAULT_RTOL
     atol: float = DEFAULT_ATOL
     scaling: Any = None
+    verify: bool = False
 
 
 @dataclass(frozen=True)
@@ -54,7 +57,8 @@ class RunResult:
 
     ``diagnostics`` holds, per averaged method, the model's extra per-sample quantities (e.g.
     the fast frequencies of the rotating-field model); ``report`` the model's extra tables and
-    summary keys (e.g. the extrema of the nonlinear-moment model).
+    summary keys (e.g. the extrema of the nonlinear-moment model); ``verification`` the
+    :class:`~tumble.analysis.verify.VerifyResult` of ``[run] verify``, when asked for.
     """
 
     request: RunRequest
@@ -65,6 +69,7 @@ class RunResult:
     limits: dict[str, Any] = field(default_factory=dict)
     diagnostics: dict[str, xr.Dataset] = field(default_factory=dict)
     report: Report = field(default_factory=Report)
+    verification: Any = None
 
 
 def _columns_dataset(
@@ -125,6 +130,7 @@ def _merge_issues(found: dict[str, list[ValidityIssue]]) -> list[dict[str, Any]]
                     "condition": issue.condition,
                     "tau": issue.tau,
                     "message": issue.message,
+                    "label": issue.label,
                     "methods": methods,
                 }
             merged[issue.condition]["methods"].append(method)

@@ -1,6 +1,13 @@
 """Files and formats: scenario files in, CSV and JSON out."""
 
-from tumble.io.output import atomic_write, csv_text, render_outputs, summary, write_outputs
+from tumble.io.output import (
+    atomic_write,
+    csv_text,
+    render_outputs,
+    summary,
+    verify_outputs,
+    write_outputs,
+)
 from tumble.io.scenario import Scenario, load_scenario, parse_scenario, template
 
 __all__ = [
@@ -12,5 +19,6 @@ __all__ = [
     "render_outputs",
     "summary",
     "template",
+    "verify_outputs",
     "write_outputs",
 ]

@@ -18,7 +18,7 @@ import numpy as np
 import xarray as xr
 
 import tumble
-from tumble.analysis import RunResult
+from tumble.analysis import RunResult, VerifyResult
 
 __all__ = [
     "atomic_write",
@@ -26,6 +26,7 @@ __all__ = [
     "render_outputs",
     "summary",
     "table_text",
+    "verify_outputs",
     "write_outputs",
 ]
 
@@ -100,8 +101,14 @@ def _final_state(ds: xr.Dataset) -> dict[str, float]:
     }
 
 
-def summary(result: RunResult, inputs: dict[str, Any], source: str) -> dict[str, Any]:
-    """The run summary: inputs, final states, differences, wall times, limits, warnings."""
+def summary(
+    result: RunResult,
+    inputs: dict[str, Any],
+    source: str,
+    verification: VerifyResult | None = None,
+) -> dict[str, Any]:
+    """The run summary: inputs, final states, differences, wall times, limits, warnings, and
+    the verdict of ``[run] verify``."""
     req = result.request
     p = req.params
     out: dict[str, Any] = {
@@ -139,11 +146,19 @@ def summary(result: RunResult, inputs: dict[str, Any], source: str) -> dict[str,
     if req.scaling is not None:
         out["scaling"] = req.scaling.summary()
     out.update(result.report.summary)
+    if verification is not None:
+        out["verify"] = verification.summary()
     return _jsonable(out)
 
 
-def render_outputs(result: RunResult, inputs: dict[str, Any], source: str) -> dict[str, bytes]:
-    """File name → content of every text output of a run (CSV and summary.json)."""
+def render_outputs(
+    result: RunResult,
+    inputs: dict[str, Any],
+    source: str,
+    verification: VerifyResult | None = None,
+) -> dict[str, bytes]:
+    """File name → content of every text output of a run (CSV and summary.json; with a
+    verification, its files of :func:`verify_outputs` too)."""
     files: dict[str, bytes] = {}
     scaling = result.request.scaling
     for method, ds in result.datasets.items():
@@ -156,9 +171,45 @@ def render_outputs(result: RunResult, inputs: dict[str, Any], source: str) -> di
         files[f"{method}_diagnostics.csv"] = csv_text(ds).encode()
     for name, (header, rows) in result.report.tables.items():
         files[f"{name}.csv"] = table_text(header, rows).encode()
-    text = json.dumps(summary(result, inputs, source), indent=2, ensure_ascii=False)
+    text = json.dumps(summary(result, inputs, source, verification), indent=2, ensure_ascii=False)
     files["summary.json"] = (text + "\n").encode()
+    if verification is not None:
+        files.update(verify_outputs(verification, source))
     return files
+
+
+def verify_outputs(result: VerifyResult, source: str) -> dict[str, bytes]:
+    """Text outputs of ``tumble verify``.
+
+    ``verify.csv``: one row per slow variable and ε (``variable, eps, max_error, order``);
+    ``verify_curves.csv``: the error curves (``eps, slow_time, variable, error``);
+    ``verify.json``: verdict, orders, errors, the validity issues met and any failed run.
+    """
+    time_name = result.time_name
+    rows = [
+        (v, float(e), float(err), "" if (o := result.orders[v]) is None else float(o))
+        for v in result.variables
+        for e, err in zip(result.eps, result.errors[v], strict=True)
+    ]
+    curves = [
+        (float(e), float(s), v, float(d))
+        for e, run in zip(result.eps, result.curves, strict=True)
+        for v, (slow, err) in run.items()
+        for s, d in zip(slow, err, strict=True)
+    ]
+    doc = {
+        "tumble_version": tumble.__version__,
+        "model": result.model,
+        "scenario": source,
+        "time": time_name,
+        **result.summary(),
+    }
+    text = json.dumps(_jsonable(doc), indent=2, ensure_ascii=False)
+    return {
+        "verify.csv": table_text(("variable", "eps", "max_error", "order"), rows).encode(),
+        "verify_curves.csv": table_text(("eps", "slow_time", "variable", "error"), curves).encode(),
+        "verify.json": (text + "\n").encode(),
+    }
 
 
 def write_outputs(out_dir: str | Path, files: dict[str, bytes]) -> list[Path]:

@@ -7,7 +7,9 @@ physical-units variant replaces ``[parameters]`` by ``[physical]`` (SI) and uses
 
 from __future__ import annotations
 
+import importlib
 import math
+import sys
 import tomllib
 from dataclasses import dataclass, replace
 from importlib import resources
@@ -20,7 +22,14 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, model_valida
 from tumble.analysis import RunRequest
 from tumble.errors import ParameterError, ScenarioError
 from tumble.integrate import check_times
-from tumble.models import get_model, nonlinear_moment, resisting_medium, rotating_field
+from tumble.models import (
+    get_model,
+    nonlinear_moment,
+    resisting_medium,
+    rotating_field,
+    torqued_body,
+)
+from tumble.rotations import euler313_to_matrix, matrix_to_quat
 
 __all__ = ["Scenario", "load_scenario", "parse_scenario", "template"]
 
@@ -65,6 +74,7 @@ class RunSection(_Section):
     averaging: Literal["closed_form", "numeric"] = Field(
         "closed_form", description='"closed_form" or "numeric"'
     )
+    verify: bool = Field(False, description="true or false")
 
 
 class PhysicalRunSection(_Section):
@@ -79,6 +89,7 @@ class PhysicalRunSection(_Section):
     averaging: Literal["closed_form", "numeric"] = Field(
         "closed_form", description='"closed_form" or "numeric"'
     )
+    verify: bool = Field(False, description="true or false")
 
 
 class RMParameters(_Section):
@@ -350,7 +361,9 @@ def _resisting_medium(data: dict[str, Any]) -> tuple[RunRequest, dict[str, Any]]
         )
         tau, scaling, run = _times(sc.run, "tau_end", "tau"), None, sc.run
     rtol, atol = _tolerances(run)
-    request = RunRequest(model, p, st, tau, _methods(run, model.methods), rtol, atol, scaling)
+    request = RunRequest(
+        model, p, st, tau, _methods(run, model.methods), rtol, atol, scaling, run.verify
+    )
     return request, sc.model_dump()
 
 
@@ -399,7 +412,8 @@ def _rotating_field(data: dict[str, Any]) -> tuple[RunRequest, dict[str, Any]]:
         st = _rf_initial(p, sc.initial)
         tau, scaling = _times(sc.run, "tau_end", "tau"), None
     rtol, atol = _tolerances(sc.run)
-    request = RunRequest(model, p, st, tau, _methods(sc.run, model.methods), rtol, atol, scaling)
+    methods = _methods(sc.run, model.methods)
+    request = RunRequest(model, p, st, tau, methods, rtol, atol, scaling, sc.run.verify)
     return request, sc.model_dump()
 
 
@@ -456,6 +470,7 @@ class NMRunSection(_Section):
     )
     rtol: float = Field(1e-10, description="a number in [1e-14, 1e-3]")
     atol: float = Field(1e-12, description="a number in (0, 1e-3]")
+    verify: bool = Field(False, description="true or false")
 
 
 class NMScenario(_Section):
@@ -511,7 +526,196 @@ def _nonlinear_moment(data: dict[str, Any]) -> tuple[RunRequest, dict[str, Any]]
         model.check_method(p, m)  # closed_form needs ε = 0, averaged needs ε > 0
     rtol, atol = _tolerances(run)
     nonlinear_moment.orbit_of(p, st)  # no motion (e.g. a separatrix) → one line, before any run
-    request = RunRequest(model, p, st, t, methods, rtol, atol)
+    request = RunRequest(model, p, st, t, methods, rtol, atol, verify=run.verify)
+    return request, sc.model_dump()
+
+
+class TBParameters(_Section):
+    inertia: Vector3 = Field(description="3 principal moments > 0 obeying the triangle inequality")
+    eps: float = Field(description="a number ≥ 0 (the factor of the torque)")
+
+
+class TBGravityGradient(_Section):
+    kind: Literal["gravity_gradient"]
+    n: float = Field(description="orbital rate > 0 [rad/t]")
+    normal: Vector3 = Field(default_factory=lambda: [0.0, 0.0, 1.0], description="orbit normal")
+    u0: float = Field(0.0, description="argument of latitude at t = 0 [rad]")
+
+    @model_validator(mode="before")
+    @classmethod
+    def _degrees(cls, data: Any) -> Any:
+        return _degrees_to_radians(data, ("u0",))
+
+
+class TBMoment(_Section):
+    kind: Literal["inertial_constant", "body_constant"]
+    moment: Vector3 = Field(description="3 components of the moment")
+
+
+class TBLinearDrag(_Section):
+    kind: Literal["linear_drag"]
+    B: Matrix3 = Field(description="3×3 damping matrix, M = −B ω")
+
+
+class TBQuadraticDrag(_Section):
+    kind: Literal["quadratic_drag"]
+    S: Matrix3 = Field(description="3×3 matrix, M = −S (ω ∘ |ω|)")
+
+
+class TBUser(_Section):
+    kind: Literal["user"]
+    function: str = Field(description='"module:function", f(t, q, omega, params) -> body moment')
+    params: dict[str, Any] = Field(default_factory=dict, description="a table for f")
+    period: float | None = Field(None, description="period of f's time dependence > 0 [t]")
+
+
+_TERMS: dict[str, type[_Section]] = {
+    "gravity_gradient": TBGravityGradient,
+    "inertial_constant": TBMoment,
+    "body_constant": TBMoment,
+    "linear_drag": TBLinearDrag,
+    "quadratic_drag": TBQuadraticDrag,
+    "user": TBUser,
+}
+
+
+class TBInitial(_Section):
+    omega: Vector3 = Field(description="body angular velocity, 3 numbers [rad/t]")
+    quaternion: Vector4 | None = Field(None, description="attitude quaternion [q0, q1, q2, q3]")
+    psi: float | None = Field(None, description="3-1-3 Euler angle ψ [rad]")
+    theta: float | None = Field(None, description="3-1-3 Euler angle ϑ [rad]")
+    phi: float | None = Field(None, description="3-1-3 Euler angle φ [rad]")
+
+    @model_validator(mode="before")
+    @classmethod
+    def _degrees(cls, data: Any) -> Any:
+        return _degrees_to_radians(data, ("psi", "theta", "phi"))
+
+
+class TBRunSection(_Section):
+    t_end: float | None = Field(None, description="a time > 0 [t]")
+    t: list[float] | None = Field(None, description="ascending times ≥ 0 [t]")
+    samples: int = Field(401, description="an integer ≥ 2")
+    methods: list[Literal["full", "averaged"]] | None = Field(
+        None, description='a non-empty list of "full", "averaged"'
+    )
+    rtol: float = Field(1e-10, description="a number in [1e-14, 1e-3]")
+    atol: float = Field(1e-12, description="a number in (0, 1e-3]")
+    verify: bool = Field(False, description="true or false")
+
+
+class TBScenario(_Section):
+    model: Literal["torqued_body"]
+    parameters: TBParameters
+    torque: str | list[dict[str, Any]] = Field(
+        description='"module:function" or a list of [[torque]] tables with a kind'
+    )
+    torque_params: dict[str, Any] = Field(
+        default_factory=dict, description="a table passed to the user function"
+    )
+    torque_period: float | None = Field(
+        None, description="period of the user function's time dependence > 0 [t]"
+    )
+    initial: TBInitial
+    run: TBRunSection
+
+
+def _import_function(spec: str, base: Path, field: str) -> Any:
+    """The callable named ``"module:function"``, importing from ``base`` (the scenario's
+    directory) first."""
+    module, sep, name = spec.partition(":")
+    if not sep or not module or not name:
+        raise ScenarioError(f'{field} = {spec!r}: expected "module:function"')
+    sys.path.insert(0, str(base))
+    try:
+        mod = importlib.import_module(module)
+    except Exception as exc:  # any failure of the user's module: one line, no traceback
+        raise ScenarioError(
+            f"{field} = {spec!r}: cannot import {module} ({type(exc).__name__}: {exc})"
+        ) from None
+    finally:
+        sys.path.remove(str(base))
+    function = getattr(mod, name, None)
+    if not callable(function):
+        raise ScenarioError(f"{field} = {spec!r}: {module} has no function {name}")
+    return function
+
+
+def _torque_terms(sc: TBScenario, base: Path) -> list[dict[str, Any]]:
+    if isinstance(sc.torque, str):
+        function = _import_function(sc.torque, base, "torque")
+        return [
+            {
+                "kind": "user",
+                "function": function,
+                "name": sc.torque,
+                "params": sc.torque_params,
+                "period": sc.torque_period,
+            }
+        ]
+    if sc.torque_params or sc.torque_period is not None:
+        raise ScenarioError(
+            'torque_params, torque_period: only with torque = "module:function" (in a '
+            "[[torque]] table give params and period inside it)"
+        )
+    terms = []
+    for i, raw in enumerate(sc.torque):
+        kind = raw.get("kind")
+        if kind not in _TERMS:
+            raise ScenarioError(
+                f"torque[{i}].kind = {kind!r} is not a torque (allowed: {', '.join(_TERMS)})"
+            )
+        schema = _TERMS[kind]
+        try:
+            term = schema.model_validate(raw).model_dump()
+        except ValidationError as exc:
+            raise ScenarioError(f"torque[{i}].{_one_line(exc, schema)}") from None
+        if kind == "user":
+            term["name"] = term["function"]
+            term["function"] = _import_function(term["function"], base, f"torque[{i}].function")
+        terms.append(term)
+    return terms
+
+
+def _check_user_torque(torque: Any, st: torqued_body.State) -> None:
+    """Call the torque once at the initial state: a broken user function fails here, in one
+    line, rather than deep inside an integration."""
+    try:
+        m = np.asarray(torque(0.0, st.q, st.omega), dtype=float)
+    except Exception as exc:
+        raise ScenarioError(
+            f"torque: evaluating it at the initial state raised {type(exc).__name__}: {exc}"
+        ) from None
+    if m.shape != (3,) or not np.all(np.isfinite(m)):
+        raise ScenarioError(
+            f"torque: at the initial state it returned {m.tolist()!r} (expected 3 finite "
+            "numbers, the body components of the moment)"
+        )
+
+
+def _torqued_body(data: dict[str, Any], base: Path) -> tuple[RunRequest, dict[str, Any]]:
+    model = torqued_body.MODEL
+    sc = _validated(TBScenario, data)
+    par, ini, run = sc.parameters, sc.initial, sc.run
+    torque, period, label = torqued_body.torque_from_terms(par.inertia, _torque_terms(sc, base))
+    angles = [n for n in ("psi", "theta", "phi") if getattr(ini, n) is not None]
+    if ini.quaternion is not None and angles:
+        raise ScenarioError("initial: give either quaternion or psi, theta, phi, not both")
+    if angles and len(angles) != 3:
+        raise ScenarioError("initial: give all of psi, theta, phi (3-1-3 Euler angles)")
+    if angles:
+        q = matrix_to_quat(euler313_to_matrix(ini.psi, ini.theta, ini.phi))
+    else:
+        q = np.array(ini.quaternion if ini.quaternion is not None else [1.0, 0.0, 0.0, 0.0])
+    st = torqued_body.State(np.array(ini.omega), q)
+    p = torqued_body.Params(np.array(par.inertia), par.eps, torque, period, label)
+    _check_user_torque(p.torque, st)
+    t = _times(run, "t_end", "t")
+    methods = _methods(run, model.methods)
+    for m in methods:
+        model.check_method(p, m)
+    rtol, atol = _tolerances(run)
+    request = RunRequest(model, p, st, t, methods, rtol, atol, verify=run.verify)
     return request, sc.model_dump()
 
 
@@ -532,13 +736,18 @@ def parse_scenario(data: dict[str, Any], source: str = "<scenario>") -> Scenario
     """
     if "model" not in data:
         raise ScenarioError(
-            "model: required key is missing (allowed: " + ", ".join(_BUILDERS) + ")"
+            "model: required key is missing (allowed: "
+            + ", ".join([*_BUILDERS, "torqued_body"])
+            + ")"
         )
     name = data["model"]
     if not isinstance(name, str):
         raise ScenarioError(f"model = {name!r}: expected a string")
     get_model(name)  # unknown model → one line naming the allowed ones
-    request, inputs = _BUILDERS[name](data)
+    if name == "torqued_body":  # a user torque is imported relative to the scenario
+        request, inputs = _torqued_body(data, Path(source).resolve().parent)
+    else:
+        request, inputs = _BUILDERS[name](data)
     return Scenario(request, inputs, source)
 
 

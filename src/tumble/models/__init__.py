@@ -3,13 +3,26 @@
 from __future__ import annotations
 
 from tumble.errors import ScenarioError
-from tumble.models import nonlinear_moment, resisting_medium, rotating_field
+from tumble.models import nonlinear_moment, resisting_medium, rotating_field, torqued_body
 from tumble.models.base import ModelRecord
 
-__all__ = ["MODELS", "get_model", "nonlinear_moment", "resisting_medium", "rotating_field"]
+__all__ = [
+    "MODELS",
+    "get_model",
+    "nonlinear_moment",
+    "resisting_medium",
+    "rotating_field",
+    "torqued_body",
+]
 
 MODELS: dict[str, ModelRecord] = {
-    m.name: m for m in (resisting_medium.MODEL, rotating_field.MODEL, nonlinear_moment.MODEL)
+    m.name: m
+    for m in (
+        resisting_medium.MODEL,
+        rotating_field.MODEL,
+        nonlinear_moment.MODEL,
+        torqued_body.MODEL,
+    )
 }
 """Every registered model, by the name a scenario's ``model`` key uses."""
 

@@ -103,6 +103,7 @@ class ValidityIssue:
     condition: str  # short stable identifier, e.g. "theta_crossing"
     tau: float  # first time the condition holds [model time unit]
     message: str  # one sentence for the user, citing the spec section
+    label: str = ""  # a few words for verdicts ("ϑ = π/2", "resonance ν1 = 2ν2"); "" → condition
 
 
 @dataclass(frozen=True)
@@ -195,6 +196,13 @@ class ModelRecord:
         ``(p, initial, trajectories) -> Report``: extra tables and summary keys of a run.
     plot_kind : {"comparison", "envelope"}
         Which figure the run draws.
+    verify_variables : tuple of str
+        The slow variables whose averaged-vs-full error ``tumble verify`` measures (columns
+        of both methods), unless ``slow_errors`` is given.
+    slow_errors : callable, optional
+        ``(p, full, averaged) -> {variable: (times, |error|)}`` for trajectories of the two
+        methods: the model's own measure of the averaging error where the slow variables are
+        not plain columns of the full run (e.g. an envelope compared at the extrema).
     """
 
     name: str
@@ -221,6 +229,10 @@ class ModelRecord:
     columns_for: Callable[[Any], Mapping[str, tuple[Column, ...]]] | None = None
     report: Callable[[Any, Any, Mapping[str, Any]], Report] | None = None
     plot_kind: str = "comparison"
+    verify_variables: tuple[str, ...] = ()
+    slow_errors: Callable[[Any, Any, Any], Mapping[str, tuple[FloatArray, FloatArray]]] | None = (
+        None
+    )
 
     def method_columns(self, p: Any, method: str) -> tuple[Column, ...]:
         """Output columns of ``method`` for parameters ``p``."""

@@ -26,7 +26,7 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, Literal
 
 import numpy as np
@@ -293,6 +293,11 @@ class Params:
         """da/dτ, db/dτ = (a, b)·Q'(τ)/Q(0) [1/t²] (Φ_a, Φ_b of spec §9)."""
         q = self.pressure.rate(np.asarray(tau, dtype=float)) / self.Q0
         return self.a * q, self.b * q
+
+    def with_eps(self, eps: float) -> Params:
+        """The same body and perturbation at another ε (for error studies: a(τ), b(τ) keep
+        their slow-time profile)."""
+        return replace(self, eps=eps)
 
     def derived(self) -> dict[str, Any]:
         """Quantities worth recording beside the inputs."""
@@ -1161,6 +1166,36 @@ def report(p: Params, st: State, trajectories: Mapping[str, Any]) -> Report:
     return Report(tables, summary)
 
 
+def slow_errors(p: Params, full: Any, averaged: Any) -> dict[str, tuple[FloatArray, FloatArray]]:
+    """Averaging error of each slow variable, for ``tumble verify`` (issue 5).
+
+    θmax and θmin: |θ̄ext(t_k) − θ_k| at the full solution's maxima and minima (the envelope
+    (2.2) is what the averaged method predicts, spec §10); R and G: |full − averaged| at the
+    sample times.
+
+    Parameters
+    ----------
+    p : Params
+    full, averaged : Trajectory
+        Runs of the two methods on the same sample times.
+
+    Returns
+    -------
+    dict
+        Variable → (times [t], absolute errors [rad or 1/t]).
+    """
+    rows = extrema(full, p)
+    out: dict[str, tuple[FloatArray, FloatArray]] = {}
+    for kind in ("max", "min"):
+        sel = [(r[2], r[3]) for r in rows if r[0] == kind]
+        if sel:
+            t_k, th = (np.array(v, dtype=float) for v in zip(*sel, strict=True))
+            out[f"theta_{kind}"] = (t_k, np.abs(averaged.slow(t_k)[f"theta_{kind}"] - th))
+    for name in ("R", "G"):
+        out[name] = (full.tau, np.abs(full.columns[name] - averaged.columns[name]))
+    return out
+
+
 def _diagnostics(p: Params, st: State, cols: dict[str, FloatArray]) -> dict[str, FloatArray]:
     return {k: cols[k] for k in ("k2", "period", "root_case", "E")}
 
@@ -1234,4 +1269,5 @@ MODEL = ModelRecord(
     columns_for=_columns_for,
     report=report,
     plot_kind="envelope",
+    slow_errors=slow_errors,
 )

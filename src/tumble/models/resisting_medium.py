@@ -1018,6 +1018,7 @@ def validity(
                 f"the averaged trajectory crosses ϑ = π/2 at τ = {tau1:.6g}: φ stops rotating "
                 "there and, with a φ-dependent moment, the averaged model is only O(√ε) "
                 "accurate after the passage (spec/medvedev.md §10.2)",
+                label="ϑ = π/2",
             )
         )
 
@@ -1254,4 +1255,5 @@ MODEL = ModelRecord(
     check_method=_check_method,
     validity=validity,
     limits=predicted_limits,
+    verify_variables=("k", "rho", "sigma", "theta"),
 )

@@ -8,6 +8,7 @@ from tumble.plot.stability import (
     plot_stability_map,
     stability_map_bytes,
 )
+from tumble.plot.verify import plot_verify
 
 __all__ = [
     "plot_classification",
@@ -16,5 +17,6 @@ __all__ = [
     "plot_leading_real_part",
     "plot_methods",
     "plot_stability_map",
+    "plot_verify",
     "stability_map_bytes",
 ]

@@ -1,0 +1,561 @@
+"""A triaxial rigid body under any small torque, averaged by the general engine (issue 5).
+
+No paper derives these averaged equations: they are built numerically by
+:func:`tumble.averaging.triaxial_average_vector` over the Euler–Poinsot motion of
+spec/martynenko.md §8 (the setting of §10, with the eddy-current torque replaced by any
+torque). The full equations are Euler's equations with quaternion kinematics,
+
+    I dω/dt = −ω × Iω + ε M(t, q, ω),    dq/dt = ½ q ⊗ (0, ω),
+
+in the body's principal axes (any order of the moments) and a time t in which the body's
+rotation rates are O(1); M is a sum of built-in torques (:mod:`tumble.torques`: the
+gravity gradient of a circular orbit, a moment fixed in inertial space, a constant body
+moment, linear and quadratic drag) and user functions ``f(t, q, omega, params)``. The slow
+variables are the inertial angular momentum L_ξ and r = 2T/L² (§10, vector form); the fast
+phases are the polhode phase, the precession about L and, for a torque with explicit periodic
+time dependence (the orbit of the gravity gradient, a user forcing of given period), the
+forcing phase, all averaged independently: the non-resonant case of §12. Where the averaged
+trajectory meets a resonance, the separatrix L² = 2T·I2, or slow rates that are no longer
+small against the fast frequencies, :func:`validity` says so with the first time.
+
+Time is the model's t (the ``tau`` column of the outputs); the slow time is εt.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+import numpy as np
+
+from tumble._typing import FloatArray
+from tumble.averaging import nearest_resonance, triaxial_average_vector
+from tumble.bodies import RigidBody
+from tumble.dynamics import rigid_body_rhs
+from tumble.errors import ParameterError, check_range
+from tumble.models.base import (
+    AveragedForm,
+    Breakpoint,
+    Column,
+    FullForm,
+    ModelRecord,
+    Report,
+    ValidityIssue,
+    first_time,
+    frozen_array,
+)
+from tumble.rotations import quat_normalize, quat_to_matrix
+from tumble.torques import (
+    ConstantBodyTorque,
+    ConstantInertialTorque,
+    GravityGradientTorque,
+    LinearDrag,
+    QuadraticDrag,
+    ScaledTorque,
+    Torque,
+    TorqueSum,
+    UserTorque,
+    ZeroTorque,
+)
+from tumble.unperturbed.euler_poinsot import fast_frequencies, modulus_squared
+
+__all__ = [
+    "MODEL",
+    "TORQUE_KINDS",
+    "VALIDITY_RATIO",
+    "Params",
+    "State",
+    "averaged_rhs",
+    "full_rhs",
+    "torque_from_terms",
+    "validity",
+]
+
+VALIDITY_RATIO = 0.1
+"""Averaging is trusted while the slow rates stay below this fraction of the slowest fast
+frequency (the same judgement of "≪" as spec/martynenko.md §12 in the rotating-field model)."""
+
+SEPARATRIX_STEP = 1e-10
+"""Relative step in r = 2T/L² across the separatrix when the averaged run restarts there (as
+in the rotating-field model: r ≡ 1/I2 is a spurious solution of the averaged equations)."""
+
+_BODY_ONLY = (ConstantBodyTorque, LinearDrag, QuadraticDrag, ZeroTorque)
+"""Torques that depend on the body angular velocity only: the body's phases enter them only
+through ω, so commensurabilities of the free motion (m = 0 resonances) do not matter."""
+
+
+def _terms(torque: Torque) -> tuple[Torque, ...]:
+    if isinstance(torque, TorqueSum):
+        return tuple(t for term in torque.terms for t in _terms(term))
+    if isinstance(torque, ScaledTorque):
+        return _terms(torque.torque)
+    return (torque,)
+
+
+TORQUE_KINDS = (
+    "gravity_gradient",
+    "inertial_constant",
+    "body_constant",
+    "linear_drag",
+    "quadratic_drag",
+    "user",
+)
+"""The ``kind`` of a torque term in a scenario."""
+
+PERIOD_RTOL = 1e-12
+"""Periods of two periodic torque terms equal to this are one forcing period."""
+
+
+def torque_from_terms(
+    inertia: Any, terms: list[dict[str, Any]]
+) -> tuple[Torque, float | None, str]:
+    """The sum of torque terms, its forcing period and a label.
+
+    Parameters
+    ----------
+    inertia : array_like, shape (3,)
+        Principal moments of the body (the gravity gradient acts on them) [inertia unit].
+    terms : list of dict
+        Each with ``kind`` (one of :data:`TORQUE_KINDS`) and its values:
+        ``gravity_gradient``: ``n`` [rad/t], ``normal`` (3), ``u0`` [rad];
+        ``inertial_constant``, ``body_constant``: ``moment`` (3) [moment unit];
+        ``linear_drag``: ``B`` (3×3); ``quadratic_drag``: ``S`` (3×3);
+        ``user``: ``function`` (callable ``f(t, q, omega, params)``), ``name``, ``params``,
+        ``period`` [t] or None.
+
+    Returns
+    -------
+    torque : Torque
+    period : float or None
+        The common period of the explicit time dependence [t].
+    label : str
+
+    Raises
+    ------
+    ParameterError
+        For an unknown kind, bad values, or two periodic terms with different periods.
+    """
+    if not terms:
+        raise ParameterError("torque: give at least one torque term")
+    parts: list[Torque] = []
+    labels: list[str] = []
+    periods: list[float] = []
+    for i, term in enumerate(terms):
+        kind = term["kind"]
+        if kind == "gravity_gradient":
+            gg = GravityGradientTorque(inertia, term["n"], term["normal"], term["u0"])
+            parts.append(gg)
+            periods.append(gg.period)
+            labels.append(f"gravity gradient (n = {gg.n:g})")
+        elif kind == "inertial_constant":
+            parts.append(ConstantInertialTorque(term["moment"]))
+            labels.append(f"inertial moment {list(term['moment'])}")
+        elif kind == "body_constant":
+            parts.append(ConstantBodyTorque(term["moment"]))
+            labels.append(f"body moment {list(term['moment'])}")
+        elif kind == "linear_drag":
+            parts.append(LinearDrag(term["B"]))
+            labels.append("linear drag")
+        elif kind == "quadratic_drag":
+            parts.append(QuadraticDrag(term["S"]))
+            labels.append("quadratic drag")
+        elif kind == "user":
+            parts.append(UserTorque(term["function"], term.get("params", {}), term["name"]))
+            if term.get("period") is not None:
+                check_range(f"torque[{i}].period", float(term["period"]), low=0.0)
+                periods.append(float(term["period"]))
+            labels.append(term["name"])
+        else:
+            raise ParameterError(
+                f"torque[{i}].kind = {kind!r} is not a torque (allowed: {', '.join(TORQUE_KINDS)})"
+            )
+    period = periods[0] if periods else None
+    for other in periods[1:]:
+        if abs(other - periods[0]) > PERIOD_RTOL * periods[0]:
+            raise ParameterError(
+                f"torque: periodic terms with periods {periods[0]:g} and {other:g} cannot be "
+                "averaged over one forcing phase (give them a common period)"
+            )
+    torque = parts[0] if len(parts) == 1 else TorqueSum(tuple(parts))
+    return torque, period, " + ".join(labels)
+
+
+@dataclass(frozen=True)
+class Params:
+    """Parameters of the torqued body.
+
+    Parameters
+    ----------
+    inertia : array_like, shape (3,)
+        Principal moments (I1, I2, I3), any order, positive and obeying the triangle
+        inequality [inertia unit].
+    eps : float
+        Small parameter ε ≥ 0 multiplying the torque [1] (0: the free body).
+    torque : Torque
+        The moment M(t, q, ω) in body axes before the factor ε [moment unit].
+    forcing_period : float, optional
+        Period of the torque's explicit time dependence [t] (the orbital period 2π/n of a
+        gravity gradient); None when the torque does not depend on time on the fast scale.
+    label : str
+        What the torque is, for messages and ``summary.json``.
+    """
+
+    inertia: FloatArray
+    eps: float
+    torque: Torque
+    forcing_period: float | None = None
+    label: str = "torque"
+    sorted_inertia: tuple[float, float, float] = field(init=False, repr=False)
+    scaled: Torque = field(init=False, repr=False)
+    attitude_dependent: bool = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        inertia = frozen_array("parameters.inertia", self.inertia, (3,))
+        RigidBody(*inertia.tolist())  # positive, triangle inequality
+        check_range("parameters.eps", float(self.eps), low=0.0, low_open=False)
+        if self.forcing_period is not None:
+            check_range("torque period", float(self.forcing_period), low=0.0)
+            object.__setattr__(self, "forcing_period", float(self.forcing_period))
+        object.__setattr__(self, "inertia", inertia)
+        object.__setattr__(self, "eps", float(self.eps))
+        object.__setattr__(self, "sorted_inertia", tuple(sorted(inertia.tolist())))
+        object.__setattr__(self, "scaled", self.eps * self.torque)
+        dependent = not all(isinstance(t, _BODY_ONLY) for t in _terms(self.torque))
+        object.__setattr__(self, "attitude_dependent", dependent or self.forcing_period is not None)
+
+    def with_eps(self, eps: float) -> Params:
+        """The same body and torque at another ε (for error studies)."""
+        return replace(self, eps=eps)
+
+
+@dataclass(frozen=True)
+class State:
+    """Initial body angular velocity ω [rad/t] and attitude quaternion q (scalar first,
+    body → inertial; normalized here)."""
+
+    omega: FloatArray
+    q: FloatArray = field(default_factory=lambda: np.array([1.0, 0.0, 0.0, 0.0]))
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "omega", frozen_array("initial.omega", self.omega, (3,)))
+        q = frozen_array("initial.quaternion", self.q, (4,))
+        if not np.any(q):
+            raise ParameterError("initial.quaternion = [0, 0, 0, 0] is not a rotation")
+        object.__setattr__(self, "q", quat_normalize(q))
+
+
+# ---------------------------------------------------------------------------------------------
+# Full equations.
+
+
+def full_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
+    """Euler's equations with quaternion kinematics under ε M, for ``y = [ω, q]``.
+
+    Parameters
+    ----------
+    t : float
+        Time t [1].
+    y : ndarray, shape (7,)
+        Body angular velocity [rad/t] and attitude quaternion [1].
+    p : Params
+
+    Returns
+    -------
+    ndarray, shape (7,)
+        dy/dt.
+    """
+    return rigid_body_rhs(t, y, p.inertia, p.scaled)
+
+
+def _full_from_slow(p: Params, st: State) -> FloatArray:
+    return np.concatenate([st.omega, st.q])
+
+
+def _modulus(p: Params, L: FloatArray, T: FloatArray) -> FloatArray:
+    return np.array(
+        [modulus_squared(*p.sorted_inertia, Li, Ti)[0] for Li, Ti in zip(L, T, strict=True)]
+    )
+
+
+def _momentum_columns(L_xi: FloatArray, T: FloatArray, p: Params) -> dict[str, FloatArray]:
+    L = np.linalg.norm(L_xi, axis=-1)
+    return {
+        "L1": L_xi[:, 0],
+        "L2": L_xi[:, 1],
+        "L3": L_xi[:, 2],
+        "L": L,
+        "rho": np.arctan2(np.hypot(L_xi[:, 0], L_xi[:, 1]), L_xi[:, 2]),
+        "sigma": np.arctan2(L_xi[:, 1], L_xi[:, 0]),
+        "T": T,
+        "k2": _modulus(p, L, T),
+    }
+
+
+def _full_columns(t: FloatArray, Y: FloatArray, p: Params) -> dict[str, FloatArray]:
+    w = Y[:, :3]
+    L_xi = np.einsum("nij,nj->ni", quat_to_matrix(quat_normalize(Y[:, 3:])), p.inertia * w)
+    cols = _momentum_columns(L_xi, 0.5 * np.sum(p.inertia * w * w, axis=1), p)
+    cols.update(w1=w[:, 0], w2=w[:, 1], w3=w[:, 2])
+    return cols
+
+
+# ---------------------------------------------------------------------------------------------
+# Averaged equations: the engine.
+
+
+def averaged_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
+    """Averaged rates of ``y = [L_ξ1, L_ξ2, L_ξ3, r]``, r = 2T/L², by quadrature.
+
+    ε ⟨A M⟩ and 2ε⟨(ω − r Iω)·M⟩/L² over the polhode, the precession about L and the forcing
+    period (spec/martynenko.md §10 with any torque; :func:`tumble.averaging
+    .triaxial_average_vector`).
+
+    Parameters
+    ----------
+    t : float
+        Time t [1]: the phase origin of the forcing, or the frozen time of a torque that
+        varies only slowly.
+    y : ndarray, shape (4,)
+        [inertia unit · rad/t, 1/inertia unit].
+    p : Params
+
+    Returns
+    -------
+    ndarray, shape (4,)
+        dy/dt [moment unit, 1/(inertia unit · t)].
+    """
+    rates = triaxial_average_vector(p.torque, p.inertia, y, t, forcing_period=p.forcing_period)
+    return p.eps * rates
+
+
+def _vector_from_slow(p: Params, st: State) -> FloatArray:
+    L_xi = quat_to_matrix(st.q) @ (p.inertia * st.omega)
+    L2 = float(L_xi @ L_xi)
+    if L2 == 0.0:
+        raise ParameterError(
+            "initial.omega = [0, 0, 0]: the averaged method needs a rotating body (|ω| > 0)"
+        )
+    return np.array([*L_xi, float(st.omega @ (p.inertia * st.omega)) / L2])
+
+
+def _vector_columns(t: FloatArray, Y: FloatArray, p: Params, st: State) -> dict[str, FloatArray]:
+    L_xi = Y[:, :3]
+    L = np.linalg.norm(L_xi, axis=1)
+    return _momentum_columns(L_xi, 0.5 * Y[:, 3] * L * L, p)
+
+
+def _averaged_form(p: Params, st: State) -> AveragedForm:
+    I1, I2, I3 = p.sorted_inertia
+    breakpoints: tuple[Breakpoint, ...] = ()
+    if I1 < I2 < I3:
+        side = math.copysign(1.0, float(_vector_from_slow(p, st)[3]) - 1.0 / I2)
+
+        def across(t: float, y: FloatArray) -> FloatArray:
+            # Leave the separatrix on the side away from where the run came from.
+            out = np.array(y, dtype=float)
+            out[3] = (1.0 - side * SEPARATRIX_STEP) / I2
+            return out
+
+        breakpoints = (Breakpoint(lambda t, y: float(y[3]) - 1.0 / I2, across),)
+    return AveragedForm(
+        name="numeric",
+        equation="spec/martynenko.md §10 with the scenario's torque, by quadrature",
+        rhs=averaged_rhs,
+        from_slow=_vector_from_slow,
+        to_columns=_vector_columns,
+        breakpoints=breakpoints,
+    )
+
+
+# ---------------------------------------------------------------------------------------------
+# Validity along the averaged trajectory.
+
+
+def _slow_rate(tau: FloatArray, cols: dict[str, FloatArray]) -> FloatArray:
+    """|dL_ξ/dt|/L + |dT/dt|/(2T) along samples [rad/t]: the relative slow rate."""
+    L_xi = np.stack([cols["L1"], cols["L2"], cols["L3"]], axis=1)
+    dL = np.gradient(L_xi, tau, axis=0)
+    dT = np.gradient(cols["T"], tau)
+    return np.linalg.norm(dL, axis=1) / cols["L"] + np.abs(dT) / (2.0 * cols["T"])
+
+
+def validity(p: Params, st: State, slow: Any, tau_end: float) -> list[ValidityIssue]:
+    """Where the averaged trajectory leaves the domain of the non-resonant averaging, §12.
+
+    Parameters
+    ----------
+    p : Params
+    st : State
+    slow : callable
+        ``slow(t) -> columns`` along the averaged trajectory.
+    tau_end : float
+        End of the run [t].
+
+    Returns
+    -------
+    list of ValidityIssue
+        ``separatrix`` (L² = 2T·I2 crossed: the polhode frequency ν1 → 0), ``not_fast`` (the
+        slow rate exceeds VALIDITY_RATIO times the slowest fast frequency: ν1, |ν2| or the
+        forcing), ``resonance`` (n1 ν1 + n2 ν2 = m Ω_f, m ≤ 2, |n1|, |n2| ≤ 2, met or
+        approached within the resonance width √(slow rate/Ω_ref); for torques that depend on
+        the attitude or on time only).
+    """
+    if p.eps == 0.0 or tau_end <= 0.0:
+        return []
+    issues: list[ValidityIssue] = []
+    grid = np.linspace(0.0, tau_end, 1001)
+    cols = slow(grid)
+    I1, I2, I3 = p.sorted_inertia
+    L, T = cols["L"], cols["T"]
+    if I1 < I2 < I3:
+        gap = L * L - 2.0 * T * I2
+        flips = np.flatnonzero(np.sign(gap[1:]) * np.sign(gap[:-1]) < 0.0)
+        if flips.size:
+            s0 = np.sign(gap[0])
+
+            def other_side(t: FloatArray) -> FloatArray:
+                c = slow(t)
+                return -s0 * (c["L"] ** 2 - 2.0 * c["T"] * I2)
+
+            found = first_time(other_side, grid)
+            tau_s = float(found if found is not None else grid[flips[0] + 1])
+            issues.append(
+                ValidityIssue(
+                    "separatrix",
+                    tau_s,
+                    f"the averaged motion crosses the separatrix L² = 2T·I2 at t = {tau_s:.6g}: "
+                    "the polhode frequency ν1 → 0 there and averaging is locally invalid; the "
+                    "error after the crossing is usually first order, theory allows ε|ln ε| "
+                    "(spec/martynenko.md §12)",
+                    label="the separatrix",
+                )
+            )
+    rate = _slow_rate(grid, cols)
+    nu = np.array([fast_frequencies(I1, I2, I3, Li, Ti) for Li, Ti in zip(L, T, strict=True)])
+    forcing = 0.0 if p.forcing_period is None else 2.0 * math.pi / p.forcing_period
+    slowest = np.minimum(nu[:, 0], np.abs(nu[:, 1]))
+    if forcing > 0.0:
+        slowest = np.minimum(slowest, forcing)
+    away = cols["k2"] < 1.0 - 1e-3  # the separatrix band is reported as such
+    if I1 in (I2, I3):  # symmetric body: ν1 is the relative spin, no separatrix
+        away[:] = True
+    not_fast = away & (rate > VALIDITY_RATIO * slowest)
+    if np.any(not_fast):
+        i = int(np.flatnonzero(not_fast)[0])
+        issues.append(
+            ValidityIssue(
+                "not_fast",
+                float(grid[i]),
+                f"from t = {grid[i]:.6g} the slow drift ({rate[i]:.3g} rad/t) is not small "
+                f"against the slowest fast frequency ({slowest[i]:.3g} rad/t): averaging loses "
+                f"accuracy there (ratio > {VALIDITY_RATIO:g}, spec/martynenko.md §12)",
+            )
+        )
+    if p.attitude_dependent:
+        width = math.sqrt(float(np.max(rate)) / max(float(np.max(slowest)), 1e-300))
+        first: tuple[float, tuple[int, int, int]] | None = None
+        prev: tuple[tuple[int, int, int], float] | None = None
+        for i in range(grid.size):
+            if not away[i]:
+                prev = None
+                continue
+            res = nearest_resonance(p.inertia, float(L[i]), float(T[i]), p.forcing_period)
+            key = (res.m, res.n1, res.n2)
+            crossed = prev is not None and prev[0] == key and prev[1] * res.detuning < 0.0
+            if res.relative <= width or crossed:
+                first = (float(grid[i]), key)
+                break
+            prev = (key, res.detuning)
+        if first is not None:
+            tau_r, (m, n1, n2) = first
+            rhs = f"{m}·Ω_f" if forcing > 0.0 else "0"
+            issues.append(
+                ValidityIssue(
+                    "resonance",
+                    tau_r,
+                    f"at t ≈ {tau_r:.6g} the averaged motion meets the resonance {n1}·ν1 "
+                    f"{'+' if n2 >= 0 else '−'} {abs(n2)}·ν2 = {rhs} (polhode ν1, precession "
+                    "ν2 about L, forcing Ω_f): the phases are not independent there and the "
+                    "averaged rates are not the time averages; passing through costs O(√ε), "
+                    "lingering O(1) (spec/martynenko.md §12)",
+                    label=f"resonance {n1}·ν1 {'+' if n2 >= 0 else '−'} {abs(n2)}·ν2 = {rhs}",
+                )
+            )
+    return sorted(issues, key=lambda i: i.tau)
+
+
+# ---------------------------------------------------------------------------------------------
+# The record.
+
+
+_COLUMNS_SLOW = (
+    Column("L1", "inertial angular momentum L_ξ1", "1", "§10"),
+    Column("L2", "inertial angular momentum L_ξ2", "1", "§10"),
+    Column("L3", "inertial angular momentum L_ξ3", "1", "§10"),
+    Column("L", "angular momentum |L|", "1", "§10"),
+    Column("rho", "polar angle ρ of L from ξ3", "rad", "§10"),
+    Column("sigma", "inertial azimuth σ of L", "rad", "§10", angle=True, unwrap=True),
+    Column("T", "kinetic energy T", "1", "§10"),
+    Column("k2", "Euler–Poinsot modulus k² of the current regime", "1", "§8"),
+)
+_COLUMNS_FULL = (
+    *_COLUMNS_SLOW,
+    Column("w1", "body angular velocity ω1", "rad/t", "Euler"),
+    Column("w2", "body angular velocity ω2", "rad/t", "Euler"),
+    Column("w3", "body angular velocity ω3", "rad/t", "Euler"),
+)
+
+FULL = FullForm(
+    name="quaternion",
+    equation="Euler's equations with quaternion kinematics",
+    rhs=full_rhs,
+    from_slow=_full_from_slow,
+    to_columns=_full_columns,
+)
+
+
+def _closed_form(p: Params, st: State, tau: FloatArray) -> dict[str, FloatArray]:
+    raise ParameterError("torqued_body has no closed_form method (allowed: full, averaged)")
+
+
+def _check_method(p: Params, method: str) -> None:
+    if method == "averaged":
+        if p.eps == 0.0:
+            raise ParameterError(
+                "parameters.eps = 0 is outside the allowed range (0, inf) for the averaged "
+                "method (there is nothing to average)"
+            )
+        return
+    if method == "closed_form":
+        _closed_form(p, None, np.zeros(0))  # type: ignore[arg-type]
+
+
+def _limits(p: Params, st: State) -> dict[str, Any]:
+    return {}
+
+
+def _report(p: Params, st: State, trajectories: Any) -> Report:
+    return Report(summary={"torque": p.label, "forcing_period": p.forcing_period})
+
+
+MODEL = ModelRecord(
+    name="torqued_body",
+    description="triaxial rigid body under any small torque, averaged by the general engine",
+    paper="tumble issue 5: the averaging of spec/martynenko.md §10 for any torque",
+    methods=("full", "averaged"),
+    columns={"full": _COLUMNS_FULL, "averaged": _COLUMNS_SLOW},
+    full=FULL,
+    full_forms={"quaternion": FULL},
+    averaged_form=_averaged_form,
+    closed_form=_closed_form,
+    check_method=_check_method,
+    validity=validity,
+    limits=_limits,
+    figure="evolution.png",
+    plot_variables=("L", "rho", "sigma", "T"),
+    time_name="t",
+    time_units="t",
+    report=_report,
+    verify_variables=("L1", "L2", "L3", "T"),
+)

@@ -115,7 +115,8 @@ def verify_cmd(
         "out/verify"
     ),
     strict: Annotated[
-        bool, typer.Option("--strict", help="exit 4 unless the verdict is first-order accurate")
+        bool,
+        typer.Option("--strict", help="exit 4 unless the verdict is first-order accurate or exact"),
     ] = False,
 ) -> None:
     """Measure the averaging error: full and averaged at ε, ε/2, ε/4 over one slow horizon.
@@ -130,8 +131,9 @@ def verify_cmd(
         result = _guarded(lambda: verify_scenario(scenario, out_dir))
     _print_warnings(caught)
     symbol = {"tau": "τ"}.get(result.time_name, result.time_name)
+    horizon = "ε" + symbol if result.eps[0] > 0.0 else symbol
     table = Table(
-        title=f"verify {result.model} — {scenario} (slow horizon ε{symbol} = {result.horizon:.4g})",
+        title=f"verify {result.model} — {scenario} (horizon {horizon} = {result.horizon:.4g})",
         title_justify="left",
     )
     table.add_column("variable")
@@ -143,16 +145,18 @@ def verify_cmd(
         table.add_row(
             v,
             *(f"{x:.3e}" for x in result.errors[v]),
-            "at tolerance" if order is None else f"{order:.2f}",
+            "—" if result.eps[0] == 0.0 else "at tolerance" if order is None else f"{order:.2f}",
         )
     out.print(table)
     for e, run in zip(result.eps, result.issues, strict=True):
         for issue in run:
             out.print(f"[dim]ε = {e:.4g}:[/dim] {issue['message']}", highlight=False)
-    colour = {"first-order": "green", "degraded": "yellow", "invalid": "red"}[result.status]
+    colour = {"first-order": "green", "exact": "green", "degraded": "yellow", "invalid": "red"}[
+        result.status
+    ]
     out.print(f"[{colour}]{result.verdict}[/]", highlight=False, soft_wrap=True)
     out.print(f"outputs written to {out_dir}/", highlight=False)
-    if strict and result.status != "first-order":
+    if strict and result.status not in ("first-order", "exact"):
         raise typer.Exit(4)
 
 

@@ -12,6 +12,7 @@ import numpy as np
 from tumble.analysis.verify import VerifyResult
 
 if TYPE_CHECKING:
+    from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
 __all__ = ["plot_verify"]
@@ -37,7 +38,8 @@ def plot_verify(result: VerifyResult, *, title: str = "") -> Figure:
     import matplotlib.pyplot as plt
 
     names = list(result.variables)
-    n = len(names) + 1
+    slow = bool(result.eps[0] > 0.0)  # ε = 0: a closed form against time, no ε axis
+    n = len(names) + int(slow)
     ncols = min(3, n)
     nrows = math.ceil(n / ncols)
     fig, axes = plt.subplots(nrows, ncols, figsize=(4.2 * ncols, 3.2 * nrows), squeeze=False)
@@ -50,14 +52,27 @@ def plot_verify(result: VerifyResult, *, title: str = "") -> Figure:
                 continue
             s, d = curves[v]
             d = np.where(d > 0.0, d, np.nan)  # exact zeros (samples at t = 0) off the log axis
-            ax.semilogy(s, d, color=_COLOURS[i % len(_COLOURS)], lw=0.8, label=f"ε = {e:.3g}")
+            label = f"ε = {e:.3g}" if slow else "|full − closed form|"
+            ax.semilogy(s, d, color=_COLOURS[i % len(_COLOURS)], lw=0.8, label=label)
         for mark in marks:
             ax.axvline(result.eps[0] * float(mark["tau"]), color="tab:red", ls=":", lw=1.0)
         ax.set_title(f"|Δ{v}|", fontsize=10)
-        ax.set_xlabel(f"slow time ε{symbol}")
+        ax.set_xlabel(f"slow time ε{symbol}" if slow else f"time {symbol}")
         ax.grid(True, which="both", alpha=0.3)
     flat[0].legend(fontsize=8)
-    ax = flat[len(names)]
+    if slow:
+        _orders_panel(flat[len(names)], result)
+    for extra in flat[n:]:
+        extra.set_visible(False)
+    head = title + ("\n" if title else "") + textwrap.fill(result.verdict, 110)
+    fig.suptitle(head, fontsize=10)
+    fig.tight_layout()
+    return fig
+
+
+def _orders_panel(ax: Axes, result: VerifyResult) -> None:
+    """Max error against ε on log–log axes, the fitted orders, and a slope-1 guide."""
+    names = list(result.variables)
     for i, v in enumerate(names):
         err = result.errors[v]
         ok = np.isfinite(err) & (err > 0.0)
@@ -75,9 +90,3 @@ def plot_verify(result: VerifyResult, *, title: str = "") -> Figure:
     ax.set_title("max error against ε", fontsize=10)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8)
-    for extra in flat[n:]:
-        extra.set_visible(False)
-    head = title + ("\n" if title else "") + textwrap.fill(result.verdict, 110)
-    fig.suptitle(head, fontsize=10)
-    fig.tight_layout()
-    return fig

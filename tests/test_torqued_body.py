@@ -215,3 +215,13 @@ def test_verify_refuses_an_unperturbed_scenario(tmp_path):
     text = text.replace("[run]\n", '[run]\nmethods = ["full"]\n')
     res = runner.invoke(app, ["verify", str(write(tmp_path, text)), "-o", str(tmp_path / "v")])
     assert res.exit_code == 2 and "eps" in res.output, res.output
+
+
+def test_template_parses():
+    import tomllib
+
+    from tumble.io import template
+
+    sc = parse_scenario(tomllib.loads(template("torqued_body")), "<template>")
+    assert sc.request.params.forcing_period == pytest.approx(2 * math.pi / 0.3)
+    assert sc.request.methods == ("full", "averaged")

@@ -99,3 +99,18 @@ def test_verify_works_on_every_example(example):
     # nm_unperturbed (ε = 0) verifies its closed form instead of an averaging.
     assert (result.status == "exact") == (example == "nm_unperturbed.toml"), result.verdict
     print(example, result.verdict)
+
+
+def test_the_blamed_issue_precedes_the_worst_error():
+    """The verdict names the issue entered last before the worst error of the slowest
+    variable (rf_transient_x1: the separatrix at εt ≈ 2.07, not the resonance at 0)."""
+    from tumble.analysis.verify import _blamed
+
+    res = {"condition": "resonance", "tau": 0.0, "label": "r"}
+    sep = {"condition": "separatrix", "tau": 207.0, "label": "s"}
+    s = np.linspace(0.0, 3.0, 301)
+    late = {"T": (s, np.where(s > 2.1, 1e-2, 1e-4))}
+    early = {"T": (s, np.where(s < 1.0, 1e-2, 1e-4))}
+    assert _blamed([res, sep], {"T": 0.1}, [late], 0.01)[0] is sep
+    assert _blamed([res, sep], {"T": 0.1}, [early], 0.01)[0] is res
+    assert _blamed([sep], {"T": 0.1}, [early], 0.01) == [sep]  # before every issue: the first

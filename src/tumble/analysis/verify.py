@@ -176,6 +176,31 @@ def _phrase(issue: dict[str, Any], time_symbol: str) -> str:
     return f"{label} ({time_symbol} ≈ {issue['tau']:.4g})"
 
 
+def _blamed(
+    issues: list[dict[str, Any]],
+    orders: dict[str, float | None],
+    curves: list[dict[str, tuple[FloatArray, FloatArray]]],
+    eps0: float,
+) -> list[dict[str, Any]]:
+    """``issues`` with the one to blame first: the last one entered before the slowest-
+    converging variable reaches its largest error in the smallest-ε run (where a loss of
+    order shows most), or the first one if that error comes before all of them."""
+    fitted = {v: o for v, o in orders.items() if o is not None}
+    last = next((c for c in reversed(curves) if c), None)
+    if not issues or not fitted or last is None:
+        return issues
+    worst = min(fitted, key=lambda v: fitted[v])
+    if worst not in last:
+        return issues
+    s, d = last[worst]
+    peak = float(s[int(np.argmax(d))])
+    before = [i for i in issues if eps0 * float(i["tau"]) <= peak]
+    if not before:
+        return issues
+    culprit = max(before, key=lambda i: float(i["tau"]))
+    return [culprit, *(i for i in issues if i is not culprit)]
+
+
 def _verdict(
     orders: dict[str, float | None],
     issues: list[dict[str, Any]],
@@ -333,7 +358,7 @@ def verify(request: RunRequest, factors: Sequence[float] = VERIFY_FACTORS) -> Ve
     # The scenario's own run (the first) says where its averaged trajectory goes; the others
     # follow the same slow path.
     seen = next((run for run in issues if run), [])
-    status, verdict = _verdict(orders, seen, failures, eps, symbol)
+    status, verdict = _verdict(orders, _blamed(seen, orders, curves, eps0), failures, eps, symbol)
     return VerifyResult(
         model.name,
         eps,

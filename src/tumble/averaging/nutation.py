@@ -9,6 +9,7 @@ case). :func:`numeric_averages` then averages over the nutation period of the fr
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
@@ -16,7 +17,13 @@ from typing import Any
 import numpy as np
 
 from tumble._typing import FloatArray
-from tumble.averaging.quadrature import AVERAGE_RTOL, AveragingError, BatchedTorque, torus_mean
+from tumble.averaging.quadrature import (
+    AVERAGE_RTOL,
+    AveragingError,
+    BatchedTorque,
+    rate_only,
+    torus_mean,
+)
 from tumble.unperturbed.symmetric_body import NutationOrbit
 
 __all__ = [
@@ -109,7 +116,10 @@ def numeric_averages(
     """⟨Φθθ' + Φz·W^z⟩ and ⟨Φz⟩ over one nutation period of ``orbit``, (2.3).
 
     Periodic trapezoidal rule in time over one period (spectrally accurate; better than the
-    rule in γ near a separatrix), doubling the nodes until two results agree to ``rtol``.
+    rule in γ near a separatrix), doubling the nodes until two results agree to ``rtol``
+    relative to the largest average. The first evaluation is on 2·``n_start`` nodes, whose
+    even ones give the ``n_start`` mean, and each doubling evaluates the perturbation at the
+    new (odd) nodes only.
 
     Parameters
     ----------
@@ -120,6 +130,8 @@ def numeric_averages(
         Slow time τ = εt (frozen) [1].
     rtol : float
         Relative tolerance of the averages.
+    n_start, n_max : int
+        First and largest number of nodes over the period.
 
     Returns
     -------
@@ -135,21 +147,40 @@ def numeric_averages(
     """
     z = np.array([orbit.R, orbit.G, orbit.a, orbit.b])
 
-    def averages(n: int) -> FloatArray:
-        _, theta, theta_dot, w = orbit.nodes(n)
+    # ufunc reductions rather than np.mean, np.sum, np.max: on these few numbers their
+    # wrappers cost more than the arithmetic.
+    def integrand(theta: FloatArray, theta_dot: FloatArray) -> FloatArray:
+        """Rows g = Φθθ' + Φz·W^z and Φz (shape (5, n)) at the nodes."""
         ph, pz = perturbation.evaluate(tau, theta, theta_dot, z)
-        g = ph * theta_dot + np.sum(pz * potential_gradient(np.cos(theta), z), axis=0)
-        return np.concatenate([[w @ g], pz @ w])
+        out = np.empty((5, theta.size))
+        out[0] = ph * theta_dot + np.add.reduce(pz * potential_gradient(np.cos(theta), z))
+        out[1:] = pz
+        return out
 
-    n = n_start
-    old = averages(n)
-    while n < n_max:
-        n *= 2
-        new = averages(n)
-        scale = max(float(np.max(np.abs(new))), 1e-300)
-        if np.max(np.abs(new - old)) <= rtol * scale:
-            return float(new[0]), new[1:]
-        old = new
+    def mean(values: FloatArray, step: int = 1) -> FloatArray:
+        return np.add.reduce(values[:, ::step], axis=1) * (step / values.shape[1])
+
+    def change(old: FloatArray, new: FloatArray) -> float:
+        """max |new − old| relative to max |new|."""
+        top = max(float(np.maximum.reduce(np.abs(new))), 1e-300)
+        return float(np.maximum.reduce(np.abs(new - old))) / top
+
+    n = 2 * n_start
+    if n_start < n_max:
+        _, theta, theta_dot, _ = orbit.nodes(n)
+        values = integrand(theta, theta_dot)
+        old, new = mean(values, 2), mean(values)
+        while True:
+            if change(old, new) <= rtol:
+                return float(new[0]), new[1:]
+            if n >= n_max:
+                break
+            # The nodes of 2n are those of n (the even ones, bit for bit: t_i = i·T/n) and
+            # the midpoints.
+            _, theta, theta_dot, _ = orbit.nodes(2 * n)
+            fresh = mean(integrand(theta[1::2], theta_dot[1::2]))
+            old, new = new, 0.5 * (new + fresh)
+            n *= 2
     raise AveragingError(
         f"averages over the nutation period did not converge with {n_max} nodes "
         f"(k² = {orbit.k2:.12g}, 1 − k² = {orbit.mc:.3g}): the motion is too near a separatrix"
@@ -171,7 +202,12 @@ def torque_perturbation(
     body → inertial quaternion of the z–x–z angles ψ, θ, φ, omega the body rate):
     Φθ = δM_p cosφ − δM_q sinφ, Φ_R = δM_r, Φ_G = (δM_p sinφ + δM_q cosφ) sinθ + δM_r cosθ.
     These depend on ψ and φ as well; they are averaged over both (uniformly, as independent
-    fast phases: the non-resonant case) before the nutation average.
+    fast phases: the non-resonant case) before the nutation average: by the product
+    trapezoidal rule of :func:`~tumble.averaging.quadrature.torus_mean` (4 → 8 → … nodes per
+    phase, one call of the torque per level for all the θ nodes). The body rate does not
+    involve ψ, so for a torque that is a function of the body rate alone, known from its type
+    (:func:`~tumble.averaging.quadrature.rate_only`: the built-in constant body moment, linear
+    and quadratic drag), the ψ-mean is exact and only φ is averaged, on the rates alone.
 
     Parameters
     ----------
@@ -188,14 +224,27 @@ def torque_perturbation(
     name : str
         For messages.
     vectorized : bool
-        Whether to try batched calls first.
+        Whether to try batched calls first (False: one state at a time, the built-ins too;
+        the reference for the fast paths).
 
     Returns
     -------
     Perturbation
     """
+    rates_only = vectorized and rate_only(torque)
+    rate_torque: Any = torque  # called with q = None on that path (it does not read q)
 
     call = BatchedTorque(torque, None if vectorized else False, "the nutation (1.9)")
+    trig: dict[tuple[int, int], tuple[FloatArray, ...]] = {}
+
+    def angles(psi: FloatArray, phi: FloatArray) -> tuple[FloatArray, ...]:
+        """sin φ, cos φ, cos (ψ ± φ)/2, sin (ψ ∓ φ)/2 on the torus grid: the same grids come
+        back at every call (torus_mean's nodes depend on their number only), so once each."""
+        key = (psi.shape[0], phi.shape[1])
+        if key not in trig:
+            up, um = 0.5 * (psi + phi), 0.5 * (psi - phi)
+            trig[key] = (np.sin(phi), np.cos(phi), np.cos(up), np.cos(um), np.sin(um), np.sin(up))
+        return trig[key]
 
     def joint(tau: float, theta: FloatArray, theta_dot: FloatArray, z: FloatArray) -> FloatArray:
         th, thd = np.broadcast_arrays(np.asarray(theta, float), np.asarray(theta_dot, float))
@@ -204,30 +253,61 @@ def torque_perturbation(
         R, G = float(z[0]), float(z[1])
         s, c = np.sin(th), np.cos(th)
         psid = (G - R * c) / (s * s)
+        ch, sh = np.cos(0.5 * th), np.sin(0.5 * th)
+        rate_sin, r = psid * s, R / mu
 
         def on_torus(psi: FloatArray, phi: FloatArray) -> FloatArray:
-            psi, phi = np.broadcast_arrays(psi, phi)
-            sp, cp = np.sin(phi), np.cos(phi)
-            w1 = psid * s * sp + thd * cp
-            w2 = psid * s * cp - thd * sp
-            w1, w2 = np.broadcast_arrays(w1, w2)
-            omega = np.stack([w1, w2, np.full(w1.shape, R / mu)], axis=-1)
+            # psi (m, 1), phi (1, m); the nodes' arrays are (n, m, m). The rates do not involve
+            # ψ, and the attitude's half-angle functions do not involve θ: each is formed on
+            # its own axes and broadcast once, into the arrays handed to the torque.
+            sp, cp, cup, cum, sum_, sup = angles(psi, phi)
+            grid = (th.shape[0], psi.shape[0], phi.shape[1])
+            omega = np.empty((*grid, 3))
+            omega[..., 0] = rate_sin * sp + thd * cp
+            omega[..., 1] = rate_sin * cp - thd * sp
+            omega[..., 2] = r
             # z–x–z angles → quaternion: q = qz(ψ) ⊗ qx(θ) ⊗ qz(φ).
-            h, up, um = 0.5 * th, 0.5 * (psi + phi), 0.5 * (psi - phi)
-            q = np.stack(
-                np.broadcast_arrays(
-                    np.cos(h) * np.cos(up),
-                    np.sin(h) * np.cos(um),
-                    np.sin(h) * np.sin(um),
-                    np.cos(h) * np.sin(up),
-                ),
-                axis=-1,
-            )
+            q = np.empty((*grid, 4))
+            q[..., 0] = ch * cup
+            q[..., 1] = sh * cum
+            q[..., 2] = sh * sum_
+            q[..., 3] = ch * sup
             m = call(tau, q.reshape(-1, 4), omega.reshape(-1, 3)).reshape(omega.shape)
             m1, m2, m3 = m[..., 0], m[..., 1], m[..., 2]
-            return np.stack([m1 * cp - m2 * sp, m3, (m1 * sp + m2 * cp) * s + m3 * c], axis=0)
+            out = np.empty((3, *grid))
+            out[0] = m1 * cp - m2 * sp
+            out[1] = m3
+            out[2] = (m1 * sp + m2 * cp) * s + m3 * c
+            return out
 
-        mean, _ = torus_mean(on_torus, 2, rtol=rtol, n_start=4, what=f"{name} over ψ and φ")
+        def on_circle(phi: FloatArray) -> FloatArray:
+            # A torque of the body rate alone: phi (m,), the nodes' arrays (n, m); no ψ, no q.
+            sp, cp = np.sin(phi), np.cos(phi)
+            omega = np.empty((th.shape[0], phi.size, 3))
+            omega[..., 0] = rate_sin[:, :, 0] * sp + thd[:, :, 0] * cp
+            omega[..., 1] = rate_sin[:, :, 0] * cp - thd[:, :, 0] * sp
+            omega[..., 2] = r
+            m = np.asarray(rate_torque(tau, None, omega), dtype=float)
+            if not np.all(np.isfinite(m)):
+                raise AveragingError(
+                    "the torque returned non-finite values on the nutation (1.9): no average "
+                    "can be formed"
+                )
+            m1, m2, m3 = m[..., 0], m[..., 1], m[..., 2]
+            out = np.empty((3, *omega.shape[:2]))
+            out[0] = m1 * cp - m2 * sp
+            out[1] = m3
+            out[2] = (m1 * sp + m2 * cp) * s[:, :, 0] + m3 * c[:, :, 0]
+            return out
+
+        if rates_only:
+            # One call on 8 nodes of φ serves the levels 4 and 8.
+            first = on_circle(np.arange(8, dtype=np.float64) * (2.0 * math.pi / 8))
+            mean, _ = torus_mean(
+                on_circle, 1, rtol=rtol, n_start=4, known=first, what=f"{name} over φ"
+            )
+        else:
+            mean, _ = torus_mean(on_torus, 2, rtol=rtol, n_start=4, what=f"{name} over ψ and φ")
         out = np.zeros((5, mean.shape[1]))
         out[:3] = mean
         if ab_rate is not None:

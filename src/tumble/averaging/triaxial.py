@@ -29,8 +29,8 @@ doubling to the next (geometric convergence; see :func:`_product_mean`). This re
 tests all outputs against one scale: the polhode phase needs 32–256 nodes (more near the
 separatrix, where K grows like ln(1/k')), while the precession and forcing phases of the
 usual torques are trigonometric polynomials of degree ≤ 2, exact with 8 nodes. For the
-eddy-current torque an evaluation costs about 2–4 ms (k² ≤ 0.9999; 5–8 ms closer to the
-separatrix).
+eddy-current torque an evaluation costs about 1.5–3 ms (k² ≤ 0.9999; 5–8 ms closer to the
+separatrix), for the gravity gradient 2–5 ms (benchmarks/averaging_cost.py).
 
 Torques on arrays. The built-in torques of :mod:`tumble.torques` are evaluated here on the
 whole grid at once, with arrays that broadcast over the phases (time included); any other
@@ -60,6 +60,7 @@ from tumble.torques import (
     ConstantBodyTorque,
     ConstantInertialTorque,
     EddyCurrentTorque,
+    GravityGradientTorque,
     LinearDrag,
     QuadraticDrag,
     ScaledTorque,
@@ -127,10 +128,11 @@ class _Moment:
     Sums and multiples of built-in torques (exact types: a subclass may override
     ``__call__``) are walked term by term: the inertial-form ones (eddy current (1.3), constant
     inertial moment) are evaluated in inertial axes with the explicit time broadcast over the
-    forcing axis, the time-independent body ones in one batched call on the grid's rates. Any
-    other torque is called through :class:`BatchedTorque`, once per time node, with the N =
-    n0·n1 attitudes of the grid. ``batched=False`` calls the whole torque, built-ins included,
-    one state at a time (the reference for the fast paths).
+    forcing axis, the time-independent body ones in one batched call on the grid's rates, the
+    gravity gradient on the grid's attitude matrices with its r̂(t) broadcast over the forcing
+    axis. Any other torque is called through :class:`BatchedTorque`, once per time node, with
+    the N = n0·n1 attitudes of the grid. ``batched=False`` calls the whole torque, built-ins
+    included, one state at a time (the reference for the fast paths).
     """
 
     def __init__(self, torque: Any, batched: bool | None) -> None:
@@ -169,6 +171,12 @@ class _Moment:
             return np.asarray(torque(0.0, None, w), dtype=float)
         if kind in (ZeroTorque, ConstantInertialTorque, EddyCurrentTorque):
             return _rotate_back(g.A, self._inertial(torque, t, g))
+        if kind is GravityGradientTorque:
+            # M = 3n² r̂_b × (I r̂_b), r̂_b = Aᵀ r̂(t) the body components of its radial(t):
+            # GravityGradientTorque.__call__ on the grid's matrices rather than quaternions,
+            # with r̂(t) broadcast over the time axis (one evaluation, not one per time node).
+            rb = _rotate_back(g.A, torque.radial(t))
+            return 3.0 * torque.n**2 * np.cross(rb, torque.inertia * rb)
         if kind is ScaledTorque:
             return torque.factor * self._body(torque.torque, t, g)
         if kind is TorqueSum:

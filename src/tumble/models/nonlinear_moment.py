@@ -52,6 +52,7 @@ from tumble.models.base import (
     first_time,
 )
 from tumble.rotations import euler313_to_matrix, matrix_to_euler313, matrix_to_quat, quat_to_matrix
+from tumble.torques import LinearDrag
 from tumble.unperturbed.symmetric_body import NutationOrbit, effective_potential, potential_slope
 
 __all__ = [
@@ -765,8 +766,11 @@ def averaged_initial(
     return H, z, orbit
 
 
-def damping_torque(p: Params) -> Callable[[float, FloatArray, FloatArray], FloatArray]:
+def damping_torque(p: Params) -> LinearDrag:
     """The damping of spec §9 as a body-axes torque per unit A and ε: −d(p, q, 0) − ν(0, 0, R).
+
+    With R = μr this is the linear drag −diag(d, d, νμ) ω, so the engine recognises a torque
+    of the body rate only and averages it over φ alone.
 
     Parameters
     ----------
@@ -774,15 +778,10 @@ def damping_torque(p: Params) -> Callable[[float, FloatArray, FloatArray], Float
 
     Returns
     -------
-    callable
+    LinearDrag
         ``(t, q, omega) -> δM/A`` [1/t²] (for ``torque_perturbation``).
     """
-
-    def torque(t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
-        w = np.asarray(omega, dtype=float)  # one state (3,) or a batch (N, 3)
-        return np.stack([-p.d * w[..., 0], -p.d * w[..., 1], -p.nu * p.mu * w[..., 2]], -1)
-
-    return torque
+    return LinearDrag(np.diag([p.d, p.d, p.nu * p.mu]))
 
 
 def engine_perturbation(p: Params) -> Perturbation:

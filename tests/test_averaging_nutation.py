@@ -104,3 +104,23 @@ def test_torque_of_the_body_rate_is_averaged_over_phi_only():
     # A real check: the axial part of the constant moment adds 0.1 to ⟨Φ_R⟩ = ⟨δM_r⟩.
     alone = numeric_averages(orbit, torque_perturbation(drag, p.mu), 0.3)
     assert abs(fast[1][0] - alone[1][0] - 0.1) < 1e-10
+
+
+def test_a_perturbation_with_zero_averages_converges():
+    """Φθ = c (a constant extra moment in θ only) does no work over a period: ⟨Φθθ'⟩ = 0 and
+    Φz = 0. The averages must converge to zero (to rtol of the integrand's size |c|·max|θ'|)
+    instead of chasing round-off relative to themselves."""
+    from tumble.averaging.nutation import Perturbation
+
+    orbit = NutationOrbit.from_state(0.8, -1.0, -0.3, 0.4, 0.6, 1.0, 0.3)
+    c = 0.7
+    pert = Perturbation(
+        phi_theta=lambda tau, th, thd, z: np.full_like(th, c),
+        phi_z=lambda tau, th, z: np.zeros((4, np.size(th))),
+        name="constant pitch moment",
+    )
+    g, phi_z = numeric_averages(orbit, pert, 0.0)
+    scale = c * float(np.max(np.abs(orbit.theta_dot(np.linspace(0.0, orbit.period, 257)))))
+    # 1e-12 relative convergence of the trapezoid (AVERAGE_RTOL) on the integrand's size.
+    assert abs(g) < 1e-11 * scale
+    assert np.all(phi_z == 0.0)

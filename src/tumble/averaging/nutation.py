@@ -117,7 +117,9 @@ def numeric_averages(
 
     Periodic trapezoidal rule in time over one period (spectrally accurate; better than the
     rule in γ near a separatrix), doubling the nodes until two results agree to ``rtol``
-    relative to the largest average. The first evaluation is on 2·``n_start`` nodes, whose
+    relative to the size of the integrand (the largest mean |row|, never below the largest
+    average): a perturbation whose averages vanish, e.g. a conservative one, converges to
+    zero instead of chasing round-off. The first evaluation is on 2·``n_start`` nodes, whose
     even ones give the ``n_start`` mean, and each doubling evaluates the perturbation at the
     new (odd) nodes only.
 
@@ -160,9 +162,9 @@ def numeric_averages(
     def mean(values: FloatArray, step: int = 1) -> FloatArray:
         return np.add.reduce(values[:, ::step], axis=1) * (step / values.shape[1])
 
-    def change(old: FloatArray, new: FloatArray) -> float:
-        """max |new − old| relative to max |new|."""
-        top = max(float(np.maximum.reduce(np.abs(new))), 1e-300)
+    def change(old: FloatArray, new: FloatArray, size: float) -> float:
+        """max |new − old| relative to the integrand's size (or max |new| if larger)."""
+        top = max(float(np.maximum.reduce(np.abs(new))), size, 1e-300)
         return float(np.maximum.reduce(np.abs(new - old))) / top
 
     n = 2 * n_start
@@ -170,15 +172,18 @@ def numeric_averages(
         _, theta, theta_dot, _ = orbit.nodes(n)
         values = integrand(theta, theta_dot)
         old, new = mean(values, 2), mean(values)
+        size = float(np.maximum.reduce(mean(np.abs(values))))
         while True:
-            if change(old, new) <= rtol:
+            if change(old, new, size) <= rtol:
                 return float(new[0]), new[1:]
             if n >= n_max:
                 break
             # The nodes of 2n are those of n (the even ones, bit for bit: t_i = i·T/n) and
             # the midpoints.
             _, theta, theta_dot, _ = orbit.nodes(2 * n)
-            fresh = mean(integrand(theta[1::2], theta_dot[1::2]))
+            odd = integrand(theta[1::2], theta_dot[1::2])
+            fresh = mean(odd)
+            size = 0.5 * (size + float(np.maximum.reduce(mean(np.abs(odd)))))
             old, new = new, 0.5 * (new + fresh)
             n *= 2
     raise AveragingError(

@@ -62,20 +62,23 @@ def closed_form(p: rm.Params, k: float, theta: float) -> np.ndarray:
 # ---------------------------------------------------------------------------------------------
 # The resisting-medium moment (1.2): the engine reproduces (2.2).
 
+MEDIUM_POINTS = (
+    vectors(),  # a
+    matrices(),  # b
+    matrices(),  # s
+    kappa,
+    st.floats(0.05, 1.0),  # ε
+    st.floats(0.2, 3.0),  # k
+    rho_regular,
+    angle,  # σ
+    theta_regular,
+    angle,  # τ
+)
+"""Random points of the resisting-medium model's domain: medium, body and slow state."""
+
 
 @settings(max_examples=60)
-@given(
-    vectors(),
-    matrices(),
-    matrices(),
-    kappa,
-    st.floats(0.05, 1.0),
-    st.floats(0.2, 3.0),
-    rho_regular,
-    angle,
-    theta_regular,
-    angle,
-)
+@given(*MEDIUM_POINTS)
 def test_engine_equals_closed_form_2_2(a, b, s, kap, eps, k, rho, sigma, theta, t):
     """Issue 5 item 2: random points of the model's domain, full random a, b, s."""
     p = rm.Params(eps=eps, kappa=kap, a=a, b=b, s=s)
@@ -85,18 +88,7 @@ def test_engine_equals_closed_form_2_2(a, b, s, kap, eps, k, rho, sigma, theta, 
 
 
 @settings(max_examples=60)
-@given(
-    vectors(),
-    matrices(),
-    matrices(),
-    kappa,
-    st.floats(0.05, 1.0),
-    st.floats(0.2, 3.0),
-    rho_regular,
-    angle,
-    theta_regular,
-    angle,
-)
+@given(*MEDIUM_POINTS)
 def test_model_torque_takes_the_rate_path_and_equals_2_2(
     a, b, s, kap, eps, k, rho, sigma, theta, t
 ):

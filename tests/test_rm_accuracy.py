@@ -196,3 +196,25 @@ def test_steady_tilt_of_the_full_model():
     tilt = p.eps * (1 + p.kappa) * math.hypot(0.05, 0.03) / (abs(p.kappa) * k_inf**2)
     # First-order estimate: the O(ε²) correction is ~ε of it (5 %).
     assert full["theta"][-1] == pytest.approx(tilt, rel=0.05)
+
+
+def test_resonances_of_precession_and_spin_are_reported():
+    """Spec §10.5: k = n|Ω_φ| where |cos ϑ| = (1+κ)/(n|κ|); with a φ-dependent moment the
+    first crossing along the averaged run is reported with its τ (n ≤ 4)."""
+    p = rm.Params(eps=0.01, kappa=0.8, a=[0.05, 0.0, 0.3], b=np.diag([0.2, 0.1, 0.1]))
+    st = rm.State(1.0, 0.5, 0.0, 0.0, 1.2, 0.0)  # ϑ → 0 through |cos ϑ| = 0.5625, 0.75
+    cf = lambda t: rm.closed_form(p, st, t)  # noqa: E731
+    issues = [i for i in rm.validity(p, st, cf, 300.0) if i.condition == "resonance"]
+    assert len(issues) == 1
+    tau_r = issues[0].tau
+    n = int(issues[0].label.split("= ")[1][0])
+    level = (1 + p.kappa) / (n * p.kappa)
+    # Refined by brentq to xtol 1e-12 on the closed form: |cos ϑ| hits the level there.
+    assert abs(abs(math.cos(cf(np.array([tau_r]))["theta"][0])) - level) < 1e-8
+    # A φ-independent moment has no resonant terms: nothing is reported.
+    q = rm.Params(eps=0.01, kappa=0.8, a=[0.0, 0.0, 0.3], b=np.diag([0.1, 0.1, 0.1]))
+    assert not [
+        i
+        for i in rm.validity(q, st, lambda t: rm.closed_form(q, st, t), 300.0)
+        if i.condition == "resonance"
+    ]

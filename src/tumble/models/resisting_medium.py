@@ -989,7 +989,9 @@ def validity(
         ``theta_crossing`` (ϑ = π/2 passed with a φ-dependent moment: O(√ε) after it, §10.2),
         ``phi_not_fast`` (slow rates not small against |κ cos ϑ|/(1+κ), §6, §10.3),
         ``spin_not_fast`` (k too small: slow rates not small against the precession rate k,
-        §10.5), ``through_k_zero`` (ϑ0 ∈ {0, π} and W changes sign: k passes through 0, §11).
+        §10.5), ``through_k_zero`` (ϑ0 ∈ {0, π} and W changes sign: k passes through 0, §11),
+        ``resonance`` (the precession rate k = n|Ω_φ|, |cos ϑ| = (1+κ)/(n|κ|), n ≤
+        RESONANCE_ORDER, crossed with a φ-dependent moment: ρ, σ may shift, §10.5).
     """
     if p.eps == 0.0 or tau_end <= 0.0:
         return []
@@ -1027,6 +1029,22 @@ def validity(
         return c["k"], c["theta"]
 
     if phi_dependent:
+        resonance = _first_resonance(p, lambda t: np.abs(np.cos(cols(t)[1])), grid)
+        if resonance is not None:
+            tau_r, n = resonance
+            issues.append(
+                ValidityIssue(
+                    "resonance",
+                    tau_r,
+                    f"at τ ≈ {tau_r:.6g} the precession rate k equals {n}× the spin rate "
+                    f"|Ω_φ| (|cos ϑ| = (1+κ)/({n}|κ|)): the resonant terms, which first-order "
+                    "averaging drops, can shift ρ and σ; k and ϑ are unaffected "
+                    "(spec/medvedev.md §10.5)",
+                    label=f"resonance ψ̇ = {n}·|φ̇|",
+                )
+            )
+
+    if phi_dependent:
 
         def phi_slow(t: FloatArray) -> FloatArray:
             k, theta = cols(t)
@@ -1062,6 +1080,37 @@ def validity(
             )
         )
     return issues
+
+
+RESONANCE_ORDER = 4
+"""Largest n of the resonances k = n|Ω_φ| reported (spec §10.5): for a smooth moment the
+resonant harmonics fall off with n, and a pass through one of order n costs O(ε^{1/2})
+times that harmonic."""
+
+
+def _first_resonance(
+    p: Params, abs_cos: Callable[[FloatArray], FloatArray], grid: FloatArray
+) -> tuple[float, int] | None:
+    """First τ on ``grid`` where |cos ϑ| crosses (1+κ)/(n|κ|), n ≤ RESONANCE_ORDER, and n."""
+    values = abs_cos(grid)
+    found: tuple[float, int] | None = None
+    for n in range(1, RESONANCE_ORDER + 1):
+        level = (1.0 + p.kappa) / (n * abs(p.kappa))
+        if level >= 1.0:
+            continue
+        side = np.sign(values - level)
+        flips = np.flatnonzero(side[1:] * side[:-1] < 0.0)
+        if not flips.size:
+            continue
+        s0 = float(side[flips[0]])
+
+        def beyond(t: FloatArray, s0: float = s0, level: float = level) -> FloatArray:
+            return -s0 * (abs_cos(t) - level)
+
+        t = first_time(beyond, grid)
+        if t is not None and (found is None or t < found[0]):
+            found = (t, n)
+    return found
 
 
 def _check_method(p: Params, method: str) -> None:

@@ -64,12 +64,13 @@ def run_cmd(
     model = result.request.model
     shown = model.plot_variables
     table = Table(title=f"{model.name} — {scenario}", title_justify="left")
-    for col in ("method", "form", "wall time [s]", *(f"final {v}" for v in shown)):
+    for col in ("method", "form", "integrator", "wall time [s]", *(f"final {v}" for v in shown)):
         table.add_column(col)
     for m, ds in result.datasets.items():
         table.add_row(
             m,
             ds.attrs["form"],
+            ds.attrs["integrator"],
             f"{ds.attrs['wall_time_s']:.3g}",
             *(f"{ds[v].values[-1]:.6g}" if v in ds else "—" for v in shown),
         )

@@ -26,7 +26,14 @@ from tumble.errors import ParameterError, check_range
 from tumble.rotations import quat_to_matrix
 
 __all__ = [
+    "TERM_BODY_CONSTANT",
+    "TERM_EDDY_CURRENT",
+    "TERM_GRAVITY_GRADIENT",
+    "TERM_INERTIAL_CONSTANT",
+    "TERM_LINEAR_DRAG",
+    "TERM_QUADRATIC_DRAG",
     "CallableTorque",
+    "CompiledTerm",
     "ConstantBodyTorque",
     "ConstantInertialTorque",
     "EddyCurrentTorque",
@@ -39,6 +46,19 @@ __all__ = [
     "UserTorque",
     "ZeroTorque",
 ]
+
+
+# Codes of the torque terms the compiled integrator evaluates (:mod:`tumble.compiled`), and the
+# payload each carries. A torque lists its terms with ``compiled_terms()``.
+TERM_BODY_CONSTANT = 1  # body moment (3)
+TERM_LINEAR_DRAG = 2  # B by rows (9)
+TERM_QUADRATIC_DRAG = 3  # S by rows (9)
+TERM_INERTIAL_CONSTANT = 4  # inertial moment (3)
+TERM_GRAVITY_GRADIENT = 5  # inertia (3), n, u0, rows e1, e2, normal (9)
+TERM_EDDY_CURRENT = 6  # M0, field rate ω, cone angle β
+
+CompiledTerm = tuple[int, float, tuple[float, ...]]
+"""One term of a compiled torque: (code, factor, payload)."""
 
 
 def _vector(name: str, value: ArrayLike) -> FloatArray:
@@ -63,6 +83,11 @@ class Torque:
     def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
         raise NotImplementedError
 
+    def compiled_terms(self) -> tuple[CompiledTerm, ...] | None:
+        """The terms of this torque as the compiled integrator evaluates them; None when it
+        cannot be compiled (a Python function), and the scipy integrator is used instead."""
+        return None
+
     def __add__(self, other: Torque) -> Torque:
         if not isinstance(other, Torque):
             return NotImplemented
@@ -83,6 +108,9 @@ class ZeroTorque(Torque):
     def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
         return np.zeros(np.shape(omega))
 
+    def compiled_terms(self) -> tuple[CompiledTerm, ...]:
+        return ()
+
 
 @dataclass(frozen=True, eq=False)
 class ConstantBodyTorque(Torque):
@@ -102,6 +130,9 @@ class ConstantBodyTorque(Torque):
     def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
         return np.array(np.broadcast_to(self.moment, np.shape(omega)))
 
+    def compiled_terms(self) -> tuple[CompiledTerm, ...]:
+        return ((TERM_BODY_CONSTANT, 1.0, tuple(self.moment.tolist())),)
+
 
 @dataclass(frozen=True, eq=False)
 class LinearDrag(Torque):
@@ -120,6 +151,9 @@ class LinearDrag(Torque):
 
     def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
         return -(np.asarray(omega) @ self.B.T)
+
+    def compiled_terms(self) -> tuple[CompiledTerm, ...]:
+        return ((TERM_LINEAR_DRAG, 1.0, tuple(self.B.ravel().tolist())),)
 
 
 @dataclass(frozen=True, eq=False)
@@ -141,6 +175,9 @@ class QuadraticDrag(Torque):
         w = np.asarray(omega)
         return -((w * np.abs(w)) @ self.S.T)
 
+    def compiled_terms(self) -> tuple[CompiledTerm, ...]:
+        return ((TERM_QUADRATIC_DRAG, 1.0, tuple(self.S.ravel().tolist())),)
+
 
 @dataclass(frozen=True, eq=False)
 class TorqueSum(Torque):
@@ -154,6 +191,12 @@ class TorqueSum(Torque):
             total = total + term(t, q, omega)
         return total
 
+    def compiled_terms(self) -> tuple[CompiledTerm, ...] | None:
+        parts = [term.compiled_terms() for term in self.terms]
+        if any(part is None for part in parts):
+            return None
+        return tuple(t for part in parts if part is not None for t in part)
+
 
 @dataclass(frozen=True, eq=False)
 class ScaledTorque(Torque):
@@ -164,6 +207,12 @@ class ScaledTorque(Torque):
 
     def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
         return self.factor * self.torque(t, q, omega)
+
+    def compiled_terms(self) -> tuple[CompiledTerm, ...] | None:
+        inner = self.torque.compiled_terms()
+        if inner is None:
+            return None
+        return tuple((code, self.factor * factor, payload) for code, factor, payload in inner)
 
 
 @dataclass(frozen=True, eq=False)
@@ -249,6 +298,9 @@ class EddyCurrentTorque(Torque):
         w_inertial = np.einsum("...ij,...j->...i", A, omega)
         return np.einsum("...ji,...j->...i", A, self.inertial(t, w_inertial))
 
+    def compiled_terms(self) -> tuple[CompiledTerm, ...]:
+        return ((TERM_EDDY_CURRENT, 1.0, (self.M0, self.omega, self.beta)),)
+
 
 def _body_from_inertial(q: FloatArray, v: FloatArray) -> FloatArray:
     """Body components Aᵀv of inertial vectors v for attitudes q (batched: (..., 4), (..., 3))."""
@@ -277,6 +329,9 @@ class ConstantInertialTorque(Torque):
     def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
         q = np.asarray(q, dtype=float)
         return _body_from_inertial(q, np.broadcast_to(self.moment, (*q.shape[:-1], 3)))
+
+    def compiled_terms(self) -> tuple[CompiledTerm, ...]:
+        return ((TERM_INERTIAL_CONSTANT, 1.0, tuple(self.moment.tolist())),)
 
 
 @dataclass(frozen=True, eq=False)
@@ -348,3 +403,7 @@ class GravityGradientTorque(Torque):
         r = np.broadcast_to(self.radial(t), (*q.shape[:-1], 3))
         rb = _body_from_inertial(q, r)
         return 3.0 * self.n**2 * np.cross(rb, self.inertia * rb)
+
+    def compiled_terms(self) -> tuple[CompiledTerm, ...]:
+        payload = (*self.inertia.tolist(), self.n, self.u0, *self.basis.ravel().tolist())
+        return ((TERM_GRAVITY_GRADIENT, 1.0, payload),)

@@ -38,6 +38,8 @@ class RunRequest:
         Physical scaling (for physical-units scenarios), kept for the outputs.
     verify : bool
         Also measure the averaging error at ε, ε/2, ε/4 (``[run] verify``, issue 5).
+    integrator : {"auto", "numba", "scipy"}
+        How the full equations are integrated (``[run] integrator``, issue 6).
     """
 
     model: ModelRecord
@@ -49,6 +51,7 @@ class RunRequest:
     atol: float = DEFAULT_ATOL
     scaling: Any = None
     verify: bool = False
+    integrator: str = "auto"
 
 
 @dataclass(frozen=True)
@@ -114,6 +117,7 @@ def to_dataset(model: ModelRecord, traj: Trajectory, p: Any) -> xr.Dataset:
         form=traj.form,
         wall_time_s=traj.wall_time,
         nfev=traj.nfev,
+        integrator=traj.integrator or "closed form",
     )
     return ds
 
@@ -155,7 +159,16 @@ def run(request: RunRequest) -> RunResult:
     for method in request.methods:  # refuse before any work is done
         model.check_method(p, method)
     trajectories = {
-        m: simulate(model, p, st, request.tau, m, rtol=request.rtol, atol=request.atol)
+        m: simulate(
+            model,
+            p,
+            st,
+            request.tau,
+            m,
+            rtol=request.rtol,
+            atol=request.atol,
+            integrator=request.integrator,
+        )
         for m in request.methods
     }
     datasets = {m: to_dataset(model, t, p) for m, t in trajectories.items()}

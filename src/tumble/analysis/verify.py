@@ -246,7 +246,16 @@ def _verify_closed_form(request: RunRequest) -> VerifyResult:
     model, p, st = request.model, request.params, request.initial
     model.check_method(p, "closed_form")
     tau = np.asarray(request.tau, dtype=float)
-    full = simulate(model, p, st, tau, "full", rtol=request.rtol, atol=request.atol)
+    full = simulate(
+        model,
+        p,
+        st,
+        tau,
+        "full",
+        rtol=request.rtol,
+        atol=request.atol,
+        integrator=request.integrator,
+    )
     closed = simulate(model, p, st, tau, "closed_form")
     shared = [c for c in model.method_columns(p, "closed_form") if c.name in full.columns]
     curves, errors, worst = {}, {}, 0.0
@@ -332,7 +341,16 @@ def verify(request: RunRequest, factors: Sequence[float] = VERIFY_FACTORS) -> Ve
             issues.append([])
             continue
         failures.append(None)
-        full = simulate(model, pe, st, tau, "full", rtol=request.rtol, atol=request.atol)
+        full = simulate(
+            model,
+            pe,
+            st,
+            tau,
+            "full",
+            rtol=request.rtol,
+            atol=request.atol,
+            integrator=request.integrator,
+        )
         errs = slow_errors(model, pe, full, avg)
         for v in errs:
             if v in full.columns:

@@ -15,13 +15,20 @@ from typing import Any, Literal
 import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
+from tumble.compiled import Kernel
 from tumble.errors import IntegrationError, ParameterError
 from tumble.integrate.ode import DEFAULT_ATOL, DEFAULT_RTOL, DenseSolution, check_times, integrate
 from tumble.models.base import AveragedForm, FullForm, ModelRecord
 
-__all__ = ["Method", "Trajectory", "simulate"]
+__all__ = ["INTEGRATORS", "Method", "Trajectory", "simulate"]
 
 Method = Literal["full", "averaged", "closed_form"]
+
+INTEGRATORS = ("auto", "numba", "scipy")
+"""How the full equations are integrated (the scenario key ``[run] integrator``): ``"numba"``
+the compiled DOP853 of :mod:`tumble.compiled`; ``"scipy"`` scipy's DOP853 on the model's
+Python right-hand side (the reference); ``"auto"`` (default) the compiled one unless the
+parameters hold a Python function (a user torque, a pressure given as a function)."""
 
 
 @dataclass(frozen=True)
@@ -45,6 +52,11 @@ class Trajectory:
     steps : ndarray
         The integrator's step times (empty for closed forms): a grid that resolves every fast
         oscillation, for locating extrema.
+    integrator : str
+        ``"numba"``, ``"scipy"`` or ``""`` (closed forms).
+    events, event_signs : ndarray
+        Zeros of the full form's event function found during a compiled integration (e.g. the
+        extrema of θ), and the sign of the event function before each.
     """
 
     tau: FloatArray
@@ -55,6 +67,9 @@ class Trajectory:
     nfev: int
     slow: Callable[[FloatArray], dict[str, FloatArray]] = field(repr=False)
     steps: FloatArray = field(default_factory=lambda: np.empty(0), repr=False)
+    integrator: str = ""
+    events: FloatArray = field(default_factory=lambda: np.empty(0), repr=False)
+    event_signs: FloatArray = field(default_factory=lambda: np.empty(0), repr=False)
 
 
 def _unwrap_columns(
@@ -99,6 +114,7 @@ def simulate(
     rtol: float = DEFAULT_RTOL,
     atol: float = DEFAULT_ATOL,
     form: str | None = None,
+    integrator: str = "auto",
 ) -> Trajectory:
     """Run one method of ``model`` from ``initial`` and sample it at ``tau``.
 
@@ -118,12 +134,21 @@ def simulate(
         Integration tolerances (ignored by ``closed_form``).
     form : str, optional
         For ``full``: one of ``model.full_forms`` (default: the model's recommended form).
+    integrator : {"auto", "numba", "scipy"}
+        For ``full``: the compiled integrator or scipy's (see :data:`INTEGRATORS`). The
+        averaged equations are always integrated by scipy: they take few steps, and their
+        right-hand sides (averages by elliptic integrals or quadrature) are Python.
 
     Returns
     -------
     Trajectory
     """
     tau = check_times(tau)
+    if integrator not in INTEGRATORS:
+        raise ParameterError(
+            f"run.integrator = {integrator!r} is not an integrator "
+            '(allowed: "auto", "numba", "scipy")'
+        )
     if method not in model.methods:
         raise ParameterError(
             f"run.methods: {method!r} is not a method of {model.name} "
@@ -142,12 +167,14 @@ def simulate(
                 )
             eq = full = model.full if form is None else model.full_forms[form]
             kind = "full equations"
+            kernel = _kernel(model, full, p, integrator)
 
             def to_columns(t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
                 return full.to_columns(t, Y, p)
         else:
             eq = avg = model.averaged_form(p, initial)
             kind = "averaged equations"
+            kernel = None
 
             def to_columns(t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
                 return avg.to_columns(t, Y, p, initial)
@@ -161,6 +188,7 @@ def simulate(
                 atol=atol,
                 what=f"{model.name} {kind} {eq.equation}",
                 breakpoints=eq.breakpoints if isinstance(eq, AveragedForm) else (),
+                kernel=kernel,
             )
         except IntegrationError as exc:
             reason = eq.failure() if isinstance(eq, AveragedForm) and eq.failure else None
@@ -169,6 +197,7 @@ def simulate(
             raise IntegrationError(f"{exc}; last refused state: {reason}") from None
         cols = _sampled(model, p, method, sol, to_columns, tau, initial)
         used, nfev, steps = eq.name, sol.nfev, sol.ts
+        integrator_used, events, signs = sol.integrator, sol.events, sol.event_signs
 
         def slow(t: FloatArray) -> dict[str, FloatArray]:
             return to_columns(t, sol(t))
@@ -176,9 +205,30 @@ def simulate(
     else:
         cols = model.closed_form(p, initial, tau)
         used, nfev, steps = "closed_form", 0, np.empty(0)
+        integrator_used, events, signs = "", np.empty(0), np.empty(0)
 
         def slow(t: FloatArray) -> dict[str, FloatArray]:
             return model.closed_form(p, initial, t)
 
     wall = time.perf_counter() - start
-    return Trajectory(tau, cols, method, used, wall, nfev, slow, steps)
+    return Trajectory(
+        tau, cols, method, used, wall, nfev, slow, steps, integrator_used, events, signs
+    )
+
+
+def _kernel(model: ModelRecord, full: FullForm, p: Any, integrator: str) -> Kernel | None:
+    """The compiled kernel of a full form for ``integrator``; None for the scipy path."""
+    if integrator == "scipy":
+        return None
+    kernel = full.kernel(p) if full.kernel is not None else None
+    if kernel is None and integrator == "numba":
+        why = (
+            "it has no compiled form"
+            if full.kernel is None
+            else "its parameters hold a Python function"
+        )
+        raise ParameterError(
+            f"run.integrator = 'numba' cannot integrate the {full.name} form of {model.name}: "
+            f'{why} (use "auto" or "scipy")'
+        )
+    return kernel

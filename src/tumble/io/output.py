@@ -123,6 +123,7 @@ def summary(
                 "form": ds.attrs["form"],
                 "wall_time_s": ds.attrs["wall_time_s"],
                 "nfev": ds.attrs["nfev"],
+                "integrator": ds.attrs["integrator"],
                 "final": _final_state(ds),
             }
             for m, ds in result.datasets.items()

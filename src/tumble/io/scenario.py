@@ -75,6 +75,9 @@ class RunSection(_Section):
         "closed_form", description='"closed_form" or "numeric"'
     )
     verify: bool = Field(False, description="true or false")
+    integrator: Literal["auto", "numba", "scipy"] = Field(
+        "auto", description='"auto", "numba" or "scipy"'
+    )
 
 
 class PhysicalRunSection(_Section):
@@ -90,6 +93,9 @@ class PhysicalRunSection(_Section):
         "closed_form", description='"closed_form" or "numeric"'
     )
     verify: bool = Field(False, description="true or false")
+    integrator: Literal["auto", "numba", "scipy"] = Field(
+        "auto", description='"auto", "numba" or "scipy"'
+    )
 
 
 class RMParameters(_Section):
@@ -362,7 +368,16 @@ def _resisting_medium(data: dict[str, Any]) -> tuple[RunRequest, dict[str, Any]]
         tau, scaling, run = _times(sc.run, "tau_end", "tau"), None, sc.run
     rtol, atol = _tolerances(run)
     request = RunRequest(
-        model, p, st, tau, _methods(run, model.methods), rtol, atol, scaling, run.verify
+        model,
+        p,
+        st,
+        tau,
+        _methods(run, model.methods),
+        rtol,
+        atol,
+        scaling,
+        run.verify,
+        run.integrator,
     )
     return request, sc.model_dump()
 
@@ -413,7 +428,9 @@ def _rotating_field(data: dict[str, Any]) -> tuple[RunRequest, dict[str, Any]]:
         tau, scaling = _times(sc.run, "tau_end", "tau"), None
     rtol, atol = _tolerances(sc.run)
     methods = _methods(sc.run, model.methods)
-    request = RunRequest(model, p, st, tau, methods, rtol, atol, scaling, sc.run.verify)
+    request = RunRequest(
+        model, p, st, tau, methods, rtol, atol, scaling, sc.run.verify, sc.run.integrator
+    )
     return request, sc.model_dump()
 
 
@@ -471,6 +488,9 @@ class NMRunSection(_Section):
     rtol: float = Field(1e-10, description="a number in [1e-14, 1e-3]")
     atol: float = Field(1e-12, description="a number in (0, 1e-3]")
     verify: bool = Field(False, description="true or false")
+    integrator: Literal["auto", "numba", "scipy"] = Field(
+        "auto", description='"auto", "numba" or "scipy"'
+    )
 
 
 class NMScenario(_Section):
@@ -526,7 +546,9 @@ def _nonlinear_moment(data: dict[str, Any]) -> tuple[RunRequest, dict[str, Any]]
         model.check_method(p, m)  # closed_form needs ε = 0, averaged needs ε > 0
     rtol, atol = _tolerances(run)
     nonlinear_moment.orbit_of(p, st)  # no motion (e.g. a separatrix) → one line, before any run
-    request = RunRequest(model, p, st, t, methods, rtol, atol, verify=run.verify)
+    request = RunRequest(
+        model, p, st, t, methods, rtol, atol, verify=run.verify, integrator=run.integrator
+    )
     return request, sc.model_dump()
 
 
@@ -602,6 +624,9 @@ class TBRunSection(_Section):
     rtol: float = Field(1e-10, description="a number in [1e-14, 1e-3]")
     atol: float = Field(1e-12, description="a number in (0, 1e-3]")
     verify: bool = Field(False, description="true or false")
+    integrator: Literal["auto", "numba", "scipy"] = Field(
+        "auto", description='"auto", "numba" or "scipy"'
+    )
 
 
 class TBScenario(_Section):
@@ -715,7 +740,9 @@ def _torqued_body(data: dict[str, Any], base: Path) -> tuple[RunRequest, dict[st
     for m in methods:
         model.check_method(p, m)
     rtol, atol = _tolerances(run)
-    request = RunRequest(model, p, st, t, methods, rtol, atol, verify=run.verify)
+    request = RunRequest(
+        model, p, st, t, methods, rtol, atol, verify=run.verify, integrator=run.integrator
+    )
     return request, sc.model_dump()
 
 

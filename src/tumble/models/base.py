@@ -15,6 +15,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from tumble._typing import ArrayLike, FloatArray
+from tumble.compiled import Kernel
 from tumble.errors import ParameterError
 
 __all__ = [
@@ -50,6 +51,9 @@ class FullForm:
 
     ``rhs(t, y, p)`` is the right-hand side; ``from_slow(p, initial)`` builds the state vector;
     ``to_columns(t, Y, p)`` turns states ``Y`` of shape (n, dim) into output columns.
+    ``kernel(p)`` gives the same right-hand side compiled (:class:`tumble.compiled.Kernel`), or
+    None where ``p`` holds a Python function; ``rhs`` stays the reference that the scipy
+    integrator runs.
     """
 
     name: str
@@ -57,6 +61,7 @@ class FullForm:
     rhs: Callable[[float, FloatArray, Any], FloatArray]
     from_slow: Callable[[Any, Any], FloatArray]
     to_columns: Callable[[FloatArray, FloatArray, Any], dict[str, FloatArray]]
+    kernel: Callable[[Any], Kernel | None] | None = None
 
 
 @dataclass(frozen=True)

@@ -39,6 +39,7 @@ from tumble.averaging.nutation import (
     potential_gradient,
     torque_perturbation,
 )
+from tumble.compiled import EVENT_THETA_DOT, KIND_NONLINEAR_MOMENT, Kernel
 from tumble.errors import IntegrationError, ParameterError, check_range
 from tumble.models.base import (
     AveragedForm,
@@ -916,9 +917,10 @@ def closed_form(p: Params, st: State, t: FloatArray) -> dict[str, FloatArray]:
 def extrema(traj: Any, p: Params) -> list[tuple[str, int, float, float, float, float]]:
     """Every local maximum and minimum of θ(t) of a full trajectory for 0 < t < t_end.
 
-    A start at a turning point is not counted (spec §14). Zeros of θ' are bracketed on the
-    integrator's steps (subdivided four times, so no swing is missed) and refined on the
-    dense output.
+    A start at a turning point is not counted (spec §14). A compiled run located the zeros of
+    θ' as it integrated (:data:`tumble.compiled.EVENT_THETA_DOT`); otherwise they are
+    bracketed on the integrator's steps (subdivided four times, so no swing is missed) and
+    refined on the dense output.
 
     Parameters
     ----------
@@ -933,8 +935,30 @@ def extrema(traj: Any, p: Params) -> list[tuple[str, int, float, float, float, f
     """
     from scipy.optimize import brentq
 
-    steps = np.asarray(traj.steps, dtype=float)
     t_end = float(traj.tau[-1])
+    if getattr(traj, "integrator", "") == "numba":
+        keep = (traj.events > 0.0) & (traj.events < t_end)
+        times, signs = traj.events[keep], traj.event_signs[keep]
+        if times.size == 0:
+            return []
+        cols = traj.slow(times)
+        kinds = ["max" if sign > 0.0 else "min" for sign in signs]
+        counts = {"max": 0, "min": 0}
+        found = []
+        for j, kind in enumerate(kinds):
+            counts[kind] += 1
+            found.append(
+                (
+                    kind,
+                    counts[kind],
+                    float(times[j]),
+                    float(cols["theta"][j]),
+                    float(cols["R"][j]),
+                    float(cols["G"][j]),
+                )
+            )
+        return found
+    steps = np.asarray(traj.steps, dtype=float)
     if steps.size < 2:
         steps = np.linspace(0.0, t_end, 2)
     frac = np.linspace(0.0, 1.0, 5)[:-1]
@@ -1231,12 +1255,34 @@ def _columns_for(p: Params) -> dict[str, tuple[Column, ...]]:
     return {"full": _UNPERTURBED, "averaged": _AVERAGED, "closed_form": _UNPERTURBED}
 
 
+_PRESSURE_CODES = {"constant": 0, "exp": 1, "table": 2}
+
+
+def full_kernel(p: Params) -> Kernel | None:
+    """:func:`full_rhs` compiled (:mod:`tumble.compiled`), locating the zeros of θ' (the
+    extrema of θ) as it goes; None for a pressure given as a Python function."""
+    pressure = p.pressure
+    if pressure.kind not in _PRESSURE_CODES:
+        return None
+    table = [float(len(pressure.tau)), *pressure.tau, *pressure.Q]
+    params = [p.mu, p.a, p.b, p.eps, p.d, p.nu, _PRESSURE_CODES[pressure.kind], p.Q0, *table]
+    if pressure.kind == "table" and p.eps > 0.0:
+        t_max = pressure.tau[-1] / p.eps
+        message = (
+            f"perturbation.pressure table covers τ in [{pressure.tau[0]:g}, "
+            f"{pressure.tau[-1]:g}], but the run needs τ beyond it"
+        )
+        return Kernel(KIND_NONLINEAR_MOMENT, np.array(params), EVENT_THETA_DOT, t_max, message)
+    return Kernel(KIND_NONLINEAR_MOMENT, np.array(params), EVENT_THETA_DOT)
+
+
 FULL_QUATERNION = FullForm(
     name="quaternion",
     equation="(1.1) with quaternion kinematics",
     rhs=full_rhs,
     from_slow=full_from_slow,
     to_columns=slow_from_full,
+    kernel=full_kernel,
 )
 FULL_REDUCED = FullForm(
     name="reduced",

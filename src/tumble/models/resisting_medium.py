@@ -24,6 +24,7 @@ import numpy as np
 from tumble._typing import ArrayLike, FloatArray
 from tumble.averaging.spinner import body_momentum, spinner_average, standard_form
 from tumble.bodies import RigidBody
+from tumble.compiled import Kernel, rigid_body_kernel
 from tumble.dynamics import rigid_body_rhs
 from tumble.errors import IntegrationError, ParameterError, check_finite, check_range
 from tumble.models.base import (
@@ -1269,12 +1270,19 @@ _COLUMNS_FULL = (
     Column("phi", "proper rotation angle φ", _ANGLE, "(1.3)", angle=True, unwrap=True),
 )
 
+
+def full_kernel(p: Params) -> Kernel | None:
+    """:func:`full_rhs` compiled (:mod:`tumble.compiled`): Euler + quaternions with (1.2)."""
+    return rigid_body_kernel(p.inertia, p.torque)
+
+
 FULL_EULER = FullForm(
     name="euler",
     equation="Euler + quaternions with (1.2)",
     rhs=full_rhs,
     from_slow=full_from_slow,
     to_columns=slow_from_full,
+    kernel=full_kernel,
 )
 FULL_OSCULATING = FullForm(
     name="osculating",

@@ -26,6 +26,7 @@ from scipy.special import ellipe, ellipj, ellipk
 from tumble._typing import ArrayLike, FloatArray
 from tumble.averaging.triaxial import triaxial_average_vector
 from tumble.bodies import RigidBody
+from tumble.compiled import KIND_ROTATING_FIELD, Kernel, rigid_body_kernel
 from tumble.dynamics import rigid_body_rhs
 from tumble.errors import ParameterError, check_range
 from tumble.models.base import (
@@ -1193,12 +1194,24 @@ _DIAGNOSTICS = (
     Column("nu2", "mean precession rate ν2 about L", "1", "§8"),
 )
 
+
+def full_kernel(p: Params) -> Kernel:
+    """:func:`full_rhs` compiled (:mod:`tumble.compiled`): the rotating-frame form (1.5)."""
+    return Kernel(KIND_ROTATING_FIELD, np.concatenate([p.inertia, [p.eps], p.hh.ravel()]))
+
+
+def inertial_kernel(p: Params) -> Kernel | None:
+    """:func:`inertial_rhs` compiled: (1.4) with the eddy-current moment (1.3)."""
+    return rigid_body_kernel(p.inertia, p.torque)
+
+
 FULL_ROTATING = FullForm(
     name="rotating",
     equation="(1.5)",
     rhs=full_rhs,
     from_slow=full_from_slow,
     to_columns=slow_from_full,
+    kernel=full_kernel,
 )
 FULL_INERTIAL = FullForm(
     name="inertial",
@@ -1206,6 +1219,7 @@ FULL_INERTIAL = FullForm(
     rhs=inertial_rhs,
     from_slow=_inertial_from_slow,
     to_columns=_inertial_columns,
+    kernel=inertial_kernel,
 )
 
 

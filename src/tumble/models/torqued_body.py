@@ -32,6 +32,7 @@ import numpy as np
 from tumble._typing import FloatArray
 from tumble.averaging import nearest_resonance, triaxial_average_vector
 from tumble.bodies import RigidBody
+from tumble.compiled import Kernel, rigid_body_kernel
 from tumble.dynamics import rigid_body_rhs
 from tumble.errors import ParameterError, check_range
 from tumble.models.base import (
@@ -506,12 +507,19 @@ _COLUMNS_FULL = (
     Column("w3", "body angular velocity ω3", "rad/t", "Euler"),
 )
 
+
+def full_kernel(p: Params) -> Kernel | None:
+    """:func:`full_rhs` compiled (:mod:`tumble.compiled`); None for a user torque function."""
+    return rigid_body_kernel(p.inertia, p.scaled)
+
+
 FULL = FullForm(
     name="quaternion",
     equation="Euler's equations with quaternion kinematics",
     rhs=full_rhs,
     from_slow=_full_from_slow,
     to_columns=_full_columns,
+    kernel=full_kernel,
 )
 
 

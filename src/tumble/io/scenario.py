@@ -232,7 +232,11 @@ def _path(loc: tuple[int | str, ...]) -> str:
     for part in loc:
         if isinstance(part, int):
             out += f"[{part}]"
-        elif not str(part).startswith(("function-", "literal[", "list[", "float", "int")):
+        # Skip pydantic's union-member tags ("float", "literal['a']", …), not keys that
+        # merely begin like one ("integrator").
+        elif str(part) not in ("float", "int") and not str(part).startswith(
+            ("function-", "literal[", "list[")
+        ):
             out += f".{part}" if out else str(part)
     return out
 

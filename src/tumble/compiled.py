@@ -337,6 +337,21 @@ def _initial_step(
 
 
 @numba.njit(**_KERNEL)
+def _stages(
+    kind: int, p: FloatArray, t: float, h: float, y: FloatArray, K: FloatArray,
+    tmp: FloatArray, first: int, last: int,
+) -> None:  # fmt: skip
+    """Stages first … last − 1 of the step from (t, y) of size h into the rows of K."""
+    for s in range(first, last):
+        for j in range(y.size):
+            acc = 0.0
+            for k in range(s):
+                acc += _A[s, k] * K[k, j]
+            tmp[j] = y[j] + h * acc
+        _rhs(kind, t + _C[s] * h, tmp, p, K[s])
+
+
+@numba.njit(**_KERNEL)
 def _dense(
     kind: int, p: FloatArray, t: float, h: float, y: FloatArray, y_new: FloatArray,
     K: FloatArray, F: FloatArray, tmp: FloatArray,
@@ -344,13 +359,7 @@ def _dense(
     """The interpolant's coefficient rows F (7, n) of the step (t, y) → (t + h, y_new); K holds
     the 13 stages of the step and receives the three extra ones."""
     n = y.size
-    for s in range(_NS + 1, _NX):
-        for j in range(n):
-            acc = 0.0
-            for k in range(s):
-                acc += _A[s, k] * K[k, j]
-            tmp[j] = y[j] + h * acc
-        _rhs(kind, t + _C[s] * h, tmp, p, K[s])
+    _stages(kind, p, t, h, y, K, tmp, _NS + 1, _NX)
     for j in range(n):
         dy = y_new[j] - y[j]
         F[0, j] = dy
@@ -490,13 +499,7 @@ def _solve(
                 t_new = t1
             h = t_new - t
             h_abs = h
-            for s in range(1, _NS):
-                for j in range(n):
-                    acc = 0.0
-                    for k in range(s):
-                        acc += _A[s, k] * K[k, j]
-                    tmp[j] = y[j] + h * acc
-                _rhs(kind, t + _C[s] * h, tmp, p, K[s])
+            _stages(kind, p, t, h, y, K, tmp, 1, _NS)
             for j in range(n):
                 acc = 0.0
                 for k in range(_NS):

@@ -241,21 +241,26 @@ this of it, relative to max(1, |column|): far above the integration error at the
 tolerance (rtol 1e-10 over thousands of periods), far below any error of a wrong formula."""
 
 
-def _verify_closed_form(request: RunRequest) -> VerifyResult:
-    """ε = 0: the exact unperturbed motion in closed form against the full integration."""
-    model, p, st = request.model, request.params, request.initial
-    model.check_method(p, "closed_form")
-    tau = np.asarray(request.tau, dtype=float)
-    full = simulate(
-        model,
+def _full(request: RunRequest, p: Any, tau: FloatArray) -> Trajectory:
+    """The full run of ``request`` with parameters ``p``, at its tolerances and integrator."""
+    return simulate(
+        request.model,
         p,
-        st,
+        request.initial,
         tau,
         "full",
         rtol=request.rtol,
         atol=request.atol,
         integrator=request.integrator,
     )
+
+
+def _verify_closed_form(request: RunRequest) -> VerifyResult:
+    """ε = 0: the exact unperturbed motion in closed form against the full integration."""
+    model, p, st = request.model, request.params, request.initial
+    model.check_method(p, "closed_form")
+    tau = np.asarray(request.tau, dtype=float)
+    full = _full(request, p, tau)
     closed = simulate(model, p, st, tau, "closed_form")
     shared = [c for c in model.method_columns(p, "closed_form") if c.name in full.columns]
     curves, errors, worst = {}, {}, 0.0
@@ -341,16 +346,7 @@ def verify(request: RunRequest, factors: Sequence[float] = VERIFY_FACTORS) -> Ve
             issues.append([])
             continue
         failures.append(None)
-        full = simulate(
-            model,
-            pe,
-            st,
-            tau,
-            "full",
-            rtol=request.rtol,
-            atol=request.atol,
-            integrator=request.integrator,
-        )
+        full = _full(request, pe, tau)
         errs = slow_errors(model, pe, full, avg)
         for v in errs:
             if v in full.columns:

@@ -1266,14 +1266,15 @@ def full_kernel(p: Params) -> Kernel | None:
         return None
     table = [float(len(pressure.tau)), *pressure.tau, *pressure.Q]
     params = [p.mu, p.a, p.b, p.eps, p.d, p.nu, _PRESSURE_CODES[pressure.kind], p.Q0, *table]
-    if pressure.kind == "table" and p.eps > 0.0:
-        t_max = pressure.tau[-1] / p.eps
-        message = (
-            f"perturbation.pressure table covers τ in [{pressure.tau[0]:g}, "
-            f"{pressure.tau[-1]:g}], but the run needs τ beyond it"
-        )
-        return Kernel(KIND_NONLINEAR_MOMENT, np.array(params), EVENT_THETA_DOT, t_max, message)
-    return Kernel(KIND_NONLINEAR_MOMENT, np.array(params), EVENT_THETA_DOT)
+    # The last time the profile covers (τ_max/ε; unbounded for a closed-form profile).
+    t_max = pressure.tau_max / p.eps if p.eps > 0.0 else math.inf
+    message = (
+        f"perturbation.pressure table covers τ in [{pressure.tau[0]:g}, {pressure.tau_max:g}], "
+        "but the run needs τ beyond it"
+        if pressure.tau
+        else ""
+    )
+    return Kernel(KIND_NONLINEAR_MOMENT, np.array(params), EVENT_THETA_DOT, t_max, message)
 
 
 FULL_QUATERNION = FullForm(

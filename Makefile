@@ -2,7 +2,7 @@
 #
 #   make demo    run every scenario in examples/ (outputs under out/<name>/)
 #   make test    the test suite without the slow studies (what CI runs: .ci/run)
-#   make bench   the slow studies only (pytest -m slow)
+#   make bench   the slow studies only (pytest -m slow), with heyoka.py (the bench extra)
 #   make lint    ruff, mypy and the import-layer contract
 #   make clean   remove outputs and caches (keeps .venv; `make distclean` removes it too)
 
@@ -42,6 +42,7 @@ test: $(TEST_STAMP)
 	$(BIN)/python -m pytest -m "not slow" -q
 
 bench: $(TEST_STAMP)
+	$(BIN)/python -m pip install -e ".[test,bench]"
 	$(BIN)/python -m pytest -m slow -q
 
 lint: $(DEV_STAMP)

@@ -1,4 +1,5 @@
-"""Command-line interface: ``tumble run | verify | models | init | stability | stability-map``.
+"""Command-line interface: ``tumble run | verify | models | init | stability | stability-map |
+bench``.
 
 Commands only translate arguments: the work is done by library functions a notebook can call.
 Bad input prints one red line to stderr and exits 2; a failed integration exits 3.
@@ -331,6 +332,179 @@ def stability_map_cmd(
 
     files = _guarded(work)
     out.print(f"written: {', '.join(str(f) for f in files)}", highlight=False)
+
+
+def _bench_tables(r: dict[str, Any]) -> list[Table]:
+    """The benchmark's figures as tables, each target beside its figure."""
+    tg, st = r["targets"], r["settings"]
+    tables = []
+
+    def yes(met: bool) -> str:
+        return "[green]yes[/]" if met else "[red]no[/]"
+
+    if r["full_speedup_vs_scipy"]:
+        t = Table(
+            title=f"Full simulation, {st['horizon']:g} time units at rtol {st['rtol']:g}: "
+            "compiled DOP853 vs scipy DOP853 with a Python right-hand side",
+            title_justify="left",
+        )
+        for col in ("case", "tumble [s]", "error", "scipy [s]", "error", "speed-up", "≥ 50×"):
+            t.add_column(col, justify="left" if col == "case" else "right")
+        for name, v in r["full_speedup_vs_scipy"].items():
+            t.add_row(
+                name,
+                f"{v['tumble_s']:.3g}",
+                f"{v['tumble_error']:.1e}",
+                f"{v['scipy_s']:.3g}",
+                f"{v['scipy_error']:.1e}",
+                f"{v['speedup']:.0f}×",
+                yes(v["speedup"] >= tg["full_speedup_vs_scipy"]),
+            )
+        tables.append(t)
+    if r["full_time_ratio_vs_heyoka"]:
+        t = Table(title="Against heyoka.py (Taylor, LLVM) at equal error", title_justify="left")
+        for col in ("case", "tumble [s]", "error", "heyoka [s]", "ratio", "≤ 1.5", "≤ 1.0"):
+            t.add_column(col, justify="left" if col == "case" else "right")
+        for name, v in r["full_time_ratio_vs_heyoka"].items():
+            label = f"{name} (no s)" if v["note"] else name
+            t.add_row(
+                label,
+                f"{v['tumble_s']:.3g}",
+                f"{v['tumble_error']:.1e}",
+                f"{v['heyoka_s_at_equal_error']:.3g}" + ("" if v["bracketed"] else "*"),
+                f"{v['ratio']:.2f}",
+                yes(v["ratio"] <= tg["full_time_ratio_vs_heyoka"]),
+                yes(v["ratio"] <= tg["full_time_ratio_vs_heyoka_stretch"]),
+            )
+        tables.append(t)
+    t = Table(
+        title="Averaged (and closed form) vs full over the template's slow horizon; "
+        "error relative, on the slow variables",
+        title_justify="left",
+    )
+    for col in (
+        "model",
+        "ε",
+        "full [s]",
+        "averaged [s]",
+        "error",
+        "speed-up",
+        "at equal accuracy",
+        "nfev ratio",
+        "closed form [s]",
+        "speed-up",
+    ):
+        t.add_column(col, justify="left" if col == "model" else "right")
+    for name, by_eps in r["averaged_speedup"].items():
+        for eps, v in by_eps.items():
+            a, c = v["averaged"], v.get("closed_form")
+            t.add_row(
+                name,
+                eps,
+                f"{v['full_s']:.3g}",
+                f"{a['time_s']:.3g}",
+                f"{a['error']:.1e}",
+                f"{a['speedup']:.3g}×",
+                f"{a['speedup_equal_accuracy']:.3g}×" if "speedup_equal_accuracy" in a else "—",
+                f"{a['nfev_ratio']:.0f}",
+                f"{c['time_s']:.3g}" if c else "—",
+                f"{c['speedup']:.3g}×" if c else "—",
+            )
+    tables.append(t)
+    b = r["batch_throughput"]
+    t = Table(
+        title=f"Batch: {b['size']} trajectories, {b['case']} (error {b['error']:.1e})",
+        title_justify="left",
+    )
+    for col in ("threads", "trajectories/s", "efficiency", "≥ 0.8"):
+        t.add_column(col, justify="right")
+    for n, v in b["threads"].items():
+        t.add_row(
+            n,
+            f"{v['trajectories_per_s']:.4g}",
+            f"{v['efficiency']:.2f}",
+            yes(v["efficiency"] >= tg["batch_efficiency"]) if n != "1" else "",
+        )
+    tables.append(t)
+    if "compile" in r:
+        c = r["compile"]
+        t = Table(
+            title="Compile: first call of each case from an empty cache (fresh process)",
+            title_justify="left",
+        )
+        t.add_column("case")
+        t.add_column("first call [s]", justify="right")
+        for name, sec in c["first_call_s"].items():
+            t.add_row(name, f"{sec:.2f}")
+        t.add_row(
+            "[bold]total[/]",
+            f"{c['total_s']:.2f} (≤ 5: {'yes' if c['total_s'] <= tg['compile_s'] else 'no'})",
+        )
+        t.add_row("from the cache, all", f"{c['cached_total_s']:.2f}")
+        tables.append(t)
+    return tables
+
+
+@app.command("bench")
+def bench_cmd(
+    as_json: Annotated[bool, typer.Option("--json", help="print the figures as JSON")] = False,
+    output: Annotated[
+        Path | None, typer.Option("-o", "--output", help="also write the JSON to this file")
+    ] = None,
+    quick: Annotated[
+        bool,
+        typer.Option("--quick", help="horizon 1e3, one repeat, no compile study (a check)"),
+    ] = False,
+    horizon: Annotated[
+        float | None, typer.Option(help="length of the full runs [time units]; default 1e5")
+    ] = None,
+    repeat: Annotated[int | None, typer.Option(help="timed calls per figure; default 5")] = None,
+    scipy: Annotated[bool, typer.Option(help="time scipy with Python right-hand sides")] = True,
+    heyoka: Annotated[bool, typer.Option(help="compare with heyoka.py if installed")] = True,
+    compile_study: Annotated[
+        bool, typer.Option("--compile/--no-compile", help="time the cold compile")
+    ] = True,
+) -> None:
+    """Measure tumble's speed against scipy and heyoka.py, averaged against full, batches
+    over cores and the compile time, each figure beside its target (issue 6)."""
+    import json
+
+    from rich.status import Status
+
+    from tumble.bench import BenchSettings, run_benchmark
+    from tumble.io.output import atomic_write
+
+    def work() -> dict[str, Any]:
+        settings = BenchSettings(
+            horizon=horizon if horizon is not None else (1e3 if quick else 1e5),
+            repeat=repeat if repeat is not None else (1 if quick else 5),
+            scipy=scipy,
+            heyoka=heyoka,
+            compile=compile_study and not quick,
+        )
+        with Status("benchmark", console=err) as status:
+            return run_benchmark(settings, log=lambda msg: status.update(msg))
+
+    result = _guarded(work)
+    text = json.dumps(result, indent=1, ensure_ascii=False)
+    if output is not None:
+        output.parent.mkdir(parents=True, exist_ok=True)
+        atomic_write(output, text.encode())
+    if as_json:
+        print(text)
+        return
+    for table in _bench_tables(result):
+        out.print(table)
+    missed = [v for v in result["verdicts"] if not v["met"]]
+    out.print(
+        f"{len(result['verdicts']) - len(missed)} of {len(result['verdicts'])} targets met"
+        + "".join(
+            f"\n  [red]missed:[/] {v['what']}: {v['value']:.3g} "
+            f"(target {'≥' if v['at_least'] else '≤'} {v['target']:g})"
+            for v in missed
+        ),
+        highlight=False,
+    )
 
 
 def main() -> None:

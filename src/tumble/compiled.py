@@ -28,6 +28,7 @@ Kinds
 from __future__ import annotations
 
 import math
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from typing import Any
 
@@ -606,31 +607,6 @@ def _solve(
     return status, t, y, nfev, h, n_steps, ts, ys, Fs, y_eval, ev_t, ev_s, ev_y, n_ev
 
 
-@numba.njit(parallel=True, cache=True, nogil=True)
-def _solve_batch(
-    kind: int, P: FloatArray, Y0: FloatArray, t1: FloatArray, rtol: float, atol: float,
-    t_eval: FloatArray,
-):  # fmt: skip
-    """Integrate every row of Y0 with the parameters of the same row of P, in parallel."""
-    N = Y0.shape[0]
-    out = np.empty((N, t_eval.size, Y0.shape[1]))
-    status = np.empty(N, dtype=np.int64)
-    t_last = np.empty(N)
-    nfev = np.empty(N, dtype=np.int64)
-    for i in numba.prange(N):
-        res = _solve(
-            kind, P[i], Y0[i], 0.0, t1[i], rtol, atol, 0.0, t_eval, False, False, EVENT_NONE
-        )
-        status[i] = res[0]
-        t_last[i] = res[1]
-        nfev[i] = res[3]
-        y_eval = res[9]
-        for k in range(t_eval.size):
-            for j in range(Y0.shape[1]):
-                out[i, k, j] = y_eval[k * Y0.shape[1] + j]
-    return out, status, t_last, nfev
-
-
 @numba.njit(**_JIT)
 def _evaluate(kind: int, t: float, y: FloatArray, p: FloatArray) -> FloatArray:
     out = np.empty(y.size)
@@ -778,8 +754,8 @@ def _specialised(kind: int, args: tuple[Any, ...]) -> Any:
 
     With the kind a ``Literal[int]``, LLVM folds the right-hand side's dispatch and inlines
     the one kernel into the stage loops (about 1.8× faster than a runtime kind). Each kind's
-    specialisation is compiled once and cached on disk like any other signature; batches keep
-    the runtime kind, one compiled function for all.
+    specialisation is compiled once and cached on disk like any other signature, and
+    :func:`solve_batch` runs the same one.
     """
     signature = (numba.types.literal(kind), *(numba.typeof(a) for a in args))
     return _solve.compile(signature)
@@ -901,7 +877,9 @@ def solve_batch(
     rtol, atol : float
         Tolerances.
     threads : int, optional
-        Number of threads (default: numba's, i.e. all cores).
+        Number of threads (default: :func:`available_threads`). Each runs whole trajectories
+        through the integrator :func:`solve` uses, with the GIL released: the results do not
+        depend on the number of threads.
 
     Returns
     -------
@@ -916,17 +894,39 @@ def solve_batch(
         )
     T = np.ascontiguousarray(np.broadcast_to(np.asarray(t_end, dtype=float), (Y0.shape[0],)))
     te = np.ascontiguousarray(t_eval, dtype=np.float64)
-    previous = numba.get_num_threads()
-    if threads is not None:
-        numba.set_num_threads(max(1, min(int(threads), _MAX_THREADS)))
-    try:
-        y, status, t, nfev = _solve_batch(kind, P, Y0, T, float(rtol), float(atol), te)
-    finally:
-        numba.set_num_threads(previous)
+    N, n = Y0.shape
+    y = np.empty((N, te.size, n))
+    status = np.empty(N, dtype=np.int64)
+    t = np.empty(N)
+    nfev = np.empty(N, dtype=np.int64)
+    kind = int(kind)
+
+    def args(i: int) -> tuple[Any, ...]:
+        return (P[i], Y0[i], 0.0, float(T[i]), float(rtol), float(atol), 0.0, te, False, False,
+                EVENT_NONE)  # fmt: skip
+
+    if N == 0:
+        return BatchResult(y, status, t, nfev)
+    # The same compiled integrator as solve() (no second, parallel compile), looked up once;
+    # it releases the GIL, so threads run the trajectories concurrently.
+    entry = _specialised(kind, args(0))
+
+    def one(i: int) -> None:
+        res = entry(kind, *args(i))
+        status[i], t[i], nfev[i] = res[0], res[1], res[3]
+        y[i] = res[9].reshape(-1, n)
+
+    workers = max(1, min(_MAX_THREADS if threads is None else int(threads), _MAX_THREADS, N))
+    if workers == 1:
+        for i in range(N):
+            one(i)
+    else:
+        with ThreadPoolExecutor(max_workers=workers) as pool:
+            list(pool.map(one, range(N)))
     return BatchResult(y, status, t, nfev)
 
 
-_MAX_THREADS = numba.get_num_threads()  # at import: the cores, or NUMBA_NUM_THREADS
+_MAX_THREADS = numba.get_num_threads()  # the cores, or NUMBA_NUM_THREADS
 
 
 def available_threads() -> int:

@@ -1,0 +1,157 @@
+"""The performance benchmark (issue 6): its JSON contract, its helpers, and (slow, with
+heyoka.py from the bench extra) the heyoka transcription and the issue's targets."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from tumble import bench, compiled
+from tumble.cli import app
+from tumble.models import resisting_medium as rm
+from tumble.torques import (
+    ConstantBodyTorque,
+    ConstantInertialTorque,
+    EddyCurrentTorque,
+    GravityGradientTorque,
+    LinearDrag,
+)
+
+runner = CliRunner()
+
+JSON_KEYS = (
+    "full_speedup_vs_scipy",
+    "full_time_ratio_vs_heyoka",
+    "averaged_speedup",
+    "batch_throughput",
+)
+
+
+def test_bench_json_contract():
+    """``tumble bench --json`` prints the issue's keys with their error figures (a short
+    horizon: this checks the contract, not the machine)."""
+    res = runner.invoke(
+        app, ["bench", "--json", "--quick", "--horizon", "200", "--no-heyoka", "--no-compile"]
+    )
+    assert res.exit_code == 0, res.output
+    r = json.loads(res.stdout)
+    for key in (*JSON_KEYS, "targets", "verdicts", "machine", "settings"):
+        assert key in r
+    assert r["full_time_ratio_vs_heyoka"] is None  # --no-heyoka
+    assert set(r["full_speedup_vs_scipy"]) == {"free_body", *bench.FULL_MODELS}
+    for v in r["full_speedup_vs_scipy"].values():
+        # Same method and controller on the same equations: the step sequences agree until
+        # a rounding difference (fastmath, a different order of the torque's sums) flips an
+        # accept/reject decision, after which they differ by a few steps (measured ≤ 5 %);
+        # the errors stay of the same size (measured within 1.5×; both far below 1e-6).
+        assert abs(v["nfev"] - v["scipy_nfev"]) <= 0.1 * v["scipy_nfev"]
+        assert v["tumble_error"] < 1e-6 and v["scipy_error"] < 1e-6
+        # A compiled right-hand side is never slower than a Python one (measured ≥ 100×).
+        assert v["speedup"] > 5.0
+    assert set(r["averaged_speedup"]) == set(bench.PAPER_MODELS)
+    for by_eps in r["averaged_speedup"].values():
+        assert set(by_eps) == {"0.01", "0.001"}
+        for v in by_eps.values():
+            # First-order averaging over the templates' slow horizons: measured ≤ 1.1 %.
+            assert 0.0 < v["averaged"]["error"] < 0.05
+            assert v["averaged"]["nfev_ratio"] > 1.0
+    assert "closed_form" in r["averaged_speedup"]["resisting_medium"]["0.001"]
+    threads = r["batch_throughput"]["threads"]
+    assert "1" in threads and "2" in threads
+    assert all(t.get("identical_to_1_thread", True) for t in threads.values())
+    # The batch runs at rtol 1e-10 over 400 time units: its error against rtol 1e-13 is of
+    # the order of rtol times the flow's growth (measured 3e-8).
+    assert r["batch_throughput"]["error"] < 1e-6
+    names = {v["what"] for v in r["verdicts"]}
+    assert "batch: efficiency on 2 cores" in names
+
+
+def test_bench_bad_option_is_one_line_exit_2():
+    res = runner.invoke(app, ["bench", "--repeat", "0", "--quick"])
+    assert res.exit_code == 2
+    assert "--repeat = 0 must be at least 1" in res.output
+    assert "Traceback" not in res.output
+
+
+def test_without_quadratic_drag_keeps_the_other_terms():
+    """The smooth part compared with heyoka is the same model with s = 0."""
+    p = rm.Params(eps=0.01, kappa=0.5, a=[0.1, 0.2, 0.3], b=0.2 * np.eye(3), s=0.1 * np.eye(3))
+    p0 = rm.Params(eps=0.01, kappa=0.5, a=[0.1, 0.2, 0.3], b=0.2 * np.eye(3))
+    kernel = rm.full_kernel(p)
+    smooth = bench._without_quadratic_drag(kernel)
+    assert smooth is not None
+    assert bench._without_quadratic_drag(smooth) is None  # nothing left to strip
+    y = np.array([0.3, -0.7, 1.1, 0.9, 0.1, -0.3, 0.2])
+    got = compiled.evaluate_rhs(smooth, 1.3, y)
+    expected = compiled.evaluate_rhs(rm.full_kernel(p0), 1.3, y)
+    np.testing.assert_array_equal(got, expected)  # the same program, term for term
+    assert not np.array_equal(compiled.evaluate_rhs(kernel, 1.3, y), expected)
+
+
+def test_time_at_equal_error_interpolates_log_log():
+    ladder = [
+        {"error": 1e-4, "time_s": 1.0},
+        {"error": 1e-6, "time_s": 2.0},
+        {"error": 1e-8, "time_s": 4.0},
+    ]
+    t, bracketed = bench._at_equal_error(ladder, 1e-5)
+    assert bracketed and math.isclose(t, math.sqrt(2.0), rel_tol=1e-12)
+    t, bracketed = bench._at_equal_error(ladder, 1e-10)  # beyond the ladder: nearest rung
+    assert not bracketed and t == 4.0
+
+
+# ---------------------------------------------------------------------------------------------
+# With heyoka.py (`pip install -e .[bench]`; `make bench` installs it).
+
+
+def _heyoka_rhs(system, y, t):
+    import heyoka as hy
+
+    variables = [v for v, _ in system]
+    cf = hy.cfunc([e for _, e in system], vars=variables)
+    return np.asarray(cf(np.asarray(y, dtype=float), time=t))
+
+
+def _kernels():
+    inertia = np.array([1.0, 1.7, 2.2])
+    torque = (
+        ConstantBodyTorque([0.1, -0.2, 0.3])
+        + 0.5 * LinearDrag([[0.2, 0.01, 0.0], [0.0, 0.3, 0.02], [0.05, 0.0, 0.1]])
+        + ConstantInertialTorque([0.01, 0.02, 0.03])
+        + GravityGradientTorque(inertia, 0.3, [0.1, 0.2, 1.0], 0.4)
+        + 2.0 * EddyCurrentTorque(0.7, 1.3, 0.9)
+    )
+    kernel = compiled.rigid_body_kernel(inertia, torque)
+    assert kernel is not None
+    return [*(c.kernel for c in bench.full_cases(1e5)), kernel]
+
+
+@pytest.mark.slow
+def test_heyoka_systems_equal_the_compiled_kernels():
+    """The heyoka transcription of every kernel (every torque term, (1.5), the
+    nonlinear-moment form) equals the compiled one at random states."""
+    try:
+        import heyoka  # noqa: F401
+    except ImportError:
+        pytest.fail("heyoka.py is missing: pip install -e .[bench] (make bench does)")
+    rng = np.random.default_rng(3)
+    checked = 0
+    for kernel in _kernels():
+        system = bench.heyoka_system(kernel)
+        if system is None:  # the quadratic drag: its smooth part is checked instead
+            system = bench.heyoka_system(bench._without_quadratic_drag(kernel))
+            kernel = bench._without_quadratic_drag(kernel)
+        n = len(system)
+        for _ in range(5):
+            y = rng.normal(size=n)
+            t = float(rng.uniform(0.0, 20.0))
+            got = _heyoka_rhs(system, y, t)
+            expected = compiled.evaluate_rhs(kernel, t, y)
+            # Rounding of sums of products of O(1) terms, in a different order.
+            assert np.allclose(got, expected, rtol=1e-12, atol=1e-12 * np.abs(expected).max())
+        checked += 1
+    assert checked == 6

@@ -1,5 +1,5 @@
 """Command-line interface: ``tumble run | verify | models | init | stability | stability-map |
-bench``.
+bench | sweep``.
 
 Commands only translate arguments: the work is done by library functions a notebook can call.
 Bad input prints one red line to stderr and exits 2; a failed integration exits 3.
@@ -504,6 +504,113 @@ def bench_cmd(
             for v in missed
         ),
         highlight=False,
+    )
+
+
+@app.command("sweep")
+def sweep_cmd(
+    sweep_file: Annotated[Path, typer.Argument(help="TOML sweep file (base scenario + axes)")],
+    out_dir: Annotated[Path, typer.Option("-o", "--out", help="output directory")] = Path(
+        "out/sweep"
+    ),
+    scheduler: Annotated[
+        str | None,
+        typer.Option("--scheduler", help="a running Dask scheduler, tcp://HOST:PORT"),
+    ] = None,
+    workers: Annotated[
+        int | None,
+        typer.Option("--workers", min=1, help="local worker processes (default: every core)"),
+    ] = None,
+    plot: Annotated[bool, typer.Option(help="write sweep.png")] = True,
+) -> None:
+    """Run a scenario over grid axes and Monte Carlo draws on Dask: sweep.nc and sweep.png.
+
+    Started again with the same command, a sweep keeps the points it finished and computes
+    only the others.
+    """
+    from rich.progress import (
+        BarColumn,
+        MofNCompleteColumn,
+        Progress,
+        ProgressColumn,
+        Task,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
+    from rich.text import Text
+
+    from tumble.sweep import run_sweep
+
+    if scheduler is not None and workers is not None:
+        err.print("[red]error:[/red] --workers applies to the local cluster, not --scheduler")
+        raise typer.Exit(2)
+
+    class Rate(ProgressColumn):
+        def render(self, task: Task) -> Text:
+            speed = task.speed
+            return Text("" if speed is None else f"{speed:.3g} points/s")
+
+    columns = (
+        TextColumn("sweep"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        Rate(),
+        TimeElapsedColumn(),
+        TextColumn("left"),
+        TimeRemainingColumn(),
+    )
+    try:
+        with Progress(*columns, console=err, disable=not err.is_terminal) as bar:
+            task = bar.add_task("sweep", total=None)
+            started: list[int] = []
+
+            def progress(done: int, total: int) -> None:
+                if not started:  # points found on disk are not part of the rate
+                    started.append(done)
+                    bar.reset(task, total=total, completed=done)
+                else:
+                    bar.update(task, completed=done, total=total)
+
+            result = _guarded(
+                lambda: run_sweep(
+                    sweep_file,
+                    out_dir,
+                    scheduler=scheduler,
+                    workers=workers,
+                    progress=progress,
+                    plot=plot,
+                )
+            )
+    except KeyboardInterrupt:
+        err.print(
+            f"[yellow]interrupted:[/yellow] the finished points are kept in {out_dir}/; run the "
+            "same command to resume",
+            highlight=False,
+        )
+        raise typer.Exit(130) from None
+    ds = result.dataset
+    shape = " × ".join(f"{d} {n}" for d, n in ds["status"].sizes.items())
+    out.print(
+        f"{ds.attrs['points']} points ({shape}): "
+        f"{result.computed} computed, {result.resumed} already done, {result.failed} failed; "
+        f"{result.wall_time:.1f} s on {result.workers} worker threads"
+        + (f", {result.throughput:.3g} points/s" if result.computed else ""),
+        highlight=False,
+        soft_wrap=True,
+    )
+    if result.failed:
+        import collections
+
+        reasons = collections.Counter(
+            str(r) for r, s in zip(ds["reason"].values.ravel(), ds["status"].values.ravel(),
+                                    strict=True) if s == 1
+        )  # fmt: skip
+        for reason, count in reasons.most_common(3):
+            out.print(f"[yellow]failed ×{count}:[/yellow] {reason}", highlight=False,
+                      soft_wrap=True)  # fmt: skip
+    out.print(
+        f"written: {', '.join(str(f) for f in result.files)}", highlight=False, soft_wrap=True
     )
 
 

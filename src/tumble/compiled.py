@@ -28,6 +28,8 @@ Kinds
 from __future__ import annotations
 
 import math
+import time
+from collections.abc import Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from typing import Any
@@ -61,6 +63,7 @@ __all__ = [
     "rigid_body_kernel",
     "solve",
     "solve_batch",
+    "solve_many",
     "torque_program",
 ]
 
@@ -800,11 +803,28 @@ def solve(
     CompiledSolution
         Check ``status`` (or use :func:`tumble.integrate.integrate`, which raises on failure).
     """
-    y0 = np.ascontiguousarray(y0, dtype=np.float64)
+    args = _solve_args(kernel, y0, t0, t_end, rtol, atol, t_eval, record, dense, first_step)
+    res = _specialised(kernel.kind, args)(kernel.kind, *args)
+    return _solution(res, args[1].size, record, dense)
+
+
+def _solve_args(
+    kernel: Kernel,
+    y0: Any,
+    t0: float,
+    t_end: float,
+    rtol: float,
+    atol: float,
+    t_eval: Any,
+    record: bool,
+    dense: bool,
+    first_step: float | None,
+) -> tuple[Any, ...]:
+    """The arguments of ``_solve`` after the kind, in its types."""
     te = np.empty(0) if t_eval is None else np.ascontiguousarray(t_eval, dtype=np.float64)
-    args = (
+    return (
         kernel.params,
-        y0,
+        np.ascontiguousarray(y0, dtype=np.float64),
         float(t0),
         float(t_end),
         float(rtol),
@@ -815,9 +835,11 @@ def solve(
         bool(dense and record),
         int(kernel.event),
     )
-    res = _specialised(kernel.kind, args)(kernel.kind, *args)
+
+
+def _solution(res: tuple[Any, ...], n: int, record: bool, dense: bool) -> CompiledSolution:
+    """``_solve``'s result tuple as a :class:`CompiledSolution` of an n-dimensional state."""
     status, t, y, nfev, h, n_steps, ts, ys, F, y_eval, ev_t, ev_s, ev_y, n_ev = res
-    n = y0.size
     kept = n_steps + 1 if record else 1
     return CompiledSolution(
         int(status),
@@ -835,6 +857,69 @@ def solve(
         ev_s[:n_ev],
         ev_y[: n_ev * n].reshape(n_ev, n),
     )
+
+
+def solve_many(
+    kernels: Sequence[Kernel],
+    y0: Sequence[Any],
+    t_end: Sequence[float],
+    *,
+    rtol: float,
+    atol: float,
+    threads: int | None = None,
+) -> list[tuple[CompiledSolution, float]]:
+    """:func:`solve` of many problems at once, over a thread pool, with dense output.
+
+    The kernels may differ in kind and parameters. Each problem runs through the integrator
+    :func:`solve` uses, with the GIL released, so each result equals that of :func:`solve`
+    to the bit, whatever the number of threads.
+
+    Parameters
+    ----------
+    kernels : sequence of Kernel
+        The right-hand sides.
+    y0 : sequence of array_like
+        Initial states at t = 0, one per kernel.
+    t_end : sequence of float
+        Final times, one per kernel [the kernel's time unit].
+    rtol, atol : float
+        Tolerances.
+    threads : int, optional
+        Number of threads (default: :func:`available_threads`).
+
+    Returns
+    -------
+    list of (CompiledSolution, float)
+        Per problem, its solution (check ``status``) and the seconds it took [s].
+    """
+    if not len(kernels) == len(y0) == len(t_end):
+        raise ParameterError(
+            f"solve_many needs as many initial states and end times as kernels, got "
+            f"{len(kernels)}, {len(y0)} and {len(t_end)}"
+        )
+    jobs = [
+        (k, _solve_args(k, y, 0.0, t, rtol, atol, None, True, True, None))
+        for k, y, t in zip(kernels, y0, t_end, strict=True)
+    ]
+    # Look every kind's specialisation up first: compiling inside the pool would compile
+    # the same function in several threads at once.
+    entries = {k.kind: _specialised(k.kind, args) for k, args in jobs}
+    out: list[Any] = [None] * len(jobs)
+
+    def one(i: int) -> None:
+        k, args = jobs[i]
+        start = time.perf_counter()
+        res = entries[k.kind](k.kind, *args)
+        out[i] = (_solution(res, args[1].size, True, True), time.perf_counter() - start)
+
+    workers = max(1, min(_MAX_THREADS if threads is None else int(threads), _MAX_THREADS))
+    if workers == 1 or len(jobs) < 2:
+        for i in range(len(jobs)):
+            one(i)
+    else:
+        with ThreadPoolExecutor(max_workers=min(workers, len(jobs))) as pool:
+            list(pool.map(one, range(len(jobs))))
+    return out
 
 
 @dataclass(frozen=True)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import itertools
 import warnings
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -141,7 +142,7 @@ def _merge_issues(found: dict[str, list[ValidityIssue]]) -> list[dict[str, Any]]
     return sorted(merged.values(), key=lambda e: e["tau"])
 
 
-def run(request: RunRequest) -> RunResult:
+def run(request: RunRequest, precomputed: Mapping[str, Trajectory] | None = None) -> RunResult:
     """Run every requested method and compare them.
 
     Emits one :class:`~tumble.errors.TumbleWarning` per validity condition that an averaged or
@@ -150,6 +151,10 @@ def run(request: RunRequest) -> RunResult:
     Parameters
     ----------
     request : RunRequest
+    precomputed : mapping, optional
+        Method → Trajectory of this request already computed (e.g. by
+        :func:`~tumble.integrate.simulate_batch` for many points at once); those methods are
+        not run again.
 
     Returns
     -------
@@ -158,8 +163,11 @@ def run(request: RunRequest) -> RunResult:
     model, p, st = request.model, request.params, request.initial
     for method in request.methods:  # refuse before any work is done
         model.check_method(p, method)
+    done = precomputed or {}
     trajectories = {
-        m: simulate(
+        m: done[m]
+        if m in done
+        else simulate(
             model,
             p,
             st,

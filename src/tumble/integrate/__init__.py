@@ -1,7 +1,7 @@
 """Integration drivers: adaptive ODE solving and running a model's methods."""
 
 from tumble.integrate.ode import DEFAULT_ATOL, DEFAULT_RTOL, DenseSolution, check_times, integrate
-from tumble.integrate.simulate import Method, Trajectory, simulate
+from tumble.integrate.simulate import Method, Trajectory, simulate, simulate_batch
 
 __all__ = [
     "DEFAULT_ATOL",
@@ -12,4 +12,5 @@ __all__ = [
     "check_times",
     "integrate",
     "simulate",
+    "simulate_batch",
 ]

@@ -230,7 +230,19 @@ def _integrate_compiled(
 ) -> DenseSolution:
     """:func:`integrate` through the compiled DOP853, with the same failure reports."""
     kernel.check_end(t_end)
-    res = compiled.solve(kernel, y0, t_end, rtol=rtol, atol=atol)
+    return compiled_dense(compiled.solve(kernel, y0, t_end, rtol=rtol, atol=atol), what)
+
+
+def compiled_dense(res: compiled.CompiledSolution, what: str) -> DenseSolution:
+    """A compiled solution as a :class:`DenseSolution`; IntegrationError if it failed.
+
+    Parameters
+    ----------
+    res : CompiledSolution
+        Result of :func:`tumble.compiled.solve` or :func:`tumble.compiled.solve_many`.
+    what : str
+        What was integrated, for the error message.
+    """
     if res.status != 0:
         raise IntegrationError(f"{what}: integration failed at t = {res.t:.6g}: {res.message}")
     return DenseSolution(

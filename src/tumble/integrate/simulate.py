@@ -8,19 +8,27 @@ closed form). Each returns the values at exactly the requested times.
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
 import numpy as np
 
+from tumble import compiled
 from tumble._typing import ArrayLike, FloatArray
 from tumble.compiled import Kernel
-from tumble.errors import IntegrationError, ParameterError
-from tumble.integrate.ode import DEFAULT_ATOL, DEFAULT_RTOL, DenseSolution, check_times, integrate
+from tumble.errors import IntegrationError, ParameterError, TumbleError
+from tumble.integrate.ode import (
+    DEFAULT_ATOL,
+    DEFAULT_RTOL,
+    DenseSolution,
+    check_times,
+    compiled_dense,
+    integrate,
+)
 from tumble.models.base import AveragedForm, FullForm, ModelRecord
 
-__all__ = ["INTEGRATORS", "Method", "Trajectory", "simulate"]
+__all__ = ["INTEGRATORS", "Method", "Trajectory", "simulate", "simulate_batch"]
 
 Method = Literal["full", "averaged", "closed_form"]
 
@@ -157,63 +165,187 @@ def simulate(
     model.check_method(p, method)
     start = time.perf_counter()
     t_end = float(tau[-1])
-    if method in ("full", "averaged"):
-        eq: FullForm | AveragedForm
-        if method == "full":
-            if form is not None and form not in model.full_forms:
-                raise ParameterError(
-                    f"form = {form!r} is not a full form of {model.name} "
-                    f"(allowed: {', '.join(model.full_forms)})"
-                )
-            eq = full = model.full if form is None else model.full_forms[form]
-            kind = "full equations"
-            kernel = _kernel(model, full, p, integrator)
-
-            def to_columns(t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
-                return full.to_columns(t, Y, p)
-        else:
-            eq = avg = model.averaged_form(p, initial)
-            kind = "averaged equations"
-            kernel = None
-
-            def to_columns(t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
-                return avg.to_columns(t, Y, p, initial)
-
+    if method == "full":
+        full = _full_form(model, form)
+        what = f"{model.name} full equations {full.equation}"
+        sol = integrate(
+            lambda t, y: full.rhs(t, y, p),
+            full.from_slow(p, initial),
+            t_end,
+            rtol=rtol,
+            atol=atol,
+            what=what,
+            kernel=_kernel(model, full, p, integrator),
+        )
+        return _trajectory(model, p, initial, tau, method, full, sol, start)
+    if method == "averaged":
+        avg = model.averaged_form(p, initial)
         try:
             sol = integrate(
-                lambda t, y: eq.rhs(t, y, p),
-                eq.from_slow(p, initial),
+                lambda t, y: avg.rhs(t, y, p),
+                avg.from_slow(p, initial),
                 t_end,
                 rtol=rtol,
                 atol=atol,
-                what=f"{model.name} {kind} {eq.equation}",
-                breakpoints=eq.breakpoints if isinstance(eq, AveragedForm) else (),
-                kernel=kernel,
+                what=f"{model.name} averaged equations {avg.equation}",
+                breakpoints=avg.breakpoints,
             )
         except IntegrationError as exc:
-            reason = eq.failure() if isinstance(eq, AveragedForm) and eq.failure else None
+            reason = avg.failure() if avg.failure else None
             if reason is None:
                 raise
             raise IntegrationError(f"{exc}; last refused state: {reason}") from None
-        cols = _sampled(model, p, method, sol, to_columns, tau, initial)
-        used, nfev, steps = eq.name, sol.nfev, sol.ts
-        integrator_used, events, signs = sol.integrator, sol.events, sol.event_signs
+        return _trajectory(model, p, initial, tau, method, avg, sol, start)
+    cols = model.closed_form(p, initial, tau)
 
-        def slow(t: FloatArray) -> dict[str, FloatArray]:
-            return to_columns(t, sol(t))
+    def slow(t: FloatArray) -> dict[str, FloatArray]:
+        return model.closed_form(p, initial, t)
+
+    wall = time.perf_counter() - start
+    return Trajectory(tau, cols, method, "closed_form", wall, 0, slow)
+
+
+def _full_form(model: ModelRecord, form: str | None) -> FullForm:
+    if form is not None and form not in model.full_forms:
+        raise ParameterError(
+            f"form = {form!r} is not a full form of {model.name} "
+            f"(allowed: {', '.join(model.full_forms)})"
+        )
+    return model.full if form is None else model.full_forms[form]
+
+
+def _trajectory(
+    model: ModelRecord,
+    p: Any,
+    initial: Any,
+    tau: FloatArray,
+    method: str,
+    eq: FullForm | AveragedForm,
+    sol: DenseSolution,
+    start: float,
+) -> Trajectory:
+    """The Trajectory of an integrated method, its wall time counted from ``start``."""
+    if isinstance(eq, AveragedForm):
+        avg = eq
+
+        def to_columns(t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
+            return avg.to_columns(t, Y, p, initial)
 
     else:
-        cols = model.closed_form(p, initial, tau)
-        used, nfev, steps = "closed_form", 0, np.empty(0)
-        integrator_used, events, signs = "", np.empty(0), np.empty(0)
+        full = eq
 
-        def slow(t: FloatArray) -> dict[str, FloatArray]:
-            return model.closed_form(p, initial, t)
+        def to_columns(t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
+            return full.to_columns(t, Y, p)
+
+    cols = _sampled(model, p, method, sol, to_columns, tau, initial)
+
+    def slow(t: FloatArray) -> dict[str, FloatArray]:
+        return to_columns(t, sol(t))
 
     wall = time.perf_counter() - start
     return Trajectory(
-        tau, cols, method, used, wall, nfev, slow, steps, integrator_used, events, signs
+        tau,
+        cols,
+        method,
+        eq.name,
+        wall,
+        sol.nfev,
+        slow,
+        sol.ts,
+        sol.integrator,
+        sol.events,
+        sol.event_signs,
     )
+
+
+def simulate_batch(
+    model: ModelRecord,
+    params: Sequence[Any],
+    initials: Sequence[Any],
+    tau: ArrayLike,
+    *,
+    rtol: float = DEFAULT_RTOL,
+    atol: float = DEFAULT_ATOL,
+    form: str | None = None,
+    threads: int | None = 1,
+) -> list[Trajectory | TumbleError]:
+    """The full method of many points of one model at once (the batch path of issue 6).
+
+    Every point whose full form has a compiled kernel is integrated by
+    :func:`tumble.compiled.solve_many` on a thread pool with the GIL released; each
+    Trajectory then equals ``simulate(model, p, initial, tau, "full", integrator="numba")``
+    to the bit, except its wall time, which is that point's own share of the batch.
+
+    Parameters
+    ----------
+    model : ModelRecord
+    params, initials : sequence
+        Parameters and initial state of each point.
+    tau : array_like
+        Sample times shared by all points, ascending, ≥ 0 [model time unit].
+    rtol, atol : float
+        Integration tolerances.
+    form : str, optional
+        Full form (default: the model's recommended one).
+    threads : int, optional
+        Threads of the pool (None: every core numba may use). The default 1 suits a caller
+        that already runs one task per core, as a Dask worker does.
+
+    Returns
+    -------
+    list
+        Per point, its Trajectory or the :class:`~tumble.errors.TumbleError` it met (a failed
+        integration, a full form without a compiled kernel): a batch never stops for one point.
+    """
+    tau = check_times(tau)
+    t_end = float(tau[-1])
+    full = _full_form(model, form)
+    what = f"{model.name} full equations {full.equation}"
+    out: list[Trajectory | TumbleError | None] = [None] * len(params)
+    jobs: list[tuple[int, Kernel, FloatArray]] = []
+    for i, (p, initial) in enumerate(zip(params, initials, strict=True)):
+        try:
+            model.check_method(p, "full")
+            kernel = _kernel(model, full, p, "numba")
+            assert kernel is not None  # "numba" raises instead of returning None
+            kernel.check_end(t_end)
+            y0 = np.asarray(full.from_slow(p, initial), dtype=float)
+            if not np.all(np.isfinite(y0)):
+                raise IntegrationError(f"{what}: the initial state is not finite: {y0}")
+        except TumbleError as exc:
+            out[i] = exc
+            continue
+        jobs.append((i, kernel, y0))
+    if t_end == 0.0:  # nothing to integrate: simulate's own path handles the trivial run
+        for i, _, _ in jobs:
+            out[i] = simulate(
+                model,
+                params[i],
+                initials[i],
+                tau,
+                "full",
+                rtol=rtol,
+                atol=atol,
+                form=form,
+                integrator="numba",
+            )
+        jobs = []
+    solved = compiled.solve_many(
+        [k for _, k, _ in jobs],
+        [y for _, _, y in jobs],
+        [t_end] * len(jobs),
+        rtol=rtol,
+        atol=atol,
+        threads=threads,
+    )
+    for (i, _, _), (res, seconds) in zip(jobs, solved, strict=True):
+        start = time.perf_counter() - seconds
+        try:
+            sol = compiled_dense(res, what)
+            out[i] = _trajectory(model, params[i], initials[i], tau, "full", full, sol, start)
+        except TumbleError as exc:
+            out[i] = exc
+    return [o for o in out if o is not None]
 
 
 def _kernel(model: ModelRecord, full: FullForm, p: Any, integrator: str) -> Kernel | None:

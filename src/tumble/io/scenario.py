@@ -31,7 +31,7 @@ from tumble.models import (
 )
 from tumble.rotations import euler313_to_matrix, matrix_to_quat
 
-__all__ = ["Scenario", "load_scenario", "parse_scenario", "template"]
+__all__ = ["Scenario", "key_units", "load_scenario", "parse_scenario", "template"]
 
 Vector3 = Annotated[list[float], Field(min_length=3, max_length=3, description="3 numbers")]
 Vector4 = Annotated[list[float], Field(min_length=4, max_length=4, description="4 numbers")]
@@ -780,6 +780,42 @@ def parse_scenario(data: dict[str, Any], source: str = "<scenario>") -> Scenario
     else:
         request, inputs = _BUILDERS[name](data)
     return Scenario(request, inputs, source)
+
+
+def _schema(data: dict[str, Any]) -> type[BaseModel] | None:
+    """The pydantic schema a scenario dict is validated against (None: unknown model)."""
+    physical = "physical" in data
+    return {
+        "resisting_medium": RMPhysicalScenario if physical else RMScenario,
+        "rotating_field": RFPhysicalScenario if physical else RFScenario,
+        "nonlinear_moment": NMScenario,
+        "torqued_body": TBScenario,
+    }.get(str(data.get("model")))
+
+
+def key_units(data: dict[str, Any], path: tuple[str | int, ...]) -> str:
+    """The unit of a scenario key, as its description gives it (``"rad"`` for
+    ``initial.theta``); ``""`` when it states none, or ``"deg"`` for a ``*_deg`` key.
+
+    Parameters
+    ----------
+    data : dict
+        The scenario (its model and physical-units choice select the schema).
+    path : tuple
+        The key, split into table names and list indices.
+    """
+    names = [part for part in path if isinstance(part, str)]
+    if names and names[-1].endswith("_deg"):
+        return "deg"
+    schema = _schema(data)
+    if schema is None:
+        return ""
+    hint, _ = _field_hint(schema, tuple(names))
+    if not hint.endswith("]") or "[" not in hint:
+        return ""
+    unit = hint[hint.rindex("[") + 1 : -1]
+    # "[0, π]" is a range, not a unit.
+    return "" if "," in unit else unit
 
 
 def load_scenario(path: str | Path) -> Scenario:

@@ -1,0 +1,614 @@
+"""Parameter sweeps: the grid and Monte Carlo points, what is kept of each run, the Dataset.
+
+A sweep varies scenario keys over grid axes (one dimension each) and Monte Carlo draws (one
+``sample`` dimension), runs every point like ``tumble run`` would, and keeps from each run
+plain values (a *record*): its status and the reason of a failure, wall time, the final slow
+state of every method, the largest differences between methods, the model's predicted
+limits, the stability of its stationary motion and the figures of ``tumble verify``.
+Records are assembled into an :class:`xarray.Dataset` with one dimension per grid axis (then
+``sample``), units and long names in ``attrs``.
+
+This module holds the numerics only; files, Dask and the scenario keys live in
+:mod:`tumble.io.sweep` and :mod:`tumble.sweep`.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import warnings
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Any, Literal
+
+import numpy as np
+import xarray as xr
+
+from tumble._typing import FloatArray
+from tumble.analysis.run import RunRequest, run
+from tumble.analysis.stability import CLASSES, analyze
+from tumble.analysis.verify import verify
+from tumble.errors import ParameterError, TumbleError, TumbleWarning
+
+__all__ = [
+    "STATUS",
+    "Axis",
+    "Draw",
+    "Keep",
+    "SweepPlan",
+    "records_to_dataset",
+    "run_point",
+]
+
+STATUS = ("ok", "failed")
+"""Meanings of the ``status`` codes 0 and 1; −1 marks a point not yet computed."""
+
+PENDING = -1
+
+Spacing = Literal["values", "linspace", "logspace"]
+Distribution = Literal["uniform", "normal", "log_uniform"]
+
+
+@dataclass(frozen=True)
+class Axis:
+    """One grid axis: a scenario key and its values.
+
+    Attributes
+    ----------
+    name : str
+        Dimension name in the Dataset.
+    key : str
+        The scenario key it sets (``parameters.b[2][2]``).
+    values : ndarray
+        Its values, in the order of the dimension [the key's unit].
+    units, long_name : str
+        For the coordinate's ``attrs``.
+    scale : {"linear", "log"}
+        How the values are spaced (``log`` for ``logspace``), for the figures.
+    """
+
+    name: str
+    key: str
+    values: FloatArray
+    units: str = ""
+    long_name: str = ""
+    scale: str = "linear"
+
+    @classmethod
+    def spaced(
+        cls,
+        name: str,
+        key: str,
+        spacing: Spacing,
+        spec: Sequence[float],
+        units: str = "",
+        long_name: str = "",
+    ) -> Axis:
+        """An axis from a list of values, or ``[start, stop, num]`` spaced evenly
+        (``linspace``) or geometrically (``logspace``: the end points, not their exponents).
+
+        Raises
+        ------
+        ParameterError
+            Naming the axis when the specification is not one of those.
+        """
+        where = f"axis {name!r} ({key}): {spacing}"
+        if spacing == "values":
+            values = np.asarray(spec, dtype=float)
+            if values.ndim != 1 or values.size == 0 or not np.all(np.isfinite(values)):
+                raise ParameterError(f"{where} must be a non-empty list of finite numbers")
+        else:
+            if len(spec) != 3:
+                raise ParameterError(f"{where} = {list(spec)!r}: expected [start, stop, num]")
+            start, stop, num = (float(v) for v in spec)
+            if not (math.isfinite(start) and math.isfinite(stop)):
+                raise ParameterError(f"{where}: start and stop must be finite numbers")
+            if num != int(num) or num < 1:
+                raise ParameterError(f"{where}: num = {num:g} must be an integer ≥ 1")
+            if spacing == "logspace":
+                if start <= 0.0 or stop <= 0.0:
+                    raise ParameterError(
+                        f"{where} = [{start:g}, {stop:g}, {int(num)}]: the end points must be "
+                        "> 0 (they are values, spaced geometrically)"
+                    )
+                values = np.geomspace(start, stop, int(num))
+            else:
+                values = np.linspace(start, stop, int(num))
+        return cls(
+            name, key, values, units, long_name or key, "log" if spacing == "logspace" else "linear"
+        )
+
+
+@dataclass(frozen=True)
+class Draw:
+    """One Monte Carlo variable: a scenario key and its distribution.
+
+    Attributes
+    ----------
+    name, key, units, long_name : str
+        As for :class:`Axis`.
+    distribution : {"uniform", "normal", "log_uniform"}
+        ``uniform`` on [low, high]; ``normal`` with (mean, standard deviation); ``log_uniform``
+        uniform in log on [low, high] (both > 0).
+    a, b : float
+        The two parameters, in that order.
+    """
+
+    name: str
+    key: str
+    distribution: Distribution
+    a: float
+    b: float
+    units: str = ""
+    long_name: str = ""
+
+    def __post_init__(self) -> None:
+        where = f"draw {self.name!r} ({self.key}): {self.distribution} = [{self.a:g}, {self.b:g}]"
+        if not (math.isfinite(self.a) and math.isfinite(self.b)):
+            raise ParameterError(f"{where}: both numbers must be finite")
+        if self.distribution == "normal":
+            if self.b < 0.0:
+                raise ParameterError(f"{where}: the standard deviation must be ≥ 0")
+        elif not self.a < self.b:
+            raise ParameterError(f"{where}: needs low < high")
+        if self.distribution == "log_uniform" and self.a <= 0.0:
+            raise ParameterError(f"{where}: needs 0 < low")
+
+    def sample(self, rng: np.random.Generator, n: int) -> FloatArray:
+        """``n`` draws from ``rng``."""
+        if self.distribution == "uniform":
+            return rng.uniform(self.a, self.b, n)
+        if self.distribution == "normal":
+            return rng.normal(self.a, self.b, n)
+        return np.exp(rng.uniform(math.log(self.a), math.log(self.b), n))
+
+
+@dataclass(frozen=True)
+class Keep:
+    """What is kept of every run (the sweep file's ``[keep]``).
+
+    Attributes
+    ----------
+    final : bool
+        The final value of every slow variable, per method.
+    differences : bool
+        The largest |difference| of every variable between each two methods.
+    limits : bool
+        The model's predicted limits as time → ∞ (numbers and statements).
+    stability : bool
+        Classification and leading Re λ of the model's stationary motion.
+    verify : bool
+        The figures of ``tumble verify`` (status, order and error at ε per slow variable);
+        costs six more integrations per point.
+    """
+
+    final: bool = True
+    differences: bool = True
+    limits: bool = True
+    stability: bool = False
+    verify: bool = False
+
+
+@dataclass(frozen=True)
+class SweepPlan:
+    """The points of a sweep: grid axes × Monte Carlo samples, in C order.
+
+    Attributes
+    ----------
+    axes : tuple of Axis
+        Grid axes, one dimension each.
+    draws : tuple of Draw
+        Monte Carlo variables; with ``samples`` > 0 they add a last dimension ``sample``,
+        the same draws at every grid point (common random numbers).
+    samples : int
+        Monte Carlo sample count (0: none).
+    seed : int
+        Seed of the draws (numpy's PCG64).
+    """
+
+    axes: tuple[Axis, ...]
+    draws: tuple[Draw, ...] = ()
+    samples: int = 0
+    seed: int = 0
+    drawn: FloatArray = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        if self.samples < 0 or (self.draws and self.samples == 0):
+            raise ParameterError(
+                f"monte_carlo.samples = {self.samples} must be ≥ 1 when draws are given"
+            )
+        if not self.axes and self.samples == 0:
+            raise ParameterError("sweep: give at least one axis or Monte Carlo draws")
+        names = [a.name for a in self.axes] + [d.name for d in self.draws]
+        keys = [a.key for a in self.axes] + [d.key for d in self.draws]
+        for seen, what in ((names, "name"), (keys, "key")):
+            dup = sorted({x for x in seen if seen.count(x) > 1})
+            if dup:
+                raise ParameterError(f"sweep: the {what} {dup[0]!r} is swept twice")
+        if "sample" in names:
+            raise ParameterError("sweep: 'sample' is the Monte Carlo dimension, not a name")
+        rng = np.random.default_rng(self.seed)
+        # Each variable's draws in turn, so adding a draw does not change the earlier ones.
+        drawn = (
+            np.column_stack([d.sample(rng, self.samples) for d in self.draws])
+            if (self.draws)
+            else np.empty((self.samples, 0))
+        )
+        object.__setattr__(self, "drawn", drawn)
+
+    @property
+    def dims(self) -> tuple[str, ...]:
+        """Dataset dimensions: the axes, then ``sample`` for Monte Carlo."""
+        return tuple(a.name for a in self.axes) + (("sample",) if self.samples else ())
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        return tuple(a.values.size for a in self.axes) + ((self.samples,) if self.samples else ())
+
+    @property
+    def size(self) -> int:
+        return math.prod(self.shape)
+
+    def assignments(self, index: int) -> dict[str, float]:
+        """Scenario key → value at flat point ``index`` (C order over :attr:`dims`)."""
+        where = np.unravel_index(index, self.shape)
+        out = {a.key: float(a.values[i]) for a, i in zip(self.axes, where, strict=False)}
+        if self.samples:
+            row = self.drawn[where[-1]]
+            out.update({d.key: float(v) for d, v in zip(self.draws, row, strict=True)})
+        return out
+
+
+# What each point keeps: plain values, so a record is JSON and crosses processes cheaply.
+Record = dict[str, Any]
+
+
+def _final_values(result: Any, slow: Sequence[str]) -> dict[str, dict[str, float]]:
+    return {
+        m: {v: float(ds[v].values[-1]) for v in slow if v in ds}
+        for m, ds in result.datasets.items()
+    }
+
+
+def _slow_variables(request: RunRequest) -> tuple[str, ...]:
+    """Slow variables: the columns of the averaged description (else of the first method)."""
+    model, p = request.model, request.params
+    for method in ("averaged", "closed_form", request.methods[0]):
+        if method in model.methods:
+            return tuple(c.name for c in model.method_columns(p, method))
+    return ()
+
+
+def _limits(limits: Mapping[str, Any]) -> dict[str, Any]:
+    """The scalar predicted limits (numbers and statements); lists and tables are skipped."""
+    out: dict[str, Any] = {}
+    for k, v in limits.items():
+        if isinstance(v, bool):
+            out[k] = int(v)
+        elif isinstance(v, int | float | np.floating | np.integer):
+            out[k] = float(v)
+        elif isinstance(v, str):
+            out[k] = v
+    return out
+
+
+def _metadata(request: RunRequest) -> dict[str, dict[str, str]]:
+    """Units, long names and equations of the model's columns (for the Dataset's attrs)."""
+    model, p = request.model, request.params
+    meta: dict[str, dict[str, str]] = {}
+    for method in request.methods:
+        for c in model.method_columns(p, method):
+            meta.setdefault(
+                c.name, {"units": c.units, "long_name": c.long_name, "equation": c.equation}
+            )
+    return meta
+
+
+def run_point(
+    request: RunRequest,
+    keep: Keep,
+    precomputed: Mapping[str, Any] | None = None,
+) -> Record:
+    """Run one point of a sweep and keep what ``keep`` asks for.
+
+    A :class:`~tumble.errors.TumbleError` (an integration that fails, averaging that becomes
+    invalid, a parameter out of range) does not propagate: the record says ``status`` 1 and
+    the reason. The validity warnings the run emits are kept as ``issues``.
+
+    Parameters
+    ----------
+    request : RunRequest
+        The point's run.
+    keep : Keep
+        What to keep.
+    precomputed : mapping, optional
+        Method → Trajectory already integrated (the batch path), passed on to
+        :func:`~tumble.analysis.run.run`.
+
+    Returns
+    -------
+    dict
+        ``status``, ``reason``, ``wall_time`` [s], ``issues``, ``first_issue_time`` and, as
+        asked, ``final`` (method → variable → value), ``nfev`` (method → count),
+        ``differences`` (pair → variable → value), ``limits``, ``stability``,
+        ``max_real`` and ``verify``.
+    """
+    start = time.perf_counter()
+    record: Record = {"status": 0, "reason": "", "issues": "", "first_issue_time": math.nan}
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", TumbleWarning)  # kept below, from result.issues
+            result = run(request, precomputed=precomputed)
+            verification = verify(request) if keep.verify else None
+        record["meta"] = _metadata(request)
+        if result.issues:
+            record["issues"] = "; ".join(
+                f"{i['condition']} at {request.model.time_name} = {i['tau']:.6g}"
+                for i in result.issues
+            )
+            record["first_issue_time"] = float(result.issues[0]["tau"])
+        record["nfev"] = {m: int(t.nfev) for m, t in result.trajectories.items()}
+        if keep.final:
+            record["final"] = _final_values(result, _slow_variables(request))
+        if keep.differences:
+            record["differences"] = {k: dict(v) for k, v in result.differences.items()}
+        if keep.limits:
+            record["limits"] = _limits(result.limits)
+        if keep.stability:
+            rep = analyze(request.model, request.params, family=False)
+            record["stability"] = CLASSES.index(rep.classification)
+            record["max_real"] = rep.max_real
+        if verification is not None:
+            s = verification.summary()
+            record["verify"] = {
+                "status": verification.status,
+                "order": {v: (math.nan if o is None else float(o)) for v, o in s["orders"].items()},
+                "error": {
+                    v: (math.nan if e[0] is None else float(e[0]))
+                    for v, e in s["max_errors"].items()
+                },
+            }
+    except TumbleError as exc:
+        record = {**record, "status": 1, "reason": f"{type(exc).__name__}: {exc}"}
+    record["wall_time"] = time.perf_counter() - start
+    return record
+
+
+def failed_record(reason: str) -> Record:
+    """The record of a point that could not run at all (e.g. its scenario is invalid)."""
+    return {
+        "status": 1,
+        "reason": reason,
+        "issues": "",
+        "first_issue_time": math.nan,
+        "wall_time": 0.0,
+    }
+
+
+def _attrs(units: str, long_name: str, **extra: Any) -> dict[str, Any]:
+    return {"units": units, "long_name": long_name, **extra}
+
+
+def _lookup(record: Record, path: tuple[str, ...]) -> Any:
+    """``record[path[0]][path[1]]…``, or None where a key is missing."""
+    node: Any = record
+    for key in path:
+        if not isinstance(node, dict) or key not in node:
+            return None
+        node = node[key]
+    return node
+
+
+def _fill(
+    plan: SweepPlan,
+    records: Mapping[int, Record],
+    path: tuple[str, ...],
+    *,
+    text: bool = False,
+    integer: bool = False,
+    pending: Any = None,
+) -> np.ndarray:
+    """One value per point from ``records`` (NaN, "" or ``pending`` where none)."""
+    if text:
+        out = np.full(plan.size, "", dtype=object)
+    elif integer:
+        out = np.full(plan.size, PENDING if pending is None else pending, dtype=np.int32)
+    else:
+        out = np.full(plan.size, np.nan)
+    for i, rec in records.items():
+        v = _lookup(rec, path)
+        if v is not None:
+            out[i] = v
+    return out.reshape(plan.shape)
+
+
+def _union(records: Mapping[int, Record], key: str) -> list[str]:
+    """Second-level keys of ``key`` over all records, in order of first appearance."""
+    seen: dict[str, None] = {}
+    for rec in records.values():
+        for k in rec.get(key, {}):
+            seen.setdefault(k, None)
+    return list(seen)
+
+
+def _union2(records: Mapping[int, Record], key: str) -> list[str]:
+    """Third-level keys of ``key`` (the variables under each method or pair)."""
+    seen: dict[str, None] = {}
+    for rec in records.values():
+        for inner in rec.get(key, {}).values():
+            for k in inner:
+                seen.setdefault(k, None)
+    return list(seen)
+
+
+def records_to_dataset(
+    plan: SweepPlan,
+    records: Mapping[int, Record],
+    *,
+    model: str,
+    time_name: str,
+    attrs: Mapping[str, Any] | None = None,
+) -> xr.Dataset:
+    """Assemble the records of a sweep (flat point index → record) into a Dataset.
+
+    Points without a record (not computed yet) have ``status`` −1 and NaN values, so a partial
+    sweep is a valid Dataset too.
+
+    Parameters
+    ----------
+    plan : SweepPlan
+    records : mapping
+        Flat point index → record of :func:`run_point`.
+    model, time_name : str
+        The model's name and time variable (``tau`` or ``t``), for the attrs.
+    attrs : mapping, optional
+        More Dataset attributes (the sweep file, its hash).
+
+    Returns
+    -------
+    xarray.Dataset
+        Dims: one per grid axis, then ``sample``; ``method`` and ``pair`` for the final
+        values and differences.
+    """
+    dims = plan.dims
+    coords: dict[str, Any] = {
+        a.name: (a.name, a.values, _attrs(a.units, a.long_name, key=a.key, scale=a.scale))
+        for a in plan.axes
+    }
+    if plan.samples:
+        coords["sample"] = ("sample", np.arange(plan.samples), _attrs("1", "Monte Carlo sample"))
+        for j, d in enumerate(plan.draws):
+            coords[d.name] = (
+                "sample",
+                plan.drawn[:, j],
+                _attrs(
+                    d.units,
+                    d.long_name,
+                    key=d.key,
+                    distribution=d.distribution,
+                    parameters=[d.a, d.b],
+                ),
+            )
+    meta: dict[str, dict[str, str]] = {}
+    for rec in records.values():
+        for k, v in rec.get("meta", {}).items():
+            meta.setdefault(k, v)
+
+    def var_attrs(name: str, prefix: str) -> dict[str, Any]:
+        m = meta.get(name, {"units": "", "long_name": name, "equation": ""})
+        return _attrs(m["units"], f"{prefix}{m['long_name']}", equation=m.get("equation", ""))
+
+    time_symbol = {"tau": "τ"}.get(time_name, time_name)
+    data: dict[str, Any] = {
+        "status": (
+            dims,
+            _fill(plan, records, ("status",), integer=True),
+            _attrs(
+                "1",
+                "status of the run",
+                flag_values=[-1, 0, 1],
+                flag_meanings="pending ok failed",
+            ),
+        ),
+        "reason": (
+            dims,
+            _fill(plan, records, ("reason",), text=True),
+            _attrs("", "why the run failed"),
+        ),
+        "wall_time": (
+            dims,
+            _fill(plan, records, ("wall_time",)),
+            _attrs("s", "wall time of the point"),
+        ),
+        "issues": (
+            dims,
+            _fill(plan, records, ("issues",), text=True),
+            _attrs("", "validity conditions entered by an averaged run, with their times"),
+        ),
+        "first_issue_time": (
+            dims,
+            _fill(plan, records, ("first_issue_time",)),
+            _attrs(time_name, f"first time {time_symbol} an averaged run leaves its validity"),
+        ),
+    }
+    extra_coords: dict[str, Any] = {}
+    methods = _union(records, "nfev")
+    if methods:
+        extra_coords["method"] = ("method", np.array(methods, dtype=object))
+        stack = [_fill(plan, records, ("nfev", m), integer=True, pending=0) for m in methods]
+        data["nfev"] = (
+            (*dims, "method"),
+            np.stack(stack, axis=-1),
+            _attrs("1", "right-hand-side evaluations"),
+        )
+    for v in _union2(records, "final"):
+        stack = [_fill(plan, records, ("final", m, v)) for m in methods]
+        data[f"final_{v}"] = ((*dims, "method"), np.stack(stack, axis=-1), var_attrs(v, "final "))
+    pairs = _union(records, "differences")
+    if pairs:
+        extra_coords["pair"] = ("pair", np.array(pairs, dtype=object))
+    for v in _union2(records, "differences"):
+        stack = [_fill(plan, records, ("differences", q, v)) for q in pairs]
+        data[f"difference_{v}"] = (
+            (*dims, "pair"),
+            np.stack(stack, axis=-1),
+            var_attrs(v, "largest |difference| between two methods of "),
+        )
+    for k in _union(records, "limits"):
+        is_text = any(isinstance(r.get("limits", {}).get(k), str) for r in records.values())
+        data[f"limit_{k}"] = (
+            dims,
+            _fill(plan, records, ("limits", k), text=is_text),
+            {**var_attrs(k, "predicted limit of "), "units": meta.get(k, {}).get("units", "")},
+        )
+    if any("stability" in r for r in records.values()):
+        data["stability"] = (
+            dims,
+            _fill(plan, records, ("stability",), integer=True),
+            _attrs(
+                "1",
+                "classification of the stationary motion",
+                flag_values=list(range(-1, len(CLASSES))),
+                flag_meanings=" ".join(
+                    ["pending_or_failed", *(c.replace(" ", "_") for c in CLASSES)]
+                ),
+            ),
+        )
+        data["max_real"] = (
+            dims,
+            _fill(plan, records, ("max_real",)),
+            _attrs(f"1/{time_symbol}", "leading real part max Re λ of the stationary motion"),
+        )
+    if any("verify" in r for r in records.values()):
+        data["verify_status"] = (
+            dims,
+            _fill(plan, records, ("verify", "status"), text=True),
+            _attrs("", "verdict of tumble verify (first-order, degraded, invalid, exact)"),
+        )
+        for what, prefix, unit in (
+            ("order", "fitted order in ε of ", "1"),
+            ("error", "max |full − averaged| at ε of ", None),
+        ):
+            names: dict[str, None] = {}
+            for r in records.values():
+                names.update(dict.fromkeys(r.get("verify", {}).get(what, {})))
+            for v in names:
+                a = var_attrs(v, prefix)
+                if unit is not None:
+                    a["units"] = unit
+                data[f"verify_{what}_{v}"] = (
+                    dims,
+                    _fill(plan, records, ("verify", what, v)),
+                    a,
+                )
+    ds = xr.Dataset(data, coords={**coords, **extra_coords})
+    ds.attrs.update(
+        model=model,
+        time=time_name,
+        points=plan.size,
+        points_done=len(records),
+        points_failed=sum(1 for r in records.values() if r["status"] == 1),
+        monte_carlo_seed=plan.seed if plan.samples else -1,
+        **(attrs or {}),
+    )
+    return ds

@@ -1,0 +1,343 @@
+"""Sweeps on Dask: the library function behind ``tumble sweep``.
+
+Usable from a notebook::
+
+    from tumble.sweep import run_sweep
+    result = run_sweep("examples/sweep_rf_beta_eps.toml", "out/sweep")        # local cores
+    result = run_sweep(path, "out/sweep", scheduler="tcp://10.0.0.5:8786")    # a cluster
+    result.dataset                                                           # xarray
+
+The points are cut into chunks (``[sweep] chunk``); each chunk is one Dask task, and its
+records are written to the output directory as soon as it returns. A worker that dies has its
+tasks rerun by the scheduler; a sweep that is stopped and started again with the same
+command computes only the chunks that have no records yet. Every point is computed from its
+own inputs alone, so the results do not depend on the workers, their number or the order of
+the tasks.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+import os
+import time
+from collections.abc import Callable, Iterator, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+from tumble.analysis.run import RunRequest
+from tumble.analysis.sweep import Keep, Record, failed_record, records_to_dataset, run_point
+from tumble.errors import ScenarioError, TumbleError
+from tumble.integrate import Trajectory, simulate_batch
+from tumble.io.scenario import parse_scenario
+from tumble.io.sweep import Sweep, SweepStore, load_sweep, point_scenario
+from tumble.models import get_model
+from tumble.plot.sweep import sweep_png
+
+__all__ = ["SweepResult", "compute_chunk", "run_sweep"]
+
+WRITE_EVERY = 5.0
+"""Seconds between rewrites of ``sweep.nc`` while a sweep runs (each chunk's records are
+on disk at once; the Dataset is their summary)."""
+
+
+@dataclass(frozen=True)
+class SweepResult:
+    """What :func:`run_sweep` did.
+
+    Attributes
+    ----------
+    dataset : xarray.Dataset
+        Every point's record (see :func:`tumble.analysis.sweep.records_to_dataset`).
+    files : list of Path
+        ``sweep.nc``, ``sweep.json``, the figure.
+    computed, resumed, failed : int
+        Points computed by this call, found finished on disk, and failed (of all).
+    wall_time : float
+        Seconds of this call [s].
+    workers : int
+        Dask worker threads used.
+    """
+
+    dataset: xr.Dataset
+    files: list[Path]
+    computed: int
+    resumed: int
+    failed: int
+    wall_time: float
+    workers: int
+
+    @property
+    def throughput(self) -> float:
+        """Points computed per second of this call [1/s]."""
+        return self.computed / self.wall_time if self.wall_time > 0 else 0.0
+
+
+def _batchable(req: RunRequest) -> bool:
+    """Whether the full run of ``req`` can go through the compiled batch."""
+    if "full" not in req.methods or req.integrator == "scipy":
+        return False
+    full = req.model.full
+    return full.kernel is not None and full.kernel(req.params) is not None
+
+
+def _batched(requests: Sequence[RunRequest | None]) -> list[dict[str, Trajectory]]:
+    """The full trajectories of every batchable request, integrated together per (model, times,
+    tolerances); the others get an empty mapping and are run point by point."""
+    out: list[dict[str, Trajectory]] = [{} for _ in requests]
+    groups: dict[tuple[Any, ...], list[int]] = {}
+    for i, req in enumerate(requests):
+        if req is not None and _batchable(req):
+            key = (req.model.name, req.tau.tobytes(), req.rtol, req.atol)
+            groups.setdefault(key, []).append(i)
+    for members in groups.values():
+        first = requests[members[0]]
+        assert first is not None
+        trajs = simulate_batch(
+            first.model,
+            [requests[i].params for i in members],  # type: ignore[union-attr]
+            [requests[i].initial for i in members],  # type: ignore[union-attr]
+            first.tau,
+            rtol=first.rtol,
+            atol=first.atol,
+        )
+        for i, traj in zip(members, trajs, strict=True):
+            # A point that failed in the batch is run again on its own, so that its failure
+            # is reported by run() exactly as ``tumble run`` would report it.
+            if isinstance(traj, Trajectory):
+                out[i] = {"full": traj}
+    return out
+
+
+def compute_chunk(
+    base: dict[str, Any],
+    source: str,
+    points: list[dict[str, float]],
+    keep: Keep,
+    batch: bool = True,
+) -> list[Record]:
+    """Run the points of one chunk (a Dask task) and return their records.
+
+    Parameters
+    ----------
+    base : dict
+        The base scenario.
+    source : str
+        Its path (a user torque is imported relative to it).
+    points : list of dict
+        Per point, scenario key → value.
+    keep : Keep
+        What to keep.
+    batch : bool
+        Integrate the chunk's full runs together with the compiled batch path
+        (:func:`tumble.integrate.simulate_batch`); the records are the same either way.
+
+    Returns
+    -------
+    list of dict
+        One record per point, in order (see :func:`tumble.analysis.sweep.run_point`); a
+        point whose scenario is invalid gets a failed record with the reason.
+    """
+    requests: list[RunRequest | None] = []
+    invalid: dict[int, str] = {}
+    for i, assignments in enumerate(points):
+        try:
+            requests.append(parse_scenario(point_scenario(base, assignments), source).request)
+        except TumbleError as exc:
+            requests.append(None)
+            invalid[i] = f"invalid input: {exc}"
+    pre = _batched(requests) if batch else [{} for _ in requests]
+    records = []
+    for i, req in enumerate(requests):
+        if req is None:
+            records.append(failed_record(invalid[i]))
+        else:
+            rec = run_point(req, keep, pre[i])
+            if "full" in pre[i]:
+                rec["batch"] = 1
+            records.append(rec)
+    return records
+
+
+@contextlib.contextmanager
+def _client(scheduler: str | None, workers: int | None) -> Iterator[Any]:
+    """A Dask client: of the cluster at ``scheduler``, or of a LocalCluster started (and
+    stopped) here with one single-threaded worker process per core."""
+    from distributed import Client, LocalCluster
+
+    # The cluster's own INFO logs would bury the progress bar; its warnings still show.
+    logging.getLogger("distributed").setLevel(logging.WARNING)
+    if scheduler is not None:
+        try:
+            client = Client(scheduler, timeout="30s")
+        except OSError as exc:
+            raise ScenarioError(f"--scheduler {scheduler}: cannot connect ({exc})") from None
+        try:
+            yield client
+        finally:
+            client.close()
+        return
+    n = workers or os.cpu_count() or 1
+    # Processes, not threads: averaging and the slow runs are Python, which holds the GIL.
+    cluster = LocalCluster(
+        n_workers=n,
+        threads_per_worker=1,
+        processes=True,
+        # Any free port: a fixed one (8787) may be taken by another cluster on the machine.
+        dashboard_address=":0",
+        host="127.0.0.1",
+    )
+    try:
+        client = Client(cluster)
+        try:
+            yield client
+        finally:
+            client.close()
+    finally:
+        cluster.close()
+
+
+def _threads(client: Any) -> int:
+    return int(sum(client.nthreads().values()))
+
+
+def run_sweep(
+    path: str | Path,
+    out_dir: str | Path,
+    *,
+    scheduler: str | None = None,
+    workers: int | None = None,
+    progress: Callable[[int, int], None] | None = None,
+    plot: bool = True,
+) -> SweepResult:
+    """Run a sweep file on Dask and write its results to ``out_dir``, resuming if it can.
+
+    Writes ``parts/<chunk>.json`` as each chunk finishes, ``sweep.nc`` (rewritten every
+    :data:`WRITE_EVERY` seconds and at the end, also when interrupted), ``sweep.json`` and,
+    with ``plot``, ``sweep.png`` (heat maps, lines or histograms).
+
+    Parameters
+    ----------
+    path : str or Path
+        The sweep file (see :mod:`tumble.io.sweep`).
+    out_dir : str or Path
+        Output directory; if it holds this sweep's finished chunks they are kept and not
+        computed again.
+    scheduler : str, optional
+        Address of a running Dask scheduler (``tcp://HOST:PORT``); by default a LocalCluster
+        with one worker per core is started and stopped.
+    workers : int, optional
+        Workers of the LocalCluster (default: the number of cores).
+    progress : callable, optional
+        ``progress(done, total)`` in points, after each chunk.
+    plot : bool
+        Write the figure.
+
+    Returns
+    -------
+    SweepResult
+    """
+    start = time.perf_counter()
+    sweep = load_sweep(path)
+    store = SweepStore(out_dir, sweep)
+    finished = store.finished()
+    records = store.records(finished)
+    resumed = len(records)
+    total = sweep.plan.size
+    todo = [c for c in range(sweep.chunks) if c not in finished]
+    if progress is not None:
+        progress(resumed, total)
+    threads = 0
+    last_write = time.perf_counter()
+    try:
+        if todo:
+            with _client(scheduler, workers) as client:
+                threads = _threads(client)
+                _run_chunks(client, sweep, store, todo, records, progress, last_write)
+    finally:
+        ds = _dataset(sweep, records)
+        files = [store.write_dataset(ds), store.dir / "sweep.json"]
+    if plot:
+        from tumble.io.output import atomic_write
+
+        figure = store.dir / "sweep.png"
+        png = sweep_png(
+            ds,
+            variables=sweep.plot_variables or None,
+            method=sweep.plot_method,
+            slow=get_model(sweep.model).plot_variables,
+            title=f"sweep {Path(path).name}",
+        )
+        atomic_write(figure, png)
+        files.append(figure)
+    return SweepResult(
+        ds,
+        files,
+        len(records) - resumed,
+        resumed,
+        int(ds.attrs["points_failed"]),
+        time.perf_counter() - start,
+        threads,
+    )
+
+
+def _run_chunks(
+    client: Any,
+    sweep: Sweep,
+    store: SweepStore,
+    todo: list[int],
+    records: dict[int, Record],
+    progress: Callable[[int, int], None] | None,
+    last_write: float,
+) -> None:
+    """Submit the chunks ``todo`` and keep each one's records as it finishes."""
+    from distributed import as_completed
+
+    base = client.scatter(sweep.base, broadcast=True)
+    futures = {}
+    for c in todo:
+        points = [sweep.plan.assignments(i) for i in sweep.chunk_points(c)]
+        fut = client.submit(
+            compute_chunk,
+            base,
+            sweep.source,
+            points,
+            sweep.keep,
+            sweep.batch,
+            key=f"tumble-sweep-{sweep.digest}-{c}",
+            pure=False,
+        )
+        futures[fut] = c
+    for fut in as_completed(futures):
+        c = futures[fut]
+        try:
+            recs = fut.result()
+        except Exception as exc:  # the task itself broke: a KilledWorker, or a bug
+            reason = f"the task of chunk {c} failed: {type(exc).__name__}: {exc}"
+            recs = [failed_record(reason) for _ in sweep.chunk_points(c)]
+        store.write_part(c, recs)
+        records.update(zip(sweep.chunk_points(c), recs, strict=True))
+        if progress is not None:
+            progress(len(records), sweep.plan.size)
+        if time.perf_counter() - last_write > WRITE_EVERY:
+            store.write_dataset(_dataset(sweep, records))
+            last_write = time.perf_counter()
+
+
+def _dataset(sweep: Sweep, records: dict[int, Record]) -> xr.Dataset:
+    attrs = {"sweep_file": sweep.path, "sweep_digest": sweep.digest, "base_scenario": sweep.source}
+    ds = records_to_dataset(
+        sweep.plan, records, model=sweep.model, time_name=sweep.time_name, attrs=attrs
+    )
+    ds["batch"] = (
+        sweep.plan.dims,
+        np.array(
+            [records.get(i, {}).get("batch", 0) for i in range(sweep.plan.size)], dtype=np.int8
+        ).reshape(sweep.plan.shape),
+        {"units": "1", "long_name": "full run integrated by the compiled batch path (1)"},
+    )
+    return ds

@@ -1,0 +1,249 @@
+"""Sweeps on a real Dask cluster on loopback (issue 7): a scheduler and two worker processes
+started here. A sweep completes; a worker killed mid-sweep changes no result; a sweep killed
+and started again gives the Dataset of an uninterrupted run and recomputes nothing finished.
+"""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from tumble.io.scenario import template
+from tumble.sweep import run_sweep
+
+DASK = str(Path(sys.executable).with_name("dask"))
+TUMBLE = str(Path(sys.executable).with_name("tumble"))
+
+# 3 × 4 grid of a short resisting-medium run, 2 points per task: 6 tasks of ~0.3 s, so both
+# workers are busy for a few seconds, long enough to kill one of them (or the client) mid-way.
+BASE = (
+    template("resisting_medium")
+    .replace("tau_end = 400.0", "tau_end = 60.0")
+    .replace("samples = 401", "samples = 31")
+)
+SWEEP = """base = "base.toml"
+[[axis]]
+key = "parameters.b[2][2]"
+values = [0.05, 0.2, 0.4]
+[[axis]]
+key = "initial.theta"
+linspace = [0.4, 1.3, 4]
+[sweep]
+chunk = 2
+"""
+
+
+def _start(args, log):
+    return subprocess.Popen(args, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+
+
+def _wait_for(predicate, timeout, what):
+    end = time.monotonic() + timeout
+    while time.monotonic() < end:
+        if predicate():
+            return
+        time.sleep(0.05)
+    raise AssertionError(f"timed out after {timeout} s waiting for {what}")
+
+
+class Cluster:
+    """A Dask scheduler and worker processes on 127.0.0.1, as ``dask scheduler`` and
+    ``dask worker`` start them on a real cluster (no nanny: a killed worker stays dead)."""
+
+    def __init__(self, root: Path, workers: int = 2):
+        self.root = root
+        self.file = root / "scheduler.json"
+        self.log = open(root / "cluster.log", "w")  # closed in stop()
+        self.procs = [
+            _start(
+                [
+                    DASK,
+                    "scheduler",
+                    "--host",
+                    "127.0.0.1",
+                    "--port",
+                    "0",
+                    "--no-dashboard",
+                    "--scheduler-file",
+                    str(self.file),
+                ],
+                self.log,
+            )
+        ]
+        _wait_for(self.file.exists, 60, "the scheduler")
+        self.address = json.loads(self.file.read_text())["address"]
+        self.workers = [self.add_worker(f"w{i}") for i in range(workers)]
+        from distributed import Client
+
+        with Client(self.address, timeout="30s") as client:
+            client.wait_for_workers(workers, timeout=60)
+
+    def add_worker(self, name):
+        proc = _start(
+            [
+                DASK,
+                "worker",
+                self.address,
+                "--nthreads",
+                "1",
+                "--no-nanny",
+                "--no-dashboard",
+                "--name",
+                name,
+                "--host",
+                "127.0.0.1",
+            ],
+            self.log,
+        )
+        self.procs.append(proc)
+        return proc
+
+    def stop(self):
+        # A graceful close takes the workers ~10 s each; nothing of it is under test here.
+        for proc in self.procs:
+            proc.kill()
+            proc.wait(timeout=20)
+        self.log.close()
+
+
+@pytest.fixture(scope="module")
+def cluster(tmp_path_factory):
+    c = Cluster(tmp_path_factory.mktemp("cluster"))
+    yield c
+    c.stop()
+
+
+@pytest.fixture(scope="module")
+def sweep_file(tmp_path_factory):
+    d = tmp_path_factory.mktemp("sweep")
+    (d / "base.toml").write_text(BASE)
+    (d / "sweep.toml").write_text(SWEEP)
+    return d / "sweep.toml"
+
+
+@pytest.fixture(scope="module")
+def reference(cluster, sweep_file, tmp_path_factory):
+    """The uninterrupted sweep on the cluster."""
+    out = tmp_path_factory.mktemp("reference")
+    result = run_sweep(sweep_file, out, scheduler=cluster.address)
+    return result, out
+
+
+def _results(ds: xr.Dataset) -> xr.Dataset:
+    # Wall times are measurements of each run, not results: they differ between any two runs.
+    return ds.drop_vars("wall_time")
+
+
+def test_sweep_completes_on_the_cluster(reference):
+    result, out = reference
+    ds = result.dataset
+    assert dict(ds["status"].sizes) == {"b_2_2": 3, "theta": 4}
+    assert (ds["status"] == 0).all() and result.computed == 12 and result.failed == 0
+    assert result.workers == 2
+    assert (ds["batch"] == 1).all()  # the full runs went through the compiled batch path
+    assert np.isfinite(ds["final_k"]).all() and np.isfinite(ds["difference_theta"]).all()
+    on_disk = xr.load_dataset(out / "sweep.nc")
+    xr.testing.assert_identical(on_disk, ds)
+    assert (out / "sweep.png").stat().st_size > 0
+    assert len(list((out / "parts").glob("*.json"))) == 6
+
+
+def test_a_worker_killed_mid_sweep_changes_no_result(cluster, sweep_file, reference, tmp_path):
+    """SIGKILL a worker while it runs a task: the scheduler reruns the task elsewhere."""
+    from distributed import Client
+
+    victim = cluster.add_worker("victim")
+    out = tmp_path / "out"
+    parts = out / "parts"
+    with Client(cluster.address, timeout="30s") as client:
+        client.wait_for_workers(3, timeout=60)
+        address = next(
+            a for a, w in client.scheduler_info()["workers"].items() if w["name"] == "victim"
+        )
+        proc = subprocess.Popen(
+            [TUMBLE, "sweep", str(sweep_file), "-o", str(out), "--scheduler", cluster.address],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            text=True,
+        )
+
+        def victim_busy():
+            return bool(client.processing().get(address)) and parts.is_dir()
+
+        _wait_for(victim_busy, 120, "a task on the victim")
+        victim.send_signal(signal.SIGKILL)
+        victim.wait(timeout=20)
+        finished_at_kill = len(list(parts.glob("*.json")))
+    stdout, _ = proc.communicate(timeout=300)
+    assert proc.returncode == 0, stdout
+    assert finished_at_kill < 6 and "12 computed, 0 already done, 0 failed" in stdout
+    killed = xr.load_dataset(out / "sweep.nc")
+    xr.testing.assert_identical(_results(killed), _results(reference[0].dataset))
+
+
+def test_a_killed_sweep_resumes_to_the_uninterrupted_dataset(
+    cluster, sweep_file, reference, tmp_path
+):
+    out = tmp_path / "out"
+    args = [TUMBLE, "sweep", str(sweep_file), "-o", str(out), "--scheduler", cluster.address]
+    proc = subprocess.Popen(
+        args, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True
+    )
+    parts = out / "parts"
+    _wait_for(lambda: parts.is_dir() and len(list(parts.glob("*.json"))) >= 2, 120, "2 chunks")
+    os.killpg(proc.pid, signal.SIGKILL)  # no chance to clean up: killed at an arbitrary point
+    proc.wait(timeout=20)
+    kept = {p.name: p.stat().st_mtime_ns for p in parts.glob("*.json")}
+    assert 2 <= len(kept) < 6, "the sweep should be killed before it ends"
+    # The cluster lets go of the dead client's tasks before the second run submits them again.
+    time.sleep(1.0)
+    done = subprocess.run(args, capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert f"{12 - 2 * len(kept)} computed, {2 * len(kept)} already done" in done.stdout
+    for name, mtime in kept.items():  # finished chunks were not computed or written again
+        assert (parts / name).stat().st_mtime_ns == mtime
+    resumed = xr.load_dataset(out / "sweep.nc")
+    xr.testing.assert_identical(_results(resumed), _results(reference[0].dataset))
+
+
+def test_monte_carlo_on_a_local_cluster_started_by_tumble(tmp_path):
+    """Without --scheduler, tumble starts and stops a LocalCluster (here of 2 workers)."""
+    (tmp_path / "base.toml").write_text(BASE)
+    (tmp_path / "mc.toml").write_text(
+        'base = "base.toml"\n[monte_carlo]\nsamples = 6\nseed = 11\n'
+        '[[monte_carlo.draw]]\nkey = "parameters.eps"\nlog_uniform = [0.005, 0.02]\n'
+        '[[monte_carlo.draw]]\nkey = "initial.theta"\nnormal = [1.0, 0.1]\n'
+    )
+    args = [TUMBLE, "sweep", str(tmp_path / "mc.toml"), "-o", str(tmp_path / "out")]
+    done = subprocess.run([*args, "--workers", "2"], capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "6 computed" in done.stdout and "on 2 worker threads" in done.stdout
+    ds = xr.load_dataset(tmp_path / "out" / "sweep.nc")
+    assert ds["status"].dims == ("sample",) and (ds["status"] == 0).all()
+    assert ds["eps"].attrs["distribution"] == "log_uniform"
+    assert np.all((ds["eps"] >= 0.005) & (ds["eps"] <= 0.02))
+    np.testing.assert_array_equal(ds["final_theta"].sel({"method": "full"}).notnull(), True)
+    assert (tmp_path / "out" / "sweep.png").stat().st_size > 0
+
+
+def test_bad_sweep_input_is_one_line_and_exit_2(tmp_path):
+    (tmp_path / "base.toml").write_text(BASE)
+    (tmp_path / "bad.toml").write_text(
+        'base = "base.toml"\n[[axis]]\nkey = "parameters.eps"\nlogspace = [0.0, 0.1, 3]\n'
+    )
+    done = subprocess.run(
+        [TUMBLE, "sweep", str(tmp_path / "bad.toml"), "-o", str(tmp_path / "out")],
+        capture_output=True,
+        text=True,
+    )
+    assert done.returncode == 2
+    assert "axis[0]" in done.stderr and "end points must be > 0" in done.stderr
+    assert "Traceback" not in done.stderr and len(done.stderr.strip().splitlines()) == 1
+    assert not (tmp_path / "out").exists()  # nothing is written before the input is valid

@@ -552,7 +552,7 @@ def records_to_dataset(
         data[f"difference_{v}"] = (
             (*dims, "pair"),
             np.stack(stack, axis=-1),
-            var_attrs(v, "largest |difference| between two methods of "),
+            var_attrs(v, "max |difference| between two methods, "),
         )
     for k in _union(records, "limits"):
         is_text = any(isinstance(r.get("limits", {}).get(k), str) for r in records.values())

@@ -7,6 +7,7 @@ from its ``attrs``; failed points are marked, never hidden.
 from __future__ import annotations
 
 import io
+import textwrap
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any
 
@@ -91,7 +92,9 @@ def plot_sweep_variable(
     da, note = _select(ds[name], method)
     failed = ds["status"] == 1
     grid = [str(d) for d in ds["status"].dims if d != "sample"]
-    title = _label(da) + (f" ({note})" if note else "")
+    title = str(da.attrs.get("long_name", name)) + (f" ({note})" if note else "")
+    units = str(da.attrs.get("units", ""))
+    short = f"{name} [{units}]" if units else name  # the axis label; the title says the rest
     for extra in grid[2:]:
         da, failed = da.isel({extra: 0}), failed.isel({extra: 0})
         title += f", {extra} = {float(ds[extra].values[0]):.4g}"
@@ -102,7 +105,7 @@ def plot_sweep_variable(
         values = np.asarray(da.values, dtype=float).ravel()
         ok = values[np.isfinite(values)]
         ax.hist(ok, bins=max(5, min(40, int(np.sqrt(max(ok.size, 1))) * 2)), color="tab:blue")
-        ax.set_xlabel(_label(da))
+        ax.set_xlabel(short)
         ax.set_ylabel("samples")
         title += f"\n{ok.size} of {values.size} samples" + (
             f", {int(failed.sum())} failed" if int(failed.sum()) else ""
@@ -115,7 +118,7 @@ def plot_sweep_variable(
             ax.plot(x.values[bad], np.zeros(bad.sum()), "x", color="tab:red", label="failed")
             ax.legend(loc="best", fontsize="small")
         ax.set_xlabel(_label(x))
-        ax.set_ylabel(_label(da))
+        ax.set_ylabel(short)
         _log_axes(ax, _is_log(x), False)
     else:
         ydim, xdim = grid[0], grid[1]
@@ -124,7 +127,7 @@ def plot_sweep_variable(
         mesh = ax.pcolormesh(
             _edges(x.values, _is_log(x)), _edges(y.values, _is_log(y)), values, shading="flat"
         )
-        ax.figure.colorbar(mesh, ax=ax, label=str(da.attrs.get("units", "")) or None)
+        ax.figure.colorbar(mesh, ax=ax, label=short)
         bad = np.asarray(failed.transpose(ydim, xdim).values, dtype=bool)
         if bad.any():
             yy, xx = np.nonzero(bad)
@@ -133,7 +136,7 @@ def plot_sweep_variable(
         ax.set_xlabel(_label(x))
         ax.set_ylabel(_label(y))
         _log_axes(ax, _is_log(x), _is_log(y))
-    ax.set_title(title, fontsize="small")
+    ax.set_title(textwrap.fill(title, 60), fontsize="small")
     return ax
 
 
@@ -150,7 +153,7 @@ def sweep_figure(
     import matplotlib.pyplot as plt
 
     names = list(variables or default_variables(ds, slow))
-    cols = min(3, max(1, len(names)))
+    cols = 2 if len(names) == 4 else min(3, max(1, len(names)))
     rows = max(1, -(-len(names) // cols))
     fig, axes = plt.subplots(rows, cols, figsize=(4.6 * cols, 3.8 * rows), squeeze=False)
     for ax, name in zip(axes.ravel(), names, strict=False):

@@ -1,5 +1,6 @@
 # tumble — developer entry points. Needs only python3 >= 3.11 and network access to PyPI.
 #
+#   make reproduce  check every claim of the three papers → out/reproduce/report.html
 #   make demo    run every scenario in examples/ (outputs under out/<name>/)
 #   make test    the test suite without the slow studies (what CI runs: .ci/run)
 #   make bench   the slow studies only (pytest -m slow), with heyoka.py (the bench extra)
@@ -17,7 +18,7 @@ DEV_STAMP  := $(VENV)/.installed-dev
 
 EXAMPLES := $(wildcard examples/*.toml)
 
-.PHONY: demo test bench lint clean distclean
+.PHONY: reproduce demo test bench lint clean distclean
 .DELETE_ON_ERROR:
 
 $(BIN)/python:
@@ -31,6 +32,9 @@ $(DEV_STAMP): pyproject.toml $(TEST_STAMP)
 	$(BIN)/python -m pip install -e ".[test,dev]"
 	touch $@
 
+reproduce: $(TEST_STAMP)
+	$(BIN)/tumble reproduce all -o out/reproduce
+
 demo: $(TEST_STAMP)
 	@set -e; for f in $(EXAMPLES); do \
 		name=$$(basename "$$f" .toml); \
@@ -42,6 +46,7 @@ test: $(TEST_STAMP)
 	$(BIN)/python -m pytest -m "not slow" -q
 
 bench: $(TEST_STAMP)
+	@command -v chromium >/dev/null || { echo "make bench: the report test needs Debian's chromium (apt-get install chromium)"; exit 1; }
 	$(BIN)/python -m pip install -e ".[test,bench]"
 	$(BIN)/python -m pytest -m slow -q
 

@@ -1,5 +1,5 @@
 """Command-line interface: ``tumble run | verify | models | init | stability | stability-map |
-bench | sweep``.
+bench | sweep | reproduce``.
 
 Commands only translate arguments: the work is done by library functions a notebook can call.
 Bad input prints one red line to stderr and exits 2; a failed integration exits 3.
@@ -612,6 +612,60 @@ def sweep_cmd(
     out.print(
         f"written: {', '.join(str(f) for f in result.files)}", highlight=False, soft_wrap=True
     )
+
+
+@app.command("reproduce")
+def reproduce_cmd(
+    papers: Annotated[
+        list[str] | None,
+        typer.Argument(
+            help="resisting_medium, rotating_field, nonlinear_moment or all (default: all)"
+        ),
+    ] = None,
+    out_dir: Annotated[Path, typer.Option("-o", "--out", help="output directory")] = Path(
+        "out/reproduce"
+    ),
+) -> None:
+    """Check every claim of the papers: report.html (figures embedded), claims.json, figures/.
+
+    Each claim gets a verdict computed from its measured figure: confirmed, confirmed with
+    qualification (as the specification corrects or restricts it), or refuted. Exits 1 if a
+    check could not run (the report says which and why).
+    """
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn
+
+    from tumble.reproduce import reproduce
+
+    columns = (TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn())
+    with Progress(*columns, console=err, transient=True, disable=not err.is_terminal) as bar:
+        task = bar.add_task("claims", total=None)
+
+        def progress(done: int, total: int, cid: str) -> None:
+            bar.update(task, completed=done, total=total, description=f"claims ({cid})")
+
+        result = _guarded(lambda: reproduce(papers or ["all"], out_dir, progress=progress))
+    colour = {"confirmed": "green", "confirmed with qualification": "yellow", "refuted": "red"}
+    table = Table(title=f"claims of the papers ({result.wall_time:.0f} s)", title_justify="left")
+    for col in ("id", "claim", "verdict", "measured"):
+        table.add_column(col)
+    for r in result.runs:
+        if r.claim is None:
+            table.add_row(r.id, r.error, "[red]error[/]", "")
+            continue
+        m = r.claim.measured
+        value = m.get("value")
+        shown = f"{value:.3g}" if isinstance(value, float) else str(value)
+        table.add_row(
+            r.id,
+            r.claim.title,
+            f"[{colour.get(r.verdict, 'white')}]{r.verdict}[/]",
+            f"{shown} {m.get('units', '')}".strip(),
+        )
+    out.print(table)
+    out.print(f"report: {Path(out_dir) / 'report.html'}", highlight=False, soft_wrap=True)
+    if result.errors:
+        err.print(f"[red]{len(result.errors)} check(s) could not run[/red] (see the report)")
+        raise typer.Exit(1)
 
 
 def main() -> None:

@@ -19,6 +19,7 @@ import xarray as xr
 
 import tumble
 from tumble.analysis import RunResult, VerifyResult
+from tumble.analysis.claims.base import plain  # numpy → JSON values, shared with the claims
 
 __all__ = [
     "atomic_write",
@@ -66,20 +67,6 @@ def csv_text(ds: xr.Dataset, extra: dict[str, np.ndarray] | None = None) -> str:
         buf, np.column_stack(cols), fmt="%.17g", delimiter=",", header=",".join(names), comments=""
     )
     return buf.getvalue()
-
-
-def _jsonable(x: Any) -> Any:
-    if isinstance(x, dict):
-        return {str(k): _jsonable(v) for k, v in x.items()}
-    if isinstance(x, list | tuple):
-        return [_jsonable(v) for v in x]
-    if isinstance(x, np.ndarray):
-        return _jsonable(x.tolist())
-    if isinstance(x, np.generic):
-        x = x.item()
-    if isinstance(x, float) and not np.isfinite(x):
-        return "nan" if np.isnan(x) else ("inf" if x > 0 else "-inf")
-    return x
 
 
 def table_text(header: tuple[str, ...], rows: list[tuple[Any, ...]]) -> str:
@@ -149,7 +136,7 @@ def summary(
     out.update(result.report.summary)
     if verification is not None:
         out["verify"] = verification.summary()
-    return _jsonable(out)
+    return plain(out)
 
 
 def render_outputs(
@@ -205,7 +192,7 @@ def verify_outputs(result: VerifyResult, source: str) -> dict[str, bytes]:
         "time": time_name,
         **result.summary(),
     }
-    text = json.dumps(_jsonable(doc), indent=2, ensure_ascii=False)
+    text = json.dumps(plain(doc), indent=2, ensure_ascii=False)
     return {
         "verify.csv": table_text(("variable", "eps", "max_error", "order"), rows).encode(),
         "verify_curves.csv": table_text(("eps", "slow_time", "variable", "error"), curves).encode(),

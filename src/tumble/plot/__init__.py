@@ -1,5 +1,6 @@
 """Figures. Plot functions take data and an optional Axes and compute no physics."""
 
+from tumble.plot.claims import claim_figure, claim_png
 from tumble.plot.comparison import plot_comparison, plot_methods
 from tumble.plot.envelope import plot_envelope
 from tumble.plot.stability import (
@@ -11,6 +12,8 @@ from tumble.plot.stability import (
 from tumble.plot.verify import plot_verify
 
 __all__ = [
+    "claim_figure",
+    "claim_png",
     "plot_classification",
     "plot_comparison",
     "plot_envelope",

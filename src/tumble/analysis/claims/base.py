@@ -1,0 +1,180 @@
+"""The record of a checked claim and the plain description of its figure.
+
+A claim function measures one statement of a paper and returns a :class:`Claim`: the verdict is
+computed from the measurement, never written in. Its figure is described as data
+(:class:`FigureSpec`: panels of series, reference lines, scales), so the numerics here import
+no matplotlib; :mod:`tumble.plot.claims` draws it.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any, Literal
+
+import numpy as np
+
+from tumble._typing import FloatArray
+
+__all__ = [
+    "CONFIRMED",
+    "PAPERS",
+    "QUALIFIED",
+    "REFUTED",
+    "VERDICTS",
+    "Claim",
+    "FigureSpec",
+    "Panel",
+    "Series",
+    "plain",
+    "verdict",
+]
+
+CONFIRMED = "confirmed"
+QUALIFIED = "confirmed with qualification"
+REFUTED = "refuted"
+VERDICTS = (CONFIRMED, QUALIFIED, REFUTED)
+
+PAPERS = {
+    "resisting_medium": "A. V. Medvedev (1987), seed 000; spec/medvedev.md",
+    "rotating_field": "Yu. G. Martynenko (1979), seed 002; spec/martynenko.md",
+    "nonlinear_moment": "V. M. Serov (1991), seed 003; spec/serov.md",
+}
+
+Style = Literal["line", "dashed", "dotted", "markers", "line+markers", "bar"]
+Scale = Literal["linear", "log"]
+
+
+@dataclass(frozen=True)
+class Series:
+    """One curve (or bar set) of a panel.
+
+    Attributes
+    ----------
+    x, y : ndarray
+        Abscissae and ordinates, same length.
+    label : str
+        Legend entry ("" for none).
+    style : {"line", "dashed", "dotted", "markers", "line+markers", "bar"}
+    """
+
+    x: FloatArray
+    y: FloatArray
+    label: str = ""
+    style: Style = "line"
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "x", np.asarray(self.x, dtype=float))
+        object.__setattr__(self, "y", np.asarray(self.y, dtype=float))
+        if self.x.shape != self.y.shape:
+            raise ValueError(f"series {self.label!r}: x {self.x.shape} and y {self.y.shape}")
+
+
+@dataclass(frozen=True)
+class Panel:
+    """One axes of a figure.
+
+    ``kind = "lines"`` draws ``series`` with the reference lines ``hlines``/``vlines``
+    ((value, label) pairs) and optional ``xticks`` ((value, label) pairs). Other kinds hand
+    ``data`` as keyword arguments to a drawing function of :mod:`tumble.plot`:
+    ``"stability_map"`` → ``plot_stability_map`` (``ds`` = a stability-grid Dataset, …),
+    ``"envelope"`` → ``plot_envelope`` (``datasets``, ``extrema``, …).
+    """
+
+    series: tuple[Series, ...] = ()
+    xlabel: str = ""
+    ylabel: str = ""
+    title: str = ""
+    xscale: Scale = "linear"
+    yscale: Scale = "linear"
+    hlines: tuple[tuple[float, str], ...] = ()
+    vlines: tuple[tuple[float, str], ...] = ()
+    xticks: tuple[tuple[float, str], ...] | None = None
+    kind: Literal["lines", "stability_map", "envelope"] = "lines"
+    data: Mapping[str, Any] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class FigureSpec:
+    """A figure: panels in a grid of ``ncols`` columns, and its title."""
+
+    panels: tuple[Panel, ...]
+    ncols: int = 1
+    title: str = ""
+
+
+@dataclass(frozen=True)
+class Claim:
+    """One claim of one paper, checked.
+
+    Attributes
+    ----------
+    id : str
+        ``rm-1`` …, ``rf-1`` …, ``nm-1`` ….
+    paper : str
+        Model name (``resisting_medium``, ``rotating_field``, ``nonlinear_moment``).
+    title : str
+        Short title.
+    statement : str
+        The claim as the paper makes it, with its equation or section numbers.
+    spec_ref : str
+        The spec sections and errata that state or qualify it.
+    verdict : str
+        One of :data:`VERDICTS`, computed from ``measured``.
+    measured : dict
+        Plain JSON values: ``value``, ``units``, ``what``, ``threshold``, ``criterion`` and,
+        where it applies, ``qualification`` and ``details``.
+    figure : FigureSpec
+        The figure of the check.
+    """
+
+    id: str
+    paper: str
+    title: str
+    statement: str
+    spec_ref: str
+    verdict: str
+    measured: dict[str, Any]
+    figure: FigureSpec
+
+    def to_dict(self) -> dict[str, Any]:
+        """Everything but the figure, as plain JSON values (for ``claims.json``)."""
+        return plain(
+            {
+                "id": self.id,
+                "paper": self.paper,
+                "title": self.title,
+                "statement": self.statement,
+                "spec_ref": self.spec_ref,
+                "verdict": self.verdict,
+                "measured": self.measured,
+            }
+        )
+
+
+def verdict(holds: bool, qualified: bool) -> str:
+    """The verdict from a measurement: whether the (spec-qualified) claim holds, and whether
+    the spec qualifies the paper's statement."""
+    if not holds:
+        return REFUTED
+    return QUALIFIED if qualified else CONFIRMED
+
+
+def plain(x: Any) -> Any:
+    """numpy scalars and arrays (recursively) as plain JSON values; non-finite floats as
+    strings ("nan", "inf")."""
+    if isinstance(x, Mapping):
+        return {str(k): plain(v) for k, v in x.items()}
+    if isinstance(x, list | tuple):
+        return [plain(v) for v in x]
+    if isinstance(x, np.ndarray):
+        return plain(x.tolist())
+    if isinstance(x, np.bool_ | bool):
+        return bool(x)
+    if isinstance(x, np.integer):
+        return int(x)
+    if isinstance(x, np.floating | float):
+        v = float(x)
+        return v if math.isfinite(v) else str(v)
+    return x

@@ -1,0 +1,214 @@
+"""The report of ``tumble reproduce``: one self-contained HTML page and ``claims.json``.
+
+The page embeds every figure as a PNG data URI and its style sheet inline, so it opens
+offline, from any directory, and can be mailed as one file. A few lines of inline script
+count the figures the browser actually decoded and write the count into the page (the
+attribute ``data-figures-rendered`` of ``<body>`` and the footer), which is what the headless
+browser test reads.
+"""
+
+from __future__ import annotations
+
+import base64
+import datetime as _dt
+import html
+import json
+import platform
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import tumble
+from tumble.analysis.claims.base import PAPERS, VERDICTS, Claim, plain
+
+__all__ = ["ClaimRun", "claims_json", "report_html"]
+
+_COLOURS = {
+    "confirmed": "#1a7f37",
+    "confirmed with qualification": "#9a6700",
+    "refuted": "#cf222e",
+    "error": "#6e7781",
+}
+
+_CSS = """
+body { font: 15px/1.45 system-ui, -apple-system, "Segoe UI", sans-serif; margin: 0 auto;
+       max-width: 1100px; padding: 1.2em 1.6em 3em; color: #1f2328; }
+h1 { font-size: 1.6em; margin-bottom: .2em; } h2 { margin-top: 2em; border-bottom: 1px solid
+#d0d7de; padding-bottom: .2em; } h3 { margin: 0 0 .3em; font-size: 1.1em; }
+.meta { color: #59636e; font-size: .9em; }
+table { border-collapse: collapse; margin: .8em 0; font-size: .92em; width: 100%; }
+th, td { border: 1px solid #d0d7de; padding: .3em .5em; text-align: left; vertical-align: top; }
+th { background: #f6f8fa; }
+.badge { display: inline-block; padding: .05em .55em; border-radius: 1em; color: white;
+         font-size: .85em; white-space: nowrap; }
+.claim { border: 1px solid #d0d7de; border-radius: 6px; padding: .9em 1.1em; margin: 1.2em 0; }
+.claim p { margin: .35em 0; } .label { color: #59636e; font-weight: 600; }
+.claim img { max-width: 100%; height: auto; display: block; margin-top: .6em;
+             border: 1px solid #eaeef2; }
+pre { background: #f6f8fa; padding: .5em; overflow-x: auto; font-size: .85em; }
+a { color: #0969da; text-decoration: none; }
+footer { margin-top: 3em; color: #59636e; font-size: .85em; }
+"""
+
+# Counts the <img class="figure"> the browser decoded (complete with a natural width) once the
+# page has loaded, and writes the count into the page for the reader and for the tests.
+_SCRIPT = """
+window.addEventListener("load", function () {
+  var imgs = document.querySelectorAll("img.figure"), ok = 0;
+  for (var i = 0; i < imgs.length; i++) {
+    if (imgs[i].complete && imgs[i].naturalWidth > 0) { ok++; }
+  }
+  document.body.setAttribute("data-figures-rendered", String(ok));
+  document.getElementById("rendered").textContent = ok + " of " + imgs.length;
+});
+"""
+
+
+@dataclass(frozen=True)
+class ClaimRun:
+    """A claim as run: the claim (None if its check raised), its figure and its time.
+
+    Attributes
+    ----------
+    id, paper : str
+        The claim's id and model name (known even when the check failed).
+    claim : Claim or None
+    png : bytes
+        The figure (empty when the check failed).
+    seconds : float
+        Wall time of the check [s].
+    error : str
+        Why the check could not run ("" when it ran).
+    """
+
+    id: str
+    paper: str
+    claim: Claim | None
+    png: bytes
+    seconds: float
+    error: str = ""
+
+    @property
+    def verdict(self) -> str:
+        return "error" if self.claim is None else self.claim.verdict
+
+
+def _counts(runs: Sequence[ClaimRun]) -> dict[str, int]:
+    return {v: sum(1 for r in runs if r.verdict == v) for v in (*VERDICTS, "error")}
+
+
+def claims_json(runs: Sequence[ClaimRun], papers: Sequence[str], wall_time: float) -> str:
+    """``claims.json``: every claim with its verdict, measured figure, time and figure file."""
+    doc = {
+        "tumble_version": tumble.__version__,
+        "papers": {p: PAPERS[p] for p in papers},
+        "wall_time_s": wall_time,
+        "counts": _counts(runs),
+        "claims": [
+            {
+                **(r.claim.to_dict() if r.claim is not None else {"id": r.id, "paper": r.paper}),
+                "verdict": r.verdict,
+                "error": r.error,
+                "seconds": r.seconds,
+                "figure": f"figures/{r.id}.png" if r.png else "",
+            }
+            for r in runs
+        ],
+    }
+    return json.dumps(plain(doc), indent=1, ensure_ascii=False) + "\n"
+
+
+def _badge(verdict: str) -> str:
+    colour = _COLOURS.get(verdict, "#6e7781")
+    return f'<span class="badge" style="background:{colour}">{html.escape(verdict)}</span>'
+
+
+def _value(measured: Mapping[str, Any]) -> str:
+    value = measured.get("value")
+    text = f"{value:.3g}" if isinstance(value, float) else str(value)
+    units = str(measured.get("units", ""))
+    return f"{text} {units}".strip()
+
+
+def _claim_section(r: ClaimRun) -> str:
+    e = html.escape
+    title = e(r.claim.title) if r.claim else ""
+    head = f'<h3 id="{e(r.id)}">{e(r.id)}: {title} {_badge(r.verdict)}</h3>'
+    if r.claim is None:
+        return (
+            f'<div class="claim">{head}<p><span class="label">The check raised:</span> '
+            f"<code>{e(r.error)}</code></p></div>"
+        )
+    c, m = r.claim, r.claim.measured
+    rows = [
+        ("Claim", e(c.statement)),
+        ("Spec", e(c.spec_ref)),
+        ("Measured", f"{e(str(m.get('what', '')))} = <b>{e(_value(m))}</b>"),
+        ("Criterion", f"{e(str(m.get('criterion', '')))} (threshold {e(str(m.get('threshold')))})"),
+    ]
+    if m.get("qualification"):
+        rows.append(("Qualification", e(str(m["qualification"]))))
+    body = "".join(f'<p><span class="label">{k}:</span> {v}</p>' for k, v in rows)
+    details = ""
+    if m.get("details"):
+        text = json.dumps(m["details"], indent=1, ensure_ascii=False)
+        details = f"<details><summary>details</summary><pre>{e(text)}</pre></details>"
+    data = base64.b64encode(r.png).decode("ascii")
+    img = f'<img class="figure" alt="figure of {e(r.id)}" src="data:image/png;base64,{data}">'
+    time = f'<p class="meta">checked in {r.seconds:.2f} s</p>'
+    return f'<div class="claim">{head}{body}{details}{img}{time}</div>'
+
+
+def report_html(runs: Sequence[ClaimRun], papers: Sequence[str], wall_time: float) -> str:
+    """The self-contained HTML report of :func:`tumble.reproduce.reproduce`.
+
+    Parameters
+    ----------
+    runs : sequence of ClaimRun
+        The claims in report order.
+    papers : sequence of str
+        The model names reproduced.
+    wall_time : float
+        Seconds of the whole run [s].
+    """
+    e = html.escape
+    counts = _counts(runs)
+    stamp = _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC")
+    summary = ", ".join(f"{n} {v}" for v, n in counts.items() if n)
+    parts = [
+        "<!DOCTYPE html>",
+        '<html lang="en"><head><meta charset="utf-8">',
+        '<meta name="viewport" content="width=device-width, initial-scale=1">',
+        "<title>tumble reproduce: the claims of the papers, checked</title>",
+        f"<style>{_CSS}</style><script>{_SCRIPT}</script></head>",
+        '<body data-figures-rendered="0">',
+        "<h1>The claims of the papers, checked</h1>",
+        f'<p class="meta">tumble {e(tumble.__version__)} · {e(stamp)} · '
+        f"{e(platform.python_implementation())} {e(platform.python_version())} · "
+        f"{wall_time:.0f} s · {len(runs)} claims: {e(summary)}</p>",
+        "<p>Each claim is stated as the paper makes it, with the section of its "
+        "specification that states or corrects it. Its verdict is computed from the measured "
+        "figure against the criterion shown: <i>confirmed</i> (holds as the paper states it), "
+        "<i>confirmed with qualification</i> (holds in the form the specification gives it), "
+        "<i>refuted</i> (the measurement contradicts the paper).</p>",
+    ]
+    for paper in papers:
+        mine = [r for r in runs if r.paper == paper]
+        parts.append(f'<h2 id="{e(paper)}">{e(PAPERS[paper])}</h2>')
+        parts.append(
+            "<table><tr><th>id</th><th>claim</th><th>verdict</th><th>measured</th></tr>"
+            + "".join(
+                f'<tr><td><a href="#{e(r.id)}">{e(r.id)}</a></td>'
+                f"<td>{e(r.claim.title if r.claim else r.error)}</td><td>{_badge(r.verdict)}</td>"
+                f"<td>{e(_value(r.claim.measured)) if r.claim else ''}</td></tr>"
+                for r in mine
+            )
+            + "</table>"
+        )
+        parts.extend(_claim_section(r) for r in mine)
+    parts.append(
+        f'<footer>Figures rendered by this browser: <span id="rendered">(script off)</span>. '
+        f"Produced by <code>tumble reproduce {' '.join(e(p) for p in papers)}</code>.</footer>"
+    )
+    parts.append("</body></html>")
+    return "\n".join(parts) + "\n"

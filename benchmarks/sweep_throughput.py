@@ -22,8 +22,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from tumble.io.scenario import parse_scenario
-from tumble.io.sweep import load_sweep, point_scenario
+from tumble.io.sweep import load_sweep
 from tumble.sweep import compute_chunk, run_sweep
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -33,7 +32,9 @@ SWEEPS = sorted((ROOT / "examples" / "sweeps").glob("*.toml"))
 def sequential(path: Path) -> float:
     """Seconds to run every point of a sweep in this process, chunk by chunk, no Dask."""
     sweep = load_sweep(path)
-    parse_scenario(point_scenario(sweep.base, sweep.plan.assignments(0)), sweep.source)
+    # Warm up as the cluster's workers are warmed: one point, untimed (imports, numba's cache,
+    # first calls of the compiled entry points).
+    compute_chunk(sweep.base, sweep.source, [sweep.plan.assignments(0)], sweep.keep, sweep.batch)
     start = time.perf_counter()
     for c in range(sweep.chunks):
         points = [sweep.plan.assignments(i) for i in sweep.chunk_points(c)]

@@ -32,8 +32,14 @@ def _fake(cid, holds):
     def check():
         x = np.linspace(0.0, 1.0, 11)
         fig = FigureSpec((Panel((Series(x, x**2, "x²"),), xlabel="x", ylabel="y"),))
-        measured = {"value": 1e-12, "units": "rad", "what": "error", "threshold": 1e-9,
-                    "criterion": "≤ threshold"}  # fmt: skip
+        measured = {
+            "value": 1e-12,
+            "units": "rad",
+            "what": "error",
+            "threshold": 1e-9,
+            "criterion": "≤ threshold",
+            "details": {"spec_consistent": holds},
+        }
         return Claim(cid, "rotating_field", f"title {cid}", "statement", "§1",
                      verdict(holds, False), measured, fig)  # fmt: skip
 
@@ -69,6 +75,8 @@ def test_reproduce_writes_a_self_contained_report(fake_claims, tmp_path):
     assert not re.search(r'(src|href)="(?!data:|#)', page)
     assert page.count('<img class="figure"') == 2 == page.count('src="data:image/png;base64,')
     assert "a deliberately broken check" in page
+    # rf-2's measurement contradicts its spec too: the page says so outside the details.
+    assert page.count("contradicts the specification's own statement") == 1
 
 
 def test_cli_reproduce_table_and_exit_codes(fake_claims, tmp_path):

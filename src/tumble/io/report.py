@@ -148,6 +148,14 @@ def _claim_section(r: ClaimRun) -> str:
     ]
     if m.get("qualification"):
         rows.append(("Qualification", e(str(m["qualification"]))))
+    if isinstance(m.get("details"), Mapping) and m["details"].get("spec_consistent") is False:
+        rows.append(
+            (
+                "Against the spec",
+                "<b>the measurement also contradicts the specification's own statement "
+                "here</b> (figures under details)",
+            )
+        )
     body = "".join(f'<p><span class="label">{k}:</span> {v}</p>' for k, v in rows)
     details = ""
     if m.get("details"):

@@ -40,7 +40,8 @@ MEASURED_KEYS = {"value", "units", "what", "threshold", "criterion"}
 
 CONFIRMED_IDS = {"rm-2", "rm-4", "rm-5", "rf-3", "rf-6", "rf-7", "rf-11", "nm-5", "nm-6", "nm-9"}
 REFUTED_IDS = {"rm-12", "rm-15", "rf-17"}
-"""The draft's verdicts (catalogue.md): these confirmed, these refuted, the other 32 qualified."""
+"""The verdicts of the first full run (the README's table): these confirmed, these refuted, the
+other 32 qualified. A change of verdict must be a deliberate one, seen in this test."""
 
 
 # ---------------------------------------------------------------------------------------------
@@ -249,7 +250,7 @@ def test_every_claim_keeps_the_interface(all_claims):
 
 
 @pytest.mark.slow
-def test_every_verdict_is_the_drafts(all_claims):
+def test_every_verdict_is_the_recorded_one(all_claims):
     for runs in all_claims.values():
         for _, c in runs:
             if c.id == "nm-10":

@@ -587,6 +587,7 @@ def sweep_cmd(
             f"[yellow]interrupted:[/yellow] the finished points are kept in {out_dir}/; run the "
             "same command to resume",
             highlight=False,
+            soft_wrap=True,
         )
         raise typer.Exit(130) from None
     ds = result.dataset

@@ -190,6 +190,9 @@ def _client(scheduler: str | None, workers: int | None) -> Iterator[Any]:
         # Any free port: a fixed one (8787) may be taken by another cluster on the machine.
         dashboard_address=":0",
         host="127.0.0.1",
+        # The workers' warnings (tasks cancelled at Ctrl-C, …) would break the progress bar;
+        # what matters to a sweep (a point's failure, a lost worker's task) is in its records.
+        silence_logs=logging.ERROR,
     )
     try:
         client = Client(cluster)

@@ -168,7 +168,11 @@ def test_failed_points_are_recorded_with_their_reason(tmp_path):
     assert "kappa" in recs[1]["reason"] and "ParameterError" in recs[1]["reason"]
     assert recs[2]["reason"].startswith("invalid input") and "kappa" in recs[2]["reason"]
     ds = records_to_dataset(
-        sweep.plan, dict(enumerate(recs)), model="resisting_medium", time_name="tau"
+        sweep.plan,
+        dict(enumerate(recs)),
+        model="resisting_medium",
+        time_name="tau",
+        columns=sweep.columns,
     )
     assert ds.attrs["points_failed"] == 2
     assert np.isnan(ds["final_k"].sel(kappa=0.0)).all()
@@ -187,7 +191,9 @@ def test_partial_dataset_marks_pending_points_and_round_trips_netcdf(tmp_path):
     points = [sweep.plan.assignments(i) for i in sweep.chunk_points(0)]
     store.write_part(0, compute_chunk(sweep.base, sweep.source, points, sweep.keep))
     recs = store.records()
-    ds = records_to_dataset(sweep.plan, recs, model="resisting_medium", time_name="tau")
+    ds = records_to_dataset(
+        sweep.plan, recs, model="resisting_medium", time_name="tau", columns=sweep.columns
+    )
     assert (ds["status"].values.ravel()[: len(points)] == 0).all()
     assert (ds["status"].values.ravel()[len(points) :] == -1).all()
     assert ds["eps"].attrs["scale"] == "log" and ds["theta"].attrs["units"] == "rad"
@@ -225,7 +231,11 @@ def test_keep_verify_and_stability_figures(tmp_path):
     points = [sweep.plan.assignments(i) for i in range(2)]
     recs = compute_chunk(sweep.base, sweep.source, points, sweep.keep)
     ds = records_to_dataset(
-        sweep.plan, dict(enumerate(recs)), model="rotating_field", time_name="tau"
+        sweep.plan,
+        dict(enumerate(recs)),
+        model="rotating_field",
+        time_name="tau",
+        columns=sweep.columns,
     )
     assert set(ds["verify_status"].values) <= {"first-order", "degraded", "invalid"}
     assert np.isfinite(ds["verify_error_L"]).all() and np.isfinite(ds["max_real"]).all()

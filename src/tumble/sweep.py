@@ -334,7 +334,12 @@ def _run_chunks(
 def _dataset(sweep: Sweep, records: dict[int, Record]) -> xr.Dataset:
     attrs = {"sweep_file": sweep.path, "sweep_digest": sweep.digest, "base_scenario": sweep.source}
     ds = records_to_dataset(
-        sweep.plan, records, model=sweep.model, time_name=sweep.time_name, attrs=attrs
+        sweep.plan,
+        records,
+        model=sweep.model,
+        time_name=sweep.time_name,
+        columns=sweep.columns,
+        attrs=attrs,
     )
     ds["batch"] = (
         sweep.plan.dims,

@@ -36,6 +36,8 @@ __all__ = [
     "Draw",
     "Keep",
     "SweepPlan",
+    "column_attrs",
+    "failed_record",
     "records_to_dataset",
     "run_point",
 ]
@@ -292,8 +294,9 @@ def _limits(limits: Mapping[str, Any]) -> dict[str, Any]:
     return out
 
 
-def _metadata(request: RunRequest) -> dict[str, dict[str, str]]:
-    """Units, long names and equations of the model's columns (for the Dataset's attrs)."""
+def column_attrs(request: RunRequest) -> dict[str, dict[str, str]]:
+    """Units, long names and equations of the columns of a run's methods (the attrs of the
+    sweep's variables, taken once from the base scenario rather than from every point)."""
     model, p = request.model, request.params
     meta: dict[str, dict[str, str]] = {}
     for method in request.methods:
@@ -340,7 +343,6 @@ def run_point(
             warnings.simplefilter("ignore", TumbleWarning)  # kept below, from result.issues
             result = run(request, precomputed=precomputed)
             verification = verify(request) if keep.verify else None
-        record["meta"] = _metadata(request)
         if result.issues:
             record["issues"] = "; ".join(
                 f"{i['condition']} at {request.model.time_name} = {i['tau']:.6g}"
@@ -447,6 +449,7 @@ def records_to_dataset(
     *,
     model: str,
     time_name: str,
+    columns: Mapping[str, Mapping[str, str]] | None = None,
     attrs: Mapping[str, Any] | None = None,
 ) -> xr.Dataset:
     """Assemble the records of a sweep (flat point index → record) into a Dataset.
@@ -461,6 +464,9 @@ def records_to_dataset(
         Flat point index → record of :func:`run_point`.
     model, time_name : str
         The model's name and time variable (``tau`` or ``t``), for the attrs.
+    columns : mapping, optional
+        Column name → ``units``, ``long_name``, ``equation`` (:func:`column_attrs` of the base
+        scenario); a column not in it gets its name as long name and no unit.
     attrs : mapping, optional
         More Dataset attributes (the sweep file, its hash).
 
@@ -489,10 +495,7 @@ def records_to_dataset(
                     parameters=[d.a, d.b],
                 ),
             )
-    meta: dict[str, dict[str, str]] = {}
-    for rec in records.values():
-        for k, v in rec.get("meta", {}).items():
-            meta.setdefault(k, v)
+    meta = columns or {}
 
     def var_attrs(name: str, prefix: str) -> dict[str, Any]:
         m = meta.get(name, {"units": "", "long_name": name, "equation": ""})

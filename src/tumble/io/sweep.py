@@ -33,7 +33,7 @@ import json
 import math
 import re
 import tomllib
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Literal
 
@@ -41,7 +41,7 @@ import xarray as xr
 from pydantic import BaseModel, ConfigDict, Field, ValidationError
 
 import tumble
-from tumble.analysis.sweep import Axis, Draw, Keep, Record, SweepPlan
+from tumble.analysis.sweep import Axis, Draw, Keep, Record, SweepPlan, column_attrs
 from tumble.errors import ParameterError, ScenarioError
 from tumble.io.output import atomic_write
 from tumble.io.scenario import _one_line, key_units, parse_scenario
@@ -246,6 +246,8 @@ class Sweep:
         Variables of the figure (empty: the default choice).
     plot_method : str or None
         Method shown for per-method variables.
+    columns : dict
+        Units, long names and equations of the base scenario's columns.
     """
 
     plan: SweepPlan
@@ -260,6 +262,7 @@ class Sweep:
     path: str
     plot_variables: tuple[str, ...] = ()
     plot_method: str | None = None
+    columns: dict[str, dict[str, str]] = field(default_factory=dict)
 
     @property
     def chunks(self) -> int:
@@ -405,6 +408,7 @@ def parse_sweep(data: dict[str, Any], path: str | Path) -> Sweep:
         str(path),
         tuple(sf.plot.variables or ()),
         sf.plot.method,
+        column_attrs(sc.request),
     )
 
 

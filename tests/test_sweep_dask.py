@@ -247,3 +247,27 @@ def test_bad_sweep_input_is_one_line_and_exit_2(tmp_path):
     assert "axis[0]" in done.stderr and "end points must be > 0" in done.stderr
     assert "Traceback" not in done.stderr and len(done.stderr.strip().splitlines()) == 1
     assert not (tmp_path / "out").exists()  # nothing is written before the input is valid
+
+
+def test_failed_points_are_kept_on_resume_unless_retried(cluster, tmp_path):
+    """κ = 0 has no averaged method: that point fails with its reason. Resuming keeps it as a
+    result; --retry-failed computes its chunk again (and it fails again, the same way)."""
+    (tmp_path / "base.toml").write_text(BASE)
+    (tmp_path / "k.toml").write_text(
+        'base = "base.toml"\n[[axis]]\nkey = "parameters.kappa"\nvalues = [0.5, 0.0, -0.3]\n'
+    )
+    first = run_sweep(tmp_path / "k.toml", tmp_path / "out", scheduler=cluster.address)
+    ds = first.dataset
+    assert ds["status"].values.tolist() == [0, 1, 0] and first.failed == 1
+    assert "kappa" in str(ds["reason"].sel(kappa=0.0).values)
+    parts = sorted((tmp_path / "out" / "parts").glob("*.json"))
+    stamps = {p.name: p.stat().st_mtime_ns for p in parts}
+    kept = run_sweep(tmp_path / "k.toml", tmp_path / "out", scheduler=cluster.address)
+    assert kept.computed == 0 and kept.resumed == 3 and kept.failed == 1
+    retried = run_sweep(
+        tmp_path / "k.toml", tmp_path / "out", scheduler=cluster.address, retry_failed=True
+    )
+    assert retried.computed == 1 and retried.resumed == 2 and retried.failed == 1
+    changed = [p.name for p in parts if p.stat().st_mtime_ns != stamps[p.name]]
+    assert changed == ["000001.json"]  # only the failed point's chunk (chunk = 1 point here)
+    xr.testing.assert_identical(_results(retried.dataset), _results(ds))

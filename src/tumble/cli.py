@@ -522,6 +522,9 @@ def sweep_cmd(
         typer.Option("--workers", min=1, help="local worker processes (default: every core)"),
     ] = None,
     plot: Annotated[bool, typer.Option(help="write sweep.png")] = True,
+    retry_failed: Annotated[
+        bool, typer.Option("--retry-failed", help="compute failed points again when resuming")
+    ] = False,
 ) -> None:
     """Run a scenario over grid axes and Monte Carlo draws on Dask: sweep.nc and sweep.png.
 
@@ -580,6 +583,7 @@ def sweep_cmd(
                     workers=workers,
                     progress=progress,
                     plot=plot,
+                    retry_failed=retry_failed,
                 )
             )
     except KeyboardInterrupt:

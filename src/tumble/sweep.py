@@ -216,6 +216,7 @@ def run_sweep(
     workers: int | None = None,
     progress: Callable[[int, int], None] | None = None,
     plot: bool = True,
+    retry_failed: bool = False,
 ) -> SweepResult:
     """Run a sweep file on Dask and write its results to ``out_dir``, resuming if it can.
 
@@ -239,6 +240,9 @@ def run_sweep(
         ``progress(done, total)`` in points, after each chunk.
     plot : bool
         Write the figure.
+    retry_failed : bool
+        Compute again the finished chunks that hold a failed point (e.g. after a worker was
+        lost too often, or once a bug is fixed); by default failed points are kept as results.
 
     Returns
     -------
@@ -248,6 +252,8 @@ def run_sweep(
     sweep = load_sweep(path)
     store = SweepStore(out_dir, sweep)
     finished = store.finished()
+    if retry_failed:
+        finished = {c: recs for c, recs in finished.items() if all(r["status"] == 0 for r in recs)}
     records = store.records(finished)
     resumed = len(records)
     total = sweep.plan.size

@@ -92,7 +92,9 @@ def plot_sweep_variable(
     da, note = _select(ds[name], method)
     failed = ds["status"] == 1
     grid = [str(d) for d in ds["status"].dims if d != "sample"]
-    title = str(da.attrs.get("long_name", name)) + (f" ({note})" if note else "")
+    title = str(da.attrs.get("long_name", name))
+    if note and f"({note})" not in title:  # some long names already name their method
+        title += f" ({note})"
     units = str(da.attrs.get("units", ""))
     short = f"{name} [{units}]" if units else name  # the axis label; the title says the rest
     for extra in grid[2:]:
@@ -136,7 +138,7 @@ def plot_sweep_variable(
         ax.set_xlabel(_label(x))
         ax.set_ylabel(_label(y))
         _log_axes(ax, _is_log(x), _is_log(y))
-    ax.set_title(textwrap.fill(title, 60), fontsize="small")
+    ax.set_title("\n".join(textwrap.fill(line, 60) for line in title.split("\n")), fontsize="small")
     return ax
 
 

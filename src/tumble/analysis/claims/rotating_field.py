@@ -40,7 +40,7 @@ from tumble.compiled import rigid_body_kernel
 from tumble.dynamics import rigid_body_rhs
 from tumble.integrate import integrate, simulate
 from tumble.models import rotating_field as rf
-from tumble.rotations import euler313_to_matrix, matrix_to_quat
+from tumble.rotations import euler313_to_matrix, matrix_to_quat, quat_to_matrix
 from tumble.torques import EddyCurrentTorque, ZeroTorque
 from tumble.unperturbed import EulerPoinsot, mean_square_rate, modulus_squared
 
@@ -653,8 +653,7 @@ def rf_9() -> Claim:
     A0 = 0.3
     g = A0 * np.array([r[3], r[4], 0.0])  # tilt of x3: Γ = exp(γ̂), as a rotation of angle |γ|
     ang = float(np.linalg.norm(g))
-    K = np.array([[0, -g[2], g[1]], [g[2], 0, -g[0]], [-g[1], g[0], 0]]) / ang
-    gamma = np.eye(3) + math.sin(ang) * K + (1 - math.cos(ang)) * K @ K
+    gamma = quat_to_matrix(np.r_[math.cos(ang / 2), math.sin(ang / 2) * g / ang])
     st = rf.State(XI3 + A0 * r[:3], gamma)
     tau_end = 6000.0
     sol = integrate(

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from tumble import bench, compiled
+from tumble import bench, kernels
 from tumble.cli import app
 from tumble.models import resisting_medium as rm
 from tumble.torques import (
@@ -86,10 +86,10 @@ def test_without_quadratic_drag_keeps_the_other_terms():
     assert smooth is not None
     assert bench._without_quadratic_drag(smooth) is None  # nothing left to strip
     y = np.array([0.3, -0.7, 1.1, 0.9, 0.1, -0.3, 0.2])
-    got = compiled.evaluate_rhs(smooth, 1.3, y)
-    expected = compiled.evaluate_rhs(rm.full_kernel(p0), 1.3, y)
+    got = kernels.evaluate_rhs(smooth, 1.3, y)
+    expected = kernels.evaluate_rhs(rm.full_kernel(p0), 1.3, y)
     np.testing.assert_array_equal(got, expected)  # the same program, term for term
-    assert not np.array_equal(compiled.evaluate_rhs(kernel, 1.3, y), expected)
+    assert not np.array_equal(kernels.evaluate_rhs(kernel, 1.3, y), expected)
 
 
 def test_time_at_equal_error_interpolates_log_log():
@@ -125,7 +125,7 @@ def _kernels():
         + GravityGradientTorque(inertia, 0.3, [0.1, 0.2, 1.0], 0.4)
         + 2.0 * EddyCurrentTorque(0.7, 1.3, 0.9)
     )
-    kernel = compiled.rigid_body_kernel(inertia, torque)
+    kernel = kernels.rigid_body_kernel(inertia, torque)
     assert kernel is not None
     return [*(c.kernel for c in bench.full_cases(1e5)), kernel]
 
@@ -150,7 +150,7 @@ def test_heyoka_systems_equal_the_compiled_kernels():
             y = rng.normal(size=n)
             t = float(rng.uniform(0.0, 20.0))
             got = _heyoka_rhs(system, y, t)
-            expected = compiled.evaluate_rhs(kernel, t, y)
+            expected = kernels.evaluate_rhs(kernel, t, y)
             # Rounding of sums of products of O(1) terms, in a different order.
             assert np.allclose(got, expected, rtol=1e-12, atol=1e-12 * np.abs(expected).max())
         checked += 1

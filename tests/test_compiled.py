@@ -1,4 +1,4 @@
-"""The compiled integrator (issue 6): its right-hand sides against the models' Python forms,
+"""The compiled integrator: its right-hand sides against the models' Python forms,
 its steps against scipy's DOP853, the events, the batches, and the disk cache."""
 
 from __future__ import annotations
@@ -18,11 +18,11 @@ from scipy.integrate import solve_ivp
 from strategies import angle, inertias, matrices, vectors
 from typer.testing import CliRunner
 
-from tumble import compiled
+from tumble import kernels
 from tumble.cli import app
 from tumble.dynamics import rigid_body_rhs
 from tumble.errors import IntegrationError, ParameterError
-from tumble.integrate import simulate
+from tumble.integrate import dop853, simulate
 from tumble.io import load_scenario
 from tumble.models import nonlinear_moment as nm
 from tumble.models import rotating_field as rf
@@ -88,17 +88,17 @@ def test_rigid_body_kernel_matches_the_python_torques(
     # the gyroscopic terms are of size max I·|ω|²: the rounding scale, divided by min I.
     scale = (6.0 * n * n + float(w @ w) + 10.0) * inertia.max() / inertia.min()
     for torque in [*terms, 0.01 * (terms[0] + terms[2]) + 2.0 * terms[4] + terms[5]]:
-        kernel = compiled.rigid_body_kernel(inertia, torque)
+        kernel = kernels.rigid_body_kernel(inertia, torque)
         assert kernel is not None
         expected = rigid_body_rhs(t, y, inertia, torque)
-        got = compiled.evaluate_rhs(kernel, t, y)
+        got = kernels.evaluate_rhs(kernel, t, y)
         assert _close(got, expected, scale), type(torque).__name__
 
 
 def test_a_python_torque_has_no_kernel():
     user = UserTorque(lambda t, q, w, params: np.zeros(3), {}, "m:f")
-    assert compiled.rigid_body_kernel(FREE_INERTIA, user) is None
-    assert compiled.rigid_body_kernel(FREE_INERTIA, LinearDrag(np.eye(3)) + user) is None
+    assert kernels.rigid_body_kernel(FREE_INERTIA, user) is None
+    assert kernels.rigid_body_kernel(FREE_INERTIA, LinearDrag(np.eye(3)) + user) is None
 
 
 @settings(max_examples=40, deadline=None)
@@ -108,11 +108,11 @@ def test_rotating_field_kernel_matches_1_5(inertia, beta, eps, w, psi, theta, ph
     p = rf.Params(np.array(inertia), beta, eps)
     y = np.concatenate([w, euler313_to_matrix(psi, theta, phi).ravel()])
     expected = rf.full_rhs(0.0, y, p)
-    got = compiled.evaluate_rhs(rf.full_kernel(p), 0.0, y)
+    got = kernels.evaluate_rhs(rf.full_kernel(p), 0.0, y)
     assert _close(got, expected, float(np.max(np.abs(expected))))
     y_in = np.concatenate([w, matrix_to_quat(euler313_to_matrix(psi, theta, phi))])
     expected = rf.inertial_rhs(1.7, y_in, p)
-    assert _close(compiled.evaluate_rhs(rf.inertial_kernel(p), 1.7, y_in), expected, 1.0)
+    assert _close(kernels.evaluate_rhs(rf.inertial_kernel(p), 1.7, y_in), expected, 1.0)
 
 
 PRESSURES = [
@@ -130,7 +130,7 @@ def test_nonlinear_moment_kernel_matches_1_1(mu, a, b, w, psi, theta, phi, t, wh
     p = nm.Params(mu=mu, a=a, b=b, eps=0.1, d=0.3, nu=0.2, pressure=PRESSURES[which])
     y = _state(w, psi, theta, phi)
     expected = nm.full_rhs(t, y, p)
-    got = compiled.evaluate_rhs(nm.full_kernel(p), t, y)
+    got = kernels.evaluate_rhs(nm.full_kernel(p), t, y)
     assert _close(got, expected, float(np.max(np.abs(expected))))
 
 
@@ -141,8 +141,8 @@ def test_a_pressure_function_has_no_kernel():
 
 def test_steps_are_scipys():
     """The same method, error norm and step control as scipy's DOP853: the same steps."""
-    kernel = compiled.rigid_body_kernel(FREE_INERTIA, None)
-    res = compiled.solve(kernel, FREE_Y0, 20.0, rtol=1e-10, atol=1e-12)
+    kernel = kernels.rigid_body_kernel(FREE_INERTIA, None)
+    res = dop853.solve(kernel, FREE_Y0, 20.0, rtol=1e-10, atol=1e-12)
     ref = solve_ivp(
         lambda t, y: rigid_body_rhs(t, y, FREE_INERTIA, None),
         (0.0, 20.0),
@@ -166,10 +166,10 @@ def test_steps_are_scipys():
 
 
 def test_samples_equal_the_dense_output():
-    kernel = compiled.rigid_body_kernel(FREE_INERTIA, None)
+    kernel = kernels.rigid_body_kernel(FREE_INERTIA, None)
     t = np.linspace(0.0, 20.0, 57)
-    dense = compiled.solve(kernel, FREE_Y0, 20.0, rtol=1e-10, atol=1e-12)
-    sampled = compiled.solve(
+    dense = dop853.solve(kernel, FREE_Y0, 20.0, rtol=1e-10, atol=1e-12)
+    sampled = dop853.solve(
         kernel, FREE_Y0, 20.0, rtol=1e-10, atol=1e-12, t_eval=t, record=False, dense=False
     )
     # The same interpolant evaluated twice: equal to the last bits.
@@ -243,8 +243,8 @@ def test_pressure_table_end_is_an_error():
 def test_a_state_that_blows_up_is_reported():
     """ω̇ = ω²-like growth (a quadratic drag of the wrong sign) reaches infinity in finite time:
     an IntegrationError with the time, never NaN samples."""
-    kernel = compiled.rigid_body_kernel(FREE_INERTIA, QuadraticDrag(-np.eye(3)))
-    res = compiled.solve(kernel, FREE_Y0, 10.0, rtol=1e-10, atol=1e-12)
+    kernel = kernels.rigid_body_kernel(FREE_INERTIA, QuadraticDrag(-np.eye(3)))
+    res = dop853.solve(kernel, FREE_Y0, 10.0, rtol=1e-10, atol=1e-12)
     assert res.status != 0 and res.t < 10.0
     from tumble.integrate import integrate
 
@@ -258,18 +258,18 @@ def test_batch_equals_single_runs_on_any_number_of_threads():
     y0 = np.tile(FREE_Y0, (N, 1))
     y0[:, :3] = rng.normal(size=(N, 3))
     torque = LinearDrag(0.01 * np.eye(3)) + ConstantInertialTorque([0.0, 0.0, 0.02])
-    params = np.tile(compiled.rigid_body_kernel(FREE_INERTIA, torque).params, (N, 1))
+    params = np.tile(kernels.rigid_body_kernel(FREE_INERTIA, torque).params, (N, 1))
     t = np.linspace(0.0, 30.0, 7)
-    one = compiled.solve_batch(compiled.KIND_RIGID_BODY, params, y0, 30.0, t, rtol=1e-10,
+    one = dop853.solve_batch(kernels.KIND_RIGID_BODY, params, y0, 30.0, t, rtol=1e-10,
                                atol=1e-12, threads=1)  # fmt: skip
-    many = compiled.solve_batch(compiled.KIND_RIGID_BODY, params, y0, 30.0, t, rtol=1e-10,
+    many = dop853.solve_batch(kernels.KIND_RIGID_BODY, params, y0, 30.0, t, rtol=1e-10,
                                 atol=1e-12)  # fmt: skip
     assert np.all(one.status == 0)
     # Each trajectory is integrated by the same code on whichever thread: identical bits.
     assert np.array_equal(one.y, many.y)
     for i in range(N):
-        single = compiled.solve(
-            compiled.Kernel(compiled.KIND_RIGID_BODY, params[i]), y0[i], 30.0, rtol=1e-10,
+        single = dop853.solve(
+            kernels.Kernel(kernels.KIND_RIGID_BODY, params[i]), y0[i], 30.0, rtol=1e-10,
             atol=1e-12, t_eval=t, record=False, dense=False,
         )  # fmt: skip
         assert np.array_equal(single.y_eval, one.y[i])
@@ -277,17 +277,19 @@ def test_batch_equals_single_runs_on_any_number_of_threads():
 
 def test_compiled_code_is_cached_on_disk():
     """A second process loads the integrator from numba's disk cache instead of compiling."""
-    compiled.solve(compiled.rigid_body_kernel(FREE_INERTIA, None), FREE_Y0, 1.0, rtol=1e-8,
-                   atol=1e-10)  # fmt: skip
+    dop853.solve(kernels.rigid_body_kernel(FREE_INERTIA, None), FREE_Y0, 1.0, rtol=1e-8,
+                 atol=1e-10)  # fmt: skip
     code = textwrap.dedent(
         """
         import numpy as np
-        from tumble import compiled
-        k = compiled.rigid_body_kernel(np.array([1.0, 2.0, 3.0]), None)
-        compiled.solve(k, np.array([0.3, 1.0, 0.2, 1.0, 0.0, 0.0, 0.0]), 1.0, rtol=1e-8,
-                       atol=1e-10)
-        print(sum(compiled._solve.stats.cache_hits.values()),
-              sum(compiled._solve.stats.cache_misses.values()))
+        from tumble import kernels
+        from tumble.integrate import dop853
+        from tumble.integrate.dop853 import core
+        k = kernels.rigid_body_kernel(np.array([1.0, 2.0, 3.0]), None)
+        dop853.solve(k, np.array([0.3, 1.0, 0.2, 1.0, 0.0, 0.0, 0.0]), 1.0, rtol=1e-8,
+                     atol=1e-10)
+        print(sum(core.advance.stats.cache_hits.values()),
+              sum(core.advance.stats.cache_misses.values()))
         """
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)

@@ -21,12 +21,12 @@ from tumble.sweep import run_sweep
 DASK = str(Path(sys.executable).with_name("dask"))
 TUMBLE = str(Path(sys.executable).with_name("tumble"))
 
-# 3 × 4 grid of a short resisting-medium run, 2 points per task: 6 tasks of ~0.3 s, so both
+# 3 × 4 grid of a short resisting-medium run, 2 points per task: 6 tasks of ~1 s, so both
 # workers are busy for a few seconds, long enough to kill one of them (or the client) mid-way.
 BASE = (
     template("resisting_medium")
-    .replace("tau_end = 400.0", "tau_end = 60.0")
-    .replace("samples = 401", "samples = 31")
+    .replace("tau_end = 400.0", "tau_end = 200.0")
+    .replace("samples = 401", "samples = 101")
 )
 SWEEP = """base = "base.toml"
 [[axis]]

@@ -6,7 +6,7 @@ Four studies, each with its error figures and its target beside it:
     The full equations over ``horizon`` time units (default 1e5) at rtol 1e-10, for the free
     triaxial body and for the default scenario of each model (``tumble init``) with ε scaled so
     that the slow horizon ε·t_end stays the template's: compiled DOP853
-    (:func:`tumble.compiled.solve`) against scipy's DOP853 with the model's pure-Python
+    (:func:`tumble.integrate.dop853.solve`) against scipy's DOP853 with the model's pure-Python
     right-hand side. Both take the same steps; each final state's error is measured against
     a tighter reference.
 ``full_time_ratio_vs_heyoka``
@@ -20,7 +20,7 @@ Four studies, each with its error figures and its target beside it:
     variables' error against a full run at rtol 1e-12. "Equal accuracy" also times the
     loosest full run whose slow error does not exceed the averaged one.
 ``batch_throughput``
-    Trajectories per second of :func:`tumble.compiled.solve_batch` on 1, 2 and all cores.
+    Trajectories per second of :func:`tumble.integrate.dop853.solve_batch` on 1, 2 and all cores.
 
 ``compile`` times the first call of each kernel kind from an empty disk cache, in a fresh
 process (numba's compile, once per installation), and the load from the cache.
@@ -50,14 +50,14 @@ from typing import Any
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from tumble import compiled
+from tumble import kernels
 from tumble._typing import FloatArray
 from tumble.analysis.verify import slow_errors
-from tumble.compiled import Kernel
 from tumble.dynamics import rigid_body_rhs
 from tumble.errors import IntegrationError, ParameterError
-from tumble.integrate import simulate
+from tumble.integrate import dop853, simulate
 from tumble.io.scenario import parse_scenario, template
+from tumble.kernels import Kernel
 from tumble.torques import (
     TERM_BODY_CONSTANT,
     TERM_EDDY_CURRENT,
@@ -228,7 +228,7 @@ def full_cases(horizon: float) -> list[FullCase]:
     from its x3 regime, see ``_FULL_INITIAL``).
     """
     inertia = np.array([1.0, 2.0, 3.0])
-    free = compiled.rigid_body_kernel(inertia, None)
+    free = kernels.rigid_body_kernel(inertia, None)
     assert free is not None
     cases = [
         FullCase(
@@ -274,9 +274,7 @@ def _error(y: Any, ref: FloatArray) -> float:
 
 
 def _compiled_final(case: FullCase, t_end: float, rtol: float, atol: float) -> Any:
-    sol = compiled.solve(
-        case.kernel, case.y0, t_end, rtol=rtol, atol=atol, record=False, dense=False
-    )
+    sol = dop853.solve(case.kernel, case.y0, t_end, rtol=rtol, atol=atol, record=False, dense=False)
     if sol.status != 0:
         raise IntegrationError(f"bench {case.name}: {sol.message} at t = {sol.t:g}")
     return sol
@@ -298,7 +296,7 @@ def heyoka_system(kernel: Kernel) -> list[tuple[Any, Any]] | None:
     """The right-hand side of a compiled kernel as heyoka.py expressions, or None when a part
     has no heyoka form (a pressure table, the quadratic drag) or heyoka is not installed.
 
-    A second, independent transcription of :mod:`tumble.compiled`'s kernels; the benchmark's
+    A second, independent transcription of :mod:`tumble.kernels`; the benchmark's
     heyoka reference agrees with the compiled runs only if the two agree. The quadratic drag's
     w|w| has no Taylor form (not analytic at w = 0), so a kernel with it gives None.
 
@@ -312,7 +310,7 @@ def heyoka_system(kernel: Kernel) -> list[tuple[Any, Any]] | None:
         return None
     p = [float(v) for v in kernel.params]
     t = hy.time
-    if kernel.kind in (compiled.KIND_RIGID_BODY, compiled.KIND_NONLINEAR_MOMENT):
+    if kernel.kind in (kernels.KIND_RIGID_BODY, kernels.KIND_NONLINEAR_MOMENT):
         w1, w2, w3, q0, q1, q2, q3 = hy.make_vars("w1", "w2", "w3", "q0", "q1", "q2", "q3")
         qdot = [
             0.5 * (-q1 * w1 - q2 * w2 - q3 * w3),
@@ -321,7 +319,7 @@ def heyoka_system(kernel: Kernel) -> list[tuple[Any, Any]] | None:
             0.5 * (q0 * w3 + q1 * w2 - q2 * w1),
         ]
         state = [w1, w2, w3, q0, q1, q2, q3]
-        if kernel.kind == compiled.KIND_RIGID_BODY:
+        if kernel.kind == kernels.KIND_RIGID_BODY:
             i1, i2, i3 = p[:3]
             m = _heyoka_torque(hy, p, 3, t, [w1, w2, w3], [q0, q1, q2, q3])
             if m is None:
@@ -350,7 +348,7 @@ def heyoka_system(kernel: Kernel) -> list[tuple[Any, Any]] | None:
                 -eps * nu * w3,
             ]
         return list(zip(state, [*wdot, *qdot], strict=True))
-    if kernel.kind == compiled.KIND_ROTATING_FIELD:
+    if kernel.kind == kernels.KIND_ROTATING_FIELD:
         i1, i2, i3, eps = p[:4]
         hh = p[4:13]
         z = hy.make_vars("z1", "z2", "z3")
@@ -382,7 +380,7 @@ def heyoka_system(kernel: Kernel) -> list[tuple[Any, Any]] | None:
 def _heyoka_torque(
     hy: Any, prog: list[float], start: int, t: Any, w: list[Any], q: list[Any]
 ) -> list[Any] | None:
-    """The torque program of :func:`tumble.compiled.torque_program` as heyoka expressions;
+    """The torque program of :func:`tumble.kernels.torque_program` as heyoka expressions;
     None if a term is not analytic (the quadratic drag)."""
     m: list[Any] = [0.0, 0.0, 0.0]
     n_terms = int(prog[start])
@@ -481,7 +479,7 @@ def _at_equal_error(ladder: list[dict], error: float) -> tuple[float, bool]:
 def _without_quadratic_drag(kernel: Kernel) -> Kernel | None:
     """A rigid-body kernel with its quadratic-drag terms removed (the smooth part heyoka can
     integrate); None if it has none or is of another kind."""
-    if kernel.kind != compiled.KIND_RIGID_BODY:
+    if kernel.kind != kernels.KIND_RIGID_BODY:
         return None
     p = kernel.params
     kept, i, dropped = [], 4, False
@@ -685,16 +683,16 @@ def _batch(s: BenchSettings, log: Callable[[str], None]) -> dict[str, Any]:
     P = np.tile(kernel.params, (s.batch_size, 1))
     Y0a = np.array(Y0)
     te = np.array([t_end])
-    threads = sorted({1, 2, compiled.available_threads()})
+    threads = sorted({1, 2, dop853.available_threads()})
     log("batch: compiling")
-    compiled.solve_batch(kernel.kind, P[:2], Y0a[:2], 1.0, [1.0], rtol=s.rtol, atol=s.atol)
+    dop853.solve_batch(kernel.kind, P[:2], Y0a[:2], 1.0, [1.0], rtol=s.rtol, atol=s.atol)
     rows: dict[str, Any] = {}
     last = None
     for n in threads:
         log(f"batch: {s.batch_size} trajectories on {n} thread(s)")
         best, res = _best(
             functools.partial(
-                compiled.solve_batch,
+                dop853.solve_batch,
                 kernel.kind,
                 P,
                 Y0a,
@@ -718,7 +716,7 @@ def _batch(s: BenchSettings, log: Callable[[str], None]) -> dict[str, Any]:
         row["efficiency"] = row["trajectories_per_s"] / (int(key) * one)
     # Error figure: the batch's final states against a tighter reference (every 16th).
     picks = range(0, s.batch_size, 16)
-    ref = compiled.solve_batch(
+    ref = dop853.solve_batch(
         kernel.kind, P[picks], Y0a[picks], t_end, te, rtol=REFERENCE_RTOL, atol=REFERENCE_ATOL
     )
     err = max(_error(last[i, -1], ref.y[j, -1]) for j, i in enumerate(picks))  # type: ignore[index]
@@ -738,11 +736,12 @@ def _batch(s: BenchSettings, log: Callable[[str], None]) -> dict[str, Any]:
 _COLD = """
 import json, sys, time
 start = time.perf_counter()
-from tumble import bench, compiled
+from tumble import bench
+from tumble.integrate import dop853
 out = {"import_s": time.perf_counter() - start}
 for case in bench.full_cases(1e5):
     start = time.perf_counter()
-    compiled.solve(case.kernel, case.y0, 1.0, rtol=1e-10, atol=1e-12, record=False, dense=False)
+    dop853.solve(case.kernel, case.y0, 1.0, rtol=1e-10, atol=1e-12, record=False, dense=False)
     out[case.name] = time.perf_counter() - start
 print("JSON" + json.dumps(out))
 """
@@ -796,7 +795,7 @@ def _machine() -> dict[str, Any]:
     return {
         "cpu": cpu,
         "cores": os.cpu_count(),
-        "numba_threads": compiled.available_threads(),
+        "numba_threads": dop853.available_threads(),
         "python": platform.python_version(),
         "tumble": __version__,
         "numpy": np.__version__,

@@ -48,7 +48,7 @@ __all__ = [
 ]
 
 
-# Codes of the torque terms the compiled integrator evaluates (:mod:`tumble.compiled`), and the
+# Codes of the torque terms the compiled integrator evaluates (:mod:`tumble.kernels`), and the
 # payload each carries. A torque lists its terms with ``compiled_terms()``.
 TERM_BODY_CONSTANT = 1  # body moment (3)
 TERM_LINEAR_DRAG = 2  # B by rows (9)

@@ -9,10 +9,10 @@ from typing import Any
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from tumble import compiled
 from tumble._typing import ArrayLike, FloatArray
-from tumble.compiled import Kernel
 from tumble.errors import IntegrationError, ParameterError
+from tumble.integrate import dop853
+from tumble.kernels import Kernel
 from tumble.models.base import Breakpoint
 
 __all__ = [
@@ -145,7 +145,7 @@ def integrate(
         prescribed forcing) split the interval, so no step straddles them.
     kernel : Kernel, optional
         The same right-hand side compiled: integrate it with the compiled DOP853
-        (:mod:`tumble.compiled`, the same method and step control as scipy's) instead of
+        (:mod:`tumble.integrate.dop853`, the same method and step control as scipy's) instead of
         calling ``rhs``. Breakpoints are not supported on this path.
 
     Raises
@@ -230,16 +230,17 @@ def _integrate_compiled(
 ) -> DenseSolution:
     """:func:`integrate` through the compiled DOP853, with the same failure reports."""
     kernel.check_end(t_end)
-    return compiled_dense(compiled.solve(kernel, y0, t_end, rtol=rtol, atol=atol), what)
+    return compiled_dense(dop853.solve(kernel, y0, t_end, rtol=rtol, atol=atol), what)
 
 
-def compiled_dense(res: compiled.CompiledSolution, what: str) -> DenseSolution:
+def compiled_dense(res: dop853.Solution, what: str) -> DenseSolution:
     """A compiled solution as a :class:`DenseSolution`; IntegrationError if it failed.
 
     Parameters
     ----------
-    res : CompiledSolution
-        Result of :func:`tumble.compiled.solve` or :func:`tumble.compiled.solve_many`.
+    res : Solution
+        Result of :func:`tumble.integrate.dop853.solve` or
+        :func:`tumble.integrate.dop853.solve_many`.
     what : str
         What was integrated, for the error message.
     """

@@ -14,10 +14,9 @@ from typing import Any, Literal
 
 import numpy as np
 
-from tumble import compiled
 from tumble._typing import ArrayLike, FloatArray
-from tumble.compiled import Kernel
 from tumble.errors import IntegrationError, ParameterError, TumbleError
+from tumble.integrate import dop853
 from tumble.integrate.ode import (
     DEFAULT_ATOL,
     DEFAULT_RTOL,
@@ -26,6 +25,7 @@ from tumble.integrate.ode import (
     compiled_dense,
     integrate,
 )
+from tumble.kernels import Kernel
 from tumble.models.base import AveragedForm, FullForm, ModelRecord
 
 __all__ = ["INTEGRATORS", "Method", "Trajectory", "simulate", "simulate_batch"]
@@ -34,7 +34,7 @@ Method = Literal["full", "averaged", "closed_form"]
 
 INTEGRATORS = ("auto", "numba", "scipy")
 """How the full equations are integrated (the scenario key ``[run] integrator``): ``"numba"``
-the compiled DOP853 of :mod:`tumble.compiled`; ``"scipy"`` scipy's DOP853 on the model's
+the compiled DOP853 of :mod:`tumble.integrate.dop853`; ``"scipy"`` scipy's DOP853 on the model's
 Python right-hand side (the reference); ``"auto"`` (default) the compiled one unless the
 parameters hold a Python function (a user torque, a pressure given as a function)."""
 
@@ -272,7 +272,7 @@ def simulate_batch(
     """The full method of many points of one model at once (the batch path of issue 6).
 
     Every point whose full form has a compiled kernel is integrated by
-    :func:`tumble.compiled.solve_many` on a thread pool with the GIL released; each
+    :func:`tumble.integrate.dop853.solve_many` on a thread pool with the GIL released; each
     Trajectory then equals ``simulate(model, p, initial, tau, "full", integrator="numba")``
     to the bit, except its wall time, which is that point's own share of the batch.
 
@@ -330,7 +330,7 @@ def simulate_batch(
                 integrator="numba",
             )
         jobs = []
-    solved = compiled.solve_many(
+    solved = dop853.solve_many(
         [k for _, k, _ in jobs],
         [y for _, _, y in jobs],
         [t_end] * len(jobs),

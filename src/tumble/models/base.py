@@ -15,8 +15,8 @@ import numpy as np
 from scipy.optimize import brentq
 
 from tumble._typing import ArrayLike, FloatArray
-from tumble.compiled import Kernel
 from tumble.errors import ParameterError
+from tumble.kernels import Kernel
 
 __all__ = [
     "AveragedForm",
@@ -51,7 +51,7 @@ class FullForm:
 
     ``rhs(t, y, p)`` is the right-hand side; ``from_slow(p, initial)`` builds the state vector;
     ``to_columns(t, Y, p)`` turns states ``Y`` of shape (n, dim) into output columns.
-    ``kernel(p)`` gives the same right-hand side compiled (:class:`tumble.compiled.Kernel`), or
+    ``kernel(p)`` gives the same right-hand side compiled (:class:`tumble.kernels.Kernel`), or
     None where ``p`` holds a Python function; ``rhs`` stays the reference that the scipy
     integrator runs.
     """

@@ -39,8 +39,8 @@ from tumble.averaging.nutation import (
     potential_gradient,
     torque_perturbation,
 )
-from tumble.compiled import EVENT_THETA_DOT, KIND_NONLINEAR_MOMENT, Kernel
 from tumble.errors import IntegrationError, ParameterError, check_range
+from tumble.kernels import EVENT_THETA_DOT, KIND_NONLINEAR_MOMENT, Kernel
 from tumble.models.base import (
     AveragedForm,
     Breakpoint,
@@ -918,7 +918,7 @@ def extrema(traj: Any, p: Params) -> list[tuple[str, int, float, float, float, f
     """Every local maximum and minimum of θ(t) of a full trajectory for 0 < t < t_end.
 
     A start at a turning point is not counted (spec §14). A compiled run located the zeros of
-    θ' as it integrated (:data:`tumble.compiled.EVENT_THETA_DOT`); otherwise they are
+    θ' as it integrated (:data:`tumble.kernels.EVENT_THETA_DOT`); otherwise they are
     bracketed on the integrator's steps (subdivided four times, so no swing is missed) and
     refined on the dense output.
 
@@ -1259,7 +1259,7 @@ _PRESSURE_CODES = {"constant": 0, "exp": 1, "table": 2}
 
 
 def full_kernel(p: Params) -> Kernel | None:
-    """:func:`full_rhs` compiled (:mod:`tumble.compiled`), locating the zeros of θ' (the
+    """:func:`full_rhs` compiled (:mod:`tumble.kernels`), locating the zeros of θ' (the
     extrema of θ) as it goes; None for a pressure given as a Python function."""
     pressure = p.pressure
     if pressure.kind not in _PRESSURE_CODES:

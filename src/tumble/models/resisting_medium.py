@@ -24,9 +24,9 @@ import numpy as np
 from tumble._typing import ArrayLike, FloatArray
 from tumble.averaging.spinner import body_momentum, spinner_average, standard_form
 from tumble.bodies import RigidBody
-from tumble.compiled import Kernel, rigid_body_kernel
 from tumble.dynamics import rigid_body_rhs
 from tumble.errors import IntegrationError, ParameterError, check_finite, check_range
+from tumble.kernels import Kernel, rigid_body_kernel
 from tumble.models.base import (
     AveragedForm,
     Column,
@@ -1272,7 +1272,7 @@ _COLUMNS_FULL = (
 
 
 def full_kernel(p: Params) -> Kernel | None:
-    """:func:`full_rhs` compiled (:mod:`tumble.compiled`): Euler + quaternions with (1.2)."""
+    """:func:`full_rhs` compiled (:mod:`tumble.kernels`): Euler + quaternions with (1.2)."""
     return rigid_body_kernel(p.inertia, p.torque)
 
 

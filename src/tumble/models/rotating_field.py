@@ -26,9 +26,9 @@ from scipy.special import ellipe, ellipj, ellipk
 from tumble._typing import ArrayLike, FloatArray
 from tumble.averaging.triaxial import triaxial_average_vector
 from tumble.bodies import RigidBody
-from tumble.compiled import KIND_ROTATING_FIELD, Kernel, rigid_body_kernel
 from tumble.dynamics import rigid_body_rhs
 from tumble.errors import ParameterError, check_range
+from tumble.kernels import KIND_ROTATING_FIELD, Kernel, rigid_body_kernel
 from tumble.models.base import (
     AveragedForm,
     Breakpoint,
@@ -1196,7 +1196,7 @@ _DIAGNOSTICS = (
 
 
 def full_kernel(p: Params) -> Kernel:
-    """:func:`full_rhs` compiled (:mod:`tumble.compiled`): the rotating-frame form (1.5)."""
+    """:func:`full_rhs` compiled (:mod:`tumble.kernels`): the rotating-frame form (1.5)."""
     return Kernel(KIND_ROTATING_FIELD, np.concatenate([p.inertia, [p.eps], p.hh.ravel()]))
 
 

@@ -32,9 +32,9 @@ import numpy as np
 from tumble._typing import FloatArray
 from tumble.averaging import nearest_resonance, triaxial_average_vector
 from tumble.bodies import RigidBody
-from tumble.compiled import Kernel, rigid_body_kernel
 from tumble.dynamics import rigid_body_rhs
 from tumble.errors import ParameterError, check_range
+from tumble.kernels import Kernel, rigid_body_kernel
 from tumble.models.base import (
     AveragedForm,
     Breakpoint,
@@ -509,7 +509,7 @@ _COLUMNS_FULL = (
 
 
 def full_kernel(p: Params) -> Kernel | None:
-    """:func:`full_rhs` compiled (:mod:`tumble.compiled`); None for a user torque function."""
+    """:func:`full_rhs` compiled (:mod:`tumble.kernels`); None for a user torque function."""
     return rigid_body_kernel(p.inertia, p.scaled)
 
 

@@ -1,0 +1,90 @@
+"""How tumble compiles: numba option sets, and a disk cache that notices edits to any compiled
+source.
+
+numba's disk cache checks a function against the modification time and size of the file that
+defines it, and of no other. A compiled function inlines its callees and freezes the module
+constants it reads (the tableau, the torque codes), so an edit to a callee's file would leave
+the caller's cached machine code stale. :func:`jit` therefore stamps every cached function with
+the stamps of *all* the files compiled code is built from (:data:`COMPILED_SOURCES`): an edit
+to any of them recompiles everything once, and a test checks that every module using numba is
+in that list.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any, TypeVar
+
+import numba
+
+__all__ = [
+    "COMPILED_SOURCES",
+    "ENTRY",
+    "INLINE",
+    "INNER",
+    "INNER_INLINE",
+    "KERNEL",
+    "jit",
+    "source_stamp",
+]
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+_PACKAGE = Path(__file__).resolve().parents[1]
+
+COMPILED_SOURCES: tuple[str, ...] = ("kernels", "integrate/dop853", "torques.py")
+"""Files and folders, relative to the package, whose code or constants are compiled."""
+
+# Reassociation and contraction (FMA) only: no "nnan"/"ninf", so the checks for non-finite
+# states survive optimization.
+_FAST = {"contract", "reassoc", "nsz", "arcp"}
+# numpy's error model: a division by zero gives inf or NaN (caught as a non-finite state)
+# instead of raising from compiled code, and compiles to less code.
+_BASE: dict[str, Any] = {"cache": True, "fastmath": _FAST, "nogil": True, "error_model": "numpy"}
+
+INNER: dict[str, Any] = {**_BASE, "no_cpython_wrapper": True, "no_cfunc_wrapper": True}
+"""Helpers only compiled code calls: no Python wrapper to build (a large part of the cost of
+compiling a small function)."""
+ENTRY: dict[str, Any] = {**_BASE, "no_cfunc_wrapper": True}
+"""Functions Python calls (the integrator's entry points, kernels evaluated from Python)."""
+INNER_INLINE: dict[str, Any] = {**INNER, "forceinline": True}
+"""Helpers of the integrator's loop that may allocate (grow a buffer), inlined into it."""
+KERNEL: dict[str, Any] = {**INNER, "_nrt": False}
+"""Helpers that allocate nothing: without reference counting, calls to them cost less."""
+INLINE: dict[str, Any] = {**KERNEL, "forceinline": True}
+"""Small helpers LLVM must inline into the integrator's loops (alwaysinline): the right-hand
+side's dispatch on the kind then folds away in a specialisation on one kind."""
+
+
+def source_stamp() -> tuple[tuple[str, int, int], ...]:
+    """(path, mtime in ns, size) of every file in :data:`COMPILED_SOURCES`, sorted."""
+    files: list[Path] = []
+    for entry in COMPILED_SOURCES:
+        path = _PACKAGE / entry
+        files += sorted(path.rglob("*.py")) if path.is_dir() else [path]
+    stamps = []
+    for f in files:
+        st = f.stat()
+        stamps.append((f.relative_to(_PACKAGE).as_posix(), st.st_mtime_ns, st.st_size))
+    return tuple(stamps)
+
+
+_STAMP = source_stamp()
+
+
+def jit(options: dict[str, Any]) -> Callable[[F], F]:
+    """``numba.njit(**options)`` whose disk cache is stamped with :func:`source_stamp`."""
+
+    def decorate(func: F) -> F:
+        dispatcher = numba.njit(**options)(func)
+        cache_file = getattr(getattr(dispatcher, "_cache", None), "_cache_file", None)
+        # numba keeps the stamp it compares with the index on disk here; replacing it makes an
+        # edit to any compiled source invalidate this function's cached code too. (Without the
+        # attribute, on a numba that stores it elsewhere, the per-file stamp stays in force; a
+        # test pins the attribute.)
+        if cache_file is not None and hasattr(cache_file, "_source_stamp"):
+            cache_file._source_stamp = (cache_file._source_stamp, _STAMP)
+        return dispatcher  # type: ignore[no-any-return]
+
+    return decorate

@@ -1,0 +1,169 @@
+"""The compiled right-hand sides, chosen by an integer kind, and their event functions.
+
+Every right-hand side reads its parameters from one float array, so that one compiled
+integrator serves every model: :mod:`tumble.integrate.dop853` specialises itself on the kind
+as a compile-time constant, and the dispatch below folds away.
+
+Kinds
+-----
+``KIND_RIGID_BODY``
+    Euler's equations with quaternion kinematics under a sum of built-in torques (the free
+    body, the resisting-medium moment (1.2) of Medvedev (1987), the eddy-current moment (1.3)
+    of Martynenko (1979), and the torques of the averaging engine). State ``[ω, q]``,
+    parameters ``[I1, I2, I3, torque program]``.
+``KIND_ROTATING_FIELD``
+    The rotating-field form (1.5) of Martynenko (1979), state ``[z, Γ by rows]``.
+``KIND_NONLINEAR_MOMENT``
+    Euler's equations (1.1) of Serov (1991) with quaternions, under the moment
+    A(a sinθ + b sin2θ) with damping.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from tumble._typing import FloatArray
+from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
+from tumble.kernels.torque import quaternion_rates, torque_moment
+
+__all__ = [
+    "EVENT_NONE",
+    "EVENT_THETA_DOT",
+    "KIND_NONLINEAR_MOMENT",
+    "KIND_RIGID_BODY",
+    "KIND_ROTATING_FIELD",
+    "evaluate",
+    "event",
+    "rhs",
+]
+
+KIND_RIGID_BODY = 1
+KIND_ROTATING_FIELD = 2
+KIND_NONLINEAR_MOMENT = 3
+
+EVENT_NONE = 0
+EVENT_THETA_DOT = 1
+"""Zeros of θ' of the nonlinear-moment quaternion form: the extrema of θ(t)."""
+
+
+@jit(INLINE)
+def _rigid_body(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> None:
+    """I ω' = (I ω) × ω + M, q' = ½ q ⊗ (0, ω); p = [I1, I2, I3, torque program]."""
+    i1, i2, i3 = p[0], p[1], p[2]
+    w1, w2, w3 = y[0], y[1], y[2]
+    torque_moment(p, 3, t, y, out)
+    out[0] = ((i2 - i3) * w2 * w3 + out[0]) / i1
+    out[1] = ((i3 - i1) * w3 * w1 + out[1]) / i2
+    out[2] = ((i1 - i2) * w1 * w2 + out[2]) / i3
+    quaternion_rates(y, out)
+
+
+@jit(INLINE)
+def _rotating_field(y: FloatArray, p: FloatArray, out: FloatArray) -> None:
+    """Martynenko (1979) eq. (1.5), with the sign of its field term corrected:
+    I z′ = I z × z + ε Γᵀ ĥĥ (Γ z − ξ3), Γ′ = Γ ẑ − ξ̂3 Γ; p = [I1, I2, I3, ε, ĥĥ by rows]."""
+    i1, i2, i3, eps = p[0], p[1], p[2], p[3]
+    z1, z2, z3 = y[0], y[1], y[2]
+    g = y[3:12]
+    r1 = g[0] * z1 + g[1] * z2 + g[2] * z3
+    r2 = g[3] * z1 + g[4] * z2 + g[5] * z3
+    r3 = g[6] * z1 + g[7] * z2 + g[8] * z3 - 1.0
+    e1 = p[4] * r1 + p[5] * r2 + p[6] * r3
+    e2 = p[7] * r1 + p[8] * r2 + p[9] * r3
+    e3 = p[10] * r1 + p[11] * r2 + p[12] * r3
+    out[0] = ((i2 - i3) * z2 * z3 + eps * (g[0] * e1 + g[3] * e2 + g[6] * e3)) / i1
+    out[1] = ((i3 - i1) * z3 * z1 + eps * (g[1] * e1 + g[4] * e2 + g[7] * e3)) / i2
+    out[2] = ((i1 - i2) * z1 * z2 + eps * (g[2] * e1 + g[5] * e2 + g[8] * e3)) / i3
+    # Γ ẑ: row r of Γ times the cross-product matrix of z.
+    for r in range(3):
+        a, b, c = g[3 * r], g[3 * r + 1], g[3 * r + 2]
+        out[3 + 3 * r] = b * z3 - c * z2
+        out[4 + 3 * r] = c * z1 - a * z3
+        out[5 + 3 * r] = a * z2 - b * z1
+    # − ξ̂3 Γ: rows (Γ2, −Γ1, 0).
+    for col in range(3):
+        out[3 + col] += g[3 + col]
+        out[6 + col] -= g[col]
+
+
+@jit(KERNEL)
+def pressure(p: FloatArray, tau: float) -> float:
+    """Q(τ)/Q(0) of the nonlinear-moment parameters: constant, exponential, or a table
+    (piecewise linear between its knots; the run was checked to stay inside)."""
+    kind = int(p[6])
+    if kind == 0:
+        return 1.0
+    if kind == 1:
+        return math.exp(tau) / p[7]
+    n = int(p[8])
+    lo, hi = 0, n - 1
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if p[9 + mid] <= tau:
+            lo = mid
+        else:
+            hi = mid
+    x0, x1 = p[9 + lo], p[9 + hi]
+    v0, v1 = p[9 + n + lo], p[9 + n + hi]
+    return (v0 + (v1 - v0) * (tau - x0) / (x1 - x0)) / p[7]
+
+
+@jit(INLINE)
+def _nonlinear_moment(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> None:
+    """Serov (1991) eq. (1.1) in quaternions under M0 = Q(εt)(a sinθ + b sin2θ) with the
+    damping εd (transverse) and εν (axial); p = [μ, a0, b0, ε, d, ν, pressure kind, Q(0),
+    table size n, τ_1..n, Q_1..n]."""
+    mu, eps = p[0], p[3]
+    q = pressure(p, eps * t)
+    a, b = p[1] * q, p[2] * q
+    w1, w2, w3 = y[0], y[1], y[2]
+    q0, q1, q2, q3 = y[3], y[4], y[5], y[6]
+    n2 = q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3
+    # e_z in body axes: the third row of the body → inertial matrix.
+    ex = 2.0 * (q1 * q3 - q0 * q2) / n2
+    ey = 2.0 * (q2 * q3 + q0 * q1) / n2
+    ez = 1.0 - 2.0 * (q1 * q1 + q2 * q2) / n2
+    m0 = a + 2.0 * b * ez
+    ed, en = eps * p[4], eps * p[5]
+    out[0] = (1.0 - mu) * w2 * w3 + m0 * ey - ed * w1
+    out[1] = (mu - 1.0) * w3 * w1 - m0 * ex - ed * w2
+    out[2] = -en * w3
+    quaternion_rates(y, out)
+
+
+@jit(INLINE)
+def rhs(kind: int, t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> None:
+    """dy/dt of the right-hand side ``kind`` with parameters ``p`` into ``out`` (NaN for an
+    unknown kind, so that the integration fails)."""
+    if kind == KIND_RIGID_BODY:
+        _rigid_body(t, y, p, out)
+    elif kind == KIND_ROTATING_FIELD:
+        _rotating_field(y, p, out)
+    elif kind == KIND_NONLINEAR_MOMENT:
+        _nonlinear_moment(t, y, p, out)
+    else:
+        for j in range(y.size):
+            out[j] = math.nan
+
+
+@jit(INLINE)
+def event(kind: int, t: float, y: FloatArray, p: FloatArray) -> float:
+    """The event function ``kind`` at (t, y); the integrator locates its sign changes."""
+    if kind == EVENT_THETA_DOT:
+        # θ' sinθ = ω·(e_z × e3) (nonlinear-moment quaternion form): the sign of θ'.
+        q0, q1, q2, q3 = y[3], y[4], y[5], y[6]
+        n2 = q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3
+        ex = 2.0 * (q1 * q3 - q0 * q2) / n2
+        ey = 2.0 * (q2 * q3 + q0 * q1) / n2
+        return y[0] * ey - y[1] * ex
+    return 1.0
+
+
+@jit(ENTRY)
+def evaluate(kind: int, t: float, y: FloatArray, p: FloatArray) -> FloatArray:
+    """dy/dt of the right-hand side ``kind`` at one state, from Python."""
+    out = np.empty(y.size)
+    rhs(kind, t, y, p, out)
+    return out

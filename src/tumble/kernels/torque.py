@@ -1,0 +1,158 @@
+"""The built-in torques compiled: a torque program evaluated at one state.
+
+A :class:`tumble.torques.Torque` whose terms are all built in flattens into a *program* (see
+:func:`tumble.kernels.torque_program`): ``[number of terms, (code, factor, payload...)...]``,
+with the codes and payloads of :mod:`tumble.torques`. Each term below returns its body moment
+for the state ``y = [ω, q]``; the body → inertial matrix ``a`` of the unit quaternion is
+formed once for all terms.
+"""
+
+from __future__ import annotations
+
+import math
+
+from tumble._typing import FloatArray
+from tumble.kernels.jit import INLINE, KERNEL, jit
+from tumble.torques import (
+    TERM_BODY_CONSTANT,
+    TERM_EDDY_CURRENT,
+    TERM_GRAVITY_GRADIENT,
+    TERM_INERTIAL_CONSTANT,
+    TERM_LINEAR_DRAG,
+    TERM_QUADRATIC_DRAG,
+)
+
+__all__ = ["attitude_matrix", "quaternion_rates", "torque_moment"]
+
+Vec3 = tuple[float, float, float]
+Mat3 = tuple[float, float, float, float, float, float, float, float, float]
+
+
+@jit(INLINE)
+def attitude_matrix(y: FloatArray) -> Mat3:
+    """Body → inertial matrix (row by row) of the quaternion y[3:7], normalised first
+    (:func:`tumble.rotations.quat_to_matrix`)."""
+    norm = math.sqrt(y[3] * y[3] + y[4] * y[4] + y[5] * y[5] + y[6] * y[6])
+    q0, q1, q2, q3 = y[3] / norm, y[4] / norm, y[5] / norm, y[6] / norm
+    return (
+        1.0 - 2.0 * (q2 * q2 + q3 * q3), 2.0 * (q1 * q2 - q0 * q3), 2.0 * (q1 * q3 + q0 * q2),
+        2.0 * (q1 * q2 + q0 * q3), 1.0 - 2.0 * (q1 * q1 + q3 * q3), 2.0 * (q2 * q3 - q0 * q1),
+        2.0 * (q1 * q3 - q0 * q2), 2.0 * (q2 * q3 + q0 * q1), 1.0 - 2.0 * (q1 * q1 + q2 * q2),
+    )  # fmt: skip
+
+
+@jit(INLINE)
+def _to_body(a: Mat3, x1: float, x2: float, x3: float) -> Vec3:
+    """Aᵀ x: inertial components to body ones."""
+    return (
+        a[0] * x1 + a[3] * x2 + a[6] * x3,
+        a[1] * x1 + a[4] * x2 + a[7] * x3,
+        a[2] * x1 + a[5] * x2 + a[8] * x3,
+    )
+
+
+@jit(INLINE)
+def _matrix_times(prog: FloatArray, v: int, x1: float, x2: float, x3: float) -> Vec3:
+    """M x for the 3×3 matrix stored by rows at prog[v : v + 9]."""
+    return (
+        prog[v] * x1 + prog[v + 1] * x2 + prog[v + 2] * x3,
+        prog[v + 3] * x1 + prog[v + 4] * x2 + prog[v + 5] * x3,
+        prog[v + 6] * x1 + prog[v + 7] * x2 + prog[v + 8] * x3,
+    )
+
+
+@jit(INLINE)
+def _gravity_gradient(f: float, prog: FloatArray, v: int, t: float, a: Mat3) -> Vec3:
+    """f·3n²(I3 − I2) r2 r3, … of the unit radius vector r in body axes; payload
+    [I1, I2, I3, n, u0, e1, e2, …] with r̂ = cos u e1 + sin u e2, u = n t + u0."""
+    i1, i2, i3 = prog[v], prog[v + 1], prog[v + 2]
+    n, u0 = prog[v + 3], prog[v + 4]
+    cu, su = math.cos(n * t + u0), math.sin(n * t + u0)
+    r1, r2, r3 = _to_body(
+        a,
+        cu * prog[v + 5] + su * prog[v + 8],
+        cu * prog[v + 6] + su * prog[v + 9],
+        cu * prog[v + 7] + su * prog[v + 10],
+    )
+    g = 3.0 * n * n * f
+    return g * (i3 - i2) * r2 * r3, g * (i1 - i3) * r3 * r1, g * (i2 - i1) * r1 * r2
+
+
+@jit(INLINE)
+def _eddy_current(f: float, prog: FloatArray, v: int, t: float, y: FloatArray, a: Mat3) -> Vec3:
+    """f·M0 (ĥ(ĥ·x) − x) in body axes, x = A ω − Ω ξ3 the angular velocity relative to the
+    field ĥ(t) = (sinβ cos Ωt, sinβ sin Ωt, cosβ); payload [M0, Ω, β]."""
+    M0, rate, beta = prog[v], prog[v + 1], prog[v + 2]
+    sb, cb = math.sin(beta), math.cos(beta)
+    h1, h2, h3 = sb * math.cos(rate * t), sb * math.sin(rate * t), cb
+    w1, w2, w3 = y[0], y[1], y[2]
+    x1 = a[0] * w1 + a[1] * w2 + a[2] * w3
+    x2 = a[3] * w1 + a[4] * w2 + a[5] * w3
+    x3 = a[6] * w1 + a[7] * w2 + a[8] * w3 - rate
+    hw = h1 * x1 + h2 * x2 + h3 * x3
+    m1, m2, m3 = _to_body(a, h1 * hw - x1, h2 * hw - x2, h3 * hw - x3)
+    g = f * M0
+    return g * m1, g * m2, g * m3
+
+
+@jit(INLINE)
+def _term(code: int, f: float, prog: FloatArray, v: int, t: float, y: FloatArray,
+          a: Mat3) -> Vec3:  # fmt: skip
+    """Body moment of one term times its factor f; NaN for an unknown code, which cannot come
+    from torque_program(): the integration then fails loudly instead of ignoring the term."""
+    w1, w2, w3 = y[0], y[1], y[2]
+    if code == TERM_BODY_CONSTANT:
+        return f * prog[v], f * prog[v + 1], f * prog[v + 2]
+    if code == TERM_LINEAR_DRAG:
+        m1, m2, m3 = _matrix_times(prog, v, w1, w2, w3)
+        return -(f * m1), -(f * m2), -(f * m3)
+    if code == TERM_QUADRATIC_DRAG:
+        m1, m2, m3 = _matrix_times(prog, v, w1 * abs(w1), w2 * abs(w2), w3 * abs(w3))
+        return -(f * m1), -(f * m2), -(f * m3)
+    if code == TERM_INERTIAL_CONSTANT:
+        m1, m2, m3 = _to_body(a, prog[v], prog[v + 1], prog[v + 2])
+        return f * m1, f * m2, f * m3
+    if code == TERM_GRAVITY_GRADIENT:
+        return _gravity_gradient(f, prog, v, t, a)
+    if code == TERM_EDDY_CURRENT:
+        return _eddy_current(f, prog, v, t, y, a)
+    return math.nan, math.nan, math.nan
+
+
+# Payload length of each term code (the program's stride).
+_PAYLOAD = {
+    TERM_BODY_CONSTANT: 3, TERM_LINEAR_DRAG: 9, TERM_QUADRATIC_DRAG: 9,
+    TERM_INERTIAL_CONSTANT: 3, TERM_GRAVITY_GRADIENT: 14, TERM_EDDY_CURRENT: 3,
+}  # fmt: skip
+_SIZES = tuple(_PAYLOAD.get(code, 0) for code in range(max(_PAYLOAD) + 1))
+
+
+@jit(KERNEL)
+def torque_moment(prog: FloatArray, start: int, t: float, y: FloatArray, out: FloatArray) -> None:
+    """Body moment of the torque program ``prog[start:]`` at state ``y = [ω, q]`` into
+    out[0:3]."""
+    n_terms = int(prog[start])
+    m1 = m2 = m3 = 0.0
+    if n_terms > 0:
+        a = attitude_matrix(y)
+        i = start + 1
+        for _ in range(n_terms):
+            code = int(prog[i])
+            d1, d2, d3 = _term(code, prog[i + 1], prog, i + 2, t, y, a)
+            m1 += d1
+            m2 += d2
+            m3 += d3
+            if not 0 <= code < len(_SIZES) or _SIZES[code] == 0:
+                break
+            i += 2 + _SIZES[code]
+    out[0], out[1], out[2] = m1, m2, m3
+
+
+@jit(INLINE)
+def quaternion_rates(y: FloatArray, out: FloatArray) -> None:
+    """dq/dt = ½ q ⊗ (0, ω) into out[3:7] for y = [ω, q]."""
+    w1, w2, w3, q0, q1, q2, q3 = y[0], y[1], y[2], y[3], y[4], y[5], y[6]
+    out[3] = 0.5 * (-q1 * w1 - q2 * w2 - q3 * w3)
+    out[4] = 0.5 * (q0 * w1 + q2 * w3 - q3 * w2)
+    out[5] = 0.5 * (q0 * w2 - q1 * w3 + q3 * w1)
+    out[6] = 0.5 * (q0 * w3 + q1 * w2 - q2 * w1)

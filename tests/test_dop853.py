@@ -1,0 +1,143 @@
+"""The compiled DOP853 in pieces: its tableau, runs that advance in chunks, and a disk cache
+that notices an edit to any compiled source."""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import numpy as np
+import pytest
+from scipy.integrate._ivp import dop853_coefficients as scipy_tableau
+
+from tumble import kernels
+from tumble.integrate import dop853
+from tumble.integrate.dop853 import core, tableau
+from tumble.kernels import jit
+from tumble.models import nonlinear_moment as nm
+from tumble.torques import ConstantInertialTorque, LinearDrag
+
+PACKAGE = Path(__file__).resolve().parents[1] / "src" / "tumble"
+INERTIA = np.array([1.0, 2.0, 3.0])
+Y0 = np.array([0.3, 1.0, 0.2, 1.0, 0.0, 0.0, 0.0])
+TOL = {"rtol": 1e-10, "atol": 1e-12}
+
+
+@pytest.mark.parametrize("name", ["A", "B", "C", "D", "E3", "E5"])
+def test_tableau_is_scipys_to_the_bit(name):
+    """Hairer's coefficients as written here are the doubles scipy's DOP853 uses."""
+    assert np.array_equal(getattr(tableau, name), getattr(scipy_tableau, name))
+
+
+def test_tableau_sizes_are_scipys():
+    assert tableau.N_STAGES == scipy_tableau.N_STAGES
+    assert tableau.N_STAGES_EXTENDED == scipy_tableau.N_STAGES_EXTENDED
+    assert tableau.N_INTERPOLANT == scipy_tableau.INTERPOLATOR_POWER
+
+
+def test_tableau_conditions():
+    """Row sums equal the nodes (c_i = Σ_j a_ij), the weights sum to one, and the error
+    weights are consistent (they integrate a constant to zero); to rounding of the printed
+    coefficients, a few ulps of the largest entry."""
+    A, C = tableau.A, tableau.C
+    assert np.allclose(A.sum(axis=1), C, rtol=0.0, atol=1e-13 * np.abs(A).max())
+    assert abs(tableau.B.sum() - 1.0) < 1e-14
+    assert abs(tableau.E5.sum()) < 1e-14 * np.abs(tableau.E5).max()
+
+
+def _nm_kernel():
+    p = nm.Params(mu=0.7, a=1.0, b=0.3, eps=0.05, d=0.3, nu=0.2)
+    return nm.full_kernel(p), np.array([0.1, 0.2, 3.0, 0.9, 0.3, 0.1, 0.0])
+
+
+@pytest.mark.parametrize("steps", [1, 7, 100])
+def test_a_run_in_chunks_equals_one_run(steps):
+    """Stopping every few steps and resuming changes nothing: the same steps, states,
+    interpolants, events and samples, to the bit."""
+    kernel, y0 = _nm_kernel()
+    t_eval = np.linspace(0.0, 40.0, 23)
+    whole = dop853.solve(kernel, y0, 40.0, t_eval=t_eval, **TOL)
+    run = dop853.Integration(kernel, y0, 40.0, dop853.Options(**TOL), t_eval=t_eval)
+    calls = 0
+    while not run.advance(max_steps=steps):
+        calls += 1
+    parts = run.solution()
+    assert calls >= (whole.ts.size - 1) // steps - 1  # it did stop that often
+    assert parts.status == whole.status == 0 and parts.nfev == whole.nfev
+    for name in ("ts", "ys", "F", "y_eval", "event_t", "event_signs", "event_y"):
+        assert np.array_equal(getattr(parts, name), getattr(whole, name)), name
+    assert whole.event_t.size > 10  # the events were exercised
+
+
+def test_memory_of_a_sampled_run_is_bounded_by_the_samples():
+    """Without a record, a run keeps its samples and the current state only, however many
+    steps it takes and however it is chunked."""
+    kernel = kernels.rigid_body_kernel(INERTIA, LinearDrag(0.01 * np.eye(3)))
+    t_eval = np.linspace(0.0, 500.0, 5)
+    opts = dop853.Options(**TOL, record=False, dense=False)
+    run = dop853.Integration(kernel, Y0, 500.0, opts, t_eval=t_eval)
+    while not run.advance(max_steps=50):
+        assert all(c.ts.size == 1 and c.F.size <= 7 * 7 for c in run._chunks)
+    sol = run.solution()
+    assert sol.ts.size == 1 and sol.F.shape[0] == 0
+    assert run.progress.n_steps > 100 * t_eval.size  # many steps, none of them kept
+    ref = dop853.solve(kernel, Y0, 500.0, t_eval=t_eval, record=False, dense=False, **TOL)
+    assert np.array_equal(sol.y_eval, ref.y_eval)
+
+
+def test_a_failure_stops_the_chunks_with_its_status():
+    """ω' ∝ ω² (a quadratic drag of the wrong sign) blows up: the chunked run ends with the
+    failure's status and time, like the whole run."""
+    from tumble.torques import QuadraticDrag
+
+    kernel = kernels.rigid_body_kernel(INERTIA, QuadraticDrag(-np.eye(3)))
+    whole = dop853.solve(kernel, Y0, 10.0, **TOL)
+    run = dop853.Integration(kernel, Y0, 10.0, dop853.Options(**TOL))
+    while not run.advance(max_steps=5):
+        pass
+    assert run.progress.status == whole.status < 0
+    assert run.progress.t == whole.t < 10.0
+    assert run.advance(max_steps=5)  # a finished run stays finished
+
+
+def test_batch_runs_keep_their_own_options():
+    """solve_many and solve give the same bits (the options record travels unchanged)."""
+    torque = LinearDrag(0.01 * np.eye(3)) + ConstantInertialTorque([0.0, 0.0, 0.02])
+    kernel = kernels.rigid_body_kernel(INERTIA, torque)
+    ((many, _seconds),) = dop853.solve_many([kernel], [Y0], [15.0], **TOL)
+    one = dop853.solve(kernel, Y0, 15.0, **TOL)
+    assert np.array_equal(many.F, one.F) and np.array_equal(many.ys, one.ys)
+
+
+_COMPILERS = {"jit", "njit", "vectorize", "guvectorize", "cfunc", "stencil"}
+
+
+def _compiles(path: Path) -> bool:
+    """Whether the module defines a function under a numba decorator (or tumble's jit)."""
+    for node in ast.walk(ast.parse(path.read_text())):
+        if isinstance(node, ast.FunctionDef):
+            for deco in node.decorator_list:
+                target = deco.func if isinstance(deco, ast.Call) else deco
+                name = (
+                    target.attr if isinstance(target, ast.Attribute) else getattr(target, "id", "")
+                )
+                if name in _COMPILERS:
+                    return True
+    return False
+
+
+def test_every_compiled_module_is_stamped():
+    """A module that defines compiled code must be in COMPILED_SOURCES, or an edit to it would
+    leave the integrator's cached machine code stale."""
+    stamped = {entry for entry, _mtime, _size in jit.source_stamp()}
+    compiled = {f.relative_to(PACKAGE).as_posix() for f in PACKAGE.rglob("*.py") if _compiles(f)}
+    assert {"kernels/rhs.py", "integrate/dop853/core.py"} <= compiled  # the scan finds them
+    assert compiled - stamped == set()
+    assert "torques.py" in stamped  # its term codes are frozen into the compiled code
+
+
+def test_cached_functions_carry_the_stamp_of_every_compiled_source():
+    """numba compares this stamp with the one in its index on disk: with every compiled
+    source in it, an edit to a callee's file recompiles its callers too."""
+    stamp = core.advance._cache._cache_file._source_stamp
+    assert stamp[1] == jit.source_stamp()

@@ -16,7 +16,7 @@ from strategies import theta_regular
 
 from tumble.errors import IntegrationError, ParameterError
 from tumble.rotations import euler313_to_matrix, matrix_to_euler313, matrix_to_quat, quat_to_matrix
-from tumble.unperturbed import symmetric_body
+from tumble.unperturbed.symmetric_body import build as symmetric_build
 from tumble.unperturbed.symmetric_body import (
     SEPARATRIX_TOL,
     NutationOrbit,
@@ -636,8 +636,8 @@ def fast_path_log():
     """Record whether each fast-path attempt succeeded (True) or deferred (False)."""
     log = []
     real_points, real_interval = (
-        symmetric_body._fast_turning_points,
-        symmetric_body._fast_interval,
+        symmetric_build._fast_turning_points,
+        symmetric_build._fast_interval,
     )
 
     def points(*args):
@@ -651,8 +651,8 @@ def fast_path_log():
         return out
 
     with (
-        mock.patch.object(symmetric_body, "_fast_turning_points", points),
-        mock.patch.object(symmetric_body, "_fast_interval", interval),
+        mock.patch.object(symmetric_build, "_fast_turning_points", points),
+        mock.patch.object(symmetric_build, "_fast_interval", interval),
     ):
         yield log
 
@@ -661,8 +661,8 @@ def fast_path_log():
 def careful_path_only():
     """The constructors with the fast path declining everywhere: its own fallback."""
     with (
-        mock.patch.object(symmetric_body, "_fast_turning_points", return_value=None),
-        mock.patch.object(symmetric_body, "_fast_interval", return_value=None),
+        mock.patch.object(symmetric_build, "_fast_turning_points", return_value=None),
+        mock.patch.object(symmetric_build, "_fast_interval", return_value=None),
     ):
         yield
 

@@ -4,7 +4,7 @@
 #   make demo    run every scenario in examples/ (outputs under out/<name>/)
 #   make test    the test suite without the slow studies (what CI runs: .ci/run)
 #   make bench   the slow studies only (pytest -m slow), with heyoka.py (the bench extra)
-#   make lint    ruff, mypy and the import-layer contract
+#   make lint    ruff (lint and format), mypy and the import-layer contract (CI runs it)
 #   make clean   remove outputs and caches (keeps .venv; `make distclean` removes it too)
 
 PYTHON ?= python3
@@ -51,7 +51,8 @@ bench: $(TEST_STAMP)
 	$(BIN)/python -m pytest -m slow -q
 
 lint: $(DEV_STAMP)
-	$(BIN)/ruff check src tests
+	$(BIN)/ruff check src tests benchmarks
+	$(BIN)/ruff format --check src tests benchmarks
 	$(BIN)/mypy src
 	$(BIN)/lint-imports
 

@@ -1,6 +1,6 @@
 """Sweep throughput (issue 7): points per second of the example sweeps on a local cluster.
 
-For each sweep in ``examples/sweeps/`` this runs ``run_sweep`` on a LocalCluster of N single-
+For each sweep in ``examples/sweeps/`` this runs ``sweep`` on a LocalCluster of N single-
 threaded workers (N = 1 and N = the cores), and the same points one after the other in this
 process without Dask (the floor of what a sweep can cost). It prints a table and writes
 ``benchmarks/sweep_throughput.json``:
@@ -22,8 +22,9 @@ import tempfile
 import time
 from pathlib import Path
 
+import tumble
+from tumble.app.sweep import compute_chunk
 from tumble.io.sweep import load_sweep
-from tumble.sweep import compute_chunk, run_sweep
 
 ROOT = Path(__file__).resolve().parent.parent
 SWEEPS = sorted((ROOT / "examples" / "sweeps").glob("*.toml"))
@@ -43,9 +44,9 @@ def sequential(path: Path) -> float:
 
 
 def on_cluster(path: Path, workers: int) -> dict[str, float]:
-    """Wall time of ``run_sweep`` on a LocalCluster it starts, and of a second run."""
+    """Wall time of ``sweep`` on a LocalCluster it starts, and of a second run."""
     with tempfile.TemporaryDirectory() as tmp:
-        first = run_sweep(path, Path(tmp) / "a", workers=workers, plot=False)
+        first = tumble.sweep(path, Path(tmp) / "a", workers=workers, plot=False)
     # Steady state: the same points again on a cluster of the same size, started before the
     # clock (Client(LocalCluster)) so that only the tasks are timed.
     from distributed import Client, LocalCluster
@@ -62,7 +63,9 @@ def on_cluster(path: Path, workers: int) -> dict[str, float]:
         points = [sweep.plan.assignments(0)]
         client.run(compute_chunk, sweep.base, sweep.source, points, sweep.keep, sweep.batch)
         start = time.perf_counter()
-        second = run_sweep(path, Path(tmp) / "b", scheduler=cluster.scheduler_address, plot=False)
+        second = tumble.sweep(
+            path, Path(tmp) / "b", scheduler=cluster.scheduler_address, plot=False
+        )
         steady = time.perf_counter() - start
     return {
         "points": first.dataset.attrs["points"],

@@ -10,7 +10,8 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from tumble import bench, kernels
+from tumble import kernels
+from tumble.app import bench
 from tumble.cli import app
 from tumble.models import resisting_medium as rm
 from tumble.torques import (

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-import tumble.reproduce as rep
+import tumble.app.reproduce as rep
 from tumble.analysis.claims import CLAIMS
 from tumble.analysis.claims.base import (
     CONFIRMED,

@@ -15,8 +15,8 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from tumble.app.sweep import sweep
 from tumble.io.scenario import template
-from tumble.sweep import run_sweep
 
 DASK = str(Path(sys.executable).with_name("dask"))
 TUMBLE = str(Path(sys.executable).with_name("tumble"))
@@ -132,7 +132,7 @@ def sweep_file(tmp_path_factory):
 def reference(cluster, sweep_file, tmp_path_factory):
     """The uninterrupted sweep on the cluster."""
     out = tmp_path_factory.mktemp("reference")
-    result = run_sweep(sweep_file, out, scheduler=cluster.address)
+    result = sweep(sweep_file, out, scheduler=cluster.address)
     return result, out
 
 
@@ -256,15 +256,15 @@ def test_failed_points_are_kept_on_resume_unless_retried(cluster, tmp_path):
     (tmp_path / "k.toml").write_text(
         'base = "base.toml"\n[[axis]]\nkey = "parameters.kappa"\nvalues = [0.5, 0.0, -0.3]\n'
     )
-    first = run_sweep(tmp_path / "k.toml", tmp_path / "out", scheduler=cluster.address)
+    first = sweep(tmp_path / "k.toml", tmp_path / "out", scheduler=cluster.address)
     ds = first.dataset
     assert ds["status"].values.tolist() == [0, 1, 0] and first.failed == 1
     assert "kappa" in str(ds["reason"].sel(kappa=0.0).values)
     parts = sorted((tmp_path / "out" / "parts").glob("*.json"))
     stamps = {p.name: p.stat().st_mtime_ns for p in parts}
-    kept = run_sweep(tmp_path / "k.toml", tmp_path / "out", scheduler=cluster.address)
+    kept = sweep(tmp_path / "k.toml", tmp_path / "out", scheduler=cluster.address)
     assert kept.computed == 0 and kept.resumed == 3 and kept.failed == 1
-    retried = run_sweep(
+    retried = sweep(
         tmp_path / "k.toml", tmp_path / "out", scheduler=cluster.address, retry_failed=True
     )
     assert retried.computed == 1 and retried.resumed == 2 and retried.failed == 1

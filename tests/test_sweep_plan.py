@@ -12,11 +12,11 @@ from hypothesis import strategies as st
 
 from tumble.analysis import run
 from tumble.analysis.sweep import Axis, Draw, Keep, SweepPlan, records_to_dataset
+from tumble.app.sweep import compute_chunk
 from tumble.errors import ParameterError, ScenarioError
 from tumble.io.scenario import parse_scenario, template
 from tumble.io.sweep import SweepStore, load_sweep, parse_key, point_scenario, set_key
 from tumble.plot.sweep import sweep_png
-from tumble.sweep import compute_chunk
 
 RM_BASE = (
     template("resisting_medium")

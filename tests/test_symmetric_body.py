@@ -16,7 +16,6 @@ from strategies import theta_regular
 
 from tumble.errors import IntegrationError, ParameterError
 from tumble.rotations import euler313_to_matrix, matrix_to_euler313, matrix_to_quat, quat_to_matrix
-from tumble.unperturbed.symmetric_body import build as symmetric_build
 from tumble.unperturbed.symmetric_body import (
     SEPARATRIX_TOL,
     NutationOrbit,
@@ -25,6 +24,7 @@ from tumble.unperturbed.symmetric_body import (
     potential_slope,
     quartic_coefficients,
 )
+from tumble.unperturbed.symmetric_body import build as symmetric_build
 
 # Reference: DOP853 asked for rtol 1e-13, atol 1e-14. Its measured global error in θ, ψ, φ over
 # ten nutation periods is ≲ 4e-10 rad for every case below (ψ, φ are read from the quaternion

@@ -30,6 +30,26 @@ out = Console()
 err = Console(stderr=True)
 
 
+def _print_version(value: bool) -> None:
+    if value:
+        from tumble._version import __version__
+
+        out.print(f"tumble {__version__}", highlight=False)
+        raise typer.Exit(0)
+
+
+@app.callback()
+def _main(
+    version: Annotated[
+        bool,
+        typer.Option(
+            "--version", callback=_print_version, is_eager=True, help="print the version and exit"
+        ),
+    ] = False,
+) -> None:
+    """tumble: slow evolution of rigid-body rotation under small torques."""
+
+
 def _guarded(work: Callable[[], Any]) -> Any:
     """Run ``work``; turn tumble's errors into one red line and its exit code."""
     try:
@@ -55,11 +75,11 @@ def run_cmd(
     out_dir: Annotated[Path, typer.Option("-o", "--out", help="output directory")] = Path("out"),
 ) -> None:
     """Run a scenario: CSV per method, summary.json and a figure in OUT."""
-    from tumble.runner import run_scenario
+    from tumble.app.runner import run
 
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", TumbleWarning)
-        result = _guarded(lambda: run_scenario(scenario, out_dir))
+        result = _guarded(lambda: run(scenario, out_dir))
     _print_warnings(caught)
 
     model = result.request.model
@@ -126,11 +146,11 @@ def verify_cmd(
     Writes verify.csv, verify_curves.csv, verify.json and verify.png to OUT and prints the
     errors, the fitted orders and the verdict.
     """
-    from tumble.runner import verify_scenario
+    from tumble.app.runner import verify
 
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", TumbleWarning)
-        result = _guarded(lambda: verify_scenario(scenario, out_dir))
+        result = _guarded(lambda: verify(scenario, out_dir))
     _print_warnings(caught)
     symbol = {"tau": "τ"}.get(result.time_name, result.time_name)
     horizon = "ε" + symbol if result.eps[0] > 0.0 else symbol
@@ -471,7 +491,7 @@ def bench_cmd(
 
     from rich.status import Status
 
-    from tumble.bench import BenchSettings, run_benchmark
+    from tumble.app.bench import BenchSettings, run_benchmark
     from tumble.io.output import atomic_write
 
     def work() -> dict[str, Any]:
@@ -543,7 +563,7 @@ def sweep_cmd(
     )
     from rich.text import Text
 
-    from tumble.sweep import run_sweep
+    from tumble.app.sweep import sweep
 
     if scheduler is not None and workers is not None:
         err.print("[red]error:[/red] --workers applies to the local cluster, not --scheduler")
@@ -576,7 +596,7 @@ def sweep_cmd(
                     bar.update(task, completed=done, total=total)
 
             result = _guarded(
-                lambda: run_sweep(
+                lambda: sweep(
                     sweep_file,
                     out_dir,
                     scheduler=scheduler,
@@ -639,7 +659,7 @@ def reproduce_cmd(
     """
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn
 
-    from tumble.reproduce import reproduce
+    from tumble.app.reproduce import reproduce
 
     columns = (TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn())
     with Progress(*columns, console=err, transient=True, disable=not err.is_terminal) as bar:

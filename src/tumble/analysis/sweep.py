@@ -9,7 +9,7 @@ Records are assembled into an :class:`xarray.Dataset` with one dimension per gri
 ``sample``), units and long names in ``attrs``.
 
 This module holds the numerics only; files, Dask and the scenario keys live in
-:mod:`tumble.io.sweep` and :mod:`tumble.sweep`.
+:mod:`tumble.io.sweep` and :mod:`tumble.app.sweep`.
 """
 
 from __future__ import annotations

@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-import tumble
+from tumble._version import __version__
 from tumble.analysis import RunResult, VerifyResult
 from tumble.analysis.claims.base import plain  # numpy → JSON values, shared with the claims
 
@@ -99,7 +99,7 @@ def summary(
     req = result.request
     p = req.params
     out: dict[str, Any] = {
-        "tumble_version": tumble.__version__,
+        "tumble_version": __version__,
         "model": req.model.name,
         "paper": req.model.paper,
         "scenario": source,
@@ -186,7 +186,7 @@ def verify_outputs(result: VerifyResult, source: str) -> dict[str, bytes]:
         for s, d in zip(slow, err, strict=True)
     ]
     doc = {
-        "tumble_version": tumble.__version__,
+        "tumble_version": __version__,
         "model": result.model,
         "scenario": source,
         "time": time_name,

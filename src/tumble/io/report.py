@@ -18,7 +18,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-import tumble
+from tumble._version import __version__
 from tumble.analysis.claims.base import PAPERS, VERDICTS, Claim, plain
 
 __all__ = ["ClaimRun", "claims_json", "report_html"]
@@ -100,7 +100,7 @@ def _counts(runs: Sequence[ClaimRun]) -> dict[str, int]:
 def claims_json(runs: Sequence[ClaimRun], papers: Sequence[str], wall_time: float) -> str:
     """``claims.json``: every claim with its verdict, measured figure, time and figure file."""
     doc = {
-        "tumble_version": tumble.__version__,
+        "tumble_version": __version__,
         "papers": {p: PAPERS[p] for p in papers},
         "wall_time_s": wall_time,
         "counts": _counts(runs),
@@ -168,7 +168,7 @@ def _claim_section(r: ClaimRun) -> str:
 
 
 def report_html(runs: Sequence[ClaimRun], papers: Sequence[str], wall_time: float) -> str:
-    """The self-contained HTML report of :func:`tumble.reproduce.reproduce`.
+    """The self-contained HTML report of :func:`tumble.app.reproduce.reproduce`.
 
     Parameters
     ----------
@@ -191,7 +191,7 @@ def report_html(runs: Sequence[ClaimRun], papers: Sequence[str], wall_time: floa
         f"<style>{_CSS}</style><script>{_SCRIPT}</script></head>",
         '<body data-figures-rendered="0">',
         "<h1>The claims of the papers, checked</h1>",
-        f'<p class="meta">tumble {e(tumble.__version__)} · {e(stamp)} · '
+        f'<p class="meta">tumble {e(__version__)} · {e(stamp)} · '
         f"{e(platform.python_implementation())} {e(platform.python_version())} · "
         f"{wall_time:.0f} s · {len(runs)} claims: {e(summary)}</p>",
         "<p>Each claim is stated as the paper makes it, with the section of its "

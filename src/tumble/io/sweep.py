@@ -40,7 +40,7 @@ from typing import Any, Literal
 import xarray as xr
 from pydantic import BaseModel, ConfigDict, Field, ValidationError
 
-import tumble
+from tumble._version import __version__
 from tumble.analysis.sweep import Axis, Draw, Keep, Record, SweepPlan, column_attrs
 from tumble.errors import ParameterError, ScenarioError
 from tumble.io.output import atomic_write
@@ -448,7 +448,7 @@ class SweepStore:
                 )
         self.parts.mkdir(parents=True, exist_ok=True)
         doc = {
-            "tumble_version": tumble.__version__,
+            "tumble_version": __version__,
             "sweep_file": sweep.path,
             "digest": sweep.digest,
             "model": sweep.model,

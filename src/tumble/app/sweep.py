@@ -2,9 +2,9 @@
 
 Usable from a notebook::
 
-    from tumble.sweep import run_sweep
-    result = run_sweep("examples/sweep_rf_beta_eps.toml", "out/sweep")        # local cores
-    result = run_sweep(path, "out/sweep", scheduler="tcp://10.0.0.5:8786")    # a cluster
+    import tumble
+    result = tumble.sweep("examples/sweeps/rf_beta_eps.toml", "out/sweep")  # local cores
+    result = tumble.sweep(path, "out/sweep", scheduler="tcp://10.0.0.5:8786")  # a cluster
     result.dataset                                                           # xarray
 
 The points are cut into chunks (``[sweep] chunk``); each chunk is one Dask task, and its
@@ -38,7 +38,7 @@ from tumble.io.sweep import Sweep, SweepStore, load_sweep, point_scenario
 from tumble.models import get_model
 from tumble.plot.sweep import sweep_png
 
-__all__ = ["SweepResult", "compute_chunk", "run_sweep"]
+__all__ = ["SweepResult", "compute_chunk", "sweep"]
 
 WRITE_EVERY = 5.0
 """Seconds between rewrites of ``sweep.nc`` while a sweep runs (each chunk's records are
@@ -47,7 +47,7 @@ on disk at once; the Dataset is their summary)."""
 
 @dataclass(frozen=True)
 class SweepResult:
-    """What :func:`run_sweep` did.
+    """What :func:`sweep` did.
 
     Attributes
     ----------
@@ -208,7 +208,7 @@ def _threads(client: Any) -> int:
     return int(sum(client.nthreads().values()))
 
 
-def run_sweep(
+def sweep(
     path: str | Path,
     out_dir: str | Path,
     *,
@@ -249,15 +249,15 @@ def run_sweep(
     SweepResult
     """
     start = time.perf_counter()
-    sweep = load_sweep(path)
-    store = SweepStore(out_dir, sweep)
+    spec = load_sweep(path)
+    store = SweepStore(out_dir, spec)
     finished = store.finished()
     if retry_failed:
         finished = {c: recs for c, recs in finished.items() if all(r["status"] == 0 for r in recs)}
     records = store.records(finished)
     resumed = len(records)
-    total = sweep.plan.size
-    todo = [c for c in range(sweep.chunks) if c not in finished]
+    total = spec.plan.size
+    todo = [c for c in range(spec.chunks) if c not in finished]
     if progress is not None:
         progress(resumed, total)
     threads = 0
@@ -266,9 +266,9 @@ def run_sweep(
         if todo:
             with _client(scheduler, workers) as client:
                 threads = _threads(client)
-                _run_chunks(client, sweep, store, todo, records, progress, last_write)
+                _run_chunks(client, spec, store, todo, records, progress, last_write)
     finally:
-        ds = _dataset(sweep, records)
+        ds = _dataset(spec, records)
         files = [store.write_dataset(ds), store.dir / "sweep.json"]
     if plot:
         from tumble.io.output import atomic_write
@@ -276,9 +276,9 @@ def run_sweep(
         figure = store.dir / "sweep.png"
         png = sweep_png(
             ds,
-            variables=sweep.plot_variables or None,
-            method=sweep.plot_method,
-            slow=get_model(sweep.model).plot_variables,
+            variables=spec.plot_variables or None,
+            method=spec.plot_method,
+            slow=get_model(spec.model).plot_variables,
             title=f"sweep {Path(path).name}",
         )
         atomic_write(figure, png)

@@ -3,7 +3,7 @@
 
 Usable from a notebook::
 
-    from tumble.reproduce import reproduce
+    from tumble.app.reproduce import reproduce
     result = reproduce(["rotating_field"], "out/reproduce")
     [(r.id, r.verdict) for r in result.runs]
 """

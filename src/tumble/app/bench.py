@@ -736,7 +736,7 @@ def _batch(s: BenchSettings, log: Callable[[str], None]) -> dict[str, Any]:
 _COLD = """
 import json, sys, time
 start = time.perf_counter()
-from tumble import bench
+from tumble.app import bench
 from tumble.integrate import dop853
 out = {"import_s": time.perf_counter() - start}
 for case in bench.full_cases(1e5):
@@ -790,7 +790,7 @@ def _machine() -> dict[str, Any]:
     except OSError:
         pass
     hy = _heyoka()
-    from tumble import __version__
+    from tumble._version import __version__
 
     return {
         "cpu": cpu,

@@ -1,0 +1,134 @@
+"""A scenario in, its results (and files) out: the library functions behind ``tumble run`` and
+``tumble verify``, exported as :func:`tumble.run` and :func:`tumble.verify`.
+
+From a notebook::
+
+    import tumble
+    result = tumble.run("examples/a3_positive.toml")                       # in memory
+    result = tumble.run("examples/a3_positive.toml", "out/a3_positive")    # and the files
+"""
+
+from __future__ import annotations
+
+import io
+from dataclasses import replace
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from tumble.analysis import RunResult, VerifyResult
+from tumble.analysis import run as run_request
+from tumble.analysis import verify as verify_request
+from tumble.io import Scenario, load_scenario, render_outputs, verify_outputs, write_outputs
+from tumble.plot import plot_comparison, plot_envelope, plot_verify
+
+__all__ = ["run", "verify"]
+
+
+def _pressure_curve(result: RunResult) -> tuple[Any, Any, str] | None:
+    """a(t)/a(0) = Q(εt)/Q(0) of a perturbed nonlinear-moment run whose pressure varies."""
+    for ds in result.datasets.values():
+        if "a" in ds and ds["a"].values[0] != 0.0 and np.ptp(ds["a"].values) > 0.0:
+            return ds["tau"].values, ds["a"].values / ds["a"].values[0], "Q(εt)/Q(0) = a(t)/a(0)"
+    return None
+
+
+def _figure_png(result: RunResult, title: str) -> bytes:
+
+    model = result.request.model
+    if model.plot_kind == "envelope":
+        _header, rows = result.report.tables.get("full_extrema", ((), []))
+        fig = plot_envelope(
+            result.datasets,
+            extrema=rows,
+            pressure=_pressure_curve(result),
+            marks=result.issues,
+            title=title,
+        )
+    else:
+        fig = plot_comparison(
+            result.datasets,
+            variables=model.plot_variables,
+            diagnostics=result.diagnostics.get("averaged"),
+            marks=result.issues,
+            title=title,
+        )
+    return _png(fig)
+
+
+def _png(fig: Any) -> bytes:
+    import matplotlib.pyplot as plt
+
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=130)
+    plt.close(fig)
+    return buf.getvalue()
+
+
+def _scenario(scenario: str | Path | Scenario) -> Scenario:
+    return scenario if isinstance(scenario, Scenario) else load_scenario(scenario)
+
+
+def run(scenario: str | Path | Scenario, out_dir: str | Path | None = None) -> RunResult:
+    """Run a scenario, and write its outputs to ``out_dir`` if one is given.
+
+    The outputs are ``<method>.csv`` for every method (plus ``<method>_si.csv`` for
+    physical-units scenarios and ``averaged_diagnostics.csv`` where the model has diagnostics),
+    ``summary.json`` and the model's figure (``comparison.png``, ``evolution.png``); with
+    ``[run] verify = true`` also the files of :func:`verify` and the verdict in
+    ``summary.json``. Nothing is written unless the whole run succeeds; each file is replaced
+    atomically.
+
+    Parameters
+    ----------
+    scenario : str, Path or Scenario
+        A TOML scenario file, or a scenario already loaded (:func:`tumble.load_scenario`).
+    out_dir : str or Path, optional
+        Output directory (created if needed); None writes nothing.
+
+    Returns
+    -------
+    RunResult
+    """
+    sc = _scenario(scenario)
+    result = run_request(sc.request)
+    verification = verify_request(sc.request) if sc.request.verify else None
+    if out_dir is not None:
+        files = render_outputs(result, sc.inputs, sc.source, verification)
+        title = f"{sc.request.model.name}: {Path(sc.source).name}"
+        files[sc.request.model.figure] = _figure_png(result, title)
+        if verification is not None:
+            files["verify.png"] = _png(plot_verify(verification, title=f"verify {title}"))
+        write_outputs(out_dir, files)
+    return replace(result, verification=verification)
+
+
+def verify(scenario: str | Path | Scenario, out_dir: str | Path | None = None) -> VerifyResult:
+    """Measure the averaging error of a scenario at ε, ε/2 and ε/4, and write its files to
+    ``out_dir`` if one is given.
+
+    Runs full and averaged at each ε over the scenario's slow horizon ε·t_end
+    (:func:`tumble.analysis.verify`); the files are ``verify.csv``, ``verify_curves.csv``,
+    ``verify.json`` and ``verify.png``, written atomically once all runs are done.
+
+    Parameters
+    ----------
+    scenario : str, Path or Scenario
+        A TOML scenario file or a loaded scenario (its ``methods`` are ignored: full and
+        averaged always run).
+    out_dir : str or Path, optional
+        Output directory (created if needed); None writes nothing.
+
+    Returns
+    -------
+    VerifyResult
+    """
+    sc = _scenario(scenario)
+    result = verify_request(sc.request)
+    if out_dir is not None:
+        files = verify_outputs(result, sc.source)
+        title = f"verify {sc.request.model.name}: {Path(sc.source).name}"
+        files["verify.png"] = _png(plot_verify(result, title=title))
+        write_outputs(out_dir, files)
+    return result

@@ -227,7 +227,7 @@ def test_final_nutation_decay_depends_on_the_phase_the_body_settles_at():
     sol = integrate(lambda t, y: rf.full_rhs(t, y, p), rf.full_from_slow(p, st0), 600.0)
     tau = np.linspace(100.0, 600.0, 5001)
     Y = sol(tau)
-    k2 = rf.slow_from_full(tau, Y, p)["k2"]
+    k2 = rf.slow_from_full(p, tau, Y)["k2"]
     seg = np.array_split(np.arange(tau.size), 10)  # ~4 nutation periods each: envelope
     rate = np.polyfit([tau[s].mean() for s in seg], np.log([k2[s].max() for s in seg]), 1)[0]
     G = Y[-1, 3:].reshape(3, 3)
@@ -314,9 +314,9 @@ def test_body_at_rest_is_spun_up():
 def test_integration_restarts_at_the_separatrix():
     """The averaged run stops on L² = 2T·I2 and steps over it (k² ≡ 1 is spurious)."""
     p = rf.Params((1.0, 2.0, 2.5), math.pi / 2, 0.01)
-    form = rf.MODEL.averaged_form(p, rf.state_from_elements(p, 1.5, 0.6, 0.0, 0.5, "x1"))
+    form = rf.MODEL.averaged.form(p, rf.state_from_elements(p, 1.5, 0.6, 0.0, 0.5, "x1"))
     assert len(form.breakpoints) == 1
-    y0 = form.from_slow(p, rf.state_from_elements(p, 1.5, 0.6, 0.0, 0.5, "x1"))
+    y0 = form.initial_state(p, rf.state_from_elements(p, 1.5, 0.6, 0.0, 0.5, "x1"))
     sol = integrate(lambda t, y: form.rhs(t, y, p), y0, 300.0, breakpoints=form.breakpoints)
     r = sol(np.linspace(0.0, 300.0, 301))[:, 3]
     assert r[0] > 0.5 > r[-1]  # crossed r = 1/I2 = 0.5

@@ -12,3 +12,6 @@ FloatArray = NDArray[np.float64]
 
 ArrayLike = Any
 """Anything numpy can turn into a float array (scalar, sequence, array)."""
+
+ComplexArray = NDArray[np.complex128]
+"""A complex128 array (complex-step differentiation of the right-hand sides)."""

@@ -76,6 +76,7 @@ def run_cmd(
 ) -> None:
     """Run a scenario: CSV per method, summary.json and a figure in OUT."""
     from tumble.app.runner import run
+    from tumble.plot.settings import figure_settings
 
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", TumbleWarning)
@@ -83,7 +84,7 @@ def run_cmd(
     _print_warnings(caught)
 
     model = result.request.model
-    shown = model.plot_variables
+    shown = figure_settings(model.name).variables
     table = Table(title=f"{model.name} — {scenario}", title_justify="left")
     for col in ("method", "form", "integrator", "wall time [s]", *(f"final {v}" for v in shown)):
         table.add_column(col)
@@ -188,9 +189,8 @@ def models_cmd() -> None:
     from tumble.models import MODELS
 
     for name, rec in MODELS.items():
-        out.print(
-            f"[bold]{name}[/bold]: {rec.description}  [dim]({rec.paper})[/dim]", highlight=False
-        )
+        paper = f"  [dim]({rec.paper})[/dim]" if rec.paper is not None else ""
+        out.print(f"[bold]{name}[/bold]: {rec.description}{paper}", highlight=False)
 
 
 @app.command("init")

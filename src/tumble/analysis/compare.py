@@ -11,7 +11,7 @@ import xarray as xr
 
 from tumble._typing import ArrayLike, FloatArray
 from tumble.integrate import DEFAULT_ATOL, DEFAULT_RTOL, simulate
-from tumble.models.base import ModelRecord
+from tumble.models import AnyModel
 
 __all__ = [
     "ErrorStudy",
@@ -57,7 +57,7 @@ class ErrorStudy:
 
 
 def averaging_error_study(
-    model: ModelRecord,
+    model: AnyModel,
     p: Any,
     initial: Any,
     eps_values: Sequence[float],
@@ -76,7 +76,7 @@ def averaging_error_study(
 
     Parameters
     ----------
-    model : ModelRecord
+    model : Model
         The model; ``p.with_eps(eps)`` must give its parameters at another ε.
     p, initial : model Params and State
         Parameters (their ε is replaced) and the common initial state.

@@ -14,7 +14,8 @@ from tumble._typing import FloatArray
 from tumble.analysis.compare import max_differences
 from tumble.errors import TumbleWarning
 from tumble.integrate import DEFAULT_ATOL, DEFAULT_RTOL, Trajectory, simulate
-from tumble.models.base import Column, ModelRecord, Report, ValidityIssue
+from tumble.models import AnyModel
+from tumble.models.base import Column, Json, Report, ValidityIssue
 
 __all__ = ["RunRequest", "RunResult", "run", "to_dataset"]
 
@@ -25,7 +26,7 @@ class RunRequest:
 
     Attributes
     ----------
-    model : ModelRecord
+    model : Model
         The model.
     params, initial : model Params and State
         Normalized parameters and initial state.
@@ -43,7 +44,7 @@ class RunRequest:
         How the full equations are integrated (``[run] integrator``, issue 6).
     """
 
-    model: ModelRecord
+    model: AnyModel
     params: Any
     initial: Any
     tau: FloatArray
@@ -70,7 +71,7 @@ class RunResult:
     trajectories: dict[str, Trajectory]
     differences: dict[str, dict[str, float]]
     issues: list[dict[str, Any]] = field(default_factory=list)
-    limits: dict[str, Any] = field(default_factory=dict)
+    limits: Mapping[str, Json] = field(default_factory=dict)
     diagnostics: dict[str, xr.Dataset] = field(default_factory=dict)
     report: Report = field(default_factory=Report)
     verification: Any = None
@@ -103,14 +104,10 @@ def _columns_dataset(
     return xr.Dataset(data_vars, coords={"tau": ("tau", tau, time_attrs)})
 
 
-def to_dataset(model: ModelRecord, traj: Trajectory, p: Any) -> xr.Dataset:
+def to_dataset(model: AnyModel, traj: Trajectory, p: Any) -> xr.Dataset:
     """Trajectory as an ``xarray.Dataset`` with units, long names and equations in ``attrs``."""
     ds = _columns_dataset(
-        model.method_columns(p, traj.method),
-        traj.columns,
-        traj.tau,
-        model.time_name,
-        model.time_units,
+        model.columns(p, traj.method), traj.columns, traj.tau, model.time.name, model.time.units
     )
     ds.attrs.update(
         model=model.name,
@@ -162,7 +159,7 @@ def run(request: RunRequest, precomputed: Mapping[str, Trajectory] | None = None
     """
     model, p, st = request.model, request.params, request.initial
     for method in request.methods:  # refuse before any work is done
-        model.check_method(p, method)
+        model.check(p, method)
     done = precomputed or {}
     trajectories = {
         m: done[m]
@@ -185,21 +182,23 @@ def run(request: RunRequest, precomputed: Mapping[str, Trajectory] | None = None
         for a, b in itertools.combinations(request.methods, 2)
     }
     tau_end = float(request.tau[-1])
+    validity = model.validity
     found = {
-        m: model.validity(p, st, t.slow, tau_end)
+        m: validity.check(p, st, t.slow, tau_end)
         for m, t in trajectories.items()
-        if m in ("averaged", "closed_form")
+        if m in ("averaged", "closed_form") and validity is not None
     }
     issues = _merge_issues(found)
     for issue in issues:
         warnings.warn(issue["message"], TumbleWarning, stacklevel=2)
-    limits = model.limits(p, st)
+    limits = validity.limits(p, st) if validity is not None and validity.limits else {}
     diagnostics = {}
-    if model.diagnostics is not None and "averaged" in trajectories:
+    extra = model.averaged.diagnostics if model.averaged is not None else None
+    if extra is not None and "averaged" in trajectories:
         traj = trajectories["averaged"]
-        values = model.diagnostics(p, st, traj.columns)
+        values = extra.compute(p, st, traj.columns)
         diagnostics["averaged"] = _columns_dataset(
-            model.diagnostic_columns, values, traj.tau, model.time_name, model.time_units
+            extra.columns, values, traj.tau, model.time.name, model.time.units
         )
     report = model.report(p, st, trajectories) if model.report is not None else Report()
     return RunResult(

@@ -28,7 +28,8 @@ import xarray as xr
 
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import ParameterError, TumbleError
-from tumble.models.base import ModelRecord, StationaryMotion
+from tumble.models import AnyModel
+from tumble.models.base import StationaryMotion
 
 __all__ = [
     "CLASSES",
@@ -352,13 +353,13 @@ class StabilityReport:
 
 
 def analyze(
-    model: ModelRecord, p: Any, *, tol: float = CRITICAL_TOL, family: bool = True
+    model: AnyModel, p: Any, *, tol: float = CRITICAL_TOL, family: bool = True
 ) -> StabilityReport:
     """Linear stability of the model's stationary motion at parameters ``p``.
 
     Parameters
     ----------
-    model : ModelRecord
+    model : Model
         A model with ``stationary`` (e.g. ``rotating_field.MODEL``).
     p : model Params
     tol : float
@@ -431,7 +432,7 @@ def analyze(
 
 
 def stability_grid(
-    model: ModelRecord,
+    model: AnyModel,
     make_params: Callable[[float, float], Any],
     x: tuple[str, ArrayLike, dict[str, str]],
     y: tuple[str, ArrayLike, dict[str, str]],
@@ -445,7 +446,7 @@ def stability_grid(
 
     Parameters
     ----------
-    model : ModelRecord
+    model : Model
     make_params : callable
         ``(x, y) -> Params``; a :class:`~tumble.errors.TumbleError` marks a point outside the
         model's domain (e.g. inertia breaking the triangle inequality).

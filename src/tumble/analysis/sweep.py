@@ -277,7 +277,7 @@ def _slow_variables(request: RunRequest) -> tuple[str, ...]:
     model, p = request.model, request.params
     for method in ("averaged", "closed_form", request.methods[0]):
         if method in model.methods:
-            return tuple(c.name for c in model.method_columns(p, method))
+            return tuple(c.name for c in model.columns(p, method))
     return ()
 
 
@@ -300,7 +300,7 @@ def column_attrs(request: RunRequest) -> dict[str, dict[str, str]]:
     model, p = request.model, request.params
     meta: dict[str, dict[str, str]] = {}
     for method in request.methods:
-        for c in model.method_columns(p, method):
+        for c in model.columns(p, method):
             meta.setdefault(
                 c.name, {"units": c.units, "long_name": c.long_name, "equation": c.equation}
             )
@@ -345,7 +345,7 @@ def run_point(
             verification = verify(request) if keep.verify else None
         if result.issues:
             record["issues"] = "; ".join(
-                f"{i['condition']} at {request.model.time_name} = {i['tau']:.6g}"
+                f"{i['condition']} at {request.model.time.name} = {i['tau']:.6g}"
                 for i in result.issues
             )
             record["first_issue_time"] = float(result.issues[0]["tau"])

@@ -26,7 +26,7 @@ from tumble.analysis.compare import angle_difference, fitted_order
 from tumble.analysis.run import RunRequest, _merge_issues
 from tumble.errors import IntegrationError, ParameterError, TumbleWarning
 from tumble.integrate import Trajectory, simulate
-from tumble.models.base import ModelRecord
+from tumble.models import AnyModel
 
 __all__ = [
     "DEGRADED_ORDER",
@@ -124,10 +124,10 @@ def _floats(values: FloatArray) -> list[float | None]:
 
 
 def slow_errors(
-    model: ModelRecord, p: Any, full: Trajectory, averaged: Trajectory
+    model: AnyModel, p: Any, full: Trajectory, averaged: Trajectory
 ) -> dict[str, tuple[FloatArray, FloatArray]]:
     """|full − averaged| of each slow variable over the run: the model's own measure
-    (``ModelRecord.slow_errors``) or its ``verify_variables`` compared at the sample times,
+    (``Averaged.errors``) or its ``Averaged.compare`` columns compared at the sample times,
     angles modulo 2π.
 
     Returns
@@ -135,13 +135,16 @@ def slow_errors(
     dict
         Variable → (times [model time], absolute errors).
     """
-    if model.slow_errors is not None:
-        return dict(model.slow_errors(p, full, averaged))
-    if not model.verify_variables:
+    avg = model.averaged
+    if avg is None:
+        raise ParameterError(f"{model.name} has no averaged method to verify")
+    if avg.errors is not None:
+        return dict(avg.errors(p, full, averaged))
+    if not avg.compare:
         raise ParameterError(f"{model.name} has no slow variables to verify")
-    angles = {c.name for c in model.method_columns(p, "averaged") if c.angle}
+    angles = {c.name for c in avg.columns(p) if c.angle}
     out = {}
-    for v in model.verify_variables:
+    for v in avg.compare:
         a, b = full.columns[v], averaged.columns[v]
         d = angle_difference(a, b) if v in angles else a - b
         out[v] = (full.tau, np.abs(d))
@@ -258,11 +261,11 @@ def _full(request: RunRequest, p: Any, tau: FloatArray) -> Trajectory:
 def _verify_closed_form(request: RunRequest) -> VerifyResult:
     """ε = 0: the exact unperturbed motion in closed form against the full integration."""
     model, p, st = request.model, request.params, request.initial
-    model.check_method(p, "closed_form")
+    model.check(p, "closed_form")
     tau = np.asarray(request.tau, dtype=float)
     full = _full(request, p, tau)
     closed = simulate(model, p, st, tau, "closed_form")
-    shared = [c for c in model.method_columns(p, "closed_form") if c.name in full.columns]
+    shared = [c for c in model.columns(p, "closed_form") if c.name in full.columns]
     curves, errors, worst = {}, {}, 0.0
     for c in shared:
         a, b = full.columns[c.name], closed.columns[c.name]
@@ -282,7 +285,7 @@ def _verify_closed_form(request: RunRequest) -> VerifyResult:
         model.name,
         np.array([0.0]),
         float(tau[-1]),
-        model.time_name,
+        model.time.name,
         tuple(errors),
         errors,
         [curves],
@@ -325,9 +328,9 @@ def verify(request: RunRequest, factors: Sequence[float] = VERIFY_FACTORS) -> Ve
             "parameters.eps = 0: verify compares the averaged with the full model, which "
             "needs a perturbation (eps > 0)"
         )
-    model.check_method(p, "averaged")
+    model.check(p, "averaged")
     eps = eps0 * np.asarray(factors, dtype=float)
-    symbol = {"tau": "τ"}.get(model.time_name, model.time_name)
+    symbol = {"tau": "τ"}.get(model.time.name, model.time.name)
     curves: list[dict[str, tuple[FloatArray, FloatArray]]] = []
     issues: list[list[dict[str, Any]]] = []
     failures: list[str | None] = []
@@ -355,7 +358,8 @@ def verify(request: RunRequest, factors: Sequence[float] = VERIFY_FACTORS) -> Ve
             if v not in variables:
                 variables.append(v)
         curves.append({v: (e * t, d) for v, (t, d) in errs.items()})
-        issues.append(_merge_issues({"averaged": model.validity(pe, st, avg.slow, tau[-1])}))
+        found = model.validity.check(pe, st, avg.slow, tau[-1]) if model.validity else []
+        issues.append(_merge_issues({"averaged": found}))
     errors: dict[str, FloatArray] = {}
     orders: dict[str, float | None] = {}
     for v in variables:
@@ -376,7 +380,7 @@ def verify(request: RunRequest, factors: Sequence[float] = VERIFY_FACTORS) -> Ve
         model.name,
         eps,
         eps0 * float(request.tau[-1]),
-        model.time_name,
+        model.time.name,
         tuple(variables),
         errors,
         curves,

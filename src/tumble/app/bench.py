@@ -241,7 +241,7 @@ def full_cases(horizon: float) -> list[FullCase]:
     ]
     for name in FULL_MODELS:
         req = _scenario_at(name, None, horizon, 2, _FULL_INITIAL.get(name))
-        full, p = req.model.full, req.params
+        full, p = req.model.full.form(), req.params
         assert full.kernel is not None
         kernel = full.kernel(p)
         assert kernel is not None  # the templates hold no Python functions
@@ -251,7 +251,7 @@ def full_cases(horizon: float) -> list[FullCase]:
                 f"{name} template{_overrides(name)}, {full.name} form {full.equation}, "
                 f"ε = {p.eps:.3g}",
                 Kernel(kernel.kind, kernel.params),
-                np.asarray(full.from_slow(p, req.initial), dtype=float),
+                np.asarray(full.initial_state(p, req.initial), dtype=float),
                 _python_rhs(full.rhs, p),
             )
         )
@@ -604,7 +604,7 @@ def _relative(errors: dict[str, tuple[FloatArray, FloatArray]], ref: Any) -> dic
 
 
 def _full_vs_full(model: Any, ref: Any, run: Any) -> dict[str, float]:
-    names = _FULL_SLOW.get(model.name, model.verify_variables)
+    names = _FULL_SLOW.get(model.name, model.averaged.compare if model.averaged else ())
     errors = {v: (ref.tau, np.abs(run.columns[v] - ref.columns[v])) for v in names}
     return _relative(errors, ref)
 
@@ -634,7 +634,7 @@ def _averaged_case(
         if method not in model.methods:
             continue
         try:
-            model.check_method(p, method)
+            model.check(p, method)
         except ParameterError:
             continue  # e.g. the unperturbed closed form of a perturbed run
         log(f"averaged {name} ε = {eps:g}: {method}")
@@ -675,10 +675,11 @@ def _batch(s: BenchSettings, log: Callable[[str], None]) -> dict[str, Any]:
         data["initial"]["rho"] = float(rng.uniform(0.2, 2.9))
         data["initial"]["theta"] = float(rng.uniform(0.3, 1.3))
         req = parse_scenario(data, "<resisting_medium template>").request
-        Y0.append(req.model.full.from_slow(req.params, req.initial))
-    assert req is not None and req.model.full.kernel is not None
-    kernel = req.model.full.kernel(req.params)
-    assert kernel is not None
+        Y0.append(req.model.full.form().initial_state(req.params, req.initial))
+    assert req is not None
+    compiled = req.model.full.form().kernel
+    kernel = compiled(req.params) if compiled is not None else None
+    assert kernel is not None  # the template's form is compiled
     t_end = float(req.tau[-1])
     P = np.tile(kernel.params, (s.batch_size, 1))
     Y0a = np.array(Y0)

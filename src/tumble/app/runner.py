@@ -21,7 +21,13 @@ from tumble.analysis import RunResult, VerifyResult
 from tumble.analysis import run as run_request
 from tumble.analysis import verify as verify_request
 from tumble.io import Scenario, load_scenario, render_outputs, verify_outputs, write_outputs
-from tumble.plot import plot_comparison, plot_envelope, plot_verify
+from tumble.plot import (
+    FigureSettings,
+    figure_settings,
+    plot_comparison,
+    plot_envelope,
+    plot_verify,
+)
 
 __all__ = ["run", "verify"]
 
@@ -34,10 +40,20 @@ def _pressure_curve(result: RunResult) -> tuple[Any, Any, str] | None:
     return None
 
 
+def _settings(result: RunResult) -> FigureSettings:
+    """The model's figure, drawing the averaged columns where it names none."""
+    req = result.request
+    settings = figure_settings(req.model.name)
+    if settings.variables or "averaged" not in req.model.methods:
+        return settings
+    names = tuple(c.name for c in req.model.columns(req.params, "averaged"))
+    return replace(settings, variables=names)
+
+
 def _figure_png(result: RunResult, title: str) -> bytes:
 
-    model = result.request.model
-    if model.plot_kind == "envelope":
+    settings = _settings(result)
+    if settings.kind == "envelope":
         _header, rows = result.report.tables.get("full_extrema", ((), []))
         fig = plot_envelope(
             result.datasets,
@@ -49,7 +65,7 @@ def _figure_png(result: RunResult, title: str) -> bytes:
     else:
         fig = plot_comparison(
             result.datasets,
-            variables=model.plot_variables,
+            variables=settings.variables,
             diagnostics=result.diagnostics.get("averaged"),
             marks=result.issues,
             title=title,
@@ -97,7 +113,7 @@ def run(scenario: str | Path | Scenario, out_dir: str | Path | None = None) -> R
     if out_dir is not None:
         files = render_outputs(result, sc.inputs, sc.source, verification)
         title = f"{sc.request.model.name}: {Path(sc.source).name}"
-        files[sc.request.model.figure] = _figure_png(result, title)
+        files[_settings(result).file] = _figure_png(result, title)
         if verification is not None:
             files["verify.png"] = _png(plot_verify(verification, title=f"verify {title}"))
         write_outputs(out_dir, files)

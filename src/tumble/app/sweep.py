@@ -35,7 +35,7 @@ from tumble.errors import ScenarioError, TumbleError
 from tumble.integrate import Trajectory, simulate_batch
 from tumble.io.scenario import parse_scenario
 from tumble.io.sweep import Sweep, SweepStore, load_sweep, point_scenario
-from tumble.models import get_model
+from tumble.plot.settings import figure_settings
 from tumble.plot.sweep import sweep_png
 
 __all__ = ["SweepResult", "compute_chunk", "sweep"]
@@ -81,7 +81,7 @@ def _batchable(req: RunRequest) -> bool:
     """Whether the full run of ``req`` can go through the compiled batch."""
     if "full" not in req.methods or req.integrator == "scipy":
         return False
-    full = req.model.full
+    full = req.model.full.form()
     return full.kernel is not None and full.kernel(req.params) is not None
 
 
@@ -278,7 +278,7 @@ def sweep(
             ds,
             variables=spec.plot_variables or None,
             method=spec.plot_method,
-            slow=get_model(spec.model).plot_variables,
+            slow=figure_settings(spec.model).variables,
             title=f"sweep {Path(path).name}",
         )
         atomic_write(figure, png)

@@ -10,7 +10,7 @@ from __future__ import annotations
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Any, Literal
+from typing import Literal, TypeVar
 
 import numpy as np
 
@@ -26,11 +26,14 @@ from tumble.integrate.ode import (
     integrate,
 )
 from tumble.kernels import Kernel
-from tumble.models.base import AveragedForm, FullForm, ModelRecord
+from tumble.models.base import AveragedForm, Columns, FullForm, Model
 
 __all__ = ["INTEGRATORS", "Method", "Trajectory", "simulate", "simulate_batch"]
 
 Method = Literal["full", "averaged", "closed_form"]
+
+P = TypeVar("P")
+S = TypeVar("S")
 
 INTEGRATORS = ("auto", "numba", "scipy")
 """How the full equations are integrated (the scenario key ``[run] integrator``): ``"numba"``
@@ -80,11 +83,9 @@ class Trajectory:
     event_signs: FloatArray = field(default_factory=lambda: np.empty(0), repr=False)
 
 
-def _unwrap_columns(
-    model: ModelRecord, p: Any, method: str, cols: dict[str, FloatArray], initial: Any
-) -> None:
-    """Make angle columns continuous, starting from the initial value (spec §14), not mod 2π."""
-    for c in model.method_columns(p, method):
+def _unwrap_columns(model: Model[P, S], p: P, method: str, cols: Columns, initial: S) -> None:
+    """Make angle columns continuous, starting from the initial value, not mod 2π."""
+    for c in model.columns(p, method):
         if c.unwrap and c.name in cols:
             angle = np.unwrap(cols[c.name])
             start = getattr(initial, c.name, angle[0])
@@ -92,14 +93,14 @@ def _unwrap_columns(
 
 
 def _sampled(
-    model: ModelRecord,
-    p: Any,
+    model: Model[P, S],
+    p: P,
     method: str,
     sol: DenseSolution,
-    to_columns: Callable[[FloatArray, FloatArray], dict[str, FloatArray]],
+    to_columns: Callable[[FloatArray, FloatArray], Columns],
     tau: FloatArray,
-    initial: Any,
-) -> dict[str, FloatArray]:
+    initial: S,
+) -> Columns:
     """Columns at ``tau``; angles unwrapped on the union of solver steps and samples.
 
     The solver's steps resolve every turn of the fast phases, so unwrapping on them gives the
@@ -113,9 +114,9 @@ def _sampled(
 
 
 def simulate(
-    model: ModelRecord,
-    p: Any,
-    initial: Any,
+    model: Model[P, S],
+    p: P,
+    initial: S,
     tau: ArrayLike,
     method: str,
     *,
@@ -128,7 +129,7 @@ def simulate(
 
     Parameters
     ----------
-    model : ModelRecord
+    model : Model
         The registered model (e.g. ``tumble.models.resisting_medium.MODEL``).
     p : model Params
         Model parameters.
@@ -141,7 +142,7 @@ def simulate(
     rtol, atol : float
         Integration tolerances (ignored by ``closed_form``).
     form : str, optional
-        For ``full``: one of ``model.full_forms`` (default: the model's recommended form).
+        For ``full``: one of ``model.full.forms`` (default: the model's recommended form).
     integrator : {"auto", "numba", "scipy"}
         For ``full``: the compiled integrator or scipy's (see :data:`INTEGRATORS`). The
         averaged equations are always integrated by scipy: they take few steps, and their
@@ -162,15 +163,15 @@ def simulate(
             f"run.methods: {method!r} is not a method of {model.name} "
             f"(allowed: {', '.join(model.methods)})"
         )
-    model.check_method(p, method)
+    model.check(p, method)
     start = time.perf_counter()
     t_end = float(tau[-1])
     if method == "full":
-        full = _full_form(model, form)
+        full = model.full.form(form)
         what = f"{model.name} full equations {full.equation}"
         sol = integrate(
             lambda t, y: full.rhs(t, y, p),
-            full.from_slow(p, initial),
+            full.initial_state(p, initial),
             t_end,
             rtol=rtol,
             atol=atol,
@@ -178,49 +179,55 @@ def simulate(
             kernel=_kernel(model, full, p, integrator),
         )
         return _trajectory(model, p, initial, tau, method, full, sol, start)
-    if method == "averaged":
-        avg = model.averaged_form(p, initial)
-        try:
-            sol = integrate(
-                lambda t, y: avg.rhs(t, y, p),
-                avg.from_slow(p, initial),
-                t_end,
-                rtol=rtol,
-                atol=atol,
-                what=f"{model.name} averaged equations {avg.equation}",
-                breakpoints=avg.breakpoints,
-            )
-        except IntegrationError as exc:
-            reason = avg.failure() if avg.failure else None
-            if reason is None:
-                raise
-            raise IntegrationError(f"{exc}; last refused state: {reason}") from None
-        return _trajectory(model, p, initial, tau, method, avg, sol, start)
-    cols = model.closed_form(p, initial, tau)
+    if method == "averaged" and model.averaged is not None:
+        return _averaged(model, model.averaged.form(p, initial), p, initial, tau, rtol, atol)
+    assert model.closed_form is not None  # the methods follow the capabilities
+    closed = model.closed_form
+    cols = closed.evaluate(p, initial, tau)
 
-    def slow(t: FloatArray) -> dict[str, FloatArray]:
-        return model.closed_form(p, initial, t)
+    def slow(t: FloatArray) -> Columns:
+        return closed.evaluate(p, initial, t)
 
     wall = time.perf_counter() - start
     return Trajectory(tau, cols, method, "closed_form", wall, 0, slow)
 
 
-def _full_form(model: ModelRecord, form: str | None) -> FullForm:
-    if form is not None and form not in model.full_forms:
-        raise ParameterError(
-            f"form = {form!r} is not a full form of {model.name} "
-            f"(allowed: {', '.join(model.full_forms)})"
+def _averaged(
+    model: Model[P, S],
+    avg: AveragedForm[P, S],
+    p: P,
+    initial: S,
+    tau: FloatArray,
+    rtol: float,
+    atol: float,
+) -> Trajectory:
+    """The averaged equations integrated and sampled at ``tau``."""
+    start = time.perf_counter()
+    try:
+        sol = integrate(
+            lambda t, y: avg.rhs(t, y, p),
+            avg.initial_state(p, initial),
+            float(tau[-1]),
+            rtol=rtol,
+            atol=atol,
+            what=f"{model.name} averaged equations {avg.equation}",
+            breakpoints=avg.breakpoints,
         )
-    return model.full if form is None else model.full_forms[form]
+    except IntegrationError as exc:
+        reason = avg.failure() if avg.failure else None
+        if reason is None:
+            raise
+        raise IntegrationError(f"{exc}; last refused state: {reason}") from None
+    return _trajectory(model, p, initial, tau, "averaged", avg, sol, start)
 
 
 def _trajectory(
-    model: ModelRecord,
-    p: Any,
-    initial: Any,
+    model: Model[P, S],
+    p: P,
+    initial: S,
     tau: FloatArray,
     method: str,
-    eq: FullForm | AveragedForm,
+    eq: FullForm[P, S] | AveragedForm[P, S],
     sol: DenseSolution,
     start: float,
 ) -> Trajectory:
@@ -228,18 +235,18 @@ def _trajectory(
     if isinstance(eq, AveragedForm):
         avg = eq
 
-        def to_columns(t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
-            return avg.to_columns(t, Y, p, initial)
+        def to_columns(t: FloatArray, Y: FloatArray) -> Columns:
+            return avg.to_columns(p, initial, t, Y)
 
     else:
         full = eq
 
-        def to_columns(t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
-            return full.to_columns(t, Y, p)
+        def to_columns(t: FloatArray, Y: FloatArray) -> Columns:
+            return full.to_columns(p, t, Y)
 
     cols = _sampled(model, p, method, sol, to_columns, tau, initial)
 
-    def slow(t: FloatArray) -> dict[str, FloatArray]:
+    def slow(t: FloatArray) -> Columns:
         return to_columns(t, sol(t))
 
     wall = time.perf_counter() - start
@@ -259,9 +266,9 @@ def _trajectory(
 
 
 def simulate_batch(
-    model: ModelRecord,
-    params: Sequence[Any],
-    initials: Sequence[Any],
+    model: Model[P, S],
+    params: Sequence[P],
+    initials: Sequence[S],
     tau: ArrayLike,
     *,
     rtol: float = DEFAULT_RTOL,
@@ -278,7 +285,7 @@ def simulate_batch(
 
     Parameters
     ----------
-    model : ModelRecord
+    model : Model
     params, initials : sequence
         Parameters and initial state of each point.
     tau : array_like
@@ -299,17 +306,17 @@ def simulate_batch(
     """
     tau = check_times(tau)
     t_end = float(tau[-1])
-    full = _full_form(model, form)
+    full = model.full.form(form)
     what = f"{model.name} full equations {full.equation}"
     out: list[Trajectory | TumbleError | None] = [None] * len(params)
     jobs: list[tuple[int, Kernel, FloatArray]] = []
     for i, (p, initial) in enumerate(zip(params, initials, strict=True)):
         try:
-            model.check_method(p, "full")
+            model.check(p, "full")
             kernel = _kernel(model, full, p, "numba")
             assert kernel is not None  # "numba" raises instead of returning None
             kernel.check_end(t_end)
-            y0 = np.asarray(full.from_slow(p, initial), dtype=float)
+            y0 = np.asarray(full.initial_state(p, initial), dtype=np.float64)
             if not np.all(np.isfinite(y0)):
                 raise IntegrationError(f"{what}: the initial state is not finite: {y0}")
         except TumbleError as exc:
@@ -348,7 +355,7 @@ def simulate_batch(
     return [o for o in out if o is not None]
 
 
-def _kernel(model: ModelRecord, full: FullForm, p: Any, integrator: str) -> Kernel | None:
+def _kernel(model: Model[P, S], full: FullForm[P, S], p: P, integrator: str) -> Kernel | None:
     """The compiled kernel of a full form for ``integrator``; None for the scipy path."""
     if integrator == "scipy":
         return None

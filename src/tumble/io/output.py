@@ -101,7 +101,7 @@ def summary(
     out: dict[str, Any] = {
         "tumble_version": __version__,
         "model": req.model.name,
-        "paper": req.model.paper,
+        "paper": str(req.model.paper) if req.model.paper is not None else None,
         "scenario": source,
         "inputs": inputs,
         "derived": p.derived() if hasattr(p, "derived") else {},

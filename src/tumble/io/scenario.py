@@ -547,7 +547,7 @@ def _nonlinear_moment(data: dict[str, Any]) -> tuple[RunRequest, dict[str, Any]]
     default = ("full", "averaged") if p.perturbed else ("full", "closed_form")
     methods = _methods(run, model.methods) if run.methods is not None else default
     for m in methods:
-        model.check_method(p, m)  # closed_form needs ε = 0, averaged needs ε > 0
+        model.check(p, m)  # closed_form needs ε = 0, averaged needs ε > 0
     rtol, atol = _tolerances(run)
     nonlinear_moment.orbit_of(p, st)  # no motion (e.g. a separatrix) → one line, before any run
     request = RunRequest(
@@ -742,7 +742,7 @@ def _torqued_body(data: dict[str, Any], base: Path) -> tuple[RunRequest, dict[st
     t = _times(run, "t_end", "t")
     methods = _methods(run, model.methods)
     for m in methods:
-        model.check_method(p, m)
+        model.check(p, m)
     rtol, atol = _tolerances(run)
     request = RunRequest(
         model, p, st, t, methods, rtol, atol, verify=run.verify, integrator=run.integrator

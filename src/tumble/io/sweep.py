@@ -403,7 +403,7 @@ def parse_sweep(data: dict[str, Any], path: str | Path) -> Sweep:
         chunk,
         sf.sweep.batch,
         model.name,
-        model.time_name,
+        model.time.name,
         digest,
         str(path),
         tuple(sf.plot.variables or ()),

@@ -2,12 +2,15 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 from tumble.errors import ScenarioError
 from tumble.models import nonlinear_moment, resisting_medium, rotating_field, torqued_body
-from tumble.models.base import ModelRecord
+from tumble.models.base import Model
 
 __all__ = [
     "MODELS",
+    "AnyModel",
     "get_model",
     "nonlinear_moment",
     "resisting_medium",
@@ -15,7 +18,11 @@ __all__ = [
     "torqued_body",
 ]
 
-MODELS: dict[str, ModelRecord] = {
+AnyModel = Model[Any, Any]
+"""A registered model of any parameter and state types (the registry's view: each model is
+typed with its own Params and State where it is defined)."""
+
+MODELS: dict[str, AnyModel] = {
     m.name: m
     for m in (
         resisting_medium.MODEL,
@@ -27,7 +34,7 @@ MODELS: dict[str, ModelRecord] = {
 """Every registered model, by the name a scenario's ``model`` key uses."""
 
 
-def get_model(name: str) -> ModelRecord:
+def get_model(name: str) -> AnyModel:
     """The registered model called ``name``; :class:`ScenarioError` if there is none."""
     try:
         return MODELS[name]

@@ -1,36 +1,66 @@
-"""The shape every paper model exposes to the rest of tumble (STYLE.md section 2).
+"""The model contract: the one typed shape every model exposes to the rest of tumble.
 
-A model module provides plain numerics; this record tells the integration and analysis layers
-how to drive it: which state vectors its full and averaged forms use, how to convert them to
-the output columns, and which closed forms and validity checks it has.
+A model module holds plain numerics and declares, in one :class:`Model`, the capabilities it
+has: a full form of the equations of motion (always), averaged equations, a closed form, the
+regions where those lose accuracy and the limits they predict, a stationary motion to
+linearize, and extra results of a run. A capability it lacks is None, never a stub; the
+methods a scenario may ask for follow from the capabilities.
+
+The contract is generic in the model's ``Params`` (physics only) and ``State`` (the initial
+state, in the model's own variables). One argument order holds everywhere: parameters first,
+then the initial state, then times or states (``closed_form(p, initial, tau)``,
+``to_columns(p, t, Y)``, ``invariants(p, Y)``); the right-hand sides alone keep the ODE
+solvers' ``rhs(t, y, p)``.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Generic, Literal, Protocol, TypeAlias, TypeVar
 
 import numpy as np
 from scipy.optimize import brentq
 
-from tumble._typing import ArrayLike, FloatArray
+from tumble._typing import ArrayLike, ComplexArray, FloatArray
 from tumble.errors import ParameterError
 from tumble.kernels import Kernel
 
 __all__ = [
+    "Averaged",
     "AveragedForm",
     "Breakpoint",
+    "ClosedForm",
     "Column",
+    "Columns",
+    "Diagnostics",
+    "Full",
     "FullForm",
-    "ModelRecord",
+    "Json",
+    "Model",
+    "Paper",
     "Report",
+    "Sampled",
+    "SlowPath",
     "StationaryMotion",
+    "Validity",
     "ValidityIssue",
     "check_averaging",
     "first_time",
+    "fixed_columns",
     "frozen_array",
 ]
+
+P = TypeVar("P")  # a model's Params
+S = TypeVar("S")  # a model's initial State
+
+Columns: TypeAlias = dict[str, FloatArray]
+"""Output columns by name, each an array over the sample times."""
+SlowPath: TypeAlias = Callable[[FloatArray], Columns]
+"""A trajectory's columns anywhere in its time span: ``slow(tau) -> columns``."""
+Json: TypeAlias = float | int | str | bool | list["Json"] | dict[str, "Json"] | None
+"""A value ``summary.json`` can hold."""
+Method = Literal["full", "averaged", "closed_form"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -46,22 +76,24 @@ class Column:
 
 
 @dataclass(frozen=True, slots=True)
-class FullForm:
+class FullForm(Generic[P, S]):
     """One form of the full equations of motion.
 
-    ``rhs(t, y, p)`` is the right-hand side; ``from_slow(p, initial)`` builds the state vector;
-    ``to_columns(t, Y, p)`` turns states ``Y`` of shape (n, dim) into output columns.
-    ``kernel(p)`` gives the same right-hand side compiled (:class:`tumble.kernels.Kernel`), or
-    None where ``p`` holds a Python function; ``rhs`` stays the reference that the scipy
-    integrator runs.
+    ``rhs(t, y, p)`` is the right-hand side; ``initial_state(p, initial)`` builds the state
+    vector; ``to_columns(p, t, Y)`` turns states ``Y`` of shape (n, dim) into output columns
+    (the slow variables, converted from the full state). ``kernel(p)`` gives the same
+    right-hand side compiled (:class:`tumble.kernels.Kernel`), or None where ``p`` holds a
+    Python function; ``rhs`` stays the reference that the scipy integrator runs.
+    ``invariants(p, Y)`` are the quantities the unperturbed motion (ε = 0) conserves.
     """
 
     name: str
     equation: str
-    rhs: Callable[[float, FloatArray, Any], FloatArray]
-    from_slow: Callable[[Any, Any], FloatArray]
-    to_columns: Callable[[FloatArray, FloatArray, Any], dict[str, FloatArray]]
-    kernel: Callable[[Any], Kernel | None] | None = None
+    rhs: Callable[[float, FloatArray, P], FloatArray]
+    initial_state: Callable[[P, S], FloatArray]
+    to_columns: Callable[[P, FloatArray, FloatArray], Columns]
+    kernel: Callable[[P], Kernel | None] | None = None
+    invariants: Callable[[P, FloatArray], Columns] | None = None
 
 
 @dataclass(frozen=True)
@@ -87,14 +119,15 @@ class Breakpoint:
 
 
 @dataclass(frozen=True, slots=True)
-class AveragedForm:
-    """The averaged (evolution) equations in the coordinates used to integrate them."""
+class AveragedForm(Generic[P, S]):
+    """The averaged (evolution) equations in the coordinates used to integrate them, for one
+    parameter set and initial state."""
 
     name: str
     equation: str
-    rhs: Callable[[float, FloatArray, Any], FloatArray]
-    from_slow: Callable[[Any, Any], FloatArray]
-    to_columns: Callable[[FloatArray, FloatArray, Any, Any], dict[str, FloatArray]]
+    rhs: Callable[[float, FloatArray, P], FloatArray]
+    initial_state: Callable[[P, S], FloatArray]
+    to_columns: Callable[[P, S, FloatArray, FloatArray], Columns]
     breakpoints: tuple[Breakpoint, ...] = ()  # non-smooth surfaces: stop and restart there
     # The reason the right-hand side last refused a state (it returned NaN so the solver would
     # reject the step); reported if the integration then fails.
@@ -107,12 +140,119 @@ class ValidityIssue:
 
     condition: str  # short stable identifier, e.g. "theta_crossing"
     tau: float  # first time the condition holds [model time unit]
-    message: str  # one sentence for the user, citing the spec section
+    message: str  # one sentence for the user, citing the equation or the theory page
     label: str = ""  # a few words for verdicts ("ϑ = π/2", "resonance ν1 = 2ν2"); "" → condition
 
 
+class Sampled(Protocol):
+    """What a model reads of a computed trajectory (:class:`tumble.integrate.Trajectory`)."""
+
+    @property
+    def tau(self) -> FloatArray: ...
+    @property
+    def columns(self) -> Columns: ...
+    @property
+    def method(self) -> str: ...
+    @property
+    def wall_time(self) -> float: ...
+    @property
+    def nfev(self) -> int: ...
+    @property
+    def steps(self) -> FloatArray: ...
+    @property
+    def integrator(self) -> str: ...
+    @property
+    def events(self) -> FloatArray: ...
+    @property
+    def event_signs(self) -> FloatArray: ...
+    @property
+    def slow(self) -> SlowPath: ...
+
+
+def fixed_columns(columns: tuple[Column, ...]) -> Callable[[object], tuple[Column, ...]]:
+    """Columns that do not depend on the parameters, in the form the capabilities take."""
+
+    def of(_p: object) -> tuple[Column, ...]:
+        return columns
+
+    return of
+
+
+@dataclass(frozen=True, slots=True)
+class Full(Generic[P, S]):
+    """The full equations of motion: every form by name, the default one, the output columns."""
+
+    forms: Mapping[str, FullForm[P, S]]
+    default: str
+    columns: Callable[[P], tuple[Column, ...]]
+
+    def __post_init__(self) -> None:
+        if self.default not in self.forms:
+            raise ValueError(f"default full form {self.default!r} is not among {list(self.forms)}")
+
+    def form(self, name: str | None = None) -> FullForm[P, S]:
+        """The form called ``name`` (None: the default); ParameterError naming the others."""
+        if name is None:
+            return self.forms[self.default]
+        if name not in self.forms:
+            raise ParameterError(
+                f"form = {name!r} is not a full form (allowed: {', '.join(self.forms)})"
+            )
+        return self.forms[name]
+
+
+@dataclass(frozen=True, slots=True)
+class Diagnostics(Generic[P, S]):
+    """Extra per-sample quantities of an averaged run (e.g. the fast frequencies), written
+    beside it: ``compute(p, initial, columns) -> columns`` described by ``columns``."""
+
+    compute: Callable[[P, S, Columns], Columns]
+    columns: tuple[Column, ...]
+
+
+@dataclass(frozen=True, slots=True)
+class Averaged(Generic[P, S]):
+    """The averaged equations.
+
+    ``form(p, initial)`` gives the equations in the coordinates to integrate them in;
+    ``columns(p)`` their output columns. The averaging error that ``tumble verify`` measures
+    is the difference of the ``compare`` columns between the full and the averaged runs, or,
+    where the slow variables are not plain columns of the full run (an envelope compared at
+    the extrema), ``errors(p, full, averaged) -> {variable: (times, |error|)}``.
+    """
+
+    form: Callable[[P, S], AveragedForm[P, S]]
+    columns: Callable[[P], tuple[Column, ...]]
+    compare: tuple[str, ...] = ()
+    errors: Callable[[P, Sampled, Sampled], Mapping[str, tuple[FloatArray, FloatArray]]] | None = (
+        None
+    )
+    diagnostics: Diagnostics[P, S] | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class ClosedForm(Generic[P, S]):
+    """The averaged motion in closed form: ``evaluate(p, initial, tau) -> columns``."""
+
+    evaluate: Callable[[P, S, FloatArray], Columns]
+    columns: Callable[[P], tuple[Column, ...]]
+
+
+@dataclass(frozen=True, slots=True)
+class Validity(Generic[P, S]):
+    """Where the averaged descriptions lose accuracy, and what the paper predicts.
+
+    ``check(p, initial, slow, tau_end)`` lists the regions an averaged or closed-form
+    trajectory ``slow`` enters before ``tau_end``; ``limits(p, initial)`` gives the paper's
+    predicted limits as τ → ∞ (keys of ``summary.json``).
+    """
+
+    check: Callable[[P, S, SlowPath, float], list[ValidityIssue]]
+    limits: Callable[[P, S], Mapping[str, Json]] | None = None
+
+
 @dataclass(frozen=True)
-class StationaryMotion:
+class StationaryMotion(Generic[P]):
     """A stationary motion of a full form, and the local coordinates to linearize it in.
 
     ``embed(x)`` maps local coordinates (zero at the stationary motion) to a state of the full
@@ -125,19 +265,19 @@ class StationaryMotion:
     name: str
     equation: str
     state: FloatArray
-    rhs: Callable[[float, Any, Any], Any]
-    embed: Callable[[Any], Any]
-    tangent: Callable[[Any, Any], Any]
+    rhs: Callable[[float, ComplexArray, P], ComplexArray]
+    embed: Callable[[ComplexArray], ComplexArray]
+    tangent: Callable[[ComplexArray, ComplexArray], ComplexArray]
     coordinates: tuple[str, ...]
     keep: tuple[int, ...]
     leading: float = 1.0  # the characteristic polynomial is reported as leading·det(λE − J)
     coefficients: FloatArray | None = None  # closed form, highest power first
-    approx_roots: Any = None  # complex ndarray: the paper's approximate roots
+    approx_roots: ComplexArray | None = None  # the paper's approximate roots
     approx_note: str = ""  # where the approximation is invalid
     structural_zero: bool = False  # the closed-form constant coefficient is exactly zero
     # Members of a one-parameter family of stationary motions this one belongs to (e.g. the
     # free phase of a co-rotation), by parameter value; None if isolated.
-    family: Callable[[float], StationaryMotion] | None = None
+    family: Callable[[float], StationaryMotion[P]] | None = None
 
 
 @dataclass(frozen=True)
@@ -148,15 +288,27 @@ class Report:
     holds keys added at the top level of ``summary.json``.
     """
 
-    tables: Mapping[str, tuple[tuple[str, ...], list[tuple[Any, ...]]]] = field(
+    tables: Mapping[str, tuple[tuple[str, ...], list[tuple[Json, ...]]]] = field(
         default_factory=dict
     )
-    summary: Mapping[str, Any] = field(default_factory=dict)
+    summary: Mapping[str, Json] = field(default_factory=dict)
+
+
+@dataclass(frozen=True, slots=True)
+class Paper:
+    """The paper a model implements."""
+
+    author: str
+    year: int
+    title: str  # in English
+
+    def __str__(self) -> str:
+        return f"{self.author} ({self.year}), {self.title}"
 
 
 @dataclass(frozen=True)
-class ModelRecord:
-    """Registry entry of a paper model.
+class Model(Generic[P, S]):
+    """A registered model: what it is, and the capabilities it has.
 
     Attributes
     ----------
@@ -164,85 +316,61 @@ class ModelRecord:
         Registered name (the scenario's ``model`` key).
     description : str
         One line for ``tumble models``.
-    paper : str
-        Citation of the seed paper and the spec that supersedes it.
-    methods : tuple of str
-        Methods a scenario may request.
-    columns : mapping
-        Output columns of each method, in contract order.
-    full : FullForm
-        Default form of the full equations; ``full_forms`` lists every form by name.
-    averaged_form : callable
-        ``(p, initial) -> AveragedForm`` — the coordinates to integrate the averaged system in.
-    closed_form : callable
-        ``(p, initial, tau) -> columns``.
-    check_method : callable
-        ``(p, method) -> None``; raises ``ParameterError`` when a method cannot apply.
-    validity : callable
-        ``(p, initial, slow, tau_end) -> list[ValidityIssue]`` for an averaged trajectory given
-        as ``slow(tau) -> columns``.
-    limits : callable
-        ``(p, initial) -> dict`` of the paper's predicted limits as τ → ∞.
+    paper : Paper or None
+        The paper the model implements (None for a model no paper derives).
+    time : Column
+        The time variable of its outputs (the paper's own: τ or t) and its unit.
+    full : Full
+        The full equations of motion.
+    check : callable
+        ``check(p, method)``: ParameterError when ``method`` cannot apply to ``p`` (e.g. κ = 0
+        for the averaged equations); called before any work.
+    averaged, closed_form, validity : optional
+        The averaged equations, their closed form, and where they lose accuracy.
     stationary : callable, optional
-        ``p -> StationaryMotion``: the stationary motion whose stability the paper analyses.
-    diagnostics : callable, optional
-        ``(p, initial, columns) -> columns``: extra per-sample quantities of an averaged run
-        (e.g. the fast frequencies), written beside it; ``diagnostic_columns`` describes them.
-    figure : str
-        File name of the run's figure.
-    plot_variables : tuple of str
-        Columns drawn in the figure, one panel each.
-    time_name, time_units : str
-        Name and unit of the time column in the output files (the paper's time variable).
-    columns_for : callable, optional
-        ``p -> columns``: output columns that depend on the parameters (e.g. perturbed and
-        unperturbed runs write different columns); overrides ``columns`` when given.
+        ``stationary(p)``: the stationary motion whose stability the paper analyses.
     report : callable, optional
-        ``(p, initial, trajectories) -> Report``: extra tables and summary keys of a run.
-    plot_kind : {"comparison", "envelope"}
-        Which figure the run draws.
-    verify_variables : tuple of str
-        The slow variables whose averaged-vs-full error ``tumble verify`` measures (columns
-        of both methods), unless ``slow_errors`` is given.
-    slow_errors : callable, optional
-        ``(p, full, averaged) -> {variable: (times, |error|)}`` for trajectories of the two
-        methods: the model's own measure of the averaging error where the slow variables are
-        not plain columns of the full run (e.g. an envelope compared at the extrema).
+        ``report(p, initial, trajectories)``: extra tables and summary keys of a run.
+    methods : tuple of str
+        The methods in the order a run computes and compares them; exactly those the
+        capabilities provide ("full", and "averaged", "closed_form" where present).
     """
 
     name: str
     description: str
-    paper: str
-    methods: tuple[str, ...]
-    columns: Mapping[str, tuple[Column, ...]]
-    full: FullForm
-    full_forms: Mapping[str, FullForm]
-    averaged_form: Callable[[Any, Any], AveragedForm]
-    closed_form: Callable[[Any, Any, FloatArray], dict[str, FloatArray]]
-    check_method: Callable[[Any, str], None]
-    validity: Callable[
-        [Any, Any, Callable[[FloatArray], dict[str, FloatArray]], float], list[ValidityIssue]
-    ]
-    limits: Callable[[Any, Any], dict[str, Any]]
-    stationary: Callable[[Any], StationaryMotion] | None = None
-    diagnostics: Callable[[Any, Any, dict[str, FloatArray]], dict[str, FloatArray]] | None = None
-    diagnostic_columns: tuple[Column, ...] = ()
-    figure: str = "comparison.png"
-    plot_variables: tuple[str, ...] = ("k", "theta")
-    time_name: str = "tau"
-    time_units: str = "1"
-    columns_for: Callable[[Any], Mapping[str, tuple[Column, ...]]] | None = None
-    report: Callable[[Any, Any, Mapping[str, Any]], Report] | None = None
-    plot_kind: str = "comparison"
-    verify_variables: tuple[str, ...] = ()
-    slow_errors: Callable[[Any, Any, Any], Mapping[str, tuple[FloatArray, FloatArray]]] | None = (
-        None
-    )
+    paper: Paper | None
+    time: Column
+    full: Full[P, S]
+    check: Callable[[P, str], None]
+    methods: tuple[Method, ...]
+    averaged: Averaged[P, S] | None = None
+    closed_form: ClosedForm[P, S] | None = None
+    validity: Validity[P, S] | None = None
+    stationary: Callable[[P], StationaryMotion[P]] | None = None
+    report: Callable[[P, S, Mapping[str, Sampled]], Report] | None = None
 
-    def method_columns(self, p: Any, method: str) -> tuple[Column, ...]:
+    def __post_init__(self) -> None:
+        provided = {"full"}
+        provided |= {"averaged"} if self.averaged is not None else set()
+        provided |= {"closed_form"} if self.closed_form is not None else set()
+        if set(self.methods) != provided or len(self.methods) != len(provided):
+            raise ValueError(
+                f"model {self.name}: methods {self.methods} must list exactly the capabilities "
+                f"it has: {sorted(provided)}"
+            )
+
+    def columns(self, p: P, method: str) -> tuple[Column, ...]:
         """Output columns of ``method`` for parameters ``p``."""
-        columns = self.columns if self.columns_for is None else self.columns_for(p)
-        return columns[method]
+        if method == "averaged" and self.averaged is not None:
+            return self.averaged.columns(p)
+        if method == "closed_form" and self.closed_form is not None:
+            return self.closed_form.columns(p)
+        if method == "full":
+            return self.full.columns(p)
+        raise ParameterError(
+            f"run.methods: {method!r} is not a method of {self.name} "
+            f"(allowed: {', '.join(self.methods)})"
+        )
 
 
 def first_time(condition: Callable[[FloatArray], FloatArray], grid: FloatArray) -> float | None:

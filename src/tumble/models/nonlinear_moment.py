@@ -42,15 +42,25 @@ from tumble.averaging.nutation import (
 from tumble.errors import IntegrationError, ParameterError, check_range
 from tumble.kernels import EVENT_THETA_DOT, KIND_NONLINEAR_MOMENT, Kernel
 from tumble.models.base import (
+    Averaged,
     AveragedForm,
     Breakpoint,
+    ClosedForm,
     Column,
+    Diagnostics,
+    Full,
     FullForm,
-    ModelRecord,
+    Json,
+    Model,
+    Paper,
     Report,
+    Sampled,
+    SlowPath,
+    Validity,
     ValidityIssue,
     check_averaging,
     first_time,
+    fixed_columns,
 )
 from tumble.rotations import euler313_to_matrix, matrix_to_euler313, matrix_to_quat, quat_to_matrix
 from tumble.torques import LinearDrag
@@ -443,7 +453,7 @@ def _body_axis_components(Y: FloatArray) -> tuple[FloatArray, ...]:
     return ex, ey, ez, np.hypot(ex, ey)
 
 
-def slow_from_full(t: FloatArray, Y: FloatArray, p: Params) -> dict[str, FloatArray]:
+def slow_from_full(p: Params, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
     """Output columns from quaternion states: θ, ψ, φ (z–x–z), θ', R, G, a, b.
 
     θ = atan2(|e_z × e3|, e_z·e3) keeps full accuracy near 0 and π; θ' = ω·(e_z × e3)/sinθ
@@ -451,11 +461,11 @@ def slow_from_full(t: FloatArray, Y: FloatArray, p: Params) -> dict[str, FloatAr
 
     Parameters
     ----------
+    p : Params
     t : ndarray, shape (n,)
         Times [t].
     Y : ndarray, shape (n, 7)
         Quaternion-form states.
-    p : Params
     """
     ex, ey, ez, s = _body_axis_components(Y)
     w1, w2, w3 = Y[:, 0], Y[:, 1], Y[:, 2]
@@ -575,7 +585,7 @@ def _reduced_from_slow(p: Params, st: State) -> FloatArray:
     return np.array([st.theta, st.theta_dot, st.psi, st.phi, st.R, st.G, float(a), float(b)])
 
 
-def _reduced_columns(t: FloatArray, Y: FloatArray, p: Params) -> dict[str, FloatArray]:
+def _reduced_columns(p: Params, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
     names = ("theta", "theta_dot", "psi", "phi", "R", "G", "a", "b")
     return {n: Y[:, i].copy() for i, n in enumerate(names)}
 
@@ -796,7 +806,7 @@ def engine_perturbation(p: Params) -> Perturbation:
     )
 
 
-def _averaged_form(p: Params, st: State) -> AveragedForm:
+def _averaged_form(p: Params, st: State) -> AveragedForm[Params, State]:
     engine = engine_perturbation(p) if p.averaging == "numeric" else None
     H, z, orbit = averaged_initial(p, st, engine)
     form = p.averaged_form
@@ -822,12 +832,11 @@ def _averaged_form(p: Params, st: State) -> AveragedForm:
     def failure() -> str | None:
         return failures[-1] if failures else None
 
-    def from_slow(p: Params, st: State) -> FloatArray:
+    def initial_state(p: Params, st: State) -> FloatArray:
         return y0
 
-    def to_columns(t: FloatArray, Y: FloatArray, p: Params, st: State) -> dict[str, FloatArray]:
-        out = _averaged_columns(Y, p, form, u_hint)
-        return out
+    def to_columns(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
+        return _averaged_columns(Y, p, form, u_hint)
 
     # dQ/dτ jumps at the table's knots: stop and restart there so no step straddles one.
     knots = tuple(Breakpoint.at_time(tk / p.eps) for tk in p.pressure.knots() if tk > 0.0)
@@ -854,7 +863,7 @@ def _averaged_form(p: Params, st: State) -> AveragedForm:
         name=form,
         equation="(2.2)-(2.3)" + (", energy form of spec §7" if form == "energy" else ""),
         rhs=rhs,
-        from_slow=from_slow,
+        initial_state=initial_state,
         to_columns=to_columns,
         breakpoints=(*knots, separatrix),
         failure=failure,
@@ -1066,7 +1075,7 @@ def _check_method(p: Params, method: str) -> None:
         )
 
 
-def validity(p: Params, st: State, slow: Any, t_end: float) -> list[ValidityIssue]:
+def validity(p: Params, st: State, slow: SlowPath, t_end: float) -> list[ValidityIssue]:
     """Where an averaged trajectory loses accuracy (spec §10, §11), with the first time.
 
     ``near_separatrix``: 1 − k² < ``NEAR_SEPARATRIX`` (the period grows like ln(1/(1 − k²))
@@ -1117,7 +1126,7 @@ def validity(p: Params, st: State, slow: Any, t_end: float) -> list[ValidityIssu
     return issues
 
 
-def limits(p: Params, st: State) -> dict[str, Any]:
+def limits(p: Params, st: State) -> dict[str, Json]:
     """The unperturbed orbit's constants (spec §14): root case, roots, k², E, θmin, θmax, T,
     mean precession and spin rates. For a perturbed run they describe the initial orbit.
 
@@ -1132,7 +1141,7 @@ def limits(p: Params, st: State) -> dict[str, Any]:
     """
     orbit = orbit_of(p, st)
 
-    def root(z: complex) -> Any:
+    def root(z: complex) -> Json:
         if not math.isfinite(z.real):
             return None  # b = 0: the root at infinity
         return z.real if z.imag == 0.0 else [z.real, z.imag]
@@ -1151,7 +1160,7 @@ def limits(p: Params, st: State) -> dict[str, Any]:
     }
 
 
-def report(p: Params, st: State, trajectories: Mapping[str, Any]) -> Report:
+def report(p: Params, st: State, trajectories: Mapping[str, Sampled]) -> Report:
     """Extrema table, envelope discrepancy and wall times (the scenario contract of issue 4).
 
     Parameters
@@ -1168,10 +1177,10 @@ def report(p: Params, st: State, trajectories: Mapping[str, Any]) -> Report:
         Perturbed: ``full_extrema`` table, ``max_envelope_discrepancy`` (relative, θmax) with
         its details, and ``wall_time_s`` of each method.
     """
-    summary: dict[str, Any] = {
+    summary: dict[str, Json] = {
         "wall_time_s": {m: float(t.wall_time) for m, t in trajectories.items()}
     }
-    tables: dict[str, tuple[tuple[str, ...], list[tuple[Any, ...]]]] = {}
+    tables: dict[str, tuple[tuple[str, ...], list[tuple[Json, ...]]]] = {}
     if not p.perturbed:
         summary.update(limits(p, st))
         return Report(tables, summary)
@@ -1189,7 +1198,9 @@ def report(p: Params, st: State, trajectories: Mapping[str, Any]) -> Report:
     return Report(tables, summary)
 
 
-def slow_errors(p: Params, full: Any, averaged: Any) -> dict[str, tuple[FloatArray, FloatArray]]:
+def slow_errors(
+    p: Params, full: Sampled, averaged: Sampled
+) -> dict[str, tuple[FloatArray, FloatArray]]:
     """Averaging error of each slow variable, for ``tumble verify`` (issue 5).
 
     θmax and θmin: |θ̄ext(t_k) − θ_k| at the full solution's maxima and minima (the envelope
@@ -1249,10 +1260,9 @@ _DIAGNOSTICS = (
 )
 
 
-def _columns_for(p: Params) -> dict[str, tuple[Column, ...]]:
-    if p.perturbed:
-        return {"full": _PERTURBED_FULL, "averaged": _AVERAGED, "closed_form": _UNPERTURBED}
-    return {"full": _UNPERTURBED, "averaged": _AVERAGED, "closed_form": _UNPERTURBED}
+def _full_columns(p: Params) -> tuple[Column, ...]:
+    # A perturbed run also writes the moment coefficients and the slow time.
+    return _PERTURBED_FULL if p.perturbed else _UNPERTURBED
 
 
 _PRESSURE_CODES = {"constant": 0, "exp": 1, "table": 2}
@@ -1277,43 +1287,47 @@ def full_kernel(p: Params) -> Kernel | None:
     return Kernel(KIND_NONLINEAR_MOMENT, np.array(params), EVENT_THETA_DOT, t_max, message)
 
 
-FULL_QUATERNION = FullForm(
+FULL_QUATERNION: FullForm[Params, State] = FullForm(
     name="quaternion",
     equation="(1.1) with quaternion kinematics",
     rhs=full_rhs,
-    from_slow=full_from_slow,
+    initial_state=full_from_slow,
     to_columns=slow_from_full,
     kernel=full_kernel,
+    invariants=invariants,
 )
-FULL_REDUCED = FullForm(
+FULL_REDUCED: FullForm[Params, State] = FullForm(
     name="reduced",
     equation="(1.3), (2.1)",
     rhs=_builtin_reduced_rhs,
-    from_slow=_reduced_from_slow,
+    initial_state=_reduced_from_slow,
     to_columns=_reduced_columns,
 )
 
-MODEL = ModelRecord(
+MODEL: Model[Params, State] = Model(
     name="nonlinear_moment",
     description="symmetric body under M0 = A(a·sinθ + b·sin2θ): exact motion, Volosov averaging",
-    paper="V. M. Serov (1991), seed 003_95a5fc288cdb1f88; spec/serov.md",
+    paper=Paper(
+        "V. M. Serov",
+        1991,
+        "Rotational motion of a dynamically symmetric rigid body under the action of a "
+        "nonlinear moment",
+    ),
+    time=Column("t", "time t", "t"),
+    full=Full(
+        forms={"quaternion": FULL_QUATERNION, "reduced": FULL_REDUCED},
+        default="quaternion",
+        columns=_full_columns,
+    ),
+    check=_check_method,
     methods=("full", "closed_form", "averaged"),
-    columns={"full": _UNPERTURBED, "averaged": _AVERAGED, "closed_form": _UNPERTURBED},
-    full=FULL_QUATERNION,
-    full_forms={"quaternion": FULL_QUATERNION, "reduced": FULL_REDUCED},
-    averaged_form=_averaged_form,
-    closed_form=closed_form,
-    check_method=_check_method,
-    validity=validity,
-    limits=lambda p, st: {},
-    diagnostics=_diagnostics,
-    diagnostic_columns=_DIAGNOSTICS,
-    figure="envelope.png",
-    plot_variables=("theta", "theta_max", "theta_min", "R", "G"),
-    time_name="t",
-    time_units="t",
-    columns_for=_columns_for,
+    averaged=Averaged(
+        form=_averaged_form,
+        columns=fixed_columns(_AVERAGED),
+        errors=slow_errors,
+        diagnostics=Diagnostics(_diagnostics, _DIAGNOSTICS),
+    ),
+    closed_form=ClosedForm(evaluate=closed_form, columns=fixed_columns(_UNPERTURBED)),
+    validity=Validity(check=validity, limits=limits),
     report=report,
-    plot_kind="envelope",
-    slow_errors=slow_errors,
 )

@@ -28,13 +28,19 @@ from tumble.dynamics import rigid_body_rhs
 from tumble.errors import IntegrationError, ParameterError, check_finite, check_range
 from tumble.kernels import Kernel, rigid_body_kernel
 from tumble.models.base import (
+    Averaged,
     AveragedForm,
+    ClosedForm,
     Column,
+    Full,
     FullForm,
-    ModelRecord,
+    Model,
+    Paper,
+    Validity,
     ValidityIssue,
     check_averaging,
     first_time,
+    fixed_columns,
     frozen_array,
 )
 from tumble.rotations import (
@@ -232,17 +238,17 @@ def full_from_slow(p: Params, st: State) -> FloatArray:
     return np.concatenate([w, matrix_to_quat(R)])
 
 
-def slow_from_full(t: FloatArray, Y: FloatArray, p: Params) -> dict[str, FloatArray]:
+def slow_from_full(p: Params, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
     """(k, ϑ, ρ, σ, ψ, φ) from states of form (a), with atan2 as in spec §4.
 
     Parameters
     ----------
+    p : Params
+        Model parameters.
     t : ndarray, shape (n,)
         Times τ [1] (unused; part of the form's interface).
     Y : ndarray, shape (n, 7)
         States ``[w, q]``.
-    p : Params
-        Model parameters.
     """
     Y = np.atleast_2d(Y)
     kb = Y[:, :3] * p.inertia
@@ -255,7 +261,7 @@ def slow_from_full(t: FloatArray, Y: FloatArray, p: Params) -> dict[str, FloatAr
     return {"k": k, "theta": theta, "rho": rho, "sigma": sigma, "psi": psi, "phi": phi}
 
 
-def invariants(Y: FloatArray, p: Params) -> dict[str, FloatArray]:
+def invariants(p: Params, Y: FloatArray) -> dict[str, FloatArray]:
     """First integrals of the unperturbed motion (ε = 0), spec §5 and §13 item 1.
 
     Returns
@@ -311,7 +317,7 @@ def osculating_from_slow(p: Params, st: State) -> FloatArray:
     return np.array([st.k, st.rho, st.sigma, st.psi, st.theta, st.phi])
 
 
-def _osculating_columns(t: FloatArray, Y: FloatArray, p: Params) -> dict[str, FloatArray]:
+def _osculating_columns(p: Params, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
     Y = np.atleast_2d(Y)
     names = ("k", "rho", "sigma", "psi", "theta", "phi")
     return {name: Y[:, i] for i, name in enumerate(names)}
@@ -364,7 +370,7 @@ def averaged_rhs_wv(t: float, y: FloatArray, p: Params) -> FloatArray:
 
 
 def _averaged_columns_ktheta(
-    t: FloatArray, Y: FloatArray, p: Params, st: State
+    p: Params, st: State, t: FloatArray, Y: FloatArray
 ) -> dict[str, FloatArray]:
     Y = np.atleast_2d(Y)
     n = Y.shape[0]
@@ -377,7 +383,7 @@ def _averaged_columns_ktheta(
 
 
 def _averaged_columns_wv(
-    t: FloatArray, Y: FloatArray, p: Params, st: State
+    p: Params, st: State, t: FloatArray, Y: FloatArray
 ) -> dict[str, FloatArray]:
     Y = np.atleast_2d(Y)
     n = Y.shape[0]
@@ -389,18 +395,18 @@ def _averaged_columns_wv(
     }
 
 
-_AVERAGED_KTHETA = AveragedForm(
+_AVERAGED_KTHETA: AveragedForm[Params, State] = AveragedForm(
     name="k_theta",
     equation="(2.2)",
     rhs=averaged_rhs,
-    from_slow=lambda p, st: np.array([st.k, st.theta]),
+    initial_state=lambda p, st: np.array([st.k, st.theta]),
     to_columns=_averaged_columns_ktheta,
 )
-_AVERAGED_WV = AveragedForm(
+_AVERAGED_WV: AveragedForm[Params, State] = AveragedForm(
     name="W_V",
     equation="(2.3)",
     rhs=averaged_rhs_wv,
-    from_slow=lambda p, st: np.array([st.W, st.V]),
+    initial_state=lambda p, st: np.array([st.W, st.V]),
     to_columns=_averaged_columns_wv,
 )
 
@@ -422,22 +428,22 @@ def averaged_rhs_numeric(t: float, y: FloatArray, p: Params) -> FloatArray:
 
 
 def _averaged_columns_numeric(
-    t: FloatArray, Y: FloatArray, p: Params, st: State
+    p: Params, st: State, t: FloatArray, Y: FloatArray
 ) -> dict[str, FloatArray]:
     Y = np.atleast_2d(Y)
     return {"k": Y[:, 0], "rho": Y[:, 1], "sigma": Y[:, 2], "theta": Y[:, 3]}
 
 
-_AVERAGED_NUMERIC = AveragedForm(
+_AVERAGED_NUMERIC: AveragedForm[Params, State] = AveragedForm(
     name="numeric",
     equation="(1.3) averaged over ψ, φ by quadrature (tumble.averaging)",
     rhs=averaged_rhs_numeric,
-    from_slow=lambda p, st: np.array([st.k, st.rho, st.sigma, st.theta]),
+    initial_state=lambda p, st: np.array([st.k, st.rho, st.sigma, st.theta]),
     to_columns=_averaged_columns_numeric,
 )
 
 
-def _averaged_form(p: Params, st: State) -> AveragedForm:
+def _averaged_form(p: Params, st: State) -> AveragedForm[Params, State]:
     if p.averaging == "numeric":
         return _AVERAGED_NUMERIC
     # (2.2) is written in polar coordinates (k, ϑ): at V0 = 0 (ϑ0 = 0 or π) the solution may
@@ -1276,41 +1282,48 @@ def full_kernel(p: Params) -> Kernel | None:
     return rigid_body_kernel(p.inertia, p.torque)
 
 
-FULL_EULER = FullForm(
+FULL_EULER: FullForm[Params, State] = FullForm(
     name="euler",
     equation="Euler + quaternions with (1.2)",
     rhs=full_rhs,
-    from_slow=full_from_slow,
+    initial_state=full_from_slow,
     to_columns=slow_from_full,
     kernel=full_kernel,
+    invariants=invariants,
 )
-FULL_OSCULATING = FullForm(
+FULL_OSCULATING: FullForm[Params, State] = FullForm(
     name="osculating",
     equation="(1.3)",
     rhs=osculating_rhs,
-    from_slow=osculating_from_slow,
+    initial_state=osculating_from_slow,
     to_columns=_osculating_columns,
 )
 
-MODEL = ModelRecord(
+_COLUMNS_FULL_OF = fixed_columns(_COLUMNS_FULL)
+_COLUMNS_SLOW_OF = fixed_columns(_COLUMNS_SLOW)
+
+MODEL: Model[Params, State] = Model(
     name="resisting_medium",
     description=(
         "fast-spinning symmetric gyroscope, constant body-fixed moment + linear and quadratic "
         "drag of a resisting medium"
     ),
-    paper="A. V. Medvedev (1987), seed 000_5a157e916f67cb33; spec/medvedev.md",
+    paper=Paper(
+        "A. V. Medvedev",
+        1987,
+        "Motion of a fast-spinning gyroscope under a constant moment in a resisting medium",
+    ),
+    time=Column("tau", "time τ", "1"),
+    full=Full(
+        forms={"euler": FULL_EULER, "osculating": FULL_OSCULATING},
+        default="euler",
+        columns=_COLUMNS_FULL_OF,
+    ),
+    check=_check_method,
     methods=("full", "averaged", "closed_form"),
-    columns={
-        "full": _COLUMNS_FULL,
-        "averaged": _COLUMNS_SLOW,
-        "closed_form": _COLUMNS_SLOW,
-    },
-    full=FULL_EULER,
-    full_forms={"euler": FULL_EULER, "osculating": FULL_OSCULATING},
-    averaged_form=_averaged_form,
-    closed_form=closed_form,
-    check_method=_check_method,
-    validity=validity,
-    limits=predicted_limits,
-    verify_variables=("k", "rho", "sigma", "theta"),
+    averaged=Averaged(
+        form=_averaged_form, columns=_COLUMNS_SLOW_OF, compare=("k", "rho", "sigma", "theta")
+    ),
+    closed_form=ClosedForm(evaluate=closed_form, columns=_COLUMNS_SLOW_OF),
+    validity=Validity(check=validity, limits=predicted_limits),
 )

@@ -30,15 +30,21 @@ from tumble.dynamics import rigid_body_rhs
 from tumble.errors import ParameterError, check_range
 from tumble.kernels import KIND_ROTATING_FIELD, Kernel, rigid_body_kernel
 from tumble.models.base import (
+    Averaged,
     AveragedForm,
     Breakpoint,
     Column,
+    Diagnostics,
+    Full,
     FullForm,
-    ModelRecord,
+    Model,
+    Paper,
     StationaryMotion,
+    Validity,
     ValidityIssue,
     check_averaging,
     first_time,
+    fixed_columns,
     frozen_array,
 )
 from tumble.rotations import (
@@ -220,7 +226,7 @@ class State:
 
     def slow(self, p: Params) -> dict[str, float]:
         """Slow variables L, ρ, σ, T, k² of this state, §9."""
-        cols = slow_from_full(np.zeros(1), full_from_slow(p, self)[None, :], p)
+        cols = slow_from_full(p, np.zeros(1), full_from_slow(p, self)[None, :])
         return {k: float(v[0]) for k, v in cols.items()}
 
 
@@ -302,7 +308,7 @@ def _columns_from_momentum(L_xi: FloatArray, T: FloatArray, p: Params) -> dict[s
     return {"L": L, "rho": rho, "sigma": sigma, "T": T, "k2": k2}
 
 
-def slow_from_full(t: FloatArray, Y: FloatArray, p: Params) -> dict[str, FloatArray]:
+def slow_from_full(p: Params, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
     """Slow variables and z of full states of (1.5), spec §9:
 
     ``L_η = Γ I z``, ``L = |L_η|``, ``ρ = arccos(L_η3/L)``, ``σ = atan2(L_η2, L_η1) + τ``,
@@ -310,11 +316,11 @@ def slow_from_full(t: FloatArray, Y: FloatArray, p: Params) -> dict[str, FloatAr
 
     Parameters
     ----------
+    p : Params
     t : ndarray, shape (n,)
         Times τ [1].
     Y : ndarray, shape (n, 12)
         States of (1.5).
-    p : Params
 
     Returns
     -------
@@ -335,13 +341,13 @@ def _full_columns(L_xi: FloatArray, z: FloatArray, p: Params) -> dict[str, Float
     return cols
 
 
-def _inertial_columns(t: FloatArray, Y: FloatArray, p: Params) -> dict[str, FloatArray]:
+def _inertial_columns(p: Params, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
     z = Y[:, :3]
     L_xi = np.einsum("nij,nj->ni", quat_to_matrix(Y[:, 3:]), p.inertia * z)
     return _full_columns(L_xi, z, p)
 
 
-def invariants(Y: FloatArray, p: Params) -> dict[str, FloatArray]:
+def invariants(p: Params, Y: FloatArray) -> dict[str, FloatArray]:
     """Energy T = ½ z·Iz and |L| of states of (1.5): constant when ε = 0 (free body).
 
     Also ``orthogonality`` = max |Γ Γᵀ − E|, which the exact flow keeps at zero.
@@ -615,7 +621,7 @@ def _r_to_k2(p: Params, r: ArrayLike) -> FloatArray:
     return np.array([modulus_squared(*p.sorted_inertia, 1.0, 0.5 * ri)[0] for ri in np.ravel(r)])
 
 
-def _vector_columns(t: FloatArray, Y: FloatArray, p: Params, st: State) -> dict[str, FloatArray]:
+def _vector_columns(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
     L_xi, r = Y[:, :3], Y[:, 3]
     L = np.linalg.norm(L_xi, axis=1)
     perp = np.hypot(L_xi[:, 0], L_xi[:, 1])
@@ -661,7 +667,7 @@ def averaged_rhs_numeric(t: float, y: FloatArray, p: Params) -> FloatArray:
     return triaxial_average_vector(p.torque, p.inertia, y, t, forcing_period=2.0 * math.pi)
 
 
-def _averaged_form(p: Params, st: State) -> AveragedForm:
+def _averaged_form(p: Params, st: State) -> AveragedForm[Params, State]:
     I1, I2, I3 = p.sorted_inertia
     breakpoints: tuple[Breakpoint, ...] = ()
     if I1 < I2 < I3:
@@ -675,7 +681,7 @@ def _averaged_form(p: Params, st: State) -> AveragedForm:
             else "(3.5)-(3.7), vector form of spec §10"
         ),
         rhs=averaged_rhs_numeric if numeric else averaged_rhs_vector,
-        from_slow=_vector_from_slow,
+        initial_state=_vector_from_slow,
         to_columns=_vector_columns,
         breakpoints=breakpoints,
     )
@@ -779,7 +785,7 @@ def _approx_note(p: Params) -> str:
     return ""
 
 
-def stationary(p: Params, phase: float = 0.0) -> StationaryMotion:
+def stationary(p: Params, phase: float = 0.0) -> StationaryMotion[Params]:
     """The stationary co-rotation (2.1) about body x3 and its linearization chart (2.2).
 
     The co-rotations form a family Γ = R3(φ), z = ξ3 (spec §5): the body's phase φ relative to
@@ -1205,51 +1211,53 @@ def inertial_kernel(p: Params) -> Kernel | None:
     return rigid_body_kernel(p.inertia, p.torque)
 
 
-FULL_ROTATING = FullForm(
+FULL_ROTATING: FullForm[Params, State] = FullForm(
     name="rotating",
     equation="(1.5)",
     rhs=full_rhs,
-    from_slow=full_from_slow,
+    initial_state=full_from_slow,
     to_columns=slow_from_full,
     kernel=full_kernel,
+    invariants=invariants,
 )
-FULL_INERTIAL = FullForm(
+FULL_INERTIAL: FullForm[Params, State] = FullForm(
     name="inertial",
     equation="(1.4) with quaternions",
     rhs=inertial_rhs,
-    from_slow=_inertial_from_slow,
+    initial_state=_inertial_from_slow,
     to_columns=_inertial_columns,
     kernel=inertial_kernel,
 )
 
 
-def _closed_form(p: Params, st: State, tau: FloatArray) -> dict[str, FloatArray]:
-    raise ParameterError("rotating_field has no closed_form method (allowed: full, averaged)")
-
-
 def _check_method(p: Params, method: str) -> None:
-    return None
+    """Every method applies to every valid parameter set (ε = 0 averages to no evolution)."""
 
 
-MODEL = ModelRecord(
+MODEL: Model[Params, State] = Model(
     name="rotating_field",
     description="triaxial conducting body in a rotating magnetic field (eddy-current torque)",
-    paper="Yu. G. Martynenko (1979), seed 002_6c0d72cdb918d198; spec/martynenko.md",
+    paper=Paper(
+        "Yu. G. Martynenko",
+        1979,
+        "On the stability of stationary rotations of a rigid body in a magnetic field",
+    ),
+    time=Column("tau", "time τ", "1"),
+    full=Full(
+        forms={"rotating": FULL_ROTATING, "inertial": FULL_INERTIAL},
+        default="rotating",
+        columns=fixed_columns(_COLUMNS_FULL),
+    ),
+    check=_check_method,
     methods=("full", "averaged"),
-    columns={"full": _COLUMNS_FULL, "averaged": _COLUMNS_SLOW},
-    full=FULL_ROTATING,
-    full_forms={"rotating": FULL_ROTATING, "inertial": FULL_INERTIAL},
-    averaged_form=_averaged_form,
-    closed_form=_closed_form,
-    check_method=_check_method,
-    validity=validity,
-    limits=predicted_limits,
+    averaged=Averaged(
+        form=_averaged_form,
+        columns=fixed_columns(_COLUMNS_SLOW),
+        # σ is left out: it is the azimuth of L about ξ3, undefined as the transient aligns L
+        # with ξ3 (ρ → 0), where its error says nothing about the motion.
+        compare=("L", "rho", "T"),
+        diagnostics=Diagnostics(diagnostics, _DIAGNOSTICS),
+    ),
+    validity=Validity(check=validity, limits=predicted_limits),
     stationary=stationary,
-    diagnostics=diagnostics,
-    diagnostic_columns=_DIAGNOSTICS,
-    figure="evolution.png",
-    plot_variables=("L", "rho", "T", "k2"),
-    # σ is left out: it is the azimuth of L about ξ3, undefined as the transient aligns L
-    # with ξ3 (ρ → 0), where its error says nothing about the motion.
-    verify_variables=("L", "rho", "T"),
 )

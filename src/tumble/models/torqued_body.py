@@ -24,6 +24,7 @@ Time is the model's t (the ``tau`` column of the outputs); the slow time is εt.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -36,14 +37,20 @@ from tumble.dynamics import rigid_body_rhs
 from tumble.errors import ParameterError, check_range
 from tumble.kernels import Kernel, rigid_body_kernel
 from tumble.models.base import (
+    Averaged,
     AveragedForm,
     Breakpoint,
     Column,
+    Full,
     FullForm,
-    ModelRecord,
+    Model,
     Report,
+    Sampled,
+    SlowPath,
+    Validity,
     ValidityIssue,
     first_time,
+    fixed_columns,
     frozen_array,
 )
 from tumble.rotations import quat_normalize, quat_to_matrix
@@ -293,7 +300,7 @@ def _momentum_columns(L_xi: FloatArray, T: FloatArray, p: Params) -> dict[str, F
     }
 
 
-def _full_columns(t: FloatArray, Y: FloatArray, p: Params) -> dict[str, FloatArray]:
+def _full_columns(p: Params, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
     w = Y[:, :3]
     L_xi = np.einsum("nij,nj->ni", quat_to_matrix(quat_normalize(Y[:, 3:])), p.inertia * w)
     cols = _momentum_columns(L_xi, 0.5 * np.sum(p.inertia * w * w, axis=1), p)
@@ -340,13 +347,13 @@ def _vector_from_slow(p: Params, st: State) -> FloatArray:
     return np.array([*L_xi, float(st.omega @ (p.inertia * st.omega)) / L2])
 
 
-def _vector_columns(t: FloatArray, Y: FloatArray, p: Params, st: State) -> dict[str, FloatArray]:
+def _vector_columns(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
     L_xi = Y[:, :3]
     L = np.linalg.norm(L_xi, axis=1)
     return _momentum_columns(L_xi, 0.5 * Y[:, 3] * L * L, p)
 
 
-def _averaged_form(p: Params, st: State) -> AveragedForm:
+def _averaged_form(p: Params, st: State) -> AveragedForm[Params, State]:
     I1, I2, I3 = p.sorted_inertia
     breakpoints: tuple[Breakpoint, ...] = ()
     if I1 < I2 < I3:
@@ -361,9 +368,9 @@ def _averaged_form(p: Params, st: State) -> AveragedForm:
         breakpoints = (Breakpoint(lambda t, y: float(y[3]) - 1.0 / I2, across),)
     return AveragedForm(
         name="numeric",
-        equation="spec/martynenko.md §10 with the scenario's torque, by quadrature",
+        equation="the triaxial averaging (3.5)-(3.7) with the scenario's torque, by quadrature",
         rhs=averaged_rhs,
-        from_slow=_vector_from_slow,
+        initial_state=_vector_from_slow,
         to_columns=_vector_columns,
         breakpoints=breakpoints,
     )
@@ -381,7 +388,7 @@ def _slow_rate(tau: FloatArray, cols: dict[str, FloatArray]) -> FloatArray:
     return np.linalg.norm(dL, axis=1) / cols["L"] + np.abs(dT) / (2.0 * cols["T"])
 
 
-def validity(p: Params, st: State, slow: Any, tau_end: float) -> list[ValidityIssue]:
+def validity(p: Params, st: State, slow: SlowPath, tau_end: float) -> list[ValidityIssue]:
     """Where the averaged trajectory leaves the domain of the non-resonant averaging, §12.
 
     Parameters
@@ -513,57 +520,41 @@ def full_kernel(p: Params) -> Kernel | None:
     return rigid_body_kernel(p.inertia, p.scaled)
 
 
-FULL = FullForm(
+FULL: FullForm[Params, State] = FullForm(
     name="quaternion",
     equation="Euler's equations with quaternion kinematics",
     rhs=full_rhs,
-    from_slow=_full_from_slow,
+    initial_state=_full_from_slow,
     to_columns=_full_columns,
     kernel=full_kernel,
 )
 
 
-def _closed_form(p: Params, st: State, tau: FloatArray) -> dict[str, FloatArray]:
-    raise ParameterError("torqued_body has no closed_form method (allowed: full, averaged)")
-
-
 def _check_method(p: Params, method: str) -> None:
-    if method == "averaged":
-        if p.eps == 0.0:
-            raise ParameterError(
-                "parameters.eps = 0 is outside the allowed range (0, inf) for the averaged "
-                "method (there is nothing to average)"
-            )
-        return
-    if method == "closed_form":
-        _closed_form(p, None, np.zeros(0))  # type: ignore[arg-type]
+    if method == "averaged" and p.eps == 0.0:
+        raise ParameterError(
+            "parameters.eps = 0 is outside the allowed range (0, inf) for the averaged "
+            "method (there is nothing to average)"
+        )
 
 
-def _limits(p: Params, st: State) -> dict[str, Any]:
-    return {}
-
-
-def _report(p: Params, st: State, trajectories: Any) -> Report:
+def _report(p: Params, st: State, trajectories: Mapping[str, Sampled]) -> Report:
     return Report(summary={"torque": p.label, "forcing_period": p.forcing_period})
 
 
-MODEL = ModelRecord(
+MODEL: Model[Params, State] = Model(
     name="torqued_body",
     description="triaxial rigid body under any small torque, averaged by the general engine",
-    paper="tumble issue 5: the averaging of spec/martynenko.md §10 for any torque",
+    paper=None,  # the triaxial averaging of the rotating-field paper, for any torque
+    time=Column("t", "time t", "t"),
+    full=Full(
+        forms={"quaternion": FULL}, default="quaternion", columns=fixed_columns(_COLUMNS_FULL)
+    ),
+    check=_check_method,
     methods=("full", "averaged"),
-    columns={"full": _COLUMNS_FULL, "averaged": _COLUMNS_SLOW},
-    full=FULL,
-    full_forms={"quaternion": FULL},
-    averaged_form=_averaged_form,
-    closed_form=_closed_form,
-    check_method=_check_method,
-    validity=validity,
-    limits=_limits,
-    figure="evolution.png",
-    plot_variables=("L", "rho", "sigma", "T"),
-    time_name="t",
-    time_units="t",
+    averaged=Averaged(
+        form=_averaged_form, columns=fixed_columns(_COLUMNS_SLOW), compare=("L1", "L2", "L3", "T")
+    ),
+    validity=Validity(check=validity),
     report=_report,
-    verify_variables=("L1", "L2", "L3", "T"),
 )

@@ -3,6 +3,7 @@
 from tumble.plot.claims import claim_figure, claim_png
 from tumble.plot.comparison import plot_comparison, plot_methods
 from tumble.plot.envelope import plot_envelope
+from tumble.plot.settings import FigureSettings, figure_settings
 from tumble.plot.stability import (
     plot_classification,
     plot_leading_real_part,
@@ -12,8 +13,10 @@ from tumble.plot.stability import (
 from tumble.plot.verify import plot_verify
 
 __all__ = [
+    "FigureSettings",
     "claim_figure",
     "claim_png",
+    "figure_settings",
     "plot_classification",
     "plot_comparison",
     "plot_envelope",

@@ -1304,7 +1304,7 @@ def rf_17() -> Claim:
         )
         tau = np.linspace(100.0, 600.0, 5001)
         Y = sol(tau)
-        k2 = rf.slow_from_full(tau, Y, p)["k2"]
+        k2 = rf.slow_from_full(p, tau, Y)["k2"]
         seg = np.array_split(np.arange(tau.size), 10)  # ~4 nutation periods each: envelope
         rate = float(
             np.polyfit([tau[s].mean() for s in seg], np.log([k2[s].max() for s in seg]), 1)[0]

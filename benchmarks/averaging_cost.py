@@ -140,7 +140,7 @@ def spinner_calls(rng: np.random.Generator, points: int) -> dict[str, list[Calla
             ("quadratic drag s", {"s": s}),
             ("a + b + s", {"a": a, "b": b, "s": s}),
         ):
-            p = rm.Params(eps=0.02, kappa=kappa, averaging="numeric", **terms)
+            p = rm.Params(eps=0.02, kappa=kappa, **terms)
             laws[name].append(lambda y=y, p=p: rm.averaged_rhs_numeric(0.0, y, p))
     return laws
 
@@ -164,9 +164,7 @@ def nutation_calls(rng: np.random.Generator, points: int) -> list[Callable[[], o
             continue  # no regular orbit through this state
         if orbit.mc < 1e-4 or min(orbit.theta_min, math.pi - orbit.theta_max) < 0.05:
             continue
-        p = nm.Params(
-            mu=mu, a=a, b=b, eps=0.01, d=d, nu=nu, pressure=nm.Pressure("exp"), averaging="numeric"
-        )
+        p = nm.Params(mu=mu, a=a, b=b, eps=0.01, d=d, nu=nu, pressure=nm.Pressure("exp"))
         engine = nm.engine_perturbation(p)  # built once per run, as the model does
         y = np.array([orbit.E, R, G, a, b])
         u_hint = 0.5 * (orbit.u1 + orbit.u2)
@@ -193,7 +191,7 @@ def triaxial_calls(rng: np.random.Generator, points: int) -> dict[str, list[Call
         T = energy_from_modulus(*inertia, L, rng.uniform(0.0, K2_MAX), regime)
         e = rng.normal(size=3)
         y = np.array([*(L * e / np.linalg.norm(e)), 2.0 * T / L**2])
-        p = rf.Params(inertia, rng.uniform(0.2, math.pi - 0.2), 0.01, averaging="numeric")
+        p = rf.Params(inertia, rng.uniform(0.2, math.pi - 0.2), 0.01)
         cases["eddy current (1.3)"].append(lambda y=y, p=p: rf.averaged_rhs_numeric(0.0, y, p))
         n = rng.uniform(0.2, 2.0)
         gravity = 0.01 * GravityGradientTorque(

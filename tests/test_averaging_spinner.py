@@ -385,8 +385,8 @@ def test_benchmark_resisting_medium_evaluation():
         kap = rng.uniform(-0.8, 1.0)
         a, b, s = rng.uniform(-1, 1, 3), rng.uniform(-1, 1, (3, 3)), rng.uniform(-1, 1, (3, 3))
         k, rho, theta = rng.uniform(0.3, 3.0), rng.uniform(0.1, 3.0), rng.uniform(0.05, 3.09)
-        quadratic = rm.Params(eps=0.01, kappa=kap, a=a, b=b, s=s, averaging="numeric")
-        linear = rm.Params(eps=0.01, kappa=kap, a=a, b=b, averaging="numeric")
+        quadratic = rm.Params(eps=0.01, kappa=kap, a=a, b=b, s=s)
+        linear = rm.Params(eps=0.01, kappa=kap, a=a, b=b)
         y = np.array([k, rho, 0.3, theta])
         calls = {
             "quadratic": partial(rm.averaged_rhs_numeric, 0.0, y, quadratic),

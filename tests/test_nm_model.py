@@ -13,6 +13,7 @@ from scipy.integrate import quad
 from tumble.errors import IntegrationError
 from tumble.integrate import integrate, simulate
 from tumble.models import nonlinear_moment as nm
+from tumble.models.base import AveragingOptions
 from tumble.unperturbed.symmetric_body import NutationOrbit
 
 # A double-well moment (b < 0) with a mid-swing start, and one with b > 0 (four real roots).
@@ -131,8 +132,11 @@ def test_theta_min_from_its_own_equation_equals_the_energy_relation():
     t = np.linspace(0.0, 100.0, 11)
     runs = {}
     for form in ("energy", "theta_max", "theta_min"):
-        p = _perturbed(p0, 0.01, pressure=nm.Pressure("exp"), averaged_form=form)
-        runs[form] = simulate(nm.MODEL, p, s0, t, "averaged", rtol=1e-11, atol=1e-13).columns
+        p = _perturbed(p0, 0.01, pressure=nm.Pressure("exp"))
+        options = AveragingOptions(coordinates=form)
+        runs[form] = simulate(
+            nm.MODEL, p, s0, t, "averaged", rtol=1e-11, atol=1e-13, averaging=options
+        ).columns
     for key in ("theta_max", "theta_min"):
         # Three integrations of the same averaged system at rtol 1e-11: they agree to ~1e-9.
         assert np.max(np.abs(runs["theta_min"][key] - runs["energy"][key])) < 1e-8
@@ -141,10 +145,11 @@ def test_theta_min_from_its_own_equation_equals_the_energy_relation():
 
 def _envelope_error(p0, s0, eps, init):
     """Max |θ̄max(t_k) − θmax_k| over the full solution's maxima, τ = εt ∈ [0, 1]."""
-    p = _perturbed(p0, eps, pressure=nm.Pressure("exp"), averaged_init=init)
+    p = _perturbed(p0, eps, pressure=nm.Pressure("exp"))
     t = np.linspace(0.0, 1.0 / eps, 201)
     full = simulate(nm.MODEL, p, s0, t, "full", rtol=1e-11, atol=1e-13)
-    avg = simulate(nm.MODEL, p, s0, t, "averaged", rtol=1e-11, atol=1e-13)
+    options = AveragingOptions(start=init)
+    avg = simulate(nm.MODEL, p, s0, t, "averaged", rtol=1e-11, atol=1e-13, averaging=options)
     env = nm.envelope_discrepancy(nm.extrema(full, p), avg)
     return max(env["max_abs_theta_max"], env["max_abs_theta_min"])
 

@@ -15,6 +15,7 @@ from tumble.analysis import fitted_order
 from tumble.errors import TumbleWarning
 from tumble.integrate import integrate, simulate
 from tumble.models import rotating_field as rf
+from tumble.models.base import AveragingOptions
 from tumble.unperturbed import energy_from_modulus, mean_square_rate
 
 BODY = (1.0, 1.6, 2.2)
@@ -314,9 +315,10 @@ def test_body_at_rest_is_spun_up():
 def test_integration_restarts_at_the_separatrix():
     """The averaged run stops on L² = 2T·I2 and steps over it (k² ≡ 1 is spurious)."""
     p = rf.Params((1.0, 2.0, 2.5), math.pi / 2, 0.01)
-    form = rf.MODEL.averaged.form(p, rf.state_from_elements(p, 1.5, 0.6, 0.0, 0.5, "x1"))
+    st = rf.state_from_elements(p, 1.5, 0.6, 0.0, 0.5, "x1")
+    form = rf.MODEL.averaged.form(p, st, AveragingOptions())
     assert len(form.breakpoints) == 1
-    y0 = form.initial_state(p, rf.state_from_elements(p, 1.5, 0.6, 0.0, 0.5, "x1"))
+    y0 = form.initial_state(p, st)
     sol = integrate(lambda t, y: form.rhs(t, y, p), y0, 300.0, breakpoints=form.breakpoints)
     r = sol(np.linspace(0.0, 300.0, 301))[:, 3]
     assert r[0] > 0.5 > r[-1]  # crossed r = 1/I2 = 0.5

@@ -42,6 +42,7 @@ from tumble.entry import (
 from tumble.errors import ParameterError, check_range
 from tumble.integrate import Trajectory, simulate
 from tumble.models import nonlinear_moment as nm
+from tumble.models.base import AveragingOptions
 
 __all__ = ["Q_SPACING", "CapsuleAttitude", "capsule_attitude", "capsule_study", "descent_eps"]
 
@@ -318,8 +319,8 @@ def capsule_attitude(
             tau_end=1.0,
             breaks=tuple((tb - t_start) / span for tb in breaks),
         ),
-        averaged_init=averaged_init,
     )
+    options = AveragingOptions(start=averaged_init)
     R0 = p.mu * spin
     st = nm.State(theta=theta0, theta_dot=theta_dot0, R=R0, G=R0 * math.cos(theta0))
     trajectories = {}
@@ -327,7 +328,7 @@ def capsule_attitude(
         n = samples if m == "full" else averaged_samples
         tol = rtol if m == "full" else averaged_rtol
         t = np.linspace(0.0, span, n)
-        trajectories[m] = simulate(nm.MODEL, p, st, t, m, rtol=tol, atol=1e-12)
+        trajectories[m] = simulate(nm.MODEL, p, st, t, m, rtol=tol, atol=1e-12, averaging=options)
     rows = nm.extrema(trajectories["full"], p) if "full" in trajectories else []
     env = (
         nm.envelope_discrepancy(rows, trajectories["averaged"])
@@ -418,6 +419,7 @@ def capsule_study(
                         "averaged",
                         rtol=averaged_rtol,
                         atol=1e-12,
+                        averaging=AveragingOptions(start=init),
                     ).wall_time
                     for _ in range(repeat - 1)
                 ),

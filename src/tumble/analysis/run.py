@@ -15,7 +15,7 @@ from tumble.analysis.compare import max_differences
 from tumble.errors import TumbleWarning
 from tumble.integrate import DEFAULT_ATOL, DEFAULT_RTOL, Trajectory, simulate
 from tumble.models import AnyModel
-from tumble.models.base import Column, Json, Report, ValidityIssue
+from tumble.models.base import AveragingOptions, Column, Json, Report, ValidityIssue
 
 __all__ = ["RunRequest", "RunResult", "run", "to_dataset"]
 
@@ -41,7 +41,10 @@ class RunRequest:
     verify : bool
         Also measure the averaging error at ε, ε/2, ε/4 (``[run] verify``, issue 5).
     integrator : {"auto", "numba", "scipy"}
-        How the full equations are integrated (``[run] integrator``, issue 6).
+        How the full equations are integrated (``[run] integrator``).
+    averaging : AveragingOptions
+        How the averaged equations are formed and started (``[run] averaging``,
+        ``averaged_form``, ``averaged_init``).
     """
 
     model: AnyModel
@@ -54,6 +57,7 @@ class RunRequest:
     scaling: Any = None
     verify: bool = False
     integrator: str = "auto"
+    averaging: AveragingOptions = field(default_factory=AveragingOptions)
 
 
 @dataclass(frozen=True)
@@ -173,6 +177,7 @@ def run(request: RunRequest, precomputed: Mapping[str, Trajectory] | None = None
             rtol=request.rtol,
             atol=request.atol,
             integrator=request.integrator,
+            averaging=request.averaging,
         )
         for m in request.methods
     }

@@ -342,7 +342,8 @@ def verify(request: RunRequest, factors: Sequence[float] = VERIFY_FACTORS) -> Ve
         try:  # the averaged run first: where it stops, the verdict needs no full run
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", TumbleWarning)
-                avg = simulate(model, pe, st, tau, "averaged", rtol=request.rtol, atol=request.atol)
+                avg = simulate(model, pe, st, tau, "averaged", rtol=request.rtol,
+                               atol=request.atol, averaging=request.averaging)  # fmt: skip
         except IntegrationError as exc:
             failures.append(str(exc))
             curves.append({})

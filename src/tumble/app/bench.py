@@ -617,7 +617,7 @@ def _averaged_case(
     model, p, ini, tau = req.model, req.params, req.initial, req.tau
 
     def run(method: str, rtol: float, atol: float) -> Any:
-        return simulate(model, p, ini, tau, method, rtol=rtol, atol=atol)
+        return simulate(model, p, ini, tau, method, rtol=rtol, atol=atol, averaging=req.averaging)
 
     log(f"averaged {name} ε = {eps:g}: reference full run")
     ref = run("full", 1e-12, 1e-14)

@@ -26,7 +26,7 @@ from tumble.integrate.ode import (
     integrate,
 )
 from tumble.kernels import Kernel
-from tumble.models.base import AveragedForm, Columns, FullForm, Model
+from tumble.models.base import AveragedForm, AveragingOptions, Columns, FullForm, Model
 
 __all__ = ["INTEGRATORS", "Method", "Trajectory", "simulate", "simulate_batch"]
 
@@ -34,6 +34,9 @@ Method = Literal["full", "averaged", "closed_form"]
 
 P = TypeVar("P")
 S = TypeVar("S")
+
+DEFAULT_AVERAGING = AveragingOptions()
+"""The paper's averaged equations in the model's default coordinates, from the given state."""
 
 INTEGRATORS = ("auto", "numba", "scipy")
 """How the full equations are integrated (the scenario key ``[run] integrator``): ``"numba"``
@@ -124,6 +127,7 @@ def simulate(
     atol: float = DEFAULT_ATOL,
     form: str | None = None,
     integrator: str = "auto",
+    averaging: AveragingOptions = DEFAULT_AVERAGING,
 ) -> Trajectory:
     """Run one method of ``model`` from ``initial`` and sample it at ``tau``.
 
@@ -147,6 +151,9 @@ def simulate(
         For ``full``: the compiled integrator or scipy's (see :data:`INTEGRATORS`). The
         averaged equations are always integrated by scipy: they take few steps, and their
         right-hand sides (averages by elliptic integrals or quadrature) are Python.
+    averaging : AveragingOptions
+        For ``averaged``: the paper's right-hand side or the general engine, the slow
+        coordinates, and the start (checked against the model's ``Averaged`` capability).
 
     Returns
     -------
@@ -180,7 +187,9 @@ def simulate(
         )
         return _trajectory(model, p, initial, tau, method, full, sol, start)
     if method == "averaged" and model.averaged is not None:
-        return _averaged(model, model.averaged.form(p, initial), p, initial, tau, rtol, atol)
+        options = model.averaged.check(averaging)
+        form_ = model.averaged.form(p, initial, options)
+        return _averaged(model, form_, p, initial, tau, rtol, atol)
     assert model.closed_form is not None  # the methods follow the capabilities
     closed = model.closed_form
     cols = closed.evaluate(p, initial, tau)

@@ -133,6 +133,12 @@ def summary(
         }
     if req.scaling is not None:
         out["scaling"] = req.scaling.summary()
+    if "averaged" in req.methods:
+        # The run's choices for the averaged equations, as the scenario keys name them.
+        opts = req.averaging
+        out["averaging"] = opts.averaging
+        out["averaged_form"] = opts.coordinates or None
+        out["averaged_init"] = opts.start
     out.update(result.report.summary)
     if verification is not None:
         out["verify"] = verification.summary()

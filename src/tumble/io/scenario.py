@@ -11,7 +11,7 @@ import importlib
 import math
 import sys
 import tomllib
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
 from typing import Annotated, Any, Literal
@@ -29,6 +29,7 @@ from tumble.models import (
     rotating_field,
     torqued_body,
 )
+from tumble.models.base import AveragingOptions
 from tumble.rotations import euler313_to_matrix, matrix_to_quat
 
 __all__ = ["Scenario", "key_units", "load_scenario", "parse_scenario", "template"]
@@ -359,13 +360,10 @@ def _resisting_medium(data: dict[str, Any]) -> tuple[RunRequest, dict[str, Any]]
         t_s = _times(sc.run, "t_end_s", "t_s")
         tau = scaling.tau_from_time(t_s)
         run = sc.run
-        p = replace(p, averaging=run.averaging)
     else:
         sc = _validated(RMScenario, data)
         par, ini = sc.parameters, sc.initial
-        p = resisting_medium.Params(
-            eps=par.eps, kappa=par.kappa, a=par.a, b=par.b, s=par.s, averaging=sc.run.averaging
-        )
+        p = resisting_medium.Params(eps=par.eps, kappa=par.kappa, a=par.a, b=par.b, s=par.s)
         st = resisting_medium.State(
             k=ini.k, rho=ini.rho, sigma=ini.sigma, psi=ini.psi, theta=ini.theta, phi=ini.phi
         )
@@ -382,6 +380,7 @@ def _resisting_medium(data: dict[str, Any]) -> tuple[RunRequest, dict[str, Any]]
         scaling,
         run.verify,
         run.integrator,
+        AveragingOptions(averaging=run.averaging),
     )
     return request, sc.model_dump()
 
@@ -422,18 +421,18 @@ def _rotating_field(data: dict[str, Any]) -> tuple[RunRequest, dict[str, Any]]:
         ph = sc.physical
         phys = rotating_field.PhysicalParams(ph.inertia, ph.k_f, ph.H, ph.omega, ph.beta)
         p, st, scaling = rotating_field.normalize_physical(phys, sc.initial.Omega, sc.initial.gamma)
-        p = replace(p, averaging=sc.run.averaging)
         tau = scaling.tau_from_time(_times(sc.run, "t_end_s", "t_s"))
     else:
         sc = _validated(RFScenario, data)
         par = sc.parameters
-        p = rotating_field.Params(par.inertia, par.beta, par.eps, sc.run.averaging)
+        p = rotating_field.Params(par.inertia, par.beta, par.eps)
         st = _rf_initial(p, sc.initial)
         tau, scaling = _times(sc.run, "tau_end", "tau"), None
     rtol, atol = _tolerances(sc.run)
     methods = _methods(sc.run, model.methods)
+    averaging = AveragingOptions(averaging=sc.run.averaging)
     request = RunRequest(
-        model, p, st, tau, methods, rtol, atol, scaling, sc.run.verify, sc.run.integrator
+        model, p, st, tau, methods, rtol, atol, scaling, sc.run.verify, sc.run.integrator, averaging
     )
     return request, sc.model_dump()
 
@@ -531,9 +530,9 @@ def _nonlinear_moment(data: dict[str, Any]) -> tuple[RunRequest, dict[str, Any]]
         d=pert.d if pert else 0.0,
         nu=pert.nu if pert else 0.0,
         pressure=_pressure(pert.pressure) if pert else nonlinear_moment.Pressure(),
-        averaged_form=run.averaged_form,
-        averaged_init=run.averaged_init,
-        averaging=run.averaging,
+    )
+    averaging = AveragingOptions(
+        averaging=run.averaging, coordinates=run.averaged_form, start=run.averaged_init
     )
     st = nonlinear_moment.State(
         theta=ini.theta, theta_dot=ini.theta_dot, psi=ini.psi, phi=ini.phi, R=ini.R, G=ini.G
@@ -551,7 +550,16 @@ def _nonlinear_moment(data: dict[str, Any]) -> tuple[RunRequest, dict[str, Any]]
     rtol, atol = _tolerances(run)
     nonlinear_moment.orbit_of(p, st)  # no motion (e.g. a separatrix) → one line, before any run
     request = RunRequest(
-        model, p, st, t, methods, rtol, atol, verify=run.verify, integrator=run.integrator
+        model,
+        p,
+        st,
+        t,
+        methods,
+        rtol,
+        atol,
+        verify=run.verify,
+        integrator=run.integrator,
+        averaging=averaging,
     )
     return request, sc.model_dump()
 

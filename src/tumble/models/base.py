@@ -16,7 +16,7 @@ solvers' ``rhs(t, y, p)``.
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Generic, Literal, Protocol, TypeAlias, TypeVar
 
 import numpy as np
@@ -29,6 +29,7 @@ from tumble.kernels import Kernel
 __all__ = [
     "Averaged",
     "AveragedForm",
+    "AveragingOptions",
     "Breakpoint",
     "ClosedForm",
     "Column",
@@ -45,7 +46,6 @@ __all__ = [
     "StationaryMotion",
     "Validity",
     "ValidityIssue",
-    "check_averaging",
     "first_time",
     "fixed_columns",
     "frozen_array",
@@ -73,6 +73,45 @@ class Column:
     equation: str = ""
     angle: bool = False  # compare modulo 2π
     unwrap: bool = False  # reported as a continuous function of time (spec/medvedev.md §14)
+
+
+AVERAGING_METHODS = ("closed_form", "numeric")
+"""How an averaged method forms its right-hand side: the paper's closed form, or the general
+engine of :mod:`tumble.averaging` (the scenario key ``[run] averaging``)."""
+
+
+@dataclass(frozen=True, slots=True)
+class AveragingOptions:
+    """How a run forms and starts its averaged equations: choices of the run, not physics.
+
+    Attributes
+    ----------
+    averaging : {"closed_form", "numeric"}
+        The paper's averaged right-hand side, or the general engine's quadrature of the full
+        torque over the unperturbed motion (scenario key ``[run] averaging``).
+    coordinates : str
+        The slow coordinates to integrate in, among the model's ``Averaged.coordinates``;
+        "" for its default (``[run] averaged_form``).
+    start : {"exact", "corrected"}
+        Start the averaged run from the initial state as given, or from the mean state
+        corrected to first order where the model has that map (``[run] averaged_init``).
+    """
+
+    averaging: Literal["closed_form", "numeric"] = "closed_form"
+    coordinates: str = ""
+    start: Literal["exact", "corrected"] = "exact"
+
+    def __post_init__(self) -> None:
+        if self.averaging not in AVERAGING_METHODS:
+            raise ParameterError(
+                f"run.averaging = {self.averaging!r} is not a method of averaging "
+                '(allowed: "closed_form", "numeric")'
+            )
+        if self.start not in ("exact", "corrected"):
+            raise ParameterError(
+                f"run.averaged_init = {self.start!r} is not an initialisation "
+                '(allowed: "exact", "corrected")'
+            )
 
 
 @dataclass(frozen=True, slots=True)
@@ -214,20 +253,39 @@ class Diagnostics(Generic[P, S]):
 class Averaged(Generic[P, S]):
     """The averaged equations.
 
-    ``form(p, initial)`` gives the equations in the coordinates to integrate them in;
+    ``form(p, initial, options)`` gives the equations in the coordinates to integrate them in;
     ``columns(p)`` their output columns. The averaging error that ``tumble verify`` measures
     is the difference of the ``compare`` columns between the full and the averaged runs, or,
     where the slow variables are not plain columns of the full run (an envelope compared at
     the extrema), ``errors(p, full, averaged) -> {variable: (times, |error|)}``.
     """
 
-    form: Callable[[P, S], AveragedForm[P, S]]
+    form: Callable[[P, S, AveragingOptions], AveragedForm[P, S]]
     columns: Callable[[P], tuple[Column, ...]]
     compare: tuple[str, ...] = ()
+    coordinates: tuple[str, ...] = ()  # choices of AveragingOptions.coordinates; first: default
+    corrected_start: bool = False  # whether it has the first-order mean ↔ osculating start
     errors: Callable[[P, Sampled, Sampled], Mapping[str, tuple[FloatArray, FloatArray]]] | None = (
         None
     )
     diagnostics: Diagnostics[P, S] | None = None
+
+    def check(self, options: AveragingOptions) -> AveragingOptions:
+        """``options`` with the default coordinates filled in; ParameterError naming the key
+        if this model cannot honour them."""
+        if options.coordinates and options.coordinates not in self.coordinates:
+            allowed = ", ".join(f'"{c}"' for c in self.coordinates) or "none: one form only"
+            raise ParameterError(
+                f"run.averaged_form = {options.coordinates!r} is not a form of the averaged "
+                f"equations (allowed: {allowed})"
+            )
+        if options.start == "corrected" and not self.corrected_start:
+            raise ParameterError(
+                'run.averaged_init = "corrected" is not available for this model (allowed: "exact")'
+            )
+        if not options.coordinates and self.coordinates:
+            return replace(options, coordinates=self.coordinates[0])
+        return options
 
 
 @dataclass(frozen=True, slots=True)
@@ -405,17 +463,3 @@ def frozen_array(name: str, value: ArrayLike, shape: tuple[int, ...]) -> FloatAr
         raise ParameterError(f"{name} must contain finite numbers only, got {value!r}")
     arr.setflags(write=False)
     return arr
-
-
-AVERAGING_METHODS = ("closed_form", "numeric")
-"""How an averaged method forms its right-hand side: the paper's closed form, or the general
-engine of :mod:`tumble.averaging` (the scenario key ``[run] averaging``)."""
-
-
-def check_averaging(value: str) -> None:
-    """ParameterError unless ``value`` is one of :data:`AVERAGING_METHODS`."""
-    if value not in AVERAGING_METHODS:
-        raise ParameterError(
-            f"run.averaging = {value!r} is not a method of averaging "
-            '(allowed: "closed_form", "numeric")'
-        )

@@ -44,6 +44,7 @@ from tumble.kernels import EVENT_THETA_DOT, KIND_NONLINEAR_MOMENT, Kernel
 from tumble.models.base import (
     Averaged,
     AveragedForm,
+    AveragingOptions,
     Breakpoint,
     ClosedForm,
     Column,
@@ -58,7 +59,6 @@ from tumble.models.base import (
     SlowPath,
     Validity,
     ValidityIssue,
-    check_averaging,
     first_time,
     fixed_columns,
 )
@@ -238,16 +238,6 @@ class Params:
         Roll damping: the moment −εC·ν·r e3 [1/t].
     pressure : Pressure
         Q(τ), τ = εt: a(τ) = a·Q(τ)/Q(0), b(τ) = b·Q(τ)/Q(0).
-    averaged_form : {"energy", "theta_max", "theta_min"}
-        Slow variable the averaged method integrates besides z: H (spec §7, default) or the
-        turning point by (2.2).
-    averaged_init : {"exact", "corrected"}
-        Averaged initial state: the paper's (z̄, H̄ = the exact values) or the corrected one of
-        spec §7.
-    averaging : {"closed_form", "numeric"}
-        How the averaged method forms ⟨·⟩: the closed forms of §8–§9 (K, E, Π), or the
-        general engine (:mod:`tumble.averaging.nutation`: the perturbation's torque averaged
-        numerically over ψ, φ and the nutation period).
     """
 
     mu: float
@@ -257,9 +247,6 @@ class Params:
     d: float = 0.0
     nu: float = 0.0
     pressure: Pressure = field(default_factory=Pressure)
-    averaged_form: Literal["energy", "theta_max", "theta_min"] = "energy"
-    averaged_init: Literal["exact", "corrected"] = "exact"
-    averaging: Literal["closed_form", "numeric"] = "closed_form"
     Q0: float = field(init=False, repr=False)  # Q(0), derived
 
     def __post_init__(self) -> None:
@@ -275,17 +262,6 @@ class Params:
             raise ParameterError(
                 "perturbation.eps = 0 is outside the allowed range (0, 1) for a perturbation "
                 "with damping or a pressure profile"
-            )
-        if self.averaged_form not in ("energy", "theta_max", "theta_min"):
-            raise ParameterError(
-                f"run.averaged_form = {self.averaged_form!r} is not a form "
-                '(allowed: "energy", "theta_max", "theta_min")'
-            )
-        check_averaging(self.averaging)
-        if self.averaged_init not in ("exact", "corrected"):
-            raise ParameterError(
-                f"run.averaged_init = {self.averaged_init!r} is not an initialisation "
-                '(allowed: "exact", "corrected")'
             )
         for name in ("mu", "a", "b", "eps", "d", "nu"):
             object.__setattr__(self, name, float(getattr(self, name)))
@@ -718,11 +694,14 @@ def averaged_rhs(
 
 
 def averaged_initial(
-    p: Params, st: State, perturbation: Perturbation | None = None
+    p: Params,
+    st: State,
+    perturbation: Perturbation | None = None,
+    start: Literal["exact", "corrected"] = "exact",
 ) -> tuple[float, FloatArray, NutationOrbit]:
-    """The averaged initial state H̄(0), z̄(0) of spec §7 and §14 (``p.averaged_init``).
+    """The averaged initial state H̄(0), z̄(0) of spec §7 and §14 (``[run] averaged_init``).
 
-    ``"exact"``: H̄ = H(0), z̄ = z(0) (the paper's). ``"corrected"``:
+    ``start = "exact"``: H̄ = H(0), z̄ = z(0) (the paper's). ``"corrected"``:
     H̄ = H(0) − ε∫_{t*}^0 (g − ⟨g⟩)dt, z̄ = z(0) − ε∫_{t*}^0 (Φz − ⟨Φz⟩)dt along the frozen
     orbit, t* ≤ 0 its last turning point, g = Φθθ' + W^z·Φz.
 
@@ -732,6 +711,8 @@ def averaged_initial(
     st : State
     perturbation : Perturbation, optional
         Default: the built-in one.
+    start : {"exact", "corrected"}
+        The paper's start, or the one corrected to first order.
 
     Returns
     -------
@@ -746,7 +727,7 @@ def averaged_initial(
     orbit = orbit_of(p, st)
     H = orbit.E
     z = np.array([st.R, st.G, a0, b0])
-    if p.averaged_init == "corrected" and p.perturbed:
+    if start == "corrected" and p.perturbed:
         pert = builtin_perturbation(p) if perturbation is None else perturbation
         if perturbation is None:
             g_mean, pz_mean = _builtin_averages(orbit, p, 0.0)
@@ -806,10 +787,22 @@ def engine_perturbation(p: Params) -> Perturbation:
     )
 
 
-def _averaged_form(p: Params, st: State) -> AveragedForm[Params, State]:
-    engine = engine_perturbation(p) if p.averaging == "numeric" else None
-    H, z, orbit = averaged_initial(p, st, engine)
-    form = p.averaged_form
+AveragedCoordinates = Literal["energy", "theta_max", "theta_min"]
+_COORDINATES: dict[str, AveragedCoordinates] = {
+    "energy": "energy",
+    "theta_max": "theta_max",
+    "theta_min": "theta_min",
+}
+
+
+def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:
+    """Volosov's equations (2.2)–(2.3) in the energy H (default) or a turning point besides z,
+    their averages in closed form (§8–§9: K, E, Π) or by the general engine
+    (:mod:`tumble.averaging.nutation`, ``averaging = "numeric"``), from the exact or the
+    corrected start."""
+    engine = engine_perturbation(p) if options.averaging == "numeric" else None
+    H, z, orbit = averaged_initial(p, st, engine, options.start)
+    form = _COORDINATES[options.coordinates or "energy"]
     u_hint = 0.5 * (orbit.u1 + orbit.u2)
     if form == "energy":
         y0 = np.array([H, *z.tolist()])
@@ -1191,9 +1184,6 @@ def report(p: Params, st: State, trajectories: Mapping[str, Sampled]) -> Report:
             env = envelope_discrepancy(rows, trajectories["averaged"])
             summary["max_envelope_discrepancy"] = env["max_relative"]
             summary["envelope"] = env
-    summary["averaged_init"] = p.averaged_init
-    summary["averaged_form"] = p.averaged_form
-    summary["averaging"] = p.averaging
     summary["initial_orbit"] = limits(p, st)
     return Report(tables, summary)
 
@@ -1324,6 +1314,8 @@ MODEL: Model[Params, State] = Model(
     averaged=Averaged(
         form=_averaged_form,
         columns=fixed_columns(_AVERAGED),
+        coordinates=("energy", "theta_max", "theta_min"),
+        corrected_start=True,
         errors=slow_errors,
         diagnostics=Diagnostics(_diagnostics, _DIAGNOSTICS),
     ),

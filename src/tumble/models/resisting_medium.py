@@ -30,6 +30,7 @@ from tumble.kernels import Kernel, rigid_body_kernel
 from tumble.models.base import (
     Averaged,
     AveragedForm,
+    AveragingOptions,
     ClosedForm,
     Column,
     Full,
@@ -38,7 +39,6 @@ from tumble.models.base import (
     Paper,
     Validity,
     ValidityIssue,
-    check_averaging,
     first_time,
     fixed_columns,
     frozen_array,
@@ -107,9 +107,6 @@ class Params:
         Linear drag b_ij = B_ij / (M0 T0) [1]; any sign, off-diagonal entries allowed.
     s : array_like, shape (3, 3)
         Quadratic drag s_ij = S_ij / (M0 T0²) [1].
-    averaging : {"closed_form", "numeric"}
-        How the averaged method forms its right-hand side: (2.2) in closed form, or the general
-        engine (:func:`tumble.averaging.spinner_average`, the moment (1.2) averaged over ψ, φ).
     """
 
     eps: float
@@ -117,14 +114,12 @@ class Params:
     a: FloatArray = field(default_factory=lambda: np.zeros(3))
     b: FloatArray = field(default_factory=lambda: np.zeros((3, 3)))
     s: FloatArray = field(default_factory=lambda: np.zeros((3, 3)))
-    averaging: str = "closed_form"
     _torque: Torque = field(init=False, repr=False)
     _inertia: FloatArray = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         check_range("parameters.eps", float(self.eps), low=0.0, low_open=False)
         check_range("parameters.kappa", float(self.kappa), low=-1.0, high=1.0, high_open=False)
-        check_averaging(self.averaging)
         object.__setattr__(self, "eps", float(self.eps))
         object.__setattr__(self, "kappa", float(self.kappa))
         object.__setattr__(self, "a", frozen_array("parameters.a", self.a, (3,)))
@@ -443,8 +438,10 @@ _AVERAGED_NUMERIC: AveragedForm[Params, State] = AveragedForm(
 )
 
 
-def _averaged_form(p: Params, st: State) -> AveragedForm[Params, State]:
-    if p.averaging == "numeric":
+def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:
+    """(2.2), its W, V form (2.3), or the general engine (``averaging = "numeric"``,
+    :func:`tumble.averaging.spinner_average`: the moment (1.2) averaged over ψ and φ)."""
+    if options.averaging == "numeric":
         return _AVERAGED_NUMERIC
     # (2.2) is written in polar coordinates (k, ϑ): at V0 = 0 (ϑ0 = 0 or π) the solution may
     # pass through k = 0, the polar singularity; (2.3) is the same system and regular there.

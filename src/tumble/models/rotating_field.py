@@ -32,6 +32,7 @@ from tumble.kernels import KIND_ROTATING_FIELD, Kernel, rigid_body_kernel
 from tumble.models.base import (
     Averaged,
     AveragedForm,
+    AveragingOptions,
     Breakpoint,
     Column,
     Diagnostics,
@@ -42,7 +43,6 @@ from tumble.models.base import (
     StationaryMotion,
     Validity,
     ValidityIssue,
-    check_averaging,
     first_time,
     fixed_columns,
     frozen_array,
@@ -118,16 +118,11 @@ class Params:
         along ξ3; β = π/2: a field rotating in a plane).
     eps : float
         ε = M0/ω = k_f H²/ω > 0 [inertia unit]; the small parameter is ε/I_i.
-    averaging : {"closed_form", "numeric"}
-        How the averaged method forms its right-hand side: (3.5)–(3.7) in closed form, or the
-        general engine (:func:`tumble.averaging.triaxial_average_vector`: the eddy-current
-        torque averaged over the polhode, the precession about L and the field's rotation).
     """
 
     inertia: FloatArray
     beta: float
     eps: float
-    averaging: str = "closed_form"
     # Derived once: the right-hand sides run at every step.
     sorting: FloatArray = field(init=False, repr=False)  # S: v_sorted = S v_user, det S = +1
     sorted_inertia: tuple[float, float, float] = field(init=False, repr=False)
@@ -146,7 +141,6 @@ class Params:
             high_open=False,
         )
         check_range("parameters.eps", float(self.eps), low=0.0)
-        check_averaging(self.averaging)
         object.__setattr__(self, "inertia", inertia)
         object.__setattr__(self, "beta", float(self.beta))
         object.__setattr__(self, "eps", float(self.eps))
@@ -188,7 +182,7 @@ class Params:
 
     def with_eps(self, eps: float) -> Params:
         """The same body and field with another ε."""
-        return Params(self.inertia, self.beta, eps, self.averaging)
+        return Params(self.inertia, self.beta, eps)
 
 
 def _as_rotation(name: str, gamma: ArrayLike) -> FloatArray:
@@ -667,12 +661,15 @@ def averaged_rhs_numeric(t: float, y: FloatArray, p: Params) -> FloatArray:
     return triaxial_average_vector(p.torque, p.inertia, y, t, forcing_period=2.0 * math.pi)
 
 
-def _averaged_form(p: Params, st: State) -> AveragedForm[Params, State]:
+def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:
+    """(3.5)–(3.7) in the vector form, or the general engine (``averaging = "numeric"``,
+    :func:`tumble.averaging.triaxial_average_vector`: the eddy-current torque averaged over the
+    polhode, the precession about L and the field's rotation)."""
     I1, I2, I3 = p.sorted_inertia
     breakpoints: tuple[Breakpoint, ...] = ()
     if I1 < I2 < I3:
         breakpoints = (Breakpoint(lambda t, y: float(y[3]) - 1.0 / I2, _step_over_separatrix),)
-    numeric = p.averaging == "numeric"
+    numeric = options.averaging == "numeric"
     return AveragedForm(
         name="numeric" if numeric else "vector",
         equation=(

@@ -39,6 +39,7 @@ from tumble.kernels import Kernel, rigid_body_kernel
 from tumble.models.base import (
     Averaged,
     AveragedForm,
+    AveragingOptions,
     Breakpoint,
     Column,
     Full,
@@ -353,7 +354,8 @@ def _vector_columns(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[
     return _momentum_columns(L_xi, 0.5 * Y[:, 3] * L * L, p)
 
 
-def _averaged_form(p: Params, st: State) -> AveragedForm[Params, State]:
+def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:
+    """The general engine: the only averaged form of any torque (``averaging`` is moot)."""
     I1, I2, I3 = p.sorted_inertia
     breakpoints: tuple[Breakpoint, ...] = ()
     if I1 < I2 < I3:

@@ -11,7 +11,7 @@ import pytest
 from typer.testing import CliRunner
 
 from tumble import kernels
-from tumble.app import bench
+from tumble.app import bench, heyoka_peer
 from tumble.cli import app
 from tumble.models import resisting_medium as rm
 from tumble.torques import (
@@ -83,9 +83,9 @@ def test_without_quadratic_drag_keeps_the_other_terms():
     p = rm.Params(eps=0.01, kappa=0.5, a=[0.1, 0.2, 0.3], b=0.2 * np.eye(3), s=0.1 * np.eye(3))
     p0 = rm.Params(eps=0.01, kappa=0.5, a=[0.1, 0.2, 0.3], b=0.2 * np.eye(3))
     kernel = rm.full_kernel(p)
-    smooth = bench._without_quadratic_drag(kernel)
+    smooth = heyoka_peer.without_quadratic_drag(kernel)
     assert smooth is not None
-    assert bench._without_quadratic_drag(smooth) is None  # nothing left to strip
+    assert heyoka_peer.without_quadratic_drag(smooth) is None  # nothing left to strip
     y = np.array([0.3, -0.7, 1.1, 0.9, 0.1, -0.3, 0.2])
     got = kernels.evaluate_rhs(smooth, 1.3, y)
     expected = kernels.evaluate_rhs(rm.full_kernel(p0), 1.3, y)
@@ -99,9 +99,9 @@ def test_time_at_equal_error_interpolates_log_log():
         {"error": 1e-6, "time_s": 2.0},
         {"error": 1e-8, "time_s": 4.0},
     ]
-    t, bracketed = bench._at_equal_error(ladder, 1e-5)
+    t, bracketed = heyoka_peer.at_equal_error(ladder, 1e-5)
     assert bracketed and math.isclose(t, math.sqrt(2.0), rel_tol=1e-12)
-    t, bracketed = bench._at_equal_error(ladder, 1e-10)  # beyond the ladder: nearest rung
+    t, bracketed = heyoka_peer.at_equal_error(ladder, 1e-10)  # beyond the ladder: nearest rung
     assert not bracketed and t == 4.0
 
 
@@ -142,10 +142,10 @@ def test_heyoka_systems_equal_the_compiled_kernels():
     rng = np.random.default_rng(3)
     checked = 0
     for kernel in _kernels():
-        system = bench.heyoka_system(kernel)
+        system = heyoka_peer.heyoka_system(kernel)
         if system is None:  # the quadratic drag: its smooth part is checked instead
-            system = bench.heyoka_system(bench._without_quadratic_drag(kernel))
-            kernel = bench._without_quadratic_drag(kernel)
+            system = heyoka_peer.heyoka_system(heyoka_peer.without_quadratic_drag(kernel))
+            kernel = heyoka_peer.without_quadratic_drag(kernel)
         n = len(system)
         for _ in range(5):
             y = rng.normal(size=n)

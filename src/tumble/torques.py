@@ -31,6 +31,7 @@ __all__ = [
     "TERM_GRAVITY_GRADIENT",
     "TERM_INERTIAL_CONSTANT",
     "TERM_LINEAR_DRAG",
+    "TERM_PAYLOAD",
     "TERM_QUADRATIC_DRAG",
     "CallableTorque",
     "CompiledTerm",
@@ -56,6 +57,16 @@ TERM_QUADRATIC_DRAG = 3  # S by rows (9)
 TERM_INERTIAL_CONSTANT = 4  # inertial moment (3)
 TERM_GRAVITY_GRADIENT = 5  # inertia (3), n, u0, rows e1, e2, normal (9)
 TERM_EDDY_CURRENT = 6  # M0, field rate ω, cone angle β
+
+TERM_PAYLOAD: dict[int, int] = {
+    TERM_BODY_CONSTANT: 3,
+    TERM_LINEAR_DRAG: 9,
+    TERM_QUADRATIC_DRAG: 9,
+    TERM_INERTIAL_CONSTANT: 3,
+    TERM_GRAVITY_GRADIENT: 14,
+    TERM_EDDY_CURRENT: 3,
+}
+"""Length of each term code's payload (the stride of a torque program)."""
 
 CompiledTerm = tuple[int, float, tuple[float, ...]]
 """One term of a compiled torque: (code, factor, payload)."""

@@ -19,6 +19,7 @@ from tumble.torques import (
     TERM_GRAVITY_GRADIENT,
     TERM_INERTIAL_CONSTANT,
     TERM_LINEAR_DRAG,
+    TERM_PAYLOAD,
     TERM_QUADRATIC_DRAG,
 )
 
@@ -119,12 +120,8 @@ def _term(code: int, f: float, prog: FloatArray, v: int, t: float, y: FloatArray
     return math.nan, math.nan, math.nan
 
 
-# Payload length of each term code (the program's stride).
-_PAYLOAD = {
-    TERM_BODY_CONSTANT: 3, TERM_LINEAR_DRAG: 9, TERM_QUADRATIC_DRAG: 9,
-    TERM_INERTIAL_CONSTANT: 3, TERM_GRAVITY_GRADIENT: 14, TERM_EDDY_CURRENT: 3,
-}  # fmt: skip
-_SIZES = tuple(_PAYLOAD.get(code, 0) for code in range(max(_PAYLOAD) + 1))
+# The program's stride by term code, as a tuple numba freezes into the compiled code.
+_SIZES = tuple(TERM_PAYLOAD.get(code, 0) for code in range(max(TERM_PAYLOAD) + 1))
 
 
 @jit(KERNEL)

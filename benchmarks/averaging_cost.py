@@ -148,7 +148,7 @@ def spinner_calls(rng: np.random.Generator, points: int) -> dict[str, list[Calla
 def nutation_calls(rng: np.random.Generator, points: int) -> list[Callable[[], object]]:
     """``nonlinear_moment.averaged_rhs`` with the engine, on regular orbits of the domain.
 
-    The domain of tests/test_averaging_nutation.py: μ ∈ (0.3, 1.8), a ∈ (−2, 0), b, R, G ∈
+    The domain of tests/averaging/test_averaging_nutation.py: μ ∈ (0.3, 1.8), a ∈ (−2, 0), b, R, G ∈
     (−1.5, 1.5), d, ν ∈ (−1, 1); orbits with 1 − k² < 1e-4 (near a separatrix) or within 0.05
     of a pole are drawn again.
     """

@@ -1,8 +1,15 @@
-"""Small file helpers shared by the scenario tests."""
+"""Small file helpers shared by the tests, and the repository's folders located from this
+file (never from the working directory)."""
 
 import csv
+from pathlib import Path
 
 import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+"""The repository root."""
+EXAMPLES = ROOT / "examples"
+"""The example scenarios."""
 
 
 def write(tmp_path, text, name="s.toml"):

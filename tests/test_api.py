@@ -6,15 +6,13 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
-from pathlib import Path
 
 import pytest
+from files import EXAMPLES
 from typer.testing import CliRunner
 
 import tumble
 from tumble.cli import app
-
-EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
 
 @pytest.mark.parametrize("name", sorted(set(tumble.__all__) - {"__version__"}))

@@ -317,7 +317,7 @@ Where each number comes from:
   computed (rounded to 3 figures) by :meth:`Capsule.from_mass_distribution` with an assumed
   split of 15 % heat shield, 25 % afterbody wall and 60 % uniformly distributed contents.
 
-Modified-Newtonian results at M → ∞ (checked in tests/test_entry.py): CD(0) = 1.609
+Modified-Newtonian results at M → ∞ (checked in tests/entry/test_entry.py): CD(0) = 1.609
 (= Cp_max (1 + cos²β)/2 of the spherical segment, sin β = D/(2Rn)); trims at α = 0
 (stable, dCm/dα = -0.134), α = 80.3° (unstable, +0.108) and α = 180° (stable but weak,
 -0.014: the "backward" trim, a double well). The fit of (1.5) gives c1 = -0.0066,

@@ -7,11 +7,10 @@ import json
 import subprocess
 import sys
 import textwrap
-from pathlib import Path
 
 import numpy as np
 import pytest
-from files import write
+from files import EXAMPLES, write
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
@@ -38,7 +37,6 @@ from tumble.torques import (
 )
 
 runner = CliRunner()
-EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 FREE_INERTIA = np.array([1.0, 2.0, 3.0])
 FREE_Y0 = np.array([0.3, 1.0, 0.2, 1.0, 0.0, 0.0, 0.0])
 

@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from files import ROOT
 from scipy.integrate._ivp import dop853_coefficients as scipy_tableau
 
 from tumble import kernels
@@ -17,7 +18,7 @@ from tumble.kernels import jit
 from tumble.models import nonlinear_moment as nm
 from tumble.torques import ConstantInertialTorque, LinearDrag
 
-PACKAGE = Path(__file__).resolve().parents[1] / "src" / "tumble"
+PACKAGE = ROOT / "src" / "tumble"
 INERTIA = np.array([1.0, 2.0, 3.0])
 Y0 = np.array([0.3, 1.0, 0.2, 1.0, 0.0, 0.0, 0.0])
 TOL = {"rtol": 1e-10, "atol": 1e-12}

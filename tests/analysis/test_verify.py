@@ -2,6 +2,7 @@
 
 import numpy as np
 import pytest
+from files import EXAMPLES
 
 from tumble.analysis import RunRequest, verify
 from tumble.analysis.verify import _verdict
@@ -34,7 +35,7 @@ def test_verdict_reads_orders_and_issues():
 
 def test_resisting_medium_example_is_first_order():
     """examples/a3_positive.toml stays in its hemisphere: k and ϑ first order (issue 2)."""
-    result = verify(load_scenario("examples/a3_positive.toml").request)
+    result = verify(load_scenario(EXAMPLES / "a3_positive.toml").request)
     assert result.status == "first-order", result.verdict
     for v in ("k", "theta"):
         # The band of issue 2's error studies (±0.25 about 1).
@@ -69,7 +70,7 @@ def test_separatrix_crossing_makes_the_verdict_invalid():
 def test_nonlinear_moment_verifies_the_envelope():
     """The NM model's slow errors are the envelope at the full extrema (spec §10): first
     order from the paper's start (issue 4 measured slope 0.99)."""
-    result = verify(load_scenario("examples/nm_damped_exp.toml").request)
+    result = verify(load_scenario(EXAMPLES / "nm_damped_exp.toml").request)
     assert {"theta_max", "theta_min", "R", "G"} <= set(result.variables)
     assert result.status == "first-order", result.verdict
     assert abs(result.orders["theta_max"] - 1.0) < 0.25
@@ -79,7 +80,7 @@ def test_unperturbed_scenario_verifies_its_closed_form():
     """ε = 0 has no averaging: verify checks the closed form (1.9)–(1.13) against the full
     integration instead (issue 4 measured ≤ 1.4e-11 rad at rtol 1e-13; the example runs at
     the default rtol 1e-10)."""
-    result = verify(load_scenario("examples/nm_unperturbed.toml").request)
+    result = verify(load_scenario(EXAMPLES / "nm_unperturbed.toml").request)
     assert result.status == "exact", result.verdict
     assert max(float(e[0]) for e in result.errors.values()) < 1e-6
 
@@ -87,14 +88,14 @@ def test_unperturbed_scenario_verifies_its_closed_form():
 @pytest.mark.slow
 @pytest.mark.parametrize(
     "example",
-    sorted(p.name for p in __import__("pathlib").Path("examples").glob("*.toml")),
+    sorted(p.name for p in EXAMPLES.glob("*.toml")),
 )
 def test_verify_works_on_every_example(example):
     """Issue 5: `tumble verify` gives a verdict on every example (the verdicts are listed in
     the README); none may crash."""
     from tumble.io import load_scenario as load
 
-    result = verify(load(f"examples/{example}").request)
+    result = verify(load(EXAMPLES / example).request)
     assert result.status in ("first-order", "degraded", "invalid", "exact")
     # nm_unperturbed (ε = 0) verifies its closed form instead of an averaging.
     assert (result.status == "exact") == (example == "nm_unperturbed.toml"), result.verdict

@@ -6,17 +6,15 @@ import os
 import subprocess
 import sys
 import tomllib
-from pathlib import Path
 
 import numpy as np
 import pytest
-from files import read_csv, write
+from files import ROOT, read_csv, write
 from typer.testing import CliRunner
 
 from tumble.cli import app
 from tumble.io import load_scenario, parse_scenario, template
 
-ROOT = Path(__file__).resolve().parents[1]
 runner = CliRunner()
 
 CONTRACT = """

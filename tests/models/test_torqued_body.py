@@ -8,11 +8,10 @@ scaling measured for each new torque: gravity gradient, inertial moment, user fu
 
 import math
 import shutil
-from pathlib import Path
 
 import numpy as np
 import pytest
-from files import write
+from files import EXAMPLES, write
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from strategies import angle, vectors
@@ -26,7 +25,6 @@ from tumble.models import torqued_body as tb
 from tumble.rotations import euler313_to_matrix, matrix_to_quat, quat_to_matrix
 from tumble.torques import ConstantInertialTorque, GravityGradientTorque
 
-EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 INERTIA = np.array([1.0, 1.5, 2.0])
 runner = CliRunner()
 

@@ -6,11 +6,11 @@ from __future__ import annotations
 
 import importlib.util
 import sys
-from pathlib import Path
 
 import pytest
+from files import ROOT
 
-BENCHMARK = Path(__file__).resolve().parents[1] / "benchmarks" / "averaging_cost.py"
+BENCHMARK = ROOT / "benchmarks" / "averaging_cost.py"
 
 
 def load_benchmark():

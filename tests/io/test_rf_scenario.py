@@ -4,18 +4,16 @@ from __future__ import annotations
 
 import json
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
-from files import read_csv, write
+from files import ROOT, read_csv, write
 from typer.testing import CliRunner
 
 from tumble.cli import app
 from tumble.io import parse_scenario, template
 from tumble.models import rotating_field as rf
 
-ROOT = Path(__file__).resolve().parents[1]
 runner = CliRunner()
 
 CONTRACT = """

@@ -19,14 +19,16 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-from tumble.analysis.claims import nonlinear_moment as _nm
-from tumble.analysis.claims import resisting_medium as _rm
-from tumble.analysis.claims import rotating_field as _rf
+# Importing the paper modules registers their claims.
+from tumble.analysis.claims import nonlinear_moment as nonlinear_moment
+from tumble.analysis.claims import resisting_medium as resisting_medium
+from tumble.analysis.claims import rotating_field as rotating_field
 from tumble.analysis.claims.base import (
     CONFIRMED,
     PAPERS,
     QUALIFIED,
     REFUTED,
+    REGISTRY,
     VERDICTS,
     Claim,
     FigureSpec,
@@ -52,56 +54,8 @@ __all__ = [
 ]
 
 CLAIMS: dict[str, tuple[Callable[[], Claim], ...]] = {
-    "resisting_medium": (
-        _rm.rm_1,
-        _rm.rm_2,
-        _rm.rm_3,
-        _rm.rm_4,
-        _rm.rm_5,
-        _rm.rm_6,
-        _rm.rm_7,
-        _rm.rm_8,
-        _rm.rm_9,
-        _rm.rm_10,
-        _rm.rm_11,
-        _rm.rm_12,
-        _rm.rm_13,
-        _rm.rm_14,
-        _rm.rm_15,
-        _rm.rm_16,
-    ),
-    "rotating_field": (
-        _rf.rf_1,
-        _rf.rf_2,
-        _rf.rf_3,
-        _rf.rf_4,
-        _rf.rf_5,
-        _rf.rf_6,
-        _rf.rf_7,
-        _rf.rf_8,
-        _rf.rf_9,
-        _rf.rf_10,
-        _rf.rf_11,
-        _rf.rf_12,
-        _rf.rf_13,
-        _rf.rf_14,
-        _rf.rf_15,
-        _rf.rf_16,
-        _rf.rf_17,
-        _rf.rf_18,
-    ),
-    "nonlinear_moment": (
-        _nm.nm_1,
-        _nm.nm_2,
-        _nm.nm_3,
-        _nm.nm_4,
-        _nm.nm_5,
-        _nm.nm_6,
-        _nm.nm_7,
-        _nm.nm_8,
-        _nm.nm_9,
-        _nm.nm_10,
-        _nm.nm_11,
-    ),
+    paper: tuple(REGISTRY[paper])
+    for paper in ("resisting_medium", "rotating_field", "nonlinear_moment")
 }
-"""Every claim function, by model name, in the order of the papers (``rm-1`` … ``nm-11``)."""
+"""Every claim, by paper, in the order of the papers' text (registered by
+:func:`~tumble.analysis.claims.base.claim` where each is defined)."""

@@ -8,8 +8,9 @@ no matplotlib; :mod:`tumble.plot.claims` draws it.
 
 from __future__ import annotations
 
+import functools
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
@@ -22,11 +23,14 @@ __all__ = [
     "PAPERS",
     "QUALIFIED",
     "REFUTED",
+    "REGISTRY",
     "VERDICTS",
     "Claim",
     "FigureSpec",
+    "Measurement",
     "Panel",
     "Series",
+    "claim",
     "plain",
     "verdict",
 ]
@@ -151,6 +155,52 @@ class Claim:
                 "measured": self.measured,
             }
         )
+
+
+@dataclass(frozen=True)
+class Measurement:
+    """What a claim's check measured: whether the (spec-qualified) claim holds, whether the
+    spec qualifies the paper's statement, the ``measured`` record and the figure's panels
+    (side by side unless ``ncols`` says otherwise)."""
+
+    holds: bool | np.bool_
+    qualified: bool | np.bool_
+    measured: dict[str, Any]
+    panels: Sequence[Panel]
+    ncols: int | None = None
+
+
+REGISTRY: dict[str, list[Callable[[], Claim]]] = {}
+"""Every claim, by paper, in the order the modules define them (:func:`claim` fills it)."""
+
+
+def claim(
+    cid: str, paper: str, title: str, statement: str, spec_ref: str
+) -> Callable[[Callable[[], Measurement]], Callable[[], Claim]]:
+    """Declare a claim: its id, paper, title, the paper's statement and the references that
+    state or qualify it, ahead of the check that measures it.
+
+    The decorated function returns a :class:`Measurement`; calling the registered function
+    returns the :class:`Claim`, its verdict computed by :func:`verdict` and its figure titled
+    ``"<id>: <title>"``.
+    """
+
+    def register(check: Callable[[], Measurement]) -> Callable[[], Claim]:
+        @functools.wraps(check)
+        def run() -> Claim:
+            got = check()
+            figure = FigureSpec(
+                panels=tuple(got.panels),
+                ncols=len(got.panels) if got.ncols is None else got.ncols,
+                title=f"{cid}: {title}",
+            )
+            found = verdict(bool(got.holds), bool(got.qualified))
+            return Claim(cid, paper, title, statement, spec_ref, found, got.measured, figure)
+
+        REGISTRY.setdefault(paper, []).append(run)
+        return run
+
+    return register
 
 
 def verdict(holds: bool, qualified: bool) -> str:

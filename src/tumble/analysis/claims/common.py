@@ -9,13 +9,13 @@ judged within O(ε) of the averaged limit.
 from __future__ import annotations
 
 import warnings
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from typing import Any, TypedDict
 
 import numpy as np
 
 from tumble._typing import FloatArray
-from tumble.analysis.claims.base import Claim, FigureSpec, Panel, plain, verdict
+from tumble.analysis.claims.base import plain
 from tumble.errors import TumbleWarning
 
 __all__ = [
@@ -23,7 +23,6 @@ __all__ = [
     "INTEGRATION_FLOOR",
     "TIGHT",
     "Tolerances",
-    "make_claim",
     "max_abs",
     "measured",
     "quiet",
@@ -117,27 +116,3 @@ def max_abs(x: Any) -> float:
 def wrap(x: Any) -> FloatArray:
     """Angle difference wrapped to (−π, π] [rad] (angles compared modulo 2π, medvedev.md §14)."""
     return np.asarray(np.angle(np.exp(1j * np.asarray(x, dtype=float))), dtype=float)
-
-
-def make_claim(
-    cid: str,
-    paper: str,
-    title: str,
-    statement: str,
-    spec_ref: str,
-    holds: bool | np.bool_,
-    qualified: bool | np.bool_,
-    m: dict[str, Any],
-    panels: Sequence[Panel],
-    ncols: int | None = None,
-) -> Claim:
-    """The :class:`Claim` with its verdict computed by :func:`verdict` and its figure titled
-    ``"<id>: <title>"``; the panels sit side by side unless ``ncols`` says otherwise."""
-    figure = FigureSpec(
-        panels=tuple(panels),
-        ncols=len(panels) if ncols is None else ncols,
-        title=f"{cid}: {title}",
-    )
-    return Claim(
-        cid, paper, title, statement, spec_ref, verdict(bool(holds), bool(qualified)), m, figure
-    )

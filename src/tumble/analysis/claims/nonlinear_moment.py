@@ -25,11 +25,10 @@ from scipy.integrate import quad
 
 from tumble.analysis import fitted_order, to_dataset
 from tumble.analysis.capsule import capsule_attitude
-from tumble.analysis.claims.base import Claim, Panel, Series
+from tumble.analysis.claims.base import Measurement, Panel, Series, claim
 from tumble.analysis.claims.common import (
     FIRST_ORDER,
     INTEGRATION_FLOOR,
-    make_claim,
     max_abs,
     measured,
     quiet,
@@ -103,7 +102,15 @@ def _nm_unperturbed_runs() -> dict[str, tuple[np.ndarray, dict, dict, NutationOr
     return out
 
 
-def nm_1() -> Claim:
+@claim(
+    "nm-1",
+    NM,
+    "integrals R, G, E of the unperturbed motion",
+    "(1.1)–(1.6): with M0 along the line of nodes R = Cr/A and G are constant and "
+    "E = θ′²/2 + W(θ) is an energy integral.",
+    "serov.md §1, §2; errata 1, 2; §13",
+)
+def nm_1() -> Measurement:
     """R, G and the energy E are integrals of the unperturbed motion (1.3a), (1.6) (E1, E2).
 
     Returns
@@ -158,21 +165,18 @@ def nm_1() -> Claim:
         "2: G = (p sinφ + q cosφ) sinθ + μr cosθ (seed: q sinφ)",
         per_case=per,
     )
-    return make_claim(
-        "nm-1",
-        NM,
-        "integrals R, G, E of the unperturbed motion",
-        "(1.1)–(1.6): with M0 along the line of nodes R = Cr/A and G are constant and "
-        "E = θ′²/2 + W(θ) is an energy integral.",
-        "serov.md §1, §2; errata 1, 2; §13",
-        holds,
-        True,
-        m,
-        panels,
-    )
+    return Measurement(holds, True, m, panels)
 
 
-def nm_2() -> Claim:
+@claim(
+    "nm-2",
+    NM,
+    "nutation θ(t) in closed form (1.9)–(1.10)",
+    "(1.9) cosθ = L + M/(1 + N sin²(δγ)), γ = am(βt + τ0, k), with L, M, N, k, β of case 1 "
+    "(four real roots) and case 2 (a complex pair); (1.10) τ0 and γ0.",
+    "serov.md §3, §4; errata 3, 4, 5, 6, 11; §13",
+)
+def nm_2() -> Measurement:
     """Nutation in closed form (1.9)–(1.10) (errata 3–6, 11).
 
     Returns
@@ -222,18 +226,7 @@ def nm_2() -> Claim:
         "with a > 0 the alternative anchoring is needed",
         per_case=per,
     )
-    return make_claim(
-        "nm-2",
-        NM,
-        "nutation θ(t) in closed form (1.9)–(1.10)",
-        "(1.9) cosθ = L + M/(1 + N sin²(δγ)), γ = am(βt + τ0, k), with L, M, N, k, β of case 1 "
-        "(four real roots) and case 2 (a complex pair); (1.10) τ0 and γ0.",
-        "serov.md §3, §4; errata 3, 4, 5, 6, 11; §13",
-        holds,
-        True,
-        m,
-        panels,
-    )
+    return Measurement(holds, True, m, panels)
 
 
 def _period_by_quadrature(orbit: NutationOrbit) -> float:
@@ -248,7 +241,14 @@ def _period_by_quadrature(orbit: NutationOrbit) -> float:
     return float(2.0 * 0.5 * math.pi * np.sum(w / np.sqrt(-np.polyval(q, u))))
 
 
-def nm_3() -> Claim:
+@claim(
+    "nm-3",
+    NM,
+    "nutation period and β of (1.10)",
+    "§1: T = 2K(k)/β with β = [2b(u1−u3)(u2−u4)]^{1/2} (case 1) and β = (2bη)^{1/2} (case 2).",
+    "serov.md §4.1, §4.2; errata 5, 6",
+)
+def nm_3() -> Measurement:
     """Nutation period T = 2K/β (case 1), 4K/β (case 2) with the corrected β (errata 5, 6).
 
     Returns
@@ -307,20 +307,18 @@ def nm_3() -> Claim:
         "giving half the period; case 2: 2bη with b < 0)",
         per_case=rows,
     )
-    return make_claim(
-        "nm-3",
-        NM,
-        "nutation period and β of (1.10)",
-        "§1: T = 2K(k)/β with β = [2b(u1−u3)(u2−u4)]^{1/2} (case 1) and β = (2bη)^{1/2} (case 2).",
-        "serov.md §4.1, §4.2; errata 5, 6",
-        holds,
-        True,
-        m,
-        panels,
-    )
+    return Measurement(holds, True, m, panels)
 
 
-def nm_4() -> Claim:
+@claim(
+    "nm-4",
+    NM,
+    "precession and spin (1.11)–(1.13)",
+    "(1.13): ψ − ψ0 and φ − φ0 are the secular terms P_ψ t, P_φ t plus χ±Π(γ, w±, k) and, "
+    "in case 2, w± L±(γ).",
+    "serov.md §5; errata 7, 8, 9, 10, 14",
+)
+def nm_4() -> Measurement:
     """Precession and spin (1.11)–(1.13) (errata 7–10).
 
     Returns
@@ -379,21 +377,18 @@ def nm_4() -> Claim:
         per_case=per,
         worst_mean_rate_mismatch_ten_periods=worst_rate,
     )
-    return make_claim(
-        "nm-4",
-        NM,
-        "precession and spin (1.11)–(1.13)",
-        "(1.13): ψ − ψ0 and φ − φ0 are the secular terms P_ψ t, P_φ t plus χ±Π(γ, w±, k) and, "
-        "in case 2, w± L±(γ).",
-        "serov.md §5; errata 7, 8, 9, 10, 14",
-        holds,
-        True,
-        m,
-        panels,
-    )
+    return Measurement(holds, True, m, panels)
 
 
-def nm_5() -> Claim:
+@claim(
+    "nm-5",
+    NM,
+    "Volosov's averaged equations (2.2)–(2.3)",
+    "(2.2): θ̇ext = ε[⟨Φθθ′⟩ + ⟨Φz·W^z⟩ − ⟨Φz⟩·W^z(θext)]/F(θext, z), ż = ε⟨Φz⟩, with the "
+    "averages (2.3) over the unperturbed nutation.",
+    "serov.md §6, §7; erratum 13",
+)
+def nm_5() -> Measurement:
     """Volosov's averaged equations (2.2)–(2.3) (spec §7, erratum 13: no error).
 
     Returns
@@ -465,21 +460,18 @@ def nm_5() -> Claim:
         "value ≤ 1e-10",
         per_case=per,
     )
-    return make_claim(
-        "nm-5",
-        NM,
-        "Volosov's averaged equations (2.2)–(2.3)",
-        "(2.2): θ̇ext = ε[⟨Φθθ′⟩ + ⟨Φz·W^z⟩ − ⟨Φz⟩·W^z(θext)]/F(θext, z), ż = ε⟨Φz⟩, with the "
-        "averages (2.3) over the unperturbed nutation.",
-        "serov.md §6, §7; erratum 13",
-        holds,
-        False,
-        m,
-        panels,
-    )
+    return Measurement(holds, False, m, panels)
 
 
-def nm_6() -> Claim:
+@claim(
+    "nm-6",
+    NM,
+    "averages by complete elliptic integrals (2.4)–(2.5)",
+    "(2.4)–(2.5): for Φ rational in u with real poles the averages reduce to ∫cosⁱθ dt and "
+    "∫dt/(1 ± cosθ) over a period, i.e. to complete elliptic integrals.",
+    "serov.md §8",
+)
+def nm_6() -> Measurement:
     """Reduction of the averages to complete elliptic integrals (2.4)–(2.5) (spec §8).
 
     Returns
@@ -530,18 +522,7 @@ def nm_6() -> Claim:
         "value ≤ 1e-10",
         per_case=per,
     )
-    return make_claim(
-        "nm-6",
-        NM,
-        "averages by complete elliptic integrals (2.4)–(2.5)",
-        "(2.4)–(2.5): for Φ rational in u with real poles the averages reduce to ∫cosⁱθ dt and "
-        "∫dt/(1 ± cosθ) over a period, i.e. to complete elliptic integrals.",
-        "serov.md §8",
-        holds,
-        False,
-        m,
-        panels,
-    )
+    return Measurement(holds, False, m, panels)
 
 
 def _start(init: str) -> AveragingOptions:
@@ -615,7 +596,15 @@ def _nm_envelope_claim(init: str) -> tuple[float, np.ndarray, tuple[Panel, Panel
     return order, err, (errors_panel, _nm_swing_panel(full, avg, f"ε = {eps}"))
 
 
-def nm_7() -> Claim:
+@claim(
+    "nm-7",
+    NM,
+    "averaged envelope is first-order accurate",
+    "§2: the averaged system (2.2) gives the evolution of the nutation envelope θmax, θmin "
+    "(first-order Volosov averaging).",
+    "serov.md §7 'Initial state and accuracy', §13",
+)
+def nm_7() -> Measurement:
     """Averaged envelope vs full: O(ε) with the paper's initial state (spec §7, §13).
 
     Returns
@@ -638,21 +627,18 @@ def nm_7() -> Claim:
         errors=err.tolist(),
         eps=NM_EPS,
     )
-    return make_claim(
-        "nm-7",
-        NM,
-        "averaged envelope is first-order accurate",
-        "§2: the averaged system (2.2) gives the evolution of the nutation envelope θmax, θmin "
-        "(first-order Volosov averaging).",
-        "serov.md §7 'Initial state and accuracy', §13",
-        holds,
-        True,
-        m,
-        panels,
-    )
+    return Measurement(holds, True, m, panels)
 
 
-def nm_8() -> Claim:
+@claim(
+    "nm-8",
+    NM,
+    "corrected start: envelope O(ε²) (spec)",
+    "Not in the paper. Spec §7: with a turning-point start or the corrected initial state "
+    "H̄(0), z̄(0) the averaged θmin, θmax match the extrema to O(ε²).",
+    "serov.md §7 (spec observation), §13",
+)
+def nm_8() -> Measurement:
     """Corrected initial state: envelope error O(ε²) (spec §7, observed).
 
     Returns
@@ -677,21 +663,18 @@ def nm_8() -> Claim:
         errors=err.tolist(),
         eps=NM_EPS,
     )
-    return make_claim(
-        "nm-8",
-        NM,
-        "corrected start: envelope O(ε²) (spec)",
-        "Not in the paper. Spec §7: with a turning-point start or the corrected initial state "
-        "H̄(0), z̄(0) the averaged θmin, θmax match the extrema to O(ε²).",
-        "serov.md §7 (spec observation), §13",
-        holds,
-        True,
-        m,
-        panels,
-    )
+    return Measurement(holds, True, m, panels)
 
 
-def nm_9() -> Claim:
+@claim(
+    "nm-9",
+    NM,
+    "no restriction on the angle of attack",
+    "§3 (i): unlike quasi-linear or quasi-static methods, the averaged equations need no "
+    "restriction on the amplitude of the angle of attack.",
+    "serov.md §10 (i)",
+)
+def nm_9() -> Measurement:
     """Application (i): no restriction on the angle of attack (spec §10).
 
     Returns
@@ -741,18 +724,7 @@ def nm_9() -> Claim:
         errors=err,
         max_relative=rel,
     )
-    return make_claim(
-        "nm-9",
-        NM,
-        "no restriction on the angle of attack",
-        "§3 (i): unlike quasi-linear or quasi-static methods, the averaged equations need no "
-        "restriction on the amplitude of the angle of attack.",
-        "serov.md §10 (i)",
-        holds,
-        False,
-        m,
-        panels,
-    )
+    return Measurement(holds, False, m, panels)
 
 
 @functools.cache
@@ -780,7 +752,15 @@ def _nm_capsule() -> tuple[Any, Any, float, float]:
     return base, small, walls[0], walls[1]
 
 
-def nm_10() -> Claim:
+@claim(
+    "nm-10",
+    NM,
+    "averaged model an order of magnitude cheaper",
+    "§3 (ii): the averaged equations reduce the computing cost by about an order of "
+    "magnitude compared with the full equations.",
+    "serov.md §10 (ii)",
+)
+def nm_10() -> Measurement:
     """Application (ii): the averaged model is an order of magnitude cheaper (spec §10).
 
     Returns
@@ -852,21 +832,18 @@ def nm_10() -> Claim:
             "ratio": full_c.wall_time / avg_c.wall_time,
         },
     )
-    return make_claim(
-        "nm-10",
-        NM,
-        "averaged model an order of magnitude cheaper",
-        "§3 (ii): the averaged equations reduce the computing cost by about an order of "
-        "magnitude compared with the full equations.",
-        "serov.md §10 (ii)",
-        holds,
-        True,
-        m,
-        panels,
-    )
+    return Measurement(holds, True, m, panels)
 
 
-def nm_11() -> Claim:
+@claim(
+    "nm-11",
+    NM,
+    "capsule: envelope within 4 % (the paper's figure)",
+    "§3 (iii): for a segmental-conical capsule the envelope of θmax from the averaged "
+    "equations differs from the full model by at most 4 %.",
+    "serov.md §9, §10 (iii)",
+)
+def nm_11() -> Measurement:
     """Application (iii): the capsule's envelope of θmax within 4 % of the full model.
 
     Returns
@@ -912,15 +889,4 @@ def nm_11() -> Claim:
         fitted_order_vs_eps=order,
         maxima=base.envelope["n_max"],
     )
-    return make_claim(
-        "nm-11",
-        NM,
-        "capsule: envelope within 4 % (the paper's figure)",
-        "§3 (iii): for a segmental-conical capsule the envelope of θmax from the averaged "
-        "equations differs from the full model by at most 4 %.",
-        "serov.md §9, §10 (iii)",
-        holds,
-        True,
-        m,
-        panels,
-    )
+    return Measurement(holds, True, m, panels)

@@ -23,12 +23,11 @@ import numpy as np
 from scipy.optimize import brentq
 
 from tumble.analysis import averaging_error_study, fitted_order
-from tumble.analysis.claims.base import Claim, Panel, Series
+from tumble.analysis.claims.base import Measurement, Panel, Series, claim
 from tumble.analysis.claims.common import (
     FIRST_ORDER,
     INTEGRATION_FLOOR,
     TIGHT,
-    make_claim,
     max_abs,
     measured,
     quiet,
@@ -129,7 +128,15 @@ def _rm_random_states(n: int, seed: int) -> list[tuple[rm.Params, float, float, 
     return out
 
 
-def rm_1() -> Claim:
+@claim(
+    "rm-1",
+    RM,
+    "equations of motion (1.1)/(1.3)",
+    "(1.1): K dρ/dt = M1, K sinρ dσ/dt = M2, dK/dt = M3 and the ψ, ϑ, φ equations; (1.3) "
+    "their normalized standard form with small parameter ε.",
+    "medvedev.md §2, §3, §4; errata E1, E2; §13.2",
+)
+def rm_1() -> Measurement:
     """Equations of motion (1.1)/(1.3) against Euler + quaternions (spec §3, §4, E1, E2).
 
     Returns
@@ -174,21 +181,17 @@ def rm_1() -> Claim:
         max_diff_psi_phi_mod_2pi=fast,
         eps=p.eps,
     )
-    return make_claim(
-        "rm-1",
-        RM,
-        "equations of motion (1.1)/(1.3)",
-        "(1.1): K dρ/dt = M1, K sinρ dσ/dt = M2, dK/dt = M3 and the ψ, ϑ, φ equations; (1.3) "
-        "their normalized standard form with small parameter ε.",
-        "medvedev.md §2, §3, §4; errata E1, E2; §13.2",
-        holds,
-        True,
-        m,
-        panels,
-    )
+    return Measurement(holds, True, m, panels)
 
 
-def rm_2() -> Claim:
+@claim(
+    "rm-2",
+    RM,
+    "unperturbed regular precession (2.1)",
+    "(2.1): for ε = 0, k, ρ, σ, ϑ are constant, ψ = kτ + ψ0, φ = −kκτ cosϑ/(1+κ) + φ0.",
+    "medvedev.md §5; §13.1",
+)
+def rm_2() -> Measurement:
     """Unperturbed motion (2.1): regular precession (spec §5, §13.1).
 
     Returns
@@ -236,20 +239,18 @@ def rm_2() -> Claim:
         "value ≤ 1e3·rtol",
         per_variable=rel,
     )
-    return make_claim(
-        "rm-2",
-        RM,
-        "unperturbed regular precession (2.1)",
-        "(2.1): for ε = 0, k, ρ, σ, ϑ are constant, ψ = kτ + ψ0, φ = −kκτ cosϑ/(1+κ) + φ0.",
-        "medvedev.md §5; §13.1",
-        holds,
-        False,
-        m,
-        panels,
-    )
+    return Measurement(holds, False, m, panels)
 
 
-def rm_3() -> Claim:
+@claim(
+    "rm-3",
+    RM,
+    "averaged system (2.2)",
+    "(2.2): averaging (1.3) over ψ and φ gives dρ = dσ = 0 and the k, ϑ equations with "
+    "α = (b11+b22)/2, β = b33/(1+κ), γ = 4/3 π⁻¹ (s11+s22), δ = s33/(1+κ)².",
+    "medvedev.md §6; erratum E6; §13.3",
+)
+def rm_3() -> Measurement:
     """Averaged system (2.2) against direct averaging of the full right-hand side (§6, E6).
 
     Returns
@@ -303,21 +304,17 @@ def rm_3() -> Claim:
         "E6: γ = 4(s11+s22)/(3π) (the seed's '4/3 π⁻¹' is ambiguous); the off-diagonal entries "
         "and a1, a2 drop out only while φ rotates (κ ≠ 0, ϑ ≠ π/2, §10)",
     )
-    return make_claim(
-        "rm-3",
-        RM,
-        "averaged system (2.2)",
-        "(2.2): averaging (1.3) over ψ and φ gives dρ = dσ = 0 and the k, ϑ equations with "
-        "α = (b11+b22)/2, β = b33/(1+κ), γ = 4/3 π⁻¹ (s11+s22), δ = s33/(1+κ)².",
-        "medvedev.md §6; erratum E6; §13.3",
-        holds,
-        True,
-        m,
-        panels,
-    )
+    return Measurement(holds, True, m, panels)
 
 
-def rm_4() -> Claim:
+@claim(
+    "rm-4",
+    RM,
+    "decoupled W, V form (2.3)",
+    "(2.3): dW/dτ = ε(a3 − βW ∓ δW²), dV/dτ = −ε(αV + γV²), − for 0 ≤ ϑ ≤ π/2, + for π/2 < ϑ ≤ π.",
+    "medvedev.md §7; §13.4",
+)
+def rm_4() -> Measurement:
     """(2.2) in W = k cosϑ, V = k sinϑ is the decoupled (2.3) (spec §7, §13.4).
 
     Returns
@@ -356,21 +353,17 @@ def rm_4() -> Claim:
         1e-13,
         "value ≤ 1e-13",
     )
-    return make_claim(
-        "rm-4",
-        RM,
-        "decoupled W, V form (2.3)",
-        "(2.3): dW/dτ = ε(a3 − βW ∓ δW²), dV/dτ = −ε(αV + γV²), − for 0 ≤ ϑ ≤ π/2, + for "
-        "π/2 < ϑ ≤ π.",
-        "medvedev.md §7; §13.4",
-        holds,
-        False,
-        m,
-        panels,
-    )
+    return Measurement(holds, False, m, panels)
 
 
-def rm_5() -> Claim:
+@claim(
+    "rm-5",
+    RM,
+    "equatorial component (2.4)",
+    "(2.4): k sinϑ = αV0 e^{−εατ}/[α + γV0(1 − e^{−εατ})], in both hemispheres.",
+    "medvedev.md §8.1; §13.5",
+)
+def rm_5() -> Measurement:
     """Closed form (2.4) of the equatorial component against integration of (2.2) (§8.1).
 
     Returns
@@ -411,17 +404,7 @@ def rm_5() -> Claim:
         "value ≤ 1e-8",
         per_case=per,
     )
-    return make_claim(
-        "rm-5",
-        RM,
-        "equatorial component (2.4)",
-        "(2.4): k sinϑ = αV0 e^{−εατ}/[α + γV0(1 − e^{−εατ})], in both hemispheres.",
-        "medvedev.md §8.1; §13.5",
-        holds,
-        False,
-        m,
-        panels,
-    )
+    return Measurement(holds, False, m, panels)
 
 
 def _seed_printed_2_5_at_zero(W0: float, p: rm.Params) -> float:
@@ -489,7 +472,15 @@ RM_AXIAL_CASES = {
 """Spec §13.5: every branch of (2.5)–(2.8), the switches of §8.4, the double roots, δ = 0."""
 
 
-def rm_6() -> Claim:
+@claim(
+    "rm-6",
+    RM,
+    "axial component (2.5)–(2.8)",
+    "(2.5)/(2.6) give k cosϑ in the upper hemisphere for a3/δ ≷ −(β/2δ)², (2.7)/(2.8) in the "
+    "lower one for a3/δ ≶ (β/2δ)².",
+    "medvedev.md §8.2–§8.5; erratum E3; §13.5",
+)
+def rm_6() -> Measurement:
     """Closed forms (2.5)–(2.8) with the branch switch at τ1 (spec §8.2–§8.5, E3).
 
     Returns
@@ -550,21 +541,18 @@ def rm_6() -> Claim:
         printed_formula_vs_closed_form=printed,
         seed_printed_2_5_W0_error=e3,
     )
-    return make_claim(
-        "rm-6",
-        RM,
-        "axial component (2.5)–(2.8)",
-        "(2.5)/(2.6) give k cosϑ in the upper hemisphere for a3/δ ≷ −(β/2δ)², (2.7)/(2.8) in the "
-        "lower one for a3/δ ≶ (β/2δ)².",
-        "medvedev.md §8.2–§8.5; erratum E3; §13.5",
-        holds,
-        True,
-        m,
-        panels,
-    )
+    return Measurement(holds, True, m, panels)
 
 
-def rm_7() -> Claim:
+@claim(
+    "rm-7",
+    RM,
+    "a3 = 0: tan ϑ (2.9), (2.10)",
+    "(2.9), (2.10): for a3 = 0 the nutation angle follows tanϑ = (α/β) tanϑ0 … "
+    "e^{ε(β−α)τ} (upper) and … e^{−εατ} (lower), obtained from (2.4), (2.5).",
+    "medvedev.md §8.6; erratum E7; §13.5",
+)
+def rm_7() -> Measurement:
     """tan ϑ for a3 = 0, (2.9) and (2.10) (spec §8.6, E7).
 
     Returns
@@ -615,21 +603,18 @@ def rm_7() -> Claim:
         "is the condition of (2.7)); they are 0/0 for α = 0 or β = 0 (use W, V)",
         per_case=per,
     )
-    return make_claim(
-        "rm-7",
-        RM,
-        "a3 = 0: tan ϑ (2.9), (2.10)",
-        "(2.9), (2.10): for a3 = 0 the nutation angle follows tanϑ = (α/β) tanϑ0 … "
-        "e^{ε(β−α)τ} (upper) and … e^{−εατ} (lower), obtained from (2.4), (2.5).",
-        "medvedev.md §8.6; erratum E7; §13.5",
-        holds,
-        True,
-        m,
-        panels,
-    )
+    return Measurement(holds, True, m, panels)
 
 
-def rm_8() -> Claim:
+@claim(
+    "rm-8",
+    RM,
+    "a3 ≷ 0: ϑ → 0 or π, monotonically",
+    "§2 conclusion: if a3 > 0 the angle ϑ decreases and tends to zero; if a3 < 0 it "
+    "increases and tends to π (from either hemisphere).",
+    "medvedev.md §9 item 1 and table; erratum E9",
+)
+def rm_8() -> Measurement:
     """Conclusion 1: a3 > 0 ⇒ ϑ decreases to 0; a3 < 0 ⇒ ϑ increases to π (§9 item 1, E9).
 
     Returns
@@ -694,21 +679,18 @@ def rm_8() -> Claim:
         limits=ends,
         rise_full_model=rise_full,
     )
-    return make_claim(
-        "rm-8",
-        RM,
-        "a3 ≷ 0: ϑ → 0 or π, monotonically",
-        "§2 conclusion: if a3 > 0 the angle ϑ decreases and tends to zero; if a3 < 0 it "
-        "increases and tends to π (from either hemisphere).",
-        "medvedev.md §9 item 1 and table; erratum E9",
-        limits_ok,
-        qualified,
-        m,
-        panels,
-    )
+    return Measurement(limits_ok, qualified, m, panels)
 
 
-def rm_9() -> Claim:
+@claim(
+    "rm-9",
+    RM,
+    "worked example: lower hemisphere, a3/δ > h²",
+    "§2 example (π/2 < ϑ0 < π, a3/δ > (β/2δ)²): from (2.8), k cosϑ → (β + δμ2π)/(2δ) > 0, "
+    "then by (2.5) k cosϑ → ½(2δν1 − β)/δ and ϑ → 0.",
+    "medvedev.md §9 item 2, §8.4; errata E4, E5",
+)
+def rm_9() -> Measurement:
     """The worked example π/2 < ϑ0 < π, a3/δ > h² (spec §9 item 2, §8.4, E4, E5).
 
     Returns
@@ -773,21 +755,18 @@ def rm_9() -> Claim:
         tau_pole_of_2_8=tau_pole,
         W_2_8_just_before_pole=W28_near_pole,
     )
-    return make_claim(
-        "rm-9",
-        RM,
-        "worked example: lower hemisphere, a3/δ > h²",
-        "§2 example (π/2 < ϑ0 < π, a3/δ > (β/2δ)²): from (2.8), k cosϑ → (β + δμ2π)/(2δ) > 0, "
-        "then by (2.5) k cosϑ → ½(2δν1 − β)/δ and ϑ → 0.",
-        "medvedev.md §9 item 2, §8.4; errata E4, E5",
-        holds,
-        True,
-        m,
-        panels,
-    )
+    return Measurement(holds, True, m, panels)
 
 
-def rm_10() -> Claim:
+@claim(
+    "rm-10",
+    RM,
+    "a3 = 0: ϑ → π/2 (β > α) or 0/π (β < α)",
+    "From (2.9), (2.10): for β > α the angle ϑ tends to π/2; for β < α to 0 if 0 ≤ ϑ0 < "
+    "π/2 or to π if π/2 < ϑ0 ≤ π.",
+    "medvedev.md §9 item 3 and table",
+)
+def rm_10() -> Measurement:
     """a3 = 0: β > α ⇒ ϑ → π/2, β < α ⇒ ϑ → 0 or π by hemisphere (§9 item 3).
 
     Returns
@@ -853,21 +832,17 @@ def rm_10() -> Claim:
         "details); add the case β = α (tan ϑ∞ = tan ϑ0 (β + δ|W0|)/(α + γV0))",
         cases=res,
     )
-    return make_claim(
-        "rm-10",
-        RM,
-        "a3 = 0: ϑ → π/2 (β > α) or 0/π (β < α)",
-        "From (2.9), (2.10): for β > α the angle ϑ tends to π/2; for β < α to 0 if 0 ≤ ϑ0 < "
-        "π/2 or to π if π/2 < ϑ0 ≤ π.",
-        "medvedev.md §9 item 3 and table",
-        holds,
-        True,
-        m,
-        panels,
-    )
+    return Measurement(holds, True, m, panels)
 
 
-def rm_11() -> Claim:
+@claim(
+    "rm-11",
+    RM,
+    "quadratic-only medium: tan ϑ law",
+    "§2, a3 = α = β = 0: tanϑ = tanϑ0 (1 + εδk0τ cosϑ0)(1 + εγk0τ sinϑ0)⁻¹.",
+    "medvedev.md §8.7; §13.5",
+)
+def rm_11() -> Measurement:
     """Quadratic-only medium: the tan ϑ law of §8.7 in both hemispheres.
 
     Returns
@@ -908,20 +883,18 @@ def rm_11() -> Claim:
         "lower-hemisphere solution is ϑ = π + arctan(…)",
         per_case=per,
     )
-    return make_claim(
-        "rm-11",
-        RM,
-        "quadratic-only medium: tan ϑ law",
-        "§2, a3 = α = β = 0: tanϑ = tanϑ0 (1 + εδk0τ cosϑ0)(1 + εγk0τ sinϑ0)⁻¹.",
-        "medvedev.md §8.7; §13.5",
-        holds,
-        True,
-        m,
-        panels,
-    )
+    return Measurement(holds, True, m, panels)
 
 
-def rm_12() -> Claim:
+@claim(
+    "rm-12",
+    RM,
+    "quadratic-only medium: a unique new position",
+    "§2, end: tanϑ → δ/γ, i.e. the symmetry axis tends to a unique new position relative "
+    "to K, other than 0, π/2 and π, if δ, γ ≠ 0.",
+    "medvedev.md §9 item 4, §8.7; erratum E8",
+)
+def rm_12() -> Measurement:
     """Quadratic-only medium: 'a unique new position' tan ϑ = δ/γ (E8).
 
     Returns
@@ -970,18 +943,7 @@ def rm_12() -> Claim:
         theta_end_lower=lower_end,
         distance_lower_from_pi_minus=abs(lower_end - (math.pi - target)),
     )
-    return make_claim(
-        "rm-12",
-        RM,
-        "quadratic-only medium: a unique new position",
-        "§2, end: tanϑ → δ/γ, i.e. the symmetry axis tends to a unique new position relative "
-        "to K, other than 0, π/2 and π, if δ, γ ≠ 0.",
-        "medvedev.md §9 item 4, §8.7; erratum E8",
-        holds,
-        False,
-        m,
-        panels,
-    )
+    return Measurement(holds, False, m, panels)
 
 
 @functools.cache
@@ -1000,7 +962,15 @@ def _rm_accuracy_study() -> dict[str, Any]:
     return out
 
 
-def rm_13() -> Claim:
+@claim(
+    "rm-13",
+    RM,
+    "direction of K fixed (ρ, σ constant)",
+    "(2.2): k dρ/dτ = 0, k sinρ dσ/dτ = 0 — the angular momentum keeps its direction in "
+    "inertial space.",
+    "medvedev.md §6, §9 item 5, §10.1",
+)
+def rm_13() -> Measurement:
     """ρ, σ constant: the direction of K is fixed to first order (§9 item 5).
 
     Returns
@@ -1056,21 +1026,18 @@ def rm_13() -> Claim:
             }.items()
         },
     )
-    return make_claim(
-        "rm-13",
-        RM,
-        "direction of K fixed (ρ, σ constant)",
-        "(2.2): k dρ/dτ = 0, k sinρ dσ/dτ = 0 — the angular momentum keeps its direction in "
-        "inertial space.",
-        "medvedev.md §6, §9 item 5, §10.1",
-        holds,
-        True,
-        m,
-        panels,
-    )
+    return Measurement(holds, True, m, panels)
 
 
-def rm_14() -> Claim:
+@claim(
+    "rm-14",
+    RM,
+    "averaged model is first-order accurate",
+    "§2: the averaged system (2.2) describes the evolution of k, ϑ to first order in ε on "
+    "τ ~ 1/ε (Volosov–Morgunov averaging).",
+    "medvedev.md §10.1, §13.6",
+)
+def rm_14() -> Measurement:
     """Averaged-vs-full accuracy O(ε) away from ϑ = π/2 (spec §10.1, §13.6).
 
     Returns
@@ -1111,21 +1078,18 @@ def rm_14() -> Claim:
         slopes=slopes,
         errors={n: {v: s.errors[v].tolist() for v in ("k", "theta")} for n, s in studies.items()},
     )
-    return make_claim(
-        "rm-14",
-        RM,
-        "averaged model is first-order accurate",
-        "§2: the averaged system (2.2) describes the evolution of k, ϑ to first order in ε on "
-        "τ ~ 1/ε (Volosov–Morgunov averaging).",
-        "medvedev.md §10.1, §13.6",
-        holds,
-        True,
-        m,
-        panels,
-    )
+    return Measurement(holds, True, m, panels)
 
 
-def rm_15() -> Claim:
+@claim(
+    "rm-15",
+    RM,
+    "φ fast everywhere: averaging valid through ϑ = π/2",
+    "§2: k, ρ, σ, ϑ are slow and ψ, φ fast; the averaged solution is used through ϑ = π/2 "
+    "(worked example, branch switch).",
+    "medvedev.md §10.2, §11; erratum E10; §13.7",
+)
+def rm_15() -> Measurement:
     """φ is a fast variable everywhere (E10): through ϑ = π/2 averaging is only O(√ε) (§10.2).
 
     Returns
@@ -1186,21 +1150,17 @@ def rm_15() -> Claim:
         error_over_sqrt_eps=(errors / np.sqrt(eps_values)).tolist(),
         stationary_phase_bound=bound.tolist(),
     )
-    return make_claim(
-        "rm-15",
-        RM,
-        "φ fast everywhere: averaging valid through ϑ = π/2",
-        "§2: k, ρ, σ, ϑ are slow and ψ, φ fast; the averaged solution is used through ϑ = π/2 "
-        "(worked example, branch switch).",
-        "medvedev.md §10.2, §11; erratum E10; §13.7",
-        holds,
-        False,
-        m,
-        panels,
-    )
+    return Measurement(holds, False, m, panels)
 
 
-def rm_16() -> Claim:
+@claim(
+    "rm-16",
+    RM,
+    "full model: ϑ → 0 is a steady O(ε) tilt",
+    "§2: for a3 > 0 the symmetry axis tends to the angular momentum (ϑ → 0).",
+    "medvedev.md §9 item 1, §10.4; §13.8",
+)
+def rm_16() -> Measurement:
     """The final state of the full model: ϑ → O(ε), a steady tilt (§10.4).
 
     Returns
@@ -1246,14 +1206,4 @@ def rm_16() -> Claim:
         tilt_formula=tilt,
         relative_difference_from_tilt=rel,
     )
-    return make_claim(
-        "rm-16",
-        RM,
-        "full model: ϑ → 0 is a steady O(ε) tilt",
-        "§2: for a3 > 0 the symmetry axis tends to the angular momentum (ϑ → 0).",
-        "medvedev.md §9 item 1, §10.4; §13.8",
-        holds,
-        qualified,
-        m,
-        panels,
-    )
+    return Measurement(holds, qualified, m, panels)

@@ -23,12 +23,11 @@ from typing import Literal
 import numpy as np
 
 from tumble.analysis import averaging_error_study, fitted_order
-from tumble.analysis.claims.base import Claim, Panel, Series
+from tumble.analysis.claims.base import Measurement, Panel, Series, claim
 from tumble.analysis.claims.common import (
     FIRST_ORDER,
     INTEGRATION_FLOOR,
     TIGHT,
-    make_claim,
     max_abs,
     measured,
     quiet,
@@ -94,7 +93,14 @@ def _rf_transient_runs() -> tuple[np.ndarray, dict[str, np.ndarray], dict[str, n
     return tau, full, avg
 
 
-def rf_1() -> Claim:
+@claim(
+    "rf-1",
+    RF,
+    "eddy-current torque (1.2)/(1.3)",
+    "(1.2) M_ξ = k_f H_ξ × (H_ξ × Ω_ξ + Ḣ_ξ); (1.3) M_ξ = M0 Bᵀĥĥ(BΩ_ξ − ωξ3), M0 = k_f H².",
+    "martynenko.md §3; errata 1, 2",
+)
+def rf_1() -> Measurement:
     """Eddy-current torque (1.2)/(1.3) (spec §3, errata 1, 2).
 
     Returns
@@ -166,20 +172,18 @@ def rf_1() -> Claim:
         max_power_static_field=max(power),
         spinup_over_omega_sin2beta_median=float(np.median(spinup)),
     )
-    return make_claim(
-        "rf-1",
-        RF,
-        "eddy-current torque (1.2)/(1.3)",
-        "(1.2) M_ξ = k_f H_ξ × (H_ξ × Ω_ξ + Ḣ_ξ); (1.3) M_ξ = M0 Bᵀĥĥ(BΩ_ξ − ωξ3), M0 = k_f H².",
-        "martynenko.md §3; errata 1, 2",
-        holds,
-        True,
-        m,
-        panels,
-    )
+    return Measurement(holds, True, m, panels)
 
 
-def rf_2() -> Claim:
+@claim(
+    "rf-2",
+    RF,
+    "equations of motion (1.4), (1.5)",
+    "(1.5): Iz′ + z × Iz = εΓᵀĥĥ(Γz − ξ3), Γ′ = Γz⁺ − ξ3⁺Γ⁺, the rotating-frame form of "
+    "(1.4) with τ = ωt, z = Ω/ω, ε = M0/ω.",
+    "martynenko.md §4; erratum 3; §15",
+)
+def rf_2() -> Measurement:
     """(1.5) with the corrected Γ′ = Γẑ − ξ̂3Γ against the inertial form (1.4) (erratum 3).
 
     Returns
@@ -219,21 +223,18 @@ def rf_2() -> Claim:
         "erratum 3: Γ′ = Γẑ − ξ̂3Γ (the OCR prints ξ̂3Γ⁺); only this reading agrees with (1.4)",
         per_variable={n: max_abs(d) for n, d in diffs.items()},
     )
-    return make_claim(
-        "rf-2",
-        RF,
-        "equations of motion (1.4), (1.5)",
-        "(1.5): Iz′ + z × Iz = εΓᵀĥĥ(Γz − ξ3), Γ′ = Γz⁺ − ξ3⁺Γ⁺, the rotating-frame form of "
-        "(1.4) with τ = ωt, z = Ω/ω, ε = M0/ω.",
-        "martynenko.md §4; erratum 3; §15",
-        holds,
-        True,
-        m,
-        panels,
-    )
+    return Measurement(holds, True, m, panels)
 
 
-def rf_3() -> Claim:
+@claim(
+    "rf-3",
+    RF,
+    "linearization (2.4), characteristic polynomial (2.5)",
+    "(2.4) the linearized equations about z = ξ3, Γ = E; (2.5) a0λ⁵ + … + a5 = 0 with the "
+    "printed a0 … a5.",
+    "martynenko.md §5, §6; §15",
+)
+def rf_3() -> Measurement:
     """Linearization (2.4) and characteristic polynomial (2.5) as printed (spec §5–§6).
 
     Returns
@@ -279,21 +280,18 @@ def rf_3() -> Claim:
         "value ≤ 1e-12",
         n_cases=len(rows),
     )
-    return make_claim(
-        "rf-3",
-        RF,
-        "linearization (2.4), characteristic polynomial (2.5)",
-        "(2.4) the linearized equations about z = ξ3, Γ = E; (2.5) a0λ⁵ + … + a5 = 0 with the "
-        "printed a0 … a5.",
-        "martynenko.md §5, §6; §15",
-        holds,
-        False,
-        m,
-        panels,
-    )
+    return Measurement(holds, False, m, panels)
 
 
-def rf_4() -> Claim:
+@claim(
+    "rf-4",
+    RF,
+    "first-order roots (2.6)",
+    "(2.6): λ1 = −ε sin²β/I3, λ2,3 = ±iω0 − (ε/2)[(I3−I2)/(I2I3) + (I3−I1)/(I1I3) cos²β], "
+    "λ4,5 = ±i − ε(1 + cos²β)/(2I3), ω0² = (I3−I2)(I3−I1)/(I1I2).",
+    "martynenko.md §6",
+)
+def rf_4() -> Measurement:
     """First-order roots (2.6): error O(ε²) for simple roots (spec §6).
 
     Returns
@@ -354,21 +352,18 @@ def rf_4() -> Claim:
         thin_plate_exact_root_near_i=[near_i.real, near_i.imag],
         thin_plate_approx_re_lambda45=float(approx_t[3].real),
     )
-    return make_claim(
-        "rf-4",
-        RF,
-        "first-order roots (2.6)",
-        "(2.6): λ1 = −ε sin²β/I3, λ2,3 = ±iω0 − (ε/2)[(I3−I2)/(I2I3) + (I3−I1)/(I1I3) cos²β], "
-        "λ4,5 = ±i − ε(1 + cos²β)/(2I3), ω0² = (I3−I2)(I3−I1)/(I1I2).",
-        "martynenko.md §6",
-        holds,
-        True,
-        m,
-        panels,
-    )
+    return Measurement(holds, True, m, panels)
 
 
-def rf_5() -> Claim:
+@claim(
+    "rf-5",
+    RF,
+    "largest axis: asymptotically stable",
+    "§2: rotation about the axis of the largest moment of inertia (I3 > I1, I2) is "
+    "asymptotically stable in the first approximation (for real bodies).",
+    "martynenko.md §7 table row 1, 'for real bodies'",
+)
+def rf_5() -> Measurement:
     """Largest axis: asymptotically stable in the first approximation (§7 table, row 1).
 
     Returns
@@ -417,18 +412,7 @@ def rf_5() -> Claim:
         sweep_not_stable=int(sweep_bad),
         map_points_largest=int(np.count_nonzero(largest)),
     )
-    return make_claim(
-        "rf-5",
-        RF,
-        "largest axis: asymptotically stable",
-        "§2: rotation about the axis of the largest moment of inertia (I3 > I1, I2) is "
-        "asymptotically stable in the first approximation (for real bodies).",
-        "martynenko.md §7 table row 1, 'for real bodies'",
-        holds,
-        True,
-        m,
-        panels,
-    )
+    return Measurement(holds, True, m, panels)
 
 
 def _rf_axis_roots_panel(inertia: tuple[float, float, float], eps: float) -> Panel:
@@ -451,7 +435,14 @@ def _rf_axis_roots_panel(inertia: tuple[float, float, float], eps: float) -> Pan
     )
 
 
-def rf_6() -> Claim:
+@claim(
+    "rf-6",
+    RF,
+    "middle axis: unstable",
+    "§2: rotation about the middle axis is unstable (ω0² < 0: ±iω0 becomes a real pair).",
+    "martynenko.md §6, §7 table row 2",
+)
+def rf_6() -> Measurement:
     """Middle axis: unstable, a real root ≈ |ω0| (§7 table, row 2).
 
     Returns
@@ -508,20 +499,18 @@ def rf_6() -> Claim:
         exact_root=float(lead.real),
         root_over_omega0_minus_1_at_eps_1e_3=root_rel,
     )
-    return make_claim(
-        "rf-6",
-        RF,
-        "middle axis: unstable",
-        "§2: rotation about the middle axis is unstable (ω0² < 0: ±iω0 becomes a real pair).",
-        "martynenko.md §6, §7 table row 2",
-        holds,
-        False,
-        m,
-        panels,
-    )
+    return Measurement(holds, False, m, panels)
 
 
-def rf_7() -> Claim:
+@claim(
+    "rf-7",
+    RF,
+    "smallest axis: unstable (footnote 1)",
+    "§2 and footnote 1: rotation about the smallest axis is unstable (Re λ2,3 > 0), "
+    "refuting an earlier claim that it is asymptotically stable.",
+    "martynenko.md §7 table row 3",
+)
+def rf_7() -> Measurement:
     """Smallest axis: unstable, slow oscillatory growth (§7 row 3; footnote 1).
 
     Returns
@@ -553,21 +542,18 @@ def rf_7() -> Claim:
         max_re_lambda=rep.max_real,
         first_order_rate=growth,
     )
-    return make_claim(
-        "rf-7",
-        RF,
-        "smallest axis: unstable (footnote 1)",
-        "§2 and footnote 1: rotation about the smallest axis is unstable (Re λ2,3 > 0), "
-        "refuting an earlier claim that it is asymptotically stable.",
-        "martynenko.md §7 table row 3",
-        holds,
-        False,
-        m,
-        panels,
-    )
+    return Measurement(holds, False, m, panels)
 
 
-def rf_8() -> Claim:
+@claim(
+    "rf-8",
+    RF,
+    "thin plate at β = π/2: critical case",
+    "Footnote 2: a thin plate (I3 = I1 + I2) in a field rotating in a plane (β = π/2) is a "
+    "critical case of the stability analysis.",
+    "martynenko.md §6, §7 'critical cases'",
+)
+def rf_8() -> Measurement:
     """Thin plate I3 = I1 + I2 in a planar field: a critical case (footnote 2).
 
     Returns
@@ -622,21 +608,19 @@ def rf_8() -> Claim:
         classifications=labels,
         conical_field=conical,
     )
-    return make_claim(
-        "rf-8",
-        RF,
-        "thin plate at β = π/2: critical case",
-        "Footnote 2: a thin plate (I3 = I1 + I2) in a field rotating in a plane (β = π/2) is a "
-        "critical case of the stability analysis.",
-        "martynenko.md §6, §7 'critical cases'",
-        holds,
-        True,
-        m,
-        panels,
-    )
+    return Measurement(holds, True, m, panels)
 
 
-def rf_9() -> Claim:
+@claim(
+    "rf-9",
+    RF,
+    "thin plate: critical mode decays nonlinearly (spec)",
+    "Not in the paper (footnote 2 only names the critical case). Spec §7: in the nonlinear "
+    "model this mode is observed to decay, at a rate proportional to the square of the "
+    "amplitude, i.e. amplitude ~ τ^(−1/2).",
+    "martynenko.md §7 'critical cases' (spec observation)",
+)
+def rf_9() -> Measurement:
     """The spec's observation: the critical thin-plate mode decays at a rate ∝ amplitude².
 
     Returns
@@ -743,22 +727,18 @@ def rf_9() -> Claim:
         local_exponent_smaller_amplitudes=n_small_A,
         max_rate_over_slowest_linear_rate=float(np.max(rate)) / others,
     )
-    return make_claim(
-        "rf-9",
-        RF,
-        "thin plate: critical mode decays nonlinearly (spec)",
-        "Not in the paper (footnote 2 only names the critical case). Spec §7: in the nonlinear "
-        "model this mode is observed to decay, at a rate proportional to the square of the "
-        "amplitude, i.e. amplitude ~ τ^(−1/2).",
-        "martynenko.md §7 'critical cases' (spec observation)",
-        holds,
-        True,
-        m,
-        panels,
-    )
+    return Measurement(holds, True, m, panels)
 
 
-def rf_10() -> Claim:
+@claim(
+    "rf-10",
+    RF,
+    "Euler–Poinsot motion (3.1)",
+    "(3.1): z1 = Lk√((I3−I2)/(I1I0)) cn u, z2 = Lk√((I3−I1)/(I2I0)) sn u, z3 = "
+    "L√((I2−I1)/(I3I0)) dn u; for the other regime swap the indices 1 and 3.",
+    "martynenko.md §8; erratum 7",
+)
+def rf_10() -> Measurement:
     """Euler–Poinsot motion (3.1) in both regimes (spec §8, erratum 7).
 
     Returns
@@ -819,21 +799,18 @@ def rf_10() -> Claim:
         per_case=per,
         regimes=regimes,
     )
-    return make_claim(
-        "rf-10",
-        RF,
-        "Euler–Poinsot motion (3.1)",
-        "(3.1): z1 = Lk√((I3−I2)/(I1I0)) cn u, z2 = Lk√((I3−I1)/(I2I0)) sn u, z3 = "
-        "L√((I2−I1)/(I3I0)) dn u; for the other regime swap the indices 1 and 3.",
-        "martynenko.md §8; erratum 7",
-        holds,
-        True,
-        m,
-        panels,
-    )
+    return Measurement(holds, True, m, panels)
 
 
-def rf_11() -> Claim:
+@claim(
+    "rf-11",
+    RF,
+    "period average ⟨z²⟩ (3.6)",
+    "(3.6): ⟨z²⟩ = (L²/I0){(I3−I2)k²/I1 + (I2−I1)(I1+I2−I3)/(I1I2) + (I2−I1)(I3−I2)(I3−I1)"
+    "/(I1I2I3) · E(k)/K(k)}.",
+    "martynenko.md §8",
+)
+def rf_11() -> Measurement:
     """Period average ⟨z²⟩ of (3.6) (spec §8).
 
     Returns
@@ -888,21 +865,18 @@ def rf_11() -> Claim:
         "value ≤ 1e-10",
         per_case=[{"regime": r[0], "k2": r[1], "rel": r[2]} for r in rows],
     )
-    return make_claim(
-        "rf-11",
-        RF,
-        "period average ⟨z²⟩ (3.6)",
-        "(3.6): ⟨z²⟩ = (L²/I0){(I3−I2)k²/I1 + (I2−I1)(I1+I2−I3)/(I1I2) + (I2−I1)(I3−I2)(I3−I1)"
-        "/(I1I2I3) · E(k)/K(k)}.",
-        "martynenko.md §8",
-        holds,
-        False,
-        m,
-        panels,
-    )
+    return Measurement(holds, False, m, panels)
 
 
-def rf_12() -> Claim:
+@claim(
+    "rf-12",
+    RF,
+    "averaged equations (3.5)–(3.7)",
+    "(3.5) L′, Lρ′, σ′ = 0; (3.6) T′ = ε{−¼[2(1+cos²β) + (1−3cos²β)sin²ρ]⟨z²⟩ + "
+    "(1−3cos²β)(1−3sin²ρ)T²/L² + 2 sin²β cosρ T/L}; (3.7) dk²/dτ = ε(I3−I1)/(4I1I3)·A·F(k²).",
+    "martynenko.md §10; erratum 5",
+)
+def rf_12() -> Measurement:
     """Averaged equations (3.5), (3.6) corrected, (3.7) (spec §10, erratum 5).
 
     Returns
@@ -994,21 +968,18 @@ def rf_12() -> Claim:
         corrected_T_prime_at_stationary=corrected,
         printed_T_prime_at_stationary=printed,
     )
-    return make_claim(
-        "rf-12",
-        RF,
-        "averaged equations (3.5)–(3.7)",
-        "(3.5) L′, Lρ′, σ′ = 0; (3.6) T′ = ε{−¼[2(1+cos²β) + (1−3cos²β)sin²ρ]⟨z²⟩ + "
-        "(1−3cos²β)(1−3sin²ρ)T²/L² + 2 sin²β cosρ T/L}; (3.7) dk²/dτ = ε(I3−I1)/(4I1I3)·A·F(k²).",
-        "martynenko.md §10; erratum 5",
-        holds,
-        True,
-        m,
-        panels,
-    )
+    return Measurement(holds, True, m, panels)
 
 
-def rf_13() -> Claim:
+@claim(
+    "rf-13",
+    RF,
+    "k² decreases monotonically 1 → 0; end about the largest axis",
+    "§3: by (3.7) k² decreases monotonically from 1 to 0: the body tends to the unique stable "
+    "motion, rotation about the axis of the largest moment of inertia.",
+    "martynenko.md §10 (monotonicity proof), §11 items 4–5",
+)
+def rf_13() -> Measurement:
     """k² decreases monotonically from 1 to 0; the body ends about its largest axis (§11.4).
 
     Returns
@@ -1089,21 +1060,18 @@ def rf_13() -> Claim:
         full_k2_largest_increase_between_samples=full_up,
         x1_transient_peak_k2=peak,
     )
-    return make_claim(
-        "rf-13",
-        RF,
-        "k² decreases monotonically 1 → 0; end about the largest axis",
-        "§3: by (3.7) k² decreases monotonically from 1 to 0: the body tends to the unique stable "
-        "motion, rotation about the axis of the largest moment of inertia.",
-        "martynenko.md §10 (monotonicity proof), §11 items 4–5",
-        holds,
-        qualified,
-        m,
-        panels,
-    )
+    return Measurement(holds, qualified, m, panels)
 
 
-def rf_14() -> Claim:
+@claim(
+    "rf-14",
+    RF,
+    "σ = const (L in a fixed vertical plane)",
+    "§3, from (3.5): σ′ = 0 — the angular momentum stays in the vertical plane through ξ3 "
+    "and its initial position.",
+    "martynenko.md §11 item 1",
+)
+def rf_14() -> Measurement:
     """σ = const: L stays in a fixed vertical plane (§11.1).
 
     Returns
@@ -1145,21 +1113,17 @@ def rf_14() -> Claim:
         excursions=exc,
         averaged_sigma_deviation=avg_dev,
     )
-    return make_claim(
-        "rf-14",
-        RF,
-        "σ = const (L in a fixed vertical plane)",
-        "§3, from (3.5): σ′ = 0 — the angular momentum stays in the vertical plane through ξ3 "
-        "and its initial position.",
-        "martynenko.md §11 item 1",
-        holds,
-        True,
-        m,
-        panels,
-    )
+    return Measurement(holds, True, m, panels)
 
 
-def rf_15() -> Claim:
+@claim(
+    "rf-15",
+    RF,
+    "ρ → 0 (L aligns with ξ3)",
+    "§3: (3.5) implies ρ → 0 — the angular momentum turns to the axis of the field's rotation.",
+    "martynenko.md §11 item 2",
+)
+def rf_15() -> Measurement:
     """(3.5) implies ρ → 0 — true for β ≠ 0 but not monotone (§11.2).
 
     Returns
@@ -1211,20 +1175,18 @@ def rf_15() -> Claim:
         rho_end_long_run=float(long["rho"][-1]),
         beta_zero_rho_end_from_rho0_2_2=float(beta0["rho"][-1]),
     )
-    return make_claim(
-        "rf-15",
-        RF,
-        "ρ → 0 (L aligns with ξ3)",
-        "§3: (3.5) implies ρ → 0 — the angular momentum turns to the axis of the field's rotation.",
-        "martynenko.md §11 item 2",
-        holds,
-        qualified,
-        m,
-        panels,
-    )
+    return Measurement(holds, qualified, m, panels)
 
 
-def rf_16() -> Claim:
+@claim(
+    "rf-16",
+    RF,
+    "(3.7) decouples at ρ = 0 and cos²β = 1/3",
+    "§3: at ρ = 0 (and for cos²β = 1/3) (3.7) is the equation of a body with a cavity "
+    "filled with viscous fluid and of a heavy body in a weakly resisting medium.",
+    "martynenko.md §11 item 3",
+)
+def rf_16() -> Measurement:
     """At ρ = 0 and at cos²β = 1/3 (3.7) decouples: A is constant (§11.3).
 
     Returns
@@ -1266,21 +1228,18 @@ def rf_16() -> Claim:
         "the heavy body in a weakly resisting medium was not checked",
         variation_at_beta_1=contrast,
     )
-    return make_claim(
-        "rf-16",
-        RF,
-        "(3.7) decouples at ρ = 0 and cos²β = 1/3",
-        "§3: at ρ = 0 (and for cos²β = 1/3) (3.7) is the equation of a body with a cavity "
-        "filled with viscous fluid and of a heavy body in a weakly resisting medium.",
-        "martynenko.md §11 item 3",
-        holds,
-        True,
-        m,
-        panels,
-    )
+    return Measurement(holds, True, m, panels)
 
 
-def rf_17() -> Claim:
+@claim(
+    "rf-17",
+    RF,
+    "final nutation decay at the (3.7) rate",
+    "§3: near the stationary rotation (ρ = 0, k → 0) k² decays by (3.7), "
+    "dk²/dτ ≈ −ε(I3−I1)(1 + cos²β)(3 + κ)k²/(4I1I3).",
+    "martynenko.md §11 item 5, §12 'co-rotation is itself resonant'",
+)
+def rf_17() -> Measurement:
     """The final nutation decay near co-rotation: (3.7) vs (2.6) vs the settling phase (§12).
 
     Returns
@@ -1380,21 +1339,18 @@ def rf_17() -> Claim:
         runs=rows,
         averaged_linearization_at_end=lin,
     )
-    return make_claim(
-        "rf-17",
-        RF,
-        "final nutation decay at the (3.7) rate",
-        "§3: near the stationary rotation (ρ = 0, k → 0) k² decays by (3.7), "
-        "dk²/dτ ≈ −ε(I3−I1)(1 + cos²β)(3 + κ)k²/(4I1I3).",
-        "martynenko.md §11 item 5, §12 'co-rotation is itself resonant'",
-        holds,
-        False,
-        m,
-        panels,
-    )
+    return Measurement(holds, False, m, panels)
 
 
-def rf_18() -> Claim:
+@claim(
+    "rf-18",
+    RF,
+    "averaged model is first-order accurate",
+    "§3: for ε ≪ 1 the averaged equations (3.5)–(3.7) describe the evolution of the slow "
+    "variables L, ρ, σ, T (k²).",
+    "martynenko.md §10 assumptions, §12",
+)
+def rf_18() -> Measurement:
     """Averaged vs full: O(ε) in non-resonant transients (spec §12).
 
     Returns
@@ -1456,15 +1412,4 @@ def rf_18() -> Claim:
         errors={v: e.tolist() for v, e in study.errors.items()},
         separatrix_crossing_eps_0_01=sep,
     )
-    return make_claim(
-        "rf-18",
-        RF,
-        "averaged model is first-order accurate",
-        "§3: for ε ≪ 1 the averaged equations (3.5)–(3.7) describe the evolution of the slow "
-        "variables L, ρ, σ, T (k²).",
-        "martynenko.md §10 assumptions, §12",
-        holds,
-        True,
-        m,
-        panels,
-    )
+    return Measurement(holds, True, m, panels)

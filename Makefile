@@ -51,9 +51,9 @@ bench: $(TEST_STAMP)
 	$(BIN)/python -m pytest -m slow -q
 
 lint: $(DEV_STAMP)
-	$(BIN)/ruff check src tests benchmarks
-	$(BIN)/ruff format --check src tests benchmarks
-	$(BIN)/mypy src
+	$(BIN)/ruff check src tests benchmarks examples
+	$(BIN)/ruff format --check src tests benchmarks examples
+	$(BIN)/mypy src examples/models
 	$(BIN)/lint-imports
 
 clean:

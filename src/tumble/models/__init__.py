@@ -13,6 +13,7 @@ __all__ = [
     "AnyModel",
     "get_model",
     "nonlinear_moment",
+    "register",
     "resisting_medium",
     "rotating_field",
     "torqued_body",
@@ -22,16 +23,23 @@ AnyModel = Model[Any, Any]
 """A registered model of any parameter and state types (the registry's view: each model is
 typed with its own Params and State where it is defined)."""
 
-MODELS: dict[str, AnyModel] = {
-    m.name: m
-    for m in (
-        resisting_medium.MODEL,
-        rotating_field.MODEL,
-        nonlinear_moment.MODEL,
-        torqued_body.MODEL,
-    )
-}
+MODELS: dict[str, AnyModel] = {}
 """Every registered model, by the name a scenario's ``model`` key uses."""
+
+
+def register(model: AnyModel) -> AnyModel:
+    """Add ``model`` to :data:`MODELS` under its name (a ValueError if the name is taken)."""
+    if model.name in MODELS and MODELS[model.name] is not model:
+        raise ValueError(f"a model called {model.name!r} is already registered")
+    MODELS[model.name] = model
+    return model
+
+
+# One line per model.
+register(resisting_medium.MODEL)
+register(rotating_field.MODEL)
+register(nonlinear_moment.MODEL)
+register(torqued_body.MODEL)
 
 
 def get_model(name: str) -> AnyModel:

@@ -162,10 +162,58 @@ def integrate(
         if breakpoints:
             raise ParameterError(f"{what}: the compiled integrator takes no breakpoints")
         return _integrate_compiled(kernel, y0, t_end, rtol=rtol, atol=atol, what=what)
+    return _integrate_scipy(rhs, y0, t_end, rtol, atol, what, breakpoints)
+
+
+def _segment(
+    f: Callable[[float, FloatArray], FloatArray],
+    t0: float,
+    t1: float,
+    y: FloatArray,
+    rtol: float,
+    atol: float,
+    what: str,
+    pending: Sequence[Breakpoint],
+    first_step: float | None,
+) -> Any:
+    """scipy's DOP853 from (t0, y) to t1, stopping at the first surface of ``pending``;
+    IntegrationError on failure, on a non-finite state or on an arithmetic exception."""
+    with np.errstate(divide="raise", over="raise", invalid="raise"):
+        try:
+            res = solve_ivp(
+                f,
+                (t0, t1),
+                y,
+                method="DOP853",
+                rtol=rtol,
+                atol=atol,
+                dense_output=True,
+                events=[_event(b.condition) for b in pending if b.condition] or None,
+                first_step=first_step,
+            )
+        except FloatingPointError as exc:
+            raise IntegrationError(
+                f"{what}: arithmetic failure during integration ({exc})"
+            ) from None
+    if res.status < 0 or not np.all(np.isfinite(res.y)):
+        t_fail = float(res.t[-1]) if res.t.size else t0
+        raise IntegrationError(f"{what}: integration failed at t = {t_fail:.6g}: {res.message}")
+    return res
+
+
+def _integrate_scipy(
+    rhs: Callable[[float, FloatArray], FloatArray],
+    y0: FloatArray,
+    t_end: float,
+    rtol: float,
+    atol: float,
+    what: str,
+    breakpoints: Sequence[Breakpoint],
+) -> DenseSolution:
+    """:func:`integrate` by scipy, segment by segment between breakpoints."""
     # Known times split the interval; a surface the start sits on is already passed.
     times = {float(b.time) for b in breakpoints if b.time is not None}
-    stops = sorted(t for t in times if 0.0 < t < t_end)
-    stops.append(t_end)
+    stops = [*sorted(t for t in times if 0.0 < t < t_end), t_end]
     pending = [
         b
         for b in breakpoints
@@ -179,26 +227,7 @@ def integrate(
         if first_step is not None:
             first_step = min(first_step, seg_end - t0)
         f = _inside(rhs, t0, seg_end) if stops[0] < t_end else rhs
-        with np.errstate(divide="raise", over="raise", invalid="raise"):
-            try:
-                res = solve_ivp(
-                    f,
-                    (t0, seg_end),
-                    y,
-                    method="DOP853",
-                    rtol=rtol,
-                    atol=atol,
-                    dense_output=True,
-                    events=[_event(b.condition) for b in pending if b.condition] or None,
-                    first_step=first_step,
-                )
-            except FloatingPointError as exc:
-                raise IntegrationError(
-                    f"{what}: arithmetic failure during integration ({exc})"
-                ) from None
-        if res.status < 0 or not np.all(np.isfinite(res.y)):
-            t_fail = float(res.t[-1]) if res.t.size else t0
-            raise IntegrationError(f"{what}: integration failed at t = {t_fail:.6g}: {res.message}")
+        res = _segment(f, t0, seg_end, y, rtol, atol, what, pending, first_step)
         sols.append(res.sol)
         steps.append(np.asarray(res.t[1:]))
         nfev += int(res.nfev)

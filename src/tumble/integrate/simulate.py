@@ -26,7 +26,14 @@ from tumble.integrate.ode import (
     integrate,
 )
 from tumble.kernels import Kernel
-from tumble.models.base import AveragedForm, AveragingOptions, Columns, FullForm, Model
+from tumble.models.base import (
+    AveragedForm,
+    AveragingOptions,
+    ClosedForm,
+    Columns,
+    FullForm,
+    Model,
+)
 
 __all__ = ["INTEGRATORS", "Method", "Trajectory", "simulate", "simulate_batch"]
 
@@ -171,34 +178,51 @@ def simulate(
             f"(allowed: {', '.join(model.methods)})"
         )
     model.check(p, method)
-    start = time.perf_counter()
-    t_end = float(tau[-1])
     if method == "full":
         full = model.full.form(form)
-        what = f"{model.name} full equations {full.equation}"
-        sol = integrate(
-            lambda t, y: full.rhs(t, y, p),
-            full.initial_state(p, initial),
-            t_end,
-            rtol=rtol,
-            atol=atol,
-            what=what,
-            kernel=_kernel(model, full, p, integrator),
-        )
-        return _trajectory(model, p, initial, tau, method, full, sol, start)
+        return _full(model, full, p, initial, tau, rtol, atol, _kernel(model, full, p, integrator))
     if method == "averaged" and model.averaged is not None:
         options = model.averaged.check(averaging)
         form_ = model.averaged.form(p, initial, options)
         return _averaged(model, form_, p, initial, tau, rtol, atol)
     assert model.closed_form is not None  # the methods follow the capabilities
-    closed = model.closed_form
+    return _closed(model.closed_form, p, initial, tau)
+
+
+def _full(
+    model: Model[P, S],
+    full: FullForm[P, S],
+    p: P,
+    initial: S,
+    tau: FloatArray,
+    rtol: float,
+    atol: float,
+    kernel: Kernel | None,
+) -> Trajectory:
+    """A full form integrated (compiled when ``kernel`` is given) and sampled at ``tau``."""
+    start = time.perf_counter()
+    sol = integrate(
+        lambda t, y: full.rhs(t, y, p),
+        full.initial_state(p, initial),
+        float(tau[-1]),
+        rtol=rtol,
+        atol=atol,
+        what=f"{model.name} full equations {full.equation}",
+        kernel=kernel,
+    )
+    return _trajectory(model, p, initial, tau, "full", full, sol, start)
+
+
+def _closed(closed: ClosedForm[P, S], p: P, initial: S, tau: FloatArray) -> Trajectory:
+    """The closed form evaluated at ``tau`` (and anywhere, for the validity checks)."""
+    start = time.perf_counter()
     cols = closed.evaluate(p, initial, tau)
 
     def slow(t: FloatArray) -> Columns:
         return closed.evaluate(p, initial, t)
 
     wall = time.perf_counter() - start
-    return Trajectory(tau, cols, method, "closed_form", wall, 0, slow)
+    return Trajectory(tau, cols, "closed_form", "closed_form", wall, 0, slow)
 
 
 def _averaged(
@@ -321,17 +345,9 @@ def simulate_batch(
     jobs: list[tuple[int, Kernel, FloatArray]] = []
     for i, (p, initial) in enumerate(zip(params, initials, strict=True)):
         try:
-            model.check(p, "full")
-            kernel = _kernel(model, full, p, "numba")
-            assert kernel is not None  # "numba" raises instead of returning None
-            kernel.check_end(t_end)
-            y0 = np.asarray(full.initial_state(p, initial), dtype=np.float64)
-            if not np.all(np.isfinite(y0)):
-                raise IntegrationError(f"{what}: the initial state is not finite: {y0}")
+            jobs.append((i, *_batch_job(model, full, p, initial, t_end)))
         except TumbleError as exc:
             out[i] = exc
-            continue
-        jobs.append((i, kernel, y0))
     if t_end == 0.0:  # nothing to integrate: simulate's own path handles the trivial run
         for i, _, _ in jobs:
             out[i] = simulate(
@@ -362,6 +378,22 @@ def simulate_batch(
         except TumbleError as exc:
             out[i] = exc
     return [o for o in out if o is not None]
+
+
+def _batch_job(
+    model: Model[P, S], full: FullForm[P, S], p: P, initial: S, t_end: float
+) -> tuple[Kernel, FloatArray]:
+    """The kernel and initial state vector of one point of a batch; TumbleError if the point
+    cannot run compiled (a Python function in it, times beyond its tables, no finite start)."""
+    model.check(p, "full")
+    kernel = _kernel(model, full, p, "numba")
+    assert kernel is not None  # "numba" raises instead of returning None
+    kernel.check_end(t_end)
+    y0 = np.asarray(full.initial_state(p, initial), dtype=np.float64)
+    if not np.all(np.isfinite(y0)):
+        what = f"{model.name} full equations {full.equation}"
+        raise IntegrationError(f"{what}: the initial state is not finite: {y0}")
+    return kernel, y0
 
 
 def _kernel(model: Model[P, S], full: FullForm[P, S], p: P, integrator: str) -> Kernel | None:

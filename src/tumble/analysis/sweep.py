@@ -476,135 +476,14 @@ def records_to_dataset(
         Dims: one per grid axis, then ``sample``; ``method`` and ``pair`` for the final
         values and differences.
     """
-    dims = plan.dims
-    coords: dict[str, Any] = {
-        a.name: (a.name, a.values, _attrs(a.units, a.long_name, key=a.key, scale=a.scale))
-        for a in plan.axes
-    }
-    if plan.samples:
-        coords["sample"] = ("sample", np.arange(plan.samples), _attrs("1", "Monte Carlo sample"))
-        for j, d in enumerate(plan.draws):
-            coords[d.name] = (
-                "sample",
-                plan.drawn[:, j],
-                _attrs(
-                    d.units,
-                    d.long_name,
-                    key=d.key,
-                    distribution=d.distribution,
-                    parameters=[d.a, d.b],
-                ),
-            )
-    meta = columns or {}
-
-    def var_attrs(name: str, prefix: str) -> dict[str, Any]:
-        m = meta.get(name, {"units": "", "long_name": name, "equation": ""})
-        return _attrs(m["units"], f"{prefix}{m['long_name']}", equation=m.get("equation", ""))
-
-    time_symbol = {"tau": "τ"}.get(time_name, time_name)
-    data: dict[str, Any] = {
-        "status": (
-            dims,
-            _fill(plan, records, ("status",), integer=True),
-            _attrs(
-                "1",
-                "status of the run",
-                flag_values=[-1, 0, 1],
-                flag_meanings="pending ok failed",
-            ),
-        ),
-        "reason": (
-            dims,
-            _fill(plan, records, ("reason",), text=True),
-            _attrs("", "why the run failed"),
-        ),
-        "wall_time": (
-            dims,
-            _fill(plan, records, ("wall_time",)),
-            _attrs("s", "wall time of the point"),
-        ),
-        "issues": (
-            dims,
-            _fill(plan, records, ("issues",), text=True),
-            _attrs("", "validity conditions entered by an averaged run, with their times"),
-        ),
-        "first_issue_time": (
-            dims,
-            _fill(plan, records, ("first_issue_time",)),
-            _attrs(time_name, f"first time {time_symbol} an averaged run leaves its validity"),
-        ),
-    }
+    parts = _Parts(plan, records, columns or {}, time_name)
+    data: dict[str, Any] = {}
     extra_coords: dict[str, Any] = {}
-    methods = _union(records, "nfev")
-    if methods:
-        extra_coords["method"] = ("method", np.array(methods, dtype=object))
-        stack = [_fill(plan, records, ("nfev", m), integer=True, pending=0) for m in methods]
-        data["nfev"] = (
-            (*dims, "method"),
-            np.stack(stack, axis=-1),
-            _attrs("1", "right-hand-side evaluations"),
-        )
-    for v in _union2(records, "final"):
-        stack = [_fill(plan, records, ("final", m, v)) for m in methods]
-        data[f"final_{v}"] = ((*dims, "method"), np.stack(stack, axis=-1), var_attrs(v, "final "))
-    pairs = _union(records, "differences")
-    if pairs:
-        extra_coords["pair"] = ("pair", np.array(pairs, dtype=object))
-    for v in _union2(records, "differences"):
-        stack = [_fill(plan, records, ("differences", q, v)) for q in pairs]
-        data[f"difference_{v}"] = (
-            (*dims, "pair"),
-            np.stack(stack, axis=-1),
-            var_attrs(v, "max |difference| between two methods, "),
-        )
-    for k in _union(records, "limits"):
-        is_text = any(isinstance(r.get("limits", {}).get(k), str) for r in records.values())
-        data[f"limit_{k}"] = (
-            dims,
-            _fill(plan, records, ("limits", k), text=is_text),
-            {**var_attrs(k, "predicted limit of "), "units": meta.get(k, {}).get("units", "")},
-        )
-    if any("stability" in r for r in records.values()):
-        data["stability"] = (
-            dims,
-            _fill(plan, records, ("stability",), integer=True),
-            _attrs(
-                "1",
-                "classification of the stationary motion",
-                flag_values=list(range(-1, len(CLASSES))),
-                flag_meanings=" ".join(
-                    ["pending_or_failed", *(c.replace(" ", "_") for c in CLASSES)]
-                ),
-            ),
-        )
-        data["max_real"] = (
-            dims,
-            _fill(plan, records, ("max_real",)),
-            _attrs(f"1/{time_symbol}", "leading real part max Re λ of the stationary motion"),
-        )
-    if any("verify" in r for r in records.values()):
-        data["verify_status"] = (
-            dims,
-            _fill(plan, records, ("verify", "status"), text=True),
-            _attrs("", "verdict of tumble verify (first-order, degraded, invalid, exact)"),
-        )
-        for what, prefix, unit in (
-            ("order", "fitted order in ε of ", "1"),
-            ("error", "max |full − averaged| at ε of ", None),
-        ):
-            names: dict[str, None] = {}
-            for r in records.values():
-                names.update(dict.fromkeys(r.get("verify", {}).get(what, {})))
-            for v in names:
-                a = var_attrs(v, prefix)
-                if unit is not None:
-                    a["units"] = unit
-                data[f"verify_{what}_{v}"] = (
-                    dims,
-                    _fill(plan, records, ("verify", what, v)),
-                    a,
-                )
-    ds = xr.Dataset(data, coords={**coords, **extra_coords})
+    for build in (parts.status, parts.methods, parts.limits, parts.stability, parts.verify):
+        more, coords = build()
+        data.update(more)
+        extra_coords.update(coords)
+    ds = xr.Dataset(data, coords={**_coords(plan), **extra_coords})
     ds.attrs.update(
         model=model,
         time=time_name,
@@ -615,3 +494,141 @@ def records_to_dataset(
         **(attrs or {}),
     )
     return ds
+
+
+def _coords(plan: SweepPlan) -> dict[str, Any]:
+    """The grid axes, and the Monte Carlo samples with their draws."""
+    coords: dict[str, Any] = {
+        a.name: (a.name, a.values, _attrs(a.units, a.long_name, key=a.key, scale=a.scale))
+        for a in plan.axes
+    }
+    if plan.samples:
+        coords["sample"] = ("sample", np.arange(plan.samples), _attrs("1", "Monte Carlo sample"))
+        for j, d in enumerate(plan.draws):
+            meta = _attrs(
+                d.units, d.long_name, key=d.key, distribution=d.distribution, parameters=[d.a, d.b]
+            )
+            coords[d.name] = ("sample", plan.drawn[:, j], meta)
+    return coords
+
+
+Variables = tuple[dict[str, Any], dict[str, Any]]  # data variables, extra coordinates
+
+
+@dataclass(frozen=True)
+class _Parts:
+    """The data variables of a sweep's Dataset, group by group."""
+
+    plan: SweepPlan
+    records: Mapping[int, Record]
+    meta: Mapping[str, Mapping[str, str]]
+    time_name: str
+
+    @property
+    def symbol(self) -> str:
+        return {"tau": "τ"}.get(self.time_name, self.time_name)
+
+    def fill(self, path: tuple[str, ...], **kw: Any) -> Any:
+        return _fill(self.plan, self.records, path, **kw)
+
+    def var_attrs(self, name: str, prefix: str) -> dict[str, Any]:
+        m = self.meta.get(name, {"units": "", "long_name": name, "equation": ""})
+        return _attrs(m["units"], f"{prefix}{m['long_name']}", equation=m.get("equation", ""))
+
+    def status(self) -> Variables:
+        dims, fill = self.plan.dims, self.fill
+        flags = {"flag_values": [-1, 0, 1], "flag_meanings": "pending ok failed"}
+        first = f"first time {self.symbol} an averaged run leaves its validity"
+        return {
+            "status": (
+                dims,
+                fill(("status",), integer=True),
+                _attrs("1", "status of the run", **flags),
+            ),
+            "reason": (dims, fill(("reason",), text=True), _attrs("", "why the run failed")),
+            "wall_time": (dims, fill(("wall_time",)), _attrs("s", "wall time of the point")),
+            "issues": (
+                dims,
+                fill(("issues",), text=True),
+                _attrs("", "validity conditions entered by an averaged run, with their times"),
+            ),
+            "first_issue_time": (dims, fill(("first_issue_time",)), _attrs(self.time_name, first)),
+        }, {}
+
+    def methods(self) -> Variables:
+        """Evaluations, final values per method and differences per pair of methods."""
+        dims, records = self.plan.dims, self.records
+        data: dict[str, Any] = {}
+        coords: dict[str, Any] = {}
+        methods = _union(records, "nfev")
+        if methods:
+            coords["method"] = ("method", np.array(methods, dtype=object))
+            stack = [self.fill(("nfev", m), integer=True, pending=0) for m in methods]
+            attrs = _attrs("1", "right-hand-side evaluations")
+            data["nfev"] = ((*dims, "method"), np.stack(stack, axis=-1), attrs)
+        for v in _union2(records, "final"):
+            stack = [self.fill(("final", m, v)) for m in methods]
+            data[f"final_{v}"] = (
+                (*dims, "method"),
+                np.stack(stack, axis=-1),
+                self.var_attrs(v, "final "),
+            )
+        pairs = _union(records, "differences")
+        if pairs:
+            coords["pair"] = ("pair", np.array(pairs, dtype=object))
+        for v in _union2(records, "differences"):
+            stack = [self.fill(("differences", q, v)) for q in pairs]
+            data[f"difference_{v}"] = (
+                (*dims, "pair"),
+                np.stack(stack, axis=-1),
+                self.var_attrs(v, "max |difference| between two methods, "),
+            )
+        return data, coords
+
+    def limits(self) -> Variables:
+        data: dict[str, Any] = {}
+        for k in _union(self.records, "limits"):
+            text = any(isinstance(r.get("limits", {}).get(k), str) for r in self.records.values())
+            units = self.meta.get(k, {}).get("units", "")
+            attrs = {**self.var_attrs(k, "predicted limit of "), "units": units}
+            data[f"limit_{k}"] = (self.plan.dims, self.fill(("limits", k), text=text), attrs)
+        return data, {}
+
+    def stability(self) -> Variables:
+        if not any("stability" in r for r in self.records.values()):
+            return {}, {}
+        dims = self.plan.dims
+        meanings = " ".join(["pending_or_failed", *(c.replace(" ", "_") for c in CLASSES)])
+        classes = _attrs(
+            "1",
+            "classification of the stationary motion",
+            flag_values=list(range(-1, len(CLASSES))),
+            flag_meanings=meanings,
+        )
+        leading = _attrs(f"1/{self.symbol}", "leading real part max Re λ of the stationary motion")
+        return {
+            "stability": (dims, self.fill(("stability",), integer=True), classes),
+            "max_real": (dims, self.fill(("max_real",)), leading),
+        }, {}
+
+    def verify(self) -> Variables:
+        if not any("verify" in r for r in self.records.values()):
+            return {}, {}
+        dims = self.plan.dims
+        verdict = _attrs("", "verdict of tumble verify (first-order, degraded, invalid, exact)")
+        data: dict[str, Any] = {
+            "verify_status": (dims, self.fill(("verify", "status"), text=True), verdict)
+        }
+        for what, prefix, unit in (
+            ("order", "fitted order in ε of ", "1"),
+            ("error", "max |full − averaged| at ε of ", None),
+        ):
+            names: dict[str, None] = {}
+            for r in self.records.values():
+                names.update(dict.fromkeys(r.get("verify", {}).get(what, {})))
+            for v in names:
+                a = self.var_attrs(v, prefix)
+                if unit is not None:
+                    a["units"] = unit
+                data[f"verify_{what}_{v}"] = (dims, self.fill(("verify", what, v)), a)
+        return data, {}

@@ -22,7 +22,7 @@ restarts there, so no step straddles a kink.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -209,97 +209,11 @@ def descend(
         cd = float(coefficients(capsule, 0.0).CD)
     check_range("cd", cd, low=0.0, low_open=False)
     k = capsule.S * cd / (2.0 * capsule.m)  # drag per unit ρV² [m²/kg]
-    mu = MU_EARTH if gravity else 0.0
-    density_at = atmosphere.density_at
-
-    def rhs(t: float, y: FloatArray) -> FloatArray:
-        v, gam, h = float(y[0]), float(y[1]), float(y[2])
-        r = R_EARTH + h
-        g = mu / (r * r)
-        sg, cg = math.sin(gam), math.cos(gam)
-        # The trial stages of the step that crosses h_end may probe below the atmosphere's
-        # floor H_MIN ≤ h_end; there the floor's density is used (the accepted path ends at
-        # h_end, so only the last step's interpolant can feel it, and only if h_end ≈ H_MIN).
-        rho = density_at(max(h, H_MIN)) if k > 0.0 else 0.0
-        return np.array(
-            [
-                -rho * v * v * k - g * sg,
-                (v / r - g / v) * cg,
-                v * sg,
-                R_EARTH * v * cg / r,
-            ]
-        )
-
-    def floor(t: float, y: FloatArray) -> float:
-        return float(y[2]) - h_end
-
-    def stall(t: float, y: FloatArray) -> float:
-        return float(y[0]) - 1e-6 * V0  # V → 0: the g/V term is singular
-
-    floor.terminal = True  # type: ignore[attr-defined]
-    floor.direction = -1.0  # type: ignore[attr-defined]
-    stall.terminal = True  # type: ignore[attr-defined]
+    rhs = _entry_rhs(k, MU_EARTH if gravity else 0.0, atmosphere.density_at)
     scale_h = max(abs(h0), 1.0)
-    atol = rtol * np.array([V0, 1.0, scale_h, scale_h])
-    # dρ/dh jumps at the atmosphere's kinks (ICAO layer boundaries): no step may straddle one,
-    # so each crossing stops the solver and it restarts there (as integrate/ode.py does with
-    # breakpoints). Without this the error at rtol = 1e-10 is ~50 rtol instead of ~rtol.
-    kinks = [hk for hk in atmosphere.kinks if h_end < hk]
-    t0, y = 0.0, np.array([V0, gamma0, h0, 0.0])
-    starts, sols, ts, ys = [0.0], [], [np.array([0.0])], [y[:, None]]
-
-    def run(t_a: float, y_a: FloatArray, t_b: float, events: list[Any] | None) -> Any:
-        with np.errstate(divide="raise", over="raise", invalid="raise"):
-            try:
-                res = solve_ivp(
-                    rhs, (t_a, t_b), y_a, method="DOP853", rtol=rtol, atol=atol,
-                    dense_output=True, events=events,
-                )  # fmt: skip
-            except (FloatingPointError, OverflowError, ZeroDivisionError, ParameterError) as exc:
-                raise IntegrationError(f"descent: integration failed ({exc})") from exc
-        if res.status < 0 or not np.all(np.isfinite(res.y)):
-            raise IntegrationError(f"descent: integration failed ({res.message})")
-        return res
-
-    reached, last = False, math.nan  # `last`: the kink the segment starts on
-    while True:
-        crossings = [_Crossing(hk) for hk in kinks if hk != last]
-        res = run(t0, y, t_max, [floor, stall, *crossings])
-        if res.t_events[1].size:
-            raise IntegrationError(
-                f"descent: the speed fell to ~0 at t = {res.t_events[1][0]:g} s (lofted path); "
-                "a ballistic descent needs V > 0"
-            )
-        if res.status != 1:  # t_max reached
-            sols.append(res.sol)
-            ts.append(res.t[1:])
-            ys.append(res.y[:, 1:])
-            break
-        fired = next(i for i, ev in enumerate(res.t_events) if ev.size)
-        target = h_end if fired == 0 else crossings[fired - 2].altitude
-        # The event's time and state come from the dense interpolant, which is far less
-        # accurate than the steps (mm in h at rtol = 1e-10). Redo the last step so that it
-        # ends on the event, with the end time corrected by Newton's method on h.
-        t_k, y_k = float(res.t[-2]), res.y[:, -2]
-        t_hit = float(res.t_events[fired][0])
-        for _ in range(8):
-            land = run(t_k, y_k, t_hit, None)
-            miss = float(land.y[2, -1]) - target
-            if abs(miss) <= rtol * scale_h:
-                break
-            t_hit -= miss / float(rhs(t_hit, land.y[:, -1])[2])
-        else:
-            raise IntegrationError(f"descent: could not land on h = {target:g} m")
-        sols.extend([res.sol, land.sol])
-        starts.append(t_k)
-        ts.extend([res.t[1:-1], land.t[1:]])
-        ys.extend([res.y[:, 1:-1], land.y[:, 1:]])
-        if fired == 0:
-            reached = True
-            break
-        t0, y, last = t_hit, land.y[:, -1], target
-        starts.append(t0)
-    sol = _Piecewise(starts, sols)
+    flight = _Flight(rhs, rtol, rtol * np.array([V0, 1.0, scale_h, scale_h]), scale_h)
+    y0 = np.array([V0, gamma0, h0, 0.0])
+    sol, ts, ys, reached = flight.fly(y0, h_end, t_max, atmosphere.kinks)
     t = np.concatenate(ts)
     v, gam, h, x = np.concatenate(ys, axis=1)
     q = 0.5 * atmosphere.density(h) * v**2
@@ -322,6 +236,119 @@ def descend(
         _rhs=rhs,
         _atm=atmosphere,
     )
+
+
+def _entry_rhs(
+    k: float, mu: float, density_at: Callable[[float], float]
+) -> Callable[[float, FloatArray], FloatArray]:
+    """d(V, γ, h, x)/dt of the planar zero-lift entry with drag ρV²k and gravity μ/r²."""
+
+    def rhs(t: float, y: FloatArray) -> FloatArray:
+        v, gam, h = float(y[0]), float(y[1]), float(y[2])
+        r = R_EARTH + h
+        g = mu / (r * r)
+        sg, cg = math.sin(gam), math.cos(gam)
+        # The trial stages of the step that crosses h_end may probe below the atmosphere's
+        # floor H_MIN ≤ h_end; there the floor's density is used (the accepted path ends at
+        # h_end, so only the last step's interpolant can feel it, and only if h_end ≈ H_MIN).
+        rho = density_at(max(h, H_MIN)) if k > 0.0 else 0.0
+        return np.array(
+            [
+                -rho * v * v * k - g * sg,
+                (v / r - g / v) * cg,
+                v * sg,
+                R_EARTH * v * cg / r,
+            ]
+        )
+
+    return rhs
+
+
+@dataclass(frozen=True)
+class _Flight:
+    """The descent integrated layer by layer of the atmosphere, each leg landing exactly on
+    its end altitude."""
+
+    rhs: Callable[[float, FloatArray], FloatArray]
+    rtol: float
+    atol: FloatArray
+    scale_h: float  # altitude scale of the tolerances [m]
+
+    def run(self, t_a: float, y_a: FloatArray, t_b: float, events: list[Any] | None) -> Any:
+        """scipy's DOP853 from (t_a, y_a) to t_b; IntegrationError on any failure."""
+        with np.errstate(divide="raise", over="raise", invalid="raise"):
+            try:
+                res = solve_ivp(
+                    self.rhs, (t_a, t_b), y_a, method="DOP853", rtol=self.rtol,
+                    atol=self.atol, dense_output=True, events=events,
+                )  # fmt: skip
+            except (FloatingPointError, OverflowError, ZeroDivisionError, ParameterError) as exc:
+                raise IntegrationError(f"descent: integration failed ({exc})") from exc
+        if res.status < 0 or not np.all(np.isfinite(res.y)):
+            raise IntegrationError(f"descent: integration failed ({res.message})")
+        return res
+
+    def land(self, t_k: float, y_k: FloatArray, t_hit: float, target: float) -> Any:
+        """The last step redone to end on h = target, its end time corrected by Newton's
+        method on h: the event's time and state come from the dense interpolant, far less
+        accurate than the steps (mm in h at rtol = 1e-10)."""
+        for _ in range(8):
+            land = self.run(t_k, y_k, t_hit, None)
+            miss = float(land.y[2, -1]) - target
+            if abs(miss) <= self.rtol * self.scale_h:
+                return land
+            t_hit -= miss / float(self.rhs(t_hit, land.y[:, -1])[2])
+        raise IntegrationError(f"descent: could not land on h = {target:g} m")
+
+    def fly(
+        self, y0: FloatArray, h_end: float, t_max: float, kinks: Sequence[float]
+    ) -> tuple[_Piecewise, list[FloatArray], list[FloatArray], bool]:
+        """From y0 down to h_end (or t_max): dense output, step times and states, and whether
+        h_end was reached.
+
+        dρ/dh jumps at the atmosphere's kinks (ICAO layer boundaries): no step may straddle
+        one, so each crossing stops the solver and it restarts there (as integrate/ode.py does
+        with breakpoints). Without this the error at rtol = 1e-10 is ~50 rtol instead of ~rtol.
+        """
+        V0 = float(y0[0])
+
+        def floor(t: float, y: FloatArray) -> float:
+            return float(y[2]) - h_end
+
+        def stall(t: float, y: FloatArray) -> float:
+            return float(y[0]) - 1e-6 * V0  # V → 0: the g/V term is singular
+
+        floor.terminal = True  # type: ignore[attr-defined]
+        floor.direction = -1.0  # type: ignore[attr-defined]
+        stall.terminal = True  # type: ignore[attr-defined]
+        t0, y = 0.0, y0
+        starts, sols, ts, ys = [0.0], [], [np.array([0.0])], [y0[:, None]]
+        last = math.nan  # the kink the leg starts on
+        while True:
+            crossings = [_Crossing(hk) for hk in kinks if h_end < hk and hk != last]
+            res = self.run(t0, y, t_max, [floor, stall, *crossings])
+            if res.t_events[1].size:
+                raise IntegrationError(
+                    f"descent: the speed fell to ~0 at t = {res.t_events[1][0]:g} s (lofted "
+                    "path); a ballistic descent needs V > 0"
+                )
+            if res.status != 1:  # t_max reached
+                sols.append(res.sol)
+                ts.append(res.t[1:])
+                ys.append(res.y[:, 1:])
+                return _Piecewise(starts, sols), ts, ys, False
+            fired = next(i for i, ev in enumerate(res.t_events) if ev.size)
+            target = h_end if fired == 0 else crossings[fired - 2].altitude
+            t_k = float(res.t[-2])
+            land = self.land(t_k, res.y[:, -2], float(res.t_events[fired][0]), target)
+            sols.extend([res.sol, land.sol])
+            starts.append(t_k)
+            ts.extend([res.t[1:-1], land.t[1:]])
+            ys.extend([res.y[:, 1:-1], land.y[:, 1:]])
+            if fired == 0:
+                return _Piecewise(starts, sols), ts, ys, True
+            t0, y, last = float(land.t[-1]), land.y[:, -1], target
+            starts.append(t0)
 
 
 class _Crossing:

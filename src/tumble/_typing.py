@@ -15,3 +15,6 @@ ArrayLike = Any
 
 ComplexArray = NDArray[np.complex128]
 """A complex128 array (complex-step differentiation of the right-hand sides)."""
+
+BoolArray = NDArray[np.bool_]
+"""A boolean mask."""

@@ -23,7 +23,7 @@ from typing import Any, Literal
 import numpy as np
 from scipy.special import ellipe, ellipj, ellipk
 
-from tumble._typing import ArrayLike, FloatArray
+from tumble._typing import ArrayLike, BoolArray, FloatArray
 from tumble.averaging.triaxial import triaxial_average_vector
 from tumble.bodies import RigidBody
 from tumble.dynamics import rigid_body_rhs
@@ -40,6 +40,7 @@ from tumble.models.base import (
     FullForm,
     Model,
     Paper,
+    SlowPath,
     StationaryMotion,
     Validity,
     ValidityIssue,
@@ -878,12 +879,7 @@ def _resonances() -> list[tuple[int, int, int]]:
     return out
 
 
-def validity(
-    p: Params,
-    st: State,
-    slow: Any,
-    tau_end: float,
-) -> list[ValidityIssue]:
+def validity(p: Params, st: State, slow: SlowPath, tau_end: float) -> list[ValidityIssue]:
     """Regions of spec §12 that an averaged trajectory enters, with the first τ of each.
 
     Parameters
@@ -905,8 +901,8 @@ def validity(
         body's phase relative to the field is slow and (3.7) over-predicts the nutation decay of
         a triaxial body; (2.6) gives the true rate).
     """
-    issues: list[ValidityIssue] = []
     small = p.small_parameter
+    issues: list[ValidityIssue] = []
     if small > VALIDITY_RATIO:
         issues.append(
             ValidityIssue(
@@ -921,49 +917,92 @@ def validity(
         return issues
     grid = np.linspace(0.0, tau_end, 2001)
     cols = slow(grid)
-    I1, I2, I3 = p.sorted_inertia
-    L, T = cols["L"], cols["T"]
-    if I1 < I2 < I3:
-        side = np.sign(L * L - 2.0 * T * I2)
-        flips = np.flatnonzero(side[1:] * side[:-1] < 0.0)
-        if flips.size:
-
-            def gap(t: FloatArray) -> FloatArray:
-                c = slow(t)
-                return side[0] * (c["L"] ** 2 - 2.0 * c["T"] * I2)
-
-            found = first_time(lambda t: -gap(t), grid)
-            tau_s = float(found if found is not None else grid[flips[0] + 1])
-            issues.append(
-                ValidityIssue(
-                    "separatrix",
-                    tau_s,
-                    f"the averaged motion crosses the separatrix L² = 2T·I2 at τ = {tau_s:.6g}: "
-                    "the polhode frequency ν1 → 0 there, averaging is locally invalid (the "
-                    "error usually stays first order; theory allows ε|ln ε|) "
-                    "(spec/martynenko.md §12)",
-                )
-            )
     # Fast frequencies ~ L/I3 against the slow rates ~ ε/I1.
-    L_small = I3 * small / VALIDITY_RATIO
+    L_small = p.sorted_inertia[2] * small / VALIDITY_RATIO
+    found = (
+        _separatrix_issue(p, slow, grid, cols),
+        _momentum_issue(slow, grid, L_small),
+        *_frequency_issues(p, grid, cols, L_small),
+    )
+    return issues + [issue for issue in found if issue is not None]
+
+
+def _separatrix_issue(
+    p: Params, slow: SlowPath, grid: FloatArray, cols: dict[str, FloatArray]
+) -> ValidityIssue | None:
+    """The first crossing of the separatrix L² = 2T·I2 (a triaxial body only)."""
+    I1, I2, I3 = p.sorted_inertia
+    if not I1 < I2 < I3:
+        return None
+    side = np.sign(cols["L"] ** 2 - 2.0 * cols["T"] * I2)
+    flips = np.flatnonzero(side[1:] * side[:-1] < 0.0)
+    if not flips.size:
+        return None
+
+    def gap(t: FloatArray) -> FloatArray:
+        c = slow(t)
+        return side[0] * (c["L"] ** 2 - 2.0 * c["T"] * I2)
+
+    found = first_time(lambda t: -gap(t), grid)
+    tau_s = float(found if found is not None else grid[flips[0] + 1])
+    return ValidityIssue(
+        "separatrix",
+        tau_s,
+        f"the averaged motion crosses the separatrix L² = 2T·I2 at τ = {tau_s:.6g}: "
+        "the polhode frequency ν1 → 0 there, averaging is locally invalid (the "
+        "error usually stays first order; theory allows ε|ln ε|) "
+        "(spec/martynenko.md §12)",
+    )
+
+
+def _momentum_issue(slow: SlowPath, grid: FloatArray, L_small: float) -> ValidityIssue | None:
+    """The first time L falls below ``L_small``, where the fast frequencies stop being fast."""
 
     def momentum_small(t: FloatArray) -> FloatArray:
         return L_small - slow(t)["L"]
 
     tau_l = first_time(momentum_small, grid)
-    if tau_l is not None:
-        issues.append(
-            ValidityIssue(
-                "momentum_small",
-                tau_l,
-                f"from τ = {tau_l:.6g} L < {L_small:.3g}: the fast frequencies are no longer "
-                "fast against the slow drift, averaging is locally invalid; the vector form "
-                "carries L through 0, but k² after such a passage is not predicted "
-                "(spec/martynenko.md §12)",
-            )
-        )
+    if tau_l is None:
+        return None
+    return ValidityIssue(
+        "momentum_small",
+        tau_l,
+        f"from τ = {tau_l:.6g} L < {L_small:.3g}: the fast frequencies are no longer "
+        "fast against the slow drift, averaging is locally invalid; the vector form "
+        "carries L through 0, but k² after such a passage is not predicted "
+        "(spec/martynenko.md §12)",
+    )
+
+
+def _frequency_issues(
+    p: Params, grid: FloatArray, cols: dict[str, FloatArray], L_small: float
+) -> tuple[ValidityIssue | None, ValidityIssue | None]:
+    """The first resonance the averaged motion meets, and the start of the co-rotation."""
+    small = p.small_parameter
     nu = _frequencies(p, cols)
-    moving = L > L_small
+    moving = cols["L"] > L_small
+    det_co = np.abs(nu["nu2"] - nu["nu1"] - 1.0)
+    co = np.flatnonzero(moving & (det_co <= small))
+    co_rotation = None
+    if co.size:
+        tau_c = float(grid[co[0]])
+        co_rotation = ValidityIssue(
+            "co_rotation",
+            tau_c,
+            f"from τ ≈ {tau_c:.6g} the body nearly co-rotates with the field (|ν2 − ν1 − 1| "
+            "≤ ε/min I): the phase relative to the field is slow, independent averaging "
+            "fails, and (3.7) over-predicts the final nutation decay of a triaxial body; "
+            "the true rate is 2 Re λ2,3 of (2.6) (spec/martynenko.md §12)",
+        )
+    return _resonance_issue(p, grid, nu, moving), co_rotation
+
+
+def _resonance_issue(
+    p: Params, grid: FloatArray, nu: dict[str, FloatArray], moving: BoolArray
+) -> ValidityIssue | None:
+    """The first resonance m = n1 ν1 + n2 ν2 (m = 1, 2; |n1|, |n2| ≤ 2) crossed or approached
+    within √(ε/min I), and how long the motion lingers near it."""
+    small = p.small_parameter
     width = math.sqrt(small)
     first: tuple[float, float, tuple[int, int, int]] | None = None
     dtau = grid[1] - grid[0]
@@ -977,41 +1016,26 @@ def validity(
             i = min(candidates)
             if first is None or grid[i] < first[0]:
                 first = (float(grid[i]), float(np.count_nonzero(near)) * dtau, (m, n1, n2))
-    if first is not None:
-        tau_r, linger, (m, n1, n2) = first
-        # Lingering over a tenth of the slow scale 1/(ε/min I) or more: the resonant terms act
-        # as long as the averaged ones, O(1) effect (spec §12).
-        effect = (
-            "it lingers there long enough to put averaged k² and T off by O(1)"
-            if linger >= VALIDITY_RATIO / small
-            else "a passage shifts averaged k² and T by O(√ε) at most"
-        )
-        issues.append(
-            ValidityIssue(
-                "resonance",
-                tau_r,
-                f"at τ ≈ {tau_r:.6g} the averaged motion meets the resonance {m} = {n1}·ν1 "
-                f"{'+' if n2 >= 0 else '−'} {abs(n2)}·ν2 (field harmonic vs polhode ν1 and "
-                f"precession ν2) and stays within √(ε/min I) of it for Δτ ≈ {linger:.3g}: "
-                f"{effect}; L and ρ stay O(ε)-accurate (spec/martynenko.md §12)",
-                label=f"resonance {m}·ω = {n1}·ν1 {'+' if n2 >= 0 else '−'} {abs(n2)}·ν2",
-            )
-        )
-    det_co = np.abs(nu["nu2"] - nu["nu1"] - 1.0)
-    co = np.flatnonzero(moving & (det_co <= small))
-    if co.size:
-        tau_c = float(grid[co[0]])
-        issues.append(
-            ValidityIssue(
-                "co_rotation",
-                tau_c,
-                f"from τ ≈ {tau_c:.6g} the body nearly co-rotates with the field (|ν2 − ν1 − 1| "
-                "≤ ε/min I): the phase relative to the field is slow, independent averaging "
-                "fails, and (3.7) over-predicts the final nutation decay of a triaxial body; "
-                "the true rate is 2 Re λ2,3 of (2.6) (spec/martynenko.md §12)",
-            )
-        )
-    return issues
+    if first is None:
+        return None
+    tau_r, linger, (m, n1, n2) = first
+    # Lingering over a tenth of the slow scale 1/(ε/min I) or more: the resonant terms act
+    # as long as the averaged ones, O(1) effect (spec §12).
+    effect = (
+        "it lingers there long enough to put averaged k² and T off by O(1)"
+        if linger >= VALIDITY_RATIO / small
+        else "a passage shifts averaged k² and T by O(√ε) at most"
+    )
+    sign = "+" if n2 >= 0 else "−"
+    return ValidityIssue(
+        "resonance",
+        tau_r,
+        f"at τ ≈ {tau_r:.6g} the averaged motion meets the resonance {m} = {n1}·ν1 "
+        f"{sign} {abs(n2)}·ν2 (field harmonic vs polhode ν1 and "
+        f"precession ν2) and stays within √(ε/min I) of it for Δτ ≈ {linger:.3g}: "
+        f"{effect}; L and ρ stay O(ε)-accurate (spec/martynenko.md §12)",
+        label=f"resonance {m}·ω = {n1}·ν1 {sign} {abs(n2)}·ν2",
+    )
 
 
 def final_nutation_decay_rate(p: Params, phase: float = 0.0) -> float:

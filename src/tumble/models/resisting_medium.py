@@ -37,6 +37,7 @@ from tumble.models.base import (
     FullForm,
     Model,
     Paper,
+    SlowPath,
     Validity,
     ValidityIssue,
     first_time,
@@ -968,12 +969,7 @@ def _slow_rate_per_k(p: Params, k: FloatArray) -> FloatArray:
         return p.eps * (na / k**2 + c * nb / k + c * c * ns)
 
 
-def validity(
-    p: Params,
-    st: State,
-    slow: Callable[[FloatArray], dict[str, FloatArray]],
-    tau_end: float,
-) -> list[ValidityIssue]:
+def validity(p: Params, st: State, slow: SlowPath, tau_end: float) -> list[ValidityIssue]:
     """Regions of spec §10–§11 that an averaged trajectory enters, with the first τ of each.
 
     Parameters
@@ -999,91 +995,107 @@ def validity(
     """
     if p.eps == 0.0 or tau_end <= 0.0:
         return []
-    issues: list[ValidityIssue] = []
     grid = np.linspace(0.0, tau_end, 4001)
     phi_dependent = moment_depends_on_phi(p)
-    tau1 = crossing_time(st.W, p)
-    crosses = tau1 <= tau_end
-    if st.W == 0.0 and float(p.a[2]) != 0.0:
-        tau1, crosses = 0.0, True  # starts on ϑ = π/2 and leaves it at once
-    if crosses and abs(math.sin(st.theta)) < 1e-12:
-        issues.append(
-            ValidityIssue(
-                "through_k_zero",
-                tau1,
-                f"ϑ0 is 0 or π and W = k cos ϑ changes sign at τ = {tau1:.6g}: the averaged "
-                "solution passes through k = 0 and ϑ jumps between 0 and π, outside the "
-                "validity of averaging (spec/medvedev.md §11)",
-            )
-        )
-    elif crosses and phi_dependent:
-        issues.append(
-            ValidityIssue(
-                "theta_crossing",
-                tau1,
-                f"the averaged trajectory crosses ϑ = π/2 at τ = {tau1:.6g}: φ stops rotating "
-                "there and, with a φ-dependent moment, the averaged model is only O(√ε) "
-                "accurate after the passage (spec/medvedev.md §10.2)",
-                label="ϑ = π/2",
-            )
-        )
 
     def cols(t: FloatArray) -> tuple[FloatArray, FloatArray]:
         c = slow(t)
         return c["k"], c["theta"]
 
+    found = [_crossing_issue(p, st, tau_end, phi_dependent)]
     if phi_dependent:
-        resonance = _first_resonance(p, lambda t: np.abs(np.cos(cols(t)[1])), grid)
-        if resonance is not None:
-            tau_r, n = resonance
-            issues.append(
-                ValidityIssue(
-                    "resonance",
-                    tau_r,
-                    f"at τ ≈ {tau_r:.6g} the precession rate k equals {n}× the spin rate "
-                    f"|Ω_φ| (|cos ϑ| = (1+κ)/({n}|κ|)): the resonant terms, which first-order "
-                    "averaging drops, can shift ρ and σ; k and ϑ are unaffected "
-                    "(spec/medvedev.md §10.5)",
-                    label=f"resonance ψ̇ = {n}·|φ̇|",
-                )
-            )
+        found += [_resonance_issue(p, cols, grid), _phi_issue(p, cols, grid)]
+    found.append(_spin_issue(p, cols, grid))
+    return [issue for issue in found if issue is not None]
 
-    if phi_dependent:
 
-        def phi_slow(t: FloatArray) -> FloatArray:
-            k, theta = cols(t)
-            fast = np.abs(p.kappa * np.cos(theta)) / (1.0 + p.kappa)
-            return _slow_rate_per_k(p, k) - VALIDITY_RATIO * fast
+_KTheta = Callable[[FloatArray], tuple[FloatArray, FloatArray]]  # τ → (k, ϑ) of the trajectory
 
-        t_phi = first_time(phi_slow, grid)
-        if t_phi is not None:
-            issues.append(
-                ValidityIssue(
-                    "phi_not_fast",
-                    t_phi,
-                    f"from τ = {t_phi:.6g} the spin φ is no longer fast against the slow drift "
-                    f"(ε(|a|/k² + |b|/k + |s|) > {VALIDITY_RATIO:g}·|κ cos ϑ|/(1+κ)): averaging "
-                    "loses accuracy there (spec/medvedev.md §6, §10.3)",
-                )
-            )
+
+def _crossing_issue(
+    p: Params, st: State, tau_end: float, phi_dependent: bool
+) -> ValidityIssue | None:
+    """ϑ = π/2 crossed with a φ-dependent moment (§10.2), or k through 0 from ϑ0 ∈ {0, π}
+    (§11)."""
+    tau1 = crossing_time(st.W, p)
+    crosses = tau1 <= tau_end
+    if st.W == 0.0 and float(p.a[2]) != 0.0:
+        tau1, crosses = 0.0, True  # starts on ϑ = π/2 and leaves it at once
+    if crosses and abs(math.sin(st.theta)) < 1e-12:
+        return ValidityIssue(
+            "through_k_zero",
+            tau1,
+            f"ϑ0 is 0 or π and W = k cos ϑ changes sign at τ = {tau1:.6g}: the averaged "
+            "solution passes through k = 0 and ϑ jumps between 0 and π, outside the "
+            "validity of averaging (spec/medvedev.md §11)",
+        )
+    if crosses and phi_dependent:
+        return ValidityIssue(
+            "theta_crossing",
+            tau1,
+            f"the averaged trajectory crosses ϑ = π/2 at τ = {tau1:.6g}: φ stops rotating "
+            "there and, with a φ-dependent moment, the averaged model is only O(√ε) "
+            "accurate after the passage (spec/medvedev.md §10.2)",
+            label="ϑ = π/2",
+        )
+    return None
+
+
+def _resonance_issue(p: Params, cols: _KTheta, grid: FloatArray) -> ValidityIssue | None:
+    """The first resonance k = n|Ω_φ| crossed (§10.5)."""
+    resonance = _first_resonance(p, lambda t: np.abs(np.cos(cols(t)[1])), grid)
+    if resonance is None:
+        return None
+    tau_r, n = resonance
+    return ValidityIssue(
+        "resonance",
+        tau_r,
+        f"at τ ≈ {tau_r:.6g} the precession rate k equals {n}× the spin rate "
+        f"|Ω_φ| (|cos ϑ| = (1+κ)/({n}|κ|)): the resonant terms, which first-order "
+        "averaging drops, can shift ρ and σ; k and ϑ are unaffected "
+        "(spec/medvedev.md §10.5)",
+        label=f"resonance ψ̇ = {n}·|φ̇|",
+    )
+
+
+def _phi_issue(p: Params, cols: _KTheta, grid: FloatArray) -> ValidityIssue | None:
+    """The spin φ no longer fast against the slow drift (§6, §10.3)."""
+
+    def phi_slow(t: FloatArray) -> FloatArray:
+        k, theta = cols(t)
+        fast = np.abs(p.kappa * np.cos(theta)) / (1.0 + p.kappa)
+        return _slow_rate_per_k(p, k) - VALIDITY_RATIO * fast
+
+    t_phi = first_time(phi_slow, grid)
+    if t_phi is None:
+        return None
+    return ValidityIssue(
+        "phi_not_fast",
+        t_phi,
+        f"from τ = {t_phi:.6g} the spin φ is no longer fast against the slow drift "
+        f"(ε(|a|/k² + |b|/k + |s|) > {VALIDITY_RATIO:g}·|κ cos ϑ|/(1+κ)): averaging "
+        "loses accuracy there (spec/medvedev.md §6, §10.3)",
+    )
+
+
+def _spin_issue(p: Params, cols: _KTheta, grid: FloatArray) -> ValidityIssue | None:
+    """k too small for the body to spin fast against the moment (§10.5)."""
 
     def spin_slow(t: FloatArray) -> FloatArray:
         k, _ = cols(t)
         return _slow_rate_per_k(p, k) - VALIDITY_RATIO
 
     t_spin = first_time(spin_slow, grid)
-    if t_spin is not None:
-        k_at = float(cols(np.array([t_spin]))[0][0])
-        issues.append(
-            ValidityIssue(
-                "spin_not_fast",
-                t_spin,
-                f"from τ = {t_spin:.6g} (k = {k_at:.3g}) the body no longer spins fast against "
-                f"the moment (ε(|a|/k² + |b|/k + |s|) > {VALIDITY_RATIO:g}): the averaged model "
-                "is invalid as k → 0 (spec/medvedev.md §10.5)",
-            )
-        )
-    return issues
+    if t_spin is None:
+        return None
+    k_at = float(cols(np.array([t_spin]))[0][0])
+    return ValidityIssue(
+        "spin_not_fast",
+        t_spin,
+        f"from τ = {t_spin:.6g} (k = {k_at:.3g}) the body no longer spins fast against "
+        f"the moment (ε(|a|/k² + |b|/k + |s|) > {VALIDITY_RATIO:g}): the averaged model "
+        "is invalid as k → 0 (spec/medvedev.md §10.5)",
+    )
 
 
 RESONANCE_ORDER = 4

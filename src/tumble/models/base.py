@@ -49,6 +49,7 @@ __all__ = [
     "first_time",
     "fixed_columns",
     "frozen_array",
+    "separatrix_time",
 ]
 
 P = TypeVar("P")  # a model's Params
@@ -451,6 +452,34 @@ def first_time(condition: Callable[[FloatArray], FloatArray], grid: FloatArray) 
     return float(
         brentq(lambda t: float(condition(np.array([t]))[0]), grid[i - 1], grid[i], xtol=1e-12)
     )
+
+
+def separatrix_time(slow: SlowPath, grid: FloatArray, I2: float) -> float | None:
+    """First time a triaxial body's averaged motion crosses the separatrix L² = 2T·I2 (where
+    the polhode frequency vanishes), refined by root finding; None if it never does.
+
+    Parameters
+    ----------
+    slow : callable
+        ``slow(t) -> columns`` with ``L`` and ``T``.
+    grid : ndarray
+        Ascending times to scan [model time unit].
+    I2 : float
+        The middle principal moment [inertia unit].
+    """
+    cols = slow(grid)
+    gap = cols["L"] ** 2 - 2.0 * cols["T"] * I2
+    flips = np.flatnonzero(np.sign(gap[1:]) * np.sign(gap[:-1]) < 0.0)
+    if not flips.size:
+        return None
+    s0 = np.sign(gap[0])
+
+    def other_side(t: FloatArray) -> FloatArray:
+        c = slow(t)
+        return -s0 * (c["L"] ** 2 - 2.0 * c["T"] * I2)
+
+    found = first_time(other_side, grid)
+    return float(found if found is not None else grid[flips[0] + 1])
 
 
 def frozen_array(name: str, value: ArrayLike, shape: tuple[int, ...]) -> FloatArray:

@@ -47,6 +47,7 @@ from tumble.models.base import (
     first_time,
     fixed_columns,
     frozen_array,
+    separatrix_time,
 )
 from tumble.rotations import (
     euler313_to_matrix,
@@ -932,19 +933,9 @@ def _separatrix_issue(
 ) -> ValidityIssue | None:
     """The first crossing of the separatrix L² = 2T·I2 (a triaxial body only)."""
     I1, I2, I3 = p.sorted_inertia
-    if not I1 < I2 < I3:
+    tau_s = separatrix_time(slow, grid, I2) if I1 < I2 < I3 else None
+    if tau_s is None:
         return None
-    side = np.sign(cols["L"] ** 2 - 2.0 * cols["T"] * I2)
-    flips = np.flatnonzero(side[1:] * side[:-1] < 0.0)
-    if not flips.size:
-        return None
-
-    def gap(t: FloatArray) -> FloatArray:
-        c = slow(t)
-        return side[0] * (c["L"] ** 2 - 2.0 * c["T"] * I2)
-
-    found = first_time(lambda t: -gap(t), grid)
-    tau_s = float(found if found is not None else grid[flips[0] + 1])
     return ValidityIssue(
         "separatrix",
         tau_s,

@@ -30,7 +30,7 @@ from typing import Any
 
 import numpy as np
 
-from tumble._typing import FloatArray
+from tumble._typing import BoolArray, FloatArray
 from tumble.averaging import nearest_resonance, triaxial_average_vector
 from tumble.bodies import RigidBody
 from tumble.dynamics import rigid_body_rhs
@@ -50,9 +50,9 @@ from tumble.models.base import (
     SlowPath,
     Validity,
     ValidityIssue,
-    first_time,
     fixed_columns,
     frozen_array,
+    separatrix_time,
 )
 from tumble.rotations import quat_normalize, quat_to_matrix
 from tumble.torques import (
@@ -413,86 +413,107 @@ def validity(p: Params, st: State, slow: SlowPath, tau_end: float) -> list[Valid
     """
     if p.eps == 0.0 or tau_end <= 0.0:
         return []
-    issues: list[ValidityIssue] = []
     grid = np.linspace(0.0, tau_end, 1001)
     cols = slow(grid)
     I1, I2, I3 = p.sorted_inertia
+    scales = _Scales.along(p, grid, cols)
+    found = [
+        _separatrix_issue(slow, grid, I2) if I1 < I2 < I3 else None,
+        _not_fast_issue(grid, scales),
+        _resonance_issue(p, grid, cols, scales) if p.attitude_dependent else None,
+    ]
+    return sorted((i for i in found if i is not None), key=lambda i: i.tau)
+
+
+def _separatrix_issue(slow: SlowPath, grid: FloatArray, I2: float) -> ValidityIssue | None:
+    tau_s = separatrix_time(slow, grid, I2)
+    if tau_s is None:
+        return None
+    return ValidityIssue(
+        "separatrix",
+        tau_s,
+        f"the averaged motion crosses the separatrix L² = 2T·I2 at t = {tau_s:.6g}: "
+        "the polhode frequency ν1 → 0 there and averaging is locally invalid; the "
+        "error after the crossing is usually first order, theory allows ε|ln ε| "
+        "(spec/martynenko.md §12)",
+        label="the separatrix",
+    )
+
+
+@dataclass(frozen=True)
+class _Scales:
+    """Along the samples: the relative slow rate, the slowest fast frequency (ν1, |ν2|, the
+    forcing) [rad/t], where the motion is away from the separatrix band, and the forcing
+    frequency (0: none)."""
+
+    rate: FloatArray
+    slowest: FloatArray
+    away: BoolArray
+    forcing: float
+
+    @classmethod
+    def along(cls, p: Params, grid: FloatArray, cols: dict[str, FloatArray]) -> _Scales:
+        I1, I2, I3 = p.sorted_inertia
+        L, T = cols["L"], cols["T"]
+        nu = np.array([fast_frequencies(I1, I2, I3, Li, Ti) for Li, Ti in zip(L, T, strict=True)])
+        forcing = 0.0 if p.forcing_period is None else 2.0 * math.pi / p.forcing_period
+        slowest = np.minimum(nu[:, 0], np.abs(nu[:, 1]))
+        if forcing > 0.0:
+            slowest = np.minimum(slowest, forcing)
+        away = cols["k2"] < 1.0 - 1e-3  # the separatrix band is reported as such
+        if I1 in (I2, I3):  # symmetric body: ν1 is the relative spin, no separatrix
+            away[:] = True
+        return cls(_slow_rate(grid, cols), slowest, away, forcing)
+
+
+def _not_fast_issue(grid: FloatArray, sc: _Scales) -> ValidityIssue | None:
+    not_fast = sc.away & (sc.rate > VALIDITY_RATIO * sc.slowest)
+    if not np.any(not_fast):
+        return None
+    i = int(np.flatnonzero(not_fast)[0])
+    return ValidityIssue(
+        "not_fast",
+        float(grid[i]),
+        f"from t = {grid[i]:.6g} the slow drift ({sc.rate[i]:.3g} rad/t) is not small "
+        f"against the slowest fast frequency ({sc.slowest[i]:.3g} rad/t): averaging loses "
+        f"accuracy there (ratio > {VALIDITY_RATIO:g}, spec/martynenko.md §12)",
+    )
+
+
+def _resonance_issue(
+    p: Params, grid: FloatArray, cols: dict[str, FloatArray], sc: _Scales
+) -> ValidityIssue | None:
+    """The first resonance met or approached within √(slow rate/Ω_ref)."""
     L, T = cols["L"], cols["T"]
-    if I1 < I2 < I3:
-        gap = L * L - 2.0 * T * I2
-        flips = np.flatnonzero(np.sign(gap[1:]) * np.sign(gap[:-1]) < 0.0)
-        if flips.size:
-            s0 = np.sign(gap[0])
-
-            def other_side(t: FloatArray) -> FloatArray:
-                c = slow(t)
-                return -s0 * (c["L"] ** 2 - 2.0 * c["T"] * I2)
-
-            found = first_time(other_side, grid)
-            tau_s = float(found if found is not None else grid[flips[0] + 1])
-            issues.append(
-                ValidityIssue(
-                    "separatrix",
-                    tau_s,
-                    f"the averaged motion crosses the separatrix L² = 2T·I2 at t = {tau_s:.6g}: "
-                    "the polhode frequency ν1 → 0 there and averaging is locally invalid; the "
-                    "error after the crossing is usually first order, theory allows ε|ln ε| "
-                    "(spec/martynenko.md §12)",
-                    label="the separatrix",
-                )
-            )
-    rate = _slow_rate(grid, cols)
-    nu = np.array([fast_frequencies(I1, I2, I3, Li, Ti) for Li, Ti in zip(L, T, strict=True)])
-    forcing = 0.0 if p.forcing_period is None else 2.0 * math.pi / p.forcing_period
-    slowest = np.minimum(nu[:, 0], np.abs(nu[:, 1]))
-    if forcing > 0.0:
-        slowest = np.minimum(slowest, forcing)
-    away = cols["k2"] < 1.0 - 1e-3  # the separatrix band is reported as such
-    if I1 in (I2, I3):  # symmetric body: ν1 is the relative spin, no separatrix
-        away[:] = True
-    not_fast = away & (rate > VALIDITY_RATIO * slowest)
-    if np.any(not_fast):
-        i = int(np.flatnonzero(not_fast)[0])
-        issues.append(
-            ValidityIssue(
-                "not_fast",
-                float(grid[i]),
-                f"from t = {grid[i]:.6g} the slow drift ({rate[i]:.3g} rad/t) is not small "
-                f"against the slowest fast frequency ({slowest[i]:.3g} rad/t): averaging loses "
-                f"accuracy there (ratio > {VALIDITY_RATIO:g}, spec/martynenko.md §12)",
-            )
-        )
-    if p.attitude_dependent:
-        width = math.sqrt(float(np.max(rate)) / max(float(np.max(slowest)), 1e-300))
-        first: tuple[float, tuple[int, int, int]] | None = None
-        prev: tuple[tuple[int, int, int], float] | None = None
-        for i in range(grid.size):
-            if not away[i]:
-                prev = None
-                continue
-            res = nearest_resonance(p.inertia, float(L[i]), float(T[i]), p.forcing_period)
-            key = (res.m, res.n1, res.n2)
-            crossed = prev is not None and prev[0] == key and prev[1] * res.detuning < 0.0
-            if res.relative <= width or crossed:
-                first = (float(grid[i]), key)
-                break
-            prev = (key, res.detuning)
-        if first is not None:
-            tau_r, (m, n1, n2) = first
-            rhs = f"{m}·Ω_f" if forcing > 0.0 else "0"
-            issues.append(
-                ValidityIssue(
-                    "resonance",
-                    tau_r,
-                    f"at t ≈ {tau_r:.6g} the averaged motion meets the resonance {n1}·ν1 "
-                    f"{'+' if n2 >= 0 else '−'} {abs(n2)}·ν2 = {rhs} (polhode ν1, precession "
-                    "ν2 about L, forcing Ω_f): the phases are not independent there and the "
-                    "averaged rates are not the time averages; passing through costs O(√ε), "
-                    "lingering O(1) (spec/martynenko.md §12)",
-                    label=f"resonance {n1}·ν1 {'+' if n2 >= 0 else '−'} {abs(n2)}·ν2 = {rhs}",
-                )
-            )
-    return sorted(issues, key=lambda i: i.tau)
+    width = math.sqrt(float(np.max(sc.rate)) / max(float(np.max(sc.slowest)), 1e-300))
+    first: tuple[float, tuple[int, int, int]] | None = None
+    prev: tuple[tuple[int, int, int], float] | None = None
+    for i in range(grid.size):
+        if not sc.away[i]:
+            prev = None
+            continue
+        res = nearest_resonance(p.inertia, float(L[i]), float(T[i]), p.forcing_period)
+        key = (res.m, res.n1, res.n2)
+        crossed = prev is not None and prev[0] == key and prev[1] * res.detuning < 0.0
+        if res.relative <= width or crossed:
+            first = (float(grid[i]), key)
+            break
+        prev = (key, res.detuning)
+    if first is None:
+        return None
+    tau_r, (m, n1, n2) = first
+    rhs = f"{m}·Ω_f" if sc.forcing > 0.0 else "0"
+    sign = "+" if n2 >= 0 else "−"
+    return ValidityIssue(
+        "resonance",
+        tau_r,
+        f"at t ≈ {tau_r:.6g} the averaged motion meets the resonance {n1}·ν1 "
+        f"{sign} {abs(n2)}·ν2 = {rhs} (polhode ν1, precession "
+        "ν2 about L, forcing Ω_f): the phases are not independent there and the "
+        "averaged rates are not the time averages; passing through costs O(√ε), "
+        "lingering O(1) (spec/martynenko.md §12)",
+        label=f"resonance {n1}·ν1 {sign} {abs(n2)}·ν2 = {rhs}",
+    )
 
 
 # ---------------------------------------------------------------------------------------------

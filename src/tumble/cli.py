@@ -354,49 +354,59 @@ def stability_map_cmd(
     out.print(f"written: {', '.join(str(f) for f in files)}", highlight=False)
 
 
-def _bench_tables(r: dict[str, Any]) -> list[Table]:
-    """The benchmark's figures as tables, each target beside its figure."""
+def _yes(met: bool) -> str:
+    return "[green]yes[/]" if met else "[red]no[/]"
+
+
+def _full_table(r: dict[str, Any]) -> Table | None:
+    """The compiled DOP853 against scipy's with a Python right-hand side."""
     tg, st = r["targets"], r["settings"]
-    tables = []
-
-    def yes(met: bool) -> str:
-        return "[green]yes[/]" if met else "[red]no[/]"
-
-    if r["full_speedup_vs_scipy"]:
-        t = Table(
-            title=f"Full simulation, {st['horizon']:g} time units at rtol {st['rtol']:g}: "
-            "compiled DOP853 vs scipy DOP853 with a Python right-hand side",
-            title_justify="left",
+    if not r["full_speedup_vs_scipy"]:
+        return None
+    t = Table(
+        title=f"Full simulation, {st['horizon']:g} time units at rtol {st['rtol']:g}: "
+        "compiled DOP853 vs scipy DOP853 with a Python right-hand side",
+        title_justify="left",
+    )
+    for col in ("case", "tumble [s]", "error", "scipy [s]", "error", "speed-up", "≥ 50×"):
+        t.add_column(col, justify="left" if col == "case" else "right")
+    for name, v in r["full_speedup_vs_scipy"].items():
+        t.add_row(
+            name,
+            f"{v['tumble_s']:.3g}",
+            f"{v['tumble_error']:.1e}",
+            f"{v['scipy_s']:.3g}",
+            f"{v['scipy_error']:.1e}",
+            f"{v['speedup']:.0f}×",
+            _yes(v["speedup"] >= tg["full_speedup_vs_scipy"]),
         )
-        for col in ("case", "tumble [s]", "error", "scipy [s]", "error", "speed-up", "≥ 50×"):
-            t.add_column(col, justify="left" if col == "case" else "right")
-        for name, v in r["full_speedup_vs_scipy"].items():
-            t.add_row(
-                name,
-                f"{v['tumble_s']:.3g}",
-                f"{v['tumble_error']:.1e}",
-                f"{v['scipy_s']:.3g}",
-                f"{v['scipy_error']:.1e}",
-                f"{v['speedup']:.0f}×",
-                yes(v["speedup"] >= tg["full_speedup_vs_scipy"]),
-            )
-        tables.append(t)
-    if r["full_time_ratio_vs_heyoka"]:
-        t = Table(title="Against heyoka.py (Taylor, LLVM) at equal error", title_justify="left")
-        for col in ("case", "tumble [s]", "error", "heyoka [s]", "ratio", "≤ 1.5", "≤ 1.0"):
-            t.add_column(col, justify="left" if col == "case" else "right")
-        for name, v in r["full_time_ratio_vs_heyoka"].items():
-            label = f"{name} (no s)" if v["note"] else name
-            t.add_row(
-                label,
-                f"{v['tumble_s']:.3g}",
-                f"{v['tumble_error']:.1e}",
-                f"{v['heyoka_s_at_equal_error']:.3g}" + ("" if v["bracketed"] else "*"),
-                f"{v['ratio']:.2f}",
-                yes(v["ratio"] <= tg["full_time_ratio_vs_heyoka"]),
-                yes(v["ratio"] <= tg["full_time_ratio_vs_heyoka_stretch"]),
-            )
-        tables.append(t)
+    return t
+
+
+def _heyoka_table(r: dict[str, Any]) -> Table | None:
+    """The compiled DOP853 against heyoka.py at equal error."""
+    tg = r["targets"]
+    if not r["full_time_ratio_vs_heyoka"]:
+        return None
+    t = Table(title="Against heyoka.py (Taylor, LLVM) at equal error", title_justify="left")
+    for col in ("case", "tumble [s]", "error", "heyoka [s]", "ratio", "≤ 1.5", "≤ 1.0"):
+        t.add_column(col, justify="left" if col == "case" else "right")
+    for name, v in r["full_time_ratio_vs_heyoka"].items():
+        label = f"{name} (no s)" if v["note"] else name
+        t.add_row(
+            label,
+            f"{v['tumble_s']:.3g}",
+            f"{v['tumble_error']:.1e}",
+            f"{v['heyoka_s_at_equal_error']:.3g}" + ("" if v["bracketed"] else "*"),
+            f"{v['ratio']:.2f}",
+            _yes(v["ratio"] <= tg["full_time_ratio_vs_heyoka"]),
+            _yes(v["ratio"] <= tg["full_time_ratio_vs_heyoka_stretch"]),
+        )
+    return t
+
+
+def _averaged_table(r: dict[str, Any]) -> Table:
+    """Averaged (and closed form) against full."""
     t = Table(
         title="Averaged (and closed form) vs full over the template's slow horizon; "
         "error relative, on the slow variables",
@@ -430,7 +440,12 @@ def _bench_tables(r: dict[str, Any]) -> list[Table]:
                 f"{c['time_s']:.3g}" if c else "—",
                 f"{c['speedup']:.3g}×" if c else "—",
             )
-    tables.append(t)
+    return t
+
+
+def _batch_table(r: dict[str, Any]) -> Table:
+    """Trajectories per second of the batches."""
+    tg = r["targets"]
     b = r["batch_throughput"]
     t = Table(
         title=f"Batch: {b['size']} trajectories, {b['case']} (error {b['error']:.1e})",
@@ -443,26 +458,38 @@ def _bench_tables(r: dict[str, Any]) -> list[Table]:
             n,
             f"{v['trajectories_per_s']:.4g}",
             f"{v['efficiency']:.2f}",
-            yes(v["efficiency"] >= tg["batch_efficiency"]) if n != "1" else "",
+            _yes(v["efficiency"] >= tg["batch_efficiency"]) if n != "1" else "",
         )
-    tables.append(t)
-    if "compile" in r:
-        c = r["compile"]
-        t = Table(
-            title="Compile: first call of each case from an empty cache (fresh process)",
-            title_justify="left",
-        )
-        t.add_column("case")
-        t.add_column("first call [s]", justify="right")
-        for name, sec in c["first_call_s"].items():
-            t.add_row(name, f"{sec:.2f}")
-        t.add_row(
-            "[bold]total[/]",
-            f"{c['total_s']:.2f} (≤ 5: {'yes' if c['total_s'] <= tg['compile_s'] else 'no'})",
-        )
-        t.add_row("from the cache, all", f"{c['cached_total_s']:.2f}")
-        tables.append(t)
-    return tables
+    return t
+
+
+def _compile_table(r: dict[str, Any]) -> Table | None:
+    """The first call of each case from an empty cache."""
+    tg = r["targets"]
+    if "compile" not in r:
+        return None
+    c = r["compile"]
+    t = Table(
+        title="Compile: first call of each case from an empty cache (fresh process)",
+        title_justify="left",
+    )
+    t.add_column("case")
+    t.add_column("first call [s]", justify="right")
+    for name, sec in c["first_call_s"].items():
+        t.add_row(name, f"{sec:.2f}")
+    t.add_row(
+        "[bold]total[/]",
+        f"{c['total_s']:.2f} (≤ 5: {'yes' if c['total_s'] <= tg['compile_s'] else 'no'})",
+    )
+    t.add_row("from the cache, all", f"{c['cached_total_s']:.2f}")
+    return t
+
+
+def _bench_tables(r: dict[str, Any]) -> list[Table]:
+    """The benchmark's figures as tables, each target beside its figure."""
+    tables = (_full_table(r), _heyoka_table(r), _averaged_table(r), _batch_table(r),
+              _compile_table(r))  # fmt: skip
+    return [t for t in tables if t is not None]
 
 
 @app.command("bench")

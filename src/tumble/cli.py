@@ -7,10 +7,12 @@ Bad input prints one red line to stderr and exits 2; a failed integration exits 
 
 from __future__ import annotations
 
+import collections
+import contextlib
 import os
 import sys
 import warnings
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Annotated, Any, Literal
 
@@ -578,50 +580,13 @@ def sweep_cmd(
     Started again with the same command, a sweep keeps the points it finished and computes
     only the others.
     """
-    from rich.progress import (
-        BarColumn,
-        MofNCompleteColumn,
-        Progress,
-        ProgressColumn,
-        Task,
-        TextColumn,
-        TimeElapsedColumn,
-        TimeRemainingColumn,
-    )
-    from rich.text import Text
-
     from tumble.app.sweep import sweep
 
     if scheduler is not None and workers is not None:
         err.print("[red]error:[/red] --workers applies to the local cluster, not --scheduler")
         raise typer.Exit(2)
-
-    class Rate(ProgressColumn):
-        def render(self, task: Task) -> Text:
-            speed = task.speed
-            return Text("" if speed is None else f"{speed:.3g} points/s")
-
-    columns = (
-        TextColumn("sweep"),
-        BarColumn(),
-        MofNCompleteColumn(),
-        Rate(),
-        TimeElapsedColumn(),
-        TextColumn("left"),
-        TimeRemainingColumn(),
-    )
     try:
-        with Progress(*columns, console=err, disable=not err.is_terminal) as bar:
-            task = bar.add_task("sweep", total=None)
-            started: list[int] = []
-
-            def progress(done: int, total: int) -> None:
-                if not started:  # points found on disk are not part of the rate
-                    started.append(done)
-                    bar.reset(task, total=total, completed=done)
-                else:
-                    bar.update(task, completed=done, total=total)
-
+        with _sweep_progress() as progress:
             result = _guarded(
                 lambda: sweep(
                     sweep_file,
@@ -641,6 +606,55 @@ def sweep_cmd(
             soft_wrap=True,
         )
         raise typer.Exit(130) from None
+    _report_sweep(result)
+
+
+@contextlib.contextmanager
+def _sweep_progress() -> Iterator[Callable[[int, int], None]]:
+    """A progress bar on stderr (points, points/s, time left), as the callback a sweep calls
+    with (points done, points in all)."""
+    from rich.progress import (
+        BarColumn,
+        MofNCompleteColumn,
+        Progress,
+        ProgressColumn,
+        Task,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
+    from rich.text import Text
+
+    class Rate(ProgressColumn):
+        def render(self, task: Task) -> Text:
+            speed = task.speed
+            return Text("" if speed is None else f"{speed:.3g} points/s")
+
+    columns = (
+        TextColumn("sweep"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        Rate(),
+        TimeElapsedColumn(),
+        TextColumn("left"),
+        TimeRemainingColumn(),
+    )
+    with Progress(*columns, console=err, disable=not err.is_terminal) as bar:
+        task = bar.add_task("sweep", total=None)
+        started: list[int] = []
+
+        def progress(done: int, total: int) -> None:
+            if not started:  # points found on disk are not part of the rate
+                started.append(done)
+                bar.reset(task, total=total, completed=done)
+            else:
+                bar.update(task, completed=done, total=total)
+
+        yield progress
+
+
+def _report_sweep(result: Any) -> None:
+    """What a sweep did: points, failures by reason, files."""
     ds = result.dataset
     shape = " × ".join(f"{d} {n}" for d, n in ds["status"].sizes.items())
     out.print(
@@ -652,8 +666,6 @@ def sweep_cmd(
         soft_wrap=True,
     )
     if result.failed:
-        import collections
-
         reasons = collections.Counter(
             str(r) for r, s in zip(ds["reason"].values.ravel(), ds["status"].values.ravel(),
                                     strict=True) if s == 1

@@ -197,17 +197,7 @@ def descend(
     Planar entry equations over a spherical non-rotating Earth, with zero lift: N. X. Vinh,
     A. Busemann, R. D. Culp, *Hypersonic and Planetary Entry Flight Mechanics* (1980).
     """
-    check_range("V0", V0, low=0.0)
-    check_range(
-        "gamma0", gamma0, low=-math.pi / 2, high=math.pi / 2, low_open=False, high_open=False
-    )
-    check_range("h_end", h_end, low=H_MIN, low_open=False)
-    check_range("h0", h0, low=h_end)
-    check_range("t_max", t_max, low=0.0)
-    check_range("rtol", rtol, low=1e-13, high=1e-3, low_open=False, high_open=False)
-    if cd is None:
-        cd = float(coefficients(capsule, 0.0).CD)
-    check_range("cd", cd, low=0.0, low_open=False)
+    cd = _checked(capsule, V0, gamma0, h0, h_end, cd, t_max, rtol)
     k = capsule.S * cd / (2.0 * capsule.m)  # drag per unit ρV² [m²/kg]
     rhs = _entry_rhs(k, MU_EARTH if gravity else 0.0, atmosphere.density_at)
     scale_h = max(abs(h0), 1.0)
@@ -220,22 +210,34 @@ def descend(
     t_peak = _peak_time(t, q, lambda s: float(_dqdt(_state(sol, np.array(s)), rhs, atmosphere)))
     v_peak, _, h_peak, _ = sol(np.array([t_peak]))[:, 0]
     q_peak = float(0.5 * atmosphere.density(h_peak) * v_peak**2)
-    return Descent(
-        t=t,
-        V=v,
-        gamma=gam,
-        h=h,
-        downrange=x,
-        q=q,
-        mach=v / atmosphere.speed_of_sound(h),
-        t_peak=t_peak,
-        q_peak=q_peak,
-        reached_h_end=reached,
-        cd=cd,
-        _sol=sol,
-        _rhs=rhs,
-        _atm=atmosphere,
+    mach = v / atmosphere.speed_of_sound(h)
+    return Descent(t, v, gam, h, x, q, mach, t_peak, q_peak, reached, cd, sol, rhs, atmosphere)
+
+
+def _checked(
+    capsule: Capsule,
+    V0: float,
+    gamma0: float,
+    h0: float,
+    h_end: float,
+    cd: float | None,
+    t_max: float,
+    rtol: float,
+) -> float:
+    """The inputs of :func:`descend` checked (one line naming the first out of its range);
+    the drag coefficient to use."""
+    check_range("V0", V0, low=0.0)
+    check_range(
+        "gamma0", gamma0, low=-math.pi / 2, high=math.pi / 2, low_open=False, high_open=False
     )
+    check_range("h_end", h_end, low=H_MIN, low_open=False)
+    check_range("h0", h0, low=h_end)
+    check_range("t_max", t_max, low=0.0)
+    check_range("rtol", rtol, low=1e-13, high=1e-3, low_open=False, high_open=False)
+    if cd is None:
+        cd = float(coefficients(capsule, 0.0).CD)
+    check_range("cd", cd, low=0.0, low_open=False)
+    return cd
 
 
 def _entry_rhs(

@@ -317,7 +317,7 @@ def verify(request: RunRequest, factors: Sequence[float] = VERIFY_FACTORS) -> Ve
     ParameterError
         If the model has no averaged method or the scenario has ε = 0.
     """
-    model, p, st = request.model, request.params, request.initial
+    model, p = request.model, request.params
     eps0 = float(getattr(p, "eps", 0.0))
     if eps0 == 0.0 and "closed_form" in model.methods:
         return _verify_closed_form(request)
@@ -331,36 +331,15 @@ def verify(request: RunRequest, factors: Sequence[float] = VERIFY_FACTORS) -> Ve
     model.check(p, "averaged")
     eps = eps0 * np.asarray(factors, dtype=float)
     symbol = {"tau": "τ"}.get(model.time.name, model.time.name)
-    curves: list[dict[str, tuple[FloatArray, FloatArray]]] = []
-    issues: list[list[dict[str, Any]]] = []
-    failures: list[str | None] = []
-    variables: list[str] = []
+    runs = [_one_epsilon(request, float(e), float(f)) for e, f in zip(eps, factors, strict=True)]
+    curves = [r.curves for r in runs]
+    issues = [r.issues for r in runs]
+    failures = [r.failure for r in runs]
+    variables = list(dict.fromkeys(v for r in runs for v in r.curves))
     scales: dict[str, float] = {}
-    for e, f in zip(eps, factors, strict=True):
-        pe = p.with_eps(float(e))
-        tau = np.asarray(request.tau, dtype=float) / f
-        try:  # the averaged run first: where it stops, the verdict needs no full run
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore", TumbleWarning)
-                avg = simulate(model, pe, st, tau, "averaged", rtol=request.rtol,
-                               atol=request.atol, averaging=request.averaging)  # fmt: skip
-        except IntegrationError as exc:
-            failures.append(str(exc))
-            curves.append({})
-            issues.append([])
-            continue
-        failures.append(None)
-        full = _full(request, pe, tau)
-        errs = slow_errors(model, pe, full, avg)
-        for v in errs:
-            if v in full.columns:
-                scales[v] = max(scales.get(v, 0.0), float(np.max(np.abs(full.columns[v]))))
-        for v in errs:
-            if v not in variables:
-                variables.append(v)
-        curves.append({v: (e * t, d) for v, (t, d) in errs.items()})
-        found = model.validity.check(pe, st, avg.slow, tau[-1]) if model.validity else []
-        issues.append(_merge_issues({"averaged": found}))
+    for r in runs:
+        for v, scale in r.scales.items():
+            scales[v] = max(scales.get(v, 0.0), scale)
     errors: dict[str, FloatArray] = {}
     orders: dict[str, float | None] = {}
     for v in variables:
@@ -391,3 +370,35 @@ def verify(request: RunRequest, factors: Sequence[float] = VERIFY_FACTORS) -> Ve
         status,
         verdict,
     )
+
+
+@dataclass(frozen=True)
+class _Run:
+    """Full against averaged at one ε: the error curves (slow time εt, |error|), the validity
+    issues of the averaged run, why the averaged run stopped (None: it did not), and the size
+    of each compared variable in the full run."""
+
+    curves: dict[str, tuple[FloatArray, FloatArray]]
+    issues: list[dict[str, Any]]
+    failure: str | None
+    scales: dict[str, float]
+
+
+def _one_epsilon(request: RunRequest, e: float, factor: float) -> _Run:
+    """The averaged run first: where it stops, the verdict needs no full run."""
+    model, st = request.model, request.initial
+    pe = request.params.with_eps(e)
+    tau = np.asarray(request.tau, dtype=float) / factor
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", TumbleWarning)
+            avg = simulate(model, pe, st, tau, "averaged", rtol=request.rtol, atol=request.atol,
+                           averaging=request.averaging)  # fmt: skip
+    except IntegrationError as exc:
+        return _Run({}, [], str(exc), {})
+    full = _full(request, pe, tau)
+    errs = slow_errors(model, pe, full, avg)
+    scales = {v: float(np.max(np.abs(full.columns[v]))) for v in errs if v in full.columns}
+    found = model.validity.check(pe, st, avg.slow, tau[-1]) if model.validity else []
+    curves = {v: (e * t, d) for v, (t, d) in errs.items()}
+    return _Run(curves, _merge_issues({"averaged": found}), None, scales)

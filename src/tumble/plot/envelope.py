@@ -59,6 +59,38 @@ def plot_envelope(
     if ax is None:
         _, ax = plt.subplots(figsize=(9, 4.8), layout="constrained")
     fig: Any = ax.figure
+    time_attrs = _draw_theta(ax, datasets, extrema)
+    mark_warnings(ax, marks)
+    ax.set_xlabel(f"time {time_attrs.get('name', 't')} [{time_attrs.get('units', '')}]")
+    ax.set_ylabel("nutation angle θ [deg]")
+    ax.grid(True, alpha=0.3)
+    handles, labels = ax.get_legend_handles_labels()
+    if pressure is not None:
+        t, values, label = pressure
+        ax2 = ax.twinx()
+        (line,) = ax2.plot(t, values, color="tab:green", lw=1.2, label=label)
+        ax2.set_ylabel(label, color="tab:green")
+        handles.append(line)
+        labels.append(label)
+    ax.legend(
+        handles,
+        labels,
+        loc="upper center",
+        bbox_to_anchor=(0.5, -0.14),
+        ncol=3,
+        fontsize=8,
+        frameon=False,
+    )
+    if title:
+        ax.set_title(title, fontsize=10)
+    return fig
+
+
+def _draw_theta(
+    ax: Axes, datasets: Mapping[str, xr.Dataset], extrema: Sequence[Sequence[Any]]
+) -> dict[str, Any]:
+    """θ(t) full and closed form, the full extrema and the averaged envelope, in degrees;
+    the attrs of the time coordinate."""
     deg = 180.0 / np.pi
     time_attrs: dict[str, Any] = {}
     if "full" in datasets:
@@ -95,27 +127,4 @@ def plot_envelope(
                 ls=ls,
                 label=f"θ{name[-3:]}, averaged (2.2)",
             )
-    mark_warnings(ax, marks)
-    ax.set_xlabel(f"time {time_attrs.get('name', 't')} [{time_attrs.get('units', '')}]")
-    ax.set_ylabel("nutation angle θ [deg]")
-    ax.grid(True, alpha=0.3)
-    handles, labels = ax.get_legend_handles_labels()
-    if pressure is not None:
-        t, values, label = pressure
-        ax2 = ax.twinx()
-        (line,) = ax2.plot(t, values, color="tab:green", lw=1.2, label=label)
-        ax2.set_ylabel(label, color="tab:green")
-        handles.append(line)
-        labels.append(label)
-    ax.legend(
-        handles,
-        labels,
-        loc="upper center",
-        bbox_to_anchor=(0.5, -0.14),
-        ncol=3,
-        fontsize=8,
-        frameon=False,
-    )
-    if title:
-        ax.set_title(title, fontsize=10)
-    return fig
+    return time_attrs

@@ -271,55 +271,13 @@ def capsule_attitude(
     descent = descend(capsule, V0, gamma0, h0, h_end=h_end, atmosphere=atmosphere, rtol=rtol)
     t_grid = descent.t
     eps_d = descent_eps(capsule, fit, descent, t_grid)
-    below = np.flatnonzero(eps_d <= eps_start)
-    if below.size == 0 and t_start is None:
-        raise ParameterError(
-            f"eps_start = {eps_start:g}: the descent's T·|q'|/q never falls that low "
-            f"(minimum {float(np.min(eps_d)):.3g})"
-        )
     if t_start is None:
-        i = int(below[0])
-        t_start = (
-            float(t_grid[0])
-            if i == 0
-            else float(
-                brentq(
-                    lambda t: (
-                        float(descent_eps(capsule, fit, descent, np.array([t]))[0]) - eps_start
-                    ),
-                    t_grid[i - 1],
-                    t_grid[i],
-                )
-            )
-        )
+        t_start = _window_start(capsule, fit, descent, eps_d, eps_start)
     check_range("t_start", t_start, low=0.0, high=float(t_grid[-1]), low_open=False)
     t_end = float(t_grid[-1])
     span = t_end - t_start
     q0 = float(descent.q_at(t_start))
-    eps = 1.0 / span
-
-    # Q(τ) as quintic interpolating splines of the descent's q, one per altitude layer of the
-    # atmosphere (dρ/dh, hence dq/dt, jumps where the lapse rate changes), and dQ/dτ as their
-    # derivative: one cheap function, smooth between those few kinks, shared by the full and
-    # the averaged runs; the averaged run is split at each kink (Pressure.breaks). (The
-    # descent's dense output itself costs ~1 ms per call.)
-    breaks = _layer_crossings(descent, atmosphere, t_start, t_end)
-    profile = _PiecewiseSpline(descent, np.array([t_start, *breaks, t_end]), q0)
-    Q, dQ = profile.value, profile.rate
-    scale = capsule.S * capsule.D / capsule.A
-    p = nm.Params(
-        mu=capsule.C / capsule.A,
-        a=q0 * scale * fit.c1,
-        b=q0 * scale * fit.c2,
-        eps=eps,
-        pressure=nm.Pressure(
-            "function",
-            function=Q,
-            derivative=dQ,
-            tau_end=1.0,
-            breaks=tuple((tb - t_start) / span for tb in breaks),
-        ),
-    )
+    p = _capsule_params(capsule, fit, descent, atmosphere, t_start, t_end, q0)
     options = AveragingOptions(start=averaged_init)
     R0 = p.mu * spin
     st = nm.State(theta=theta0, theta_dot=theta_dot0, R=R0, G=R0 * math.cos(theta0))
@@ -339,6 +297,63 @@ def capsule_attitude(
     eps_desc = float(np.max(descent_eps(capsule, fit, descent, window)))
     return CapsuleAttitude(
         capsule, fit, descent, t_start, t_end, p, st, trajectories, rows, env, eps_desc
+    )
+
+
+def _window_start(
+    capsule: Capsule, fit: MomentFit, descent: Descent, eps_d: FloatArray, eps_start: float
+) -> float:
+    """The first time the descent's ε = T·|q'|/q falls to ``eps_start`` [s]."""
+    t_grid = descent.t
+    below = np.flatnonzero(eps_d <= eps_start)
+    if below.size == 0:
+        raise ParameterError(
+            f"eps_start = {eps_start:g}: the descent's T·|q'|/q never falls that low "
+            f"(minimum {float(np.min(eps_d)):.3g})"
+        )
+    i = int(below[0])
+    if i == 0:
+        return float(t_grid[0])
+
+    def excess(t: float) -> float:
+        return float(descent_eps(capsule, fit, descent, np.array([t]))[0]) - eps_start
+
+    return float(brentq(excess, t_grid[i - 1], t_grid[i]))
+
+
+def _capsule_params(
+    capsule: Capsule,
+    fit: MomentFit,
+    descent: Descent,
+    atmosphere: AtmosphereModel,
+    t_start: float,
+    t_end: float,
+    q0: float,
+) -> nm.Params:
+    """The nonlinear-moment parameters of the capsule over the window [t_start, t_end].
+
+    Q(τ) is a quintic interpolating spline of the descent's q per altitude layer of the
+    atmosphere (dρ/dh, hence dq/dt, jumps where the lapse rate changes), and dQ/dτ its
+    derivative: one cheap function, smooth between those few kinks, shared by the full and
+    the averaged runs; the averaged run is split at each kink (Pressure.breaks). (The
+    descent's dense output itself costs ~1 ms per call.)
+    """
+    span = t_end - t_start
+    breaks = _layer_crossings(descent, atmosphere, t_start, t_end)
+    profile = _PiecewiseSpline(descent, np.array([t_start, *breaks, t_end]), q0)
+    scale = capsule.S * capsule.D / capsule.A
+    return nm.Params(
+        mu=capsule.C / capsule.A,
+        a=q0 * scale * fit.c1,
+        b=q0 * scale * fit.c2,
+        eps=1.0 / span,
+        pressure=nm.Pressure(
+            "function",
+            function=profile.value,
+            derivative=profile.rate,
+            tau_end=1.0,
+            breaks=tuple((tb - t_start) / span for tb in breaks),
+        ),
     )
 
 

@@ -22,6 +22,7 @@ from typing import Literal
 
 import numpy as np
 
+from tumble._typing import BoolArray, FloatArray
 from tumble.analysis import averaging_error_study, fitted_order
 from tumble.analysis.claims.base import Measurement, Panel, Series, claim
 from tumble.analysis.claims.common import (
@@ -630,36 +631,7 @@ def rf_9() -> Measurement:
         at n = 2 ± 0.5 or n/2 = 2 ± 0.5.
     """
     p = _params((1.0, 2.0, 3.0), math.pi / 2, 0.05)
-    w, V = np.linalg.eig(rf.linear_matrix(p))
-    v = V[:, int(np.argmin(np.abs(w - 1j)))]
-    v = v / v[np.argmax(np.abs(v))]
-    r = np.real(v) / np.linalg.norm(np.real(v))
-    A0 = 0.3
-    g = A0 * np.array([r[3], r[4], 0.0])  # tilt of x3: Γ = exp(γ̂), as a rotation of angle |γ|
-    ang = float(np.linalg.norm(g))
-    gamma = quat_to_matrix(np.r_[math.cos(ang / 2), math.sin(ang / 2) * g / ang])
-    st = rf.State(XI3 + A0 * r[:3], gamma)
-    tau_end = 6000.0
-    sol = integrate(
-        lambda t, y: rf.full_rhs(t, y, p),
-        rf.full_from_slow(p, st),
-        tau_end,
-        rtol=1e-10,
-        atol=1e-13,
-        kernel=rf.full_kernel(p),
-    )
-    t = np.linspace(0.0, tau_end, 60001)
-    Y = sol(t)
-    G = Y[:, 3:].reshape(-1, 3, 3)
-    x = Y[:, :3] - XI3
-    # |(x, γ1, γ2)|: the third row of Γ is (−γ2, γ1, 1) for every phase of the family.
-    d = np.sqrt(np.sum(x * x, axis=1) + G[:, 2, 0] ** 2 + G[:, 2, 1] ** 2)
-    starts = np.arange(0.0, tau_end - math.pi, math.pi)
-    env = np.maximum.reduceat(d, np.searchsorted(t, starts))[: starts.size]
-    nb = env.size // 60  # smooth over 60 half-periods of the ±i mode
-    A = env[: nb * 60].reshape(nb, 60).mean(axis=1)
-    tb = starts[: nb * 60].reshape(nb, 60).mean(axis=1)
-    rate = -np.gradient(np.log(A), tb)
+    tb, A, rate = _thin_plate_decay(p)
     ok = rate > 0.0
     n_lin = float(np.polyfit(np.log(A[ok]), np.log(rate[ok]), 1)[0])
     p_lin = float(np.polyfit(np.log(tb[5:]), np.log(A[5:]), 1)[0])
@@ -669,33 +641,7 @@ def rf_9() -> Measurement:
     others = min(
         abs(z.real) for z in analyze(rf.MODEL, p, family=False).roots if abs(z.real) > 1e-9
     )
-    a_ref = np.array([A[ok].min(), A[ok].max()])
-    r_mid = float(np.exp(np.mean(np.log(rate[ok]))))
-    a_mid = float(np.exp(np.mean(np.log(A[ok]))))
-    panels = (
-        Panel(
-            series=(
-                Series(tb, A, "envelope of |(x, γ1, γ2)|"),
-                Series(tb, A[5] * (tb / tb[5]) ** -0.5, "τ^(−1/2) (spec)", "dotted"),
-                Series(tb, A[5] * (tb / tb[5]) ** -0.25, "τ^(−1/4)", "dotted"),
-            ),
-            xlabel="τ",
-            ylabel="amplitude A",
-            xscale="log",
-            yscale="log",
-        ),
-        Panel(
-            series=(
-                Series(A[ok], rate[ok], f"fit: rate ∝ A^{n_lin:.2f}", "markers"),
-                Series(a_ref, r_mid * (a_ref / a_mid) ** 2, "∝ A² (spec)", "dotted"),
-                Series(a_ref, r_mid * (a_ref / a_mid) ** 4, "∝ A⁴", "dotted"),
-            ),
-            xlabel="A (0.1 … 0.26)",
-            ylabel="−d ln A/dτ",
-            xscale="log",
-            yscale="log",
-        ),
-    )
+    panels = _rf_9_panels(tb, A, rate, ok, n_lin)
     # The spec's statement, read for the linear amplitude A: rate ∝ A² (A ~ τ^(−1/2)); read
     # for a quadratic measure (A², e.g. k² or the energy of the mode): rate ∝ (A²)², i.e.
     # rate_A ∝ A⁴. ±0.5 on the exponent separates the two readings.
@@ -728,6 +674,74 @@ def rf_9() -> Measurement:
         max_rate_over_slowest_linear_rate=float(np.max(rate)) / others,
     )
     return Measurement(holds, True, m, panels)
+
+
+def _thin_plate_decay(p: rf.Params) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """The critical mode of the thin plate from amplitude 0.3: its envelope A of
+    |(x, γ1, γ2)| smoothed over 60 half-periods, at times tb, and −d ln A/dτ."""
+    w, V = np.linalg.eig(rf.linear_matrix(p))
+    v = V[:, int(np.argmin(np.abs(w - 1j)))]
+    v = v / v[np.argmax(np.abs(v))]
+    r = np.real(v) / np.linalg.norm(np.real(v))
+    A0 = 0.3
+    g = A0 * np.array([r[3], r[4], 0.0])  # tilt of x3: Γ = exp(γ̂), as a rotation of angle |γ|
+    ang = float(np.linalg.norm(g))
+    gamma = quat_to_matrix(np.r_[math.cos(ang / 2), math.sin(ang / 2) * g / ang])
+    st = rf.State(XI3 + A0 * r[:3], gamma)
+    tau_end = 6000.0
+    sol = integrate(
+        lambda t, y: rf.full_rhs(t, y, p),
+        rf.full_from_slow(p, st),
+        tau_end,
+        rtol=1e-10,
+        atol=1e-13,
+        kernel=rf.full_kernel(p),
+    )
+    t = np.linspace(0.0, tau_end, 60001)
+    Y = sol(t)
+    G = Y[:, 3:].reshape(-1, 3, 3)
+    x = Y[:, :3] - XI3
+    # |(x, γ1, γ2)|: the third row of Γ is (−γ2, γ1, 1) for every phase of the family.
+    d = np.sqrt(np.sum(x * x, axis=1) + G[:, 2, 0] ** 2 + G[:, 2, 1] ** 2)
+    starts = np.arange(0.0, tau_end - math.pi, math.pi)
+    env = np.maximum.reduceat(d, np.searchsorted(t, starts))[: starts.size]
+    nb = env.size // 60  # smooth over 60 half-periods of the ±i mode
+    A = env[: nb * 60].reshape(nb, 60).mean(axis=1)
+    tb = starts[: nb * 60].reshape(nb, 60).mean(axis=1)
+    rate = -np.gradient(np.log(A), tb)
+    return tb, A, rate
+
+
+def _rf_9_panels(
+    tb: FloatArray, A: FloatArray, rate: FloatArray, ok: BoolArray, n_lin: float
+) -> tuple[Panel, ...]:
+    a_ref = np.array([A[ok].min(), A[ok].max()])
+    r_mid = float(np.exp(np.mean(np.log(rate[ok]))))
+    a_mid = float(np.exp(np.mean(np.log(A[ok]))))
+    return (
+        Panel(
+            series=(
+                Series(tb, A, "envelope of |(x, γ1, γ2)|"),
+                Series(tb, A[5] * (tb / tb[5]) ** -0.5, "τ^(−1/2) (spec)", "dotted"),
+                Series(tb, A[5] * (tb / tb[5]) ** -0.25, "τ^(−1/4)", "dotted"),
+            ),
+            xlabel="τ",
+            ylabel="amplitude A",
+            xscale="log",
+            yscale="log",
+        ),
+        Panel(
+            series=(
+                Series(A[ok], rate[ok], f"fit: rate ∝ A^{n_lin:.2f}", "markers"),
+                Series(a_ref, r_mid * (a_ref / a_mid) ** 2, "∝ A² (spec)", "dotted"),
+                Series(a_ref, r_mid * (a_ref / a_mid) ** 4, "∝ A⁴", "dotted"),
+            ),
+            xlabel="A (0.1 … 0.26)",
+            ylabel="−d ln A/dτ",
+            xscale="log",
+            yscale="log",
+        ),
+    )
 
 
 @claim(
@@ -1254,31 +1268,9 @@ def rf_17() -> Measurement:
     series = []
     rows = []
     for psi0 in (0.0, 1.0, 2.0):  # three precession phases: the body settles at different φ
-        st = rf.state_from_elements(p, RF_BODY[2], 0.0, 0.0, 1e-3, "x3", psi0=psi0)
-        sol = integrate(
-            lambda t, y: rf.full_rhs(t, y, p),
-            rf.full_from_slow(p, st),
-            600.0,
-            kernel=rf.full_kernel(p),
-        )
-        tau = np.linspace(100.0, 600.0, 5001)
-        Y = sol(tau)
-        k2 = rf.slow_from_full(p, tau, Y)["k2"]
-        seg = np.array_split(np.arange(tau.size), 10)  # ~4 nutation periods each: envelope
-        rate = float(
-            np.polyfit([tau[s].mean() for s in seg], np.log([k2[s].max() for s in seg]), 1)[0]
-        )
-        G = Y[-1, 3:].reshape(3, 3)
-        phase = math.atan2(G[1, 0], G[0, 0])
-        rows.append(
-            {
-                "psi0": psi0,
-                "rate": rate,
-                "phase": phase,
-                "phase_formula": rf.final_nutation_decay_rate(p, phase),
-            }
-        )
-        series.append(Series(tau, k2, f"full, settles at φ = {phase:.2f}: rate {rate:.4f}"))
+        row, line = _settling(p, psi0)
+        rows.append(row)
+        series.append(line)
     t = np.linspace(100.0, 600.0, 2)
     for guide_rate, name in ((r37, "(3.7) linearized"), (r26, "(2.6), φ = 0")):
         series.append(
@@ -1295,28 +1287,7 @@ def rf_17() -> Measurement:
             yscale="log",
         ),
     )
-    # §11.5: the averaged system linearized at the end state (L_ξ = I3 ξ3, r = 1/I3) gives λ1
-    # and Re λ4,5 of (2.6) exactly: ∂(dL_ξ/dτ)/∂L_ξ by central differences (linear in L_ξ, so
-    # exact to round-off).
-    I3 = RF_BODY[2]
-    y_end = np.array([0.0, 0.0, I3, 1.0 / I3])
-    jac = []
-    for i in range(3):
-        h = np.zeros(4)
-        h[i] = 1e-6
-        jac.append(
-            (rf.averaged_rhs_vector(0.0, y_end + h, p) - rf.averaged_rhs_vector(0.0, y_end - h, p))[
-                i
-            ]
-            / 2e-6
-        )
-    approx = rf.approximate_roots(p)
-    lin = {
-        "lambda1_averaged": jac[2],
-        "lambda1_2_6": float(approx[0].real),
-        "re_lambda45_averaged": jac[0],
-        "re_lambda45_2_6": float(approx[3].real),
-    }
+    lin = _end_linearization(p)
     dev37 = max(abs(r["rate"] / r37 - 1.0) for r in rows)
     dev26 = max(abs(r["rate"] / r26 - 1.0) for r in rows)
     devphi = max(abs(r["rate"] / r["phase_formula"] - 1.0) for r in rows)
@@ -1340,6 +1311,51 @@ def rf_17() -> Measurement:
         averaged_linearization_at_end=lin,
     )
     return Measurement(holds, False, m, panels)
+
+
+def _settling(p: rf.Params, psi0: float) -> tuple[dict[str, float], Series]:
+    """A body near co-rotation from precession phase ψ0: its fitted k² decay rate, the phase
+    φ it settles at, the rate of the linearization at that phase, and its k²(τ) curve."""
+    st = rf.state_from_elements(p, RF_BODY[2], 0.0, 0.0, 1e-3, "x3", psi0=psi0)
+    sol = integrate(
+        lambda t, y: rf.full_rhs(t, y, p), rf.full_from_slow(p, st), 600.0, kernel=rf.full_kernel(p)
+    )
+    tau = np.linspace(100.0, 600.0, 5001)
+    Y = sol(tau)
+    k2 = rf.slow_from_full(p, tau, Y)["k2"]
+    seg = np.array_split(np.arange(tau.size), 10)  # ~4 nutation periods each: envelope
+    rate = float(np.polyfit([tau[s].mean() for s in seg], np.log([k2[s].max() for s in seg]), 1)[0])
+    G = Y[-1, 3:].reshape(3, 3)
+    phase = math.atan2(G[1, 0], G[0, 0])
+    row = {
+        "psi0": psi0,
+        "rate": rate,
+        "phase": phase,
+        "phase_formula": rf.final_nutation_decay_rate(p, phase),
+    }
+    return row, Series(tau, k2, f"full, settles at φ = {phase:.2f}: rate {rate:.4f}")
+
+
+def _end_linearization(p: rf.Params) -> dict[str, float]:
+    """§11.5: the averaged system linearized at the end state (L_ξ = I3 ξ3, r = 1/I3) gives λ1
+    and Re λ4,5 of (2.6) exactly: ∂(dL_ξ/dτ)/∂L_ξ by central differences (linear in L_ξ, so
+    exact to round-off)."""
+    I3 = RF_BODY[2]
+    y_end = np.array([0.0, 0.0, I3, 1.0 / I3])
+    jac = []
+    for i in range(3):
+        h = np.zeros(4)
+        h[i] = 1e-6
+        up = rf.averaged_rhs_vector(0.0, y_end + h, p)
+        down = rf.averaged_rhs_vector(0.0, y_end - h, p)
+        jac.append((up - down)[i] / 2e-6)
+    approx = rf.approximate_roots(p)
+    return {
+        "lambda1_averaged": float(jac[2]),
+        "lambda1_2_6": float(approx[0].real),
+        "re_lambda45_averaged": float(jac[0]),
+        "re_lambda45_2_6": float(approx[3].real),
+    }
 
 
 @claim(

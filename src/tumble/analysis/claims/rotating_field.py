@@ -900,42 +900,15 @@ def rf_12() -> Measurement:
         with (3.7) = chain rule to 1e-6.
     """
     rng = np.random.default_rng(12)
-    I1, I2, I3 = RF_BODY
+    I3 = RF_BODY[2]
     errs_engine, errs_tform, errs_k2 = [], [], []
     for beta in (0.4, 1.0, math.pi / 2):
         p = _params(RF_BODY, beta, 0.01)
         for _ in range(5):
-            # r = 2T/L² between 1/I3 and 1/I1, at least 2 % from the separatrix 1/I2.
-            while True:
-                r = float(rng.uniform(1.0 / I3, 1.0 / I1))
-                if abs(r * I2 - 1.0) > 0.02:
-                    break
-            L_xi = rng.normal(size=3)
-            L_xi *= rng.uniform(0.8, 2.5) / np.linalg.norm(L_xi)
-            y = np.array([*L_xi, r])
-            vec = rf.averaged_rhs_vector(0.0, y, p)
-            num = rf.averaged_rhs_numeric(0.0, y, p)
-            errs_engine.append(max_abs(vec - num) / (p.eps * (1.0 + np.linalg.norm(L_xi))))
-            # (3.5) + corrected (3.6) in (L, ρ, σ, T), compared with the vector form projected.
-            L = float(np.linalg.norm(L_xi))
-            perp = math.hypot(L_xi[0], L_xi[1])
-            rho = math.atan2(perp, L_xi[2])
-            T = 0.5 * r * L * L
-            tf = rf.averaged_rhs(0.0, np.array([L, rho, 0.0, T]), p)
-            dL = float(L_xi @ vec[:3]) / L
-            dperp = (L_xi[0] * vec[0] + L_xi[1] * vec[1]) / perp
-            drho = (L_xi[2] * dperp - perp * vec[2]) / (L * L)
-            dT = 0.5 * (vec[3] * L * L + 2.0 * r * L * dL)
-            errs_tform.append(max(abs(tf[0] - dL), abs(tf[1] - drho) * L, abs(tf[3] - dT)) / p.eps)
-            # (3.7): dk²/dτ against dk²/dr · dr/dτ (central difference of k²(r), h = 1e-6 r).
-            k2, reg = modulus_squared(I1, I2, I3, 1.0, 0.5 * r)
-            h = 1e-6 * r
-            dk2dr = (
-                modulus_squared(I1, I2, I3, 1.0, 0.5 * (r + h))[0]
-                - modulus_squared(I1, I2, I3, 1.0, 0.5 * (r - h))[0]
-            ) / (2 * h)
-            rate = rf.modulus_rate(p, k2, (perp / L) ** 2, reg)
-            errs_k2.append(abs(rate - dk2dr * vec[3]) / abs(rate))
+            e_engine, e_tform, e_k2 = _averaged_forms_at(p, _random_slow_state(rng))
+            errs_engine.append(e_engine)
+            errs_tform.append(e_tform)
+            errs_k2.append(e_k2)
     # Erratum 5 at the stationary rotation ρ = 0, k = 0, L = I3, T = I3/2 (β = 1).
     p = _params(RF_BODY, 1.0, 0.01)
     corrected = float(rf.averaged_rhs(0.0, np.array([I3, 0.0, 0.0, 0.5 * I3]), p)[3])
@@ -983,6 +956,48 @@ def rf_12() -> Measurement:
         printed_T_prime_at_stationary=printed,
     )
     return Measurement(holds, True, m, panels)
+
+
+def _random_slow_state(rng: np.random.Generator) -> FloatArray:
+    """[L_ξ, r] with |L| in (0.8, 2.5) and r = 2T/L² between 1/I3 and 1/I1, at least 2 % from
+    the separatrix 1/I2 (the body RF_BODY)."""
+    I1, I2, I3 = RF_BODY
+    while True:
+        r = float(rng.uniform(1.0 / I3, 1.0 / I1))
+        if abs(r * I2 - 1.0) > 0.02:
+            break
+    L_xi = rng.normal(size=3)
+    L_xi *= rng.uniform(0.8, 2.5) / np.linalg.norm(L_xi)
+    return np.array([*L_xi, r])
+
+
+def _averaged_forms_at(p: rf.Params, y: FloatArray) -> tuple[float, float, float]:
+    """At the slow state y = [L_ξ, r]: the vector form against the quadrature engine (relative
+    to ε(1 + L)), (3.5) + corrected (3.6) in (L, ρ, σ, T) against the vector form projected (in
+    units of ε), and (3.7) against dk²/dr · dr/dτ (relative, central difference h = 1e-6 r)."""
+    I1, I2, I3 = RF_BODY
+    L_xi, r = y[:3], float(y[3])
+    vec = rf.averaged_rhs_vector(0.0, y, p)
+    num = rf.averaged_rhs_numeric(0.0, y, p)
+    e_engine = max_abs(vec - num) / (p.eps * (1.0 + np.linalg.norm(L_xi)))
+    L = float(np.linalg.norm(L_xi))
+    perp = math.hypot(L_xi[0], L_xi[1])
+    rho = math.atan2(perp, L_xi[2])
+    T = 0.5 * r * L * L
+    tf = rf.averaged_rhs(0.0, np.array([L, rho, 0.0, T]), p)
+    dL = float(L_xi @ vec[:3]) / L
+    dperp = (L_xi[0] * vec[0] + L_xi[1] * vec[1]) / perp
+    drho = (L_xi[2] * dperp - perp * vec[2]) / (L * L)
+    dT = 0.5 * (vec[3] * L * L + 2.0 * r * L * dL)
+    e_tform = max(abs(tf[0] - dL), abs(tf[1] - drho) * L, abs(tf[3] - dT)) / p.eps
+    k2, reg = modulus_squared(I1, I2, I3, 1.0, 0.5 * r)
+    h = 1e-6 * r
+    dk2dr = (
+        modulus_squared(I1, I2, I3, 1.0, 0.5 * (r + h))[0]
+        - modulus_squared(I1, I2, I3, 1.0, 0.5 * (r - h))[0]
+    ) / (2 * h)
+    rate = rf.modulus_rate(p, k2, (perp / L) ** 2, reg)
+    return float(e_engine), float(e_tform), float(abs(rate - dk2dr * vec[3]) / abs(rate))
 
 
 @claim(

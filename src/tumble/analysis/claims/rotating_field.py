@@ -1017,18 +1017,7 @@ def rf_13() -> Measurement:
         Measured: the largest dk²/dτ of (3.7) in regime x3 [1/τ]; holds at < 0 with the long
         averaged run ending about the largest axis.
     """
-    rate_rows = []
-    for beta in (0.3, 1.0, math.pi / 2):
-        p = _params(RF_BODY, beta, 0.01)
-        for k2 in np.linspace(0.001, 0.999, 50):
-            for rho in (0.0, 1.0, math.pi / 2, 3.0):
-                rate_rows.append(
-                    (
-                        rf.modulus_rate(p, float(k2), math.sin(rho) ** 2, "x3"),
-                        rf.modulus_rate(p, float(k2), math.sin(rho) ** 2, "x1"),
-                    )
-                )
-    rates = np.array(rate_rows)
+    rates = _modulus_rates()
     max_x3 = float(np.max(rates[:, 0]))
     min_x1 = float(np.min(rates[:, 1]))
     # The long averaged run (§11.5): k² → 0, ρ → 0, L → I3.
@@ -1090,6 +1079,24 @@ def rf_13() -> Measurement:
         x1_transient_peak_k2=peak,
     )
     return Measurement(holds, qualified, m, panels)
+
+
+def _modulus_rates() -> FloatArray:
+    """dk²/dτ of (3.7) in regimes x3 and x1 (columns) over k² ∈ (0, 1), 4 values of ρ and
+    3 of β."""
+    rows = []
+    for beta in (0.3, 1.0, math.pi / 2):
+        p = _params(RF_BODY, beta, 0.01)
+        for k2 in np.linspace(0.001, 0.999, 50):
+            for rho in (0.0, 1.0, math.pi / 2, 3.0):
+                s2 = math.sin(rho) ** 2
+                rows.append(
+                    (
+                        rf.modulus_rate(p, float(k2), s2, "x3"),
+                        rf.modulus_rate(p, float(k2), s2, "x1"),
+                    )
+                )
+    return np.array(rows)
 
 
 @claim(

@@ -25,6 +25,7 @@ from scipy.optimize import brentq
 from tumble._typing import ArrayLike, ComplexArray, FloatArray
 from tumble.errors import ParameterError
 from tumble.kernels import Kernel
+from tumble.models.schema import ScenarioSchema
 
 __all__ = [
     "Averaged",
@@ -266,6 +267,7 @@ class Averaged(Generic[P, S]):
     compare: tuple[str, ...] = ()
     coordinates: tuple[str, ...] = ()  # choices of AveragingOptions.coordinates; first: default
     corrected_start: bool = False  # whether it has the first-order mean ↔ osculating start
+    numeric: bool = False  # whether the general engine can replace the paper's right-hand side
     errors: Callable[[P, Sampled, Sampled], Mapping[str, tuple[FloatArray, FloatArray]]] | None = (
         None
     )
@@ -390,6 +392,9 @@ class Model(Generic[P, S]):
         ``stationary(p)``: the stationary motion whose stability the paper analyses.
     report : callable, optional
         ``report(p, initial, trajectories)``: extra tables and summary keys of a run.
+    scenario : ScenarioSchema, optional
+        The keys of its scenario files and how they become ``Params`` and ``State``
+        (:mod:`tumble.models.schema`); None: Python only.
     methods : tuple of str
         The methods in the order a run computes and compares them; exactly those the
         capabilities provide ("full", and "averaged", "closed_form" where present).
@@ -407,6 +412,7 @@ class Model(Generic[P, S]):
     validity: Validity[P, S] | None = None
     stationary: Callable[[P], StationaryMotion[P]] | None = None
     report: Callable[[P, S, Mapping[str, Sampled]], Report] | None = None
+    scenario: ScenarioSchema[P, S] | None = None
 
     def __post_init__(self) -> None:
         provided = {"full"}

@@ -39,7 +39,7 @@ from tumble.averaging.nutation import (
     potential_gradient,
     torque_perturbation,
 )
-from tumble.errors import IntegrationError, ParameterError, check_range
+from tumble.errors import IntegrationError, ParameterError, ScenarioError, check_range
 from tumble.kernels import EVENT_THETA_DOT, KIND_NONLINEAR_MOMENT, Kernel
 from tumble.models.base import (
     Averaged,
@@ -62,6 +62,7 @@ from tumble.models.base import (
     first_time,
     fixed_columns,
 )
+from tumble.models.schema import Built, Inputs, Key, ScenarioSchema, Section, Variant
 from tumble.rotations import euler313_to_matrix, matrix_to_euler313, matrix_to_quat, quat_to_matrix
 from tumble.torques import LinearDrag
 from tumble.unperturbed.symmetric_body import NutationOrbit, effective_potential, potential_slope
@@ -1294,6 +1295,116 @@ FULL_REDUCED: FullForm[Params, State] = FullForm(
     to_columns=_reduced_columns,
 )
 
+# ---------------------------------------------------------------------------------------------
+# Scenario keys.
+
+_PARAMETERS = Section(
+    "parameters",
+    (
+        Key("mu", "number", "C/A, a number in (0, 2]"),
+        Key("a", "number", "sinθ coefficient of M0/A at t = 0, a finite number", "1/t^2"),
+        Key("b", "number", "sin2θ coefficient of M0/A at t = 0, a finite number", "1/t^2"),
+    ),
+    doc="the body and the moment M0/A = a sinθ + b sin2θ at t = 0",
+)
+_PERTURBATION = Section(
+    "perturbation",
+    (
+        Key("eps", "number", "a number in (0, 1)", doc="ε: the slow time is τ = εt"),
+        Key("d", "number", "pitch damping, a finite number", "1/t", 0.0),
+        Key("nu", "number", "roll damping, a finite number", "1/t", 0.0),
+        Key(
+            "pressure",
+            "any",
+            '"constant", "exp", a table [[τ, Q], ...] or {tau = [...], Q = [...]}',
+            default="constant",
+            doc="Q(τ): the moment scales as a(τ) = a·Q(τ)/Q(0), b(τ) likewise",
+        ),
+    ),
+    required=False,
+    doc="damping and a varying dynamic pressure (absent: the unperturbed motion)",
+)
+_PRESSURE_TABLE = Section(
+    "pressure",
+    (
+        Key("tau", "numbers", "ascending slow times τ = εt, from ≤ 0"),
+        Key("Q", "numbers", "pressure values > 0, one per τ"),
+    ),
+)
+_INITIAL = Section(
+    "initial",
+    (
+        Key("theta", "number", "an angle in (0, π)", "rad", angle=True, doc="nutation angle θ"),
+        Key("theta_dot", "number", "θ' at t = 0, a finite number", "rad/t", 0.0),
+        Key("psi", "number", "an angle", "rad", 0.0, angle=True),
+        Key("phi", "number", "an angle", "rad", 0.0, angle=True),
+        Key("R", "number", "R = Cr/A, a finite number", "1/t", 0.0),
+        Key("G", "number", "G = K·e_z/A, a finite number", "1/t", 0.0),
+    ),
+    doc="the initial state (θ, θ', ψ, φ) and the momenta R, G",
+)
+
+
+def _pressure_of(value: Any, inputs: Inputs) -> Pressure:
+    """``perturbation.pressure`` as a :class:`Pressure`: a name, [[τ, Q], ...] or a table."""
+    where = "perturbation.pressure"
+    if isinstance(value, str):
+        if value not in ("constant", "exp"):
+            raise ScenarioError(
+                f"{where} = {value!r}: expected "
+                '"constant", "exp", a table [[τ, Q], ...] or {tau = [...], Q = [...]}'
+            )
+        return Pressure(value)  # type: ignore[arg-type]
+    if isinstance(value, dict):
+        table = inputs.validate(_PRESSURE_TABLE, value, "perturbation")
+        return Pressure("table", tuple(table["tau"]), tuple(table["Q"]))
+
+    def number(x: Any) -> bool:
+        return isinstance(x, int | float) and not isinstance(x, bool)
+
+    if not isinstance(value, list) or not all(
+        isinstance(row, list) and len(row) == 2 and all(map(number, row)) for row in value
+    ):
+        raise ScenarioError(f"{where}: a table is a list of [τ, Q] pairs of numbers")
+    return Pressure("table", tuple(float(r[0]) for r in value), tuple(float(r[1]) for r in value))
+
+
+def _build(inputs: Inputs) -> Built[Params, State]:
+    par, pert, ini = inputs["parameters"], inputs["perturbation"], inputs["initial"]
+    assert par is not None and ini is not None  # required sections
+    if pert is not None and not (math.isfinite(pert["eps"]) and 0.0 < pert["eps"] < 1.0):
+        raise ParameterError(
+            f"perturbation.eps = {pert['eps']:g} is outside the allowed range (0, 1)"
+        )
+    p = Params(
+        mu=par["mu"],
+        a=par["a"],
+        b=par["b"],
+        eps=pert["eps"] if pert else 0.0,
+        d=pert["d"] if pert else 0.0,
+        nu=pert["nu"] if pert else 0.0,
+        pressure=_pressure_of(pert["pressure"], inputs) if pert else Pressure(),
+    )
+    names = ("theta", "theta_dot", "psi", "phi", "R", "G")
+    st = State(**{n: ini[n] for n in names})
+    t_end = inputs.run_end()
+    if p.eps * t_end > p.pressure.tau_max:
+        raise ParameterError(
+            f"perturbation.pressure table covers τ ≤ {p.pressure.tau_max:g}, but the run "
+            f"reaches τ = eps·t = {p.eps * t_end:g}"
+        )
+    orbit_of(p, st)  # no motion (e.g. a separatrix) → one line, before any run
+    methods = ("full", "averaged") if p.perturbed else ("full", "closed_form")
+    return Built(p, st, methods=methods)
+
+
+SCENARIO: ScenarioSchema[Params, State] = ScenarioSchema(
+    variants=(
+        Variant((_PARAMETERS, _PERTURBATION, _INITIAL), _build, samples=2001, doc="the paper's t"),
+    )
+)
+
+
 MODEL: Model[Params, State] = Model(
     name="nonlinear_moment",
     description="symmetric body under M0 = A(a·sinθ + b·sin2θ): exact motion, Volosov averaging",
@@ -1316,10 +1427,12 @@ MODEL: Model[Params, State] = Model(
         columns=fixed_columns(_AVERAGED),
         coordinates=("energy", "theta_max", "theta_min"),
         corrected_start=True,
+        numeric=True,
         errors=slow_errors,
         diagnostics=Diagnostics(_diagnostics, _DIAGNOSTICS),
     ),
     closed_form=ClosedForm(evaluate=closed_form, columns=fixed_columns(_UNPERTURBED)),
     validity=Validity(check=validity, limits=limits),
     report=report,
+    scenario=SCENARIO,
 )

@@ -25,7 +25,13 @@ from tumble._typing import ArrayLike, FloatArray
 from tumble.averaging.spinner import body_momentum, spinner_average, standard_form
 from tumble.bodies import RigidBody
 from tumble.dynamics import rigid_body_rhs
-from tumble.errors import IntegrationError, ParameterError, check_finite, check_range
+from tumble.errors import (
+    IntegrationError,
+    ParameterError,
+    ScenarioError,
+    check_finite,
+    check_range,
+)
 from tumble.kernels import Kernel, rigid_body_kernel
 from tumble.models.base import (
     Averaged,
@@ -44,6 +50,7 @@ from tumble.models.base import (
     fixed_columns,
     frozen_array,
 )
+from tumble.models.schema import Built, Inputs, Key, ScenarioSchema, Section, Variant
 from tumble.rotations import (
     attitude_from_kframe_angles,
     kframe_angles_from_attitude,
@@ -1308,6 +1315,95 @@ FULL_OSCULATING: FullForm[Params, State] = FullForm(
     to_columns=_osculating_columns,
 )
 
+# ---------------------------------------------------------------------------------------------
+# Scenario keys.
+
+_ANGLE_0_PI = "an angle in [0, π]"
+_ZERO3 = [0.0, 0.0, 0.0]
+_ZERO33 = [[0.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]]
+
+_PARAMETERS = Section(
+    "parameters",
+    (
+        Key("eps", "number", "a number ≥ 0", doc="small parameter ε = M0 I1/K0²"),
+        Key("kappa", "number", "a number in (-1, 1]", doc="oblateness κ, I3 = I1 (1 + κ)"),
+        Key("a", "vector3", "3 numbers", default=_ZERO3, doc="constant body moment A/M0"),
+        Key("b", "matrix3", "3×3", default=_ZERO33, doc="linear drag B/(M0 T0)"),
+        Key("s", "matrix3", "3×3", default=_ZERO33, doc="quadratic drag S/(M0 T0²)"),
+    ),
+    doc="the normalized parameters of (1.3)",
+)
+_INITIAL = Section(
+    "initial",
+    (
+        Key("k", "number", "a number > 0", default=1.0, doc="angular momentum |K|/K0"),
+        Key("rho", "number", _ANGLE_0_PI, "rad", 0.0, angle=True, doc="polar angle ρ of K"),
+        Key("sigma", "number", "an angle", "rad", 0.0, angle=True, doc="azimuth σ of K"),
+        Key("psi", "number", "an angle", "rad", 0.0, angle=True, doc="precession angle ψ"),
+        Key("theta", "number", _ANGLE_0_PI, "rad", angle=True, doc="nutation angle ϑ"),
+        Key("phi", "number", "an angle", "rad", 0.0, angle=True, doc="proper rotation φ"),
+    ),
+    doc="the initial state in the K-frame angles of §2",
+)
+_PHYSICAL = Section(
+    "physical",
+    (
+        Key("I1", "number", "equatorial moment of inertia > 0", "kg m^2"),
+        Key("I3", "number", "polar moment of inertia in (0, 2 I1]", "kg m^2"),
+        Key("A", "vector3", "3 moments", "N m", _ZERO3, doc="constant body moment"),
+        Key("B", "matrix3", "3×3", "N m s", _ZERO33, doc="linear drag"),
+        Key("S", "matrix3", "3×3", "N m s^2", _ZERO33, doc="quadratic drag"),
+        Key("M0", "number", "a moment scale > 0", "N m", None, doc="default: from A, B, S"),
+    ),
+    doc="the body and the medium in SI units",
+)
+_PHYSICAL_INITIAL = Section(
+    "initial",
+    (
+        Key("omega", "vector3", "body angular velocity, 3 numbers", "rad/s"),
+        Key("quaternion", "vector4", "attitude quaternion [q0, q1, q2, q3]", default=None),
+        Key("rho", "number", _ANGLE_0_PI, "rad", None, angle=True),
+        Key("sigma", "number", "an angle", "rad", None, angle=True),
+        Key("psi", "number", "an angle", "rad", None, angle=True),
+    ),
+    doc="the body rate and its attitude (a quaternion, or the K-frame angles ρ, σ, ψ)",
+)
+
+
+def _build(inputs: Inputs) -> Built[Params, State]:
+    par, ini = inputs["parameters"], inputs["initial"]
+    assert par is not None and ini is not None  # required sections
+    p = Params(eps=par["eps"], kappa=par["kappa"], a=par["a"], b=par["b"], s=par["s"])
+    angles = {n: ini[n] for n in ("k", "rho", "sigma", "psi", "theta", "phi")}
+    return Built(p, State(**angles))
+
+
+def _build_physical(inputs: Inputs) -> Built[Params, State]:
+    ph, ini = inputs["physical"], inputs["initial"]
+    assert ph is not None and ini is not None  # required sections
+    phys = PhysicalParams(I1=ph["I1"], I3=ph["I3"], A=ph["A"], B=ph["B"], S=ph["S"], M0=ph["M0"])
+    given = [n for n in ("rho", "sigma", "psi") if ini[n] is not None]
+    if ini["quaternion"] is not None and given:
+        raise ScenarioError("initial: give either quaternion or rho, sigma, psi, not both")
+    if ini["quaternion"] is None and len(given) != 3:
+        raise ScenarioError("initial: give the attitude as quaternion or as all of rho, sigma, psi")
+    if ini["quaternion"] is not None and not np.any(ini["quaternion"]):
+        raise ParameterError("initial.quaternion = [0, 0, 0, 0] is not a rotation")
+    p, st, scaling = normalize_physical(
+        phys, ini["omega"], attitude=ini["quaternion"], rho=ini["rho"], sigma=ini["sigma"],
+        psi=ini["psi"],
+    )  # fmt: skip
+    return Built(p, st, scaling)
+
+
+SCENARIO: ScenarioSchema[Params, State] = ScenarioSchema(
+    variants=(
+        Variant((_PARAMETERS, _INITIAL), _build, doc="normalized variables (τ, k, ε)"),
+        Variant((_PHYSICAL, _PHYSICAL_INITIAL), _build_physical, physical=True, doc="SI units"),
+    )
+)
+
+
 _COLUMNS_FULL_OF = fixed_columns(_COLUMNS_FULL)
 _COLUMNS_SLOW_OF = fixed_columns(_COLUMNS_SLOW)
 
@@ -1331,8 +1427,12 @@ MODEL: Model[Params, State] = Model(
     check=_check_method,
     methods=("full", "averaged", "closed_form"),
     averaged=Averaged(
-        form=_averaged_form, columns=_COLUMNS_SLOW_OF, compare=("k", "rho", "sigma", "theta")
+        form=_averaged_form,
+        columns=_COLUMNS_SLOW_OF,
+        compare=("k", "rho", "sigma", "theta"),
+        numeric=True,
     ),
     closed_form=ClosedForm(evaluate=closed_form, columns=_COLUMNS_SLOW_OF),
     validity=Validity(check=validity, limits=predicted_limits),
+    scenario=SCENARIO,
 )

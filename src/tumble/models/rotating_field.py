@@ -17,6 +17,7 @@ means the angular momentum encircles the axis of the largest moment, ``"x1"`` th
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
@@ -27,7 +28,7 @@ from tumble._typing import ArrayLike, BoolArray, FloatArray
 from tumble.averaging.triaxial import triaxial_average_vector
 from tumble.bodies import RigidBody
 from tumble.dynamics import rigid_body_rhs
-from tumble.errors import ParameterError, check_range
+from tumble.errors import ParameterError, ScenarioError, check_range
 from tumble.kernels import KIND_ROTATING_FIELD, Kernel, rigid_body_kernel
 from tumble.models.base import (
     Averaged,
@@ -49,6 +50,7 @@ from tumble.models.base import (
     frozen_array,
     separatrix_time,
 )
+from tumble.models.schema import Built, Inputs, Key, ScenarioSchema, Section, Variant
 from tumble.rotations import (
     euler313_to_matrix,
     kframe_matrix,
@@ -1242,6 +1244,106 @@ FULL_INERTIAL: FullForm[Params, State] = FullForm(
 )
 
 
+# ---------------------------------------------------------------------------------------------
+# Scenario keys.
+
+_PARAMETERS = Section(
+    "parameters",
+    (
+        Key("inertia", "vector3", "3 principal moments > 0 obeying the triangle inequality"),
+        Key(
+            "beta",
+            "number",
+            "an angle in [0, π]",
+            "rad",
+            angle=True,
+            doc="angle between the field and its rotation axis",
+        ),
+        Key("eps", "number", "a number > 0", doc="ε = M0/ω"),
+    ),
+    doc="the body and the field, normalized by the field's rate",
+)
+_INITIAL = Section(
+    "initial",
+    (
+        Key("z", "vector3", "body angular velocity over ω, 3 numbers", default=None),
+        Key("gamma", "matrix3", "3 rows of the rotation Γ (v_η = Γ v_x)", default=None),
+        Key("L", "number", "a number > 0", default=None, doc="|L|"),
+        Key("rho", "number", "an angle in [0, π]", "rad", None, angle=True),
+        Key("sigma", "number", "an angle", "rad", None, angle=True),
+        Key("k2", "number", "a number in [0, 1]", default=None, doc="Euler–Poinsot modulus"),
+        Key("regime", "text", '"x3" or "x1"', default="x3", choices=("x3", "x1")),
+        Key("u0", "number", "a phase u of (3.1)", default=0.0),
+        Key("psi0", "number", "an angle", "rad", 0.0, angle=True),
+    ),
+    doc="z and Γ, or the slow elements L, ρ, σ, k² with the regime and phases",
+)
+_PHYSICAL = Section(
+    "physical",
+    (
+        Key("inertia", "vector3", "3 principal moments > 0", "kg m^2"),
+        Key("k_f", "number", "eddy-current factor > 0", "N m s/(A/m)^2"),
+        Key("H", "number", "field strength > 0", "A/m"),
+        Key("omega", "number", "field rotation rate > 0", "rad/s"),
+        Key("beta", "number", "an angle in [0, π]", "rad", angle=True),
+    ),
+    doc="the body and the field in SI units",
+)
+_PHYSICAL_INITIAL = Section(
+    "initial",
+    (
+        Key("Omega", "vector3", "body angular velocity, 3 numbers", "rad/s"),
+        Key("gamma", "matrix3", "3 rows of the body → inertial rotation"),
+    ),
+)
+
+
+def _initial_state(p: Params, ini: Mapping[str, Any]) -> State:
+    elements = ("L", "rho", "sigma", "k2")
+    given = [n for n in elements if ini[n] is not None]
+    direct = [n for n in ("z", "gamma") if ini[n] is not None]
+    if direct and given:
+        raise ScenarioError(
+            "initial: give either z and gamma, or the slow elements L, rho, sigma, k2 "
+            f"(with regime, u0, psi0), not both (got {', '.join(direct + given)})"
+        )
+    if direct:
+        if len(direct) != 2:
+            raise ScenarioError("initial: z and gamma go together (give both)")
+        return State(np.array(ini["z"]), np.array(ini["gamma"]))
+    if len(given) != len(elements):
+        missing = [n for n in elements if n not in given]
+        raise ScenarioError(
+            "initial: give z and gamma, or all of L, rho, sigma, k2 "
+            f"(missing: {', '.join(missing)})"
+        )
+    L, rho, sigma, k2 = (float(ini[n]) for n in elements)
+    return state_from_elements(p, L, rho, sigma, k2, ini["regime"], u0=ini["u0"], psi0=ini["psi0"])
+
+
+def _build(inputs: Inputs) -> Built[Params, State]:
+    par, ini = inputs["parameters"], inputs["initial"]
+    assert par is not None and ini is not None  # required sections
+    p = Params(par["inertia"], par["beta"], par["eps"])
+    return Built(p, _initial_state(p, ini))
+
+
+def _build_physical(inputs: Inputs) -> Built[Params, State]:
+    ph, ini = inputs["physical"], inputs["initial"]
+    assert ph is not None and ini is not None  # required sections
+    phys = PhysicalParams(ph["inertia"], ph["k_f"], ph["H"], ph["omega"], ph["beta"])
+    p, st, scaling = normalize_physical(phys, ini["Omega"], ini["gamma"])
+    return Built(p, st, scaling)
+
+
+SCENARIO: ScenarioSchema[Params, State] = ScenarioSchema(
+    variants=(
+        Variant((_PARAMETERS, _INITIAL), _build, doc="normalized by the field's rate (τ = ωt)"),
+        Variant((_PHYSICAL, _PHYSICAL_INITIAL), _build_physical, physical=True, doc="SI units"),
+    )
+)
+
+
 def _check_method(p: Params, method: str) -> None:
     """Every method applies to every valid parameter set (ε = 0 averages to no evolution)."""
 
@@ -1269,7 +1371,9 @@ MODEL: Model[Params, State] = Model(
         # with ξ3 (ρ → 0), where its error says nothing about the motion.
         compare=("L", "rho", "T"),
         diagnostics=Diagnostics(diagnostics, _DIAGNOSTICS),
+        numeric=True,
     ),
     validity=Validity(check=validity, limits=predicted_limits),
     stationary=stationary,
+    scenario=SCENARIO,
 )

@@ -34,7 +34,7 @@ from tumble._typing import BoolArray, FloatArray
 from tumble.averaging import nearest_resonance, triaxial_average_vector
 from tumble.bodies import RigidBody
 from tumble.dynamics import rigid_body_rhs
-from tumble.errors import ParameterError, check_range
+from tumble.errors import ParameterError, ScenarioError, check_range
 from tumble.kernels import Kernel, rigid_body_kernel
 from tumble.models.base import (
     Averaged,
@@ -54,7 +54,8 @@ from tumble.models.base import (
     frozen_array,
     separatrix_time,
 )
-from tumble.rotations import quat_normalize, quat_to_matrix
+from tumble.models.schema import Built, Inputs, Key, ScenarioSchema, Section, Variant
+from tumble.rotations import euler313_to_matrix, matrix_to_quat, quat_normalize, quat_to_matrix
 from tumble.torques import (
     ConstantBodyTorque,
     ConstantInertialTorque,
@@ -565,6 +566,150 @@ def _report(p: Params, st: State, trajectories: Mapping[str, Sampled]) -> Report
     return Report(summary={"torque": p.label, "forcing_period": p.forcing_period})
 
 
+# ---------------------------------------------------------------------------------------------
+# Scenario keys.
+
+_PARAMETERS = Section(
+    "parameters",
+    (
+        Key("inertia", "vector3", "3 principal moments > 0 obeying the triangle inequality"),
+        Key("eps", "number", "a number ≥ 0 (the factor of the torque)"),
+    ),
+    doc="the body and the size of the torque",
+)
+_TORQUE = Section(
+    "",
+    (
+        Key(
+            "torque",
+            "any",
+            '"module:function" or a list of [[torque]] tables with a kind',
+            doc="a user function f(t, q, omega, params), or built-in terms",
+        ),
+        Key("torque_params", "table", "a table passed to the user function", default={}),
+        Key(
+            "torque_period",
+            "number",
+            "period of the user function's time dependence > 0",
+            "t",
+            None,
+        ),
+    ),
+    doc="the torque (top-level keys)",
+)
+_INITIAL = Section(
+    "initial",
+    (
+        Key("omega", "vector3", "body angular velocity, 3 numbers", "rad/t"),
+        Key("quaternion", "vector4", "attitude quaternion [q0, q1, q2, q3]", default=None),
+        Key("psi", "number", "3-1-3 Euler angle ψ", "rad", None, angle=True),
+        Key("theta", "number", "3-1-3 Euler angle ϑ", "rad", None, angle=True),
+        Key("phi", "number", "3-1-3 Euler angle φ", "rad", None, angle=True),
+    ),
+    doc="the body rate and its attitude (a quaternion or 3-1-3 Euler angles; default identity)",
+)
+
+
+def _term(kind: str, *keys: Key) -> Section:
+    return Section("torque", (Key("kind", "text", f'"{kind}"', choices=(kind,)), *keys))
+
+
+_MOMENT = Key("moment", "vector3", "3 components of the moment")
+TERMS: dict[str, Section] = {
+    "gravity_gradient": _term(
+        "gravity_gradient",
+        Key("n", "number", "orbital rate > 0", "rad/t"),
+        Key("normal", "vector3", "orbit normal", default=[0.0, 0.0, 1.0]),
+        Key("u0", "number", "argument of latitude at t = 0", "rad", 0.0, angle=True),
+    ),
+    "inertial_constant": _term("inertial_constant", _MOMENT),
+    "body_constant": _term("body_constant", _MOMENT),
+    "linear_drag": _term("linear_drag", Key("B", "matrix3", "3×3 damping matrix, M = −B ω")),
+    "quadratic_drag": _term("quadratic_drag", Key("S", "matrix3", "3×3 matrix, M = −S (ω ∘ |ω|)")),
+    "user": _term(
+        "user",
+        Key("function", "text", '"module:function", f(t, q, omega, params) -> body moment'),
+        Key("params", "table", "a table for f", default={}),
+        Key("period", "number", "period of f's time dependence > 0", "t", None),
+    ),
+}
+"""The [[torque]] tables by kind."""
+
+
+def _term_tables(inputs: Inputs) -> list[dict[str, Any]]:
+    top = inputs[""]
+    assert top is not None  # the top-level keys
+    torque = top["torque"]
+    if isinstance(torque, str):
+        function = inputs.import_function(torque, "torque")
+        return [
+            {"kind": "user", "function": function, "name": torque,
+             "params": top["torque_params"], "period": top["torque_period"]}
+        ]  # fmt: skip
+    if top["torque_params"] or top["torque_period"] is not None:
+        raise ScenarioError(
+            'torque_params, torque_period: only with torque = "module:function" (in a '
+            "[[torque]] table give params and period inside it)"
+        )
+    if not isinstance(torque, list) or not all(isinstance(t, dict) for t in torque):
+        raise ScenarioError(
+            f"torque = {torque!r}: expected " + '"module:function" or [[torque]] tables'
+        )
+    terms = []
+    for i, raw in enumerate(torque):
+        kind = raw.get("kind")
+        if kind not in TERMS:
+            raise ScenarioError(
+                f"torque[{i}].kind = {kind!r} is not a torque (allowed: {', '.join(TERMS)})"
+            )
+        term = inputs.validate(TERMS[kind], raw, f"torque[{i}]")
+        if kind == "user":
+            term["name"] = term["function"]
+            term["function"] = inputs.import_function(term["function"], f"torque[{i}].function")
+        terms.append(term)
+    return terms
+
+
+def _check_user_torque(torque: Torque, st: State) -> None:
+    """Call the torque once at the initial state: a broken user function fails here, in one
+    line, rather than deep inside an integration."""
+    try:
+        m = np.asarray(torque(0.0, st.q, st.omega), dtype=float)
+    except Exception as exc:
+        raise ScenarioError(
+            f"torque: evaluating it at the initial state raised {type(exc).__name__}: {exc}"
+        ) from None
+    if m.shape != (3,) or not np.all(np.isfinite(m)):
+        raise ScenarioError(
+            f"torque: at the initial state it returned {m.tolist()!r} (expected 3 finite "
+            "numbers, the body components of the moment)"
+        )
+
+
+def _build(inputs: Inputs) -> Built[Params, State]:
+    par, ini = inputs["parameters"], inputs["initial"]
+    assert par is not None and ini is not None  # required sections
+    torque, period, label = torque_from_terms(par["inertia"], _term_tables(inputs))
+    angles = [n for n in ("psi", "theta", "phi") if ini[n] is not None]
+    if ini["quaternion"] is not None and angles:
+        raise ScenarioError("initial: give either quaternion or psi, theta, phi, not both")
+    if angles and len(angles) != 3:
+        raise ScenarioError("initial: give all of psi, theta, phi (3-1-3 Euler angles)")
+    if angles:
+        q = matrix_to_quat(euler313_to_matrix(ini["psi"], ini["theta"], ini["phi"]))
+    else:
+        q = np.array(ini["quaternion"] if ini["quaternion"] is not None else [1.0, 0.0, 0.0, 0.0])
+    st = State(np.array(ini["omega"]), q)
+    p = Params(np.array(par["inertia"]), par["eps"], torque, period, label)
+    _check_user_torque(p.torque, st)
+    return Built(p, st)
+
+
+SCENARIO: ScenarioSchema[Params, State] = ScenarioSchema(
+    variants=(Variant((_PARAMETERS, _TORQUE, _INITIAL), _build, doc="any time unit t"),)
+)
+
+
 MODEL: Model[Params, State] = Model(
     name="torqued_body",
     description="triaxial rigid body under any small torque, averaged by the general engine",
@@ -580,4 +725,5 @@ MODEL: Model[Params, State] = Model(
     ),
     validity=Validity(check=validity),
     report=_report,
+    scenario=SCENARIO,
 )

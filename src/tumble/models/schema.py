@@ -1,0 +1,169 @@
+"""The scenario keys of a model, declared beside its physics.
+
+A model states which tables and keys a scenario file of it has (:class:`Section`,
+:class:`Key`: kind, allowed values, unit, default, documentation) and how the validated values
+become its ``Params`` and ``State`` (:attr:`Variant.build`). The loader in :mod:`tumble.io`
+is generic: it validates any model's file against these declarations, with one-line errors
+that name the key and its allowed values, and the key reference of the documentation is
+generated from them. Plain dataclasses only: the models import no validation library.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from typing import Any, Generic, Literal, Protocol, TypeVar
+
+from tumble._typing import FloatArray
+
+__all__ = [
+    "REQUIRED",
+    "Built",
+    "Inputs",
+    "Key",
+    "KeyKind",
+    "Scaling",
+    "ScenarioSchema",
+    "Section",
+    "Variant",
+]
+
+P = TypeVar("P")
+S = TypeVar("S")
+
+
+class _Required:
+    """The default of a key that must be given."""
+
+    def __repr__(self) -> str:
+        return "REQUIRED"
+
+
+REQUIRED: Any = _Required()
+"""The default of a key that must be given."""
+
+KeyKind = Literal[
+    "number", "integer", "boolean", "text", "vector3", "vector4", "matrix3", "numbers", "table",
+    "any",
+]  # fmt: skip
+"""What a key holds: a float, an int, true/false, one of ``choices`` (text), 3 or 4 numbers,
+3 rows of 3 numbers, a list of numbers, a table of anything, or anything at all (the model's
+build function checks it)."""
+
+
+@dataclass(frozen=True, slots=True)
+class Key:
+    """One key of a scenario table.
+
+    Attributes
+    ----------
+    name : str
+        The key as written in the file.
+    kind : KeyKind
+        What it holds.
+    expected : str
+        Its allowed values in words ("a number in (0, 2]"), shown in errors and the reference.
+    units : str
+        Its unit ("" when it has none); the reference and the outputs' attributes read it.
+    default : object
+        The value when the key is absent; :data:`REQUIRED` when it must be given, None when it
+        is optional with no value.
+    choices : tuple of str
+        For ``kind = "text"``: the values allowed.
+    angle : bool
+        Also accepted as ``<name>_deg``, in degrees (converted to radians).
+    doc : str
+        What it is, for the reference.
+    """
+
+    name: str
+    kind: KeyKind
+    expected: str
+    units: str = ""
+    default: Any = REQUIRED
+    choices: tuple[str, ...] = ()
+    angle: bool = False
+    doc: str = ""
+
+
+@dataclass(frozen=True, slots=True)
+class Section:
+    """A table of a scenario file (``[parameters]``, ``[initial]``, …) and its keys."""
+
+    name: str
+    keys: tuple[Key, ...]
+    required: bool = True
+    doc: str = ""
+
+
+class Inputs(Protocol):
+    """The validated values of a scenario, handed to a model's build function."""
+
+    def __getitem__(self, section: str) -> Mapping[str, Any] | None:
+        """The values of ``section`` by key (defaults filled in), None if it is absent."""
+        ...
+
+    def validate(self, section: Section, raw: Mapping[str, Any], where: str) -> dict[str, Any]:
+        """A table checked against ``section`` (errors name it ``where``), e.g. one entry of
+        a list of tables."""
+        ...
+
+    def import_function(self, spec: str, where: str) -> Callable[..., Any]:
+        """The callable named ``"module:function"``, imported from the scenario's folder
+        first."""
+        ...
+
+    def run_end(self) -> float:
+        """The last time the run asks for, in the units of its ``[run]`` table."""
+        ...
+
+
+class Scaling(Protocol):
+    """Physical units of a scenario: times in seconds to the model's time, and a summary."""
+
+    def tau_from_time(self, t_s: FloatArray) -> FloatArray: ...
+
+    def summary(self) -> dict[str, Any]: ...
+
+
+@dataclass(frozen=True)
+class Built(Generic[P, S]):
+    """What a build function makes of a scenario's values.
+
+    ``scaling`` converts the ``[run]`` times of a physical-units scenario; ``methods`` are the
+    default methods when the file names none (None: all the model has).
+    """
+
+    params: P
+    initial: S
+    scaling: Scaling | None = None
+    methods: tuple[str, ...] | None = None
+
+
+@dataclass(frozen=True)
+class Variant(Generic[P, S]):
+    """One way to write a scenario of the model: its tables besides ``model`` and ``run``, and
+    how their values become the model's inputs.
+
+    A variant with ``physical = True`` is chosen when the file has a ``[physical]`` table;
+    its ``[run]`` times are in seconds (``t_end_s``, ``t_s``).
+    """
+
+    sections: tuple[Section, ...]
+    build: Callable[[Inputs], Built[P, S]]
+    physical: bool = False
+    samples: int = 401  # default number of samples in [run]
+    doc: str = ""
+
+
+@dataclass(frozen=True)
+class ScenarioSchema(Generic[P, S]):
+    """Every way to write a scenario of the model, and its own ``[run]`` keys beyond the
+    common ones (times, samples, methods, tolerances, verify, integrator, averaging)."""
+
+    variants: tuple[Variant[P, S], ...]
+    run: tuple[Key, ...] = ()
+
+    def variant(self, physical: bool) -> Variant[P, S] | None:
+        """The variant for a file with (or without) a ``[physical]`` table."""
+        return next((v for v in self.variants if v.physical == physical), None)

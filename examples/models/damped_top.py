@@ -8,8 +8,9 @@ the free motion, so each component of ω in body axes decays at its own rate,
 
 which is at once the averaged motion (the transverse rate's magnitude and the spin do not
 depend on the precession phase) and its closed form. This file is the example of the
-architecture page: the model contract filled in for a model that is not in the package, used
-by a test (registration, full against averaged against closed form).
+architecture page: the model contract filled in for a model that is not in the package, with
+its scenario keys, used by a test (registration, a scenario file, full against averaged
+against closed form).
 """
 
 from __future__ import annotations
@@ -35,6 +36,7 @@ from tumble.models.base import (
     Model,
     fixed_columns,
 )
+from tumble.models.schema import Built, Key, ScenarioSchema, Section, Variant
 from tumble.torques import LinearDrag
 
 
@@ -134,6 +136,32 @@ FULL: FullForm[Params, State] = FullForm(
     _invariants,
 )  # fmt: skip
 
+SCENARIO: ScenarioSchema[Params, State] = ScenarioSchema(
+    variants=(
+        Variant(
+            (
+                Section(
+                    "parameters",
+                    (
+                        Key("A", "number", "a number > 0", doc="equatorial moment of inertia"),
+                        Key("C", "number", "a number in (0, 2A]", doc="axial moment of inertia"),
+                        Key("b", "number", "a number ≥ 0", doc="drag coefficient"),
+                        Key("eps", "number", "a number ≥ 0", default=0.01, doc="ε"),
+                    ),
+                ),
+                Section(
+                    "initial",
+                    (Key("omega", "vector3", "3 numbers", "rad/t", doc="body angular velocity"),),
+                ),
+            ),
+            lambda inputs: Built(
+                Params(**inputs["parameters"]),  # type: ignore[arg-type]
+                State(tuple(inputs["initial"]["omega"])),  # type: ignore[index]
+            ),
+        ),
+    )
+)
+
 MODEL: Model[Params, State] = Model(
     name="damped_top",
     description="symmetric top under isotropic viscous drag (the architecture page's example)",
@@ -144,4 +172,5 @@ MODEL: Model[Params, State] = Model(
     methods=("full", "averaged", "closed_form"),
     averaged=Averaged(form=_averaged_form, columns=COLUMNS, compare=("w_perp", "w3")),
     closed_form=ClosedForm(evaluate=closed_form, columns=COLUMNS),
+    scenario=SCENARIO,
 )

@@ -60,6 +60,37 @@ def test_invariants_are_conserved_without_drag(top):
         assert np.ptp(values) < 1e-8 * np.max(np.abs(values)), name
 
 
+SCENARIO = """model = "damped_top"
+[parameters]
+A = 1.0
+C = 1.6
+b = 0.5
+eps = 0.02
+[initial]
+omega = [0.4, -0.3, 2.0]
+[run]
+t_end = 100.0
+samples = 21
+"""
+
+
+def test_a_scenario_file_of_the_example_runs(top, tmp_path):
+    """Its declared keys make it a scenario model like the others: one-line errors too."""
+    from typer.testing import CliRunner
+
+    from tumble.cli import app
+
+    (tmp_path / "top.toml").write_text(SCENARIO)
+    res = CliRunner().invoke(app, ["run", str(tmp_path / "top.toml"), "-o", str(tmp_path / "o")])
+    assert res.exit_code == 0, res.output
+    assert (tmp_path / "o" / "averaged.csv").exists()
+    (tmp_path / "bad.toml").write_text(SCENARIO.replace("C = 1.6", "C = 1.6\nD = 1.0"))
+    res = CliRunner().invoke(app, ["run", str(tmp_path / "bad.toml"), "-o", str(tmp_path / "o")])
+    assert res.exit_code == 2 and "parameters.D: unknown key (allowed here: A, C, b, eps)" in (
+        res.stderr
+    )
+
+
 def test_a_run_of_the_example_compares_its_methods(top):
     p, st = top.Params(A=1.0, C=1.6, b=0.5, eps=0.02), top.State((0.4, -0.3, 2.0))
     result = run(RunRequest(top.MODEL, p, st, np.linspace(0.0, 100.0, 21), top.MODEL.methods))

@@ -156,33 +156,43 @@ def run_keys(model: AnyModel, variant: Variant[Any, Any]) -> tuple[Key, ...]:
     end, listed = ("t_end_s", "t_s") if variant.physical else _TIMES.get(time, ("t_end", "t"))
     unit = "s" if variant.physical else model.time.units
     allowed = ", ".join(f'"{m}"' for m in model.methods)
+    units = "" if unit == "1" else unit
     keys = [
-        Key(end, "number", "a time > 0", "" if unit == "1" else unit, None),
-        Key(listed, "numbers", "ascending times ≥ 0", "" if unit == "1" else unit, None),
-        Key("samples", "integer", "an integer ≥ 2", default=variant.samples),
-        Key("methods", "any", f"a non-empty list of {allowed}", default=None),
-        Key("rtol", "number", "a number in [1e-14, 1e-3]", default=1e-10),
-        Key("atol", "number", "a number in (0, 1e-3]", default=1e-12),
-    ]
+        Key(end, "number", "a time > 0", units, None, doc="end of the run (with samples)"),
+        Key(listed, "numbers", "ascending times ≥ 0", units, None, doc="or the sample times"),
+        Key("samples", "integer", "an integer ≥ 2", default=variant.samples,
+            doc="equally spaced samples from 0 to the end"),
+        Key("methods", "any", f"a non-empty list of {allowed}", default=None,
+            doc="default: every method the model has"),
+        Key("rtol", "number", "a number in [1e-14, 1e-3]", default=1e-10,
+            doc="relative tolerance of the integrations"),
+        Key("atol", "number", "a number in (0, 1e-3]", default=1e-12,
+            doc="absolute tolerance of the integrations"),
+    ]  # fmt: skip
     avg = model.averaged
     if avg is not None and avg.numeric:
         keys.append(
             Key("averaging", "text", '"closed_form" or "numeric"', default="closed_form",
-                choices=("closed_form", "numeric"))
+                choices=("closed_form", "numeric"),
+                doc="the paper's averaged equations, or the general engine's quadrature")
         )  # fmt: skip
     if avg is not None and avg.coordinates:
         choices = " or ".join(f'"{c}"' for c in avg.coordinates)
         first = avg.coordinates[0]
-        keys.append(Key("averaged_form", "text", choices, default=first, choices=avg.coordinates))
+        keys.append(Key("averaged_form", "text", choices, default=first, choices=avg.coordinates,
+                        doc="the slow coordinates the averaged run integrates"))  # fmt: skip
     if avg is not None and avg.corrected_start:
         keys.append(
             Key("averaged_init", "text", '"exact" or "corrected"', default="exact",
-                choices=("exact", "corrected"))
+                choices=("exact", "corrected"),
+                doc="start from the given state, or from its first-order mean")
         )  # fmt: skip
     keys += [
-        Key("verify", "boolean", "true or false", default=False),
+        Key("verify", "boolean", "true or false", default=False,
+            doc="also measure the averaging error at ε, ε/2, ε/4"),
         Key("integrator", "text", '"auto", "numba" or "scipy"', default="auto",
-            choices=("auto", "numba", "scipy")),
+            choices=("auto", "numba", "scipy"),
+            doc="the compiled DOP853 (auto: unless the parameters hold Python) or scipy's"),
     ]  # fmt: skip
     assert model.scenario is not None
     return (*keys, *model.scenario.run)

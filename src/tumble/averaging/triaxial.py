@@ -491,39 +491,8 @@ def _means(
             q_F_cache.append(matrix_to_quat(F))
         return q_F_cache[0]
 
-    def polhode(phases: FloatArray) -> tuple[FloatArray, ...]:
-        w = rates(phases)  # (n, 3) body rate
-        Lb = I_user * w
-        theta = np.arctan2(np.hypot(Lb[:, 0], Lb[:, 1]), Lb[:, 2])
-        phi = np.arctan2(Lb[:, 0], Lb[:, 1])
-        ct, st, cp, sp = np.cos(theta), np.sin(theta), np.cos(phi), np.sin(phi)
-        zero = np.zeros_like(theta)
-        G = np.stack(
-            [
-                np.stack([cp, -sp, zero], -1),
-                np.stack([ct * sp, ct * cp, -st], -1),
-                np.stack([st * sp, st * cp, ct], -1),
-            ],
-            -2,
-        )
-        ch, sh = np.cos(0.5 * theta), np.sin(0.5 * theta)
-        cf, sf = np.cos(0.5 * phi), np.sin(0.5 * phi)
-        q_G = np.stack([ch * cf, sh * cf, -sh * sf, ch * sf], -1)  # q_x(θ) ⊗ q_z(φ)
-        return w, G, _rotate(G, w), q_G
-
-    def precession(phases: FloatArray) -> tuple[FloatArray, ...]:
-        c, s = np.cos(phases), np.sin(phases)
-        zero, one = np.zeros_like(c), np.ones_like(c)
-        Rz = np.stack(
-            [
-                np.stack([c, -s, zero], -1),
-                np.stack([s, c, zero], -1),
-                np.stack([zero, zero, one], -1),
-            ],
-            -2,
-        )
-        q_z = np.stack([np.cos(0.5 * phases), zero, zero, np.sin(0.5 * phases)], -1)
-        return F @ Rz, q_z
+    polhode = _polhode_attitudes(rates, I_user)
+    precession = _precessions(F)
 
     n_pre = 4 * _N_START["polhode"]
     axes = [
@@ -567,6 +536,55 @@ def _means(
         return out
 
     return _product_mean(axes, integrand, groups, rtol, "the average over the Euler–Poinsot motion")
+
+
+def _polhode_attitudes(
+    rates: Callable[[FloatArray], FloatArray], I_user: FloatArray
+) -> Callable[[FloatArray], tuple[FloatArray, ...]]:
+    """At polhode phases: the body rate ω, G = Rx(θ) Rz(φ) taking the body direction of L to
+    the third axis, G ω, and the quaternion of G."""
+
+    def polhode(phases: FloatArray) -> tuple[FloatArray, ...]:
+        w = rates(phases)  # (n, 3) body rate
+        Lb = I_user * w
+        theta = np.arctan2(np.hypot(Lb[:, 0], Lb[:, 1]), Lb[:, 2])
+        phi = np.arctan2(Lb[:, 0], Lb[:, 1])
+        ct, st, cp, sp = np.cos(theta), np.sin(theta), np.cos(phi), np.sin(phi)
+        zero = np.zeros_like(theta)
+        G = np.stack(
+            [
+                np.stack([cp, -sp, zero], -1),
+                np.stack([ct * sp, ct * cp, -st], -1),
+                np.stack([st * sp, st * cp, ct], -1),
+            ],
+            -2,
+        )
+        ch, sh = np.cos(0.5 * theta), np.sin(0.5 * theta)
+        cf, sf = np.cos(0.5 * phi), np.sin(0.5 * phi)
+        q_G = np.stack([ch * cf, sh * cf, -sh * sf, ch * sf], -1)  # q_x(θ) ⊗ q_z(φ)
+        return w, G, _rotate(G, w), q_G
+
+    return polhode
+
+
+def _precessions(F: FloatArray) -> Callable[[FloatArray], tuple[FloatArray, ...]]:
+    """At precession angles χ about L: F Rz(χ) and the quaternion of Rz(χ)."""
+
+    def precession(phases: FloatArray) -> tuple[FloatArray, ...]:
+        c, s = np.cos(phases), np.sin(phases)
+        zero, one = np.zeros_like(c), np.ones_like(c)
+        Rz = np.stack(
+            [
+                np.stack([c, -s, zero], -1),
+                np.stack([s, c, zero], -1),
+                np.stack([zero, zero, one], -1),
+            ],
+            -2,
+        )
+        q_z = np.stack([np.cos(0.5 * phases), zero, zero, np.sin(0.5 * phases)], -1)
+        return F @ Rz, q_z
+
+    return precession
 
 
 # ---------------------------------------------------------------------------------------------

@@ -9,10 +9,11 @@ case). :func:`numeric_averages` then averages over the nutation period of the fr
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
-from typing import Any
+from dataclasses import dataclass, field
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -236,87 +237,126 @@ def torque_perturbation(
     -------
     Perturbation
     """
-    rates_only = vectorized and rate_only(torque)
-    rate_torque: Any = torque  # called with q = None on that path (it does not read q)
+    averages = _TorqueAverages(
+        torque,
+        mu,
+        ab_rate,
+        rtol,
+        name,
+        vectorized and rate_only(torque),
+        BatchedTorque(torque, None if vectorized else False, "the nutation (1.9)"),
+    )
+    return Perturbation(name=name, joint=averages.joint)
 
-    call = BatchedTorque(torque, None if vectorized else False, "the nutation (1.9)")
-    trig: dict[tuple[int, int], tuple[FloatArray, ...]] = {}
 
-    def angles(psi: FloatArray, phi: FloatArray) -> tuple[FloatArray, ...]:
+class _Nodes(NamedTuple):
+    """The θ nodes of one call, shaped (n, 1, 1), and what the body rate needs of them."""
+
+    tau: float
+    th: FloatArray
+    thd: FloatArray
+    s: FloatArray  # sin θ
+    c: FloatArray  # cos θ
+    ch: FloatArray  # cos θ/2
+    sh: FloatArray  # sin θ/2
+    rate_sin: FloatArray  # ψ' sin θ
+    r: float  # spin r = R/μ
+
+
+@dataclass
+class _TorqueAverages:
+    """Φθ, Φz of a torque averaged over ψ and φ at given θ nodes (:func:`torque_perturbation`)."""
+
+    torque: Callable[[float, FloatArray, FloatArray], Any]
+    mu: float
+    ab_rate: Callable[[float], tuple[float, float]] | None
+    rtol: float
+    name: str
+    rates_only: bool
+    call: BatchedTorque
+    trig: dict[tuple[int, int], tuple[FloatArray, ...]] = field(default_factory=dict)
+
+    def angles(self, psi: FloatArray, phi: FloatArray) -> tuple[FloatArray, ...]:
         """sin φ, cos φ, cos (ψ ± φ)/2, sin (ψ ∓ φ)/2 on the torus grid: the same grids come
         back at every call (torus_mean's nodes depend on their number only), so once each."""
         key = (psi.shape[0], phi.shape[1])
-        if key not in trig:
+        if key not in self.trig:
             up, um = 0.5 * (psi + phi), 0.5 * (psi - phi)
-            trig[key] = (np.sin(phi), np.cos(phi), np.cos(up), np.cos(um), np.sin(um), np.sin(up))
-        return trig[key]
+            self.trig[key] = (np.sin(phi), np.cos(phi), np.cos(up), np.cos(um), np.sin(um),
+                              np.sin(up))  # fmt: skip
+        return self.trig[key]
 
-    def joint(tau: float, theta: FloatArray, theta_dot: FloatArray, z: FloatArray) -> FloatArray:
+    def joint(
+        self, tau: float, theta: FloatArray, theta_dot: FloatArray, z: FloatArray
+    ) -> FloatArray:
         th, thd = np.broadcast_arrays(np.asarray(theta, float), np.asarray(theta_dot, float))
         shape = th.shape
         th, thd = th.ravel()[:, None, None], thd.ravel()[:, None, None]
         R, G = float(z[0]), float(z[1])
         s, c = np.sin(th), np.cos(th)
         psid = (G - R * c) / (s * s)
-        ch, sh = np.cos(0.5 * th), np.sin(0.5 * th)
-        rate_sin, r = psid * s, R / mu
-
-        def on_torus(psi: FloatArray, phi: FloatArray) -> FloatArray:
-            # psi (m, 1), phi (1, m); the nodes' arrays are (n, m, m). The rates do not involve
-            # ψ, and the attitude's half-angle functions do not involve θ: each is formed on
-            # its own axes and broadcast once, into the arrays handed to the torque.
-            sp, cp, cup, cum, sum_, sup = angles(psi, phi)
-            grid = (th.shape[0], psi.shape[0], phi.shape[1])
-            omega = np.empty((*grid, 3))
-            omega[..., 0] = rate_sin * sp + thd * cp
-            omega[..., 1] = rate_sin * cp - thd * sp
-            omega[..., 2] = r
-            # z–x–z angles → quaternion: q = qz(ψ) ⊗ qx(θ) ⊗ qz(φ).
-            q = np.empty((*grid, 4))
-            q[..., 0] = ch * cup
-            q[..., 1] = sh * cum
-            q[..., 2] = sh * sum_
-            q[..., 3] = ch * sup
-            m = call(tau, q.reshape(-1, 4), omega.reshape(-1, 3)).reshape(omega.shape)
-            m1, m2, m3 = m[..., 0], m[..., 1], m[..., 2]
-            out = np.empty((3, *grid))
-            out[0] = m1 * cp - m2 * sp
-            out[1] = m3
-            out[2] = (m1 * sp + m2 * cp) * s + m3 * c
-            return out
-
-        def on_circle(phi: FloatArray) -> FloatArray:
-            # A torque of the body rate alone: phi (m,), the nodes' arrays (n, m); no ψ, no q.
-            sp, cp = np.sin(phi), np.cos(phi)
-            omega = np.empty((th.shape[0], phi.size, 3))
-            omega[..., 0] = rate_sin[:, :, 0] * sp + thd[:, :, 0] * cp
-            omega[..., 1] = rate_sin[:, :, 0] * cp - thd[:, :, 0] * sp
-            omega[..., 2] = r
-            m = np.asarray(rate_torque(tau, None, omega), dtype=float)
-            if not np.all(np.isfinite(m)):
-                raise AveragingError(
-                    "the torque returned non-finite values on the nutation (1.9): no average "
-                    "can be formed"
-                )
-            m1, m2, m3 = m[..., 0], m[..., 1], m[..., 2]
-            out = np.empty((3, *omega.shape[:2]))
-            out[0] = m1 * cp - m2 * sp
-            out[1] = m3
-            out[2] = (m1 * sp + m2 * cp) * s[:, :, 0] + m3 * c[:, :, 0]
-            return out
-
-        if rates_only:
+        nodes = _Nodes(tau, th, thd, s, c, np.cos(0.5 * th), np.sin(0.5 * th), psid * s,
+                       R / self.mu)  # fmt: skip
+        if self.rates_only:
             # One call on 8 nodes of φ serves the levels 4 and 8.
-            first = on_circle(np.arange(8, dtype=np.float64) * (2.0 * math.pi / 8))
+            circle = functools.partial(self.on_circle, nodes)
+            first = circle(np.arange(8, dtype=np.float64) * (2.0 * math.pi / 8))
             mean, _ = torus_mean(
-                on_circle, 1, rtol=rtol, n_start=4, known=first, what=f"{name} over φ"
+                circle, 1, rtol=self.rtol, n_start=4, known=first, what=f"{self.name} over φ"
             )
         else:
-            mean, _ = torus_mean(on_torus, 2, rtol=rtol, n_start=4, what=f"{name} over ψ and φ")
+            torus = functools.partial(self.on_torus, nodes)
+            what = f"{self.name} over ψ and φ"
+            mean, _ = torus_mean(torus, 2, rtol=self.rtol, n_start=4, what=what)
         out = np.zeros((5, mean.shape[1]))
         out[:3] = mean
-        if ab_rate is not None:
-            out[3:, :] = np.asarray(ab_rate(tau), dtype=float)[:, None]
+        if self.ab_rate is not None:
+            out[3:, :] = np.asarray(self.ab_rate(tau), dtype=float)[:, None]
         return out.reshape(5, *shape)
 
-    return Perturbation(name=name, joint=joint)
+    def on_torus(self, n: _Nodes, psi: FloatArray, phi: FloatArray) -> FloatArray:
+        """Φ at psi (m, 1), phi (1, m); the nodes' arrays are (n, m, m). The rates do not
+        involve ψ, and the attitude's half-angle functions do not involve θ: each is formed on
+        its own axes and broadcast once, into the arrays handed to the torque."""
+        sp, cp, cup, cum, sum_, sup = self.angles(psi, phi)
+        grid = (n.th.shape[0], psi.shape[0], phi.shape[1])
+        omega = np.empty((*grid, 3))
+        omega[..., 0] = n.rate_sin * sp + n.thd * cp
+        omega[..., 1] = n.rate_sin * cp - n.thd * sp
+        omega[..., 2] = n.r
+        # z–x–z angles → quaternion: q = qz(ψ) ⊗ qx(θ) ⊗ qz(φ).
+        q = np.empty((*grid, 4))
+        q[..., 0] = n.ch * cup
+        q[..., 1] = n.sh * cum
+        q[..., 2] = n.sh * sum_
+        q[..., 3] = n.ch * sup
+        m = self.call(n.tau, q.reshape(-1, 4), omega.reshape(-1, 3)).reshape(omega.shape)
+        return _phis(m, sp, cp, n.s, n.c)
+
+    def on_circle(self, n: _Nodes, phi: FloatArray) -> FloatArray:
+        """Φ of a torque of the body rate alone: phi (m,), the nodes' arrays (n, m); no ψ, no
+        q (the torque is called with q = None)."""
+        sp, cp = np.sin(phi), np.cos(phi)
+        omega = np.empty((n.th.shape[0], phi.size, 3))
+        omega[..., 0] = n.rate_sin[:, :, 0] * sp + n.thd[:, :, 0] * cp
+        omega[..., 1] = n.rate_sin[:, :, 0] * cp - n.thd[:, :, 0] * sp
+        omega[..., 2] = n.r
+        torque: Any = self.torque
+        m = np.asarray(torque(n.tau, None, omega), dtype=float)
+        if not np.all(np.isfinite(m)):
+            raise AveragingError(
+                "the torque returned non-finite values on the nutation (1.9): no average "
+                "can be formed"
+            )
+        return _phis(m, sp, cp, n.s[:, :, 0], n.c[:, :, 0])
+
+
+def _phis(m: FloatArray, sp: Any, cp: Any, s: FloatArray, c: FloatArray) -> FloatArray:
+    """Φθ = M_p cos φ − M_q sin φ, Φ_R = M_r, Φ_G = (M_p sin φ + M_q cos φ) sin θ + M_r cos θ
+    of body moments m (..., 3)."""
+    m1, m2, m3 = m[..., 0], m[..., 1], m[..., 2]
+    out = np.empty((3, *m.shape[:-1]))
+    out[0] = m1 * cp - m2 * sp
+    out[1] = m3
+    out[2] = (m1 * sp + m2 * cp) * s + m3 * c
+    return out

@@ -179,74 +179,100 @@ def torus_mean(
         stored < n_start or stored % n_start or (stored // n_start) & (stored // n_start - 1)
     ):
         raise ValueError(f"known has {stored} nodes: it needs n_start·2^p")
-
-    def grid(n: int, offset: float) -> list[FloatArray]:
-        nodes = np.asarray((np.arange(n) + offset) * (2.0 * math.pi / n), dtype=float)
-        if dims == 1:
-            return [nodes]
-        return [nodes[:, None], nodes[None, :]]
-
-    def converged(change: FloatArray, tol: float) -> bool:
-        return bool(np.all(change <= tol))
-
-    n = n_start
     if dims == 1:
-        # Means are kept flat, one row per component: (components,).
-        if stored:
-            table = np.asarray(known, dtype=float)
-            lead, table = table.shape[:-1], table.reshape(-1, stored)
-        else:
-            start = np.asarray(f(*grid(n, 0.0)), dtype=float)
-            lead, table = start.shape[:-1], start.reshape(-1, n)
-            stored = n
-
-        def level_mean(n: int, offset: float) -> FloatArray:
-            """Mean of f at the nodes (j + offset)·2π/n, from ``table`` where it holds them."""
-            if 2 * n <= stored:
-                step = stored // n
-                values = table[:, int(offset * step) :: step]
-            elif offset == 0.0 and n == stored:
-                values = table
-            else:
-                values = np.asarray(f(*grid(n, offset)), dtype=float).reshape(-1, n)
-            return np.add.reduce(values, axis=-1) * (1.0 / n)
-
-        means, nodes = [level_mean(n, 0.0)], [n]
-        while nodes[-1] < n_max:
-            # The levels held in ``table`` cost no call of f: take them all and test them at
-            # once; beyond them, one doubling at a time (the old nodes plus the midpoints).
-            tested = len(means)
-            while True:
-                means.append(0.5 * (means[-1] + level_mean(nodes[-1], 0.5)))
-                nodes.append(2 * nodes[-1])
-                if nodes[-1] >= n_max or 2 * nodes[-1] > stored:
-                    break
-            level, value = _first_accepted(means, tested, rtol, atol, extrapolate)
-            if level is not None:
-                return value.reshape(lead), nodes[level]
-    elif n < n_max:
-
-        def torus_sum(values: FloatArray) -> FloatArray:
-            # A ufunc reduction over the flattened grid: np.mean's wrapper costs more than the
-            # arithmetic on the small grids used here.
-            return np.add.reduce(values.reshape(*values.shape[:-2], -1), axis=-1)
-
-        values = np.asarray(f(*grid(2 * n, 0.0)), dtype=float)
-        old = torus_sum(np.ascontiguousarray(values[..., ::2, ::2])) * (1.0 / (n * n))
-        new = torus_sum(values) * (0.25 / (n * n))
-        while True:
-            n *= 2
-            scale = float(np.max(np.abs(new))) if np.size(new) else 0.0
-            if converged(np.abs(new - old), atol + rtol * scale):
-                return new, n
-            if n >= n_max:
-                break
-            old = new
-            new = torus_sum(np.asarray(f(*grid(2 * n, 0.0)), dtype=float)) * (0.25 / (n * n))
+        found = _circle_mean(f, rtol, atol, n_start, n_max, extrapolate, known)
+    else:
+        found = _torus_mean_2(f, rtol, atol, n_start, n_max)
+    if found is not None:
+        return found
     raise AveragingError(
         f"{what} did not converge with {n_max} nodes per phase: the integrand is nearly "
         "singular on the unperturbed motion (a separatrix, a resonance, or a pole on the path)"
     )
+
+
+def _grid(n: int, offset: float, dims: int) -> list[FloatArray]:
+    """The nodes (j + offset)·2π/n of each phase, shaped to broadcast against each other."""
+    nodes = np.asarray((np.arange(n) + offset) * (2.0 * math.pi / n), dtype=float)
+    if dims == 1:
+        return [nodes]
+    return [nodes[:, None], nodes[None, :]]
+
+
+def _circle_mean(
+    f: Callable[..., FloatArray],
+    rtol: float,
+    atol: float,
+    n_start: int,
+    n_max: int,
+    extrapolate: bool,
+    known: FloatArray | None,
+) -> tuple[FloatArray, int] | None:
+    """:func:`torus_mean` over one phase (None: not converged with ``n_max`` nodes)."""
+    n = n_start
+    # Means are kept flat, one row per component: (components,).
+    if known is not None and np.shape(known)[-1] > 0:
+        stored = int(np.shape(known)[-1])
+        table = np.asarray(known, dtype=float)
+        lead, table = table.shape[:-1], table.reshape(-1, stored)
+    else:
+        start = np.asarray(f(*_grid(n, 0.0, 1)), dtype=float)
+        lead, table = start.shape[:-1], start.reshape(-1, n)
+        stored = n
+
+    def level_mean(n: int, offset: float) -> FloatArray:
+        """Mean of f at the nodes (j + offset)·2π/n, from ``table`` where it holds them."""
+        if 2 * n <= stored:
+            step = stored // n
+            values = table[:, int(offset * step) :: step]
+        elif offset == 0.0 and n == stored:
+            values = table
+        else:
+            values = np.asarray(f(*_grid(n, offset, 1)), dtype=float).reshape(-1, n)
+        return np.add.reduce(values, axis=-1) * (1.0 / n)
+
+    means, nodes = [level_mean(n, 0.0)], [n]
+    while nodes[-1] < n_max:
+        # The levels held in ``table`` cost no call of f: take them all and test them at
+        # once; beyond them, one doubling at a time (the old nodes plus the midpoints).
+        tested = len(means)
+        while True:
+            means.append(0.5 * (means[-1] + level_mean(nodes[-1], 0.5)))
+            nodes.append(2 * nodes[-1])
+            if nodes[-1] >= n_max or 2 * nodes[-1] > stored:
+                break
+        level, value = _first_accepted(means, tested, rtol, atol, extrapolate)
+        if level is not None:
+            return value.reshape(lead), nodes[level]
+    return None
+
+
+def _torus_sum(values: FloatArray) -> FloatArray:
+    """Sum over the last two axes: a ufunc reduction over the flattened grid (np.mean's
+    wrapper costs more than the arithmetic on the small grids used here)."""
+    return np.add.reduce(values.reshape(*values.shape[:-2], -1), axis=-1)
+
+
+def _torus_mean_2(
+    f: Callable[..., FloatArray], rtol: float, atol: float, n_start: int, n_max: int
+) -> tuple[FloatArray, int] | None:
+    """:func:`torus_mean` over two phases: the first call on 2·n_start nodes per phase, whose
+    even nodes give the coarser mean; each further level one call on the doubled grid."""
+    n = n_start
+    if n >= n_max:
+        return None
+    values = np.asarray(f(*_grid(2 * n, 0.0, 2)), dtype=float)
+    old = _torus_sum(np.ascontiguousarray(values[..., ::2, ::2])) * (1.0 / (n * n))
+    new = _torus_sum(values) * (0.25 / (n * n))
+    while True:
+        n *= 2
+        scale = float(np.max(np.abs(new))) if np.size(new) else 0.0
+        if bool(np.all(np.abs(new - old) <= atol + rtol * scale)):
+            return new, n
+        if n >= n_max:
+            return None
+        old = new
+        new = _torus_sum(np.asarray(f(*_grid(2 * n, 0.0, 2)), dtype=float)) * (0.25 / (n * n))
 
 
 class BatchedTorque:

@@ -651,9 +651,11 @@ def _check_attitude(A: FloatArray) -> None:
         )
 
 
-def _build_kernel(
-    Is: tuple[float, float, float], zs: FloatArray, L: float, T: float
-) -> tuple[Regime, float, float, float, float, float, _Kernel, FloatArray]:
+_Built = tuple[Regime, float, float, float, float, float, _Kernel, FloatArray]
+"""Regime, k2, ν, period, ν1, ν2, kernel and P (sorted axes → p-frame) of a state."""
+
+
+def _build_kernel(Is: tuple[float, float, float], zs: FloatArray, L: float, T: float) -> _Built:
     """Regime, k2, ν, period, ν1, ν2, kernel and P (sorted axes → p-frame) of a state.
 
     The state is normalised (largest |z_i| in [½, 1)), so squares neither overflow nor
@@ -663,84 +665,113 @@ def _build_kernel(
     z1, z2, z3 = (float(x) for x in zs)
     if L == 0.0:
         return "rest", 0.0, 0.0, math.inf, 0.0, 0.0, _Still(0.0), np.eye(3)
+    sym = _symmetry(I1, I2, I3)
+    if sym == "sphere":
+        return _uniform(zs, "sphere", 0.0, 0.0, math.inf, 0.0, L / I2)
+    if sym:
+        return _symmetric(Is, zs, L, sym)
     # d's from the components: sums of non-negative terms, no cancellation (except d2).
     d1 = I2 * (I2 - I1) * z2 * z2 + I3 * (I3 - I1) * z3 * z3
     d3 = I1 * (I3 - I1) * z1 * z1 + I2 * (I3 - I2) * z2 * z2
     d2 = I3 * (I3 - I2) * z3 * z3 - I1 * (I2 - I1) * z1 * z1
-    speed = float(np.linalg.norm(zs))
-
-    def uniform(reg: Regime, k2: float, nu: float, period: float, nu1: float, nu2: float) -> tuple:
-        # z0 along a principal axis (or a sphere): uniform rotation about z0 (∥ L).
-        P = _frame_with_third_row(zs)
-        return reg, k2, nu, period, nu1, nu2, _Still(speed), P
-
-    sym = _symmetry(I1, I2, I3)
-    if sym == "sphere":
-        return uniform("sphere", 0.0, 0.0, math.inf, 0.0, L / I2)
-    if sym:
-        # Regular precession about the symmetry axis c, I_a the mean of the equal pair.
-        P = np.eye(3) if sym == "x3" else _CYCLE_TO_X1
-        za, zb, zc = (float(x) for x in P @ zs)
-        Ia, Ic = (0.5 * (I1 + I2), I3) if sym == "x3" else (0.5 * (I2 + I3), I1)
-        nu = abs(zc * (Ia - Ic) / Ia)  # |φ̇|: the limit k → 0 of ν, = ν1
-        period = 2.0 * math.pi / nu if nu > 1e-300 else math.inf  # > 1e-300: no overflow
-        if (za == 0.0 and zb == 0.0) or zc == 0.0:
-            return uniform("symmetric", 0.0, nu, period, nu, L / Ia)
-        kern: _Kernel = _Precession(Ia, Ic, L, math.hypot(za, zb), zc, math.atan2(za, zb))
-        return "symmetric", 0.0, nu, period, nu, L / Ia, kern, P
-
+    side: Literal["x3", "x1"] = "x3" if d2 > 0.0 else "x1"
+    m, mc = _side_modulus(side, I1, I2, I3, d1, d2, d3)
+    if mc == 0.0:  # exactly on the separatrix (up to _MC_FLOOR)
+        return _on_separatrix(Is, zs, L, d1, d3)
     # Separatrix band: the attributes take their separatrix values (k2 = 1, period = inf,
     # ν1 = 0, ν2 = L/I2); the motion follows the state itself.
     sep = abs(d2) <= SEPARATRIX_RTOL * L * L
-    side = "x3" if d2 > 0.0 else "x1"
-    m, mc = _side_modulus(side, I1, I2, I3, d1, d2, d3)
-    if mc == 0.0:  # exactly on the separatrix (up to _MC_FLOOR)
-        nu = _u_rate("x3", I1, I2, I3, d1, d3)
-        # Asymptotic motion (3.1) with m = 1, x3 form; half-turns make z1 ≥ 0, z3 ≥ 0.
-        s1, s3 = math.copysign(1.0, z1), math.copysign(1.0, z3)
-        S = np.diag([s1, s1 * s3, s3])
-        b1, b2, _ = (float(x) for x in S @ zs)
-        a_cn = math.sqrt(d3 / (I1 * (I3 - I1)))
-        a_sn = math.sqrt(d3 / (I2 * (I3 - I2)))
-        a_dn = math.sqrt(d1 / (I3 * (I3 - I1)))
-        s0, c0 = b2 / a_sn, (b1 / a_cn if a_cn > 0.0 else 0.0)
-        if c0 == 0.0 or z3 == 0.0:  # on it, z1 = 0 ⇔ z3 = 0: rotation about x2
-            return uniform("separatrix", 1.0, nu, math.inf, 0.0, L / I2)
-        # sn/cn = tanh/sech = sinh u0: u0 = asinh(s/c), as logarithms (c may be tiny).
-        u0 = math.copysign(math.log(abs(s0) + math.hypot(s0, c0)) - math.log(c0), s0)
-        n = _characteristic("x3", I1, I2, I3)
-        kern = _Elliptic("x3", Is, L, 1.0, 0.0, math.inf, nu, u0, a_cn, a_sn, a_dn, n, math.inf)
-        return "separatrix", 1.0, nu, math.inf, 0.0, L / I2, kern, S
+    return _elliptic(Is, zs, L, side, sep, m, mc, d1, d3)
 
+
+def _uniform(
+    zs: FloatArray, reg: Regime, k2: float, nu: float, period: float, nu1: float, nu2: float
+) -> _Built:
+    """z0 along a principal axis (or a sphere): uniform rotation about z0 (∥ L)."""
+    P = _frame_with_third_row(zs)
+    return reg, k2, nu, period, nu1, nu2, _Still(float(np.linalg.norm(zs))), P
+
+
+def _symmetric(Is: tuple[float, float, float], zs: FloatArray, L: float, sym: str) -> _Built:
+    """Regular precession about the symmetry axis c, I_a the mean of the equal pair."""
+    I1, I2, I3 = Is
+    P = np.eye(3) if sym == "x3" else _CYCLE_TO_X1
+    za, zb, zc = (float(x) for x in P @ zs)
+    Ia, Ic = (0.5 * (I1 + I2), I3) if sym == "x3" else (0.5 * (I2 + I3), I1)
+    nu = abs(zc * (Ia - Ic) / Ia)  # |φ̇|: the limit k → 0 of ν, = ν1
+    period = 2.0 * math.pi / nu if nu > 1e-300 else math.inf  # > 1e-300: no overflow
+    if (za == 0.0 and zb == 0.0) or zc == 0.0:
+        return _uniform(zs, "symmetric", 0.0, nu, period, nu, L / Ia)
+    kern: _Kernel = _Precession(Ia, Ic, L, math.hypot(za, zb), zc, math.atan2(za, zb))
+    return "symmetric", 0.0, nu, period, nu, L / Ia, kern, P
+
+
+def _on_separatrix(
+    Is: tuple[float, float, float], zs: FloatArray, L: float, d1: float, d3: float
+) -> _Built:
+    """Exactly on the separatrix: the asymptotic motion (3.1) with m = 1, x3 form; half-turns
+    make z1 ≥ 0, z3 ≥ 0."""
+    I1, I2, I3 = Is
+    z1, _, z3 = (float(x) for x in zs)
+    nu = _u_rate("x3", I1, I2, I3, d1, d3)
+    s1, s3 = math.copysign(1.0, z1), math.copysign(1.0, z3)
+    S = np.diag([s1, s1 * s3, s3])
+    b1, b2, _ = (float(x) for x in S @ zs)
+    a_cn = math.sqrt(d3 / (I1 * (I3 - I1)))
+    a_sn = math.sqrt(d3 / (I2 * (I3 - I2)))
+    a_dn = math.sqrt(d1 / (I3 * (I3 - I1)))
+    s0, c0 = b2 / a_sn, (b1 / a_cn if a_cn > 0.0 else 0.0)
+    if c0 == 0.0 or z3 == 0.0:  # on it, z1 = 0 ⇔ z3 = 0: rotation about x2
+        return _uniform(zs, "separatrix", 1.0, nu, math.inf, 0.0, L / I2)
+    # sn/cn = tanh/sech = sinh u0: u0 = asinh(s/c), as logarithms (c may be tiny).
+    u0 = math.copysign(math.log(abs(s0) + math.hypot(s0, c0)) - math.log(c0), s0)
+    n = _characteristic("x3", I1, I2, I3)
+    kern = _Elliptic("x3", Is, L, 1.0, 0.0, math.inf, nu, u0, a_cn, a_sn, a_dn, n, math.inf)
+    return "separatrix", 1.0, nu, math.inf, 0.0, L / I2, kern, S
+
+
+def _elliptic(
+    Is: tuple[float, float, float],
+    zs: FloatArray,
+    L: float,
+    side: Literal["x3", "x1"],
+    sep: bool,
+    m: float,
+    mc: float,
+    d1: float,
+    d3: float,
+) -> _Built:
+    """The Jacobi-function motion (3.1) in regime ``side`` (in the separatrix band when
+    ``sep``, with the separatrix's attributes)."""
+    I1, I2, I3 = Is
     nu = _u_rate(side, I1, I2, I3, d1, d3)
     K = float(special.elliprf(0.0, mc, 1.0))
     if sep:
         reg: Regime = "separatrix"
         k2, period, nu1, nu2 = 1.0, math.inf, 0.0, L / I2
     else:
-        reg = "x3" if side == "x3" else "x1"
+        reg = side
         k2, period = m, 4.0 * K / nu
         nu1, nu2 = 0.5 * math.pi * nu / K, _mean_precession(side, I1, I2, I3, L, mc)
     if side == "x3":
-        S = np.diag([1.0, math.copysign(1.0, z3), math.copysign(1.0, z3)])  # make z3 > 0
-        b1, b2, b3 = (float(x) for x in S @ zs)
+        S = np.diag([1.0, math.copysign(1.0, zs[2]), math.copysign(1.0, zs[2])])  # z3 > 0
+        b1, b2, _ = (float(x) for x in S @ zs)
         a_cn = math.sqrt(d3 / (I1 * (I3 - I1)))
         a_sn = math.sqrt(d3 / (I2 * (I3 - I2)))
         a_dn = math.sqrt(d1 / (I3 * (I3 - I1)))
         bcn, bsn = b1, b2
         P = S
     else:
-        S = np.diag([math.copysign(1.0, z1), math.copysign(1.0, z1), 1.0])  # make z1 > 0
-        b1, b2, b3 = (float(x) for x in S @ zs)
+        S = np.diag([math.copysign(1.0, zs[0]), math.copysign(1.0, zs[0]), 1.0])  # z1 > 0
+        _, b2, b3 = (float(x) for x in S @ zs)
         a_cn = math.sqrt(d1 / (I3 * (I3 - I1)))
         a_sn = math.sqrt(d1 / (I2 * (I2 - I1)))
         a_dn = math.sqrt(d3 / (I1 * (I3 - I1)))
         bcn, bsn = b3, b2
         P = _CYCLE_TO_X1 @ S
     if a_cn == 0.0 or a_sn == 0.0:  # k = 0 (to underflow): uniform rotation about the pole
-        return uniform(reg, k2, nu, period, nu1, nu2)
-    sn0, cn0 = bsn / a_sn, bcn / a_cn
-    u0 = _u_from_sn_cn(sn0, cn0, mc, K)
+        return _uniform(zs, reg, k2, nu, period, nu1, nu2)
+    u0 = _u_from_sn_cn(bsn / a_sn, bcn / a_cn, mc, K)
     n = _characteristic(side, I1, I2, I3)
     Pi = float(_ellippi_mc(np.asarray(n), np.asarray(mc)))
     kern = _Elliptic(side, Is, L, m, mc, K, nu, u0, a_cn, a_sn, a_dn, n, Pi)

@@ -917,7 +917,7 @@ def closed_form(p: Params, st: State, t: FloatArray) -> dict[str, FloatArray]:
     }
 
 
-def extrema(traj: Any, p: Params) -> list[tuple[str, int, float, float, float, float]]:
+def extrema(traj: Sampled, p: Params) -> list[tuple[str, int, float, float, float, float]]:
     """Every local maximum and minimum of θ(t) of a full trajectory for 0 < t < t_end.
 
     A start at a turning point is not counted (spec §14). A compiled run located the zeros of
@@ -936,31 +936,36 @@ def extrema(traj: Any, p: Params) -> list[tuple[str, int, float, float, float, f
     list of (kind, k, t, theta, R, G)
         ``kind`` "max" or "min", ``k`` counting from 1 within its kind.
     """
+    t_end = float(traj.tau[-1])
+    turns = _event_turns(traj, t_end) if traj.integrator == "numba" else _bracketed_turns(traj)
+    if not turns:
+        return []
+    cols = traj.slow(np.array([t for _, t in turns]))
+    counts = {"max": 0, "min": 0}
+    out = []
+    for j, (kind, t_k) in enumerate(turns):
+        counts[kind] += 1
+        out.append((kind, counts[kind], t_k, float(cols["theta"][j]), float(cols["R"][j]),
+                    float(cols["G"][j])))  # fmt: skip
+    return out
+
+
+def _event_turns(traj: Sampled, t_end: float) -> list[tuple[str, float]]:
+    """The turning points a compiled run located as zeros of θ' (kind, t), in time order."""
+    keep = (traj.events > 0.0) & (traj.events < t_end)
+    signs = traj.event_signs[keep]
+    return [
+        ("max" if sign > 0.0 else "min", float(t))
+        for t, sign in zip(traj.events[keep], signs, strict=True)
+    ]
+
+
+def _bracketed_turns(traj: Sampled) -> list[tuple[str, float]]:
+    """The zeros of θ' bracketed on the integrator's steps (subdivided four times) and refined
+    on the dense output, and those landing exactly on a grid point; (kind, t) in time order."""
     from scipy.optimize import brentq
 
     t_end = float(traj.tau[-1])
-    if getattr(traj, "integrator", "") == "numba":
-        keep = (traj.events > 0.0) & (traj.events < t_end)
-        times, signs = traj.events[keep], traj.event_signs[keep]
-        if times.size == 0:
-            return []
-        cols = traj.slow(times)
-        kinds = ["max" if sign > 0.0 else "min" for sign in signs]
-        counts = {"max": 0, "min": 0}
-        found = []
-        for j, kind in enumerate(kinds):
-            counts[kind] += 1
-            found.append(
-                (
-                    kind,
-                    counts[kind],
-                    float(times[j]),
-                    float(cols["theta"][j]),
-                    float(cols["R"][j]),
-                    float(cols["G"][j]),
-                )
-            )
-        return found
     steps = np.asarray(traj.steps, dtype=float)
     if steps.size < 2:
         steps = np.linspace(0.0, t_end, 2)
@@ -972,50 +977,16 @@ def extrema(traj: Any, p: Params) -> list[tuple[str, int, float, float, float, f
     def theta_dot(t: float) -> float:
         return float(traj.slow(np.array([t]))["theta_dot"][0])
 
-    rows: list[tuple[str, int, float, float, float, float]] = []
-    count = {"max": 0, "min": 0}
+    turns: list[tuple[str, float]] = []
     for i in np.flatnonzero(np.sign(td[:-1]) * np.sign(td[1:]) < 0.0):
         t_k = brentq(theta_dot, grid[i], grid[i + 1], xtol=1e-14, rtol=4 * np.finfo(float).eps)
-        if not 0.0 < t_k < t_end:
-            continue
-        kind = "max" if td[i] > 0.0 else "min"
-        count[kind] += 1
-        cols = traj.slow(np.array([t_k]))
-        rows.append(
-            (
-                kind,
-                count[kind],
-                t_k,
-                float(cols["theta"][0]),
-                float(cols["R"][0]),
-                float(cols["G"][0]),
-            )
-        )
+        if 0.0 < t_k < t_end:
+            turns.append(("max" if td[i] > 0.0 else "min", float(t_k)))
     # A zero of θ' exactly on a grid point (a step landing on a turning point).
-    exact = np.flatnonzero(td[1:-1] == 0.0) + 1
-    for i in exact:
+    for i in np.flatnonzero(td[1:-1] == 0.0) + 1:
         if np.sign(td[i - 1]) * np.sign(td[i + 1]) < 0.0:
-            kind = "max" if td[i - 1] > 0.0 else "min"
-            cols = traj.slow(np.array([grid[i]]))
-            count[kind] += 1
-            rows.append(
-                (
-                    kind,
-                    count[kind],
-                    float(grid[i]),
-                    float(cols["theta"][0]),
-                    float(cols["R"][0]),
-                    float(cols["G"][0]),
-                )
-            )
-    rows.sort(key=lambda r: r[2])
-    # Renumber within each kind in time order.
-    seen = {"max": 0, "min": 0}
-    out = []
-    for kind, _, t_k, th, R, G in rows:
-        seen[kind] += 1
-        out.append((kind, seen[kind], t_k, th, R, G))
-    return out
+            turns.append(("max" if td[i - 1] > 0.0 else "min", float(grid[i])))
+    return sorted(turns, key=lambda turn: turn[1])
 
 
 def envelope_discrepancy(

@@ -45,6 +45,7 @@ from tumble.analysis.sweep import Axis, Draw, Keep, Record, SweepPlan, column_at
 from tumble.errors import ParameterError, ScenarioError
 from tumble.io.output import atomic_write
 from tumble.io.scenario import _one_line, key_units, parse_scenario
+from tumble.models import AnyModel
 
 __all__ = [
     "Sweep",
@@ -337,52 +338,21 @@ def parse_sweep(data: dict[str, Any], path: str | Path) -> Sweep:
         sf = SweepFile.model_validate(data)
     except ValidationError as exc:
         raise ScenarioError(f"{path}: {_one_line(exc, SweepFile)}") from None
-    if isinstance(sf.base, str):
-        source = path.parent / sf.base
-        try:
-            base = tomllib.loads(source.read_text(encoding="utf-8"))
-        except OSError as exc:
-            raise ScenarioError(f"base = {sf.base!r}: cannot read it ({exc.strerror})") from None
-        except tomllib.TOMLDecodeError as exc:
-            raise ScenarioError(f"base = {sf.base!r}: not valid TOML ({exc})") from None
-    else:
-        source, base = path, sf.base
+    source, base = _base(sf, path)
     try:  # the base itself must be a valid run; points that are not are recorded as failed
         sc = parse_scenario(copy.deepcopy(base), str(source))
     except (ScenarioError, ParameterError) as exc:
         raise ScenarioError(f"base scenario {source}: {exc}") from None
-    axes = tuple(_axis(i, a, base) for i, a in enumerate(sf.axis))
-    mc = sf.monte_carlo
-    draws = () if mc is None else tuple(_draw(i, d, base) for i, d in enumerate(mc.draw))
-    if mc is not None and mc.samples < 1:
-        raise ScenarioError(f"monte_carlo.samples = {mc.samples} must be ≥ 1")
-    if mc is not None and mc.seed < 0:
-        raise ScenarioError(f"monte_carlo.seed = {mc.seed} must be ≥ 0")
-    try:
-        plan = SweepPlan(axes, draws, 0 if mc is None else mc.samples, 0 if mc is None else mc.seed)
-    except ParameterError as exc:
-        raise ScenarioError(str(exc)) from None
+    plan = _plan(sf, base)
     model = sc.request.model
-    stability = sf.keep.stability
-    if stability and model.stationary is None:
-        raise ScenarioError(
-            f"keep.stability = true: the model {model.name} declares no stationary motion "
-            "(only rotating_field does)"
-        )
-    keep = Keep(
-        final=sf.keep.final,
-        differences=sf.keep.differences,
-        limits=sf.keep.limits,
-        stability=model.stationary is not None if stability is None else stability,
-        verify=sf.keep.verify,
-    )
+    keep = _keep(sf, model)
     if sf.sweep.chunk is not None and sf.sweep.chunk < 1:
         raise ScenarioError(f"sweep.chunk = {sf.sweep.chunk} must be ≥ 1")
     chunk = sf.sweep.chunk or _default_chunk(plan.size)
     decisive = {
         "base": base,
-        "axes": [[a.key, a.values.tolist()] for a in axes],
-        "draws": [[d.key, d.distribution, d.a, d.b] for d in draws],
+        "axes": [[a.key, a.values.tolist()] for a in plan.axes],
+        "draws": [[d.key, d.distribution, d.a, d.b] for d in plan.draws],
         "samples": plan.samples,
         "seed": plan.seed,
         "keep": [keep.final, keep.differences, keep.limits, keep.stability, keep.verify],
@@ -409,6 +379,51 @@ def parse_sweep(data: dict[str, Any], path: str | Path) -> Sweep:
         tuple(sf.plot.variables or ()),
         sf.plot.method,
         column_attrs(sc.request),
+    )
+
+
+def _base(sf: SweepFile, path: Path) -> tuple[Path, dict[str, Any]]:
+    """The base scenario: its file (the sweep file itself for an inline ``[base]``) and data."""
+    if not isinstance(sf.base, str):
+        return path, sf.base
+    source = path.parent / sf.base
+    try:
+        return source, tomllib.loads(source.read_text(encoding="utf-8"))
+    except OSError as exc:
+        raise ScenarioError(f"base = {sf.base!r}: cannot read it ({exc.strerror})") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise ScenarioError(f"base = {sf.base!r}: not valid TOML ({exc})") from None
+
+
+def _plan(sf: SweepFile, base: dict[str, Any]) -> SweepPlan:
+    """The grid axes and Monte Carlo draws of the sweep, checked against the base."""
+    axes = tuple(_axis(i, a, base) for i, a in enumerate(sf.axis))
+    mc = sf.monte_carlo
+    draws = () if mc is None else tuple(_draw(i, d, base) for i, d in enumerate(mc.draw))
+    if mc is not None and mc.samples < 1:
+        raise ScenarioError(f"monte_carlo.samples = {mc.samples} must be ≥ 1")
+    if mc is not None and mc.seed < 0:
+        raise ScenarioError(f"monte_carlo.seed = {mc.seed} must be ≥ 0")
+    try:
+        return SweepPlan(axes, draws, 0 if mc is None else mc.samples, 0 if mc is None else mc.seed)
+    except ParameterError as exc:
+        raise ScenarioError(str(exc)) from None
+
+
+def _keep(sf: SweepFile, model: AnyModel) -> Keep:
+    """What each point keeps; stability only for a model with a stationary motion."""
+    stability = sf.keep.stability
+    if stability and model.stationary is None:
+        raise ScenarioError(
+            f"keep.stability = true: the model {model.name} declares no stationary motion "
+            "(only rotating_field does)"
+        )
+    return Keep(
+        final=sf.keep.final,
+        differences=sf.keep.differences,
+        limits=sf.keep.limits,
+        stability=model.stationary is not None if stability is None else stability,
+        verify=sf.keep.verify,
     )
 
 

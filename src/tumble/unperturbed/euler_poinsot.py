@@ -778,6 +778,24 @@ def _elliptic(
     return reg, k2, nu, period, nu1, nu2, kern, P
 
 
+def _checked_state(
+    inertia: ArrayLike, z0: ArrayLike, attitude0: ArrayLike | None
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """The inputs of :meth:`EulerPoinsot.from_state` checked: moments, body rate, attitude."""
+    I_user = np.asarray(inertia, dtype=float).reshape(-1)
+    if I_user.shape != (3,):
+        raise ParameterError(f"inertia must have 3 moments, got {I_user.size}")
+    RigidBody(*(float(x) for x in I_user))  # positive moments, triangle inequality
+    z_user = np.asarray(z0, dtype=float).reshape(-1)
+    if z_user.shape != (3,):
+        raise ParameterError(f"z0 must have 3 components, got {z_user.size}")
+    for i, zi in enumerate(z_user):
+        check_finite(f"z0[{i}]", float(zi))
+    A0 = np.eye(3) if attitude0 is None else np.asarray(attitude0, dtype=float)
+    _check_attitude(A0)
+    return I_user, z_user, A0
+
+
 @dataclass(frozen=True, eq=False)
 class EulerPoinsot:
     """Torque-free motion of a rigid body, (3.1) of spec/martynenko.md §8, in closed form.
@@ -873,17 +891,7 @@ class EulerPoinsot:
         TumbleWarning
             On the separatrix L² = 2T·I2: the motion is asymptotic (period infinite).
         """
-        I_user = np.asarray(inertia, dtype=float).reshape(-1)
-        if I_user.shape != (3,):
-            raise ParameterError(f"inertia must have 3 moments, got {I_user.size}")
-        RigidBody(*(float(x) for x in I_user))  # positive moments, triangle inequality
-        z_user = np.asarray(z0, dtype=float).reshape(-1)
-        if z_user.shape != (3,):
-            raise ParameterError(f"z0 must have 3 components, got {z_user.size}")
-        for i, zi in enumerate(z_user):
-            check_finite(f"z0[{i}]", float(zi))
-        A0 = np.eye(3) if attitude0 is None else np.asarray(attitude0, dtype=float)
-        _check_attitude(A0)
+        I_user, z_user, A0 = _checked_state(inertia, z0, attitude0)
 
         Q = proper_sorting(I_user)
         Is_arr = np.sort(I_user)

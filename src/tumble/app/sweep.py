@@ -271,18 +271,7 @@ def sweep(
         ds = _dataset(spec, records)
         files = [store.write_dataset(ds), store.dir / "sweep.json"]
     if plot:
-        from tumble.io.output import atomic_write
-
-        figure = store.dir / "sweep.png"
-        png = sweep_png(
-            ds,
-            variables=spec.plot_variables or None,
-            method=spec.plot_method,
-            slow=figure_settings(spec.model).variables,
-            title=f"sweep {Path(path).name}",
-        )
-        atomic_write(figure, png)
-        files.append(figure)
+        files.append(_write_figure(spec, ds, store.dir / "sweep.png", Path(path).name))
     return SweepResult(
         ds,
         files,
@@ -292,6 +281,21 @@ def sweep(
         time.perf_counter() - start,
         threads,
     )
+
+
+def _write_figure(spec: Sweep, ds: xr.Dataset, figure: Path, name: str) -> Path:
+    """The sweep's figure (heat maps, lines or histograms), written atomically."""
+    from tumble.io.output import atomic_write
+
+    png = sweep_png(
+        ds,
+        variables=spec.plot_variables or None,
+        method=spec.plot_method,
+        slow=figure_settings(spec.model).variables,
+        title=f"sweep {name}",
+    )
+    atomic_write(figure, png)
+    return figure
 
 
 def _run_chunks(

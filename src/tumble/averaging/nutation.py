@@ -160,22 +160,14 @@ def numeric_averages(
         out[1:] = pz
         return out
 
-    def mean(values: FloatArray, step: int = 1) -> FloatArray:
-        return np.add.reduce(values[:, ::step], axis=1) * (step / values.shape[1])
-
-    def change(old: FloatArray, new: FloatArray, size: float) -> float:
-        """max |new − old| relative to the integrand's size (or max |new| if larger)."""
-        top = max(float(np.maximum.reduce(np.abs(new))), size, 1e-300)
-        return float(np.maximum.reduce(np.abs(new - old))) / top
-
     n = 2 * n_start
     if n_start < n_max:
         _, theta, theta_dot, _ = orbit.nodes(n)
         values = integrand(theta, theta_dot)
-        old, new = mean(values, 2), mean(values)
-        size = float(np.maximum.reduce(mean(np.abs(values))))
+        old, new = _mean(values, 2), _mean(values)
+        size = float(np.maximum.reduce(_mean(np.abs(values))))
         while True:
-            if change(old, new, size) <= rtol:
+            if _change(old, new, size) <= rtol:
                 return float(new[0]), new[1:]
             if n >= n_max:
                 break
@@ -183,14 +175,26 @@ def numeric_averages(
             # the midpoints.
             _, theta, theta_dot, _ = orbit.nodes(2 * n)
             odd = integrand(theta[1::2], theta_dot[1::2])
-            fresh = mean(odd)
-            size = 0.5 * (size + float(np.maximum.reduce(mean(np.abs(odd)))))
+            fresh = _mean(odd)
+            size = 0.5 * (size + float(np.maximum.reduce(_mean(np.abs(odd)))))
             old, new = new, 0.5 * (new + fresh)
             n *= 2
     raise AveragingError(
         f"averages over the nutation period did not converge with {n_max} nodes "
         f"(k² = {orbit.k2:.12g}, 1 − k² = {orbit.mc:.3g}): the motion is too near a separatrix"
     )
+
+
+def _mean(values: FloatArray, step: int = 1) -> FloatArray:
+    """Mean of each row over every ``step``-th node (a ufunc reduction: on these few numbers
+    np.mean's wrapper costs more than the arithmetic)."""
+    return np.add.reduce(values[:, ::step], axis=1) * (step / values.shape[1])
+
+
+def _change(old: FloatArray, new: FloatArray, size: float) -> float:
+    """max |new − old| relative to the integrand's size (or max |new| if larger)."""
+    top = max(float(np.maximum.reduce(np.abs(new))), size, 1e-300)
+    return float(np.maximum.reduce(np.abs(new - old))) / top
 
 
 def torque_perturbation(

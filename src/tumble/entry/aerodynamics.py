@@ -261,20 +261,7 @@ class Capsule:
         geo = cls(D=D, Rn=Rn, theta_c=theta_c, Lc=Lc, Rb=Rb, m=m, A=1.0, C=1.0, x_cg=1e-9)
         surf = _surface(geo, 64)
         vol = _volume(geo, 64)
-        # (dm, x, own transverse inertia per unit mass, own axial inertia per unit mass)
-        parts = []
-        for frac, mask in ((shield_fraction, surf.seg == 0), (wall_fraction, surf.seg > 0)):
-            da = 2.0 * math.pi * surf.r[mask] * surf.w[mask]
-            if frac == 0.0 or da.sum() == 0.0:
-                continue
-            dm = frac * m * da / da.sum()
-            x, r = surf.x[mask], surf.r[mask]
-            parts.append((dm, x, r**2 / 2.0, r**2))
-        fill = 1.0 - shield_fraction - wall_fraction
-        if fill > 0.0:
-            dv = math.pi * vol.r2 * vol.w
-            dm = fill * m * dv / dv.sum()
-            parts.append((dm, vol.x, vol.r2 / 4.0, vol.r2 / 2.0))
+        parts = _mass_elements(surf, vol, m, shield_fraction, wall_fraction)
         mass = sum(p[0].sum() for p in parts)
         x_cg = sum((p[0] * p[1]).sum() for p in parts) / mass
         a_inertia = sum((p[0] * (p[2] + (p[1] - x_cg) ** 2)).sum() for p in parts)
@@ -290,6 +277,27 @@ class Capsule:
             C=float(c_inertia),
             x_cg=float(x_cg),
         )
+
+
+def _mass_elements(
+    surf: _Nodes, vol: _Volume, m: float, shield_fraction: float, wall_fraction: float
+) -> list[tuple[FloatArray, FloatArray, FloatArray, FloatArray]]:
+    """The mass elements of a capsule: thin rings of the heat shield and of the afterbody
+    wall, and disks of the filled volume, as (dm, x, own transverse inertia per unit mass,
+    own axial inertia per unit mass)."""
+    parts = []
+    for frac, mask in ((shield_fraction, surf.seg == 0), (wall_fraction, surf.seg > 0)):
+        da = 2.0 * math.pi * surf.r[mask] * surf.w[mask]
+        if frac == 0.0 or da.sum() == 0.0:
+            continue
+        dm = frac * m * da / da.sum()
+        x, r = surf.x[mask], surf.r[mask]
+        parts.append((dm, x, r**2 / 2.0, r**2))
+    fill = 1.0 - shield_fraction - wall_fraction
+    if fill > 0.0:
+        dv = math.pi * vol.r2 * vol.w
+        parts.append((fill * m * dv / dv.sum(), vol.x, vol.r2 / 4.0, vol.r2 / 2.0))
+    return parts
 
 
 SOYUZ_CLASS = Capsule(

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, TypeAlias
 
 import numpy as np
 from numpy.typing import NDArray
@@ -18,3 +18,6 @@ ComplexArray = NDArray[np.complex128]
 
 BoolArray = NDArray[np.bool_]
 """A boolean mask."""
+
+Json: TypeAlias = float | int | str | bool | list["Json"] | dict[str, "Json"] | None
+"""A value a JSON or TOML file can hold."""

@@ -22,7 +22,7 @@ from typing import Generic, Literal, Protocol, TypeAlias, TypeVar
 import numpy as np
 from scipy.optimize import brentq
 
-from tumble._typing import ArrayLike, ComplexArray, FloatArray
+from tumble._typing import ArrayLike, ComplexArray, FloatArray, Json
 from tumble.errors import ParameterError
 from tumble.kernels import Kernel
 from tumble.models.schema import ScenarioSchema
@@ -60,8 +60,6 @@ Columns: TypeAlias = dict[str, FloatArray]
 """Output columns by name, each an array over the sample times."""
 SlowPath: TypeAlias = Callable[[FloatArray], Columns]
 """A trajectory's columns anywhere in its time span: ``slow(tau) -> columns``."""
-Json: TypeAlias = float | int | str | bool | list["Json"] | dict[str, "Json"] | None
-"""A value ``summary.json`` can hold."""
 Method = Literal["full", "averaged", "closed_form"]
 
 

@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-from tumble._typing import ArrayLike, FloatArray
+from tumble._typing import ArrayLike, FloatArray, Json
 from tumble.averaging.spinner import body_momentum, spinner_average, standard_form
 from tumble.bodies import RigidBody
 from tumble.dynamics import rigid_body_rhs
@@ -1319,8 +1319,8 @@ FULL_OSCULATING: FullForm[Params, State] = FullForm(
 # Scenario keys.
 
 _ANGLE_0_PI = "an angle in [0, π]"
-_ZERO3 = [0.0, 0.0, 0.0]
-_ZERO33 = [[0.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]]
+_ZERO3: list[Json] = [0.0, 0.0, 0.0]
+_ZERO33: list[Json] = [[0.0, 0.0, 0.0], [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]]
 
 _PARAMETERS = Section(
     "parameters",

@@ -14,7 +14,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any, Generic, Literal, Protocol, TypeVar
 
-from tumble._typing import FloatArray
+from tumble._typing import FloatArray, Json
 
 __all__ = [
     "REQUIRED",
@@ -39,7 +39,7 @@ class _Required:
         return "REQUIRED"
 
 
-REQUIRED: Any = _Required()
+REQUIRED = _Required()
 """The default of a key that must be given."""
 
 KeyKind = Literal[
@@ -80,7 +80,7 @@ class Key:
     kind: KeyKind
     expected: str
     units: str = ""
-    default: Any = REQUIRED
+    default: Json | _Required = REQUIRED
     choices: tuple[str, ...] = ()
     angle: bool = False
     doc: str = ""
@@ -97,7 +97,11 @@ class Section:
 
 
 class Inputs(Protocol):
-    """The validated values of a scenario, handed to a model's build function."""
+    """The validated values of a scenario, handed to a model's build function.
+
+    The values are TOML data already checked against their :class:`Key` (a number is a
+    float, a ``vector3`` a list of 3 floats, …), so they are typed ``Any`` here: this is the
+    boundary where untyped file data becomes a model's typed ``Params``."""
 
     def __getitem__(self, section: str) -> Mapping[str, Any] | None:
         """The values of ``section`` by key (defaults filled in), None if it is absent."""
@@ -123,7 +127,7 @@ class Scaling(Protocol):
 
     def tau_from_time(self, t_s: FloatArray) -> FloatArray: ...
 
-    def summary(self) -> dict[str, Any]: ...
+    def summary(self) -> Mapping[str, Json]: ...
 
 
 @dataclass(frozen=True)

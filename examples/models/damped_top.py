@@ -106,8 +106,8 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
         Y = np.atleast_2d(Y)
         return {"w_perp": Y[:, 0].copy(), "w3": Y[:, 1].copy()}
 
-    return AveragedForm("rates", "d(ω⊥, ω3)/dt = −εb(ω⊥/A, ω3/C)", _averaged_rhs, initial,
-                        to_columns)  # fmt: skip
+    equation = "d(ω⊥, ω3)/dt = −εb(ω⊥/A, ω3/C)"
+    return AveragedForm("rates", equation, ("w_perp", "w3"), _averaged_rhs, initial, to_columns)
 
 
 def closed_form(p: Params, st: State, t: FloatArray) -> Columns:
@@ -132,8 +132,8 @@ COLUMNS = fixed_columns(
 )
 
 FULL: FullForm[Params, State] = FullForm(
-    "quaternion", "Euler + quaternions", full_rhs, _initial_state, _rates, full_kernel,
-    _invariants,
+    "quaternion", "Euler + quaternions", ("w1", "w2", "w3", "q0", "q1", "q2", "q3"), full_rhs,
+    _initial_state, _rates, full_kernel, _invariants,
 )  # fmt: skip
 
 SCENARIO: ScenarioSchema[Params, State] = ScenarioSchema(

@@ -118,9 +118,10 @@ class AveragingOptions:
 class FullForm(Generic[P, S]):
     """One form of the full equations of motion.
 
-    ``rhs(t, y, p)`` is the right-hand side; ``initial_state(p, initial)`` builds the state
-    vector; ``to_columns(p, t, Y)`` turns states ``Y`` of shape (n, dim) into output columns
-    (the slow variables, converted from the full state). ``kernel(p)`` gives the same
+    ``state`` names the components of the state vector; ``rhs(t, y, p)`` is the right-hand
+    side; ``initial_state(p, initial)`` builds the state vector; ``to_columns(p, t, Y)``
+    turns states ``Y`` of shape (n, dim) into output columns (the slow variables, converted
+    from the full state). ``kernel(p)`` gives the same
     right-hand side compiled (:class:`tumble.kernels.Kernel`), or None where ``p`` holds a
     Python function; ``rhs`` stays the reference that the scipy integrator runs.
     ``invariants(p, Y)`` are the quantities the unperturbed motion (ε = 0) conserves.
@@ -128,6 +129,7 @@ class FullForm(Generic[P, S]):
 
     name: str
     equation: str
+    state: tuple[str, ...]
     rhs: Callable[[float, FloatArray, P], FloatArray]
     initial_state: Callable[[P, S], FloatArray]
     to_columns: Callable[[P, FloatArray, FloatArray], Columns]
@@ -160,10 +162,11 @@ class Breakpoint:
 @dataclass(frozen=True, slots=True)
 class AveragedForm(Generic[P, S]):
     """The averaged (evolution) equations in the coordinates used to integrate them, for one
-    parameter set and initial state."""
+    parameter set and initial state; ``slow`` names the components of the slow state."""
 
     name: str
     equation: str
+    slow: tuple[str, ...]
     rhs: Callable[[float, FloatArray, P], FloatArray]
     initial_state: Callable[[P, S], FloatArray]
     to_columns: Callable[[P, S, FloatArray, FloatArray], Columns]

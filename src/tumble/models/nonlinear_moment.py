@@ -856,6 +856,7 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
     return AveragedForm(
         name=form,
         equation="(2.2)-(2.3)" + (", energy form of spec §7" if form == "energy" else ""),
+        slow=("H" if form == "energy" else form, "R", "G", "a", "b"),
         rhs=rhs,
         initial_state=initial_state,
         to_columns=to_columns,
@@ -1252,6 +1253,7 @@ def full_kernel(p: Params) -> Kernel | None:
 FULL_QUATERNION: FullForm[Params, State] = FullForm(
     name="quaternion",
     equation="(1.1) with quaternion kinematics",
+    state=("w1", "w2", "w3", "q0", "q1", "q2", "q3"),
     rhs=full_rhs,
     initial_state=full_from_slow,
     to_columns=slow_from_full,
@@ -1261,6 +1263,7 @@ FULL_QUATERNION: FullForm[Params, State] = FullForm(
 FULL_REDUCED: FullForm[Params, State] = FullForm(
     name="reduced",
     equation="(1.3), (2.1)",
+    state=("theta", "theta_dot", "psi", "phi", "R", "G", "a", "b"),
     rhs=_builtin_reduced_rhs,
     initial_state=_reduced_from_slow,
     to_columns=_reduced_columns,

@@ -681,6 +681,7 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
             if numeric
             else "(3.5)-(3.7), vector form of spec §10"
         ),
+        slow=("L1", "L2", "L3", "r"),
         rhs=averaged_rhs_numeric if numeric else averaged_rhs_vector,
         initial_state=_vector_from_slow,
         to_columns=_vector_columns,
@@ -1228,6 +1229,7 @@ def inertial_kernel(p: Params) -> Kernel | None:
 FULL_ROTATING: FullForm[Params, State] = FullForm(
     name="rotating",
     equation="(1.5)",
+    state=("z1", "z2", "z3", "G11", "G12", "G13", "G21", "G22", "G23", "G31", "G32", "G33"),
     rhs=full_rhs,
     initial_state=full_from_slow,
     to_columns=slow_from_full,
@@ -1237,6 +1239,7 @@ FULL_ROTATING: FullForm[Params, State] = FullForm(
 FULL_INERTIAL: FullForm[Params, State] = FullForm(
     name="inertial",
     equation="(1.4) with quaternions",
+    state=("z1", "z2", "z3", "q0", "q1", "q2", "q3"),
     rhs=inertial_rhs,
     initial_state=_inertial_from_slow,
     to_columns=_inertial_columns,

@@ -372,6 +372,7 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
     return AveragedForm(
         name="numeric",
         equation="the triaxial averaging (3.5)-(3.7) with the scenario's torque, by quadrature",
+        slow=("L1", "L2", "L3", "r"),
         rhs=averaged_rhs,
         initial_state=_vector_from_slow,
         to_columns=_vector_columns,
@@ -547,6 +548,7 @@ def full_kernel(p: Params) -> Kernel | None:
 FULL: FullForm[Params, State] = FullForm(
     name="quaternion",
     equation="Euler's equations with quaternion kinematics",
+    state=("w1", "w2", "w3", "q0", "q1", "q2", "q3"),
     rhs=full_rhs,
     initial_state=_full_from_slow,
     to_columns=_full_columns,

@@ -37,6 +37,8 @@ __all__ = [
     "evaluate",
     "event",
     "rhs",
+    "rotating_field",
+    "symmetric_body",
 ]
 
 KIND_RIGID_BODY = 1
@@ -88,6 +90,15 @@ def _rotating_field(y: FloatArray, p: FloatArray, out: FloatArray) -> None:
         out[6 + col] -= g[col]
 
 
+@jit(ENTRY)
+def rotating_field(y: FloatArray, p: FloatArray) -> FloatArray:
+    """dy/dτ of (1.5) from Python: the same code as the integrator's, for real or complex
+    states (complex-step Jacobians)."""
+    out = np.empty_like(y)
+    _rotating_field(y, p, out)
+    return out
+
+
 @jit(KERNEL)
 def pressure(p: FloatArray, tau: float) -> float:
     """Q(τ)/Q(0) of the nonlinear-moment parameters: constant, exponential, or a table
@@ -111,13 +122,12 @@ def pressure(p: FloatArray, tau: float) -> float:
 
 
 @jit(INLINE)
-def _nonlinear_moment(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> None:
-    """Serov (1991) eq. (1.1) in quaternions under M0 = Q(εt)(a sinθ + b sin2θ) with the
-    damping εd (transverse) and εν (axial); p = [μ, a0, b0, ε, d, ν, pressure kind, Q(0),
-    table size n, τ_1..n, Q_1..n]."""
-    mu, eps = p[0], p[3]
-    q = pressure(p, eps * t)
-    a, b = p[1] * q, p[2] * q
+def _symmetric_body(
+    y: FloatArray, mu: float, a: float, b: float, ed: float, en: float, out: FloatArray
+) -> None:
+    """Serov (1991) eq. (1.1) in quaternions under M0 = a sinθ + b sin2θ (per A), written
+    without Euler angles as (a + 2b cos θ)(e_z × e3), with the damping −ed (p, q, 0) and
+    −en (0, 0, r)."""
     w1, w2, w3 = y[0], y[1], y[2]
     q0, q1, q2, q3 = y[3], y[4], y[5], y[6]
     n2 = q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3
@@ -126,11 +136,29 @@ def _nonlinear_moment(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -
     ey = 2.0 * (q2 * q3 + q0 * q1) / n2
     ez = 1.0 - 2.0 * (q1 * q1 + q2 * q2) / n2
     m0 = a + 2.0 * b * ez
-    ed, en = eps * p[4], eps * p[5]
     out[0] = (1.0 - mu) * w2 * w3 + m0 * ey - ed * w1
     out[1] = (mu - 1.0) * w3 * w1 - m0 * ex - ed * w2
     out[2] = -en * w3
     quaternion_rates(y, out)
+
+
+@jit(INLINE)
+def _nonlinear_moment(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> None:
+    """(1.1) with a, b scaled by the pressure Q(εt)/Q(0); p = [μ, a0, b0, ε, d, ν, pressure
+    kind, Q(0), table size n, τ_1..n, Q_1..n]."""
+    eps = p[3]
+    q = pressure(p, eps * t)
+    _symmetric_body(y, p[0], p[1] * q, p[2] * q, eps * p[4], eps * p[5], out)
+
+
+@jit(ENTRY)
+def symmetric_body(
+    y: FloatArray, mu: float, a: float, b: float, ed: float, en: float
+) -> FloatArray:
+    """dy/dt of (1.1) from Python, at given a, b: the same code as the integrator's."""
+    out = np.empty_like(y)
+    _symmetric_body(y, mu, a, b, ed, en, out)
+    return out
 
 
 @jit(INLINE)

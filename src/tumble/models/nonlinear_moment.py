@@ -41,6 +41,7 @@ from tumble.averaging.nutation import (
 )
 from tumble.errors import IntegrationError, ParameterError, ScenarioError, check_range
 from tumble.kernels import EVENT_THETA_DOT, KIND_NONLINEAR_MOMENT, Kernel
+from tumble.kernels.rhs import symmetric_body
 from tumble.models.base import (
     Averaged,
     AveragedForm,
@@ -378,7 +379,9 @@ def full_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
 
     The moment (1.4)–(1.5) is written without Euler angles: with e_z in body axes,
     M0·e_n = A(a + 2b cosθ)(e_z × e3), since e_z × e3 = sinθ·e_n. Damping adds
-    −εA d (p, q, 0) − εC ν (0, 0, r).
+    −εA d (p, q, 0) − εC ν (0, 0, r). One definition: the compiled kernel the integrator runs
+    (:func:`tumble.kernels.rhs.symmetric_body`); only the pressure Q(εt) is evaluated here,
+    so that a pressure given as a Python function works too.
 
     Parameters
     ----------
@@ -393,31 +396,13 @@ def full_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
     ndarray, shape (7,)
         dy/dt.
     """
-    w1, w2, w3, q0, q1, q2, q3 = y.tolist()
-    n2 = q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3
-    # e_z in body axes = third row of the body → inertial matrix of the unit quaternion.
-    ex = 2.0 * (q1 * q3 - q0 * q2) / n2
-    ey = 2.0 * (q2 * q3 + q0 * q1) / n2
-    ez = 1.0 - 2.0 * (q1 * q1 + q2 * q2) / n2
     if p.pressure.kind == "constant":
         a, b = p.a, p.b
     else:
         av, bv = p.ab(t)
         a, b = float(av), float(bv)
-    m0 = a + 2.0 * b * ez
-    ed, en = p.eps * p.d, p.eps * p.nu
-    mu = p.mu
-    return np.array(
-        [
-            (1.0 - mu) * w2 * w3 + m0 * ey - ed * w1,
-            (mu - 1.0) * w3 * w1 - m0 * ex - ed * w2,
-            -en * w3,
-            0.5 * (-q1 * w1 - q2 * w2 - q3 * w3),
-            0.5 * (q0 * w1 + q2 * w3 - q3 * w2),
-            0.5 * (q0 * w2 - q1 * w3 + q3 * w1),
-            0.5 * (q0 * w3 + q1 * w2 - q2 * w1),
-        ]
-    )
+    state = np.ascontiguousarray(y, dtype=np.float64)
+    return symmetric_body(state, p.mu, a, b, p.eps * p.d, p.eps * p.nu)  # type: ignore[no-any-return]
 
 
 def _body_axis_components(Y: FloatArray) -> tuple[FloatArray, ...]:

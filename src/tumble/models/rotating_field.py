@@ -30,6 +30,7 @@ from tumble.bodies import RigidBody
 from tumble.dynamics import rigid_body_rhs
 from tumble.errors import ParameterError, ScenarioError, check_range
 from tumble.kernels import KIND_ROTATING_FIELD, Kernel, rigid_body_kernel
+from tumble.kernels.rhs import rotating_field as rotating_field_rhs
 from tumble.models.base import (
     Averaged,
     AveragedForm,
@@ -132,6 +133,7 @@ class Params:
     sorted_inertia: tuple[float, float, float] = field(init=False, repr=False)
     hh: FloatArray = field(init=False, repr=False)  # ĥĥ = hhᵀ − E in the field frame
     torque: EddyCurrentTorque = field(init=False, repr=False)
+    packed: FloatArray = field(init=False, repr=False)  # [I, ε, ĥĥ]: the kernel's parameters
 
     def __post_init__(self) -> None:
         inertia = frozen_array("parameters.inertia", self.inertia, (3,))
@@ -160,6 +162,8 @@ class Params:
         hh.setflags(write=False)
         object.__setattr__(self, "hh", hh)
         object.__setattr__(self, "torque", EddyCurrentTorque(self.eps, 1.0, self.beta))
+        packed = np.concatenate([inertia, [float(self.eps)], hh.ravel()])
+        object.__setattr__(self, "packed", packed)
 
     @property
     def s2(self) -> float:
@@ -239,7 +243,8 @@ def _hat(v: Any) -> Any:
 def full_rhs(t: float, y: Any, p: Params) -> Any:
     """Right-hand side of the rotating-frame form (1.5), with the corrected Γ′ (erratum 3).
 
-    ``I z′ + z × I z = ε Γᵀ ĥĥ (Γ z − ξ3)``, ``Γ′ = Γ ẑ − ξ̂3 Γ``.
+    ``I z′ + z × I z = ε Γᵀ ĥĥ (Γ z − ξ3)``, ``Γ′ = Γ ẑ − ξ̂3 Γ``. One definition: the
+    compiled kernel the integrator runs (:func:`tumble.kernels.rhs.rotating_field`).
 
     Parameters
     ----------
@@ -255,14 +260,10 @@ def full_rhs(t: float, y: Any, p: Params) -> Any:
     ndarray, shape (12,)
         dy/dτ.
     """
-    z = y[:3]
-    G = y[3:].reshape(3, 3)
-    Iz = p.inertia * z
-    rel = G @ z - _XI3  # angular velocity relative to the field, field-frame components
-    m_eta = p.hh @ rel
-    dz = (np.cross(Iz, z) + p.eps * (G.T @ m_eta)) / p.inertia
-    dG = G @ _hat(z) - _hat(_XI3) @ G
-    return np.concatenate([dz, dG.ravel()])
+    state = np.ascontiguousarray(y)
+    if not np.iscomplexobj(state):
+        state = state.astype(np.float64, copy=False)
+    return rotating_field_rhs(state, p.packed)
 
 
 def inertial_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
@@ -1218,7 +1219,7 @@ _DIAGNOSTICS = (
 
 def full_kernel(p: Params) -> Kernel:
     """:func:`full_rhs` compiled (:mod:`tumble.kernels`): the rotating-frame form (1.5)."""
-    return Kernel(KIND_ROTATING_FIELD, np.concatenate([p.inertia, [p.eps], p.hh.ravel()]))
+    return Kernel(KIND_ROTATING_FIELD, p.packed)
 
 
 def inertial_kernel(p: Params) -> Kernel | None:

@@ -12,6 +12,7 @@ import numpy as np
 
 from tumble._typing import FloatArray
 from tumble.bodies import RigidBody
+from tumble.kernels.rhs import euler_quaternion
 from tumble.rotations import quat_normalize, quat_to_matrix
 from tumble.torques import Torque
 
@@ -23,7 +24,9 @@ def rigid_body_rhs(
 ) -> FloatArray:
     """Right-hand side of Euler's equations and quaternion kinematics.
 
-    ``I dω/dt = −ω × (I ω) + M(t, q, ω)``, ``dq/dt = ½ q ⊗ (0, ω)``.
+    ``I dω/dt = −ω × (I ω) + M(t, q, ω)``, ``dq/dt = ½ q ⊗ (0, ω)``. The torque is evaluated
+    here (it may be a Python function); the equations are the compiled ones the integrator
+    runs (:func:`tumble.kernels.rhs.euler_quaternion`).
 
     Parameters
     ----------
@@ -41,25 +44,16 @@ def rigid_body_rhs(
     ndarray, shape (7,)
         dy/dt.
     """
-    # Plain floats: this runs ~1e5–1e6 times per trajectory and numpy scalars are slow.
-    w1, w2, w3, q0, q1, q2, q3 = y.tolist()
-    i1, i2, i3 = inertia.tolist()
+    state = np.ascontiguousarray(y, dtype=np.float64)
     if torque is None:
-        m1 = m2 = m3 = 0.0
+        moment = _ZERO
     else:
-        norm = math.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
-        m1, m2, m3 = torque(t, y[3:] / norm, y[:3]).tolist()
-    return np.array(
-        [
-            ((i2 - i3) * w2 * w3 + m1) / i1,
-            ((i3 - i1) * w3 * w1 + m2) / i2,
-            ((i1 - i2) * w1 * w2 + m3) / i3,
-            0.5 * (-q1 * w1 - q2 * w2 - q3 * w3),
-            0.5 * (q0 * w1 + q2 * w3 - q3 * w2),
-            0.5 * (q0 * w2 - q1 * w3 + q3 * w1),
-            0.5 * (q0 * w3 + q1 * w2 - q2 * w1),
-        ]
-    )
+        q = state[3:]
+        moment = np.asarray(torque(t, q / math.sqrt(float(q @ q)), state[:3]), dtype=np.float64)
+    return euler_quaternion(state, np.asarray(inertia, dtype=np.float64), moment)  # type: ignore[no-any-return]
+
+
+_ZERO = np.zeros(3)
 
 
 def rigid_body_state(omega: FloatArray, q: FloatArray) -> FloatArray:

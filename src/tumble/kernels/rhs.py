@@ -34,9 +34,11 @@ __all__ = [
     "KIND_NONLINEAR_MOMENT",
     "KIND_RIGID_BODY",
     "KIND_ROTATING_FIELD",
+    "euler_quaternion",
     "evaluate",
     "event",
     "rhs",
+    "rigid_body",
     "rotating_field",
     "symmetric_body",
 ]
@@ -51,15 +53,41 @@ EVENT_THETA_DOT = 1
 
 
 @jit(INLINE)
-def _rigid_body(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> None:
-    """I ω' = (I ω) × ω + M, q' = ½ q ⊗ (0, ω); p = [I1, I2, I3, torque program]."""
-    i1, i2, i3 = p[0], p[1], p[2]
+def _euler(
+    y: FloatArray, i1: float, i2: float, i3: float, m1: float, m2: float, m3: float,
+    out: FloatArray,
+) -> None:  # fmt: skip
+    """I ω' = (I ω) × ω + M and q' = ½ q ⊗ (0, ω) for y = [ω, q] and the body moment M."""
     w1, w2, w3 = y[0], y[1], y[2]
-    torque_moment(p, 3, t, y, out)
-    out[0] = ((i2 - i3) * w2 * w3 + out[0]) / i1
-    out[1] = ((i3 - i1) * w3 * w1 + out[1]) / i2
-    out[2] = ((i1 - i2) * w1 * w2 + out[2]) / i3
+    out[0] = ((i2 - i3) * w2 * w3 + m1) / i1
+    out[1] = ((i3 - i1) * w3 * w1 + m2) / i2
+    out[2] = ((i1 - i2) * w1 * w2 + m3) / i3
     quaternion_rates(y, out)
+
+
+@jit(INLINE)
+def _rigid_body(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> None:
+    """Euler's equations with quaternions under the torque program; p = [I1, I2, I3,
+    torque program]."""
+    torque_moment(p, 3, t, y, out)
+    _euler(y, p[0], p[1], p[2], out[0], out[1], out[2], out)
+
+
+@jit(ENTRY)
+def rigid_body(t: float, y: FloatArray, p: FloatArray) -> FloatArray:
+    """dy/dt of Euler's equations under a torque program, from Python: the integrator's code."""
+    out = np.empty_like(y)
+    _rigid_body(t, y, p, out)
+    return out
+
+
+@jit(ENTRY)
+def euler_quaternion(y: FloatArray, inertia: FloatArray, moment: FloatArray) -> FloatArray:
+    """dy/dt of Euler's equations with quaternions under a body moment computed elsewhere (a
+    Python torque): the same equations as the integrator's."""
+    out = np.empty_like(y)
+    _euler(y, inertia[0], inertia[1], inertia[2], moment[0], moment[1], moment[2], out)
+    return out
 
 
 @jit(INLINE)

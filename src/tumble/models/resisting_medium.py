@@ -24,7 +24,6 @@ import numpy as np
 from tumble._typing import ArrayLike, FloatArray, Json
 from tumble.averaging.spinner import body_momentum, spinner_average, standard_form
 from tumble.bodies import RigidBody
-from tumble.dynamics import rigid_body_rhs
 from tumble.errors import (
     IntegrationError,
     ParameterError,
@@ -33,6 +32,7 @@ from tumble.errors import (
     check_range,
 )
 from tumble.kernels import Kernel, rigid_body_kernel
+from tumble.kernels.rhs import rigid_body
 from tumble.models.base import (
     Averaged,
     AveragedForm,
@@ -124,6 +124,7 @@ class Params:
     s: FloatArray = field(default_factory=lambda: np.zeros((3, 3)))
     _torque: Torque = field(init=False, repr=False)
     _inertia: FloatArray = field(init=False, repr=False)
+    _kernel: Kernel = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         check_range("parameters.eps", float(self.eps), low=0.0, low_open=False)
@@ -137,6 +138,9 @@ class Params:
         moment = ConstantBodyTorque(self.a) + LinearDrag(self.b) + QuadraticDrag(self.s)
         object.__setattr__(self, "_torque", self.eps * moment)
         object.__setattr__(self, "_inertia", np.array([1.0, 1.0, 1.0 + self.kappa]))
+        kernel = rigid_body_kernel(self._inertia, self._torque)
+        assert kernel is not None  # (1.2) is built of compiled terms only
+        object.__setattr__(self, "_kernel", kernel)
 
     # Combinations of (2.2), spec §6.
     @property
@@ -214,7 +218,8 @@ class State:
 
 
 def full_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
-    """Full equations of motion, Euler + quaternions with the moment (1.2), spec §4.
+    """Full equations of motion, Euler + quaternions with the moment (1.2), spec §4: the
+    compiled code the integrator runs (:func:`tumble.kernels.rhs.rigid_body`).
 
     Parameters
     ----------
@@ -225,7 +230,7 @@ def full_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
     p : Params
         Model parameters.
     """
-    return rigid_body_rhs(t, y, p.inertia, p.torque)
+    return rigid_body(t, np.ascontiguousarray(y, dtype=np.float64), p._kernel.params)  # type: ignore[no-any-return]
 
 
 def full_from_slow(p: Params, st: State) -> FloatArray:
@@ -1298,7 +1303,7 @@ _COLUMNS_FULL = (
 
 def full_kernel(p: Params) -> Kernel | None:
     """:func:`full_rhs` compiled (:mod:`tumble.kernels`): Euler + quaternions with (1.2)."""
-    return rigid_body_kernel(p.inertia, p.torque)
+    return p._kernel
 
 
 FULL_EULER: FullForm[Params, State] = FullForm(

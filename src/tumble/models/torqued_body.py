@@ -36,6 +36,7 @@ from tumble.bodies import RigidBody
 from tumble.dynamics import rigid_body_rhs
 from tumble.errors import ParameterError, ScenarioError, check_range
 from tumble.kernels import Kernel, rigid_body_kernel
+from tumble.kernels.rhs import rigid_body
 from tumble.models.base import (
     Averaged,
     AveragedForm,
@@ -219,6 +220,8 @@ class Params:
     sorted_inertia: tuple[float, float, float] = field(init=False, repr=False)
     scaled: Torque = field(init=False, repr=False)
     attitude_dependent: bool = field(init=False, repr=False)
+    # The compiled kernel of the full equations; None when the torque holds a Python function.
+    kernel: Kernel | None = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         inertia = frozen_array("parameters.inertia", self.inertia, (3,))
@@ -233,6 +236,7 @@ class Params:
         object.__setattr__(self, "scaled", self.eps * self.torque)
         dependent = not all(isinstance(t, _BODY_ONLY) for t in _terms(self.torque))
         object.__setattr__(self, "attitude_dependent", dependent or self.forcing_period is not None)
+        object.__setattr__(self, "kernel", rigid_body_kernel(inertia, self.scaled))
 
     def with_eps(self, eps: float) -> Params:
         """The same body and torque at another ε (for error studies)."""
@@ -275,6 +279,8 @@ def full_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
     ndarray, shape (7,)
         dy/dt.
     """
+    if p.kernel is not None:  # the integrator's own code
+        return rigid_body(t, np.ascontiguousarray(y, dtype=np.float64), p.kernel.params)  # type: ignore[no-any-return]
     return rigid_body_rhs(t, y, p.inertia, p.scaled)
 
 
@@ -542,7 +548,7 @@ _COLUMNS_FULL = (
 
 def full_kernel(p: Params) -> Kernel | None:
     """:func:`full_rhs` compiled (:mod:`tumble.kernels`); None for a user torque function."""
-    return rigid_body_kernel(p.inertia, p.scaled)
+    return p.kernel
 
 
 FULL: FullForm[Params, State] = FullForm(

@@ -361,13 +361,13 @@ def _yes(met: bool) -> str:
 
 
 def _full_table(r: dict[str, Any]) -> Table | None:
-    """The compiled DOP853 against scipy's with a Python right-hand side."""
+    """The compiled DOP853 against scipy's calling the right-hand side from Python."""
     tg, st = r["targets"], r["settings"]
     if not r["full_speedup_vs_scipy"]:
         return None
     t = Table(
         title=f"Full simulation, {st['horizon']:g} time units at rtol {st['rtol']:g}: "
-        "compiled DOP853 vs scipy DOP853 with a Python right-hand side",
+        "compiled DOP853 vs scipy DOP853 calling the right-hand side from Python",
         title_justify="left",
     )
     for col in ("case", "tumble [s]", "error", "scipy [s]", "error", "speed-up", "≥ 50×"):

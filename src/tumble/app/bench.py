@@ -6,7 +6,7 @@ Four studies, each with its error figures and its target beside it:
     The full equations over ``horizon`` time units (default 1e5) at rtol 1e-10, for the free
     triaxial body and for the default scenario of each model (``tumble init``) with ε scaled so
     that the slow horizon ε·t_end stays the template's: compiled DOP853
-    (:func:`tumble.integrate.dop853.solve`) against scipy's DOP853 with the model's pure-Python
+    (:func:`tumble.integrate.dop853.solve`) against scipy's DOP853 calling the model's
     right-hand side. Both take the same steps; each final state's error is measured against
     a tighter reference.
 ``full_time_ratio_vs_heyoka``
@@ -103,7 +103,8 @@ class BenchSettings:
     repeat : int
         Timed calls per figure; the best counts.
     scipy : bool
-        Time scipy's DOP853 with the Python right-hand side (about a minute per case at 1e5).
+        Time scipy's DOP853 calling the right-hand side from Python (about a minute per case
+        at 1e5).
     heyoka : bool
         Compare with heyoka.py when it is installed.
     batch_size : int
@@ -147,7 +148,7 @@ class FullCase:
     y0 : ndarray
         Initial state.
     rhs : callable
-        ``rhs(t, y)``, the model's pure-Python right-hand side.
+        ``rhs(t, y)``, the model's right-hand side as Python calls it.
     """
 
     name: str
@@ -272,13 +273,13 @@ def _compiled_final(case: FullCase, t_end: float, rtol: float, atol: float) -> A
 
 
 def _scipy_part(case: FullCase, s: BenchSettings, log: Callable[[str], None]) -> dict[str, Any]:
-    """Compiled DOP853 against scipy's DOP853 with the Python right-hand side, both measured
+    """Compiled DOP853 against scipy's DOP853 calling the right-hand side from Python, both measured
     against the compiled DOP853 at rtol REFERENCE_RTOL."""
     T = s.horizon
     log(f"full {case.name}: compiled DOP853")
     tumble_s, sol = _best(lambda: _compiled_final(case, T, s.rtol, s.atol), s.repeat)
     ref = _compiled_final(case, T, REFERENCE_RTOL, REFERENCE_ATOL).y
-    log(f"full {case.name}: scipy DOP853 with the Python right-hand side")
+    log(f"full {case.name}: scipy DOP853 calling the right-hand side from Python")
     start = time.perf_counter()
     sp = solve_ivp(case.rhs, (0.0, T), case.y0, method="DOP853", rtol=s.rtol, atol=s.atol)
     scipy_s = time.perf_counter() - start

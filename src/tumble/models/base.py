@@ -50,6 +50,7 @@ __all__ = [
     "first_time",
     "fixed_columns",
     "frozen_array",
+    "separatrix_issue",
     "separatrix_time",
 ]
 
@@ -487,6 +488,25 @@ def separatrix_time(slow: SlowPath, grid: FloatArray, I2: float) -> float | None
 
     found = first_time(other_side, grid)
     return float(found if found is not None else grid[flips[0] + 1])
+
+
+def separatrix_issue(
+    slow: SlowPath, grid: FloatArray, I2: float, time: str = "t"
+) -> ValidityIssue | None:
+    """The first crossing of the separatrix L² = 2T·I2 by a triaxial body's averaged motion
+    (:func:`separatrix_time`) as a validity issue; ``time`` is the model's name for its time
+    column (``"t"``, ``"τ"``) in the message."""
+    tau_s = separatrix_time(slow, grid, I2)
+    if tau_s is None:
+        return None
+    return ValidityIssue(
+        "separatrix",
+        tau_s,
+        f"the averaged motion crosses the separatrix L² = 2T·I2 at {time} = {tau_s:.6g}: "
+        "the polhode frequency ν1 → 0 there and averaging is locally invalid; the error after "
+        "the crossing is usually first order, theory allows ε|ln ε| (Neishtadt 1975)",
+        label="the separatrix",
+    )
 
 
 def frozen_array(name: str, value: ArrayLike, shape: tuple[int, ...]) -> FloatArray:

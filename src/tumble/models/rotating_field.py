@@ -49,7 +49,7 @@ from tumble.models.base import (
     first_time,
     fixed_columns,
     frozen_array,
-    separatrix_time,
+    separatrix_issue,
 )
 from tumble.models.schema import Built, Inputs, Key, ScenarioSchema, Section, Variant
 from tumble.rotations import (
@@ -923,31 +923,14 @@ def validity(p: Params, st: State, slow: SlowPath, tau_end: float) -> list[Valid
     grid = np.linspace(0.0, tau_end, 2001)
     cols = slow(grid)
     # Fast frequencies ~ L/I3 against the slow rates ~ ε/I1.
-    L_small = p.sorted_inertia[2] * small / VALIDITY_RATIO
+    I1, I2, I3 = p.sorted_inertia
+    L_small = I3 * small / VALIDITY_RATIO
     found = (
-        _separatrix_issue(p, slow, grid, cols),
+        separatrix_issue(slow, grid, I2, time="τ") if I1 < I2 < I3 else None,
         _momentum_issue(slow, grid, L_small),
         *_frequency_issues(p, grid, cols, L_small),
     )
     return issues + [issue for issue in found if issue is not None]
-
-
-def _separatrix_issue(
-    p: Params, slow: SlowPath, grid: FloatArray, cols: dict[str, FloatArray]
-) -> ValidityIssue | None:
-    """The first crossing of the separatrix L² = 2T·I2 (a triaxial body only)."""
-    I1, I2, I3 = p.sorted_inertia
-    tau_s = separatrix_time(slow, grid, I2) if I1 < I2 < I3 else None
-    if tau_s is None:
-        return None
-    return ValidityIssue(
-        "separatrix",
-        tau_s,
-        f"the averaged motion crosses the separatrix L² = 2T·I2 at τ = {tau_s:.6g}: "
-        "the polhode frequency ν1 → 0 there, averaging is locally invalid (the "
-        "error usually stays first order; theory allows ε|ln ε|) "
-        "(spec/martynenko.md §12)",
-    )
 
 
 def _momentum_issue(slow: SlowPath, grid: FloatArray, L_small: float) -> ValidityIssue | None:

@@ -53,7 +53,7 @@ from tumble.models.base import (
     ValidityIssue,
     fixed_columns,
     frozen_array,
-    separatrix_time,
+    separatrix_issue,
 )
 from tumble.models.schema import Built, Inputs, Key, ScenarioSchema, Section, Variant
 from tumble.rotations import euler313_to_matrix, matrix_to_quat, quat_normalize, quat_to_matrix
@@ -426,26 +426,11 @@ def validity(p: Params, st: State, slow: SlowPath, tau_end: float) -> list[Valid
     I1, I2, I3 = p.sorted_inertia
     scales = _Scales.along(p, grid, cols)
     found = [
-        _separatrix_issue(slow, grid, I2) if I1 < I2 < I3 else None,
+        separatrix_issue(slow, grid, I2) if I1 < I2 < I3 else None,
         _not_fast_issue(grid, scales),
         _resonance_issue(p, grid, cols, scales) if p.attitude_dependent else None,
     ]
     return sorted((i for i in found if i is not None), key=lambda i: i.tau)
-
-
-def _separatrix_issue(slow: SlowPath, grid: FloatArray, I2: float) -> ValidityIssue | None:
-    tau_s = separatrix_time(slow, grid, I2)
-    if tau_s is None:
-        return None
-    return ValidityIssue(
-        "separatrix",
-        tau_s,
-        f"the averaged motion crosses the separatrix L² = 2T·I2 at t = {tau_s:.6g}: "
-        "the polhode frequency ν1 → 0 there and averaging is locally invalid; the "
-        "error after the crossing is usually first order, theory allows ε|ln ε| "
-        "(spec/martynenko.md §12)",
-        label="the separatrix",
-    )
 
 
 @dataclass(frozen=True)

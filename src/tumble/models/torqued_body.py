@@ -1,9 +1,9 @@
-"""A triaxial rigid body under any small torque, averaged by the general engine (issue 5).
+"""A triaxial rigid body under any small torque, averaged by the general engine.
 
 No paper derives these averaged equations: they are built numerically by
-:func:`tumble.averaging.triaxial_average_vector` over the Euler–Poinsot motion of
-spec/martynenko.md §8 (the setting of §10, with the eddy-current torque replaced by any
-torque). The full equations are Euler's equations with quaternion kinematics,
+:func:`tumble.averaging.triaxial_average_vector` over the Euler–Poinsot motion, as
+Martynenko (1979) averages the eddy-current torque, with that torque replaced by any
+other. The full equations are Euler's equations with quaternion kinematics,
 
     I dω/dt = −ω × Iω + ε M(t, q, ω),    dq/dt = ½ q ⊗ (0, ω),
 
@@ -85,7 +85,7 @@ __all__ = [
 
 VALIDITY_RATIO = 0.1
 """Averaging is trusted while the slow rates stay below this fraction of the slowest fast
-frequency (the same judgement of "≪" as spec/martynenko.md §12 in the rotating-field model)."""
+frequency (the same judgement of "≪" as in the rotating-field model)."""
 
 SEPARATRIX_STEP = 1e-10
 """Relative step in r = 2T/L² across the separatrix when the averaged run restarts there (as
@@ -324,8 +324,7 @@ def averaged_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
     """Averaged rates of ``y = [L_ξ1, L_ξ2, L_ξ3, r]``, r = 2T/L², by quadrature.
 
     ε ⟨A M⟩ and 2ε⟨(ω − r Iω)·M⟩/L² over the polhode, the precession about L and the forcing
-    period (spec/martynenko.md §10 with any torque; :func:`tumble.averaging
-    .triaxial_average_vector`).
+    period (:func:`tumble.averaging.triaxial_average_vector`).
 
     Parameters
     ----------
@@ -469,7 +468,7 @@ def _not_fast_issue(grid: FloatArray, sc: _Scales) -> ValidityIssue | None:
         float(grid[i]),
         f"from t = {grid[i]:.6g} the slow drift ({sc.rate[i]:.3g} rad/t) is not small "
         f"against the slowest fast frequency ({sc.slowest[i]:.3g} rad/t): averaging loses "
-        f"accuracy there (ratio > {VALIDITY_RATIO:g}, spec/martynenko.md §12)",
+        f"accuracy there (ratio > {VALIDITY_RATIO:g})",
     )
 
 
@@ -504,7 +503,7 @@ def _resonance_issue(
         f"{sign} {abs(n2)}·ν2 = {rhs} (polhode ν1, precession "
         "ν2 about L, forcing Ω_f): the phases are not independent there and the "
         "averaged rates are not the time averages; passing through costs O(√ε), "
-        "lingering O(1) (spec/martynenko.md §12)",
+        "lingering O(1)",
         label=f"resonance {n1}·ν1 {sign} {abs(n2)}·ν2 = {rhs}",
     )
 

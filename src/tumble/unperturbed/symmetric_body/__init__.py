@@ -1,10 +1,9 @@
 """Symmetric rigid body under the moment M0(θ) = A(a sinθ + b sin2θ): exact unperturbed motion.
 
-(1.1)–(1.13), §§3–5 and §8 of spec/serov.md (V. M. Serov 1991, seed 003; the spec supersedes
-the seed where they differ, its §12 errata). A is the equatorial and C the axial moment of
-inertia, μ = C/A ∈ (0, 2]; R = μr and G = K·e_z/A are the reduced angular momenta, constant
-with E = θ'²/2 + W(θ) (1.6). Time is the paper's t, in any unit consistent with a, b
-[1/time²] and R, G [1/time].
+V. M. Serov (1991), eqs. (1.1)–(1.13), with the misprints of the printed paper corrected. A is
+the equatorial and C the axial moment of inertia, μ = C/A ∈ (0, 2]; R = μr and G = K·e_z/A are
+the reduced angular momenta, constant with E = θ'²/2 + W(θ) (1.6). Time is the paper's t, in
+any unit consistent with a, b [1/time²] and R, G [1/time].
 
 Representation
 --------------

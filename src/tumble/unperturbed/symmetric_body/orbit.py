@@ -33,7 +33,7 @@ _N_START = 32  # first trapezoid level of :meth:`NutationOrbit.average`
 
 @dataclass(frozen=True, eq=False)
 class NutationOrbit:
-    """Unperturbed motion through a given state, (1.9)–(1.13) of spec/serov.md.
+    """Unperturbed motion through a given state, Serov (1991), eqs. (1.9)–(1.13).
 
     Frozen: R, G, a, b and E are constants of this motion. Build it with :meth:`from_state`,
     :meth:`from_turning_point` or :meth:`from_energy`; t = 0 is the construction state.
@@ -135,7 +135,7 @@ class NutationOrbit:
         psi: float = 0.0,
         phi: float = 0.0,
     ) -> NutationOrbit:
-        """The motion through (θ, θ', ψ, φ) at t = 0, (1.9)–(1.13) of spec/serov.md.
+        """The motion through (θ, θ', ψ, φ) at t = 0, Serov (1991), eqs. (1.9)–(1.13).
 
         Parameters
         ----------
@@ -284,7 +284,7 @@ class NutationOrbit:
         return np.asarray((xa * sigc + xb * ch.nu * sig) / (sigc + ch.nu * sig), dtype=float)
 
     def cos_theta(self, t: ArrayLike) -> FloatArray:
-        """u(t) = cos θ(t), (1.9)–(1.10) of spec/serov.md.
+        """u(t) = cos θ(t), Serov (1991), eqs. (1.9)–(1.10).
 
         Parameters
         ----------
@@ -314,7 +314,7 @@ class NutationOrbit:
         return np.asarray(2.0 * np.arctan2(np.sqrt(om), np.sqrt(op)), dtype=float), om, op
 
     def theta(self, t: ArrayLike) -> FloatArray:
-        """Nutation angle θ(t), (1.9) of spec/serov.md, accurate also near θ = 0 and π.
+        """Nutation angle θ(t), Serov (1991), eq. (1.9), accurate also near θ = 0 and π.
 
         Parameters
         ----------
@@ -354,7 +354,7 @@ class NutationOrbit:
         return np.asarray(np.where(sin_th > 0.0, -udot / safe, limit), dtype=float)
 
     def theta_dot(self, t: ArrayLike) -> FloatArray:
-        """Nutation rate θ'(t) = −u'/sinθ, from (1.9)–(1.10) of spec/serov.md.
+        """Nutation rate θ'(t) = −u'/sinθ, from Serov (1991), eqs. (1.9)–(1.10).
 
         Parameters
         ----------
@@ -420,7 +420,7 @@ class NutationOrbit:
         return np.asarray(self.psi0 + psi, dtype=float), np.asarray(self.phi0 + phi, dtype=float)
 
     def psi(self, t: ArrayLike) -> FloatArray:
-        """Precession angle ψ(t), (1.11)–(1.13) of spec/serov.md; continuous, ψ(0) = ψ0.
+        """Precession angle ψ(t), Serov (1991), eqs. (1.11)–(1.13); continuous, ψ(0) = ψ0.
 
         Parameters
         ----------
@@ -435,7 +435,7 @@ class NutationOrbit:
         return self._angles(t)[0]
 
     def phi(self, t: ArrayLike) -> FloatArray:
-        """Proper rotation φ(t), (1.11)–(1.13) of spec/serov.md; continuous, φ(0) = φ0.
+        """Proper rotation φ(t), Serov (1991), eqs. (1.11)–(1.13); continuous, φ(0) = φ0.
 
         Parameters
         ----------
@@ -483,7 +483,7 @@ class NutationOrbit:
     # ----------------------------------------------------------------------------------
 
     def mean_u_power(self, n: int) -> float:
-        """Period average ⟨u^n⟩ = ⟨cos^n θ⟩, (2.5) and §8 of spec/serov.md.
+        """Period average ⟨u^n⟩ = ⟨cos^n θ⟩, Serov (1991), eq. (2.5).
 
         ⟨u⟩ and ⟨u²⟩ in closed form by R_F, R_D, R_J (K, E, Π); higher powers by the recurrence
         k⟨u^{k−1} f⟩ + ½⟨u^k f'⟩ = 0 of §8 while its propagated error bound stays below 1e-13
@@ -510,7 +510,7 @@ class NutationOrbit:
         return _make_pole(self, rho)
 
     def mean_pole(self, rho: float) -> float:
-        """Period average ⟨1/(u − ρ)⟩ for a real pole outside [u2, u1], §8 of spec/serov.md.
+        """Period average ⟨1/(u − ρ)⟩ for a real pole outside [u2, u1], by Carlson integrals.
 
         Closed form 1/(A_* − ρ) + ν(A_* − B_*)/(A_* − ρ)² ⟨σ/(1 + (r − 1)σ)⟩ (module notes),
         the same reduction as W_ρ, C_ρ of §8 anchored at a turning point.
@@ -540,7 +540,7 @@ class NutationOrbit:
         return value
 
     def mean_inverse(self, sign: int) -> float:
-        """Period average ⟨1/(1 + sign·u)⟩, sign = ±1, (2.5) and §8 of spec/serov.md.
+        """Period average ⟨1/(1 + sign·u)⟩, sign = ±1, Serov (1991), eq. (2.5).
 
         Parameters
         ----------
@@ -608,7 +608,7 @@ class NutationOrbit:
         atol: float = 1e-14,
         n_max: int = 1 << 16,
     ) -> float:
-        """Period average ⟨g(θ, θ')⟩ = (1/T)∫0^T g dt, (2.3) of spec/serov.md, adaptively.
+        """Period average ⟨g(θ, θ')⟩ = (1/T)∫0^T g dt, Serov (1991), eq. (2.3), adaptively.
 
         Periodic trapezoid rule of :meth:`nodes`, doubled (reusing nodes) from 32 nodes until
         two successive results agree within max(atol, rtol·|result|).

@@ -28,7 +28,7 @@ def _finite(**values: float) -> None:
 
 
 def effective_potential(theta: ArrayLike, R: float, G: float, a: float, b: float) -> FloatArray:
-    """Effective potential W(θ) of the nutation, (1.6) of spec/serov.md.
+    """Effective potential W(θ) of the nutation, Serov (1991), eq. (1.6).
 
     W(θ) = (G − R cosθ)²/(2 sin²θ) + a cosθ + b cos²θ.
 
@@ -58,7 +58,7 @@ def effective_potential(theta: ArrayLike, R: float, G: float, a: float, b: float
 
 
 def potential_slope(theta: ArrayLike, R: float, G: float, a: float, b: float) -> FloatArray:
-    """Slope F(θ) = ∂W/∂θ of the effective potential, (2.1) of spec/serov.md.
+    """Slope F(θ) = ∂W/∂θ of the effective potential, Serov (1991), eq. (2.1).
 
     F(θ) = (G − R cosθ)(R − G cosθ)/sin³θ − a sinθ − b sin2θ; θ'' + F = 0 is the nutation.
 
@@ -90,7 +90,7 @@ def potential_slope(theta: ArrayLike, R: float, G: float, a: float, b: float) ->
 def energy(
     theta: ArrayLike, theta_dot: ArrayLike, R: float, G: float, a: float, b: float
 ) -> FloatArray:
-    """Energy integral E = θ'²/2 + W(θ), (1.6) of spec/serov.md.
+    """Energy integral E = θ'²/2 + W(θ), Serov (1991), eq. (1.6).
 
     Parameters
     ----------
@@ -115,7 +115,7 @@ def energy(
 
 
 def quartic_coefficients(R: float, G: float, a: float, b: float, E: float) -> FloatArray:
-    """Coefficients g0 … g4 of f(u) = u'² = Σ g_i u^i, (1.7) of spec/serov.md.
+    """Coefficients g0 … g4 of f(u) = u'² = Σ g_i u^i, Serov (1991), eq. (1.7).
 
     g0 = 2E − G², g1 = 2(GR − a), g2 = −2b − R² − 2E, g3 = 2a, g4 = 2b.
 

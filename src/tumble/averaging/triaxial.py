@@ -726,19 +726,6 @@ def triaxial_average_vector(
     return np.array([*mean[:3], 2.0 * mean[4] / (L * L)])
 
 
-def _nodes_used(
-    torque: Any,
-    inertia: ArrayLike,
-    L_xi: ArrayLike,
-    T: float,
-    forcing_period: float | None = None,
-    rtol: float = AVERAGE_RTOL,
-) -> tuple[int, ...]:
-    """Nodes per phase (polhode, precession[, forcing]) the quadrature settles on (benchmarks)."""
-    I_user, Lv, L = _check_inputs(inertia, L_xi, forcing_period, rtol)
-    return _means(torque, I_user, Lv, L, float(T), 0.0, forcing_period, rtol, _GROUPS_T, None)[1]
-
-
 # ---------------------------------------------------------------------------------------------
 # Fast frequencies and resonances, §8 and §12.
 

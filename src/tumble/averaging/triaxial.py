@@ -268,8 +268,9 @@ def _product_mean(
                 float(np.max(np.abs(new[g] - mean[g]))) / float(new[c]) if new[c] > 0.0 else 0.0
                 for g, c in groups
             )
-            # Plain test, or the squaring shortcut once the sequence shows it (see below).
-            squaring = change <= _SQUARING_SAFETY * previous * previous
+            # Plain test, or the squaring shortcut once the sequence shows it: two changes at
+            # least (the first doubling has nothing to square).
+            squaring = math.isfinite(previous) and change <= _SQUARING_SAFETY * previous**2
             done = change <= rtol or (change <= shortcut and squaring)
             data[i] = tuple(np.concatenate([a, b]) for a, b in zip(data[i], fresh, strict=True))
             n[i] *= 2

@@ -60,9 +60,9 @@ def test_capsule_amplitude_follows_the_dynamic_pressure(capsule_runs):
 
 
 @pytest.mark.slow
-def test_capsule_study_scaling_and_cost():
-    """The benchmark's figures (benchmarks/capsule.py): slopes against the descent's ε and the
-    wall-time ratio."""
+def test_capsule_study_scaling():
+    """The benchmark's accuracy figures (benchmarks/capsule.py): slopes against the descent's
+    ε. Its wall-time ratio is a benchmark target, measured there, not asserted here."""
     for atmosphere, corrected_slope in ((None, None), (ExponentialAtmosphere(), 2.0)):
         kw = {} if atmosphere is None else {"atmosphere": atmosphere}
         rows = capsule_study(**kw)
@@ -79,4 +79,3 @@ def test_capsule_study_scaling_and_cost():
         assert np.all(corrected < exact)
         base = rows[-1]  # the capsule itself, ε = 0.3
         assert base["discrepancy_exact"] < 0.04
-        assert base["cost_ratio_exact"] > 10.0, base

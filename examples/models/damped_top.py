@@ -16,14 +16,14 @@ against closed form).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from tumble._typing import FloatArray
-from tumble.dynamics import rigid_body_rhs, rigid_body_state
+from tumble.dynamics import rigid_body_kernel, rigid_body_rhs, rigid_body_state
 from tumble.errors import check_range
-from tumble.kernels import Kernel, rigid_body_kernel
+from tumble.kernels import Kernel
 from tumble.models.base import (
     Averaged,
     AveragedForm,
@@ -34,10 +34,12 @@ from tumble.models.base import (
     Full,
     FullForm,
     Model,
+    Unperturbed,
     fixed_columns,
 )
 from tumble.models.schema import Built, Key, ScenarioSchema, Section, Variant
 from tumble.torques import LinearDrag
+from tumble.unperturbed.euler_poinsot import EulerPoinsot
 
 
 @dataclass(frozen=True, slots=True)
@@ -62,9 +64,11 @@ class Params:
 
 @dataclass(frozen=True, slots=True)
 class State:
-    """The body angular velocity at t = 0 [rad/time]; the attitude starts at the identity."""
+    """The body angular velocity [rad/time] and attitude quaternion (scalar first, body →
+    inertial) at t = 0."""
 
     omega: tuple[float, float, float]
+    q: tuple[float, float, float, float] = (1.0, 0.0, 0.0, 0.0)
 
 
 def full_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
@@ -78,7 +82,12 @@ def full_kernel(p: Params) -> Kernel | None:
 
 
 def _initial_state(p: Params, st: State) -> FloatArray:
-    return rigid_body_state(np.array(st.omega), np.array([1.0, 0.0, 0.0, 0.0]))
+    return rigid_body_state(np.array(st.omega), np.array(st.q))
+
+
+def _state_of(p: Params, y: FloatArray) -> State:
+    w, q = (float(v) for v in y[:3]), (float(v) for v in y[3:])
+    return State(tuple(w), tuple(q))  # type: ignore[arg-type]
 
 
 def _rates(p: Params, t: FloatArray, Y: FloatArray) -> Columns:
@@ -133,7 +142,7 @@ COLUMNS = fixed_columns(
 
 FULL: FullForm[Params, State] = FullForm(
     "quaternion", "Euler + quaternions", ("w1", "w2", "w3", "q0", "q1", "q2", "q3"), full_rhs,
-    _initial_state, _rates, full_kernel, _invariants,
+    _initial_state, _rates, _state_of, full_kernel, _invariants,
 )  # fmt: skip
 
 SCENARIO: ScenarioSchema[Params, State] = ScenarioSchema(
@@ -172,5 +181,10 @@ MODEL: Model[Params, State] = Model(
     methods=("full", "averaged", "closed_form"),
     averaged=Averaged(form=_averaged_form, columns=COLUMNS, compare=("w_perp", "w3")),
     closed_form=ClosedForm(evaluate=closed_form, columns=COLUMNS),
+    unperturbed=Unperturbed(
+        "the free symmetric top",
+        lambda p, st: EulerPoinsot.from_rigid_body_state(p.inertia, _initial_state(p, st)).states,
+        lambda t, y, p: full_rhs(t, y, replace(p, eps=0.0)),
+    ),
     scenario=SCENARIO,
 )

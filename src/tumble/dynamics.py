@@ -10,13 +10,19 @@ import math
 
 import numpy as np
 
-from tumble._typing import FloatArray
+from tumble._typing import ArrayLike, FloatArray
 from tumble.bodies import RigidBody
+from tumble.kernels import KIND_RIGID_BODY, Kernel
 from tumble.kernels.rhs import euler_quaternion
 from tumble.rotations import quat_normalize, quat_to_matrix
 from tumble.torques import Torque
 
-__all__ = ["angular_momentum_inertial", "rigid_body_rhs", "rigid_body_state"]
+__all__ = [
+    "angular_momentum_inertial",
+    "rigid_body_kernel",
+    "rigid_body_rhs",
+    "rigid_body_state",
+]
 
 
 def rigid_body_rhs(
@@ -54,6 +60,17 @@ def rigid_body_rhs(
 
 
 _ZERO = np.zeros(3)
+_NO_TORQUE = np.zeros(1)  # a program of no terms
+
+
+def rigid_body_kernel(inertia: ArrayLike, torque: Torque | None) -> Kernel | None:
+    """The compiled form of :func:`rigid_body_rhs` for principal moments ``inertia``
+    [inertia unit] under ``torque`` (None: the free body); None if the torque is a Python
+    function."""
+    program = _NO_TORQUE if torque is None else torque.program
+    if program is None:
+        return None
+    return Kernel(KIND_RIGID_BODY, np.concatenate([np.asarray(inertia, dtype=float), program]))
 
 
 def rigid_body_state(omega: FloatArray, q: FloatArray) -> FloatArray:

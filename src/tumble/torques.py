@@ -6,24 +6,43 @@ A torque is called as ``torque(t, q, omega)`` and returns the moment in **body a
 * ``q`` — attitude quaternion, scalar first, body → inertial (see :mod:`tumble.rotations`);
 * ``omega`` — body angular velocity, shape (3,) [rad per time unit].
 
-Every built-in torque also accepts batches (``q`` of shape (..., 4), ``omega`` (..., 3)) and
-returns moments of shape (..., 3): the averaging engine evaluates all quadrature nodes at once.
+Every built-in torque also accepts batches (``t``, ``q`` of shape (..., 4), ``omega``
+(..., 3), broadcast against each other) and returns moments of shape (..., 3): the averaging
+engine evaluates all quadrature nodes at once. A torque of the body rate alone
+(:attr:`Torque.rate_only`) also accepts ``q = None``.
 
-Torques add (``t1 + t2``) and scale by numbers (``eps * t``), so the moment (1.2) of the
-resisting-medium paper is ``eps * (ConstantBodyTorque(a) + LinearDrag(b) + QuadraticDrag(s))``.
+Torques add (``t1 + t2``) and scale by numbers (``eps * t``), so the moment (1.2) of
+Medvedev (1987) is ``eps * (ConstantBodyTorque(a) + LinearDrag(b) + QuadraticDrag(s))``.
+
+The physics of the built-in torques is written once, compiled, in
+:mod:`tumble.kernels.torque`: a built-in torque, or a sum or multiple of them, flattens into a
+*program* (:attr:`Torque.program`) that the same compiled code evaluates whether the
+integrator or Python calls it. The classes here validate the parameters and pack them.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any
 
 import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import ParameterError, check_range
-from tumble.rotations import quat_to_matrix
+from tumble.kernels.torque import (
+    RATE_ONLY_TERMS,
+    TERM_BODY_CONSTANT,
+    TERM_EDDY_CURRENT,
+    TERM_GRAVITY_GRADIENT,
+    TERM_INERTIAL_CONSTANT,
+    TERM_LINEAR_DRAG,
+    TERM_PAYLOAD,
+    TERM_QUADRATIC_DRAG,
+    inertial_moments,
+    moments,
+)
 
 __all__ = [
     "TERM_BODY_CONSTANT",
@@ -46,27 +65,10 @@ __all__ = [
     "TorqueSum",
     "UserTorque",
     "ZeroTorque",
+    "inertial_moments_on_grid",
+    "split_compiled",
 ]
 
-
-# Codes of the torque terms the compiled integrator evaluates (:mod:`tumble.kernels`), and the
-# payload each carries. A torque lists its terms with ``compiled_terms()``.
-TERM_BODY_CONSTANT = 1  # body moment (3)
-TERM_LINEAR_DRAG = 2  # B by rows (9)
-TERM_QUADRATIC_DRAG = 3  # S by rows (9)
-TERM_INERTIAL_CONSTANT = 4  # inertial moment (3)
-TERM_GRAVITY_GRADIENT = 5  # inertia (3), n, u0, rows e1, e2, normal (9)
-TERM_EDDY_CURRENT = 6  # M0, field rate ω, cone angle β
-
-TERM_PAYLOAD: dict[int, int] = {
-    TERM_BODY_CONSTANT: 3,
-    TERM_LINEAR_DRAG: 9,
-    TERM_QUADRATIC_DRAG: 9,
-    TERM_INERTIAL_CONSTANT: 3,
-    TERM_GRAVITY_GRADIENT: 14,
-    TERM_EDDY_CURRENT: 3,
-}
-"""Length of each term code's payload (the stride of a torque program)."""
 
 CompiledTerm = tuple[int, float, tuple[float, ...]]
 """One term of a compiled torque: (code, factor, payload)."""
@@ -89,15 +91,54 @@ def _matrix(name: str, value: ArrayLike) -> FloatArray:
 
 
 class Torque:
-    """Base class: a moment in body axes as a function of (t, q, ω)."""
+    """Base class: a moment in body axes as a function of (t, q, ω).
 
-    def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
-        raise NotImplementedError
+    A built-in torque declares its terms (:meth:`compiled_terms`) and is evaluated by the
+    compiled code of :mod:`tumble.kernels.torque`. A subclass written in Python overrides
+    ``__call__``; it is then not compiled (unless it also overrides :meth:`compiled_terms`),
+    and the integrators and the averaging engines call it from Python.
+    """
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        if "__call__" in cls.__dict__ and "compiled_terms" not in cls.__dict__:
+            cls.compiled_terms = Torque.compiled_terms  # type: ignore[method-assign]
+
+    def __call__(self, t: ArrayLike, q: ArrayLike | None, omega: ArrayLike) -> FloatArray:
+        program = self.program
+        if program is None:
+            raise NotImplementedError(f"{type(self).__name__} defines no moment")
+        return _evaluate(program, self.rate_only, t, q, omega)
 
     def compiled_terms(self) -> tuple[CompiledTerm, ...] | None:
-        """The terms of this torque as the compiled integrator evaluates them; None when it
-        cannot be compiled (a Python function), and the scipy integrator is used instead."""
+        """The terms of this torque as the compiled code evaluates them; None when it cannot
+        be compiled (a Python function), and the scipy integrator is used instead."""
         return None
+
+    @cached_property
+    def program(self) -> FloatArray | None:
+        """The torque as the flat program the compiled code evaluates, or None if one of its
+        terms is a Python function.
+
+        Layout: ``[number of terms, (code, factor, payload...)...]``, with the codes and
+        payloads of :mod:`tumble.kernels.torque`.
+        """
+        terms = self.compiled_terms()
+        if terms is None:
+            return None
+        flat: list[float] = [float(len(terms))]
+        for code, factor, payload in terms:
+            flat += [float(code), float(factor), *(float(v) for v in payload)]
+        program = np.array(flat)
+        program.setflags(write=False)
+        return program
+
+    @cached_property
+    def rate_only(self) -> bool:
+        """Whether the moment is known to depend on the body rate alone (compiled terms that
+        read neither the attitude nor the time)."""
+        terms = self.compiled_terms()
+        return terms is not None and all(code in RATE_ONLY_TERMS for code, _, _ in terms)
 
     def __add__(self, other: Torque) -> Torque:
         if not isinstance(other, Torque):
@@ -112,12 +153,70 @@ class Torque:
     __rmul__ = __mul__
 
 
+_IDENTITY = np.array([1.0, 0.0, 0.0, 0.0])
+
+
+def _evaluate(
+    program: FloatArray, rate_only: bool, t: ArrayLike, q: ArrayLike | None, omega: ArrayLike
+) -> FloatArray:
+    """Body moments of a program at (t, q, ω), broadcast over their leading axes."""
+    w = np.asarray(omega, dtype=float)
+    tt = np.asarray(t, dtype=float)
+    if q is None:
+        if not rate_only:
+            raise ParameterError("q is None, but the torque depends on the attitude")
+        quat = _IDENTITY
+    else:
+        quat = np.asarray(q, dtype=float)
+    if w.shape[-1:] != (3,) or quat.shape[-1:] != (4,):
+        raise ParameterError(
+            f"omega must have shape (..., 3) and q (..., 4), got {w.shape} and {quat.shape}"
+        )
+    shape = np.broadcast_shapes(tt.shape, quat.shape[:-1], w.shape[:-1])
+    args = []
+    for x, tail in ((tt, ()), (quat, (4,)), (w, (3,))):
+        if x.shape[: x.ndim - len(tail)] not in ((), shape):  # a partial broadcast
+            x = np.broadcast_to(x, (*shape, *tail))
+        args.append(np.ascontiguousarray(x.reshape(-1, *tail)))
+    return np.asarray(moments(program, *args)).reshape(*shape, 3)
+
+
+def split_compiled(torque: Torque) -> tuple[Torque, Torque | None]:
+    """``torque`` as (compiled part, Python part or None), their sum equal to it: the terms of
+    sums and multiples that have a program, and the others."""
+    if isinstance(torque, ScaledTorque) and type(torque) is ScaledTorque:
+        compiled, python = split_compiled(torque.torque)
+        return torque.factor * compiled, None if python is None else torque.factor * python
+    if isinstance(torque, TorqueSum) and type(torque) is TorqueSum:
+        parts = [split_compiled(term) for term in torque.terms]
+        compiled_terms = tuple(c for c, _ in parts)
+        python_terms = tuple(p for _, p in parts if p is not None)
+        return TorqueSum(compiled_terms), TorqueSum(python_terms) if python_terms else None
+    if torque.program is not None:
+        return torque, None
+    return ZeroTorque(), torque
+
+
+def inertial_moments_on_grid(
+    torque: Torque, t: ArrayLike, A: FloatArray, omega: FloatArray
+) -> FloatArray:
+    """Inertial components A M of a compiled torque's moment for every attitude at every
+    time: A (n, 3, 3) body → inertial, ω (n, 3) body rates, t (m,) → shape (n, m, 3)."""
+    program = torque.program
+    if program is None:
+        raise ParameterError(f"{type(torque).__name__} is not compiled")
+    times = np.ascontiguousarray(np.ravel(np.asarray(t, dtype=float)))
+    return np.asarray(
+        inertial_moments(
+            program, times, np.ascontiguousarray(A, dtype=float),
+            np.ascontiguousarray(omega, dtype=float),
+        )
+    )  # fmt: skip
+
+
 @dataclass(frozen=True, eq=False)
 class ZeroTorque(Torque):
     """No external moment (the free body)."""
-
-    def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
-        return np.zeros(np.shape(omega))
 
     def compiled_terms(self) -> tuple[CompiledTerm, ...]:
         return ()
@@ -125,7 +224,7 @@ class ZeroTorque(Torque):
 
 @dataclass(frozen=True, eq=False)
 class ConstantBodyTorque(Torque):
-    """A moment constant in body axes, M = (A1, A2, A3); the first term of (1.2) in seed 000.
+    """A moment constant in body axes, M = (A1, A2, A3); the first term of (1.2) of Medvedev (1987).
 
     Parameters
     ----------
@@ -138,16 +237,13 @@ class ConstantBodyTorque(Torque):
     def __post_init__(self) -> None:
         object.__setattr__(self, "moment", _vector("moment", self.moment))
 
-    def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
-        return np.array(np.broadcast_to(self.moment, np.shape(omega)))
-
     def compiled_terms(self) -> tuple[CompiledTerm, ...]:
         return ((TERM_BODY_CONSTANT, 1.0, tuple(self.moment.tolist())),)
 
 
 @dataclass(frozen=True, eq=False)
 class LinearDrag(Torque):
-    """Linear drag of a resisting medium, M = −B ω; the second term of (1.2) in seed 000.
+    """Linear drag of a resisting medium, M = −B ω; the second term of (1.2) of Medvedev (1987).
 
     Parameters
     ----------
@@ -160,16 +256,13 @@ class LinearDrag(Torque):
     def __post_init__(self) -> None:
         object.__setattr__(self, "B", _matrix("B", self.B))
 
-    def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
-        return -(np.asarray(omega) @ self.B.T)
-
     def compiled_terms(self) -> tuple[CompiledTerm, ...]:
         return ((TERM_LINEAR_DRAG, 1.0, tuple(self.B.ravel().tolist())),)
 
 
 @dataclass(frozen=True, eq=False)
 class QuadraticDrag(Torque):
-    """Quadratic drag, M = −S (ω ∘ |ω|) component-wise; the third term of (1.2) in seed 000.
+    """Quadratic drag, M = −S (ω ∘ |ω|) component-wise; the third term of (1.2) of Medvedev (1987).
 
     Parameters
     ----------
@@ -182,10 +275,6 @@ class QuadraticDrag(Torque):
     def __post_init__(self) -> None:
         object.__setattr__(self, "S", _matrix("S", self.S))
 
-    def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
-        w = np.asarray(omega)
-        return -((w * np.abs(w)) @ self.S.T)
-
     def compiled_terms(self) -> tuple[CompiledTerm, ...]:
         return ((TERM_QUADRATIC_DRAG, 1.0, tuple(self.S.ravel().tolist())),)
 
@@ -196,7 +285,9 @@ class TorqueSum(Torque):
 
     terms: tuple[Torque, ...] = field(default=())
 
-    def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
+    def __call__(self, t: ArrayLike, q: ArrayLike | None, omega: ArrayLike) -> FloatArray:
+        if self.program is not None:
+            return super().__call__(t, q, omega)
         total = np.zeros(np.shape(omega))
         for term in self.terms:
             total = total + term(t, q, omega)
@@ -216,7 +307,9 @@ class ScaledTorque(Torque):
     factor: float
     torque: Torque
 
-    def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
+    def __call__(self, t: ArrayLike, q: ArrayLike | None, omega: ArrayLike) -> FloatArray:
+        if self.program is not None:
+            return super().__call__(t, q, omega)
         return self.factor * self.torque(t, q, omega)
 
     def compiled_terms(self) -> tuple[CompiledTerm, ...] | None:
@@ -230,9 +323,9 @@ class ScaledTorque(Torque):
 class CallableTorque(Torque):
     """A user function ``f(t, q, omega) -> body moment`` wrapped as a :class:`Torque`."""
 
-    function: Callable[[float, FloatArray, FloatArray], ArrayLike]
+    function: Callable[[Any, Any, Any], ArrayLike]
 
-    def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
+    def __call__(self, t: ArrayLike, q: ArrayLike | None, omega: ArrayLike) -> FloatArray:
         return np.asarray(self.function(t, q, omega), dtype=float)
 
 
@@ -240,7 +333,7 @@ class CallableTorque(Torque):
 class UserTorque(Torque):
     """A user function ``f(t, q, omega, params) -> body moment`` with its parameters.
 
-    The form a scenario names as ``torque = "module:function"`` (issue 5): ``params`` is the
+    The form a scenario names as ``torque = "module:function"``: ``params`` is the
     scenario's ``[torque_params]`` table, passed unchanged. A function written with numpy
     broadcasting over leading axes of ``q`` and ``omega`` is evaluated on whole quadrature
     grids by the averaging engine; any other is called one state at a time.
@@ -259,7 +352,7 @@ class UserTorque(Torque):
     params: Mapping[str, Any] = field(default_factory=dict)
     name: str = "user torque"
 
-    def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
+    def __call__(self, t: ArrayLike, q: ArrayLike | None, omega: ArrayLike) -> FloatArray:
         return np.asarray(self.function(t, q, omega, self.params), dtype=float)
 
 
@@ -267,8 +360,9 @@ class UserTorque(Torque):
 class EddyCurrentTorque(Torque):
     """Eddy-current moment on a spherical conductor in a conical rotating field, (1.2)/(1.3).
 
-    ``M_ξ = k_f H_ξ × (H_ξ × Ω_ξ + dH_ξ/dt) = −M0 [(Ω_ξ − ω ξ3)]_⊥H``, spec/martynenko.md §3:
-    minus ``M0 = k_f H²`` times the component, perpendicular to the field, of the body's angular
+    ``M_ξ = k_f H_ξ × (H_ξ × Ω_ξ + dH_ξ/dt) = −M0 [(Ω_ξ − ω ξ3)]_⊥H`` (Martynenko (1979),
+    eq. (1.2), with the time derivative of the field that its print drops): minus
+    ``M0 = k_f H²`` times the component, perpendicular to the field, of the body's angular
     velocity relative to the field. The field direction is
     ``(sin β cos ωt, sin β sin ωt, cos β)`` in inertial axes.
 
@@ -297,26 +391,14 @@ class EddyCurrentTorque(Torque):
         sb, cb = np.sin(self.beta), np.cos(self.beta)
         return np.stack([sb * np.cos(wt), sb * np.sin(wt), np.full_like(wt, cb)], -1)
 
-    def inertial(self, t: float, omega_inertial: ArrayLike) -> FloatArray:
-        """The moment (1.3) in inertial axes for the inertial angular velocity Ω_ξ."""
-        h = self.field_direction(t)
-        w = np.array(omega_inertial, dtype=float)
-        w[..., 2] -= self.omega  # Ω_ξ − ω ξ3: rotation relative to the field
-        return self.M0 * (h * np.sum(h * w, axis=-1, keepdims=True) - w)
-
-    def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
-        A = quat_to_matrix(np.asarray(q, dtype=float))
-        w_inertial = np.einsum("...ij,...j->...i", A, omega)
-        return np.einsum("...ji,...j->...i", A, self.inertial(t, w_inertial))
+    def inertial(self, t: ArrayLike, omega_inertial: ArrayLike) -> FloatArray:
+        """The moment (1.3) in inertial axes for the inertial angular velocity Ω_ξ: the body
+        form at the identity attitude (batched like a call)."""
+        assert self.program is not None  # built in
+        return _evaluate(self.program, False, t, _IDENTITY, omega_inertial)
 
     def compiled_terms(self) -> tuple[CompiledTerm, ...]:
         return ((TERM_EDDY_CURRENT, 1.0, (self.M0, self.omega, self.beta)),)
-
-
-def _body_from_inertial(q: FloatArray, v: FloatArray) -> FloatArray:
-    """Body components Aᵀv of inertial vectors v for attitudes q (batched: (..., 4), (..., 3))."""
-    A = quat_to_matrix(np.asarray(q, dtype=float))
-    return np.einsum("...ji,...j->...i", A, v)
 
 
 @dataclass(frozen=True, eq=False)
@@ -336,10 +418,6 @@ class ConstantInertialTorque(Torque):
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "moment", _vector("moment", self.moment))
-
-    def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
-        q = np.asarray(q, dtype=float)
-        return _body_from_inertial(q, np.broadcast_to(self.moment, (*q.shape[:-1], 3)))
 
     def compiled_terms(self) -> tuple[CompiledTerm, ...]:
         return ((TERM_INERTIAL_CONSTANT, 1.0, tuple(self.moment.tolist())),)
@@ -408,12 +486,6 @@ class GravityGradientTorque(Torque):
         u = self.n * np.asarray(t, dtype=float) + self.u0
         e1, e2 = self.basis[0], self.basis[1]
         return np.cos(u)[..., None] * e1 + np.sin(u)[..., None] * e2
-
-    def __call__(self, t: float, q: FloatArray, omega: FloatArray) -> FloatArray:
-        q = np.asarray(q, dtype=float)
-        r = np.broadcast_to(self.radial(t), (*q.shape[:-1], 3))
-        rb = _body_from_inertial(q, r)
-        return 3.0 * self.n**2 * np.cross(rb, self.inertia * rb)
 
     def compiled_terms(self) -> tuple[CompiledTerm, ...]:
         payload = (*self.inertia.tolist(), self.n, self.u0, *self.basis.ravel().tolist())

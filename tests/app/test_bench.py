@@ -13,6 +13,7 @@ from typer.testing import CliRunner
 from tumble import kernels
 from tumble.app import bench, heyoka_peer
 from tumble.cli import app
+from tumble.dynamics import rigid_body_kernel
 from tumble.models import resisting_medium as rm
 from tumble.torques import (
     ConstantBodyTorque,
@@ -126,7 +127,7 @@ def _kernels():
         + GravityGradientTorque(inertia, 0.3, [0.1, 0.2, 1.0], 0.4)
         + 2.0 * EddyCurrentTorque(0.7, 1.3, 0.9)
     )
-    kernel = kernels.rigid_body_kernel(inertia, torque)
+    kernel = rigid_body_kernel(inertia, torque)
     assert kernel is not None
     return [*(c.kernel for c in bench.full_cases(1e5)), kernel]
 

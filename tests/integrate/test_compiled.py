@@ -19,7 +19,7 @@ from typer.testing import CliRunner
 
 from tumble import kernels
 from tumble.cli import app
-from tumble.dynamics import rigid_body_rhs
+from tumble.dynamics import rigid_body_kernel, rigid_body_rhs
 from tumble.errors import IntegrationError, ParameterError
 from tumble.integrate import dop853, simulate
 from tumble.io import load_scenario
@@ -68,10 +68,12 @@ def _close(a, b, scale):
     beta=st.floats(0.0, np.pi),
     t=st.floats(0.0, 50.0),
 )
-def test_rigid_body_kernel_matches_the_python_torques(
+def test_rigid_body_kernel_matches_the_python_right_hand_side(
     inertia, w, psi, theta, phi, a, B, S, M, n, normal, beta, t
 ):
-    """Every compiled torque term equals its Python class, alone and summed with factors."""
+    """The kernel reads its packed torque program as the torque's own call does (the same
+    compiled terms, reached from Python), every term alone and summed with factors; the terms
+    themselves are checked against their formulas in test_torques.py."""
     inertia = np.array(inertia)
     y = _state(w, psi, theta, phi)
     terms = [
@@ -86,7 +88,7 @@ def test_rigid_body_kernel_matches_the_python_torques(
     # the gyroscopic terms are of size max I·|ω|²: the rounding scale, divided by min I.
     scale = (6.0 * n * n + float(w @ w) + 10.0) * inertia.max() / inertia.min()
     for torque in [*terms, 0.01 * (terms[0] + terms[2]) + 2.0 * terms[4] + terms[5]]:
-        kernel = kernels.rigid_body_kernel(inertia, torque)
+        kernel = rigid_body_kernel(inertia, torque)
         assert kernel is not None
         expected = rigid_body_rhs(t, y, inertia, torque)
         got = kernels.evaluate_rhs(kernel, t, y)
@@ -95,8 +97,8 @@ def test_rigid_body_kernel_matches_the_python_torques(
 
 def test_a_python_torque_has_no_kernel():
     user = UserTorque(lambda t, q, w, params: np.zeros(3), {}, "m:f")
-    assert kernels.rigid_body_kernel(FREE_INERTIA, user) is None
-    assert kernels.rigid_body_kernel(FREE_INERTIA, LinearDrag(np.eye(3)) + user) is None
+    assert rigid_body_kernel(FREE_INERTIA, user) is None
+    assert rigid_body_kernel(FREE_INERTIA, LinearDrag(np.eye(3)) + user) is None
 
 
 @settings(max_examples=40, deadline=None)
@@ -139,7 +141,7 @@ def test_a_pressure_function_has_no_kernel():
 
 def test_steps_are_scipys():
     """The same method, error norm and step control as scipy's DOP853: the same steps."""
-    kernel = kernels.rigid_body_kernel(FREE_INERTIA, None)
+    kernel = rigid_body_kernel(FREE_INERTIA, None)
     res = dop853.solve(kernel, FREE_Y0, 20.0, rtol=1e-10, atol=1e-12)
     ref = solve_ivp(
         lambda t, y: rigid_body_rhs(t, y, FREE_INERTIA, None),
@@ -164,7 +166,7 @@ def test_steps_are_scipys():
 
 
 def test_samples_equal_the_dense_output():
-    kernel = kernels.rigid_body_kernel(FREE_INERTIA, None)
+    kernel = rigid_body_kernel(FREE_INERTIA, None)
     t = np.linspace(0.0, 20.0, 57)
     dense = dop853.solve(kernel, FREE_Y0, 20.0, rtol=1e-10, atol=1e-12)
     sampled = dop853.solve(
@@ -206,9 +208,10 @@ def test_compiled_and_scipy_runs_agree(example):
         assert diff <= 1e3 * 1e-10 * max(1.0, float(np.max(np.abs(ref)))), name
 
 
-def test_extrema_from_events_equal_the_bracketed_ones():
-    """The compiled run finds the extrema of θ as events; the scipy run brackets them on its
-    steps and refines with brentq. Both must list the same turning points."""
+def test_extrema_from_events_agree_between_the_integrators():
+    """Both integrators locate the extrema of θ as zeros of the full form's event (θ'): the
+    compiled one with its own root finder on its dense output, scipy's through solve_ivp's
+    events. Both must list the same turning points."""
     r = load_scenario(EXAMPLES / "nm_damped_exp.toml").request
     tau = r.tau[r.tau <= 60.0]
     fast = simulate(r.model, r.params, r.initial, tau, "full", integrator="numba")
@@ -216,8 +219,8 @@ def test_extrema_from_events_equal_the_bracketed_ones():
     a, b = nm.extrema(fast, r.params), nm.extrema(slow, r.params)
     assert len(a) == len(b) > 5
     assert [row[:2] for row in a] == [row[:2] for row in b]
-    # Both roots are exact zeros of the interpolants of two runs at rtol 1e-10: they differ
-    # by the runs' difference over θ'' (≈ 1e-8 here).
+    # Both roots are zeros of the interpolants of two runs at rtol 1e-10, to round-off: they
+    # differ by the runs' difference over θ'' (≈ 1e-8 here).
     assert max(abs(x[2] - y[2]) for x, y in zip(a, b, strict=True)) < 1e-6
 
 
@@ -241,7 +244,7 @@ def test_pressure_table_end_is_an_error():
 def test_a_state_that_blows_up_is_reported():
     """ω̇ = ω²-like growth (a quadratic drag of the wrong sign) reaches infinity in finite time:
     an IntegrationError with the time, never NaN samples."""
-    kernel = kernels.rigid_body_kernel(FREE_INERTIA, QuadraticDrag(-np.eye(3)))
+    kernel = rigid_body_kernel(FREE_INERTIA, QuadraticDrag(-np.eye(3)))
     res = dop853.solve(kernel, FREE_Y0, 10.0, rtol=1e-10, atol=1e-12)
     assert res.status != 0 and res.t < 10.0
     from tumble.integrate import integrate
@@ -256,7 +259,7 @@ def test_batch_equals_single_runs_on_any_number_of_threads():
     y0 = np.tile(FREE_Y0, (N, 1))
     y0[:, :3] = rng.normal(size=(N, 3))
     torque = LinearDrag(0.01 * np.eye(3)) + ConstantInertialTorque([0.0, 0.0, 0.02])
-    params = np.tile(kernels.rigid_body_kernel(FREE_INERTIA, torque).params, (N, 1))
+    params = np.tile(rigid_body_kernel(FREE_INERTIA, torque).params, (N, 1))
     t = np.linspace(0.0, 30.0, 7)
     one = dop853.solve_batch(kernels.KIND_RIGID_BODY, params, y0, 30.0, t, rtol=1e-10,
                                atol=1e-12, threads=1)  # fmt: skip
@@ -275,15 +278,15 @@ def test_batch_equals_single_runs_on_any_number_of_threads():
 
 def test_compiled_code_is_cached_on_disk():
     """A second process loads the integrator from numba's disk cache instead of compiling."""
-    dop853.solve(kernels.rigid_body_kernel(FREE_INERTIA, None), FREE_Y0, 1.0, rtol=1e-8,
+    dop853.solve(rigid_body_kernel(FREE_INERTIA, None), FREE_Y0, 1.0, rtol=1e-8,
                  atol=1e-10)  # fmt: skip
     code = textwrap.dedent(
         """
         import numpy as np
-        from tumble import kernels
+        from tumble.dynamics import rigid_body_kernel
         from tumble.integrate import dop853
         from tumble.integrate.dop853 import core
-        k = kernels.rigid_body_kernel(np.array([1.0, 2.0, 3.0]), None)
+        k = rigid_body_kernel(np.array([1.0, 2.0, 3.0]), None)
         dop853.solve(k, np.array([0.3, 1.0, 0.2, 1.0, 0.0, 0.0, 0.0]), 1.0, rtol=1e-8,
                      atol=1e-10)
         print(sum(core.advance.stats.cache_hits.values()),

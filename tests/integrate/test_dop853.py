@@ -11,7 +11,7 @@ import pytest
 from files import ROOT
 from scipy.integrate._ivp import dop853_coefficients as scipy_tableau
 
-from tumble import kernels
+from tumble.dynamics import rigid_body_kernel
 from tumble.integrate import dop853
 from tumble.integrate.dop853 import core, tableau
 from tumble.kernels import jit
@@ -73,7 +73,7 @@ def test_a_run_in_chunks_equals_one_run(steps):
 def test_memory_of_a_sampled_run_is_bounded_by_the_samples():
     """Without a record, a run keeps its samples and the current state only, however many
     steps it takes and however it is chunked."""
-    kernel = kernels.rigid_body_kernel(INERTIA, LinearDrag(0.01 * np.eye(3)))
+    kernel = rigid_body_kernel(INERTIA, LinearDrag(0.01 * np.eye(3)))
     t_eval = np.linspace(0.0, 500.0, 5)
     opts = dop853.Options(**TOL, record=False, dense=False)
     run = dop853.Integration(kernel, Y0, 500.0, opts, t_eval=t_eval)
@@ -91,7 +91,7 @@ def test_a_failure_stops_the_chunks_with_its_status():
     failure's status and time, like the whole run."""
     from tumble.torques import QuadraticDrag
 
-    kernel = kernels.rigid_body_kernel(INERTIA, QuadraticDrag(-np.eye(3)))
+    kernel = rigid_body_kernel(INERTIA, QuadraticDrag(-np.eye(3)))
     whole = dop853.solve(kernel, Y0, 10.0, **TOL)
     run = dop853.Integration(kernel, Y0, 10.0, dop853.Options(**TOL))
     while not run.advance(max_steps=5):
@@ -104,7 +104,7 @@ def test_a_failure_stops_the_chunks_with_its_status():
 def test_batch_runs_keep_their_own_options():
     """solve_many and solve give the same bits (the options record travels unchanged)."""
     torque = LinearDrag(0.01 * np.eye(3)) + ConstantInertialTorque([0.0, 0.0, 0.02])
-    kernel = kernels.rigid_body_kernel(INERTIA, torque)
+    kernel = rigid_body_kernel(INERTIA, torque)
     ((many, _seconds),) = dop853.solve_many([kernel], [Y0], [15.0], **TOL)
     one = dop853.solve(kernel, Y0, 15.0, **TOL)
     assert np.array_equal(many.F, one.F) and np.array_equal(many.ys, one.ys)
@@ -134,7 +134,7 @@ def test_every_compiled_module_is_stamped():
     compiled = {f.relative_to(PACKAGE).as_posix() for f in PACKAGE.rglob("*.py") if _compiles(f)}
     assert {"kernels/rhs.py", "integrate/dop853/core.py"} <= compiled  # the scan finds them
     assert compiled - stamped == set()
-    assert "torques.py" in stamped  # its term codes are frozen into the compiled code
+    assert "kernels/torque.py" in stamped  # the torque terms and their codes
 
 
 def test_cached_functions_carry_the_stamp_of_every_compiled_source():

@@ -49,11 +49,10 @@ from typing import Any
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from tumble import kernels
 from tumble._typing import FloatArray
 from tumble.analysis.verify import slow_errors
 from tumble.app import heyoka_peer
-from tumble.dynamics import rigid_body_rhs
+from tumble.dynamics import rigid_body_kernel, rigid_body_rhs
 from tumble.errors import IntegrationError, ParameterError
 from tumble.integrate import dop853, simulate
 from tumble.io.scenario import parse_scenario, template
@@ -220,7 +219,7 @@ def full_cases(horizon: float) -> list[FullCase]:
     from its x3 regime, see ``_FULL_INITIAL``).
     """
     inertia = np.array([1.0, 2.0, 3.0])
-    free = kernels.rigid_body_kernel(inertia, None)
+    free = rigid_body_kernel(inertia, None)
     assert free is not None
     cases = [
         FullCase(

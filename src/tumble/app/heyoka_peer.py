@@ -20,7 +20,7 @@ from tumble import kernels
 from tumble._typing import FloatArray
 from tumble.errors import IntegrationError, ParameterError
 from tumble.kernels import Kernel
-from tumble.torques import (
+from tumble.kernels.torque import (
     TERM_BODY_CONSTANT,
     TERM_EDDY_CURRENT,
     TERM_GRAVITY_GRADIENT,
@@ -155,7 +155,7 @@ def heyoka_system(kernel: Kernel) -> System | None:
 def _torque(
     hy: Any, prog: list[float], start: int, t: Any, w: list[Any], q: list[Any]
 ) -> list[Any] | None:
-    """The torque program of :func:`tumble.kernels.torque_program` as heyoka expressions;
+    """The torque program of :attr:`tumble.torques.Torque.program` as heyoka expressions;
     None if a term is not analytic (the quadratic drag)."""
     m: list[Any] = [0.0, 0.0, 0.0]
     n_terms = int(prog[start])

@@ -40,8 +40,9 @@ class DenseSolution:
     integrator : str
         ``"numba"`` (the compiled DOP853) or ``"scipy"``.
     events, event_signs : ndarray
-        Zeros of the kernel's event function (compiled runs only), and the sign of the event
-        function just before each.
+        Zeros of the form's event function located during the run (the kernel's on the
+        compiled path, the ``event`` argument of :func:`integrate` on scipy's), and the sign
+        of the event function just before each.
     """
 
     ts: FloatArray
@@ -90,12 +91,24 @@ class _Piecewise:
         return out
 
 
-def _event(g: Callable[[float, FloatArray], float]) -> Callable[[float, FloatArray], float]:
+def _event(
+    g: Callable[[float, FloatArray], float], terminal: bool = True, direction: float = 0.0
+) -> Callable[[float, FloatArray], float]:
     def event(t: float, y: FloatArray) -> float:
         return g(t, y)
 
-    event.terminal = True  # type: ignore[attr-defined]
+    event.terminal = terminal  # type: ignore[attr-defined]
+    event.direction = direction  # type: ignore[attr-defined]
     return event
+
+
+def _recorders(
+    g: Callable[[float, FloatArray], float] | None,
+) -> list[Callable[[float, FloatArray], float]]:
+    """The recorded event as scipy events: rising zeros (negative before), falling ones."""
+    if g is None:
+        return []
+    return [_event(g, terminal=False, direction=1.0), _event(g, terminal=False, direction=-1.0)]
 
 
 def _inside(
@@ -123,6 +136,7 @@ def integrate(
     what: str = "the equations of motion",
     breakpoints: Sequence[Breakpoint] = (),
     kernel: Kernel | None = None,
+    event: Callable[[float, FloatArray], float] | None = None,
 ) -> DenseSolution:
     """Integrate ``dy/dt = rhs(t, y)`` from t = 0 to ``t_end`` with DOP853 and dense output.
 
@@ -147,6 +161,10 @@ def integrate(
         The same right-hand side compiled: integrate it with the compiled DOP853
         (:mod:`tumble.integrate.dop853`, the same method and step control as scipy's) instead of
         calling ``rhs``. Breakpoints are not supported on this path.
+    event : callable, optional
+        ``event(t, y)``, whose zeros are recorded (``DenseSolution.events`` and the sign
+        before each) on the scipy path; the compiled path records the kernel's own event,
+        which must be the same function.
 
     Raises
     ------
@@ -162,7 +180,7 @@ def integrate(
         if breakpoints:
             raise ParameterError(f"{what}: the compiled integrator takes no breakpoints")
         return _integrate_compiled(kernel, y0, t_end, rtol=rtol, atol=atol, what=what)
-    return _integrate_scipy(rhs, y0, t_end, rtol, atol, what, breakpoints)
+    return _integrate_scipy(rhs, y0, t_end, rtol, atol, what, breakpoints, event)
 
 
 def _segment(
@@ -175,9 +193,11 @@ def _segment(
     what: str,
     pending: Sequence[Breakpoint],
     first_step: float | None,
+    recorders: Sequence[Callable[[float, FloatArray], float]] = (),
 ) -> Any:
-    """scipy's DOP853 from (t0, y) to t1, stopping at the first surface of ``pending``;
-    IntegrationError on failure, on a non-finite state or on an arithmetic exception."""
+    """scipy's DOP853 from (t0, y) to t1, stopping at the first surface of ``pending`` (the
+    first events) and recording the zeros of ``recorders`` (the last ones); IntegrationError
+    on failure, on a non-finite state or on an arithmetic exception."""
     with np.errstate(divide="raise", over="raise", invalid="raise"):
         try:
             res = solve_ivp(
@@ -188,7 +208,7 @@ def _segment(
                 rtol=rtol,
                 atol=atol,
                 dense_output=True,
-                events=[_event(b.condition) for b in pending if b.condition] or None,
+                events=[*(_event(b.condition) for b in pending if b.condition), *recorders] or None,
                 first_step=first_step,
             )
         except FloatingPointError as exc:
@@ -209,6 +229,7 @@ def _integrate_scipy(
     atol: float,
     what: str,
     breakpoints: Sequence[Breakpoint],
+    event: Callable[[float, FloatArray], float] | None = None,
 ) -> DenseSolution:
     """:func:`integrate` by scipy, segment by segment between breakpoints."""
     # Known times split the interval; a surface the start sits on is already passed.
@@ -222,12 +243,17 @@ def _integrate_scipy(
     starts, sols, steps, nfev = [0.0], [], [np.array([0.0])], 0
     t0, y = 0.0, y0
     first_step: float | None = None
+    recorders = _recorders(event)
+    found: list[tuple[float, float]] = []  # (t, sign before) of the recorded event
     while True:
         seg_end = next(s for s in stops if s > t0)
         if first_step is not None:
             first_step = min(first_step, seg_end - t0)
         f = _inside(rhs, t0, seg_end) if stops[0] < t_end else rhs
-        res = _segment(f, t0, seg_end, y, rtol, atol, what, pending, first_step)
+        res = _segment(f, t0, seg_end, y, rtol, atol, what, pending, first_step, recorders)
+        if recorders:
+            rising, falling = res.t_events[-2], res.t_events[-1]
+            found += [(float(t), -1.0) for t in rising] + [(float(t), 1.0) for t in falling]
         sols.append(res.sol)
         steps.append(np.asarray(res.t[1:]))
         nfev += int(res.nfev)
@@ -236,7 +262,7 @@ def _integrate_scipy(
         # too small, and regrowing the step costs hundreds of evaluations.
         h = float(res.t[-2] - res.t[-3]) if res.t.size > 2 else 0.0
         if res.status == 1:
-            fired = next(i for i, ev in enumerate(res.t_events) if ev.size)
+            fired = next(i for i, ev in enumerate(res.t_events[: len(pending)]) if ev.size)
             t0, y = float(res.t_events[fired][0]), np.asarray(res.y_events[fired][0])
             restart = pending.pop(fired).restart
             if restart is not None:
@@ -249,9 +275,13 @@ def _integrate_scipy(
             break
         first_step = h if h > 0.0 else None
         starts.append(t0)
+    found.sort()
+    events = np.array([t for t, _ in found])
+    signs = np.array([sign for _, sign in found])
     if len(sols) == 1:
-        return DenseSolution(np.concatenate(steps), nfev, sols[0])
-    return DenseSolution(np.unique(np.concatenate(steps)), nfev, _Piecewise(starts, sols))
+        return DenseSolution(np.concatenate(steps), nfev, sols[0], "scipy", events, signs)
+    sol = _Piecewise(starts, sols)
+    return DenseSolution(np.unique(np.concatenate(steps)), nfev, sol, "scipy", events, signs)
 
 
 def _integrate_compiled(

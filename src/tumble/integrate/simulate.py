@@ -209,6 +209,7 @@ def _full(
         atol=atol,
         what=f"{model.name} full equations {full.equation}",
         kernel=kernel,
+        event=None if full.event is None else _bind(full.event, p),
     )
     return _trajectory(model, p, initial, tau, "full", full, sol, start)
 
@@ -394,6 +395,13 @@ def _batch_job(
         what = f"{model.name} full equations {full.equation}"
         raise IntegrationError(f"{what}: the initial state is not finite: {y0}")
     return kernel, y0
+
+
+def _bind(
+    event: Callable[[float, FloatArray, P], float], p: P
+) -> Callable[[float, FloatArray], float]:
+    """A form's event at parameters ``p``, as the integrator calls it."""
+    return lambda t, y: event(t, y, p)
 
 
 def _kernel(model: Model[P, S], full: FullForm[P, S], p: P, integrator: str) -> Kernel | None:

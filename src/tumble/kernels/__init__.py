@@ -1,16 +1,17 @@
 """Compiled right-hand sides: what the compiled integrator integrates.
 
 A :class:`Kernel` names a right-hand side of :mod:`tumble.kernels.rhs` by its kind and packs
-its parameters into one float array. The models build their kernels here
-(:func:`rigid_body_kernel` for any rigid body under built-in torques); the integrator of
-:mod:`tumble.integrate.dop853` runs them.
+its parameters into one float array; the integrator of :mod:`tumble.integrate.dop853` runs
+it. The built-in torques are defined here too, once (:mod:`tumble.kernels.torque`): the
+classes of :mod:`tumble.torques` evaluate them from Python, the right-hand sides from
+compiled code. This package reads nothing of tumble but the errors and types, so that every
+other part may build on it.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
@@ -24,7 +25,6 @@ from tumble.kernels.rhs import (
     KIND_ROTATING_FIELD,
     evaluate,
 )
-from tumble.torques import Torque
 
 __all__ = [
     "EVENT_NONE",
@@ -34,8 +34,6 @@ __all__ = [
     "KIND_ROTATING_FIELD",
     "Kernel",
     "evaluate_rhs",
-    "rigid_body_kernel",
-    "torque_program",
 ]
 
 
@@ -71,35 +69,7 @@ class Kernel:
             raise ParameterError(self.t_max_message or f"the run ends after t = {self.t_max:g}")
 
 
-def torque_program(torque: Torque | None) -> FloatArray | None:
-    """A torque as the flat program the compiled kernels evaluate, or None if one of its terms
-    is a Python function.
-
-    Layout: ``[number of terms, (code, factor, payload...)...]``, codes and payloads as in
-    :mod:`tumble.torques`.
-    """
-    if torque is None:
-        return np.zeros(1)
-    terms = torque.compiled_terms()
-    if terms is None:
-        return None
-    flat: list[float] = [float(len(terms))]
-    for code, factor, payload in terms:
-        flat += [float(code), float(factor), *(float(v) for v in payload)]
-    return np.array(flat)
-
-
-def rigid_body_kernel(inertia: ArrayLike, torque: Torque | None) -> Kernel | None:
-    """The kernel of Euler's equations with quaternions (tumble.dynamics.rigid_body_rhs) for
-    principal moments ``inertia`` [inertia unit] under ``torque``; None if the torque is a
-    Python function."""
-    program = torque_program(torque)
-    if program is None:
-        return None
-    return Kernel(KIND_RIGID_BODY, np.concatenate([np.asarray(inertia, dtype=float), program]))
-
-
-def evaluate_rhs(kernel: Kernel, t: float, y: Any) -> FloatArray:
+def evaluate_rhs(kernel: Kernel, t: float, y: ArrayLike) -> FloatArray:
     """dy/dt of a compiled kernel at one state (for tests against the Python forms)."""
     state = np.ascontiguousarray(y, dtype=np.float64)
     return evaluate(kernel.kind, float(t), state, kernel.params)  # type: ignore[no-any-return]

@@ -33,7 +33,7 @@ F = TypeVar("F", bound=Callable[..., Any])
 
 _PACKAGE = Path(__file__).resolve().parents[1]
 
-COMPILED_SOURCES: tuple[str, ...] = ("kernels", "integrate/dop853", "torques.py")
+COMPILED_SOURCES: tuple[str, ...] = ("kernels", "integrate/dop853")
 """Files and folders, relative to the package, whose code or constants are compiled."""
 
 # Reassociation and contraction (FMA) only: no "nnan"/"ninf", so the checks for non-finite

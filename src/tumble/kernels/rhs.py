@@ -36,6 +36,7 @@ __all__ = [
     "KIND_ROTATING_FIELD",
     "euler_quaternion",
     "evaluate",
+    "evaluate_event",
     "event",
     "rhs",
     "rigid_body",
@@ -215,6 +216,12 @@ def event(kind: int, t: float, y: FloatArray, p: FloatArray) -> float:
         ey = 2.0 * (q2 * q3 + q0 * q1) / n2
         return y[0] * ey - y[1] * ex
     return 1.0
+
+
+@jit(ENTRY)
+def evaluate_event(kind: int, t: float, y: FloatArray, p: FloatArray) -> float:
+    """The event function ``kind`` at (t, y), from Python: the integrator's own code."""
+    return event(kind, t, y, p)
 
 
 @jit(ENTRY)

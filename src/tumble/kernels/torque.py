@@ -1,45 +1,80 @@
-"""The built-in torques compiled: a torque program evaluated at one state.
+"""The built-in torques, compiled: the one definition of each torque's physics.
 
-A :class:`tumble.torques.Torque` whose terms are all built in flattens into a *program* (see
-:func:`tumble.kernels.torque_program`): ``[number of terms, (code, factor, payload...)...]``,
-with the codes and payloads of :mod:`tumble.torques`. Each term below returns its body moment
-for the state ``y = [ω, q]``; the body → inertial matrix ``a`` of the unit quaternion is
-formed once for all terms.
+A :class:`tumble.torques.Torque` whose terms are all built in flattens into a *program*
+``[number of terms, (code, factor, payload...)...]`` (:attr:`tumble.torques.Torque.program`),
+with the codes and payloads below. Each term returns its body moment for the body rate ω and
+the body → inertial matrix ``a`` (formed once for all terms). The integrator's right-hand
+sides call :func:`torque_moment` at one state; Python calls the same terms through
+:func:`moments` (batches of states) and :func:`inertial_moments` (an averaging grid: every
+attitude at every time).
 """
 
 from __future__ import annotations
 
 import math
 
-from tumble._typing import FloatArray
-from tumble.kernels.jit import INLINE, KERNEL, jit
-from tumble.torques import (
-    TERM_BODY_CONSTANT,
-    TERM_EDDY_CURRENT,
-    TERM_GRAVITY_GRADIENT,
-    TERM_INERTIAL_CONSTANT,
-    TERM_LINEAR_DRAG,
-    TERM_PAYLOAD,
-    TERM_QUADRATIC_DRAG,
-)
+import numpy as np
 
-__all__ = ["attitude_matrix", "quaternion_rates", "torque_moment"]
+from tumble._typing import FloatArray
+from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
+
+__all__ = [
+    "RATE_ONLY_TERMS",
+    "TERM_BODY_CONSTANT",
+    "TERM_EDDY_CURRENT",
+    "TERM_GRAVITY_GRADIENT",
+    "TERM_INERTIAL_CONSTANT",
+    "TERM_LINEAR_DRAG",
+    "TERM_PAYLOAD",
+    "TERM_QUADRATIC_DRAG",
+    "attitude_matrix",
+    "inertial_moments",
+    "moments",
+    "quaternion_rates",
+    "torque_moment",
+]
+
+TERM_BODY_CONSTANT = 1  # body moment (3)
+TERM_LINEAR_DRAG = 2  # B by rows (9)
+TERM_QUADRATIC_DRAG = 3  # S by rows (9)
+TERM_INERTIAL_CONSTANT = 4  # inertial moment (3)
+TERM_GRAVITY_GRADIENT = 5  # inertia (3), n, u0, rows e1, e2, normal (9)
+TERM_EDDY_CURRENT = 6  # M0, field rate ω, cone angle β
+
+TERM_PAYLOAD: dict[int, int] = {
+    TERM_BODY_CONSTANT: 3,
+    TERM_LINEAR_DRAG: 9,
+    TERM_QUADRATIC_DRAG: 9,
+    TERM_INERTIAL_CONSTANT: 3,
+    TERM_GRAVITY_GRADIENT: 14,
+    TERM_EDDY_CURRENT: 3,
+}
+"""Length of each term code's payload (the stride of a torque program)."""
+
+RATE_ONLY_TERMS = frozenset({TERM_BODY_CONSTANT, TERM_LINEAR_DRAG, TERM_QUADRATIC_DRAG})
+"""Terms that read neither the attitude nor the time."""
 
 Vec3 = tuple[float, float, float]
 Mat3 = tuple[float, float, float, float, float, float, float, float, float]
 
 
 @jit(INLINE)
-def attitude_matrix(y: FloatArray) -> Mat3:
-    """Body → inertial matrix (row by row) of the quaternion y[3:7], normalised first
+def _quaternion_matrix(q0: float, q1: float, q2: float, q3: float) -> Mat3:
+    """Body → inertial matrix (row by row) of a quaternion, normalised first
     (:func:`tumble.rotations.quat_to_matrix`)."""
-    norm = math.sqrt(y[3] * y[3] + y[4] * y[4] + y[5] * y[5] + y[6] * y[6])
-    q0, q1, q2, q3 = y[3] / norm, y[4] / norm, y[5] / norm, y[6] / norm
+    norm = math.sqrt(q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
+    q0, q1, q2, q3 = q0 / norm, q1 / norm, q2 / norm, q3 / norm
     return (
         1.0 - 2.0 * (q2 * q2 + q3 * q3), 2.0 * (q1 * q2 - q0 * q3), 2.0 * (q1 * q3 + q0 * q2),
         2.0 * (q1 * q2 + q0 * q3), 1.0 - 2.0 * (q1 * q1 + q3 * q3), 2.0 * (q2 * q3 - q0 * q1),
         2.0 * (q1 * q3 - q0 * q2), 2.0 * (q2 * q3 + q0 * q1), 1.0 - 2.0 * (q1 * q1 + q2 * q2),
     )  # fmt: skip
+
+
+@jit(INLINE)
+def attitude_matrix(y: FloatArray) -> Mat3:
+    """Body → inertial matrix (row by row) of the quaternion y[3:7] of a state ``[ω, q]``."""
+    return _quaternion_matrix(y[3], y[4], y[5], y[6])
 
 
 @jit(INLINE)
@@ -64,8 +99,9 @@ def _matrix_times(prog: FloatArray, v: int, x1: float, x2: float, x3: float) -> 
 
 @jit(INLINE)
 def _gravity_gradient(f: float, prog: FloatArray, v: int, t: float, a: Mat3) -> Vec3:
-    """f·3n²(I3 − I2) r2 r3, … of the unit radius vector r in body axes; payload
-    [I1, I2, I3, n, u0, e1, e2, …] with r̂ = cos u e1 + sin u e2, u = n t + u0."""
+    """f·3n² r × (I r) = f·3n² ((I3 − I2) r2 r3, …) for the unit radius vector r in body
+    axes; payload [I1, I2, I3, n, u0, e1, e2, normal] with r̂ = cos u e1 + sin u e2,
+    u = n t + u0."""
     i1, i2, i3 = prog[v], prog[v + 1], prog[v + 2]
     n, u0 = prog[v + 3], prog[v + 4]
     cu, su = math.cos(n * t + u0), math.sin(n * t + u0)
@@ -80,13 +116,15 @@ def _gravity_gradient(f: float, prog: FloatArray, v: int, t: float, a: Mat3) -> 
 
 
 @jit(INLINE)
-def _eddy_current(f: float, prog: FloatArray, v: int, t: float, y: FloatArray, a: Mat3) -> Vec3:
+def _eddy_current(
+    f: float, prog: FloatArray, v: int, t: float, w1: float, w2: float, w3: float, a: Mat3
+) -> Vec3:
     """f·M0 (ĥ(ĥ·x) − x) in body axes, x = A ω − Ω ξ3 the angular velocity relative to the
-    field ĥ(t) = (sinβ cos Ωt, sinβ sin Ωt, cosβ); payload [M0, Ω, β]."""
+    field ĥ(t) = (sinβ cos Ωt, sinβ sin Ωt, cosβ); payload [M0, Ω, β]. Martynenko (1979),
+    eq. (1.3)."""
     M0, rate, beta = prog[v], prog[v + 1], prog[v + 2]
     sb, cb = math.sin(beta), math.cos(beta)
     h1, h2, h3 = sb * math.cos(rate * t), sb * math.sin(rate * t), cb
-    w1, w2, w3 = y[0], y[1], y[2]
     x1 = a[0] * w1 + a[1] * w2 + a[2] * w3
     x2 = a[3] * w1 + a[4] * w2 + a[5] * w3
     x3 = a[6] * w1 + a[7] * w2 + a[8] * w3 - rate
@@ -97,11 +135,12 @@ def _eddy_current(f: float, prog: FloatArray, v: int, t: float, y: FloatArray, a
 
 
 @jit(INLINE)
-def _term(code: int, f: float, prog: FloatArray, v: int, t: float, y: FloatArray,
-          a: Mat3) -> Vec3:  # fmt: skip
+def _term(
+    code: int, f: float, prog: FloatArray, v: int, t: float, w1: float, w2: float, w3: float,
+    a: Mat3,
+) -> Vec3:  # fmt: skip
     """Body moment of one term times its factor f; NaN for an unknown code, which cannot come
-    from torque_program(): the integration then fails loudly instead of ignoring the term."""
-    w1, w2, w3 = y[0], y[1], y[2]
+    from a Torque's program: the caller then fails loudly instead of ignoring the term."""
     if code == TERM_BODY_CONSTANT:
         return f * prog[v], f * prog[v + 1], f * prog[v + 2]
     if code == TERM_LINEAR_DRAG:
@@ -116,7 +155,7 @@ def _term(code: int, f: float, prog: FloatArray, v: int, t: float, y: FloatArray
     if code == TERM_GRAVITY_GRADIENT:
         return _gravity_gradient(f, prog, v, t, a)
     if code == TERM_EDDY_CURRENT:
-        return _eddy_current(f, prog, v, t, y, a)
+        return _eddy_current(f, prog, v, t, w1, w2, w3, a)
     return math.nan, math.nan, math.nan
 
 
@@ -124,25 +163,68 @@ def _term(code: int, f: float, prog: FloatArray, v: int, t: float, y: FloatArray
 _SIZES = tuple(TERM_PAYLOAD.get(code, 0) for code in range(max(TERM_PAYLOAD) + 1))
 
 
+@jit(INLINE)
+def _program(
+    prog: FloatArray, start: int, t: float, w1: float, w2: float, w3: float, a: Mat3
+) -> Vec3:
+    """Body moment of the program ``prog[start:]`` at body rate ω and attitude matrix a."""
+    m1 = m2 = m3 = 0.0
+    i = start + 1
+    for _ in range(int(prog[start])):
+        code = int(prog[i])
+        d1, d2, d3 = _term(code, prog[i + 1], prog, i + 2, t, w1, w2, w3, a)
+        m1 += d1
+        m2 += d2
+        m3 += d3
+        if not 0 <= code < len(_SIZES) or _SIZES[code] == 0:
+            break
+        i += 2 + _SIZES[code]
+    return m1, m2, m3
+
+
 @jit(KERNEL)
 def torque_moment(prog: FloatArray, start: int, t: float, y: FloatArray, out: FloatArray) -> None:
     """Body moment of the torque program ``prog[start:]`` at state ``y = [ω, q]`` into
     out[0:3]."""
-    n_terms = int(prog[start])
-    m1 = m2 = m3 = 0.0
-    if n_terms > 0:
-        a = attitude_matrix(y)
-        i = start + 1
-        for _ in range(n_terms):
-            code = int(prog[i])
-            d1, d2, d3 = _term(code, prog[i + 1], prog, i + 2, t, y, a)
-            m1 += d1
-            m2 += d2
-            m3 += d3
-            if not 0 <= code < len(_SIZES) or _SIZES[code] == 0:
-                break
-            i += 2 + _SIZES[code]
+    if prog[start] > 0:
+        m1, m2, m3 = _program(prog, start, t, y[0], y[1], y[2], attitude_matrix(y))
+    else:
+        m1 = m2 = m3 = 0.0
     out[0], out[1], out[2] = m1, m2, m3
+
+
+@jit(ENTRY)
+def moments(prog: FloatArray, t: FloatArray, q: FloatArray, w: FloatArray) -> FloatArray:
+    """Body moments of a program at the states (t[k], q[k], w[k]), shapes (n,), (n, 4),
+    (n, 3) → (n, 3); an argument of length 1 is used for every k."""
+    n = max(t.size, q.shape[0], w.shape[0])
+    out = np.empty((n, 3))
+    for k in range(n):
+        kt = k if t.size > 1 else 0
+        kq = k if q.shape[0] > 1 else 0
+        kw = k if w.shape[0] > 1 else 0
+        a = _quaternion_matrix(q[kq, 0], q[kq, 1], q[kq, 2], q[kq, 3])
+        out[k, 0], out[k, 1], out[k, 2] = _program(prog, 0, t[kt], w[kw, 0], w[kw, 1], w[kw, 2], a)
+    return out
+
+
+@jit(ENTRY)
+def inertial_moments(prog: FloatArray, t: FloatArray, A: FloatArray, w: FloatArray) -> FloatArray:
+    """Inertial components A M of a program's moment for every attitude at every time:
+    attitudes A (n, 3, 3) with body rates w (n, 3), times t (m,) → (n, m, 3)."""
+    out = np.empty((A.shape[0], t.size, 3))
+    for k in range(A.shape[0]):
+        a = (
+            A[k, 0, 0], A[k, 0, 1], A[k, 0, 2],
+            A[k, 1, 0], A[k, 1, 1], A[k, 1, 2],
+            A[k, 2, 0], A[k, 2, 1], A[k, 2, 2],
+        )  # fmt: skip
+        for j in range(t.size):
+            m1, m2, m3 = _program(prog, 0, t[j], w[k, 0], w[k, 1], w[k, 2], a)
+            out[k, j, 0] = a[0] * m1 + a[1] * m2 + a[2] * m3
+            out[k, j, 1] = a[3] * m1 + a[4] * m2 + a[5] * m3
+            out[k, j, 2] = a[6] * m1 + a[7] * m2 + a[8] * m3
+    return out
 
 
 @jit(INLINE)

@@ -122,10 +122,16 @@ class FullForm(Generic[P, S]):
     ``state`` names the components of the state vector; ``rhs(t, y, p)`` is the right-hand
     side; ``initial_state(p, initial)`` builds the state vector; ``to_columns(p, t, Y)``
     turns states ``Y`` of shape (n, dim) into output columns (the slow variables, converted
-    from the full state). ``kernel(p)`` gives the same
+    from the full state); ``state_of(p, y)`` is the inverse of ``initial_state``: the
+    initial-condition record of a state vector taken at t = 0 (through it a full state
+    converts to any averaged form's slow state, :meth:`Model.slow_state`). ``kernel(p)``
+    gives the same
     right-hand side compiled (:class:`tumble.kernels.Kernel`), or None where ``p`` holds a
     Python function; ``rhs`` stays the reference that the scipy integrator runs.
     ``invariants(p, Y)`` are the quantities the unperturbed motion (ε = 0) conserves.
+    ``event(t, y, p)`` is a function whose zeros every run of this form records, with the
+    sign before each (e.g. θ' = 0, the extrema of the nutation angle); the kernel's event
+    must be the same function.
     """
 
     name: str
@@ -134,8 +140,10 @@ class FullForm(Generic[P, S]):
     rhs: Callable[[float, FloatArray, P], FloatArray]
     initial_state: Callable[[P, S], FloatArray]
     to_columns: Callable[[P, FloatArray, FloatArray], Columns]
+    state_of: Callable[[P, FloatArray], S]
     kernel: Callable[[P], Kernel | None] | None = None
     invariants: Callable[[P, FloatArray], Columns] | None = None
+    event: Callable[[float, FloatArray, P], float] | None = None
 
 
 @dataclass(frozen=True)
@@ -294,6 +302,22 @@ class Averaged(Generic[P, S]):
 
 
 @dataclass(frozen=True, slots=True)
+class Unperturbed(Generic[P, S]):
+    """The exact unperturbed motion (ε = 0): the generating solution the averaging is taken
+    over, in closed form (elliptic functions).
+
+    ``motion(p, initial)`` is the motion through the initial state, a function of times
+    t (n,) → states of the default full form, shape (n, dim); ``rhs(t, y, p)`` is the default
+    full form's right-hand side with the perturbation removed, whose solution that motion is
+    (a test integrates one against the other for every model).
+    """
+
+    equation: str
+    motion: Callable[[P, S], Callable[[FloatArray], FloatArray]]
+    rhs: Callable[[float, FloatArray, P], FloatArray]
+
+
+@dataclass(frozen=True, slots=True)
 class ClosedForm(Generic[P, S]):
     """The averaged motion in closed form: ``evaluate(p, initial, tau) -> columns``."""
 
@@ -390,6 +414,8 @@ class Model(Generic[P, S]):
         for the averaged equations); called before any work.
     averaged, closed_form, validity : optional
         The averaged equations, their closed form, and where they lose accuracy.
+    unperturbed : Unperturbed, optional
+        The exact motion at ε = 0 through an initial state.
     stationary : callable, optional
         ``stationary(p)``: the stationary motion whose stability the paper analyses.
     report : callable, optional
@@ -411,6 +437,7 @@ class Model(Generic[P, S]):
     methods: tuple[Method, ...]
     averaged: Averaged[P, S] | None = None
     closed_form: ClosedForm[P, S] | None = None
+    unperturbed: Unperturbed[P, S] | None = None
     validity: Validity[P, S] | None = None
     stationary: Callable[[P], StationaryMotion[P]] | None = None
     report: Callable[[P, S, Mapping[str, Sampled]], Report] | None = None
@@ -438,6 +465,22 @@ class Model(Generic[P, S]):
             f"run.methods: {method!r} is not a method of {self.name} "
             f"(allowed: {', '.join(self.methods)})"
         )
+
+    def slow_state(
+        self, p: P, y: FloatArray, options: AveragingOptions | None = None, form: str | None = None
+    ) -> FloatArray:
+        """The averaged form's slow state for the full state vector ``y`` at t = 0.
+
+        ``y`` is a state of the full form ``form`` (default: the model's default form); it is
+        turned into the model's initial-condition record (``FullForm.state_of``) and that into
+        the slow state of the averaged form ``options`` selects, exactly as a run started from
+        it would (``options.start = "corrected"`` gives the mean state of an osculating one).
+        """
+        if self.averaged is None:
+            raise ParameterError(f"model {self.name} has no averaged form")
+        opts = self.averaged.check(options or AveragingOptions())
+        st = self.full.form(form).state_of(p, np.asarray(y, dtype=float))
+        return self.averaged.form(p, st, opts).initial_state(p, st)
 
 
 def first_time(condition: Callable[[FloatArray], FloatArray], grid: FloatArray) -> float | None:

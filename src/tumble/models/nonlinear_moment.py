@@ -41,7 +41,7 @@ from tumble.averaging.nutation import (
 )
 from tumble.errors import IntegrationError, ParameterError, ScenarioError, check_range
 from tumble.kernels import EVENT_THETA_DOT, KIND_NONLINEAR_MOMENT, Kernel
-from tumble.kernels.rhs import symmetric_body
+from tumble.kernels.rhs import evaluate_event, symmetric_body
 from tumble.models.base import (
     Averaged,
     AveragedForm,
@@ -58,6 +58,7 @@ from tumble.models.base import (
     Report,
     Sampled,
     SlowPath,
+    Unperturbed,
     Validity,
     ValidityIssue,
     first_time,
@@ -289,6 +290,11 @@ class Params:
         their slow-time profile)."""
         return replace(self, eps=eps)
 
+    def unperturbed(self) -> Params:
+        """The same body and moment at t = 0 without any perturbation: ε = 0, no damping,
+        constant pressure."""
+        return Params(self.mu, self.a, self.b)
+
     def derived(self) -> dict[str, Any]:
         """Quantities worth recording beside the inputs."""
         return {"perturbed": self.perturbed, "Q0": self.Q0}
@@ -445,6 +451,12 @@ def slow_from_full(p: Params, t: FloatArray, Y: FloatArray) -> dict[str, FloatAr
         "a": a,
         "b": b,
     }
+
+
+def _state_from_columns(cols: Mapping[str, FloatArray]) -> State:
+    """The initial-condition record of the first row of full-form columns."""
+    names = ("theta", "theta_dot", "psi", "phi", "R", "G")
+    return State(*(float(cols[name][0]) for name in names))
 
 
 def invariants(p: Params, Y: FloatArray) -> dict[str, FloatArray]:
@@ -923,7 +935,7 @@ def extrema(traj: Sampled, p: Params) -> list[tuple[str, int, float, float, floa
         ``kind`` "max" or "min", ``k`` counting from 1 within its kind.
     """
     t_end = float(traj.tau[-1])
-    turns = _event_turns(traj, t_end) if traj.integrator == "numba" else _bracketed_turns(traj)
+    turns = _event_turns(traj, t_end)
     if not turns:
         return []
     cols = traj.slow(np.array([t for _, t in turns]))
@@ -937,42 +949,14 @@ def extrema(traj: Sampled, p: Params) -> list[tuple[str, int, float, float, floa
 
 
 def _event_turns(traj: Sampled, t_end: float) -> list[tuple[str, float]]:
-    """The turning points a compiled run located as zeros of θ' (kind, t), in time order."""
+    """The turning points the run located as zeros of θ' (the full forms' event), (kind, t)
+    in time order."""
     keep = (traj.events > 0.0) & (traj.events < t_end)
     signs = traj.event_signs[keep]
     return [
         ("max" if sign > 0.0 else "min", float(t))
         for t, sign in zip(traj.events[keep], signs, strict=True)
     ]
-
-
-def _bracketed_turns(traj: Sampled) -> list[tuple[str, float]]:
-    """The zeros of θ' bracketed on the integrator's steps (subdivided four times) and refined
-    on the dense output, and those landing exactly on a grid point; (kind, t) in time order."""
-    from scipy.optimize import brentq
-
-    t_end = float(traj.tau[-1])
-    steps = np.asarray(traj.steps, dtype=float)
-    if steps.size < 2:
-        steps = np.linspace(0.0, t_end, 2)
-    frac = np.linspace(0.0, 1.0, 5)[:-1]
-    grid = np.concatenate([(steps[:-1, None] + np.diff(steps)[:, None] * frac).ravel(), [t_end]])
-    grid = grid[grid <= t_end]
-    td = traj.slow(grid)["theta_dot"]
-
-    def theta_dot(t: float) -> float:
-        return float(traj.slow(np.array([t]))["theta_dot"][0])
-
-    turns: list[tuple[str, float]] = []
-    for i in np.flatnonzero(np.sign(td[:-1]) * np.sign(td[1:]) < 0.0):
-        t_k = brentq(theta_dot, grid[i], grid[i + 1], xtol=1e-14, rtol=4 * np.finfo(float).eps)
-        if 0.0 < t_k < t_end:
-            turns.append(("max" if td[i] > 0.0 else "min", float(t_k)))
-    # A zero of θ' exactly on a grid point (a step landing on a turning point).
-    for i in np.flatnonzero(td[1:-1] == 0.0) + 1:
-        if np.sign(td[i - 1]) * np.sign(td[i + 1]) < 0.0:
-            turns.append(("max" if td[i - 1] > 0.0 else "min", float(grid[i])))
-    return sorted(turns, key=lambda turn: turn[1])
 
 
 def envelope_discrepancy(
@@ -1216,6 +1200,9 @@ def _full_columns(p: Params) -> tuple[Column, ...]:
 _PRESSURE_CODES = {"constant": 0, "exp": 1, "table": 2}
 
 
+_NO_PARAMS = np.zeros(0)  # the θ' event reads the state only
+
+
 def full_kernel(p: Params) -> Kernel | None:
     """:func:`full_rhs` compiled (:mod:`tumble.kernels`), locating the zeros of θ' (the
     extrema of θ) as it goes; None for a pressure given as a Python function."""
@@ -1235,6 +1222,22 @@ def full_kernel(p: Params) -> Kernel | None:
     return Kernel(KIND_NONLINEAR_MOMENT, np.array(params), EVENT_THETA_DOT, t_max, message)
 
 
+def exact_motion(p: Params, st: State) -> Callable[[FloatArray], FloatArray]:
+    """The motion at ε = 0 through ``st`` (a, b frozen at their initial values, no damping),
+    (1.9)–(1.13), as states ``[p, q, r, q0, q1, q2, q3]`` of the quaternion form."""
+    orbit = orbit_of(p, st)
+
+    def states(t: FloatArray) -> FloatArray:
+        tt = np.ravel(np.asarray(t, dtype=float))
+        angles = zip(
+            orbit.theta(tt), orbit.theta_dot(tt), orbit.psi(tt), orbit.phi(tt), strict=True
+        )
+        rows = [full_from_slow(p, State(th, thd, ps, ph, st.R, st.G)) for th, thd, ps, ph in angles]
+        return np.array(rows).reshape(tt.size, 7)
+
+    return states
+
+
 FULL_QUATERNION: FullForm[Params, State] = FullForm(
     name="quaternion",
     equation="(1.1) with quaternion kinematics",
@@ -1242,8 +1245,10 @@ FULL_QUATERNION: FullForm[Params, State] = FullForm(
     rhs=full_rhs,
     initial_state=full_from_slow,
     to_columns=slow_from_full,
+    state_of=lambda p, y: _state_from_columns(slow_from_full(p, np.zeros(1), y[None, :])),
     kernel=full_kernel,
     invariants=invariants,
+    event=lambda t, y, p: float(evaluate_event(EVENT_THETA_DOT, t, y, _NO_PARAMS)),
 )
 FULL_REDUCED: FullForm[Params, State] = FullForm(
     name="reduced",
@@ -1252,6 +1257,8 @@ FULL_REDUCED: FullForm[Params, State] = FullForm(
     rhs=_builtin_reduced_rhs,
     initial_state=_reduced_from_slow,
     to_columns=_reduced_columns,
+    state_of=lambda p, y: State(*(float(v) for v in y[:6])),
+    event=lambda t, y, p: float(y[1]),  # θ'
 )
 
 # ---------------------------------------------------------------------------------------------
@@ -1391,6 +1398,9 @@ MODEL: Model[Params, State] = Model(
         diagnostics=Diagnostics(_diagnostics, _DIAGNOSTICS),
     ),
     closed_form=ClosedForm(evaluate=closed_form, columns=fixed_columns(_UNPERTURBED)),
+    unperturbed=Unperturbed(
+        "(1.9)-(1.13)", exact_motion, lambda t, y, p: full_rhs(t, y, p.unperturbed())
+    ),
     validity=Validity(check=validity, limits=limits),
     report=report,
     scenario=SCENARIO,

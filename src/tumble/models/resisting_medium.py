@@ -24,6 +24,7 @@ import numpy as np
 from tumble._typing import ArrayLike, FloatArray, Json
 from tumble.averaging.spinner import body_momentum, spinner_average, standard_form
 from tumble.bodies import RigidBody
+from tumble.dynamics import rigid_body_kernel
 from tumble.errors import (
     IntegrationError,
     ParameterError,
@@ -31,7 +32,7 @@ from tumble.errors import (
     check_finite,
     check_range,
 )
-from tumble.kernels import Kernel, rigid_body_kernel
+from tumble.kernels import Kernel
 from tumble.kernels.rhs import rigid_body
 from tumble.models.base import (
     Averaged,
@@ -44,6 +45,7 @@ from tumble.models.base import (
     Model,
     Paper,
     SlowPath,
+    Unperturbed,
     Validity,
     ValidityIssue,
     first_time,
@@ -58,6 +60,7 @@ from tumble.rotations import (
     quat_to_matrix,
 )
 from tumble.torques import ConstantBodyTorque, LinearDrag, QuadraticDrag, Torque
+from tumble.unperturbed.euler_poinsot import EulerPoinsot
 
 __all__ = [
     "MODEL",
@@ -267,6 +270,15 @@ def slow_from_full(p: Params, t: FloatArray, Y: FloatArray) -> dict[str, FloatAr
     K_in = np.einsum("nij,nj->ni", R, kb)
     rho, sigma, psi, _, _ = kframe_angles_from_attitude(R, K_in)
     return {"k": k, "theta": theta, "rho": rho, "sigma": sigma, "psi": psi, "phi": phi}
+
+
+def state_from_full(p: Params, y: FloatArray) -> State:
+    """The initial-condition record (k, ρ, σ, ψ, ϑ, φ) of one state ``[w, q]`` of form (a)."""
+    cols = slow_from_full(p, np.zeros(1), np.asarray(y)[None, :])
+    return State(**{name: float(cols[name][0]) for name in _STATE_FIELDS})
+
+
+_STATE_FIELDS = ("k", "rho", "sigma", "psi", "theta", "phi")
 
 
 def invariants(p: Params, Y: FloatArray) -> dict[str, FloatArray]:
@@ -1313,6 +1325,7 @@ FULL_EULER: FullForm[Params, State] = FullForm(
     rhs=full_rhs,
     initial_state=full_from_slow,
     to_columns=slow_from_full,
+    state_of=state_from_full,
     kernel=full_kernel,
     invariants=invariants,
 )
@@ -1323,6 +1336,7 @@ FULL_OSCULATING: FullForm[Params, State] = FullForm(
     rhs=osculating_rhs,
     initial_state=osculating_from_slow,
     to_columns=_osculating_columns,
+    state_of=lambda p, y: State(*(float(v) for v in y)),
 )
 
 # ---------------------------------------------------------------------------------------------
@@ -1443,6 +1457,11 @@ MODEL: Model[Params, State] = Model(
         numeric=True,
     ),
     closed_form=ClosedForm(evaluate=closed_form, columns=_COLUMNS_SLOW_OF),
+    unperturbed=Unperturbed(
+        "the free symmetric body",
+        lambda p, st: EulerPoinsot.from_rigid_body_state(p.inertia, full_from_slow(p, st)).states,
+        lambda t, y, p: full_rhs(t, y, p.with_eps(0.0)),
+    ),
     validity=Validity(check=validity, limits=predicted_limits),
     scenario=SCENARIO,
 )

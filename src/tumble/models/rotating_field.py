@@ -17,7 +17,7 @@ means the angular momentum encircles the axis of the largest moment, ``"x1"`` th
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
@@ -27,9 +27,9 @@ from scipy.special import ellipe, ellipj, ellipk
 from tumble._typing import ArrayLike, BoolArray, FloatArray
 from tumble.averaging.triaxial import triaxial_average_vector
 from tumble.bodies import RigidBody
-from tumble.dynamics import rigid_body_rhs
+from tumble.dynamics import rigid_body_kernel, rigid_body_rhs
 from tumble.errors import ParameterError, ScenarioError, check_range
-from tumble.kernels import KIND_ROTATING_FIELD, Kernel, rigid_body_kernel
+from tumble.kernels import KIND_ROTATING_FIELD, Kernel
 from tumble.kernels.rhs import rotating_field as rotating_field_rhs
 from tumble.models.base import (
     Averaged,
@@ -44,6 +44,7 @@ from tumble.models.base import (
     Paper,
     SlowPath,
     StationaryMotion,
+    Unperturbed,
     Validity,
     ValidityIssue,
     first_time,
@@ -56,11 +57,13 @@ from tumble.rotations import (
     euler313_to_matrix,
     kframe_matrix,
     matrix_to_quat,
+    quat_normalize,
     quat_to_matrix,
     rot_z,
 )
 from tumble.torques import EddyCurrentTorque
 from tumble.unperturbed import (
+    EulerPoinsot,
     energy_from_modulus,
     fast_frequencies,
     mean_square_rate,
@@ -1210,6 +1213,28 @@ def inertial_kernel(p: Params) -> Kernel | None:
     return rigid_body_kernel(p.inertia, p.torque)
 
 
+def _free_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
+    """(1.5) without the eddy-current moment (ε = 0): the free body seen from the field
+    frame; the same compiled code as :func:`full_rhs`."""
+    packed = p.packed.copy()
+    packed[3] = 0.0  # ε
+    return rotating_field_rhs(np.ascontiguousarray(y, dtype=np.float64), packed)  # type: ignore[no-any-return]
+
+
+def free_motion(p: Params, st: State) -> Callable[[FloatArray], FloatArray]:
+    """The motion at ε = 0 through ``st``, as states ``[z, Γ by rows]`` of (1.5): the free
+    body (3.1) (:class:`~tumble.unperturbed.euler_poinsot.EulerPoinsot`) seen from the field
+    frame, which turns by τ about ξ3, Γ(τ) = Rz(−τ) A(τ)."""
+    free = EulerPoinsot.from_state(p.inertia, st.z, st.gamma)
+
+    def states(tau: FloatArray) -> FloatArray:
+        t = np.ravel(np.asarray(tau, dtype=float))
+        gamma = np.matmul(rot_z(-t), free.attitude(t))
+        return np.concatenate([free.omega(t), gamma.reshape(-1, 9)], axis=1)
+
+    return states
+
+
 FULL_ROTATING: FullForm[Params, State] = FullForm(
     name="rotating",
     equation="(1.5)",
@@ -1217,6 +1242,7 @@ FULL_ROTATING: FullForm[Params, State] = FullForm(
     rhs=full_rhs,
     initial_state=full_from_slow,
     to_columns=slow_from_full,
+    state_of=lambda p, y: State(y[:3], y[3:].reshape(3, 3)),
     kernel=full_kernel,
     invariants=invariants,
 )
@@ -1227,6 +1253,7 @@ FULL_INERTIAL: FullForm[Params, State] = FullForm(
     rhs=inertial_rhs,
     initial_state=_inertial_from_slow,
     to_columns=_inertial_columns,
+    state_of=lambda p, y: State(y[:3], quat_to_matrix(quat_normalize(y[3:]))),
     kernel=inertial_kernel,
 )
 
@@ -1360,6 +1387,7 @@ MODEL: Model[Params, State] = Model(
         diagnostics=Diagnostics(diagnostics, _DIAGNOSTICS),
         numeric=True,
     ),
+    unperturbed=Unperturbed("the free body (3.1)", free_motion, _free_rhs),
     validity=Validity(check=validity, limits=predicted_limits),
     stationary=stationary,
     scenario=SCENARIO,

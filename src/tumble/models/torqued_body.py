@@ -33,9 +33,9 @@ import numpy as np
 from tumble._typing import BoolArray, FloatArray
 from tumble.averaging import nearest_resonance, triaxial_average_vector
 from tumble.bodies import RigidBody
-from tumble.dynamics import rigid_body_rhs
+from tumble.dynamics import rigid_body_kernel, rigid_body_rhs
 from tumble.errors import ParameterError, ScenarioError, check_range
-from tumble.kernels import Kernel, rigid_body_kernel
+from tumble.kernels import Kernel
 from tumble.kernels.rhs import rigid_body
 from tumble.models.base import (
     Averaged,
@@ -49,6 +49,7 @@ from tumble.models.base import (
     Report,
     Sampled,
     SlowPath,
+    Unperturbed,
     Validity,
     ValidityIssue,
     fixed_columns,
@@ -69,7 +70,7 @@ from tumble.torques import (
     UserTorque,
     ZeroTorque,
 )
-from tumble.unperturbed.euler_poinsot import fast_frequencies, modulus_squared
+from tumble.unperturbed.euler_poinsot import EulerPoinsot, fast_frequencies, modulus_squared
 
 __all__ = [
     "MODEL",
@@ -542,6 +543,7 @@ FULL: FullForm[Params, State] = FullForm(
     rhs=full_rhs,
     initial_state=_full_from_slow,
     to_columns=_full_columns,
+    state_of=lambda p, y: State(y[:3], y[3:]),
     kernel=full_kernel,
 )
 
@@ -714,6 +716,11 @@ MODEL: Model[Params, State] = Model(
     methods=("full", "averaged"),
     averaged=Averaged(
         form=_averaged_form, columns=fixed_columns(_COLUMNS_SLOW), compare=("L1", "L2", "L3", "T")
+    ),
+    unperturbed=Unperturbed(
+        "the free body (3.1)",
+        lambda p, st: EulerPoinsot.from_rigid_body_state(p.inertia, _full_from_slow(p, st)).states,
+        lambda t, y, p: full_rhs(t, y, p.with_eps(0.0)),
     ),
     validity=Validity(check=validity),
     report=_report,

@@ -43,7 +43,13 @@ from scipy import special
 from tumble._typing import ArrayLike, FloatArray
 from tumble.bodies import RigidBody
 from tumble.errors import ParameterError, TumbleWarning, check_finite
-from tumble.rotations import matrix_to_quat, quat_conjugate, quat_multiply, quat_to_matrix
+from tumble.rotations import (
+    matrix_to_quat,
+    quat_conjugate,
+    quat_multiply,
+    quat_normalize,
+    quat_to_matrix,
+)
 from tumble.unperturbed.elliptic import _ellipf_sc, _ellippi_mc, _ellippi_sc
 
 __all__ = [
@@ -942,6 +948,13 @@ class EulerPoinsot:
             _scale=scale,
         )
 
+    @classmethod
+    def from_rigid_body_state(cls, inertia: ArrayLike, y: ArrayLike) -> EulerPoinsot:
+        """Free motion through the state ``y = [ω, q]`` of Euler's equations with quaternions
+        (body angular velocity [rad/τ], attitude quaternion body → inertial) at τ = 0."""
+        y = np.asarray(y, dtype=float)
+        return cls.from_state(inertia, y[:3], quat_to_matrix(quat_normalize(y[3:7])))
+
     def _tau(self, tau: ArrayLike) -> FloatArray:
         t = np.asarray(tau, dtype=float)
         if not np.all(np.isfinite(t)):
@@ -1016,6 +1029,18 @@ class EulerPoinsot:
         ndarray, shape tau.shape + (3, 3)
         """
         return quat_to_matrix(self.quaternion(tau))
+
+    def states(self, tau: ArrayLike) -> FloatArray:
+        """Full states ``[ω, q]`` at times τ, shape (n, 7): the state vector of Euler's
+        equations with quaternions (:func:`tumble.dynamics.rigid_body_rhs`).
+
+        Parameters
+        ----------
+        tau : array_like, shape (n,)
+            Times [τ].
+        """
+        t = np.ravel(np.asarray(tau, dtype=float))
+        return np.concatenate([self.omega(t), self.quaternion(t)], axis=1)
 
     @property
     def angular_momentum(self) -> FloatArray:

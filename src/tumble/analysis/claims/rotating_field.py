@@ -36,9 +36,8 @@ from tumble.analysis.claims.common import (
 )
 from tumble.analysis.stability import CRITICAL_TOL, analyze, match_roots, polynomial_roots
 from tumble.analysis.stability_maps import inertia_map
-from tumble.dynamics import rigid_body_rhs
+from tumble.dynamics import rigid_body_kernel, rigid_body_rhs
 from tumble.integrate import integrate, simulate
-from tumble.kernels import rigid_body_kernel
 from tumble.models import rotating_field as rf
 from tumble.rotations import euler313_to_matrix, matrix_to_quat, quat_to_matrix
 from tumble.torques import EddyCurrentTorque, ZeroTorque

@@ -71,18 +71,43 @@ def _guarded(work: Callable[[], Any]) -> Any:
         raise typer.Exit(1) from None
 
 
+AllowModule = Annotated[
+    list[str] | None,
+    typer.Option(
+        "--allow-module",
+        help="let the scenario name functions of this installed module (repeatable); by "
+        "default a torque function is loaded only from a Python file beside the scenario",
+    ),
+]
+
+
+def _load(scenario: Path, allow_module: list[str] | None) -> Any:
+    """The validated scenario, with a line naming every file of user code it runs."""
+    from tumble.io import load_scenario
+
+    sc = load_scenario(scenario, allow_modules=allow_module or ())
+    for origin in sc.user_code:
+        err.print(f"runs user code from {origin}", highlight=False, soft_wrap=True)
+    return sc
+
+
 @app.command("run")
 def run_cmd(
     scenario: Annotated[Path, typer.Argument(help="TOML scenario file")],
     out_dir: Annotated[Path, typer.Option("-o", "--out", help="output directory")] = Path("out"),
+    allow_module: AllowModule = None,
 ) -> None:
-    """Run a scenario: CSV per method, summary.json and a figure in OUT."""
+    """Run a scenario: CSV per method, summary.json and a figure in OUT.
+
+    A scenario that names a torque function (torque = "file:function") runs that code: it
+    is loaded from the Python file beside the scenario, and tumble prints which.
+    """
     from tumble.app.runner import run
     from tumble.plot.settings import figure_settings
 
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", TumbleWarning)
-        result = _guarded(lambda: run(scenario, out_dir))
+        result = _guarded(lambda: run(_load(scenario, allow_module), out_dir))
     _print_warnings(caught)
 
     model = result.request.model
@@ -143,17 +168,19 @@ def verify_cmd(
         bool,
         typer.Option("--strict", help="exit 4 unless the verdict is first-order accurate or exact"),
     ] = False,
+    allow_module: AllowModule = None,
 ) -> None:
     """Measure the averaging error: full and averaged at ε, ε/2, ε/4 over one slow horizon.
 
     Writes verify.csv, verify_curves.csv, verify.json and verify.png to OUT and prints the
-    errors, the fitted orders and the verdict.
+    errors, the fitted orders and the verdict. A torque function the scenario names runs, as
+    with run.
     """
     from tumble.app.runner import verify
 
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", TumbleWarning)
-        result = _guarded(lambda: verify(scenario, out_dir))
+        result = _guarded(lambda: verify(_load(scenario, allow_module), out_dir))
     _print_warnings(caught)
     symbol = {"tau": "τ"}.get(result.time_name, result.time_name)
     horizon = "ε" + symbol if result.eps[0] > 0.0 else symbol
@@ -574,11 +601,13 @@ def sweep_cmd(
     retry_failed: Annotated[
         bool, typer.Option("--retry-failed", help="compute failed points again when resuming")
     ] = False,
+    allow_module: AllowModule = None,
 ) -> None:
     """Run a scenario over grid axes and Monte Carlo draws on Dask: sweep.nc and sweep.png.
 
     Started again with the same command, a sweep keeps the points it finished and computes
-    only the others.
+    only the others. A torque function the base scenario names (torque = "file:function")
+    runs on every worker: each loads it from the Python file beside the scenario.
     """
     from tumble.app.sweep import sweep
 
@@ -596,6 +625,7 @@ def sweep_cmd(
                     progress=progress,
                     plot=plot,
                     retry_failed=retry_failed,
+                    allow_modules=allow_module or (),
                 )
             )
     except KeyboardInterrupt:

@@ -272,3 +272,49 @@ def test_failed_points_are_kept_on_resume_unless_retried(cluster, tmp_path):
     changed = [p.name for p in parts if p.stat().st_mtime_ns != stamps[p.name]]
     assert changed == ["000001.json"]  # only the failed point's chunk (chunk = 1 point here)
     xr.testing.assert_identical(_results(retried.dataset), _results(ds))
+
+
+USER_BASE = """model = "torqued_body"
+torque = "user_torques:constant"
+[parameters]
+inertia = [1.0, 1.6, 2.0]
+eps = 0.01
+[initial]
+omega = [0.3, 0.9, 0.4]
+[run]
+t_end = 5.0
+samples = 11
+methods = ["full"]
+"""
+USER_SWEEP = """base = "base.toml"
+[[axis]]
+key = "parameters.eps"
+values = [0.01, 0.02]
+"""
+
+
+def test_same_named_user_modules_on_one_cluster(cluster, tmp_path):
+    """Two sweeps whose folders each hold a user_torques.py, one after the other on the same
+    workers: each runs its own file's function (the workers load files by path under names
+    of their own, never a module cached from the other sweep)."""
+    from tumble.integrate import simulate
+    from tumble.io import load_scenario
+
+    finals = {}
+    for name, value in (("a", 1.0), ("b", -2.0)):
+        d = tmp_path / name
+        d.mkdir()
+        (d / "user_torques.py").write_text(
+            f"def constant(t, q, omega, params):\n    return [{value}, 0.0, 0.0] + 0.0 * omega\n"
+        )
+        (d / "base.toml").write_text(USER_BASE)
+        (d / "sweep.toml").write_text(USER_SWEEP)
+        result = sweep(d / "sweep.toml", d / "out", scheduler=cluster.address, plot=False)
+        assert result.failed == 0
+        finals[name] = result.dataset["final_L1"].values
+        # The same scenario run here, in this process, from its own file.
+        r = load_scenario(d / "base.toml").request
+        here = simulate(r.model, r.params, r.initial, r.tau, "full")
+        # One compiled-or-scipy integration of the same equations at rtol 1e-10 each side.
+        assert finals[name][0] == pytest.approx(here.columns["L1"][-1], rel=1e-8), name
+    assert not np.allclose(finals["a"], finals["b"])

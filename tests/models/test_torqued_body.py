@@ -151,8 +151,9 @@ BAD = {
         '[[torque]]\nkind = "gravity_gradient"\n',
         "torque[0].n",
     ),
-    "no_module": ('torque = "no_such_module_xyz:f"\n', "cannot import no_such_module_xyz"),
-    "no_colon": ('torque = "user_torques"\n', '"module:function"'),
+    "no_file": ('torque = "no_such_module_xyz:f"\n', "no file no_such_module_xyz.py in"),
+    "installed_module": ('torque = "builtins:print"\n', "runs only with --allow-module builtins"),
+    "no_colon": ('torque = "user_torques"\n', '"file:function"'),
     "no_function": ('torque = "user_torques:nothing"\n', "has no function nothing"),
     "raises": ('torque = "user_torques:bdot"\n', "KeyError"),  # params k, n missing
     "two_periods": (

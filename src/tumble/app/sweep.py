@@ -21,7 +21,7 @@ import contextlib
 import logging
 import os
 import time
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -119,6 +119,7 @@ def compute_chunk(
     points: list[dict[str, float]],
     keep: Keep,
     batch: bool = True,
+    allow_modules: tuple[str, ...] = (),
 ) -> list[Record]:
     """Run the points of one chunk (a Dask task) and return their records.
 
@@ -146,7 +147,8 @@ def compute_chunk(
     invalid: dict[int, str] = {}
     for i, assignments in enumerate(points):
         try:
-            requests.append(parse_scenario(point_scenario(base, assignments), source).request)
+            point = point_scenario(base, assignments)
+            requests.append(parse_scenario(point, source, allow_modules=allow_modules).request)
         except TumbleError as exc:
             requests.append(None)
             invalid[i] = f"invalid input: {exc}"
@@ -187,8 +189,9 @@ def _client(scheduler: str | None, workers: int | None) -> Iterator[Any]:
         n_workers=n,
         threads_per_worker=1,
         processes=True,
-        # Any free port: a fixed one (8787) may be taken by another cluster on the machine.
-        dashboard_address=":0",
+        # Any free port on the loopback interface only: a fixed one (8787) may be taken by
+        # another cluster, and nothing tumble starts listens beyond this machine.
+        dashboard_address="127.0.0.1:0",
         host="127.0.0.1",
         # The workers' warnings (tasks cancelled at Ctrl-C, …) would break the progress bar;
         # what matters to a sweep (a point's failure, a lost worker's task) is in its records.
@@ -217,6 +220,7 @@ def sweep(
     progress: Callable[[int, int], None] | None = None,
     plot: bool = True,
     retry_failed: bool = False,
+    allow_modules: Iterable[str] = (),
 ) -> SweepResult:
     """Run a sweep file on Dask and write its results to ``out_dir``, resuming if it can.
 
@@ -243,13 +247,15 @@ def sweep(
     retry_failed : bool
         Compute again the finished chunks that hold a failed point (e.g. after a worker was
         lost too often, or once a bug is fixed); by default failed points are kept as results.
+    allow_modules : iterable of str
+        Importable modules the scenario may name functions of (besides files beside it).
 
     Returns
     -------
     SweepResult
     """
     start = time.perf_counter()
-    spec = load_sweep(path)
+    spec = load_sweep(path, allow_modules=allow_modules)
     store = SweepStore(out_dir, spec)
     finished = store.finished()
     if retry_failed:
@@ -321,6 +327,7 @@ def _run_chunks(
             points,
             sweep.keep,
             sweep.batch,
+            sweep.allow_modules,
             key=f"tumble-sweep-{sweep.digest}-{c}",
             pure=False,
         )

@@ -11,12 +11,10 @@ averaging choices the model's averaged equations offer.
 
 from __future__ import annotations
 
-import importlib
 import math
-import sys
 import tomllib
-from collections.abc import Callable, Mapping
-from dataclasses import dataclass
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass, field
 from functools import cache
 from importlib import resources
 from pathlib import Path
@@ -28,6 +26,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError, create_model
 from tumble.analysis import RunRequest
 from tumble.errors import ParameterError, ScenarioError
 from tumble.integrate import check_times
+from tumble.io.user_code import UserFunction, user_function
 from tumble.models import MODELS, AnyModel, get_model
 from tumble.models.base import AveragingOptions
 from tumble.models.schema import REQUIRED, Key, Section, Variant
@@ -64,6 +63,7 @@ class Scenario:
     request: RunRequest
     inputs: dict[str, Any]
     source: str
+    user_code: tuple[str, ...] = ()  # the files (or allowed modules) whose code it runs
 
 
 # ---------------------------------------------------------------------------------------------
@@ -354,27 +354,6 @@ def _methods(run: Any, allowed: tuple[str, ...], default: tuple[str, ...]) -> tu
 # The values handed to a model's build function.
 
 
-def _import_function(spec: str, base: Path, field: str) -> Callable[..., Any]:
-    """The callable named ``"module:function"``, importing from ``base`` (the scenario's
-    directory) first."""
-    module, sep, name = spec.partition(":")
-    if not sep or not module or not name:
-        raise ScenarioError(f'{field} = {spec!r}: expected "module:function"')
-    sys.path.insert(0, str(base))
-    try:
-        mod = importlib.import_module(module)
-    except Exception as exc:  # any failure of the user's module: one line, no traceback
-        raise ScenarioError(
-            f"{field} = {spec!r}: cannot import {module} ({type(exc).__name__}: {exc})"
-        ) from None
-    finally:
-        sys.path.remove(str(base))
-    function = getattr(mod, name, None)
-    if not callable(function):
-        raise ScenarioError(f"{field} = {spec!r}: {module} has no function {name}")
-    return function  # type: ignore[no-any-return]
-
-
 @dataclass(frozen=True)
 class _Inputs:
     """:class:`tumble.models.schema.Inputs` of one validated scenario."""
@@ -382,6 +361,8 @@ class _Inputs:
     values: Mapping[str, Any]
     base: Path
     times: np.ndarray
+    allow_modules: frozenset[str] = frozenset()
+    functions: list[UserFunction] = field(default_factory=list)
 
     def __getitem__(self, section: str) -> Mapping[str, Any] | None:
         value = self.values.get(section)
@@ -395,7 +376,9 @@ class _Inputs:
             raise ScenarioError(f"{where}.{_one_line(exc, schema)}") from None
 
     def import_function(self, spec: str, where: str) -> Callable[..., Any]:
-        return _import_function(spec, self.base, where)
+        function = user_function(spec, self.base, where, self.allow_modules)
+        self.functions.append(function)
+        return function
 
     def run_end(self) -> float:
         return float(self.times[-1])
@@ -413,8 +396,23 @@ def _top_level(values: dict[str, Any], variant: Variant[Any, Any]) -> dict[str, 
 # The scenario.
 
 
-def parse_scenario(data: dict[str, Any], source: str = "<scenario>") -> Scenario:
+def parse_scenario(
+    data: dict[str, Any], source: str = "<scenario>", *, allow_modules: Iterable[str] = ()
+) -> Scenario:
     """Validate a scenario given as a dict (as read from TOML).
+
+    A function the scenario names (a user torque) is loaded from its file only once the rest
+    of the scenario is valid (:mod:`tumble.io.user_code`); ``Scenario.user_code`` lists what
+    runs.
+
+    Parameters
+    ----------
+    data : dict
+        The scenario.
+    source : str
+        Its path: user functions are looked for beside it.
+    allow_modules : iterable of str
+        Importable modules a scenario may name functions of (``--allow-module``).
 
     Raises
     ------
@@ -448,8 +446,16 @@ def parse_scenario(data: dict[str, Any], source: str = "<scenario>") -> Scenario
         ("t_end_s", "t_s") if variant.physical else _TIMES.get(model.time.name, ("t_end", "t"))
     )
     times = _times(sc.run, end, listed)
-    built = variant.build(_Inputs(values, Path(source).resolve().parent, times))
-    return Scenario(_request(model, sc.run, built, times), sc.model_dump(), source)
+    _tolerances(sc.run)  # the run's own keys first: nothing is loaded for a bad one
+    if sc.run.methods is not None:
+        _methods(sc.run, model.methods, model.methods)
+    inputs = _Inputs(values, Path(source).resolve().parent, times, frozenset(allow_modules))
+    built = variant.build(inputs)
+    request = _request(model, sc.run, built, times)
+    for function in inputs.functions:
+        function.load()
+    user_code = tuple(dict.fromkeys(f.origin for f in inputs.functions))
+    return Scenario(request, sc.model_dump(), source, user_code)
 
 
 def _request(model: AnyModel, run: Any, built: Any, times: np.ndarray) -> RunRequest:
@@ -493,13 +499,18 @@ def key_units(data: dict[str, Any], path: tuple[str | int, ...]) -> str:
     return "" if "," in unit else unit
 
 
-def load_scenario(path: str | Path) -> Scenario:
+def load_scenario(path: str | Path, *, allow_modules: Iterable[str] = ()) -> Scenario:
     """Read and validate a TOML scenario file.
+
+    A scenario that names a torque function runs that code: it is loaded from the Python file
+    the scenario names, beside it (see :mod:`tumble.io.user_code`).
 
     Parameters
     ----------
     path : str or Path
         The scenario file.
+    allow_modules : iterable of str
+        Importable modules the scenario may name functions of, besides files.
     """
     path = Path(path)
     try:
@@ -510,7 +521,7 @@ def load_scenario(path: str | Path) -> Scenario:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise ScenarioError(f"{path}: not valid TOML ({exc})") from None
-    return parse_scenario(data, str(path))
+    return parse_scenario(data, str(path), allow_modules=allow_modules)
 
 
 def template(model: str) -> str:

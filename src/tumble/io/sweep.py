@@ -33,6 +33,7 @@ import json
 import math
 import re
 import tomllib
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Literal
@@ -264,6 +265,7 @@ class Sweep:
     plot_variables: tuple[str, ...] = ()
     plot_method: str | None = None
     columns: dict[str, dict[str, str]] = field(default_factory=dict)
+    allow_modules: tuple[str, ...] = ()  # modules the scenario may name functions of
 
     @property
     def chunks(self) -> int:
@@ -325,7 +327,9 @@ def _default_chunk(size: int) -> int:
     return max(1, min(MAX_CHUNK, size // 64))
 
 
-def parse_sweep(data: dict[str, Any], path: str | Path) -> Sweep:
+def parse_sweep(
+    data: dict[str, Any], path: str | Path, *, allow_modules: Iterable[str] = ()
+) -> Sweep:
     """Validate a sweep given as a dict (as read from TOML) from the file ``path``.
 
     Raises
@@ -340,7 +344,7 @@ def parse_sweep(data: dict[str, Any], path: str | Path) -> Sweep:
         raise ScenarioError(f"{path}: {_one_line(exc, SweepFile)}") from None
     source, base = _base(sf, path)
     try:  # the base itself must be a valid run; points that are not are recorded as failed
-        sc = parse_scenario(copy.deepcopy(base), str(source))
+        sc = parse_scenario(copy.deepcopy(base), str(source), allow_modules=allow_modules)
     except (ScenarioError, ParameterError) as exc:
         raise ScenarioError(f"base scenario {source}: {exc}") from None
     plan = _plan(sf, base)
@@ -379,6 +383,7 @@ def parse_sweep(data: dict[str, Any], path: str | Path) -> Sweep:
         tuple(sf.plot.variables or ()),
         sf.plot.method,
         column_attrs(sc.request),
+        tuple(allow_modules),
     )
 
 
@@ -427,7 +432,7 @@ def _keep(sf: SweepFile, model: AnyModel) -> Keep:
     )
 
 
-def load_sweep(path: str | Path) -> Sweep:
+def load_sweep(path: str | Path, *, allow_modules: Iterable[str] = ()) -> Sweep:
     """Read and validate a sweep file (TOML)."""
     path = Path(path)
     try:
@@ -436,7 +441,7 @@ def load_sweep(path: str | Path) -> Sweep:
         raise ScenarioError(f"{path}: cannot read the sweep file ({exc.strerror})") from None
     except tomllib.TOMLDecodeError as exc:
         raise ScenarioError(f"{path}: not valid TOML ({exc})") from None
-    return parse_sweep(data, path)
+    return parse_sweep(data, path, allow_modules=allow_modules)
 
 
 class SweepStore:

@@ -113,8 +113,8 @@ class Inputs(Protocol):
         ...
 
     def import_function(self, spec: str, where: str) -> Callable[..., Any]:
-        """The callable named ``"module:function"``, imported from the scenario's folder
-        first."""
+        """The function named ``"file:function"``, loaded (once the scenario is valid) from the
+        Python file beside the scenario (:mod:`tumble.io.user_code`)."""
         ...
 
     def run_end(self) -> float:

@@ -577,7 +577,7 @@ _TORQUE = Section(
         Key(
             "torque",
             "any",
-            '"module:function" or a list of [[torque]] tables with a kind',
+            '"file:function" or a list of [[torque]] tables with a kind',
             doc="a user function f(t, q, omega, params), or built-in terms",
         ),
         Key("torque_params", "table", "a table passed to the user function", default={}),
@@ -622,7 +622,7 @@ TERMS: dict[str, Section] = {
     "quadratic_drag": _term("quadratic_drag", Key("S", "matrix3", "3×3 matrix, M = −S (ω ∘ |ω|)")),
     "user": _term(
         "user",
-        Key("function", "text", '"module:function", f(t, q, omega, params) -> body moment'),
+        Key("function", "text", '"file:function", f(t, q, omega, params) -> body moment'),
         Key("params", "table", "a table for f", default={}),
         Key("period", "number", "period of f's time dependence > 0", "t", None),
     ),
@@ -642,12 +642,12 @@ def _term_tables(inputs: Inputs) -> list[dict[str, Any]]:
         ]  # fmt: skip
     if top["torque_params"] or top["torque_period"] is not None:
         raise ScenarioError(
-            'torque_params, torque_period: only with torque = "module:function" (in a '
+            'torque_params, torque_period: only with torque = "file:function" (in a '
             "[[torque]] table give params and period inside it)"
         )
     if not isinstance(torque, list) or not all(isinstance(t, dict) for t in torque):
         raise ScenarioError(
-            f"torque = {torque!r}: expected " + '"module:function" or [[torque]] tables'
+            f"torque = {torque!r}: expected " + '"file:function" or [[torque]] tables'
         )
     terms = []
     for i, raw in enumerate(torque):

@@ -1,0 +1,187 @@
+"""User functions named by a scenario (``torque = "user_torques:bdot"``): loaded from a file,
+explicitly, one module per file.
+
+A scenario that names a function runs that code. tumble therefore loads it only
+
+* from a Python file: ``"name:function"`` is the file ``name.py`` in the scenario's folder,
+  ``"path/to/file.py:function"`` a file at a path relative to that folder; or
+* from an importable module the user allowed by name (``--allow-module NAME``, the
+  ``allow_modules`` argument of :func:`tumble.load_scenario`).
+
+A file is loaded by its path, under a module name made of a hash of its resolved path and
+contents (``tumble_user_<hash>_<stem>``): two scenarios whose folders both hold a
+``user_torques.py`` get their own functions in one process or on one Dask worker, and an
+edited file is loaded anew instead of served stale from ``sys.modules``. Loading is deferred:
+:func:`user_function` returns a :class:`UserFunction` that reads nothing until it is first
+called or :meth:`UserFunction.load` is called, which the scenario loader does once the whole
+scenario has been validated. A :class:`UserFunction` pickles as its file and name, so a Dask
+worker loads the file itself.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import importlib
+import importlib.util
+import sys
+from collections.abc import Callable, Iterable
+from pathlib import Path
+from types import ModuleType
+from typing import Any
+
+from tumble.errors import ScenarioError
+
+__all__ = ["UserFunction", "user_function"]
+
+
+def _module_from_file(path: Path, where: str) -> ModuleType:
+    """The module of ``path`` under its unique name (loaded once per path and contents)."""
+    data = path.read_bytes()
+    digest = hashlib.sha256(str(path).encode() + b"\0" + data).hexdigest()[:16]
+    name = f"tumble_user_{digest}_{path.stem.replace('-', '_')}"
+    module = sys.modules.get(name)
+    if module is not None:
+        return module
+    spec = importlib.util.spec_from_file_location(name, path)
+    if spec is None or spec.loader is None:
+        raise ScenarioError(f"{where}: {path} is not a Python file")
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module
+    # The file's own imports of its neighbours (``import helpers``) resolve in its folder.
+    sys.path.insert(0, str(path.parent))
+    try:
+        spec.loader.exec_module(module)
+    except BaseException as exc:
+        del sys.modules[name]
+        if not isinstance(exc, Exception):
+            raise
+        raise ScenarioError(
+            f"{where}: loading {path} failed ({type(exc).__name__}: {_short(exc)})"
+        ) from None
+    finally:
+        sys.path.remove(str(path.parent))
+    return module
+
+
+def _short(value: object, limit: int = 80) -> str:
+    """``str(value)`` cut to ``limit`` characters (an error line never echoes a huge input)."""
+    text = str(value)
+    return text if len(text) <= limit else text[: limit - 1] + "…"
+
+
+class UserFunction:
+    """A function of a user's file or allowed module, loaded on first use.
+
+    Parameters
+    ----------
+    spec : str
+        As written in the scenario (for messages).
+    function : str
+        The function's name in its module.
+    path : Path, optional
+        The file to load (absolute).
+    module : str, optional
+        Instead of a file: an importable module the user allowed.
+    where : str
+        The scenario key, for messages.
+    """
+
+    def __init__(
+        self,
+        spec: str,
+        function: str,
+        *,
+        path: Path | None = None,
+        module: str | None = None,
+        where: str = "torque",
+    ) -> None:
+        self.spec, self.function, self.path, self.module, self.where = (
+            spec,
+            function,
+            path,
+            module,
+            where,
+        )
+        self._loaded: Callable[..., Any] | None = None
+
+    @property
+    def origin(self) -> str:
+        """What runs: the file's path, or ``module NAME``."""
+        return str(self.path) if self.path is not None else f"module {self.module}"
+
+    def load(self) -> Callable[..., Any]:
+        """Load the file (or import the allowed module) and return the function."""
+        if self._loaded is not None:
+            return self._loaded
+        where = f"{self.where} = {_short(repr(self.spec))}"
+        if self.path is not None:
+            mod = _module_from_file(self.path, where)
+        else:
+            assert self.module is not None
+            try:
+                mod = importlib.import_module(self.module)
+            except Exception as exc:
+                raise ScenarioError(
+                    f"{where}: cannot import {self.module} ({type(exc).__name__}: {_short(exc)})"
+                ) from None
+        function = getattr(mod, self.function, None)
+        if not callable(function):
+            raise ScenarioError(f"{where}: {self.origin} has no function {self.function}")
+        self._loaded = function
+        return function
+
+    def __call__(self, *args: Any) -> Any:
+        return self.load()(*args)
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        return (_rebuild, (self.spec, self.function, self.path, self.module, self.where))
+
+    def __repr__(self) -> str:
+        return f"UserFunction({self.spec!r} from {self.origin})"
+
+
+def _rebuild(
+    spec: str, function: str, path: Path | None, module: str | None, where: str
+) -> UserFunction:
+    return UserFunction(spec, function, path=path, module=module, where=where)
+
+
+def user_function(
+    spec: str, base: Path, where: str, allow_modules: Iterable[str] = ()
+) -> UserFunction:
+    """The function a scenario names, not yet loaded.
+
+    Parameters
+    ----------
+    spec : str
+        ``"name:function"`` (the file ``name.py`` in ``base``), ``"path/file.py:function"``
+        (relative to ``base``), or ``"module:function"`` for a module in ``allow_modules``.
+    base : Path
+        The scenario's folder.
+    where : str
+        The scenario key, for messages.
+    allow_modules : iterable of str
+        Importable modules the user allowed by name.
+
+    Raises
+    ------
+    ScenarioError
+        Malformed, or naming neither a file beside the scenario nor an allowed module.
+    """
+    target, sep, name = spec.rpartition(":")
+    shown = f"{where} = {_short(repr(spec))}"
+    if not sep or not target or not name.isidentifier():
+        raise ScenarioError(
+            f'{shown}: expected "file:function" (a Python file beside the scenario)'
+        )
+    if target in set(allow_modules):
+        return UserFunction(spec, name, module=target, where=where)
+    relative = Path(target if target.endswith(".py") else target.replace(".", "/") + ".py")
+    path = (base / relative).resolve()
+    if not path.is_file():
+        raise ScenarioError(
+            f"{shown}: no file {relative} in {base} (a torque function is loaded from a Python "
+            f"file beside the scenario; an installed module runs only with --allow-module "
+            f"{_short(target, 40)})"
+        )
+    return UserFunction(spec, name, path=path, where=where)

@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import contextlib
+import signal
+import threading
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from typing import Any, cast
@@ -37,6 +40,35 @@ _MESSAGES = {
     core.STEP_TOO_SMALL: "the step size fell below the resolution of t",
     core.NOT_FINITE: "the state stopped being finite",
 }
+
+
+CHUNK_STEPS = 20_000
+"""Steps per compiled call of :func:`solve` (≈ 10–50 ms): between two calls Python runs, so
+an interrupt (Ctrl-C) stops a run within a fraction of a second."""
+
+
+@contextlib.contextmanager
+def _signals_held() -> Iterator[None]:
+    """Defer Ctrl-C (SIGINT) during a compiled call: its handler runs once the call returned.
+
+    The compiled call boxes its results into Python objects as it returns, and a named tuple
+    is built by Python code; a KeyboardInterrupt raised in the middle of that left a
+    half-built result behind and crashed the interpreter (segmentation fault). While the call
+    runs, SIGINT only records itself; afterwards the handler in force before (Python's
+    default raises KeyboardInterrupt) is called. Python handles signals in the main thread
+    only, so elsewhere nothing changes.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    received: list[int] = []
+    previous = signal.signal(signal.SIGINT, lambda signum, frame: received.append(signum))
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    if received and callable(previous):
+        previous(signal.SIGINT, None)
 
 
 def available_threads() -> int:
@@ -186,9 +218,10 @@ class Integration:
         if self.done:
             return True
         args = self._args(0 if max_steps is None else max(1, int(max_steps)))
-        if self._entry is None:
-            self._entry = _specialised(self.kernel.kind, args)
-        self.progress, chunk = self._entry(self.kernel.kind, *args)
+        with _signals_held():  # compiling, then the call: neither survives an interrupt
+            if self._entry is None:
+                self._entry = _specialised(self.kernel.kind, args)
+            self.progress, chunk = self._entry(self.kernel.kind, *args)
         self._chunks.append(chunk)
         return self.done
 
@@ -253,7 +286,8 @@ def solve(
     dense: bool = True,
     first_step: float | None = None,
 ) -> Solution:
-    """Integrate a compiled kernel from ``t0`` to ``t_end`` with DOP853, in one go.
+    """Integrate a compiled kernel from ``t0`` to ``t_end`` with DOP853 (in chunks of
+    :data:`CHUNK_STEPS` steps, between which an interrupt is honoured).
 
     Parameters
     ----------
@@ -281,7 +315,8 @@ def solve(
     """
     options = Options(rtol, atol, first_step or 0.0, record, dense)
     run = Integration(kernel, y0, t_end, options, t0=t0, t_eval=t_eval)
-    run.advance()
+    while not run.advance(CHUNK_STEPS):  # Python runs between chunks: Ctrl-C is honoured
+        pass
     return run.solution()
 
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 import collections
 import contextlib
 import os
+import re
 import sys
 import warnings
 from collections.abc import Callable, Iterator
@@ -52,12 +53,21 @@ def _main(
     """tumble: slow evolution of rigid-body rotation under small torques."""
 
 
+def _shortened(message: str) -> str:
+    """``message`` with every run of more than 120 characters without a space cut to 80: an
+    error line never repeats a huge input (a path or a value of ordinary length is kept)."""
+    return re.sub(r"\S{121,}", lambda m: m.group(0)[:77] + "...", message)
+
+
 def _guarded(work: Callable[[], Any]) -> Any:
-    """Run ``work``; turn tumble's errors into one red line and its exit code."""
+    """Run ``work``; turn tumble's errors into one red line and its exit code, and Ctrl-C into
+    one line and exit 130."""
     try:
         return work()
+    except KeyboardInterrupt:
+        _interrupted()
     except TumbleError as exc:
-        err.print(f"[red]error:[/red] {exc}", highlight=False, soft_wrap=True)
+        err.print(f"[red]error:[/red] {_shortened(str(exc))}", highlight=False, soft_wrap=True)
         raise typer.Exit(exc.exit_code) from None
     except Exception as exc:
         if os.environ.get("TUMBLE_DEBUG"):
@@ -89,6 +99,16 @@ def _load(scenario: Path, allow_module: list[str] | None) -> Any:
     for origin in sc.user_code:
         err.print(f"runs user code from {origin}", highlight=False, soft_wrap=True)
     return sc
+
+
+def _interrupted() -> None:
+    """Exit 130 at once after Ctrl-C. The work's own cleanup (temporary files) has run while
+    the interrupt unwound it; skipping the interpreter's teardown of numba and scipy (a few
+    tenths of a second) makes the exit immediate."""
+    err.print("[yellow]interrupted[/yellow]", highlight=False)
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(130)
 
 
 @app.command("run")

@@ -176,7 +176,12 @@ BAD = [
         "tau = [0.0, 2.0, 1.0]",
         "run.tau must be strictly ascending",
     ),
-    ("samples = 101", "samples = 1", "run.samples = 1 is outside the allowed range [2, inf)"),
+    ("samples = 101", "samples = 1", "run.samples = 1 is outside the allowed range [2, 1e7]"),
+    (
+        "samples = 101",
+        "samples = 9223372036854775807",
+        "run.samples = 9223372036854775807 is outside",
+    ),
     ("a = [0.0, 0.0, 0.3]", "a = [0.0, 0.3]", "parameters.a = [0.0, 0.3]"),
     (
         "b = [[0.2, 0.0, 0.0], [0.0, 0.2, 0.0], [0.0, 0.0, 0.1]]",

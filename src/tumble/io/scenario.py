@@ -11,6 +11,7 @@ averaging choices the model's averaged equations offer.
 
 from __future__ import annotations
 
+import difflib
 import math
 import tomllib
 from collections.abc import Callable, Iterable, Mapping
@@ -21,7 +22,15 @@ from pathlib import Path
 from typing import Annotated, Any, Literal
 
 import numpy as np
-from pydantic import BaseModel, ConfigDict, Field, ValidationError, create_model, model_validator
+from pydantic import (
+    AfterValidator,
+    BaseModel,
+    ConfigDict,
+    Field,
+    ValidationError,
+    create_model,
+    model_validator,
+)
 
 from tumble.analysis import RunRequest
 from tumble.errors import ParameterError, ScenarioError
@@ -33,20 +42,46 @@ from tumble.models.schema import REQUIRED, Key, Section, Variant
 
 __all__ = ["Scenario", "key_units", "load_scenario", "parse_scenario", "schema_for", "template"]
 
-Vector3 = Annotated[list[float], Field(min_length=3, max_length=3, description="3 numbers")]
-Vector4 = Annotated[list[float], Field(min_length=4, max_length=4, description="4 numbers")]
+MAX_MAGNITUDE = 1e100
+"""Largest magnitude of any number in a scenario, and the inverse of the smallest nonzero
+one: far beyond any physical input, and far enough from overflow and underflow that the
+squares and products of the computations stay representable."""
+
+MAX_ANGLE = 1e4
+"""Largest magnitude of an angle [rad]: a few thousand turns. Beyond it the attitude is set by
+the last digits of the angle (at 1e308 it is not a number of turns at all)."""
+
+
+def _sane(x: float) -> float:
+    """A finite number of magnitude 0 or in [1/MAX_MAGNITUDE, MAX_MAGNITUDE]."""
+    if not math.isfinite(x):
+        raise ValueError("must be a finite number")
+    if x != 0.0 and not 1.0 / MAX_MAGNITUDE <= abs(x) <= MAX_MAGNITUDE:
+        raise ValueError("must be 0 or of magnitude in [1e-100, 1e100]")
+    return x
+
+
+def _angle(x: float) -> float:
+    if abs(x) > MAX_ANGLE:
+        raise ValueError("an angle must be at most 1e4 rad in magnitude")
+    return x
+
+
+Number = Annotated[float, AfterValidator(_sane)]
+Vector3 = Annotated[list[Number], Field(min_length=3, max_length=3, description="3 numbers")]
+Vector4 = Annotated[list[Number], Field(min_length=4, max_length=4, description="4 numbers")]
 Matrix3 = Annotated[
     list[Vector3], Field(min_length=3, max_length=3, description="3 rows of 3 numbers")
 ]
 
 _TYPES: dict[str, Any] = {
-    "number": float,
+    "number": Number,
     "integer": int,
     "boolean": bool,
     "vector3": Vector3,
     "vector4": Vector4,
     "matrix3": Matrix3,
-    "numbers": list[float],
+    "numbers": list[Number],
     "table": dict[str, Any],
     "any": Any,
 }
@@ -98,6 +133,8 @@ def _field(key: Key) -> tuple[Any, Any]:
     kind: Any = (
         Literal[key.choices] if key.kind == "text" and key.choices else _TYPES.get(key.kind, str)
     )
+    if key.angle and key.kind == "number":
+        kind = Annotated[kind, AfterValidator(_angle)]
     if key.default is REQUIRED:
         return kind, Field(description=describe(key))
     if key.default is None:
@@ -160,7 +197,7 @@ def run_keys(model: AnyModel, variant: Variant[Any, Any]) -> tuple[Key, ...]:
     keys = [
         Key(end, "number", "a time > 0", units, None, doc="end of the run (with samples)"),
         Key(listed, "numbers", "ascending times ≥ 0", units, None, doc="or the sample times"),
-        Key("samples", "integer", "an integer ≥ 2", default=variant.samples,
+        Key("samples", "integer", "an integer in [2, 1e7]", default=variant.samples,
             doc="equally spaced samples from 0 to the end"),
         Key("methods", "any", f"a non-empty list of {allowed}", default=None,
             doc="default: every method the model has"),
@@ -284,19 +321,34 @@ def _field_hint(schema: type[BaseModel], loc: tuple[int | str, ...]) -> tuple[st
     return hint, siblings
 
 
+MAX_ECHO = 80
+"""Longest piece of the user's input an error line repeats."""
+
+MAX_SAMPLES = 10_000_000
+"""Most samples a run may ask for (the outputs of every method hold them all in memory)."""
+
+
+def _short(text: str, limit: int = MAX_ECHO) -> str:
+    """``text`` cut to ``limit`` characters: an error line never echoes a huge input."""
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
 def _one_line(exc: ValidationError, schema: type[BaseModel]) -> str:
-    err = exc.errors(include_url=False)[0]
+    errors = exc.errors(include_url=False)
+    # A misspelt key explains the required one it leaves missing: report it first.
+    err = next((e for e in errors if e["type"] == "extra_forbidden"), errors[0])
     loc = tuple(err["loc"])
-    path = _path(loc) or "scenario"
+    path = _short(_path(loc)) or "scenario"
     hint, siblings = _field_hint(schema, loc)
     kind = err["type"]
     if kind == "missing":
         return f"{path}: required key is missing" + (f" (expected {hint})" if hint else "")
     if kind == "extra_forbidden":
-        return f"{path}: unknown key (allowed here: {', '.join(siblings)})"
+        close = difflib.get_close_matches(str(loc[-1]), siblings, n=1, cutoff=0.6)
+        guess = f"did you mean {close[0]}? " if close else ""
+        return f"{path}: unknown key ({guess}allowed here: {', '.join(siblings)})"
     msg = str(err["msg"]).removeprefix("Value error, ")
-    shown = repr(err.get("input"))
-    shown = shown if len(shown) <= 60 else shown[:57] + "..."
+    shown = _short(repr(err.get("input")), 60)
     return f"{path} = {shown}: {msg}" + (f" (expected {hint})" if hint else "")
 
 
@@ -319,8 +371,10 @@ def _times(run: Any, end_key: str, list_key: str) -> np.ndarray:
         return check_times(listed, field=f"run.{list_key}")
     if not (math.isfinite(end) and end > 0.0):
         raise ParameterError(f"run.{end_key} = {end:g} is outside the allowed range (0, inf)")
-    if run.samples < 2:
-        raise ParameterError(f"run.samples = {run.samples} is outside the allowed range [2, inf)")
+    if not 2 <= run.samples <= MAX_SAMPLES:
+        raise ParameterError(
+            f"run.samples = {_short(str(run.samples))} is outside the allowed range [2, 1e7]"
+        )
     return np.linspace(0.0, end, run.samples)
 
 
@@ -499,6 +553,23 @@ def key_units(data: dict[str, Any], path: tuple[str | int, ...]) -> str:
     return "" if "," in unit else unit
 
 
+def read_toml(raw: bytes, where: str) -> dict[str, Any]:
+    """A TOML document from its bytes; ScenarioError in one line for anything that is not
+    UTF-8 TOML of sane depth."""
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise ScenarioError(
+            f"{where}: not UTF-8 text (byte 0x{raw[exc.start]:02x} at position {exc.start})"
+        ) from None
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ScenarioError(f"{where}: not valid TOML ({_short(str(exc))})") from None
+    except RecursionError:
+        raise ScenarioError(f"{where}: arrays or tables nested too deeply") from None
+
+
 def load_scenario(path: str | Path, *, allow_modules: Iterable[str] = ()) -> Scenario:
     """Read and validate a TOML scenario file.
 
@@ -514,13 +585,10 @@ def load_scenario(path: str | Path, *, allow_modules: Iterable[str] = ()) -> Sce
     """
     path = Path(path)
     try:
-        text = path.read_text(encoding="utf-8")
+        raw = path.read_bytes()
     except OSError as exc:
         raise ScenarioError(f"{path}: cannot read the scenario ({exc.strerror})") from None
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise ScenarioError(f"{path}: not valid TOML ({exc})") from None
+    data = read_toml(raw, str(path))
     return parse_scenario(data, str(path), allow_modules=allow_modules)
 
 

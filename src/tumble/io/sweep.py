@@ -32,7 +32,6 @@ import hashlib
 import json
 import math
 import re
-import tomllib
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -45,7 +44,7 @@ from tumble._version import __version__
 from tumble.analysis.sweep import Axis, Draw, Keep, Record, SweepPlan, column_attrs
 from tumble.errors import ParameterError, ScenarioError
 from tumble.io.output import atomic_write
-from tumble.io.scenario import _one_line, key_units, parse_scenario
+from tumble.io.scenario import _one_line, key_units, parse_scenario, read_toml
 from tumble.models import AnyModel
 
 __all__ = [
@@ -393,11 +392,10 @@ def _base(sf: SweepFile, path: Path) -> tuple[Path, dict[str, Any]]:
         return path, sf.base
     source = path.parent / sf.base
     try:
-        return source, tomllib.loads(source.read_text(encoding="utf-8"))
+        raw = source.read_bytes()
     except OSError as exc:
         raise ScenarioError(f"base = {sf.base!r}: cannot read it ({exc.strerror})") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise ScenarioError(f"base = {sf.base!r}: not valid TOML ({exc})") from None
+    return source, read_toml(raw, f"base = {sf.base!r}")
 
 
 def _plan(sf: SweepFile, base: dict[str, Any]) -> SweepPlan:
@@ -436,12 +434,10 @@ def load_sweep(path: str | Path, *, allow_modules: Iterable[str] = ()) -> Sweep:
     """Read and validate a sweep file (TOML)."""
     path = Path(path)
     try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
+        raw = path.read_bytes()
     except OSError as exc:
         raise ScenarioError(f"{path}: cannot read the sweep file ({exc.strerror})") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise ScenarioError(f"{path}: not valid TOML ({exc})") from None
-    return parse_sweep(data, path, allow_modules=allow_modules)
+    return parse_sweep(read_toml(raw, str(path)), path, allow_modules=allow_modules)
 
 
 class SweepStore:

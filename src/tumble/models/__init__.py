@@ -46,7 +46,8 @@ def get_model(name: str) -> AnyModel:
     """The registered model called ``name``; :class:`ScenarioError` if there is none."""
     try:
         return MODELS[name]
-    except KeyError:
+    except (KeyError, TypeError):
+        shown = repr(name) if len(repr(name)) <= 60 else repr(name)[:57] + "..."
         raise ScenarioError(
-            f"model = {name!r} is not a known model (allowed: {', '.join(sorted(MODELS))})"
+            f"model = {shown} is not a known model (allowed: {', '.join(sorted(MODELS))})"
         ) from None

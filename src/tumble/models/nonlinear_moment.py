@@ -145,7 +145,7 @@ class Pressure:
             return
         if self.kind not in ("constant", "exp", "table"):
             raise ParameterError(
-                f"perturbation.pressure = {self.kind!r} is not a profile "
+                f"perturbation.pressure = {self.kind[:60]!r} is not a profile "
                 '(allowed: "constant", "exp", or a table)'
             )
         tau = tuple(float(v) for v in self.tau)
@@ -1317,7 +1317,7 @@ def _pressure_of(value: Any, inputs: Inputs) -> Pressure:
     if isinstance(value, str):
         if value not in ("constant", "exp"):
             raise ScenarioError(
-                f"{where} = {value!r}: expected "
+                f"{where} = {value[:60]!r}: expected "
                 '"constant", "exp", a table [[τ, Q], ...] or {tau = [...], Q = [...]}'
             )
         return Pressure(value)  # type: ignore[arg-type]

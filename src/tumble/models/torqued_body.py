@@ -652,9 +652,10 @@ def _term_tables(inputs: Inputs) -> list[dict[str, Any]]:
     terms = []
     for i, raw in enumerate(torque):
         kind = raw.get("kind")
-        if kind not in TERMS:
+        if not isinstance(kind, str) or kind not in TERMS:
+            shown = repr(kind) if len(repr(kind)) <= 60 else repr(kind)[:57] + "..."
             raise ScenarioError(
-                f"torque[{i}].kind = {kind!r} is not a torque (allowed: {', '.join(TERMS)})"
+                f"torque[{i}].kind = {shown} is not a torque (allowed: {', '.join(TERMS)})"
             )
         term = inputs.validate(TERMS[kind], raw, f"torque[{i}]")
         if kind == "user":

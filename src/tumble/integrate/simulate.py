@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Sequence
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from typing import Literal, TypeVar
 
@@ -22,7 +23,6 @@ from tumble.integrate.ode import (
     DEFAULT_RTOL,
     DenseSolution,
     check_times,
-    compiled_dense,
     integrate,
 )
 from tumble.kernels import Kernel
@@ -76,8 +76,10 @@ class Trajectory:
     integrator : str
         ``"numba"``, ``"scipy"`` or ``""`` (closed forms).
     events, event_signs : ndarray
-        Zeros of the full form's event function found during a compiled integration (e.g. the
+        Zeros of the full form's event function found during the integration (e.g. the
         extrema of θ), and the sign of the event function before each.
+    event_columns : dict
+        The columns at ``events``.
     """
 
     tau: FloatArray
@@ -91,6 +93,7 @@ class Trajectory:
     integrator: str = ""
     events: FloatArray = field(default_factory=lambda: np.empty(0), repr=False)
     event_signs: FloatArray = field(default_factory=lambda: np.empty(0), repr=False)
+    event_columns: Columns = field(default_factory=dict, repr=False)
 
 
 def _unwrap_columns(model: Model[P, S], p: P, method: str, cols: Columns, initial: S) -> None:
@@ -135,6 +138,7 @@ def simulate(
     form: str | None = None,
     integrator: str = "auto",
     averaging: AveragingOptions = DEFAULT_AVERAGING,
+    dense: bool = False,
 ) -> Trajectory:
     """Run one method of ``model`` from ``initial`` and sample it at ``tau``.
 
@@ -161,6 +165,10 @@ def simulate(
     averaging : AveragingOptions
         For ``averaged``: the paper's right-hand side or the general engine, the slow
         coordinates, and the start (checked against the model's ``Averaged`` capability).
+    dense : bool
+        For ``full`` on the compiled integrator: keep the dense output, so that
+        ``Trajectory.slow`` evaluates the run anywhere. By default the run keeps its samples
+        (and events) only and its memory does not grow with its length.
 
     Returns
     -------
@@ -180,7 +188,10 @@ def simulate(
     model.check(p, method)
     if method == "full":
         full = model.full.form(form)
-        return _full(model, full, p, initial, tau, rtol, atol, _kernel(model, full, p, integrator))
+        kernel = _kernel(model, full, p, integrator)
+        if kernel is not None and not dense:
+            return _streamed(model, full, p, initial, tau, rtol, atol, kernel)
+        return _full(model, full, p, initial, tau, rtol, atol, kernel)
     if method == "averaged" and model.averaged is not None:
         options = model.averaged.check(averaging)
         form_ = model.averaged.form(p, initial, options)
@@ -212,6 +223,125 @@ def _full(
         event=None if full.event is None else _bind(full.event, p),
     )
     return _trajectory(model, p, initial, tau, "full", full, sol, start)
+
+
+def _streamed(
+    model: Model[P, S],
+    full: FullForm[P, S],
+    p: P,
+    initial: S,
+    tau: FloatArray,
+    rtol: float,
+    atol: float,
+    kernel: Kernel,
+) -> Trajectory:
+    """A full form on the compiled integrator, consumed chunk by chunk: the samples come from
+    the integrator's dense output as it passes them, the angle columns are unwrapped on each
+    chunk's steps (which resolve every turn) continuing from the chunk before, and the steps
+    are then dropped. Memory: the samples and one chunk."""
+    start = time.perf_counter()
+    kernel, y0 = _batch_job(model, full, p, initial, float(tau[-1]))
+    return _consume(model, full, p, initial, tau, _integration(kernel, y0, tau, rtol, atol), start)
+
+
+def _integration(
+    kernel: Kernel, y0: FloatArray, tau: FloatArray, rtol: float, atol: float
+) -> dop853.Integration:
+    """A compiled run that samples at ``tau`` and records its steps without interpolants."""
+    options = dop853.Options(rtol, atol, 0.0, True, False)
+    return dop853.Integration(kernel, y0, float(tau[-1]), options, t_eval=tau)
+
+
+def _consume(
+    model: Model[P, S],
+    full: FullForm[P, S],
+    p: P,
+    initial: S,
+    tau: FloatArray,
+    run: dop853.Integration,
+    start: float,
+) -> Trajectory:
+    """Advance ``run`` to its end chunk by chunk, keeping the samples (see :func:`_streamed`)."""
+    what = f"{model.name} full equations {full.equation}"
+    angles = [c.name for c in model.columns(p, "full") if c.unwrap]
+
+    def angle_columns(p: P, t: FloatArray, Y: FloatArray) -> Columns:
+        cols = full.angles(p, t, Y) if full.angles else full.to_columns(p, t, Y)
+        return {name: cols[name] for name in angles}
+
+    parts: list[Columns] = []
+    events: list[tuple[FloatArray, FloatArray, FloatArray]] = []
+    carry: dict[str, float] = {}
+    done_samples = 0
+    done = False
+    while not done:
+        done = run.advance(dop853.CHUNK_STEPS)
+        piece = run.take()
+        if done and piece.status != 0:
+            raise IntegrationError(
+                f"{what}: integration failed at t = {piece.t:.6g}: {piece.message}"
+            )
+        upto = tau.size if done else int(np.searchsorted(tau, piece.ts[-1], side="right"))
+        t_samples = tau[done_samples:upto]
+        if t_samples.size:
+            cols = full.to_columns(p, t_samples, piece.y_eval[done_samples:upto])
+            parts.append(cols)
+        else:  # no sample in this chunk: its steps still carry the turns of the angles
+            cols = {name: np.empty(0) for name in angles}
+        if angles:
+            at_steps = angle_columns(p, piece.ts, piece.ys)
+            _unwrap_streamed(cols, t_samples, at_steps, piece.ts, carry, initial)
+        events.append((piece.event_t, piece.event_signs, piece.event_y))
+        done_samples = upto
+    columns = {name: np.concatenate([part[name] for part in parts]) for name in parts[0]}
+    ev_t, ev_s, ev_y = (np.concatenate([e[k] for e in events]) for k in range(3))
+    event_columns = full.to_columns(p, ev_t, ev_y) if ev_t.size else {}
+
+    def slow(t: FloatArray) -> Columns:
+        raise ParameterError(
+            "this full run kept its samples only: simulate(..., dense=True) keeps the dense "
+            "output to evaluate it anywhere"
+        )
+
+    return Trajectory(
+        tau,
+        columns,
+        "full",
+        full.name,
+        time.perf_counter() - start,
+        int(run.progress.nfev),
+        slow,
+        np.empty(0),
+        "numba",
+        ev_t,
+        ev_s,
+        event_columns,
+    )
+
+
+def _unwrap_streamed(
+    samples: Columns,
+    t_samples: FloatArray,
+    steps: Columns,
+    t_steps: FloatArray,
+    carry: dict[str, float],
+    initial: object,
+) -> None:
+    """Unwrap the angle columns of one chunk's samples in place, on the union of its steps
+    and samples. The chunk's first step is the previous chunk's last, whose unwrapped value
+    ``carry`` holds (the initial value anchors the first chunk); ``carry`` gets this chunk's
+    last."""
+    order = np.argsort(np.concatenate([t_steps, t_samples]), kind="stable")
+    where = np.empty_like(order)
+    where[order] = np.arange(order.size)  # position of each step, then sample, in time order
+    n = t_steps.size
+    for name, at_steps in steps.items():
+        angle = np.unwrap(np.concatenate([at_steps, samples[name]])[order])
+        first = angle[where[0]]
+        anchor = carry.get(name, getattr(initial, name, first))
+        angle += 2.0 * np.pi * np.round((anchor - first) / (2.0 * np.pi))
+        samples[name] = angle[where[n:]]
+        carry[name] = float(angle[where[n - 1]])
 
 
 def _closed(closed: ClosedForm[P, S], p: P, initial: S, tau: FloatArray) -> Trajectory:
@@ -283,6 +413,8 @@ def _trajectory(
     def slow(t: FloatArray) -> Columns:
         return to_columns(t, sol(t))
 
+    events = sol.events
+    event_columns = to_columns(events, sol(events)) if events.size else {}
     wall = time.perf_counter() - start
     return Trajectory(
         tau,
@@ -294,8 +426,9 @@ def _trajectory(
         slow,
         sol.ts,
         sol.integrator,
-        sol.events,
+        events,
         sol.event_signs,
+        event_columns,
     )
 
 
@@ -310,12 +443,13 @@ def simulate_batch(
     form: str | None = None,
     threads: int | None = 1,
 ) -> list[Trajectory | TumbleError]:
-    """The full method of many points of one model at once (the batch path of issue 6).
+    """The full method of many points of one model at once.
 
-    Every point whose full form has a compiled kernel is integrated by
-    :func:`tumble.integrate.dop853.solve_many` on a thread pool with the GIL released; each
-    Trajectory then equals ``simulate(model, p, initial, tau, "full", integrator="numba")``
-    to the bit, except its wall time, which is that point's own share of the batch.
+    Every point whose full form has a compiled kernel is integrated by the compiled DOP853,
+    its samples kept chunk by chunk as :func:`simulate` keeps them (memory bounded by the
+    samples), on a pool of ``threads`` (the compiled parts release the GIL); each Trajectory
+    then equals ``simulate(model, p, initial, tau, "full", integrator="numba")`` to the
+    bit, except its wall time.
 
     Parameters
     ----------
@@ -341,7 +475,6 @@ def simulate_batch(
     tau = check_times(tau)
     t_end = float(tau[-1])
     full = model.full.form(form)
-    what = f"{model.name} full equations {full.equation}"
     out: list[Trajectory | TumbleError | None] = [None] * len(params)
     jobs: list[tuple[int, Kernel, FloatArray]] = []
     for i, (p, initial) in enumerate(zip(params, initials, strict=True)):
@@ -363,21 +496,23 @@ def simulate_batch(
                 integrator="numba",
             )
         jobs = []
-    solved = dop853.solve_many(
-        [k for _, k, _ in jobs],
-        [y for _, _, y in jobs],
-        [t_end] * len(jobs),
-        rtol=rtol,
-        atol=atol,
-        threads=threads,
-    )
-    for (i, _, _), (res, seconds) in zip(jobs, solved, strict=True):
-        start = time.perf_counter() - seconds
+
+    def work(job: tuple[int, Kernel, FloatArray]) -> None:
+        i, kernel, y0 = job
+        start = time.perf_counter()
         try:
-            sol = compiled_dense(res, what)
-            out[i] = _trajectory(model, params[i], initials[i], tau, "full", full, sol, start)
+            run = _integration(kernel, y0, tau, rtol, atol)
+            out[i] = _consume(model, full, params[i], initials[i], tau, run, start)
         except TumbleError as exc:
             out[i] = exc
+
+    workers = dop853.available_threads() if threads is None else max(1, int(threads))
+    if workers == 1 or len(jobs) < 2:
+        for job in jobs:
+            work(job)
+    else:
+        with ThreadPoolExecutor(max_workers=min(workers, len(jobs))) as pool:
+            list(pool.map(work, jobs))
     return [o for o in out if o is not None]
 
 

@@ -131,7 +131,9 @@ class FullForm(Generic[P, S]):
     ``invariants(p, Y)`` are the quantities the unperturbed motion (ε = 0) conserves.
     ``event(t, y, p)`` is a function whose zeros every run of this form records, with the
     sign before each (e.g. θ' = 0, the extrema of the nutation angle); the kernel's event
-    must be the same function.
+    must be the same function. ``angles(p, t, Y)``, where ``to_columns`` is costly, gives
+    its unwrapped angle columns alone: a run evaluates them on every integrator step (to
+    count the turns between samples) and the other columns at the samples only.
     """
 
     name: str
@@ -144,6 +146,7 @@ class FullForm(Generic[P, S]):
     kernel: Callable[[P], Kernel | None] | None = None
     invariants: Callable[[P, FloatArray], Columns] | None = None
     event: Callable[[float, FloatArray, P], float] | None = None
+    angles: Callable[[P, FloatArray, FloatArray], Columns] | None = None
 
 
 @dataclass(frozen=True)
@@ -214,6 +217,8 @@ class Sampled(Protocol):
     def integrator(self) -> str: ...
     @property
     def events(self) -> FloatArray: ...
+    @property
+    def event_columns(self) -> Columns: ...
     @property
     def event_signs(self) -> FloatArray: ...
     @property

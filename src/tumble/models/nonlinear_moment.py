@@ -935,28 +935,15 @@ def extrema(traj: Sampled, p: Params) -> list[tuple[str, int, float, float, floa
         ``kind`` "max" or "min", ``k`` counting from 1 within its kind.
     """
     t_end = float(traj.tau[-1])
-    turns = _event_turns(traj, t_end)
-    if not turns:
-        return []
-    cols = traj.slow(np.array([t for _, t in turns]))
+    cols = traj.event_columns
     counts = {"max": 0, "min": 0}
     out = []
-    for j, (kind, t_k) in enumerate(turns):
+    for j in np.flatnonzero((traj.events > 0.0) & (traj.events < t_end)):
+        kind = "max" if traj.event_signs[j] > 0.0 else "min"
         counts[kind] += 1
-        out.append((kind, counts[kind], t_k, float(cols["theta"][j]), float(cols["R"][j]),
-                    float(cols["G"][j])))  # fmt: skip
+        out.append((kind, counts[kind], float(traj.events[j]), float(cols["theta"][j]),
+                    float(cols["R"][j]), float(cols["G"][j])))  # fmt: skip
     return out
-
-
-def _event_turns(traj: Sampled, t_end: float) -> list[tuple[str, float]]:
-    """The turning points the run located as zeros of θ' (the full forms' event), (kind, t)
-    in time order."""
-    keep = (traj.events > 0.0) & (traj.events < t_end)
-    signs = traj.event_signs[keep]
-    return [
-        ("max" if sign > 0.0 else "min", float(t))
-        for t, sign in zip(traj.events[keep], signs, strict=True)
-    ]
 
 
 def envelope_discrepancy(

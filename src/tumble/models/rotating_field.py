@@ -329,11 +329,20 @@ def slow_from_full(p: Params, t: FloatArray, Y: FloatArray) -> dict[str, FloatAr
     dict
         ``L, rho, sigma, T, k2, z1, z2, z3`` [1, rad, rad, 1, 1, 1, 1, 1].
     """
-    z = Y[:, :3]
+    return _full_columns(_momentum(p, t, Y), Y[:, :3], p)
+
+
+def _momentum(p: Params, t: FloatArray, Y: FloatArray) -> FloatArray:
+    """Inertial angular momentum L_ξ of states of (1.5) at times τ, shape (n, 3)."""
     G = Y[:, 3:].reshape(-1, 3, 3)
-    L_eta = np.einsum("nij,nj->ni", G, p.inertia * z)
-    L_xi = np.einsum("nji,nj->ni", rot_z(-np.asarray(t)), L_eta)  # v_ξ = Bᵀ(τ) v_η
-    return _full_columns(L_xi, z, p)
+    L_eta = np.einsum("nij,nj->ni", G, p.inertia * Y[:, :3])
+    return np.einsum("nji,nj->ni", rot_z(-np.asarray(t)), L_eta)  # v_ξ = Bᵀ(τ) v_η
+
+
+def _rotating_angles(p: Params, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
+    """σ alone (the column unwrapped on every step): without the modulus k²."""
+    L_xi = _momentum(p, t, Y)
+    return {"sigma": np.arctan2(L_xi[:, 1], L_xi[:, 0])}
 
 
 def _full_columns(L_xi: FloatArray, z: FloatArray, p: Params) -> dict[str, FloatArray]:
@@ -1243,6 +1252,7 @@ FULL_ROTATING: FullForm[Params, State] = FullForm(
     initial_state=full_from_slow,
     to_columns=slow_from_full,
     state_of=lambda p, y: State(y[:3], y[3:].reshape(3, 3)),
+    angles=_rotating_angles,
     kernel=full_kernel,
     invariants=invariants,
 )

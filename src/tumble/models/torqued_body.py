@@ -309,9 +309,21 @@ def _momentum_columns(L_xi: FloatArray, T: FloatArray, p: Params) -> dict[str, F
     }
 
 
+def _momentum(p: Params, Y: FloatArray) -> FloatArray:
+    """Inertial angular momentum L_ξ = A I ω of states ``[ω, q]``, shape (n, 3)."""
+    w = Y[:, :3]
+    return np.einsum("nij,nj->ni", quat_to_matrix(quat_normalize(Y[:, 3:])), p.inertia * w)
+
+
+def _full_angles(p: Params, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
+    """σ alone (the column unwrapped on every step): without the modulus k²."""
+    L_xi = _momentum(p, Y)
+    return {"sigma": np.arctan2(L_xi[:, 1], L_xi[:, 0])}
+
+
 def _full_columns(p: Params, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
     w = Y[:, :3]
-    L_xi = np.einsum("nij,nj->ni", quat_to_matrix(quat_normalize(Y[:, 3:])), p.inertia * w)
+    L_xi = _momentum(p, Y)
     cols = _momentum_columns(L_xi, 0.5 * np.sum(p.inertia * w * w, axis=1), p)
     cols.update(w1=w[:, 0], w2=w[:, 1], w3=w[:, 2])
     return cols
@@ -544,6 +556,7 @@ FULL: FullForm[Params, State] = FullForm(
     initial_state=_full_from_slow,
     to_columns=_full_columns,
     state_of=lambda p, y: State(y[:3], y[3:]),
+    angles=_full_angles,
     kernel=full_kernel,
 )
 

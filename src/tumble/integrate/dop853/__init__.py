@@ -13,6 +13,7 @@ batches over threads with the GIL released).
 """
 
 from tumble.integrate.dop853.driver import (
+    CHUNK_STEPS,
     BatchResult,
     Integration,
     Options,
@@ -24,6 +25,7 @@ from tumble.integrate.dop853.driver import (
 )
 
 __all__ = [
+    "CHUNK_STEPS",
     "BatchResult",
     "Integration",
     "Options",

@@ -225,6 +225,14 @@ class Integration:
         self._chunks.append(chunk)
         return self.done
 
+    def take(self) -> Solution:
+        """What the run computed since the last :meth:`take` (steps, events), and forget it;
+        ``y_eval`` holds every sample passed so far. A caller that consumes the run chunk by
+        chunk this way keeps its memory bounded by the samples, whatever the steps."""
+        piece = self.solution()
+        self._chunks.clear()
+        return piece
+
     def solution(self) -> Solution:
         """What the run has computed so far."""
         n = self.y.size

@@ -352,3 +352,14 @@ def test_a_streamed_run_equals_the_dense_one(scenario, monkeypatch):
     assert np.array_equal(streamed.event_signs, kept.event_signs)
     with pytest.raises(ParameterError, match="dense=True"):
         streamed.slow(tau[:2])
+
+
+def test_the_step_budget_stops_a_run_with_the_key_to_change(tmp_path):
+    r = load_scenario(EXAMPLES / "tb_gravity_gradient.toml").request
+    with pytest.raises(IntegrationError, match=r"run\.max_steps = 500 steps spent at t = "):
+        simulate(r.model, r.params, r.initial, r.tau, "full", max_steps=500)
+    text = (EXAMPLES / "tb_gravity_gradient.toml").read_text()
+    res = CliRunner().invoke(
+        app, ["run", str(write(tmp_path, text + "max_steps = 0\n")), "-o", str(tmp_path / "o")]
+    )
+    assert res.exit_code == 2 and "run.max_steps = 0 is outside" in res.output, res.output

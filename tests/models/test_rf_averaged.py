@@ -8,12 +8,14 @@ import warnings
 
 import numpy as np
 import pytest
+from files import EXAMPLES
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from tumble.analysis import fitted_order
 from tumble.errors import TumbleWarning
 from tumble.integrate import integrate, simulate
+from tumble.io import load_scenario
 from tumble.models import rotating_field as rf
 from tumble.models.base import AveragingOptions
 from tumble.unperturbed import energy_from_modulus, mean_square_rate
@@ -322,3 +324,25 @@ def test_integration_restarts_at_the_separatrix():
     sol = integrate(lambda t, y: form.rhs(t, y, p), y0, 300.0, breakpoints=form.breakpoints)
     r = sol(np.linspace(0.0, 300.0, 301))[:, 3]
     assert r[0] > 0.5 > r[-1]  # crossed r = 1/I2 = 0.5
+
+
+def test_a_long_averaged_run_rests_at_the_pure_rotation():
+    """Over τ = 30000 the averaged solution of the x1 transient comes to rest at r = 2T/L² =
+    1/I3 (co-rotation about the largest axis); the integrator's stages step past that end of
+    the range, which used to stop the run as bad input after the computation."""
+    r = load_scenario(EXAMPLES / "rf_transient_x1.toml").request
+    tau = np.linspace(0.0, 30000.0, 61)
+    run = simulate(r.model, r.params, r.initial, tau, "averaged")
+    I3 = max(r.params.inertia)
+    T, L = run.columns["T"][-1], run.columns["L"][-1]
+    # At rest at the end of the range to the integration's accuracy (rtol 1e-10 on r ~ 1).
+    assert 2.0 * T / L**2 == pytest.approx(1.0 / I3, rel=1e-8)
+
+
+def test_reached_ratio_clips_near_the_range_and_refuses_beyond():
+    from tumble.unperturbed import reached_ratio
+
+    assert reached_ratio(1.0, 2.0, 4.0, 0.3) == 0.3
+    assert reached_ratio(1.0, 2.0, 4.0, 0.25 - 1e-6) == 0.25  # a stage just past 1/I3
+    assert reached_ratio(1.0, 2.0, 4.0, 1.0 + 1e-6) == 1.0  # … or past 1/I1
+    assert np.isnan(reached_ratio(1.0, 2.0, 4.0, 0.2))  # no rigid body: the step is rejected

@@ -13,7 +13,7 @@ import xarray as xr
 from tumble._typing import FloatArray
 from tumble.analysis.compare import max_differences
 from tumble.errors import TumbleWarning
-from tumble.integrate import DEFAULT_ATOL, DEFAULT_RTOL, Trajectory, simulate
+from tumble.integrate import DEFAULT_ATOL, DEFAULT_RTOL, MAX_STEPS, Trajectory, simulate
 from tumble.models import AnyModel
 from tumble.models.base import AveragingOptions, Column, Json, Report, ValidityIssue
 
@@ -45,6 +45,8 @@ class RunRequest:
     averaging : AveragingOptions
         How the averaged equations are formed and started (``[run] averaging``,
         ``averaged_form``, ``averaged_init``).
+    max_steps : int
+        Step budget of a full run (``[run] max_steps``).
     """
 
     model: AnyModel
@@ -58,6 +60,7 @@ class RunRequest:
     verify: bool = False
     integrator: str = "auto"
     averaging: AveragingOptions = field(default_factory=AveragingOptions)
+    max_steps: int = MAX_STEPS
 
 
 @dataclass(frozen=True)
@@ -178,6 +181,7 @@ def run(request: RunRequest, precomputed: Mapping[str, Trajectory] | None = None
             atol=request.atol,
             integrator=request.integrator,
             averaging=request.averaging,
+            max_steps=request.max_steps,
         )
         for m in request.methods
     }

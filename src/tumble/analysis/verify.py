@@ -255,6 +255,7 @@ def _full(request: RunRequest, p: Any, tau: FloatArray) -> Trajectory:
         rtol=request.rtol,
         atol=request.atol,
         integrator=request.integrator,
+        max_steps=request.max_steps,
     )
 
 

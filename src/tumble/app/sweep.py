@@ -92,7 +92,7 @@ def _batched(requests: Sequence[RunRequest | None]) -> list[dict[str, Trajectory
     groups: dict[tuple[Any, ...], list[int]] = {}
     for i, req in enumerate(requests):
         if req is not None and _batchable(req):
-            key = (req.model.name, req.tau.tobytes(), req.rtol, req.atol)
+            key = (req.model.name, req.tau.tobytes(), req.rtol, req.atol, req.max_steps)
             groups.setdefault(key, []).append(i)
     for members in groups.values():
         first = requests[members[0]]
@@ -104,6 +104,7 @@ def _batched(requests: Sequence[RunRequest | None]) -> list[dict[str, Trajectory
             first.tau,
             rtol=first.rtol,
             atol=first.atol,
+            max_steps=first.max_steps,
         )
         for i, traj in zip(members, trajs, strict=True):
             # A point that failed in the batch is run again on its own, so that its failure

@@ -45,6 +45,11 @@ S = TypeVar("S")
 DEFAULT_AVERAGING = AveragingOptions()
 """The paper's averaged equations in the model's default coordinates, from the given state."""
 
+MAX_STEPS = 100_000_000
+"""Default step budget of a full run (``[run] max_steps``): about a minute or two of the
+compiled integrator, beyond which a run is stopped with an error naming the key rather than
+left to run for hours (a stiff or mistyped input)."""
+
 INTEGRATORS = ("auto", "numba", "scipy")
 """How the full equations are integrated (the scenario key ``[run] integrator``): ``"numba"``
 the compiled DOP853 of :mod:`tumble.integrate.dop853`; ``"scipy"`` scipy's DOP853 on the model's
@@ -139,6 +144,7 @@ def simulate(
     integrator: str = "auto",
     averaging: AveragingOptions = DEFAULT_AVERAGING,
     dense: bool = False,
+    max_steps: int = MAX_STEPS,
 ) -> Trajectory:
     """Run one method of ``model`` from ``initial`` and sample it at ``tau``.
 
@@ -169,6 +175,9 @@ def simulate(
         For ``full`` on the compiled integrator: keep the dense output, so that
         ``Trajectory.slow`` evaluates the run anywhere. By default the run keeps its samples
         (and events) only and its memory does not grow with its length.
+    max_steps : int
+        For ``full`` on the compiled integrator: the step budget; the run stops with an
+        :class:`~tumble.errors.IntegrationError` naming ``run.max_steps`` when it is spent.
 
     Returns
     -------
@@ -190,7 +199,7 @@ def simulate(
         full = model.full.form(form)
         kernel = _kernel(model, full, p, integrator)
         if kernel is not None and not dense:
-            return _streamed(model, full, p, initial, tau, rtol, atol, kernel)
+            return _streamed(model, full, p, initial, tau, rtol, atol, kernel, max_steps)
         return _full(model, full, p, initial, tau, rtol, atol, kernel)
     if method == "averaged" and model.averaged is not None:
         options = model.averaged.check(averaging)
@@ -234,6 +243,7 @@ def _streamed(
     rtol: float,
     atol: float,
     kernel: Kernel,
+    max_steps: int = MAX_STEPS,
 ) -> Trajectory:
     """A full form on the compiled integrator, consumed chunk by chunk: the samples come from
     the integrator's dense output as it passes them, the angle columns are unwrapped on each
@@ -241,7 +251,8 @@ def _streamed(
     are then dropped. Memory: the samples and one chunk."""
     start = time.perf_counter()
     kernel, y0 = _batch_job(model, full, p, initial, float(tau[-1]))
-    return _consume(model, full, p, initial, tau, _integration(kernel, y0, tau, rtol, atol), start)
+    run = _integration(kernel, y0, tau, rtol, atol)
+    return _consume(model, full, p, initial, tau, run, start, max_steps)
 
 
 def _integration(
@@ -260,6 +271,7 @@ def _consume(
     tau: FloatArray,
     run: dop853.Integration,
     start: float,
+    max_steps: int = MAX_STEPS,
 ) -> Trajectory:
     """Advance ``run`` to its end chunk by chunk, keeping the samples (see :func:`_streamed`)."""
     what = f"{model.name} full equations {full.equation}"
@@ -275,11 +287,17 @@ def _consume(
     done_samples = 0
     done = False
     while not done:
-        done = run.advance(dop853.CHUNK_STEPS)
+        done = run.advance(min(dop853.CHUNK_STEPS, max(1, max_steps - run.progress.n_steps)))
         piece = run.take()
         if done and piece.status != 0:
             raise IntegrationError(
                 f"{what}: integration failed at t = {piece.t:.6g}: {piece.message}"
+            )
+        if not done and run.progress.n_steps >= max_steps:
+            raise IntegrationError(
+                f"{what}: run.max_steps = {max_steps} steps spent at t = {piece.t:.6g} of "
+                f"{float(tau[-1]):.6g} (raise run.max_steps, shorten the run, or check the "
+                "input: a very fast or stiff motion)"
             )
         upto = tau.size if done else int(np.searchsorted(tau, piece.ts[-1], side="right"))
         t_samples = tau[done_samples:upto]
@@ -442,6 +460,7 @@ def simulate_batch(
     atol: float = DEFAULT_ATOL,
     form: str | None = None,
     threads: int | None = 1,
+    max_steps: int = MAX_STEPS,
 ) -> list[Trajectory | TumbleError]:
     """The full method of many points of one model at once.
 
@@ -465,6 +484,8 @@ def simulate_batch(
     threads : int, optional
         Threads of the pool (None: every core numba may use). The default 1 suits a caller
         that already runs one task per core, as a Dask worker does.
+    max_steps : int
+        Step budget of each run.
 
     Returns
     -------
@@ -502,7 +523,7 @@ def simulate_batch(
         start = time.perf_counter()
         try:
             run = _integration(kernel, y0, tau, rtol, atol)
-            out[i] = _consume(model, full, params[i], initials[i], tau, run, start)
+            out[i] = _consume(model, full, params[i], initials[i], tau, run, start, max_steps)
         except TumbleError as exc:
             out[i] = exc
 

@@ -34,7 +34,7 @@ from pydantic import (
 
 from tumble.analysis import RunRequest
 from tumble.errors import ParameterError, ScenarioError
-from tumble.integrate import check_times
+from tumble.integrate import MAX_STEPS, check_times
 from tumble.io.user_code import UserFunction, user_function
 from tumble.models import MODELS, AnyModel, get_model
 from tumble.models.base import AveragingOptions
@@ -205,6 +205,8 @@ def run_keys(model: AnyModel, variant: Variant[Any, Any]) -> tuple[Key, ...]:
             doc="relative tolerance of the integrations"),
         Key("atol", "number", "a number in (0, 1e-3]", default=1e-12,
             doc="absolute tolerance of the integrations"),
+        Key("max_steps", "integer", "an integer in [1, 1e12]", default=MAX_STEPS,
+            doc="step budget of a full run: it stops with an error when spent"),
     ]  # fmt: skip
     avg = model.averaged
     if avg is not None and avg.numeric:
@@ -524,8 +526,13 @@ def _request(model: AnyModel, run: Any, built: Any, times: np.ndarray) -> RunReq
         coordinates=getattr(run, "averaged_form", ""),
         start=getattr(run, "averaged_init", "exact"),
     )
+    if not 1 <= run.max_steps <= 10**12:
+        raise ParameterError(
+            f"run.max_steps = {_short(str(run.max_steps))} is outside the allowed range [1, 1e12]"
+        )
     return RunRequest(model, built.params, built.initial, tau, methods, rtol, atol,
-                      built.scaling, run.verify, run.integrator, averaging)  # fmt: skip
+                      built.scaling, run.verify, run.integrator, averaging,
+                      run.max_steps)  # fmt: skip
 
 
 def key_units(data: dict[str, Any], path: tuple[str | int, ...]) -> str:

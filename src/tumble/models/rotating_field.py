@@ -69,6 +69,7 @@ from tumble.unperturbed import (
     mean_square_rate,
     modulus_squared,
     proper_sorting,
+    reached_ratio,
 )
 
 __all__ = [
@@ -595,6 +596,9 @@ def averaged_rhs_vector(t: float, y: FloatArray, p: Params) -> FloatArray:
     ndarray, shape (4,)
     """
     l1, l2, l3, r = (float(v) for v in y)
+    r = reached_ratio(*p.sorted_inertia, r)
+    if math.isnan(r):
+        return np.full(4, math.nan)  # past a pure rotation: the solver rejects the step
     d = field_average(p)
     L2 = l1 * l1 + l2 * l2 + l3 * l3
     sin2_rho = (l1 * l1 + l2 * l2) / L2 if L2 > 0.0 else 0.0
@@ -675,7 +679,11 @@ def averaged_rhs_numeric(t: float, y: FloatArray, p: Params) -> FloatArray:
         ``[L_ξ1, L_ξ2, L_ξ3, r]``, r = 2T/L² [inertia unit, 1/inertia unit].
     p : Params
     """
-    return triaxial_average_vector(p.torque, p.inertia, y, t, forcing_period=2.0 * math.pi)
+    r = reached_ratio(*p.sorted_inertia, float(y[3]))
+    if math.isnan(r):
+        return np.full(4, math.nan)  # past a pure rotation: the solver rejects the step
+    state = np.array([y[0], y[1], y[2], r])
+    return triaxial_average_vector(p.torque, p.inertia, state, t, forcing_period=2.0 * math.pi)
 
 
 def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:

@@ -70,7 +70,12 @@ from tumble.torques import (
     UserTorque,
     ZeroTorque,
 )
-from tumble.unperturbed.euler_poinsot import EulerPoinsot, fast_frequencies, modulus_squared
+from tumble.unperturbed.euler_poinsot import (
+    EulerPoinsot,
+    fast_frequencies,
+    modulus_squared,
+    reached_ratio,
+)
 
 __all__ = [
     "MODEL",
@@ -353,7 +358,11 @@ def averaged_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
     ndarray, shape (4,)
         dy/dt [moment unit, 1/(inertia unit · t)].
     """
-    rates = triaxial_average_vector(p.torque, p.inertia, y, t, forcing_period=p.forcing_period)
+    r = reached_ratio(*p.sorted_inertia, float(y[3]))
+    if math.isnan(r):
+        return np.full(4, math.nan)  # past a pure rotation: the solver rejects the step
+    state = np.array([y[0], y[1], y[2], r])
+    rates = triaxial_average_vector(p.torque, p.inertia, state, t, forcing_period=p.forcing_period)
     return p.eps * rates
 
 

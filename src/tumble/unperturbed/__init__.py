@@ -19,6 +19,7 @@ from tumble.unperturbed.euler_poinsot import (
     mean_square_rate,
     modulus_squared,
     proper_sorting,
+    reached_ratio,
     regime,
 )
 from tumble.unperturbed.symmetric_body import (
@@ -48,5 +49,6 @@ __all__ = [
     "potential_slope",
     "proper_sorting",
     "quartic_coefficients",
+    "reached_ratio",
     "regime",
 ]

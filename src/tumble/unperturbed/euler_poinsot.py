@@ -63,6 +63,7 @@ __all__ = [
     "mean_square_rate",
     "modulus_squared",
     "proper_sorting",
+    "reached_ratio",
     "regime",
 ]
 
@@ -116,6 +117,36 @@ def _symmetry(I1: float, I2: float, I3: float) -> str:
     if I3 - I2 <= tol:
         return "x1"
     return ""
+
+
+REACHED_MARGIN = 1e-3
+"""How far, as a fraction of 1/I1 (the range's upper end: the width 1/I1 − 1/I3 vanishes for
+a sphere), an integrated 2T/L² may step beyond the range before :func:`reached_ratio`
+refuses it."""
+
+
+def reached_ratio(I1: float, I2: float, I3: float, r: float) -> float:
+    """A value of 2T/L² that an integration reached, brought back onto [1/I3, 1/I1].
+
+    The ends of the range are the pure rotations about the axes of the largest and smallest
+    moment, where the averaged solutions come to rest; an integrator's stage steps a little
+    past them (by about its local error). Within :data:`REACHED_MARGIN` of the range the value
+    is clipped onto it (the averaged rates there are those of the pure rotation: the solution
+    rests at the end); farther it describes no motion and NaN is returned, so that the solver
+    rejects the step rather than stopping the run with an input error.
+
+    Parameters
+    ----------
+    I1, I2, I3 : float
+        Principal moments, ascending [inertia unit].
+    r : float
+        2T/L² [1/inertia unit].
+    """
+    lo, hi = 1.0 / I3, 1.0 / I1
+    margin = REACHED_MARGIN * hi
+    if not lo - margin <= r <= hi + margin:
+        return math.nan
+    return min(max(r, lo), hi)
 
 
 def _classify(

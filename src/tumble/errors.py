@@ -35,6 +35,10 @@ class ScenarioError(TumbleError):
     """A scenario file that cannot be read or does not follow the scenario contract."""
 
 
+class OutputError(TumbleError):
+    """The output directory cannot take the results (not a directory, not writable)."""
+
+
 class IntegrationError(TumbleError, RuntimeError):
     """An integration that failed, or a solution that left the real numbers (blow-up)."""
 

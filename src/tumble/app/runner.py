@@ -10,7 +10,9 @@ From a notebook::
 
 from __future__ import annotations
 
+import contextlib
 import io
+from collections.abc import Iterator
 from dataclasses import replace
 from pathlib import Path
 from typing import Any
@@ -20,7 +22,14 @@ import numpy as np
 from tumble.analysis import RunResult, VerifyResult
 from tumble.analysis import run as run_request
 from tumble.analysis import verify as verify_request
-from tumble.io import Scenario, load_scenario, render_outputs, verify_outputs, write_outputs
+from tumble.io import (
+    Scenario,
+    load_scenario,
+    output_dir,
+    render_outputs,
+    verify_outputs,
+    write_outputs,
+)
 from tumble.plot import (
     FigureSettings,
     figure_settings,
@@ -82,6 +91,17 @@ def _png(fig: Any) -> bytes:
     return buf.getvalue()
 
 
+@contextlib.contextmanager
+def _held(out_dir: str | Path | None) -> Iterator[Path | None]:
+    """The output directory held for a whole run (:func:`tumble.io.output_dir`): checked and
+    locked before the computation; None when nothing is to be written."""
+    if out_dir is None:
+        yield None
+        return
+    with output_dir(out_dir) as out:
+        yield out
+
+
 def _scenario(scenario: str | Path | Scenario) -> Scenario:
     return scenario if isinstance(scenario, Scenario) else load_scenario(scenario)
 
@@ -108,15 +128,16 @@ def run(scenario: str | Path | Scenario, out_dir: str | Path | None = None) -> R
     RunResult
     """
     sc = _scenario(scenario)
-    result = run_request(sc.request)
-    verification = verify_request(sc.request) if sc.request.verify else None
-    if out_dir is not None:
-        files = render_outputs(result, sc.inputs, sc.source, verification)
-        title = f"{sc.request.model.name}: {Path(sc.source).name}"
-        files[_settings(result).file] = _figure_png(result, title)
-        if verification is not None:
-            files["verify.png"] = _png(plot_verify(verification, title=f"verify {title}"))
-        write_outputs(out_dir, files)
+    with _held(out_dir) as out:
+        result = run_request(sc.request)
+        verification = verify_request(sc.request) if sc.request.verify else None
+        if out is not None:
+            files = render_outputs(result, sc.inputs, sc.source, verification)
+            title = f"{sc.request.model.name}: {Path(sc.source).name}"
+            files[_settings(result).file] = _figure_png(result, title)
+            if verification is not None:
+                files["verify.png"] = _png(plot_verify(verification, title=f"verify {title}"))
+            write_outputs(out, files)
     return replace(result, verification=verification)
 
 
@@ -141,10 +162,11 @@ def verify(scenario: str | Path | Scenario, out_dir: str | Path | None = None) -
     VerifyResult
     """
     sc = _scenario(scenario)
-    result = verify_request(sc.request)
-    if out_dir is not None:
-        files = verify_outputs(result, sc.source)
-        title = f"verify {sc.request.model.name}: {Path(sc.source).name}"
-        files["verify.png"] = _png(plot_verify(result, title=title))
-        write_outputs(out_dir, files)
+    with _held(out_dir) as out:
+        result = verify_request(sc.request)
+        if out is not None:
+            files = verify_outputs(result, sc.source)
+            title = f"verify {sc.request.model.name}: {Path(sc.source).name}"
+            files["verify.png"] = _png(plot_verify(result, title=title))
+            write_outputs(out, files)
     return result

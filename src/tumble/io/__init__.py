@@ -3,6 +3,7 @@
 from tumble.io.output import (
     atomic_write,
     csv_text,
+    output_dir,
     render_outputs,
     summary,
     verify_outputs,
@@ -15,6 +16,7 @@ __all__ = [
     "atomic_write",
     "csv_text",
     "load_scenario",
+    "output_dir",
     "parse_scenario",
     "render_outputs",
     "summary",

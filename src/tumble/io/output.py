@@ -7,10 +7,13 @@ previous outputs intact. All texts are rendered before the first file is written
 
 from __future__ import annotations
 
+import contextlib
+import fcntl
 import io
 import json
 import os
 import tempfile
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -20,10 +23,12 @@ import xarray as xr
 from tumble._version import __version__
 from tumble.analysis import RunResult, VerifyResult
 from tumble.analysis.claims.base import plain  # numpy → JSON values, shared with the claims
+from tumble.errors import OutputError
 
 __all__ = [
     "atomic_write",
     "csv_text",
+    "output_dir",
     "render_outputs",
     "summary",
     "table_text",
@@ -206,8 +211,48 @@ def verify_outputs(result: VerifyResult, source: str) -> dict[str, bytes]:
     }
 
 
+@contextlib.contextmanager
+def output_dir(out_dir: str | Path) -> Iterator[Path]:
+    """Hold ``out_dir`` for one run, from before its computation to its last file.
+
+    Checks at once that the directory can take the results (created if needed; a probe
+    file written and removed), so that a read-only directory or ``-o some_file`` fails
+    before the computation, not after it; locks it (``.tumble.lock``), so that a second
+    run into the same directory is refused while the first one holds it, rather than the
+    two overwriting each other's files; and, under the lock, removes the temporary files
+    a run killed while writing left behind. :class:`~tumble.errors.OutputError` (one line,
+    exit 2) when the directory cannot be used.
+    """
+    out = Path(out_dir)
+    if out.exists() and not out.is_dir():
+        raise OutputError(f"-o {out}: exists and is not a directory")
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+        fd, probe = tempfile.mkstemp(dir=out, prefix=".tumble-probe-", suffix=".tmp")
+        os.close(fd)
+        os.unlink(probe)
+        lock = open(out / ".tumble.lock", "a+")
+    except OSError as exc:
+        raise OutputError(f"-o {out}: cannot write there ({exc.strerror})") from None
+    try:
+        try:
+            fcntl.flock(lock.fileno(), fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            raise OutputError(
+                f"-o {out}: another tumble run is writing there; wait for it or choose "
+                "another directory"
+            ) from None
+        for stale in out.glob(".*.tmp"):  # atomic_write's temporaries of a killed run
+            with contextlib.suppress(OSError):
+                stale.unlink()
+        yield out
+    finally:
+        lock.close()  # releases the lock
+
+
 def write_outputs(out_dir: str | Path, files: dict[str, bytes]) -> list[Path]:
-    """Create ``out_dir`` if needed and write every file atomically; return the paths."""
+    """Create ``out_dir`` if needed and write every file atomically; return the paths (inside
+    :func:`output_dir` when the caller holds the directory for the whole run)."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     paths = []

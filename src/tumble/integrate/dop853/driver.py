@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import contextlib
+import os
 import signal
 import threading
 import time
@@ -69,6 +70,8 @@ def _signals_held() -> Iterator[None]:
         signal.signal(signal.SIGINT, previous)
     if received and callable(previous):
         previous(signal.SIGINT, None)
+    elif received and previous == signal.SIG_DFL:  # deliver it as it would have been
+        os.kill(os.getpid(), signal.SIGINT)
 
 
 def available_threads() -> int:

@@ -21,6 +21,7 @@ import contextlib
 import logging
 import os
 import time
+import uuid
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -318,6 +319,10 @@ def _run_chunks(
     from distributed import as_completed
 
     base = client.scatter(sweep.base, broadcast=True)
+    # Keys unique to this invocation: the same sweep run again on a long-lived cluster would
+    # otherwise submit the keys the scheduler is still forgetting from the previous client,
+    # and see its tasks cancelled ("already forgotten").
+    invocation = uuid.uuid4().hex[:8]
     futures = {}
     for c in todo:
         points = [sweep.plan.assignments(i) for i in sweep.chunk_points(c)]
@@ -329,7 +334,7 @@ def _run_chunks(
             sweep.keep,
             sweep.batch,
             sweep.allow_modules,
-            key=f"tumble-sweep-{sweep.digest}-{c}",
+            key=f"tumble-sweep-{sweep.digest}-{invocation}-{c}",
             pure=False,
         )
         futures[fut] = c

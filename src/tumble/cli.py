@@ -562,7 +562,7 @@ def bench_cmd(
     ] = True,
 ) -> None:
     """Measure tumble's speed against scipy and heyoka.py, averaged against full, batches
-    over cores and the compile time, each figure beside its target (issue 6)."""
+    over cores and the compile time, each figure beside its target."""
     import json
 
     from rich.status import Status

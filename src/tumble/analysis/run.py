@@ -39,7 +39,7 @@ class RunRequest:
     scaling : object, optional
         Physical scaling (for physical-units scenarios), kept for the outputs.
     verify : bool
-        Also measure the averaging error at ε, ε/2, ε/4 (``[run] verify``, issue 5).
+        Also measure the averaging error at ε, ε/2, ε/4 (``[run] verify``).
     integrator : {"auto", "numba", "scipy"}
         How the full equations are integrated (``[run] integrator``).
     averaging : AveragingOptions

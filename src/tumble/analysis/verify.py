@@ -1,4 +1,4 @@
-"""Accuracy with every run: averaged against full at ε, ε/2, ε/4 over one slow horizon (issue 5).
+"""Accuracy with every run: averaged against full at ε, ε/2, ε/4 over one slow horizon.
 
 First-order averaging promises |full − averaged| = O(ε) on slow times εt = O(1) (spec
 /medvedev.md §10, spec/martynenko.md §10, spec/serov.md §10). :func:`verify` measures it: the

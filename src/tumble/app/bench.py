@@ -1,4 +1,4 @@
-"""Performance benchmark (issue 6): every figure measured in one run on one machine, as ratios.
+"""Performance benchmark: every figure measured in one run on one machine, as ratios.
 
 Four studies, each with its error figures and its target beside it:
 
@@ -582,7 +582,7 @@ def run_benchmark(
     settings: BenchSettings | None = None,
     log: Callable[[str], None] | None = None,
 ) -> dict[str, Any]:
-    """Measure every figure of issue 6 on this machine.
+    """Measure every figure of the benchmark on this machine.
 
     Parameters
     ----------

@@ -1,4 +1,4 @@
-"""Averaging any torque over the unperturbed motion (issue 5): plain numerics below the models.
+"""Averaging any torque over the unperturbed motion: plain numerics below the models.
 
 * :mod:`~tumble.averaging.quadrature`: adaptive periodic trapezoidal means over fast phases.
 * :mod:`~tumble.averaging.spinner`: the fast symmetric spinner of spec/medvedev.md (slow k, ρ,

@@ -1,4 +1,4 @@
-"""Averaging over the fast spin of a symmetric body: the resisting-medium setting (issue 5).
+"""Averaging over the fast spin of a symmetric body: the resisting-medium setting.
 
 A. V. Medvedev (1987), seed 000; spec/medvedev.md supersedes the seed where they differ. In the
 normalized variables of (1.3) (I1 = 1, I3 = 1 + κ, time τ) a fast-spinning symmetric body under

@@ -1,4 +1,4 @@
-"""Averaging any torque over the Euler–Poinsot motion of a triaxial body (issue 5).
+"""Averaging any torque over the Euler–Poinsot motion of a triaxial body.
 
 The rotating-field setting of spec/martynenko.md (Yu. G. Martynenko 1979, seed 002; the spec
 supersedes the seed where they differ). For a small body-axes moment ``M = torque(t, q, ω)``

@@ -1083,7 +1083,7 @@ def limits(p: Params, st: State) -> dict[str, Json]:
 
 
 def report(p: Params, st: State, trajectories: Mapping[str, Sampled]) -> Report:
-    """Extrema table, envelope discrepancy and wall times (the scenario contract of issue 4).
+    """Extrema table, envelope discrepancy and wall times (the scenario contract).
 
     Parameters
     ----------
@@ -1120,7 +1120,7 @@ def report(p: Params, st: State, trajectories: Mapping[str, Sampled]) -> Report:
 def slow_errors(
     p: Params, full: Sampled, averaged: Sampled
 ) -> dict[str, tuple[FloatArray, FloatArray]]:
-    """Averaging error of each slow variable, for ``tumble verify`` (issue 5).
+    """Averaging error of each slow variable, for ``tumble verify``.
 
     θmax and θmin: |θ̄ext(t_k) − θ_k| at the full solution's maxima and minima (the envelope
     (2.2) is what the averaged method predicts, spec §10); R and G: |full − averaged| at the

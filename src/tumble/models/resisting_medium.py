@@ -435,7 +435,7 @@ _AVERAGED_WV: AveragedForm[Params, State] = AveragedForm(
 
 def averaged_rhs_numeric(t: float, y: FloatArray, p: Params) -> FloatArray:
     """The averaged equations from the general engine: the moment (1.2) averaged over ψ and φ
-    of the standard form (1.3) by quadrature (issue 5); equal to (2.2) to round-off.
+    of the standard form (1.3) by quadrature; equal to (2.2) to round-off.
 
     Parameters
     ----------

@@ -667,7 +667,7 @@ def _step_over_separatrix(t: float, y: FloatArray) -> FloatArray:
 
 
 def averaged_rhs_numeric(t: float, y: FloatArray, p: Params) -> FloatArray:
-    """The vector form of the averaged equations from the general engine (issue 5): the
+    """The vector form of the averaged equations from the general engine: the
     eddy-current torque averaged over the Euler–Poinsot motion and the field's rotation by
     quadrature; equal to :func:`averaged_rhs_vector` to round-off away from the separatrix.
 

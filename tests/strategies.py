@@ -31,3 +31,17 @@ def vectors(draw: st.DrawFn, scale: float = 1.0) -> np.ndarray:
 @st.composite
 def matrices(draw: st.DrawFn, scale: float = 1.0) -> np.ndarray:
     return np.array([[draw(finite) for _ in range(3)] for _ in range(3)]) * scale
+
+
+# Parameters of the built-in torques: body moment a, drags B and S, inertial moment M, the
+# gravity gradient's mean motion n and orbit normal, the field's cone angle β, a time t.
+TORQUE_PARAMETERS = {
+    "a": vectors(),
+    "B": matrices(),
+    "S": matrices(),
+    "M": vectors(),
+    "n": st.floats(0.1, 3.0),
+    "normal": vectors().filter(lambda v: np.linalg.norm(v) > 0.1),
+    "beta": st.floats(0.0, math.pi),
+    "t": st.floats(0.0, 50.0),
+}

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from strategies import matrices, vectors
+from strategies import TORQUE_PARAMETERS, vectors
 
 from tumble.errors import ParameterError
 from tumble.rotations import quat_normalize, quat_to_matrix
@@ -136,15 +136,8 @@ def _references(t, q, w, a, B, S, M, gg, eddy):
 @given(
     q=quaternions,
     w=vectors(scale=3.0),
-    a=vectors(),
-    B=matrices(),
-    S=matrices(),
-    M=vectors(),
-    n=st.floats(0.1, 3.0),
-    normal=vectors().filter(lambda v: np.linalg.norm(v) > 0.1),
-    beta=st.floats(0.0, math.pi),
     rate=st.floats(-2.0, 2.0),
-    t=st.floats(0.0, 50.0),
+    **TORQUE_PARAMETERS,
 )
 def test_each_builtin_torque_is_its_formula(q, w, a, B, S, M, n, normal, beta, rate, t):
     q = quat_normalize(np.array(q))

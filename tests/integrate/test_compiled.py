@@ -14,7 +14,7 @@ from files import EXAMPLES, write
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
-from strategies import angle, inertias, matrices, vectors
+from strategies import TORQUE_PARAMETERS, angle, inertias, vectors
 from typer.testing import CliRunner
 
 from tumble import kernels
@@ -59,14 +59,7 @@ def _close(a, b, scale):
     psi=angle,
     theta=st.floats(0.0, np.pi),
     phi=angle,
-    a=vectors(),
-    B=matrices(),
-    S=matrices(),
-    M=vectors(),
-    n=st.floats(0.1, 3.0),
-    normal=vectors().filter(lambda v: np.linalg.norm(v) > 0.1),
-    beta=st.floats(0.0, np.pi),
-    t=st.floats(0.0, 50.0),
+    **TORQUE_PARAMETERS,
 )
 def test_rigid_body_kernel_matches_the_python_right_hand_side(
     inertia, w, psi, theta, phi, a, B, S, M, n, normal, beta, t

@@ -351,6 +351,10 @@ def test_the_step_budget_stops_a_run_with_the_key_to_change(tmp_path):
     r = load_scenario(EXAMPLES / "tb_gravity_gradient.toml").request
     with pytest.raises(IntegrationError, match=r"run\.max_steps = 500 steps spent at t = "):
         simulate(r.model, r.params, r.initial, r.tau, "full", max_steps=500)
+    # A run that cannot fit is refused after its first chunk, from its step size.
+    far = np.linspace(0.0, 1e15, 5)
+    with pytest.raises(IntegrationError, match=r"needs about .* more steps, far beyond run\.max"):
+        simulate(r.model, r.params, r.initial, far, "full")
     text = (EXAMPLES / "tb_gravity_gradient.toml").read_text()
     res = CliRunner().invoke(
         app, ["run", str(write(tmp_path, text + "max_steps = 0\n")), "-o", str(tmp_path / "o")]

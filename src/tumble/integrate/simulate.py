@@ -45,6 +45,10 @@ S = TypeVar("S")
 DEFAULT_AVERAGING = AveragingOptions()
 """The paper's averaged equations in the model's default coordinates, from the given state."""
 
+_BUDGET_MARGIN = 100.0
+"""A run is refused early when, at its current step size, the rest would take more than this
+many times its remaining step budget: steps grow, but not by a hundredfold on average."""
+
 MAX_STEPS = 100_000_000
 """Default step budget of a full run (``[run] max_steps``): about a minute or two of the
 compiled integrator, beyond which a run is stopped with an error naming the key rather than
@@ -298,6 +302,14 @@ def _consume(
                 f"{what}: run.max_steps = {max_steps} steps spent at t = {piece.t:.6g} of "
                 f"{float(tau[-1]):.6g} (raise run.max_steps, shorten the run, or check the "
                 "input: a very fast or stiff motion)"
+            )
+        ahead = (float(tau[-1]) - run.progress.t) / max(run.progress.h_abs, 1e-300)
+        if not done and ahead > _BUDGET_MARGIN * (max_steps - run.progress.n_steps):
+            raise IntegrationError(
+                f"{what}: at t = {piece.t:.6g} the step is {run.progress.h_abs:.3g}, so the run "
+                f"to {float(tau[-1]):.6g} needs about {ahead:.2g} more steps, far beyond "
+                f"run.max_steps = {max_steps} (shorten the run, or check the input: a very "
+                "fast or stiff motion)"
             )
         upto = tau.size if done else int(np.searchsorted(tau, piece.ts[-1], side="right"))
         t_samples = tau[done_samples:upto]

@@ -10,7 +10,7 @@ requested samples: memory is then bounded by ``t_eval``, not by the number of st
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -190,11 +190,12 @@ def _fit(buffer: FloatArray, rows: int, width: int) -> FloatArray:
 def advance(
     kind: int, p: FloatArray, t_end: float, opts: Options, prog: Progress, y: FloatArray,
     f: FloatArray, t_eval: FloatArray, y_eval: FloatArray,
-) -> tuple[Progress, Chunk]:  # fmt: skip
+) -> tuple[tuple[Any, ...], tuple[Any, ...]]:  # fmt: skip
     """Integrate from ``prog.t`` towards ``t_end`` (at most ``opts.max_steps`` steps).
 
     ``y`` holds the state at ``prog.t`` and ``f`` its derivative; both are updated in place.
-    Samples at the times ``t_eval`` go to the flat ``y_eval`` as the run passes them.
+    Samples at the times ``t_eval`` go to the flat ``y_eval`` as the run passes them. Returns
+    the fields of the new :class:`Progress` and of the :class:`Chunk`, as plain tuples.
     """
     n = y.size
     if prog.status == FRESH:
@@ -254,5 +255,8 @@ def advance(
     if status == RUNNING and t >= t_end:
         status = OK
     _copy(K[0], f, 0)
-    progress = Progress(status, t, h_abs, g, nfev, prog.n_steps + n_rec, ie)
-    return progress, Chunk(n_rec, ts, ys, Fs, ev_t, ev_s, ev_y, n_ev)
+    # Plain tuples, not the named ones: numba boxes a named tuple by calling its class, Python
+    # code during which a signal handler that raises (Ctrl-C, an alarm) used to leave a
+    # half-built object and crash the interpreter; a plain tuple is built in C.
+    progress = (status, t, h_abs, g, nfev, prog.n_steps + n_rec, ie)
+    return progress, (n_rec, ts, ys, Fs, ev_t, ev_s, ev_y, n_ev)

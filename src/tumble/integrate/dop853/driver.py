@@ -79,7 +79,7 @@ def available_threads() -> int:
     return _MAX_THREADS
 
 
-def _specialised(kind: int, args: tuple[Any, ...]) -> Callable[..., tuple[Progress, Chunk]]:
+def _specialised(kind: int, args: tuple[Any, ...]) -> Callable[..., tuple[Any, Any]]:
     """:func:`core.advance` compiled for the kernel kind ``kind`` as a compile-time constant.
 
     With the kind a ``Literal[int]``, LLVM folds the right-hand side's dispatch and inlines
@@ -203,7 +203,7 @@ class Integration:
         self._y_eval = np.full(self.t_eval.size * self.y.size, np.nan)
         self.progress = Progress(core.FRESH, float(t0), 0.0, 1.0, 0, 0, 0)
         self._chunks: list[Chunk] = []
-        self._entry: Callable[..., tuple[Progress, Chunk]] | None = None
+        self._entry: Callable[..., tuple[Any, Any]] | None = None
 
     def _args(self, max_steps: int) -> tuple[Any, ...]:
         """The arguments of :func:`core.advance` after the kind."""
@@ -224,8 +224,9 @@ class Integration:
         with _signals_held():  # compiling, then the call: neither survives an interrupt
             if self._entry is None:
                 self._entry = _specialised(self.kernel.kind, args)
-            self.progress, chunk = self._entry(self.kernel.kind, *args)
-        self._chunks.append(chunk)
+            progress, chunk = self._entry(self.kernel.kind, *args)
+        self.progress = Progress(*progress)
+        self._chunks.append(Chunk(*chunk))
         return self.done
 
     def take(self) -> Solution:

@@ -8,7 +8,6 @@ previous outputs intact. All texts are rendered before the first file is written
 from __future__ import annotations
 
 import contextlib
-import fcntl
 import io
 import json
 import os
@@ -24,6 +23,11 @@ from tumble._version import __version__
 from tumble.analysis import RunResult, VerifyResult
 from tumble.analysis.claims.base import plain  # numpy → JSON values, shared with the claims
 from tumble.errors import OutputError
+
+try:  # POSIX; elsewhere the directory is checked but not locked
+    import fcntl
+except ImportError:  # pragma: no cover - Windows
+    fcntl = None  # type: ignore[assignment]
 
 __all__ = [
     "atomic_write",
@@ -236,7 +240,8 @@ def output_dir(out_dir: str | Path) -> Iterator[Path]:
         raise OutputError(f"-o {out}: cannot write there ({exc.strerror})") from None
     try:
         try:
-            fcntl.flock(lock.fileno(), fcntl.LOCK_EX | fcntl.LOCK_NB)
+            if fcntl is not None:
+                fcntl.flock(lock.fileno(), fcntl.LOCK_EX | fcntl.LOCK_NB)
         except OSError:
             raise OutputError(
                 f"-o {out}: another tumble run is writing there; wait for it or choose "

@@ -49,6 +49,8 @@ _BUDGET_MARGIN = 100.0
 """A run is refused early when, at its current step size, the rest would take more than this
 many times its remaining step budget: steps grow, but not by a hundredfold on average."""
 
+_Job = tuple[int, Kernel, FloatArray]  # a point of a batch: its index, kernel, initial state
+
 MAX_STEPS = 100_000_000
 """Default step budget of a full run (``[run] max_steps``): about a minute or two of the
 compiled integrator, beyond which a run is stopped with an error naming the key rather than
@@ -509,36 +511,32 @@ def simulate_batch(
     t_end = float(tau[-1])
     full = model.full.form(form)
     out: list[Trajectory | TumbleError | None] = [None] * len(params)
-    jobs: list[tuple[int, Kernel, FloatArray]] = []
+    jobs: list[_Job] = []
     for i, (p, initial) in enumerate(zip(params, initials, strict=True)):
         try:
             jobs.append((i, *_batch_job(model, full, p, initial, t_end)))
         except TumbleError as exc:
             out[i] = exc
-    if t_end == 0.0:  # nothing to integrate: simulate's own path handles the trivial run
-        for i, _, _ in jobs:
-            out[i] = simulate(
-                model,
-                params[i],
-                initials[i],
-                tau,
-                "full",
-                rtol=rtol,
-                atol=atol,
-                form=form,
-                integrator="numba",
-            )
-        jobs = []
 
-    def work(job: tuple[int, Kernel, FloatArray]) -> None:
+    def work(job: _Job) -> None:
         i, kernel, y0 = job
         start = time.perf_counter()
         try:
+            if t_end == 0.0:  # nothing to integrate: simulate's own path
+                out[i] = simulate(model, params[i], initials[i], tau, "full", rtol=rtol,
+                                  atol=atol, form=form, integrator="numba")  # fmt: skip
+                return
             run = _integration(kernel, y0, tau, rtol, atol)
             out[i] = _consume(model, full, params[i], initials[i], tau, run, start, max_steps)
         except TumbleError as exc:
             out[i] = exc
 
+    _each(work, jobs, threads)
+    return [o for o in out if o is not None]
+
+
+def _each(work: Callable[[_Job], None], jobs: list[_Job], threads: int | None) -> None:
+    """``work(job)`` for every job, on a pool of ``threads`` (None: every core numba uses)."""
     workers = dop853.available_threads() if threads is None else max(1, int(threads))
     if workers == 1 or len(jobs) < 2:
         for job in jobs:
@@ -546,7 +544,6 @@ def simulate_batch(
     else:
         with ThreadPoolExecutor(max_workers=min(workers, len(jobs))) as pool:
             list(pool.map(work, jobs))
-    return [o for o in out if o is not None]
 
 
 def _batch_job(

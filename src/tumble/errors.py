@@ -18,7 +18,17 @@ __all__ = [
     "TumbleWarning",
     "check_finite",
     "check_range",
+    "shorten",
 ]
+
+MAX_ECHO = 80
+"""Longest piece of the user's input an error message repeats."""
+
+
+def shorten(text: object, limit: int = MAX_ECHO) -> str:
+    """``str(text)`` cut to ``limit`` characters: an error message never echoes a huge input."""
+    out = str(text)
+    return out if len(out) <= limit else out[: limit - 3] + "..."
 
 
 class TumbleError(Exception):

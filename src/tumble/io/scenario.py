@@ -33,7 +33,7 @@ from pydantic import (
 )
 
 from tumble.analysis import RunRequest
-from tumble.errors import ParameterError, ScenarioError
+from tumble.errors import ParameterError, ScenarioError, shorten
 from tumble.integrate import MAX_STEPS, check_times
 from tumble.io.user_code import UserFunction, user_function
 from tumble.models import MODELS, AnyModel, get_model
@@ -323,16 +323,8 @@ def _field_hint(schema: type[BaseModel], loc: tuple[int | str, ...]) -> tuple[st
     return hint, siblings
 
 
-MAX_ECHO = 80
-"""Longest piece of the user's input an error line repeats."""
-
 MAX_SAMPLES = 10_000_000
 """Most samples a run may ask for (the outputs of every method hold them all in memory)."""
-
-
-def _short(text: str, limit: int = MAX_ECHO) -> str:
-    """``text`` cut to ``limit`` characters: an error line never echoes a huge input."""
-    return text if len(text) <= limit else text[: limit - 3] + "..."
 
 
 def _one_line(exc: ValidationError, schema: type[BaseModel]) -> str:
@@ -340,7 +332,7 @@ def _one_line(exc: ValidationError, schema: type[BaseModel]) -> str:
     # A misspelt key explains the required one it leaves missing: report it first.
     err = next((e for e in errors if e["type"] == "extra_forbidden"), errors[0])
     loc = tuple(err["loc"])
-    path = _short(_path(loc)) or "scenario"
+    path = shorten(_path(loc)) or "scenario"
     hint, siblings = _field_hint(schema, loc)
     kind = err["type"]
     if kind == "missing":
@@ -350,7 +342,7 @@ def _one_line(exc: ValidationError, schema: type[BaseModel]) -> str:
         guess = f"did you mean {close[0]}? " if close else ""
         return f"{path}: unknown key ({guess}allowed here: {', '.join(siblings)})"
     msg = str(err["msg"]).removeprefix("Value error, ")
-    shown = _short(repr(err.get("input")), 60)
+    shown = shorten(repr(err.get("input")), 60)
     return f"{path} = {shown}: {msg}" + (f" (expected {hint})" if hint else "")
 
 
@@ -375,7 +367,7 @@ def _times(run: Any, end_key: str, list_key: str) -> np.ndarray:
         raise ParameterError(f"run.{end_key} = {end:g} is outside the allowed range (0, inf)")
     if not 2 <= run.samples <= MAX_SAMPLES:
         raise ParameterError(
-            f"run.samples = {_short(str(run.samples))} is outside the allowed range [2, 1e7]"
+            f"run.samples = {shorten(str(run.samples))} is outside the allowed range [2, 1e7]"
         )
     return np.linspace(0.0, end, run.samples)
 
@@ -528,7 +520,7 @@ def _request(model: AnyModel, run: Any, built: Any, times: np.ndarray) -> RunReq
     )
     if not 1 <= run.max_steps <= 10**12:
         raise ParameterError(
-            f"run.max_steps = {_short(str(run.max_steps))} is outside the allowed range [1, 1e12]"
+            f"run.max_steps = {shorten(str(run.max_steps))} is outside the allowed range [1, 1e12]"
         )
     return RunRequest(model, built.params, built.initial, tau, methods, rtol, atol,
                       built.scaling, run.verify, run.integrator, averaging,
@@ -572,7 +564,7 @@ def read_toml(raw: bytes, where: str) -> dict[str, Any]:
     try:
         return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise ScenarioError(f"{where}: not valid TOML ({_short(str(exc))})") from None
+        raise ScenarioError(f"{where}: not valid TOML ({shorten(str(exc))})") from None
     except RecursionError:
         raise ScenarioError(f"{where}: arrays or tables nested too deeply") from None
 

@@ -29,7 +29,7 @@ from pathlib import Path
 from types import ModuleType
 from typing import Any
 
-from tumble.errors import ScenarioError
+from tumble.errors import ScenarioError, shorten
 
 __all__ = ["UserFunction", "user_function"]
 
@@ -56,17 +56,11 @@ def _module_from_file(path: Path, where: str) -> ModuleType:
         if not isinstance(exc, Exception):
             raise
         raise ScenarioError(
-            f"{where}: loading {path} failed ({type(exc).__name__}: {_short(exc)})"
+            f"{where}: loading {path} failed ({type(exc).__name__}: {shorten(exc)})"
         ) from None
     finally:
         sys.path.remove(str(path.parent))
     return module
-
-
-def _short(value: object, limit: int = 80) -> str:
-    """``str(value)`` cut to ``limit`` characters (an error line never echoes a huge input)."""
-    text = str(value)
-    return text if len(text) <= limit else text[: limit - 1] + "…"
 
 
 class UserFunction:
@@ -113,7 +107,7 @@ class UserFunction:
         """Load the file (or import the allowed module) and return the function."""
         if self._loaded is not None:
             return self._loaded
-        where = f"{self.where} = {_short(repr(self.spec))}"
+        where = f"{self.where} = {shorten(repr(self.spec))}"
         if self.path is not None:
             mod = _module_from_file(self.path, where)
         else:
@@ -122,7 +116,7 @@ class UserFunction:
                 mod = importlib.import_module(self.module)
             except Exception as exc:
                 raise ScenarioError(
-                    f"{where}: cannot import {self.module} ({type(exc).__name__}: {_short(exc)})"
+                    f"{where}: cannot import {self.module} ({type(exc).__name__}: {shorten(exc)})"
                 ) from None
         function = getattr(mod, self.function, None)
         if not callable(function):
@@ -169,7 +163,7 @@ def user_function(
         Malformed, or naming neither a file beside the scenario nor an allowed module.
     """
     target, sep, name = spec.rpartition(":")
-    shown = f"{where} = {_short(repr(spec))}"
+    shown = f"{where} = {shorten(repr(spec))}"
     if not sep or not target or not name.isidentifier():
         raise ScenarioError(
             f'{shown}: expected "file:function" (a Python file beside the scenario)'
@@ -182,6 +176,6 @@ def user_function(
         raise ScenarioError(
             f"{shown}: no file {relative} in {base} (a torque function is loaded from a Python "
             f"file beside the scenario; an installed module runs only with --allow-module "
-            f"{_short(target, 40)})"
+            f"{shorten(target, 40)})"
         )
     return UserFunction(spec, name, path=path, where=where)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from tumble.errors import ScenarioError
+from tumble.errors import ScenarioError, shorten
 from tumble.models import nonlinear_moment, resisting_medium, rotating_field, torqued_body
 from tumble.models.base import Model
 
@@ -47,7 +47,7 @@ def get_model(name: str) -> AnyModel:
     try:
         return MODELS[name]
     except (KeyError, TypeError):
-        shown = repr(name) if len(repr(name)) <= 60 else repr(name)[:57] + "..."
         raise ScenarioError(
-            f"model = {shown} is not a known model (allowed: {', '.join(sorted(MODELS))})"
+            f"model = {shorten(repr(name), 60)} is not a known model "
+            f"(allowed: {', '.join(sorted(MODELS))})"
         ) from None

@@ -39,7 +39,7 @@ from tumble.averaging.nutation import (
     potential_gradient,
     torque_perturbation,
 )
-from tumble.errors import IntegrationError, ParameterError, ScenarioError, check_range
+from tumble.errors import IntegrationError, ParameterError, ScenarioError, check_range, shorten
 from tumble.kernels import EVENT_THETA_DOT, KIND_NONLINEAR_MOMENT, Kernel
 from tumble.kernels.rhs import evaluate_event, symmetric_body
 from tumble.models.base import (
@@ -145,7 +145,7 @@ class Pressure:
             return
         if self.kind not in ("constant", "exp", "table"):
             raise ParameterError(
-                f"perturbation.pressure = {self.kind[:60]!r} is not a profile "
+                f"perturbation.pressure = {shorten(repr(self.kind), 60)} is not a profile "
                 '(allowed: "constant", "exp", or a table)'
             )
         tau = tuple(float(v) for v in self.tau)
@@ -1304,7 +1304,7 @@ def _pressure_of(value: Any, inputs: Inputs) -> Pressure:
     if isinstance(value, str):
         if value not in ("constant", "exp"):
             raise ScenarioError(
-                f"{where} = {value[:60]!r}: expected "
+                f"{where} = {shorten(repr(value), 60)}: expected "
                 '"constant", "exp", a table [[τ, Q], ...] or {tau = [...], Q = [...]}'
             )
         return Pressure(value)  # type: ignore[arg-type]

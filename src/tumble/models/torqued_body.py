@@ -34,7 +34,7 @@ from tumble._typing import BoolArray, FloatArray
 from tumble.averaging import nearest_resonance, triaxial_average_vector
 from tumble.bodies import RigidBody
 from tumble.dynamics import rigid_body_kernel, rigid_body_rhs
-from tumble.errors import ParameterError, ScenarioError, check_range
+from tumble.errors import ParameterError, ScenarioError, check_range, shorten
 from tumble.kernels import Kernel
 from tumble.kernels.rhs import rigid_body
 from tumble.models.base import (
@@ -675,9 +675,9 @@ def _term_tables(inputs: Inputs) -> list[dict[str, Any]]:
     for i, raw in enumerate(torque):
         kind = raw.get("kind")
         if not isinstance(kind, str) or kind not in TERMS:
-            shown = repr(kind) if len(repr(kind)) <= 60 else repr(kind)[:57] + "..."
             raise ScenarioError(
-                f"torque[{i}].kind = {shown} is not a torque (allowed: {', '.join(TERMS)})"
+                f"torque[{i}].kind = {shorten(repr(kind), 60)} is not a torque "
+                f"(allowed: {', '.join(TERMS)})"
             )
         term = inputs.validate(TERMS[kind], raw, f"torque[{i}]")
         if kind == "user":

@@ -23,6 +23,12 @@ def test_sigint_during_a_long_run_exits_cleanly(tmp_path):
     assert "t_end = 2e5" in text  # the example's horizon as written there
     scenario = tmp_path / "long.toml"
     scenario.write_text(text)
+    # Compile first (a fresh clone has no cache): the trials below interrupt the integration,
+    # not numba's first compilation, which takes longer than their window.
+    warm = tmp_path / "warm.toml"
+    warm.write_text(text.replace("t_end = 2e5", "t_end = 1.0"))
+    subprocess.run([TUMBLE, "run", str(warm), "-o", str(tmp_path / "warm")], check=True,
+                   capture_output=True)  # fmt: skip
     rng = random.Random(7)  # seeded moments, each well inside the integration
     for trial in range(3):
         out = tmp_path / f"out{trial}"

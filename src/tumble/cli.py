@@ -81,6 +81,14 @@ def _guarded(work: Callable[[], Any]) -> Any:
         raise typer.Exit(1) from None
 
 
+Overwrite = Annotated[
+    bool,
+    typer.Option(
+        "--overwrite",
+        help="replace OUT even if it holds another run's results or files tumble did not write",
+    ),
+]
+
 AllowModule = Annotated[
     list[str] | None,
     typer.Option(
@@ -92,10 +100,15 @@ AllowModule = Annotated[
 
 
 def _load(scenario: Path, allow_module: list[str] | None) -> Any:
-    """The validated scenario, with a line naming every file of user code it runs."""
-    from tumble.io import load_scenario
+    """The validated scenario, with a line naming every file of user code it runs. A file
+    that cannot be read or is not TOML is reported before the models load (in a few tenths
+    of a second)."""
+    from tumble.io.toml import read_file
 
-    sc = load_scenario(scenario, allow_modules=allow_module or ())
+    data = read_file(scenario)
+    from tumble.io.scenario import parse_scenario
+
+    sc = parse_scenario(data, str(scenario), allow_modules=allow_module or ())
     for origin in sc.user_code:
         err.print(f"runs user code from {origin}", highlight=False, soft_wrap=True)
     return sc
@@ -114,20 +127,30 @@ def _interrupted() -> None:
 @app.command("run")
 def run_cmd(
     scenario: Annotated[Path, typer.Argument(help="TOML scenario file")],
-    out_dir: Annotated[Path, typer.Option("-o", "--out", help="output directory")] = Path("out"),
+    out_dir: Annotated[
+        Path | None,
+        typer.Option("-o", "--out", help="output directory [default: out/SCENARIO-NAME]"),
+    ] = None,
     allow_module: AllowModule = None,
+    overwrite: Overwrite = False,
 ) -> None:
-    """Run a scenario: CSV per method, summary.json and a figure in OUT.
+    """Run a scenario: CSV per method, summary.json, a figure and manifest.json in OUT.
+
+    OUT is checked before the computation and its contents replaced as one set once the run
+    has succeeded; a directory holding another scenario's results is refused (--overwrite).
 
     A scenario that names a torque function (torque = "file:function") runs that code: it
     is loaded from the Python file beside the scenario, and tumble prints which.
     """
-    from tumble.app.runner import run
-    from tumble.plot.settings import figure_settings
-
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", TumbleWarning)
-        result = _guarded(lambda: run(_load(scenario, allow_module), out_dir))
+        sc = _guarded(lambda: _load(scenario, allow_module))
+        from tumble.app.runner import run
+
+        out_dir = out_dir or Path("out") / scenario.stem
+        result = _guarded(lambda: run(sc, out_dir, overwrite=overwrite))
+    from tumble.plot.settings import figure_settings
+
     _print_warnings(caught)
 
     model = result.request.model
@@ -181,14 +204,16 @@ def _print_warnings(caught: list[warnings.WarningMessage]) -> None:
 @app.command("verify")
 def verify_cmd(
     scenario: Annotated[Path, typer.Argument(help="TOML scenario file")],
-    out_dir: Annotated[Path, typer.Option("-o", "--out", help="output directory")] = Path(
-        "out/verify"
-    ),
+    out_dir: Annotated[
+        Path | None,
+        typer.Option("-o", "--out", help="output directory [default: out/SCENARIO-NAME_verify]"),
+    ] = None,
     strict: Annotated[
         bool,
         typer.Option("--strict", help="exit 4 unless the verdict is first-order accurate or exact"),
     ] = False,
     allow_module: AllowModule = None,
+    overwrite: Overwrite = False,
 ) -> None:
     """Measure the averaging error: full and averaged at ε, ε/2, ε/4 over one slow horizon.
 
@@ -196,11 +221,13 @@ def verify_cmd(
     errors, the fitted orders and the verdict. A torque function the scenario names runs, as
     with run.
     """
-    from tumble.app.runner import verify
-
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", TumbleWarning)
-        result = _guarded(lambda: verify(_load(scenario, allow_module), out_dir))
+        sc = _guarded(lambda: _load(scenario, allow_module))
+        from tumble.app.runner import verify
+
+        out_dir = out_dir or Path("out") / f"{scenario.stem}_verify"
+        result = _guarded(lambda: verify(sc, out_dir, overwrite=overwrite))
     _print_warnings(caught)
     symbol = {"tau": "τ"}.get(result.time_name, result.time_name)
     horizon = "ε" + symbol if result.eps[0] > 0.0 else symbol
@@ -235,9 +262,9 @@ def verify_cmd(
 @app.command("models")
 def models_cmd() -> None:
     """List the models, each with its paper."""
-    from tumble.models import MODELS
+    from tumble.catalogue import CATALOGUE
 
-    for name, rec in MODELS.items():
+    for name, rec in CATALOGUE.items():
         paper = f"  [dim]({rec.paper})[/dim]" if rec.paper is not None else ""
         out.print(f"[bold]{name}[/bold]: {rec.description}{paper}", highlight=False)
 
@@ -629,11 +656,14 @@ def sweep_cmd(
     only the others. A torque function the base scenario names (torque = "file:function")
     runs on every worker: each loads it from the Python file beside the scenario.
     """
-    from tumble.app.sweep import sweep
+    from tumble.io.toml import read_file
 
     if scheduler is not None and workers is not None:
         err.print("[red]error:[/red] --workers applies to the local cluster, not --scheduler")
         raise typer.Exit(2)
+    _guarded(lambda: read_file(sweep_file, "sweep file"))  # a broken file, before Dask loads
+    from tumble.app.sweep import sweep
+
     try:
         with _sweep_progress() as progress:
             result = _guarded(
@@ -739,6 +769,7 @@ def reproduce_cmd(
     out_dir: Annotated[Path, typer.Option("-o", "--out", help="output directory")] = Path(
         "out/reproduce"
     ),
+    overwrite: Overwrite = False,
 ) -> None:
     """Check every claim of the papers: report.html (figures embedded), claims.json, figures/.
 
@@ -757,7 +788,9 @@ def reproduce_cmd(
         def progress(done: int, total: int, cid: str) -> None:
             bar.update(task, completed=done, total=total, description=f"claims ({cid})")
 
-        result = _guarded(lambda: reproduce(papers or ["all"], out_dir, progress=progress))
+        result = _guarded(
+            lambda: reproduce(papers or ["all"], out_dir, progress=progress, overwrite=overwrite)
+        )
     colour = {"confirmed": "green", "confirmed with qualification": "yellow", "refuted": "red"}
     table = Table(title=f"claims of the papers ({result.wall_time:.0f} s)", title_justify="left")
     for col in ("id", "claim", "verdict", "measured"):

@@ -91,3 +91,14 @@ def test_the_unperturbed_motion_solves_the_full_equations_at_zero(name):
 
 def test_every_paper_model_declares_its_unperturbed_motion():
     assert all(MODELS[name].unperturbed for name in MODELS if MODELS[name].paper)
+
+
+def test_the_catalogue_lists_every_shipped_model_as_registered():
+    # `tumble models` reads the catalogue without loading the models: it must say what the
+    # registry says, in the same order.
+    from tumble.catalogue import CATALOGUE
+
+    shipped = [m for m in MODELS.values() if m.name in CATALOGUE]
+    assert [m.name for m in shipped] == list(CATALOGUE)
+    for m in shipped:
+        assert (m.description, m.paper) == (CATALOGUE[m.name].description, CATALOGUE[m.name].paper)

@@ -20,7 +20,7 @@ from pathlib import Path
 from tumble.analysis.claims import CLAIMS
 from tumble.analysis.claims.base import PAPERS, Claim
 from tumble.errors import ParameterError, TumbleWarning
-from tumble.io.output import write_outputs
+from tumble.io.fileset import output_set
 from tumble.io.report import ClaimRun, claims_json, report_html
 from tumble.plot.claims import claim_png
 
@@ -79,12 +79,14 @@ def reproduce(
     out_dir: str | Path,
     *,
     progress: Callable[[int, int, str], None] | None = None,
+    overwrite: bool = False,
 ) -> ReproduceResult:
     """Check every claim of the chosen papers and write the report to ``out_dir``.
 
     Writes ``report.html`` (self-contained: figures embedded, opens offline),
     ``claims.json`` (every claim's verdict, measured figure, time and figure file) and
-    ``figures/<id>.png``, each atomically, once every claim has run.
+    ``figures/<id>.png`` and ``manifest.json``, as one set once every claim has run (the
+    directory is checked first: :func:`tumble.io.fileset.output_set`).
 
     Parameters
     ----------
@@ -94,23 +96,26 @@ def reproduce(
         Output directory (created if needed).
     progress : callable, optional
         ``progress(done, total, claim_id)`` after each claim.
+    overwrite : bool
+        Replace the directory's contents even when they are another run's results.
 
     Returns
     -------
     ReproduceResult
     """
     chosen = _papers(papers)
-    start = time.perf_counter()
-    checks = [(p, c) for p in chosen for c in CLAIMS[p]]
-    runs = []
-    for i, (paper, check) in enumerate(checks):
-        runs.append(check_claim(paper, check))
-        if progress is not None:
-            progress(i + 1, len(checks), runs[-1].id)
-    wall = time.perf_counter() - start
-    files = {f"figures/{r.id}.png": r.png for r in runs if r.png}
-    files["claims.json"] = claims_json(runs, chosen, wall).encode()
-    files["report.html"] = report_html(runs, chosen, wall).encode()
-    out = Path(out_dir)
-    (out / "figures").mkdir(parents=True, exist_ok=True)
-    return ReproduceResult(runs, write_outputs(out, files), wall)
+    with output_set(
+        out_dir, command="reproduce", scenario=" ".join(chosen), overwrite=overwrite
+    ) as out:
+        start = time.perf_counter()
+        checks = [(p, c) for p in chosen for c in CLAIMS[p]]
+        runs = []
+        for i, (paper, check) in enumerate(checks):
+            runs.append(check_claim(paper, check))
+            if progress is not None:
+                progress(i + 1, len(checks), runs[-1].id)
+        wall = time.perf_counter() - start
+        files = {f"figures/{r.id}.png": r.png for r in runs if r.png}
+        files["claims.json"] = claims_json(runs, chosen, wall).encode()
+        files["report.html"] = report_html(runs, chosen, wall).encode()
+        return ReproduceResult(runs, out.commit(files), wall)

@@ -22,14 +22,9 @@ import numpy as np
 from tumble.analysis import RunResult, VerifyResult
 from tumble.analysis import run as run_request
 from tumble.analysis import verify as verify_request
-from tumble.io import (
-    Scenario,
-    load_scenario,
-    output_dir,
-    render_outputs,
-    verify_outputs,
-    write_outputs,
-)
+from tumble.io.fileset import OutputSet, output_set
+from tumble.io.output import render_outputs, verify_outputs
+from tumble.io.scenario import Scenario, load_scenario
 from tumble.plot import (
     FigureSettings,
     figure_settings,
@@ -92,13 +87,17 @@ def _png(fig: Any) -> bytes:
 
 
 @contextlib.contextmanager
-def _held(out_dir: str | Path | None) -> Iterator[Path | None]:
-    """The output directory held for a whole run (:func:`tumble.io.output_dir`): checked and
-    locked before the computation; None when nothing is to be written."""
+def _held(
+    out_dir: str | Path | None, command: str, sc: Scenario, overwrite: bool
+) -> Iterator[OutputSet | None]:
+    """The output directory held for a whole run (:func:`tumble.io.fileset.output_set`):
+    checked and locked before the computation; None when nothing is to be written."""
     if out_dir is None:
         yield None
         return
-    with output_dir(out_dir) as out:
+    with output_set(
+        out_dir, command=command, scenario=sc.source, inputs=sc.inputs, overwrite=overwrite
+    ) as out:
         yield out
 
 
@@ -106,15 +105,18 @@ def _scenario(scenario: str | Path | Scenario) -> Scenario:
     return scenario if isinstance(scenario, Scenario) else load_scenario(scenario)
 
 
-def run(scenario: str | Path | Scenario, out_dir: str | Path | None = None) -> RunResult:
+def run(
+    scenario: str | Path | Scenario, out_dir: str | Path | None = None, *, overwrite: bool = False
+) -> RunResult:
     """Run a scenario, and write its outputs to ``out_dir`` if one is given.
 
     The outputs are ``<method>.csv`` for every method (plus ``<method>_si.csv`` for
     physical-units scenarios and ``averaged_diagnostics.csv`` where the model has diagnostics),
     ``summary.json`` and the model's figure (``comparison.png``, ``evolution.png``); with
     ``[run] verify = true`` also the files of :func:`verify` and the verdict in
-    ``summary.json``. Nothing is written unless the whole run succeeds; each file is replaced
-    atomically.
+    ``summary.json``, and ``manifest.json`` (inputs, file sizes and hashes). The directory is
+    checked before the computation and its files replaced as one set once the whole run has
+    succeeded (:func:`tumble.io.fileset.output_set`).
 
     Parameters
     ----------
@@ -122,13 +124,15 @@ def run(scenario: str | Path | Scenario, out_dir: str | Path | None = None) -> R
         A TOML scenario file, or a scenario already loaded (:func:`tumble.load_scenario`).
     out_dir : str or Path, optional
         Output directory (created if needed); None writes nothing.
+    overwrite : bool
+        Replace the directory's contents even when they are another run's results.
 
     Returns
     -------
     RunResult
     """
     sc = _scenario(scenario)
-    with _held(out_dir) as out:
+    with _held(out_dir, "run", sc, overwrite) as out:
         result = run_request(sc.request)
         verification = verify_request(sc.request) if sc.request.verify else None
         if out is not None:
@@ -137,17 +141,20 @@ def run(scenario: str | Path | Scenario, out_dir: str | Path | None = None) -> R
             files[_settings(result).file] = _figure_png(result, title)
             if verification is not None:
                 files["verify.png"] = _png(plot_verify(verification, title=f"verify {title}"))
-            write_outputs(out, files)
+            out.commit(files)
     return replace(result, verification=verification)
 
 
-def verify(scenario: str | Path | Scenario, out_dir: str | Path | None = None) -> VerifyResult:
+def verify(
+    scenario: str | Path | Scenario, out_dir: str | Path | None = None, *, overwrite: bool = False
+) -> VerifyResult:
     """Measure the averaging error of a scenario at ε, ε/2 and ε/4, and write its files to
     ``out_dir`` if one is given.
 
     Runs full and averaged at each ε over the scenario's slow horizon ε·t_end
     (:func:`tumble.analysis.verify`); the files are ``verify.csv``, ``verify_curves.csv``,
-    ``verify.json`` and ``verify.png``, written atomically once all runs are done.
+    ``verify.json``, ``verify.png`` and ``manifest.json``, written as one set once all runs are
+    done.
 
     Parameters
     ----------
@@ -156,17 +163,19 @@ def verify(scenario: str | Path | Scenario, out_dir: str | Path | None = None) -
         averaged always run).
     out_dir : str or Path, optional
         Output directory (created if needed); None writes nothing.
+    overwrite : bool
+        Replace the directory's contents even when they are another run's results.
 
     Returns
     -------
     VerifyResult
     """
     sc = _scenario(scenario)
-    with _held(out_dir) as out:
+    with _held(out_dir, "verify", sc, overwrite) as out:
         result = verify_request(sc.request)
         if out is not None:
             files = verify_outputs(result, sc.source)
             title = f"verify {sc.request.model.name}: {Path(sc.source).name}"
             files["verify.png"] = _png(plot_verify(result, title=title))
-            write_outputs(out, files)
+            out.commit(files)
     return result

@@ -1,26 +1,56 @@
-"""Files and formats: scenario files in, CSV and JSON out."""
+"""Files and formats: scenario files in; CSV, JSON and output sets out.
 
-from tumble.io.output import (
-    atomic_write,
-    csv_text,
-    output_dir,
-    render_outputs,
-    summary,
-    verify_outputs,
-    write_outputs,
-)
-from tumble.io.scenario import Scenario, load_scenario, parse_scenario, template
+Names load their module on first use, so that ``tumble.io.fileset`` comes without xarray or
+the models.
+"""
+
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
+# Public name → the module that defines it.
+_EXPORTS: dict[str, str] = {
+    "Scenario": "tumble.io.scenario",
+    "load_scenario": "tumble.io.scenario",
+    "parse_scenario": "tumble.io.scenario",
+    "template": "tumble.io.scenario",
+    "atomic_write": "tumble.io.output",
+    "csv_text": "tumble.io.output",
+    "render_outputs": "tumble.io.output",
+    "summary": "tumble.io.output",
+    "verify_outputs": "tumble.io.output",
+    "output_set": "tumble.io.fileset",
+}
 
 __all__ = [
     "Scenario",
     "atomic_write",
     "csv_text",
     "load_scenario",
-    "output_dir",
+    "output_set",
     "parse_scenario",
     "render_outputs",
     "summary",
     "template",
     "verify_outputs",
-    "write_outputs",
 ]
+
+if TYPE_CHECKING:
+    from tumble.io.fileset import output_set
+    from tumble.io.output import atomic_write, csv_text, render_outputs, summary, verify_outputs
+    from tumble.io.scenario import Scenario, load_scenario, parse_scenario, template
+
+
+def __getattr__(name: str) -> Any:
+    """Load a public name's module on first use (PEP 562)."""
+    module = _EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f"module 'tumble.io' has no attribute {name!r}")
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted({*globals(), *_EXPORTS})

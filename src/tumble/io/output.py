@@ -1,18 +1,17 @@
-"""Output files of a run: CSV per method, summary.json, written atomically.
+"""Output files of a run rendered as bytes: CSV per method, summary.json, verify files.
 
-Every file is first written to a temporary file in the target directory and then moved into
-place with ``os.replace``, so a reader never sees half a file and an interrupted run leaves the
-previous outputs intact. All texts are rendered before the first file is written.
+Rendering is apart from writing: every text is ready before the first file is written, and
+:mod:`tumble.io.fileset` writes a run's files as one set. :func:`atomic_write` replaces a
+single file (a figure, a benchmark report) through a temporary file and ``os.replace``, so a
+reader never sees half a file.
 """
 
 from __future__ import annotations
 
-import contextlib
 import io
 import json
 import os
 import tempfile
-from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -22,22 +21,14 @@ import xarray as xr
 from tumble._version import __version__
 from tumble.analysis import RunResult, VerifyResult
 from tumble.analysis.claims.base import plain  # numpy → JSON values, shared with the claims
-from tumble.errors import OutputError
-
-try:  # POSIX; elsewhere the directory is checked but not locked
-    import fcntl
-except ImportError:  # pragma: no cover - Windows
-    fcntl = None  # type: ignore[assignment]
 
 __all__ = [
     "atomic_write",
     "csv_text",
-    "output_dir",
     "render_outputs",
     "summary",
     "table_text",
     "verify_outputs",
-    "write_outputs",
 ]
 
 
@@ -213,55 +204,3 @@ def verify_outputs(result: VerifyResult, source: str) -> dict[str, bytes]:
         "verify_curves.csv": table_text(("eps", "slow_time", "variable", "error"), curves).encode(),
         "verify.json": (text + "\n").encode(),
     }
-
-
-@contextlib.contextmanager
-def output_dir(out_dir: str | Path) -> Iterator[Path]:
-    """Hold ``out_dir`` for one run, from before its computation to its last file.
-
-    Checks at once that the directory can take the results (created if needed; a probe
-    file written and removed), so that a read-only directory or ``-o some_file`` fails
-    before the computation, not after it; locks it (``.tumble.lock``), so that a second
-    run into the same directory is refused while the first one holds it, rather than the
-    two overwriting each other's files; and, under the lock, removes the temporary files
-    a run killed while writing left behind. :class:`~tumble.errors.OutputError` (one line,
-    exit 2) when the directory cannot be used.
-    """
-    out = Path(out_dir)
-    if out.exists() and not out.is_dir():
-        raise OutputError(f"-o {out}: exists and is not a directory")
-    try:
-        out.mkdir(parents=True, exist_ok=True)
-        fd, probe = tempfile.mkstemp(dir=out, prefix=".tumble-probe-", suffix=".tmp")
-        os.close(fd)
-        os.unlink(probe)
-        lock = open(out / ".tumble.lock", "a+")
-    except OSError as exc:
-        raise OutputError(f"-o {out}: cannot write there ({exc.strerror})") from None
-    try:
-        try:
-            if fcntl is not None:
-                fcntl.flock(lock.fileno(), fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except OSError:
-            raise OutputError(
-                f"-o {out}: another tumble run is writing there; wait for it or choose "
-                "another directory"
-            ) from None
-        for stale in out.glob(".*.tmp"):  # atomic_write's temporaries of a killed run
-            with contextlib.suppress(OSError):
-                stale.unlink()
-        yield out
-    finally:
-        lock.close()  # releases the lock
-
-
-def write_outputs(out_dir: str | Path, files: dict[str, bytes]) -> list[Path]:
-    """Create ``out_dir`` if needed and write every file atomically; return the paths (inside
-    :func:`output_dir` when the caller holds the directory for the whole run)."""
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    paths = []
-    for name, data in files.items():
-        atomic_write(out / name, data)
-        paths.append(out / name)
-    return paths

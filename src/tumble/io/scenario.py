@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import difflib
 import math
-import tomllib
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from functools import cache
@@ -35,6 +34,7 @@ from pydantic import (
 from tumble.analysis import RunRequest
 from tumble.errors import ParameterError, ScenarioError, shorten
 from tumble.integrate import MAX_STEPS, check_times
+from tumble.io.toml import read_file
 from tumble.io.user_code import UserFunction, user_function
 from tumble.models import MODELS, AnyModel, get_model
 from tumble.models.base import AveragingOptions
@@ -552,23 +552,6 @@ def key_units(data: dict[str, Any], path: tuple[str | int, ...]) -> str:
     return "" if "," in unit else unit
 
 
-def read_toml(raw: bytes, where: str) -> dict[str, Any]:
-    """A TOML document from its bytes; ScenarioError in one line for anything that is not
-    UTF-8 TOML of sane depth."""
-    try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise ScenarioError(
-            f"{where}: not UTF-8 text (byte 0x{raw[exc.start]:02x} at position {exc.start})"
-        ) from None
-    try:
-        return tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise ScenarioError(f"{where}: not valid TOML ({shorten(str(exc))})") from None
-    except RecursionError:
-        raise ScenarioError(f"{where}: arrays or tables nested too deeply") from None
-
-
 def load_scenario(path: str | Path, *, allow_modules: Iterable[str] = ()) -> Scenario:
     """Read and validate a TOML scenario file.
 
@@ -582,13 +565,7 @@ def load_scenario(path: str | Path, *, allow_modules: Iterable[str] = ()) -> Sce
     allow_modules : iterable of str
         Importable modules the scenario may name functions of, besides files.
     """
-    path = Path(path)
-    try:
-        raw = path.read_bytes()
-    except OSError as exc:
-        raise ScenarioError(f"{path}: cannot read the scenario ({exc.strerror})") from None
-    data = read_toml(raw, str(path))
-    return parse_scenario(data, str(path), allow_modules=allow_modules)
+    return parse_scenario(read_file(path), str(path), allow_modules=allow_modules)
 
 
 def template(model: str) -> str:

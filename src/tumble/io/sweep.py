@@ -44,7 +44,8 @@ from tumble._version import __version__
 from tumble.analysis.sweep import Axis, Draw, Keep, Record, SweepPlan, column_attrs
 from tumble.errors import ParameterError, ScenarioError
 from tumble.io.output import atomic_write
-from tumble.io.scenario import _one_line, key_units, parse_scenario, read_toml
+from tumble.io.scenario import _one_line, key_units, parse_scenario
+from tumble.io.toml import read_file, read_toml
 from tumble.models import AnyModel
 
 __all__ = [
@@ -433,11 +434,7 @@ def _keep(sf: SweepFile, model: AnyModel) -> Keep:
 def load_sweep(path: str | Path, *, allow_modules: Iterable[str] = ()) -> Sweep:
     """Read and validate a sweep file (TOML)."""
     path = Path(path)
-    try:
-        raw = path.read_bytes()
-    except OSError as exc:
-        raise ScenarioError(f"{path}: cannot read the sweep file ({exc.strerror})") from None
-    return parse_sweep(read_toml(raw, str(path)), path, allow_modules=allow_modules)
+    return parse_sweep(read_file(path, "sweep file"), path, allow_modules=allow_modules)
 
 
 class SweepStore:

@@ -23,6 +23,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from tumble._typing import ArrayLike, ComplexArray, FloatArray, Json
+from tumble.catalogue import Paper
 from tumble.errors import ParameterError
 from tumble.kernels import Kernel
 from tumble.models.schema import ScenarioSchema
@@ -384,18 +385,6 @@ class Report:
         default_factory=dict
     )
     summary: Mapping[str, Json] = field(default_factory=dict)
-
-
-@dataclass(frozen=True, slots=True)
-class Paper:
-    """The paper a model implements."""
-
-    author: str
-    year: int
-    title: str  # in English
-
-    def __str__(self) -> str:
-        return f"{self.author} ({self.year}), {self.title}"
 
 
 @dataclass(frozen=True)

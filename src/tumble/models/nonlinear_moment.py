@@ -39,6 +39,7 @@ from tumble.averaging.nutation import (
     potential_gradient,
     torque_perturbation,
 )
+from tumble.catalogue import CATALOGUE
 from tumble.errors import IntegrationError, ParameterError, ScenarioError, check_range, shorten
 from tumble.kernels import EVENT_THETA_DOT, KIND_NONLINEAR_MOMENT, Kernel
 from tumble.kernels.rhs import evaluate_event, symmetric_body
@@ -54,7 +55,6 @@ from tumble.models.base import (
     FullForm,
     Json,
     Model,
-    Paper,
     Report,
     Sampled,
     SlowPath,
@@ -1358,15 +1358,12 @@ SCENARIO: ScenarioSchema[Params, State] = ScenarioSchema(
 )
 
 
+_ENTRY = CATALOGUE["nonlinear_moment"]  # name, description and paper
+
 MODEL: Model[Params, State] = Model(
-    name="nonlinear_moment",
-    description="symmetric body under M0 = A(a·sinθ + b·sin2θ): exact motion, Volosov averaging",
-    paper=Paper(
-        "V. M. Serov",
-        1991,
-        "Rotational motion of a dynamically symmetric rigid body under the action of a "
-        "nonlinear moment",
-    ),
+    name=_ENTRY.name,
+    description=_ENTRY.description,
+    paper=_ENTRY.paper,
     time=Column("t", "time t", "t"),
     full=Full(
         forms={"quaternion": FULL_QUATERNION, "reduced": FULL_REDUCED},

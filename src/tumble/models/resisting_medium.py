@@ -24,6 +24,7 @@ import numpy as np
 from tumble._typing import ArrayLike, FloatArray, Json
 from tumble.averaging.spinner import body_momentum, spinner_average, standard_form
 from tumble.bodies import RigidBody
+from tumble.catalogue import CATALOGUE
 from tumble.dynamics import rigid_body_kernel
 from tumble.errors import (
     IntegrationError,
@@ -43,7 +44,6 @@ from tumble.models.base import (
     Full,
     FullForm,
     Model,
-    Paper,
     SlowPath,
     Unperturbed,
     Validity,
@@ -1431,17 +1431,12 @@ SCENARIO: ScenarioSchema[Params, State] = ScenarioSchema(
 _COLUMNS_FULL_OF = fixed_columns(_COLUMNS_FULL)
 _COLUMNS_SLOW_OF = fixed_columns(_COLUMNS_SLOW)
 
+_ENTRY = CATALOGUE["resisting_medium"]  # name, description and paper
+
 MODEL: Model[Params, State] = Model(
-    name="resisting_medium",
-    description=(
-        "fast-spinning symmetric gyroscope, constant body-fixed moment + linear and quadratic "
-        "drag of a resisting medium"
-    ),
-    paper=Paper(
-        "A. V. Medvedev",
-        1987,
-        "Motion of a fast-spinning gyroscope under a constant moment in a resisting medium",
-    ),
+    name=_ENTRY.name,
+    description=_ENTRY.description,
+    paper=_ENTRY.paper,
     time=Column("tau", "time τ", "1"),
     full=Full(
         forms={"euler": FULL_EULER, "osculating": FULL_OSCULATING},

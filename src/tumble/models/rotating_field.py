@@ -27,6 +27,7 @@ from scipy.special import ellipe, ellipj, ellipk
 from tumble._typing import ArrayLike, BoolArray, FloatArray
 from tumble.averaging.triaxial import triaxial_average_vector
 from tumble.bodies import RigidBody
+from tumble.catalogue import CATALOGUE
 from tumble.dynamics import rigid_body_kernel, rigid_body_rhs
 from tumble.errors import ParameterError, ScenarioError, check_range
 from tumble.kernels import KIND_ROTATING_FIELD, Kernel
@@ -41,7 +42,6 @@ from tumble.models.base import (
     Full,
     FullForm,
     Model,
-    Paper,
     SlowPath,
     StationaryMotion,
     Unperturbed,
@@ -1380,14 +1380,12 @@ def _check_method(p: Params, method: str) -> None:
     """Every method applies to every valid parameter set (ε = 0 averages to no evolution)."""
 
 
+_ENTRY = CATALOGUE["rotating_field"]  # name, description and paper
+
 MODEL: Model[Params, State] = Model(
-    name="rotating_field",
-    description="triaxial conducting body in a rotating magnetic field (eddy-current torque)",
-    paper=Paper(
-        "Yu. G. Martynenko",
-        1979,
-        "On the stability of stationary rotations of a rigid body in a magnetic field",
-    ),
+    name=_ENTRY.name,
+    description=_ENTRY.description,
+    paper=_ENTRY.paper,
     time=Column("tau", "time τ", "1"),
     full=Full(
         forms={"rotating": FULL_ROTATING, "inertial": FULL_INERTIAL},

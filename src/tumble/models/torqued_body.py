@@ -33,6 +33,7 @@ import numpy as np
 from tumble._typing import BoolArray, FloatArray
 from tumble.averaging import nearest_resonance, triaxial_average_vector
 from tumble.bodies import RigidBody
+from tumble.catalogue import CATALOGUE
 from tumble.dynamics import rigid_body_kernel, rigid_body_rhs
 from tumble.errors import ParameterError, ScenarioError, check_range, shorten
 from tumble.kernels import Kernel
@@ -727,10 +728,12 @@ SCENARIO: ScenarioSchema[Params, State] = ScenarioSchema(
 )
 
 
+_ENTRY = CATALOGUE["torqued_body"]  # name, description and paper
+
 MODEL: Model[Params, State] = Model(
-    name="torqued_body",
-    description="triaxial rigid body under any small torque, averaged by the general engine",
-    paper=None,  # the triaxial averaging of the rotating-field paper, for any torque
+    name=_ENTRY.name,
+    description=_ENTRY.description,
+    paper=_ENTRY.paper,
     time=Column("t", "time t", "t"),
     full=Full(
         forms={"quaternion": FULL}, default="quaternion", columns=fixed_columns(_COLUMNS_FULL)

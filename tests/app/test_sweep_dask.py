@@ -318,3 +318,35 @@ def test_same_named_user_modules_on_one_cluster(cluster, tmp_path):
         # One compiled-or-scipy integration of the same equations at rtol 1e-10 each side.
         assert finals[name][0] == pytest.approx(here.columns["L1"][-1], rel=1e-8), name
     assert not np.allclose(finals["a"], finals["b"])
+
+
+def test_a_point_that_breaks_fails_alone_without_a_traceback(cluster, tmp_path):
+    """A point whose run raises an error tumble did not anticipate (here, a user torque that
+    divides by zero during one point's run) fails with that reason; the other points of its
+    chunk, and the sweep, complete; no traceback reaches the workers' output."""
+    (tmp_path / "user_torques.py").write_text(
+        "def flaky(t, q, omega, params):\n"
+        "    if t > 1.0 and params['bad'] == 2:\n"
+        "        return 1.0 / 0.0\n"
+        "    return [0.1, 0.0, 0.0] + 0.0 * omega\n"
+    )
+    (tmp_path / "base.toml").write_text(
+        USER_BASE.replace(":constant", ":flaky") + "[torque_params]\nbad = 1\n"
+    )
+    (tmp_path / "sweep.toml").write_text(
+        'base = "base.toml"\n[[axis]]\nkey = "torque_params.bad"\nvalues = [1, 2, 3]\n'
+        "[sweep]\nchunk = 3\n"
+    )
+    cluster.log.flush()
+    seen = (cluster.root / "cluster.log").stat().st_size
+    result = sweep(tmp_path / "sweep.toml", tmp_path / "out", scheduler=cluster.address, plot=False)
+    ds = result.dataset
+    assert ds["status"].values.tolist() == [0, 1, 0] and result.failed == 1
+    reason = str(ds["reason"].values[1])
+    assert reason.startswith("internal error: ZeroDivisionError"), reason
+    assert "user_torques.py" in reason, reason
+    assert np.isfinite(ds["final_L1"].values[[0, 2]]).all()
+    time.sleep(0.5)  # the workers' log lines of this sweep, if any, are written
+    with open(cluster.root / "cluster.log", encoding="utf-8", errors="replace") as fh:
+        fh.seek(seen)
+        assert "Traceback" not in fh.read()

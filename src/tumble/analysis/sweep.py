@@ -16,9 +16,11 @@ from __future__ import annotations
 
 import math
 import time
+import traceback
 import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any, Literal
 
 import numpy as np
@@ -28,7 +30,7 @@ from tumble._typing import FloatArray
 from tumble.analysis.run import RunRequest, run
 from tumble.analysis.stability import CLASSES, analyze
 from tumble.analysis.verify import verify
-from tumble.errors import ParameterError, TumbleError, TumbleWarning
+from tumble.errors import ParameterError, TumbleError, TumbleWarning, shorten
 
 __all__ = [
     "STATUS",
@@ -38,6 +40,7 @@ __all__ = [
     "SweepPlan",
     "column_attrs",
     "failed_record",
+    "internal_reason",
     "records_to_dataset",
     "run_point",
 ]
@@ -371,9 +374,19 @@ def run_point(
                 },
             }
     except TumbleError as exc:
-        record = {**record, "status": 1, "reason": f"{type(exc).__name__}: {exc}"}
+        record = {**record, "status": 1, "reason": f"{type(exc).__name__}: {shorten(str(exc))}"}
+    except Exception as exc:  # a defect met by this point alone: recorded, never its chunk's
+        record = {**record, "status": 1, "reason": internal_reason(exc)}
     record["wall_time"] = time.perf_counter() - start
     return record
+
+
+def internal_reason(exc: BaseException) -> str:
+    """The reason recorded for a point that met an error tumble did not anticipate: the
+    exception and where it arose, in one line (no traceback reaches the user)."""
+    frames = traceback.extract_tb(exc.__traceback__)
+    where = f" (at {Path(frames[-1].filename).name}:{frames[-1].lineno})" if frames else ""
+    return f"internal error: {type(exc).__name__}: {shorten(str(exc))}{where}"
 
 
 def failed_record(reason: str) -> Record:

@@ -31,8 +31,15 @@ import numpy as np
 import xarray as xr
 
 from tumble.analysis.run import RunRequest
-from tumble.analysis.sweep import Keep, Record, failed_record, records_to_dataset, run_point
-from tumble.errors import ScenarioError, TumbleError
+from tumble.analysis.sweep import (
+    Keep,
+    Record,
+    failed_record,
+    internal_reason,
+    records_to_dataset,
+    run_point,
+)
+from tumble.errors import ScenarioError, TumbleError, shorten
 from tumble.integrate import Trajectory, simulate_batch
 from tumble.io.scenario import parse_scenario
 from tumble.io.sweep import Sweep, SweepStore, load_sweep, point_scenario
@@ -98,15 +105,18 @@ def _batched(requests: Sequence[RunRequest | None]) -> list[dict[str, Trajectory
     for members in groups.values():
         first = requests[members[0]]
         assert first is not None
-        trajs = simulate_batch(
-            first.model,
-            [requests[i].params for i in members],  # type: ignore[union-attr]
-            [requests[i].initial for i in members],  # type: ignore[union-attr]
-            first.tau,
-            rtol=first.rtol,
-            atol=first.atol,
-            max_steps=first.max_steps,
-        )
+        try:
+            trajs = simulate_batch(
+                first.model,
+                [requests[i].params for i in members],  # type: ignore[union-attr]
+                [requests[i].initial for i in members],  # type: ignore[union-attr]
+                first.tau,
+                rtol=first.rtol,
+                atol=first.atol,
+                max_steps=first.max_steps,
+            )
+        except Exception:  # each point then runs, and fails, on its own
+            continue
         for i, traj in zip(members, trajs, strict=True):
             # A point that failed in the batch is run again on its own, so that its failure
             # is reported by run() exactly as ``tumble run`` would report it.
@@ -153,7 +163,10 @@ def compute_chunk(
             requests.append(parse_scenario(point, source, allow_modules=allow_modules).request)
         except TumbleError as exc:
             requests.append(None)
-            invalid[i] = f"invalid input: {exc}"
+            invalid[i] = f"invalid input: {shorten(str(exc))}"
+        except Exception as exc:  # a defect met by this point alone: never its chunk's
+            requests.append(None)
+            invalid[i] = internal_reason(exc)
     pre = _batched(requests) if batch else [{} for _ in requests]
     records = []
     for i, req in enumerate(requests):

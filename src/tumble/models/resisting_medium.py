@@ -39,6 +39,7 @@ from tumble.models.base import (
     Averaged,
     AveragedForm,
     AveragingOptions,
+    Breakpoint,
     ClosedForm,
     Column,
     Full,
@@ -422,6 +423,8 @@ _AVERAGED_KTHETA: AveragedForm[Params, State] = AveragedForm(
     rhs=averaged_rhs,
     initial_state=lambda p, st: np.array([st.k, st.theta]),
     to_columns=_averaged_columns_ktheta,
+    # (2.2) holds |cos ϑ|: not smooth at the equator, which W crosses at most once (§8.4).
+    breakpoints=(Breakpoint(lambda t, y: math.cos(y[1])),),
 )
 _AVERAGED_WV: AveragedForm[Params, State] = AveragedForm(
     name="W_V",
@@ -430,6 +433,7 @@ _AVERAGED_WV: AveragedForm[Params, State] = AveragedForm(
     rhs=averaged_rhs_wv,
     initial_state=lambda p, st: np.array([st.W, st.V]),
     to_columns=_averaged_columns_wv,
+    breakpoints=(Breakpoint(lambda t, y: float(y[0])),),  # W|W| at W = 0, as above
 )
 
 
@@ -463,6 +467,7 @@ _AVERAGED_NUMERIC: AveragedForm[Params, State] = AveragedForm(
     rhs=averaged_rhs_numeric,
     initial_state=lambda p, st: np.array([st.k, st.rho, st.sigma, st.theta]),
     to_columns=_averaged_columns_numeric,
+    breakpoints=(Breakpoint(lambda t, y: math.cos(y[3])),),  # the equator, as above
 )
 
 

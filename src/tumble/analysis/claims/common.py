@@ -1,16 +1,21 @@
 """Pieces shared by the claim modules: tolerances, the measured record and small numerics.
 
-The thresholds of the claims follow three rules (see each module): "to integration accuracy"
-is 1e3 × rtol of the reference integration (:data:`INTEGRATION_FLOOR`), "first order" is a
-fitted order of the averaging error ≥ :data:`FIRST_ORDER`, and limits of the full model are
-judged within O(ε) of the averaged limit.
+The verdicts of the claims follow three rules (see each module): "to integration accuracy"
+is decided by convergence (:func:`converged`: the difference falls as the tolerance is
+tightened, or is within the round-off budget of the runs), never by a fixed multiple of rtol;
+"first order" is a fitted order of the averaging error ≥ :data:`FIRST_ORDER`; and limits of
+the full model are judged within O(ε) of the averaged limit.
 """
 
 from __future__ import annotations
 
+import contextlib
+import functools
 import warnings
-from collections.abc import Callable
-from typing import Any, TypedDict
+from collections.abc import Callable, Iterator
+from contextvars import ContextVar
+from dataclasses import dataclass
+from typing import Any, TypedDict, TypeVar, cast
 
 import numpy as np
 
@@ -20,14 +25,25 @@ from tumble.errors import TumbleWarning
 
 __all__ = [
     "FIRST_ORDER",
-    "INTEGRATION_FLOOR",
     "TIGHT",
+    "Convergence",
+    "Difference",
     "Tolerances",
+    "cache_per_scale",
+    "converged",
     "max_abs",
     "measured",
     "quiet",
+    "tolerance_scale",
+    "tolerances",
     "wrap",
 ]
+
+
+T = TypeVar("T")
+
+Difference = float | dict[str, float]
+"""What a compared pair of runs differs by: one figure, or one per case."""
 
 
 class Tolerances(TypedDict):
@@ -38,12 +54,166 @@ class Tolerances(TypedDict):
 
 
 TIGHT: Tolerances = {"rtol": 1e-12, "atol": 1e-14}
-"""Tolerances of the reference integrations. DOP853 at a local tolerance of 1e-12 keeps the
-global error of the O(10³)-step runs below ~1e-9 relative; every threshold "at integration
-accuracy" below is 1e3 × rtol, far above that and far below any error a wrong formula leaves
-(O(ε) ≥ 1e-3, or O(1))."""
+"""Tolerances of the reference integrations (DOP853: the global error of the O(10⁴)-step runs
+is ~1e-9 relative, far below any error a wrong formula leaves, O(ε) ≥ 1e-3 or O(1))."""
 
-INTEGRATION_FLOOR = 1e3 * TIGHT["rtol"]
+_SCALE: ContextVar[float] = ContextVar("tolerance_scale", default=1.0)
+
+LEVELS = (1.0, 10.0, 100.0, 1000.0, 10000.0)
+""":func:`converged` runs the comparison at these multiples of the claim's tolerances."""
+
+SLOPE = 0.5
+"""...and the difference must fall with the tolerance at least this fast: the slope of
+log(difference) against log(rtol), fitted over the levels. DOP853's global error goes as
+rtol^0.7–1.1 (measured on the claims' runs at 0.1, 1 and 10 × their tolerances: 0.71–1.09; one
+trajectory's error scatters by a few times around the trend as the step sequence changes,
+which the fit over four decades absorbs), while a wrong formula leaves a difference that does
+not move with the tolerance (slope ≈ 0)."""
+
+ROUNDOFF = 10.0 * float(np.finfo(float).eps)
+"""Round-off budget per right-hand-side evaluation: below ``ROUNDOFF × evaluations`` a
+difference is rounding, whatever the tolerance."""
+
+
+def tolerances(base: Tolerances = TIGHT) -> Tolerances:
+    """``base`` times the scale in force (:func:`tolerance_scale`; 1 by default)."""
+    f = _SCALE.get()
+    return {"rtol": base["rtol"] * f, "atol": base["atol"] * f}
+
+
+@contextlib.contextmanager
+def tolerance_scale(factor: float) -> Iterator[None]:
+    """Run the claims with every reference tolerance multiplied by ``factor`` (their verdicts
+    must not change: the test of the claims runs them at 0.1 and 10)."""
+    token = _SCALE.set(factor)
+    try:
+        yield
+    finally:
+        _SCALE.reset(token)
+
+
+def cache_per_scale(fn: Callable[..., T]) -> Callable[..., T]:
+    """:func:`functools.cache` for a claim's shared runs, keyed by the tolerance scale in
+    force too (the runs at another scale are other runs)."""
+
+    @functools.cache
+    def cached(scale: float, *args: Any) -> T:
+        return fn(*args)
+
+    @functools.wraps(fn)
+    def wrapper(*args: Any) -> T:
+        return cached(_SCALE.get(), *args)
+
+    return wrapper
+
+
+@dataclass(frozen=True)
+class Convergence:
+    """Two numerical results compared at several tolerances (:data:`LEVELS` × the claim's),
+    case by case: a claim may compare several runs, and each must converge on its own.
+
+    Attributes
+    ----------
+    cases : dict
+        Case → its difference at each level (the first: the claim's tolerances).
+    budget : float
+        The round-off budget of the runs (``ROUNDOFF`` × right-hand-side evaluations).
+    rtol : float
+        The claim's relative tolerance.
+    """
+
+    cases: dict[str, tuple[float, ...]]
+    budget: float
+    rtol: float
+
+    def slope(self, case: str) -> float:
+        """Fitted slope of log(difference) against log(rtol) over the levels."""
+        d = np.maximum(np.asarray(self.cases[case]), 1e-300)
+        return float(np.polyfit(np.log10(LEVELS), np.log10(d), 1)[0])
+
+    def _agrees(self, case: str) -> bool:
+        return self.cases[case][0] <= self.budget or self.slope(case) >= SLOPE
+
+    @property
+    def critical(self) -> str:
+        """The case that decides: the first that fails, else the largest difference."""
+        failing = [c for c in self.cases if not self._agrees(c)]
+        return failing[0] if failing else max(self.cases, key=lambda c: self.cases[c][0])
+
+    @property
+    def holds(self) -> bool:
+        """The results agree in every case: the difference is rounding, or integration error
+        (it falls with the tolerance at slope ≥ ``SLOPE``)."""
+        return all(self._agrees(c) for c in self.cases)
+
+    @property
+    def difference(self) -> float:
+        """The measured figure: the deciding case's difference at the claim's tolerance."""
+        return self.cases[self.critical][0]
+
+    @property
+    def threshold(self) -> str:
+        return (
+            f"slope ≥ {SLOPE:g} (measured {self.slope(self.critical):.2f}) or ≤ round-off "
+            f"budget {self.budget:.2g}"
+        )
+
+    @property
+    def criterion(self) -> str:
+        several = " in every case (the figure: the deciding case)" if len(self.cases) > 1 else ""
+        return (
+            f"agree if the difference falls with the tolerance (slope of log difference vs "
+            f"log rtol over rtol × {', '.join(f'{x:g}' for x in LEVELS)} ≥ {SLOPE:g}: "
+            f"integration error, not a discrepancy) or is within the round-off budget{several}"
+        )
+
+    def record(self) -> dict[str, Any]:
+        """The figures behind the verdict, for the claim's details."""
+        out: dict[str, Any] = {
+            "rtol": [self.rtol * x for x in LEVELS],
+            "roundoff_budget": self.budget,
+        }
+        for c, d in self.cases.items():
+            entry = {"difference": list(d), "slope": self.slope(c)}
+            if len(self.cases) == 1:
+                out.update(entry)
+            else:
+                out.setdefault("cases", {})[c] = entry
+        return out
+
+
+def converged(
+    difference: Callable[[Tolerances], tuple[Difference, int, T]],
+    base: Tolerances = TIGHT,
+) -> tuple[Convergence, T]:
+    """Compare two numerical results by convergence instead of a fixed threshold.
+
+    Parameters
+    ----------
+    difference : callable
+        ``difference(tolerances) -> (value, evaluations, payload)``: the largest difference of
+        the two results computed at those tolerances (or case → difference, for a claim that
+        compares several runs), the right-hand-side evaluations it took, and whatever the
+        claim keeps of the run (its curves).
+    base : Tolerances
+        The claim's tolerances (scaled by :func:`tolerance_scale`).
+
+    Returns
+    -------
+    Convergence, payload
+        The comparison, and the payload of the run at the claim's tolerances.
+    """
+    tol = tolerances(base)
+    values, evaluations, payload = [], 0, None
+    for i, x in enumerate(LEVELS):
+        value, n, got = difference({"rtol": tol["rtol"] * x, "atol": tol["atol"] * x})
+        values.append({"all": float(value)} if not isinstance(value, dict) else dict(value))
+        evaluations = max(evaluations, n)
+        if i == 0:
+            payload = got
+    cases = {c: tuple(v[c] for v in values) for c in values[0]}
+    return Convergence(cases, ROUNDOFF * evaluations, tol["rtol"]), cast(T, payload)
+
 
 FIRST_ORDER = 0.75
 """A fitted order of the averaging error at or above this is first order: the ±0.25 band that

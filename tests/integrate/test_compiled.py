@@ -21,7 +21,7 @@ from tumble import kernels
 from tumble.cli import app
 from tumble.dynamics import rigid_body_kernel, rigid_body_rhs
 from tumble.errors import IntegrationError, ParameterError
-from tumble.integrate import dop853, simulate
+from tumble.integrate import dop853, integrate, simulate
 from tumble.io import load_scenario
 from tumble.models import nonlinear_moment as nm
 from tumble.models import rotating_field as rf
@@ -360,3 +360,15 @@ def test_the_step_budget_stops_a_run_with_the_key_to_change(tmp_path):
         app, ["run", str(write(tmp_path, text + "max_steps = 0\n")), "-o", str(tmp_path / "o")]
     )
     assert res.exit_code == 2 and "run.max_steps = 0 is outside" in res.output, res.output
+
+
+def test_the_step_budget_holds_on_the_scipy_path_too():
+    # The averaged equations (Python right-hand side, scipy; ~6 steps here) spend the same
+    # key's budget...
+    r = load_scenario(EXAMPLES / "tb_gravity_gradient.toml").request
+    with pytest.raises(IntegrationError, match=r"run\.max_steps = 2 steps spent at t = "):
+        simulate(r.model, r.params, r.initial, r.tau, "averaged", max_steps=2)
+    # ...and a stiff Python right-hand side is stopped from its pace after ~1000 steps (the
+    # message says so), not after the hours its 2e10 steps would take.
+    with pytest.raises(IntegrationError, match=r"far beyond run\.max_steps = 1000000"):
+        integrate(lambda t, y: -1e7 * (y - np.cos(t)), [0.0], 1e4, rtol=1e-10, atol=1e-12)

@@ -137,6 +137,7 @@ def integrate(
     breakpoints: Sequence[Breakpoint] = (),
     kernel: Kernel | None = None,
     event: Callable[[float, FloatArray], float] | None = None,
+    max_steps: int | None = None,
 ) -> DenseSolution:
     """Integrate ``dy/dt = rhs(t, y)`` from t = 0 to ``t_end`` with DOP853 and dense output.
 
@@ -165,11 +166,16 @@ def integrate(
         ``event(t, y)``, whose zeros are recorded (``DenseSolution.events`` and the sign
         before each) on the scipy path; the compiled path records the kernel's own event,
         which must be the same function.
+    max_steps : int, optional
+        Step budget on the scipy path (``[run] max_steps``; at most :data:`PYTHON_MAX_STEPS`):
+        a run that spends it, or whose pace would need a hundred times what is left, stops
+        with an IntegrationError naming the key. The compiled path is budgeted by
+        :func:`tumble.integrate.simulate`.
 
     Raises
     ------
     IntegrationError
-        If the solver fails or the solution stops being finite.
+        If the solver fails, the solution stops being finite or the step budget is spent.
     """
     y0 = np.asarray(y0, dtype=float)
     if not np.all(np.isfinite(y0)):
@@ -180,7 +186,55 @@ def integrate(
         if breakpoints:
             raise ParameterError(f"{what}: the compiled integrator takes no breakpoints")
         return _integrate_compiled(kernel, y0, t_end, rtol=rtol, atol=atol, what=what)
-    return _integrate_scipy(rhs, y0, t_end, rtol, atol, what, breakpoints, event)
+    budget = min(PYTHON_MAX_STEPS, PYTHON_MAX_STEPS if max_steps is None else int(max_steps))
+    try:
+        return _integrate_scipy(
+            _Budgeted(rhs, t_end, budget), y0, t_end, rtol, atol, what, breakpoints, event
+        )
+    except _BudgetSpent as spent:
+        raise IntegrationError(f"{what}: {spent}") from None
+
+
+PYTHON_MAX_STEPS = 1_000_000
+"""The most steps an integration whose right-hand side is Python (scipy's DOP853) may take:
+~4 minutes at 20 µs per evaluation. The compiled integrator takes ``[run] max_steps``."""
+
+_EVALUATIONS_PER_STEP = 12  # scipy's DOP853: 12 stages per accepted step (rejections add more)
+
+
+class _BudgetSpent(Exception):
+    """Raised out of solve_ivp by :class:`_Budgeted` (turned into an IntegrationError)."""
+
+
+class _Budgeted:
+    """``rhs`` counting its evaluations: past the step budget, or when the pace so far would
+    need a hundred times the budget left to reach ``t_end``, it stops the integration."""
+
+    def __init__(self, rhs: Callable[[float, FloatArray], FloatArray], t_end: float, steps: int):
+        self.rhs, self.t_end, self.steps = rhs, t_end, steps
+        self.limit = _EVALUATIONS_PER_STEP * steps
+        self.n = 0
+
+    def __call__(self, t: float, y: FloatArray) -> FloatArray:
+        self.n += 1
+        if self.n % 1200 == 0 or self.n >= self.limit:  # the pace every ~100 steps
+            self._check(t)
+        return self.rhs(t, y)
+
+    def _check(self, t: float) -> None:
+        key = f"run.max_steps = {self.steps}"
+        if self.n >= self.limit:
+            raise _BudgetSpent(
+                f"{key} steps spent at t = {t:.6g} of {self.t_end:.6g} (shorten the run, "
+                "or check the input: a very stiff or fast motion)"
+            )
+        left = self.t_end - t
+        if self.n >= 12_000 and t > 0.0 and left * self.n / t > 100.0 * (self.limit - self.n):
+            raise _BudgetSpent(
+                f"at t = {t:.6g} the steps so far need ~{left * self.n / t / 12:.3g} more to "
+                f"reach t = {self.t_end:.6g}, far beyond {key} (shorten the run, or check the "
+                "input: a very stiff or fast motion)"
+            )
 
 
 def _segment(

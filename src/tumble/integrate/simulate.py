@@ -182,8 +182,11 @@ def simulate(
         ``Trajectory.slow`` evaluates the run anywhere. By default the run keeps its samples
         (and events) only and its memory does not grow with its length.
     max_steps : int
-        For ``full`` on the compiled integrator: the step budget; the run stops with an
-        :class:`~tumble.errors.IntegrationError` naming ``run.max_steps`` when it is spent.
+        The step budget of the integration; the run stops with an
+        :class:`~tumble.errors.IntegrationError` naming ``run.max_steps`` when it is spent, or
+        as soon as its pace shows it would need a hundred times what is left. Integrations of
+        Python right-hand sides (scipy: the averaged equations, ``integrator = "scipy"``) take
+        at most :data:`tumble.integrate.ode.PYTHON_MAX_STEPS` (10⁶).
 
     Returns
     -------
@@ -206,11 +209,11 @@ def simulate(
         kernel = _kernel(model, full, p, integrator)
         if kernel is not None and not dense:
             return _streamed(model, full, p, initial, tau, rtol, atol, kernel, max_steps)
-        return _full(model, full, p, initial, tau, rtol, atol, kernel)
+        return _full(model, full, p, initial, tau, rtol, atol, kernel, max_steps)
     if method == "averaged" and model.averaged is not None:
         options = model.averaged.check(averaging)
         form_ = model.averaged.form(p, initial, options)
-        return _averaged(model, form_, p, initial, tau, rtol, atol)
+        return _averaged(model, form_, p, initial, tau, rtol, atol, max_steps)
     assert model.closed_form is not None  # the methods follow the capabilities
     return _closed(model.closed_form, p, initial, tau)
 
@@ -224,6 +227,7 @@ def _full(
     rtol: float,
     atol: float,
     kernel: Kernel | None,
+    max_steps: int = MAX_STEPS,
 ) -> Trajectory:
     """A full form integrated (compiled when ``kernel`` is given) and sampled at ``tau``."""
     start = time.perf_counter()
@@ -236,6 +240,7 @@ def _full(
         what=f"{model.name} full equations {full.equation}",
         kernel=kernel,
         event=None if full.event is None else _bind(full.event, p),
+        max_steps=max_steps,
     )
     return _trajectory(model, p, initial, tau, "full", full, sol, start)
 
@@ -396,6 +401,7 @@ def _averaged(
     tau: FloatArray,
     rtol: float,
     atol: float,
+    max_steps: int = MAX_STEPS,
 ) -> Trajectory:
     """The averaged equations integrated and sampled at ``tau``."""
     start = time.perf_counter()
@@ -408,6 +414,7 @@ def _averaged(
             atol=atol,
             what=f"{model.name} averaged equations {avg.equation}",
             breakpoints=avg.breakpoints,
+            max_steps=max_steps,
         )
     except IntegrationError as exc:
         reason = avg.failure() if avg.failure else None

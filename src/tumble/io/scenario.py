@@ -206,7 +206,9 @@ def run_keys(model: AnyModel, variant: Variant[Any, Any]) -> tuple[Key, ...]:
         Key("atol", "number", "a number in (0, 1e-3]", default=1e-12,
             doc="absolute tolerance of the integrations"),
         Key("max_steps", "integer", "an integer in [1, 1e12]", default=MAX_STEPS,
-            doc="step budget of a full run: it stops with an error when spent"),
+            doc="step budget of each integration: it stops with an error when spent, or at "
+                "once when its pace needs 100 times what is left (Python right-hand sides, "
+                "the averaged equations: at most 1e6)"),
     ]  # fmt: skip
     avg = model.averaged
     if avg is not None and avg.numeric:

@@ -115,13 +115,10 @@ def _load(scenario: Path, allow_module: list[str] | None) -> Any:
 
 
 def _interrupted() -> None:
-    """Exit 130 at once after Ctrl-C. The work's own cleanup (temporary files) has run while
-    the interrupt unwound it; skipping the interpreter's teardown of numba and scipy (a few
-    tenths of a second) makes the exit immediate."""
-    err.print("[yellow]interrupted[/yellow]", highlight=False)
-    sys.stdout.flush()
-    sys.stderr.flush()
-    os._exit(130)
+    """Exit 130 at once after Ctrl-C, with one line (:func:`tumble._entry.interrupted`)."""
+    from tumble._entry import interrupted
+
+    interrupted()
 
 
 @app.command("run")
@@ -561,10 +558,23 @@ def _compile_table(r: dict[str, Any]) -> Table | None:
     return t
 
 
+def _startup_table(r: dict[str, Any]) -> Table | None:
+    """How fast tumble answers, from a fresh process."""
+    if not r.get("startup_s"):
+        return None
+    target = r["targets"]["startup_s"]
+    t = Table(title="Start-up: the answer from a fresh process (best of 3)", title_justify="left")
+    t.add_column("command")
+    t.add_column("wall time [s]", justify="right")
+    for name, sec in r["startup_s"].items():
+        t.add_row(name, f"{sec:.2f} (≤ {target:g}: {'yes' if sec <= target else 'no'})")
+    return t
+
+
 def _bench_tables(r: dict[str, Any]) -> list[Table]:
     """The benchmark's figures as tables, each target beside its figure."""
     tables = (_full_table(r), _heyoka_table(r), _averaged_table(r), _batch_table(r),
-              _compile_table(r))  # fmt: skip
+              _compile_table(r), _startup_table(r))  # fmt: skip
     return [t for t in tables if t is not None]
 
 
@@ -576,7 +586,9 @@ def bench_cmd(
     ] = None,
     quick: Annotated[
         bool,
-        typer.Option("--quick", help="horizon 1e3, one repeat, no compile study (a check)"),
+        typer.Option(
+            "--quick", help="horizon 1e3, one repeat, no compile or start-up study (a check)"
+        ),
     ] = False,
     horizon: Annotated[
         float | None, typer.Option(help="length of the full runs [time units]; default 1e5")
@@ -604,6 +616,7 @@ def bench_cmd(
             scipy=scipy,
             heyoka=heyoka,
             compile=compile_study and not quick,
+            startup=not quick,
         )
         with Status("benchmark", console=err) as status:
             return run_benchmark(settings, log=lambda msg: status.update(msg))
@@ -815,10 +828,7 @@ def reproduce_cmd(
         raise typer.Exit(1)
 
 
-def main() -> None:
-    """Entry point of the ``tumble`` console script."""
-    app()
-
-
 if __name__ == "__main__":  # pragma: no cover
+    from tumble._entry import main
+
     main()

@@ -1,5 +1,6 @@
 """A seeded fuzz corpus of hostile scenarios: every mutation is accepted or refused with one
-clean line (a TumbleError of bounded length), never an internal error.
+clean line (a TumbleError of bounded length), never an internal error; every accepted one runs
+to finite columns or fails with one line; as sweep points, a bad one fails alone.
 
 Mutations of each model's template: numeric extremes (NaN, ±inf, ±1e308, subnormals, huge
 integers) at one or several keys, values of the wrong type (a 100 000-character string, lists,
@@ -10,16 +11,22 @@ tables, booleans), deleted keys and misspelt tables; and whole files that are no
 from __future__ import annotations
 
 import copy
+import dataclasses
 import math
 import random
 import tomllib
+import warnings
 
+import numpy as np
 import pytest
 from files import write
 from typer.testing import CliRunner
 
+from tumble.analysis import run
+from tumble.analysis.sweep import Keep
+from tumble.app.sweep import compute_chunk
 from tumble.cli import app
-from tumble.errors import TumbleError
+from tumble.errors import TumbleError, TumbleWarning
 from tumble.io.scenario import parse_scenario, template
 from tumble.models import MODELS
 
@@ -73,22 +80,99 @@ def _mutate(base, rng):
     return d
 
 
-@pytest.mark.parametrize("name", sorted(n for n in MODELS if MODELS[n].scenario is not None))
-def test_mutated_scenarios_are_accepted_or_refused_in_one_line(name, tmp_path):
+NAMES = sorted(n for n in MODELS if MODELS[n].scenario is not None)
+FUZZ_STEPS = 200_000  # the runs' step budget: a run that needs more fails in one line
+
+
+def _one_line(exc: TumbleError, what: str) -> None:
+    text = str(exc)
+    assert "\n" not in text and len(text) <= LONGEST_MESSAGE, (what, text[:200])
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_mutated_scenarios_are_accepted_or_refused_in_one_line_and_run(name, tmp_path):
     base = tomllib.loads(template(name))
     rng = random.Random(f"fuzz-{name}")
-    refused = 0
+    accepted = []
     for i in range(MUTATIONS_PER_MODEL):
         data = _mutate(base, rng)
         try:
-            parse_scenario(data, str(tmp_path / f"{name}.toml"))
+            accepted.append((i, parse_scenario(data, str(tmp_path / f"{name}.toml")).request))
         except TumbleError as exc:
-            refused += 1
-            text = str(exc)
-            assert "\n" not in text and len(text) <= LONGEST_MESSAGE, (i, text[:200])
+            _one_line(exc, f"mutation {i}")
         except Exception as exc:  # an internal error: the defect this corpus looks for
             pytest.fail(f"mutation {i} of {name}: {type(exc).__name__}: {str(exc)[:200]}")
-    assert refused > MUTATIONS_PER_MODEL // 2  # the corpus does reach the checks
+    assert len(accepted) < MUTATIONS_PER_MODEL // 2  # the corpus does reach the checks
+    # Every accepted mutation runs: finite columns that move, or one line (~25 s in all).
+    ran = 0
+    for i, req in accepted:
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", TumbleWarning)
+                result = run(dataclasses.replace(req, max_steps=FUZZ_STEPS))
+        except TumbleError as exc:
+            _one_line(exc, f"run of mutation {i}")
+            continue
+        except Exception as exc:
+            pytest.fail(f"run of mutation {i} of {name}: {type(exc).__name__}: {exc}"[:300])
+        ran += 1
+        for method, ds in result.datasets.items():
+            for v in ds.data_vars:
+                assert np.all(np.isfinite(ds[v].values)), (i, method, v)
+        full = result.datasets.get("full")
+        if full is not None:  # a frozen run: no column of the full motion moves
+            assert any(np.ptp(full[v].values) > 0.0 for v in full.data_vars), i
+    assert ran > len(accepted) // 2, (ran, len(accepted))
+
+
+def _numeric_keys(d, path=()):
+    """The sweep keys (``parameters.b[2][2]``) of every number of a template."""
+    for k, v in d.items() if isinstance(d, dict) else enumerate(d):
+        here = (*path, k)
+        if isinstance(v, dict | list):
+            yield from _numeric_keys(v, here)
+        elif isinstance(v, int | float) and not isinstance(v, bool) and path != ("run",):
+            names = [str(p) for p in here if isinstance(p, str)]
+            yield ".".join(names) + "".join(f"[{p}]" for p in here if isinstance(p, int))
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_a_chunk_of_hostile_sweep_points_fails_only_the_bad_ones(name, tmp_path):
+    # 200 seeded points (one key set to an extreme, or to a mild change) in chunks of 50, as a
+    # worker runs them: every point gets a record, a bad one fails alone with one reason line,
+    # and every good one ends with finite values.
+    base = tomllib.loads(template(name))
+    base["run"]["max_steps"] = FUZZ_STEPS
+    base["run"]["samples"] = 101  # the points, not the length of their runs, are under test
+    keys = list(_numeric_keys(base))
+    for end in ("t_end", "tau_end"):
+        if end in base["run"]:
+            base["run"][end] /= 4.0
+    rng = random.Random(f"sweep-fuzz-{name}")
+    mild = [0.5, 0.9, 1.1, 2.0]
+    points = []
+    for _ in range(MUTATIONS_PER_MODEL):
+        key = rng.choice(keys)
+        value = rng.choice(EXTREMES) if rng.random() < 0.6 else rng.choice(mild)
+        points.append({key: value})
+    keep = Keep(final=True, differences=False, limits=False, stability=False, verify=False)
+    records = []
+    for start in range(0, len(points), 50):
+        chunk = points[start : start + 50]
+        records += compute_chunk(base, str(tmp_path / f"{name}.toml"), chunk, keep)
+    assert len(records) == len(points)
+    ok = 0
+    for point, rec in zip(points, records, strict=True):
+        assert rec["status"] in (0, 1), (point, rec)
+        if rec["status"] == 1:
+            reason = rec["reason"]
+            assert reason and "\n" not in reason and len(reason) <= LONGEST_MESSAGE, reason
+            assert not reason.startswith("internal error"), (point, reason)
+            continue
+        ok += 1
+        finals = [x for by_var in rec["final"].values() for x in by_var.values()]
+        assert np.all(np.isfinite(finals)), (point, rec["final"])
+    assert 0 < ok < len(points), ok  # the corpus has both kinds
 
 
 BAD_FILES = {

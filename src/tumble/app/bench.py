@@ -44,6 +44,7 @@ import time
 import tomllib
 from collections.abc import Callable
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -74,6 +75,7 @@ TARGETS: dict[str, float] = {
     "averaged_error": 0.01,  # at most, on the slow variables
     "batch_efficiency": 0.8,  # throughput on 2 cores over twice that on 1, at least
     "compile_s": 5.0,  # first call from an empty cache, at most
+    "startup_s": 0.5,  # tumble --help, tumble models, an input error: the answer, at most
 }
 """The issue's targets, printed beside the measurements."""
 
@@ -110,6 +112,8 @@ class BenchSettings:
         Trajectories per batch.
     compile : bool
         Measure the cold compile in a fresh process with an empty cache.
+    startup : bool
+        Time ``tumble`` answering from a fresh process (help, models, input errors).
     """
 
     horizon: float = 1e5
@@ -120,6 +124,7 @@ class BenchSettings:
     heyoka: bool = True
     batch_size: int = 128
     compile: bool = True
+    startup: bool = True
 
     def __post_init__(self) -> None:
         if not (self.horizon > 0.0 and math.isfinite(self.horizon)):
@@ -520,6 +525,36 @@ print("JSON" + json.dumps(out))
 """
 
 
+STARTUP_REPEAT = 3
+
+
+def _startup(log: Callable[[str], None]) -> dict[str, float]:
+    """Wall time of ``tumble`` answering at once [s], best of :data:`STARTUP_REPEAT` fresh
+    processes: its help, the model list, a scenario file that is missing, and a scenario with
+    a parameter out of range (this one validates against the models, and loads them)."""
+    exe = Path(sys.executable).with_name("tumble")
+    command = [str(exe)] if exe.exists() else [sys.executable, "-m", "tumble.cli"]
+    out: dict[str, float] = {}
+    with tempfile.TemporaryDirectory(prefix="tumble-bench-startup-") as tmp:
+        bad = Path(tmp) / "bad.toml"
+        bad.write_text(template("resisting_medium").replace("kappa = 0.5", "kappa = -5.0"))
+        cases = {
+            "--help": ["--help"],
+            "models": ["models"],
+            "input error: missing file": ["run", str(Path(tmp) / "missing.toml")],
+            "input error: a value out of range": ["run", str(bad)],
+        }
+        for name, args in cases.items():
+            log(f"start-up: tumble {' '.join(args[:1])} ({name})")
+            times = []
+            for _ in range(STARTUP_REPEAT):
+                start = time.perf_counter()
+                subprocess.run([*command, *args], capture_output=True, check=False, cwd=tmp)
+                times.append(time.perf_counter() - start)
+            out[name] = min(times)
+    return out
+
+
 def _compile(log: Callable[[str], None]) -> dict[str, Any]:
     """First call of every case's kernel from an empty cache, then from the filled one."""
     with tempfile.TemporaryDirectory(prefix="tumble-bench-cache-") as cache:
@@ -606,6 +641,8 @@ def run_benchmark(
         "settings": {k: getattr(s, k) for k in BenchSettings.__dataclass_fields__},
         "targets": dict(TARGETS),
     }
+    if s.startup:
+        result["startup_s"] = _startup(say)
     if s.compile:
         result["compile"] = _compile(say)
     cases = full_cases(s.horizon)
@@ -674,6 +711,8 @@ def verdicts(result: dict[str, Any]) -> list[dict[str, Any]]:
             TARGETS["batch_efficiency"],
             True,
         )
+    for name, seconds in (result.get("startup_s") or {}).items():
+        add(f"start-up: {name} [s]", seconds, TARGETS["startup_s"], False)
     if "compile" in result:
         add(
             "compile: first calls from an empty cache, all kinds [s]",

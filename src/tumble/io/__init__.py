@@ -6,8 +6,9 @@ the models.
 
 from __future__ import annotations
 
-import importlib
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
+
+from tumble._lazy import lazy_exports
 
 # Public name → the module that defines it.
 _EXPORTS: dict[str, str] = {
@@ -42,15 +43,4 @@ if TYPE_CHECKING:
     from tumble.io.scenario import Scenario, load_scenario, parse_scenario, template
 
 
-def __getattr__(name: str) -> Any:
-    """Load a public name's module on first use (PEP 562)."""
-    module = _EXPORTS.get(name)
-    if module is None:
-        raise AttributeError(f"module 'tumble.io' has no attribute {name!r}")
-    value = getattr(importlib.import_module(module), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted({*globals(), *_EXPORTS})
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)

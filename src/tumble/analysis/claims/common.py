@@ -33,6 +33,7 @@ __all__ = [
     "converged",
     "max_abs",
     "measured",
+    "measured_by",
     "quiet",
     "tolerance_scale",
     "tolerances",
@@ -180,6 +181,30 @@ class Convergence:
             else:
                 out.setdefault("cases", {})[c] = entry
         return out
+
+
+def measured_by(
+    conv: Convergence,
+    units: str,
+    what: str,
+    qualification: str = "",
+    *,
+    also: str = "",
+    **details: Any,
+) -> dict[str, Any]:
+    """The :func:`measured` record of a claim decided by ``conv``: its figure, threshold and
+    criterion (with ``also``, a further condition of the claim), and the convergence figures
+    under ``details.convergence``."""
+    return measured(
+        conv.difference,
+        units,
+        what,
+        conv.threshold,
+        conv.criterion + also,
+        qualification,
+        convergence=conv.record(),
+        **details,
+    )
 
 
 def converged(

@@ -34,6 +34,7 @@ from tumble.analysis.claims.common import (
     converged,
     max_abs,
     measured,
+    measured_by,
     quiet,
     tolerances,
 )
@@ -175,16 +176,13 @@ def nm_1() -> Measurement:
         ),
     )
     holds = conv.holds
-    m = measured(
-        conv.difference,
+    m = measured_by(
+        conv,
         "1 (relative to max(1, |value|))",
         "max drift of R, G, E of the full model over ten nutation periods, and E, G of the "
         "initial state against (1.6) and the definition of G, five orbits",
-        conv.threshold,
-        conv.criterion,
         "erratum 1: A is the equatorial and C the axial moment (the prose swaps them); erratum "
         "2: G = (p sinφ + q cosφ) sinθ + μr cosθ (seed: q sinφ)",
-        convergence=conv.record(),
         per_case=per,
     )
     return Measurement(holds, True, m, panels)
@@ -238,17 +236,14 @@ def nm_2() -> Measurement:
         ),
     )
     holds = conv.holds
-    m = measured(
-        conv.difference,
+    m = measured_by(
+        conv,
         "rad",
         "max |θ(1.9) − θ integrated| (and θ′ relative) over ten periods, five orbits (both root "
         "cases, double well, b = 0 with a > 0)",
-        conv.threshold,
-        conv.criterion,
         "errata 3–6: τ0 = F(γ0, k) (exponent −1/2), γ0 = σ sign(θ′0)…, σ = +1 in case 2; "
         "β = √(−(b/2)(u1−u3)(u2−u4)) (case 1), √(−2bη) (case 2); erratum 11 / §4.3: for b = 0 "
         "with a > 0 the alternative anchoring is needed",
-        convergence=conv.record(),
         per_case=per,
     )
     return Measurement(holds, True, m, panels)
@@ -395,16 +390,13 @@ def nm_4() -> Measurement:
         ),
     )
     holds = conv.holds
-    m = measured(
-        conv.difference,
+    m = measured_by(
+        conv,
         "1 (relative to max(1, |phase|))",
         "max |ψ, φ of (1.13) − integrated| over ten periods, five orbits",
-        conv.threshold,
-        conv.criterion,
         "errata 7–9: χ± of case 2 re-bracketed, λ± = (k² + w±)^{+1/2} and L±(γ) with sin²γ, "
         "coefficients of L± are ϰ± = (G±R)(u1−u2)/[4β(1±u1)(1±u2)] (seed: w±); erratum 10: Π "
         "has the plus-sign convention (n = −w)",
-        convergence=conv.record(),
         per_case=per,
         worst_mean_rate_mismatch_ten_periods=worst_rate,
     )

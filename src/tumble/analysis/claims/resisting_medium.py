@@ -32,6 +32,7 @@ from tumble.analysis.claims.common import (
     converged,
     max_abs,
     measured,
+    measured_by,
     quiet,
     tolerances,
     wrap,
@@ -181,15 +182,12 @@ def rm_1() -> Measurement:
             hlines=((conv.budget, "round-off budget"),),
         ),
     )
-    m = measured(
-        conv.difference,
+    m = measured_by(
+        conv,
         "1 (k), rad (angles)",
         "max |Δ| of k, ϑ, ρ, σ between Euler+quaternions and the standard form (1.3), τ ≤ 2/ε",
-        conv.threshold,
-        conv.criterion,
         "E1: the first equation is K dρ/dt = M1 (seed: K dφ/dt); E2: ρ, σ are the polar angle "
         "and azimuth of K about the inertial X3 (the seed's labels were lost in OCR)",
-        convergence=conv.record(),
         max_diff_psi_phi_mod_2pi=fast,
         eps=p.eps,
     )
@@ -245,14 +243,11 @@ def rm_2() -> Measurement:
         ),
     )
     holds = conv.holds
-    m = measured(
-        conv.difference,
+    m = measured_by(
+        conv,
         "1",
         "max deviation of k, ϑ, ρ, σ from constants and of ψ, φ from kτ and −kκcosϑ τ/(1+κ) "
         "(relative to the accumulated phase), ε = 0, τ ≤ 500",
-        conv.threshold,
-        conv.criterion,
-        convergence=conv.record(),
         per_variable=rel,
     )
     return Measurement(holds, False, m, panels)
@@ -421,13 +416,10 @@ def rm_5() -> Measurement:
         ),
     )
     holds = conv.holds
-    m = measured(
-        conv.difference,
+    m = measured_by(
+        conv,
         "1",
         f"max |V(2.4) − V of (2.2) integrated (rtol {conv.rtol:.0e})| over ετ ≤ 10, three media",
-        conv.threshold,
-        conv.criterion,
-        convergence=conv.record(),
         per_case=per,
     )
     return Measurement(holds, False, m, panels)
@@ -566,16 +558,14 @@ def rm_6() -> Measurement:
     # The printed formulas equal the well-conditioned closed form inside their windows: two
     # closed forms, no integration tolerance enters (1e-8: far below an O(1) wrong exponent).
     holds = conv.holds and worst_printed <= 1e-8
-    m = measured(
-        conv.difference,
+    m = measured_by(
+        conv,
         "1 (k), rad (ϑ)",
         "max |closed form − (2.2) integrated| of k and ϑ over 10 branch cases (ετ ≤ 10, "
         "through the ϑ = π/2 switch)",
-        conv.threshold,
-        conv.criterion + "; printed (2.5)–(2.8) = closed form to 1e-8 before τ1",
         "E3: the denominator of (2.5) is [1 − c1 e^{−2εδν1τ}]⁻¹/(2δ) (seed: exponent −1/2δ); "
         "each formula holds only while W keeps its sign, the branch switches at τ1 (§8.4)",
-        convergence=conv.record(),
+        also="; printed (2.5)–(2.8) = closed form to 1e-8 before τ1",
         per_case=per,
         printed_formula_vs_closed_form=printed,
         seed_printed_2_5_W0_error=e3,
@@ -641,15 +631,12 @@ def rm_7() -> Measurement:
         ),
     )
     holds = conv.holds
-    m = measured(
-        conv.difference,
+    m = measured_by(
+        conv,
         "rad",
         "max |ϑ from (2.9)/(2.10) − ϑ of (2.2) integrated| over ετ ≤ 10",
-        conv.threshold,
-        conv.criterion,
         "E7: (2.9) is (2.4)/(2.5) and (2.10) is (2.4)/(2.7) at a3 = 0 (the seed's 'inequality' "
         "is the condition of (2.7)); they are 0/0 for α = 0 or β = 0 (use W, V)",
-        convergence=conv.record(),
         per_case=per,
     )
     return Measurement(holds, True, m, panels)
@@ -933,15 +920,12 @@ def rm_11() -> Measurement:
         ),
     )
     holds = conv.holds
-    m = measured(
-        conv.difference,
+    m = measured_by(
+        conv,
         "rad",
         "max |ϑ of the §8.7 law − ϑ of (2.2) integrated| over ετ ≤ 20, ϑ0 = 0.5 and 2.5",
-        conv.threshold,
-        conv.criterion,
         "the seed gives the upper hemisphere only; in general |cos ϑ0| appears, and the "
         "lower-hemisphere solution is ϑ = π + arctan(…)",
-        convergence=conv.record(),
         per_case=per,
     )
     return Measurement(holds, True, m, panels)

@@ -33,6 +33,7 @@ from tumble.analysis.claims.common import (
     converged,
     max_abs,
     measured,
+    measured_by,
     quiet,
     tolerances,
     wrap,
@@ -222,15 +223,12 @@ def rf_2() -> Measurement:
         ),
     )
     holds = conv.holds
-    m = measured(
-        conv.difference,
+    m = measured_by(
+        conv,
         "1 (z, L, T), rad (angles)",
         "max |Δ| of L, ρ, σ, T, z between the rotating-frame form (1.5) and the inertial form "
         "(1.4) with quaternions, τ ≤ 1/ε",
-        conv.threshold,
-        conv.criterion,
         "erratum 3: Γ′ = Γẑ − ξ̂3Γ (the OCR prints ξ̂3Γ⁺); only this reading agrees with (1.4)",
-        convergence=conv.record(),
         per_variable={n: max_abs(d) for n, d in diffs.items()},
     )
     return Measurement(holds, True, m, panels)
@@ -818,16 +816,13 @@ def rf_10() -> Measurement:
             series.append(Series(tau[::40], Y[::40, i], style="markers"))
         panels.append(Panel(series=tuple(series), xlabel="τ", title=f"{name} (k² = {ep.k2:.3f})"))
     holds = conv.holds and regimes["regime x1"] == "x1"
-    m = measured(
-        conv.difference,
+    m = measured_by(
+        conv,
         "1 (relative to |z0|)",
         "max |z(3.1) − z integrated| and attitude (quaternion) difference over 10 periods, "
         "regimes x3 and x1",
-        conv.threshold,
-        conv.criterion,
         "erratum 7: in regime x1 (indices 1 ↔ 3 swapped) each square root is of the product of "
         "two negative factors (e.g. ν = √((L² − 2TI3)(I1 − I2)/(I1I2I3)))",
-        convergence=conv.record(),
         per_case=per,
         regimes=regimes,
     )

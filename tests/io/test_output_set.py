@@ -4,12 +4,14 @@ from __future__ import annotations
 
 import fcntl
 import hashlib
+import json
 import os
 import random
 import signal
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import pytest
 from files import EXAMPLES
@@ -70,14 +72,15 @@ def test_a_second_run_into_a_held_directory_is_refused(tmp_path):
     assert list(out.iterdir()) == []  # nothing written
 
 
-def test_a_rerun_replaces_the_whole_set(tmp_path):
+def test_a_rerun_replaces_the_whole_set(tmp_path, monkeypatch):
     out = tmp_path / "out"
     res = _run(_short(tmp_path), "-o", out)
     assert res.exit_code == 0, res.output
     first = _consistent(out)
     assert {"full.csv", "averaged.csv", "closed_form.csv"} <= set(first["files"])
     assert first["command"] == "run" and first["inputs"]["run"]["tau_end"] == 20.0
-    res = _run(_short(tmp_path, '["averaged"]'), "-o", out)
+    monkeypatch.chdir(tmp_path)  # the same file named another way is the same scenario
+    res = _run(Path(_short(tmp_path, '["averaged"]').name), "-o", out)
     assert res.exit_code == 0, res.output
     second = _consistent(out)  # no full.csv or closed_form.csv of the run before
     assert "full.csv" not in second["files"] and "averaged.csv" in second["files"]
@@ -109,6 +112,23 @@ def test_files_tumble_did_not_write_are_never_replaced_silently(tmp_path, monkey
     res = _run(_short(tmp_path), "-o", ".", "--overwrite")  # never the working directory
     assert res.exit_code == 2 and "will not replace" in res.output, res.output
     assert (out / "notes.txt").read_text() == "keep me"
+
+
+def test_outputs_of_an_earlier_tumble_without_a_manifest_are_recognised(tmp_path):
+    out = tmp_path / "out"
+    out.mkdir()
+    scenario = _short(tmp_path)
+    summary = {"tumble_version": "0.1", "scenario": str(scenario)}
+    (out / "summary.json").write_text(json.dumps(summary))
+    (out / "full.csv").write_text("tau,k\n0,1\n")
+    res = _run(scenario, "-o", out)  # the same scenario's earlier results: replaced
+    assert res.exit_code == 0, res.output
+    assert _consistent(out)["scenario"] == str(scenario.resolve())
+    (out / "manifest.json").unlink()
+    summary["scenario"] = "another.toml"
+    (out / "summary.json").write_text(json.dumps(summary))
+    res = _run(scenario, "-o", out)  # another scenario's: refused
+    assert res.exit_code == 2 and "for another.toml" in res.output, res.output
 
 
 def test_an_error_during_the_run_leaves_the_directory_as_it_was(tmp_path):

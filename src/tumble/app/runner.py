@@ -95,8 +95,10 @@ def _held(
     if out_dir is None:
         yield None
         return
+    source = Path(sc.source)
+    scenario = str(source.resolve()) if source.is_file() else sc.source
     with output_set(
-        out_dir, command=command, scenario=sc.source, inputs=sc.inputs, overwrite=overwrite
+        out_dir, command=command, scenario=scenario, inputs=sc.inputs, overwrite=overwrite
     ) as out:
         yield out
 

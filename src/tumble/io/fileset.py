@@ -90,13 +90,43 @@ def _refuse_dangerous(out: Path) -> None:
         )
 
 
+_LEGACY = {"summary.json": "run", "verify.json": "verify", "claims.json": "reproduce"}
+
+
+def _legacy(out: Path) -> dict[str, Any] | None:
+    """What a directory written by tumble before its outputs had a manifest is the result of,
+    read from its summary (None: not such a directory)."""
+    for name, command in _LEGACY.items():
+        try:
+            doc = json.loads((out / name).read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            continue
+        if isinstance(doc, dict) and "tumble_version" in doc:
+            papers = doc.get("papers")
+            scenario = " ".join(papers) if isinstance(papers, dict) else doc.get("scenario")
+            return {"command": command, "scenario": scenario}
+    return None
+
+
+def _same_scenario(recorded: Any, scenario: str) -> bool:
+    """The same scenario: the same text, or paths to the same file."""
+    if recorded == scenario:
+        return True
+    try:
+        return isinstance(recorded, str) and os.path.samefile(recorded, scenario)
+    except OSError:  # not a file (a scenario built in memory, a file since removed)
+        return False
+
+
 def _check_owner(out: Path, identity: dict[str, Any], overwrite: bool) -> None:
     """Refuse to replace another run's results or files tumble did not write, unless asked."""
     if overwrite:
         return
-    manifest = read_manifest(out)
+    manifest = read_manifest(out) or _legacy(out)
     if manifest is not None:
-        same = all(manifest.get(k) == identity[k] for k in ("command", "scenario"))
+        same = manifest.get("command") == identity["command"] and _same_scenario(
+            manifest.get("scenario"), identity["scenario"]
+        )
         if same:
             return
         raise OutputError(

@@ -189,3 +189,23 @@ def test_sigkill_while_writing_leaves_one_whole_set(tmp_path):
         assert not list(tmp_path.glob(".out.tumble-*"))
     # The kills must have met commits in progress, or the test proves nothing (seeded: 27/40).
     assert states["mid-write"] >= 10 and states["set"] > 0, states
+
+
+def test_an_interrupt_between_the_two_renames_puts_the_previous_set_back(tmp_path, monkeypatch):
+    out = tmp_path / "out"
+    with output_set(out, command="run", scenario="s") as held:
+        held.commit({"a.csv": b"old\n"})
+    renames = []
+
+    def interrupted_rename(src, dst):
+        renames.append(dst)
+        if len(renames) == 2:  # the new set's rename: Ctrl-C arrives just before it
+            raise KeyboardInterrupt
+        os.replace(src, dst)
+
+    monkeypatch.setattr(os, "rename", interrupted_rename)
+    with pytest.raises(KeyboardInterrupt), output_set(out, command="run", scenario="s") as held:
+        held.commit({"a.csv": b"new\n"})
+    monkeypatch.undo()
+    assert (out / "a.csv").read_bytes() == b"old\n"  # at once, not only after the next run
+    assert not list(tmp_path.glob(".out.tumble-*"))

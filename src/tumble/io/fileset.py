@@ -282,4 +282,5 @@ def output_set(
     finally:
         if staging is not None and staging.exists():
             _remove(staging)
+        _restore(out)  # an interrupt between the commit's two renames: the previous set back
         os.close(fd)

@@ -24,10 +24,10 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from tumble._lazy import lazy_exports
-from tumble._version import __version__
 
 # Public name → the module that defines it.
 _EXPORTS: dict[str, str] = {
+    "__version__": "tumble._version",
     "load_scenario": "tumble.io.scenario",
     "Scenario": "tumble.io.scenario",
     "run": "tumble.app.runner",
@@ -73,6 +73,7 @@ __all__ = [
 ]
 
 if TYPE_CHECKING:
+    from tumble._version import __version__
     from tumble.app.reproduce import reproduce
     from tumble.app.runner import run, verify
     from tumble.app.sweep import sweep

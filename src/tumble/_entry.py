@@ -2,29 +2,20 @@
 
 Loaded before the command line itself (typer, rich and tumble's modules), so that an
 interrupt while those load, or while typer parses the arguments (which typer turns into a
-silent exit 130), reads the same as one during a run.
+silent exit 130), reads the same as one during a run; and an interrupt during a long call
+into C (a cold compile) ends the run within half a second (:mod:`tumble._interrupt`).
 """
 
 from __future__ import annotations
 
-import os
-import sys
-
-__all__ = ["interrupted", "main"]
-
-
-def interrupted() -> None:
-    """Say so and exit 130 at once: the work's own cleanup (temporary files) has run while the
-    interrupt unwound it, and skipping the interpreter's teardown of numba and scipy (a few
-    tenths of a second) makes the exit immediate."""
-    sys.stdout.flush()
-    sys.stderr.write("interrupted\n")
-    sys.stderr.flush()
-    os._exit(130)
+__all__ = ["main"]
 
 
 def main() -> None:
     """Entry point of the ``tumble`` console script."""
+    from tumble._interrupt import interrupted, watch
+
+    watch()
     try:
         from tumble.cli import app
 

@@ -115,8 +115,8 @@ def _load(scenario: Path, allow_module: list[str] | None) -> Any:
 
 
 def _interrupted() -> None:
-    """Exit 130 at once after Ctrl-C, with one line (:func:`tumble._entry.interrupted`)."""
-    from tumble._entry import interrupted
+    """Exit 130 at once after Ctrl-C, with one line (:func:`tumble._interrupt.interrupted`)."""
+    from tumble._interrupt import interrupted
 
     interrupted()
 

@@ -5,6 +5,7 @@ an interrupt that arrived while the call built its result used to crash the inte
 (segmentation fault) in about half the tries.
 """
 
+import os
 import random
 import signal
 import subprocess
@@ -52,3 +53,31 @@ def test_sigint_during_a_long_run_exits_cleanly(tmp_path):
         # empty: no output written.
         assert not out.exists() or not any(out.iterdir()), list(out.iterdir())
         assert not list(tmp_path.glob(f".{out.name}.tumble-*"))  # nor a temporary set
+
+
+def test_sigint_during_a_cold_compile_exits_cleanly(tmp_path):
+    """From an empty numba cache the first seconds of a run compile kernels through LLVM, where
+    Python cannot take a signal (and numba's compiler would swallow a KeyboardInterrupt): the
+    watcher ends the run with the same line and code, and the output set's temporaries go."""
+    text = (
+        (EXAMPLES / "tb_gravity_gradient.toml").read_text().replace("t_end = 200.0", "t_end = 2e5")
+    )
+    scenario = tmp_path / "long.toml"
+    scenario.write_text(text)
+    for trial, moment in enumerate((1.5, 3.0, 4.5)):  # start-up, validation, compiling
+        cache = tmp_path / f"cache{trial}"
+        out = tmp_path / f"out{trial}"
+        proc = subprocess.Popen(
+            [TUMBLE, "run", str(scenario), "-o", str(out)],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+            env={**os.environ, "NUMBA_CACHE_DIR": str(cache)},
+            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
+        )
+        time.sleep(moment)
+        proc.send_signal(signal.SIGINT)
+        _, stderr = proc.communicate(timeout=60)
+        assert (proc.returncode, stderr.strip()) == (130, "interrupted"), (moment, stderr)
+        assert not out.exists() or not any(out.iterdir()), list(out.iterdir())
+        assert not list(tmp_path.glob(f".{out.name}.tumble-*"))

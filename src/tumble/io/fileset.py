@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import contextlib
 import datetime
+import functools
 import glob
 import hashlib
 import json
@@ -30,6 +31,7 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
+from tumble._interrupt import emergency_cleanup
 from tumble._version import __version__
 from tumble.errors import OutputError, shorten
 
@@ -67,6 +69,12 @@ def _remove(path: Path) -> None:
         path.unlink(missing_ok=True)
     else:
         shutil.rmtree(path, ignore_errors=True)
+
+
+def _abandon(staging: Path, out: Path) -> None:
+    """Drop an unfinished set: its temporary directory, and the previous set put back."""
+    _remove(staging)
+    _restore(out)
 
 
 def _restore(out: Path) -> None:
@@ -278,7 +286,8 @@ def output_set(
                 f"-o {shorten(str(out_dir))}: cannot write beside it ({exc.strerror})"
             ) from None
         held = OutputSet(out, staging, identity)
-        yield held
+        with emergency_cleanup(functools.partial(_abandon, staging, out)):
+            yield held
     finally:
         if staging is not None and staging.exists():
             _remove(staging)

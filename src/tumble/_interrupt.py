@@ -1,0 +1,95 @@
+"""Ctrl-C answered within half a second, even while Python cannot run.
+
+Python handles a signal between two bytecodes of the main thread, so an interrupt that
+arrives during a long call into C — numba compiling a kernel through LLVM, several seconds
+from an empty cache — waits for the call to end. :func:`watch` (the console script calls it)
+lets the C-level signal handler wake a watcher thread at once (``signal.set_wakeup_fd``): if
+the main thread has not taken the interrupt within :data:`GRACE` seconds, the watcher runs the
+registered emergency clean-ups (an output set's temporary directory) and exits 130 with the
+usual line. Otherwise the interrupt unwinds the work as a KeyboardInterrupt, with its own
+clean-up, as before — except inside numba's compiler, which would catch the exception and
+report another error (or none): there the watcher ends the process too.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import signal
+import sys
+import threading
+from collections.abc import Callable, Iterator
+from types import FrameType
+
+__all__ = ["GRACE", "emergency_cleanup", "interrupted", "watch"]
+
+GRACE = 0.3
+"""Seconds the main thread has to take an interrupt before the watcher ends the process."""
+
+_TAKEN = threading.Event()
+_CLEANUPS: list[Callable[[], None]] = []
+
+
+def interrupted() -> None:
+    """Say so and exit 130 at once: the work's own clean-up has run (or the emergency ones),
+    and skipping the interpreter's teardown of numba and scipy makes the exit immediate."""
+    with contextlib.suppress(Exception):
+        sys.stdout.flush()
+    os.write(2, b"interrupted\n")
+    os._exit(130)
+
+
+@contextlib.contextmanager
+def emergency_cleanup(action: Callable[[], None]) -> Iterator[None]:
+    """Run ``action`` if the process is ended by the watcher while this block runs."""
+    _CLEANUPS.append(action)
+    try:
+        yield
+    finally:
+        with contextlib.suppress(ValueError):
+            _CLEANUPS.remove(action)
+
+
+def _compiling(frame: FrameType | None) -> bool:
+    """Whether ``frame`` is inside numba or llvmlite (compiling): an exception raised there
+    is caught and turned into another error, or lost."""
+    roots = tuple(
+        os.path.dirname(m.__file__)
+        for m in (sys.modules.get("numba"), sys.modules.get("llvmlite"))
+        if m is not None and m.__file__
+    )
+    while roots and frame is not None:
+        if frame.f_code.co_filename.startswith(roots):
+            return True
+        frame = frame.f_back
+    return False
+
+
+def _on_sigint(signum: int, frame: FrameType | None) -> None:
+    if _compiling(frame):
+        return  # the watcher ends the process once the grace period has passed
+    _TAKEN.set()  # the main thread runs: the interrupt unwinds the work
+    raise KeyboardInterrupt
+
+
+def _watcher(fd: int) -> None:
+    while True:
+        try:
+            data = os.read(fd, 64)
+        except OSError:
+            return
+        if signal.SIGINT in data and not _TAKEN.wait(GRACE):
+            for action in list(_CLEANUPS):
+                with contextlib.suppress(Exception):
+                    action()
+            interrupted()
+
+
+def watch() -> None:
+    """Take SIGINT with a handler that marks it taken, and start the watcher (main thread,
+    before any work)."""
+    read, write = os.pipe()
+    os.set_blocking(write, False)
+    signal.set_wakeup_fd(write, warn_on_full_buffer=False)
+    signal.signal(signal.SIGINT, _on_sigint)
+    threading.Thread(target=_watcher, args=(read,), name="tumble-sigint", daemon=True).start()

@@ -19,7 +19,7 @@ import warnings
 
 import numpy as np
 import pytest
-from files import write
+from files import EXAMPLES, write
 from typer.testing import CliRunner
 
 from tumble.analysis import run
@@ -28,6 +28,7 @@ from tumble.app.sweep import compute_chunk
 from tumble.cli import app
 from tumble.errors import TumbleError, TumbleWarning
 from tumble.io.scenario import parse_scenario, template
+from tumble.io.sweep import parse_sweep
 from tumble.models import MODELS
 
 EXTREMES = [math.nan, math.inf, -math.inf, 1e308, -1e308, 5e-324, -5e-324, 0.0, -1.0, 1e20,
@@ -173,6 +174,25 @@ def test_a_chunk_of_hostile_sweep_points_fails_only_the_bad_ones(name, tmp_path)
         finals = [x for by_var in rec["final"].values() for x in by_var.values()]
         assert np.all(np.isfinite(finals)), (point, rec["final"])
     assert 0 < ok < len(points), ok  # the corpus has both kinds
+
+
+SWEEPS = sorted((EXAMPLES / "sweeps").glob("*.toml"))
+
+
+@pytest.mark.parametrize("path", SWEEPS, ids=[p.stem for p in SWEEPS])
+def test_mutated_sweep_files_are_accepted_or_refused_in_one_line(path):
+    # The same mutations of the example sweep files: grids of 1e20 points, counts of ±inf,
+    # NaN bounds, 100 000-character names; never an internal error.
+    base = tomllib.loads(path.read_text())
+    rng = random.Random(f"fuzz-{path.name}")
+    for i in range(MUTATIONS_PER_MODEL):
+        data = _mutate(base, rng)
+        try:
+            parse_sweep(data, path)
+        except TumbleError as exc:
+            _one_line(exc, f"mutation {i}")
+        except Exception as exc:
+            pytest.fail(f"mutation {i} of {path.name}: {type(exc).__name__}: {str(exc)[:200]}")
 
 
 BAD_FILES = {

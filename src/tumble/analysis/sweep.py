@@ -33,6 +33,7 @@ from tumble.analysis.verify import verify
 from tumble.errors import ParameterError, TumbleError, TumbleWarning, shorten
 
 __all__ = [
+    "MAX_POINTS",
     "STATUS",
     "Axis",
     "Draw",
@@ -44,6 +45,10 @@ __all__ = [
     "records_to_dataset",
     "run_point",
 ]
+
+MAX_POINTS = 10_000_000
+"""Most points a sweep may have (grid × Monte Carlo samples): their records are held in
+memory and written to one Dataset."""
 
 STATUS = ("ok", "failed")
 """Meanings of the ``status`` codes 0 and 1; −1 marks a point not yet computed."""
@@ -108,8 +113,8 @@ class Axis:
             start, stop, num = (float(v) for v in spec)
             if not (math.isfinite(start) and math.isfinite(stop)):
                 raise ParameterError(f"{where}: start and stop must be finite numbers")
-            if num != int(num) or num < 1:
-                raise ParameterError(f"{where}: num = {num:g} must be an integer ≥ 1")
+            if not (math.isfinite(num) and num == int(num) and 1 <= num <= MAX_POINTS):
+                raise ParameterError(f"{where}: num = {num:g} must be an integer in [1, 1e7]")
             if spacing == "logspace":
                 if start <= 0.0 or stop <= 0.0:
                     raise ParameterError(
@@ -232,6 +237,12 @@ class SweepPlan:
                 raise ParameterError(f"sweep: the {what} {dup[0]!r} is swept twice")
         if "sample" in names:
             raise ParameterError("sweep: 'sample' is the Monte Carlo dimension, not a name")
+        size = math.prod(a.values.size for a in self.axes) * max(1, self.samples)
+        if size > MAX_POINTS:
+            raise ParameterError(
+                f"sweep: {size:.3g} points, more than {MAX_POINTS:.0e} (a sweep's records are "
+                "held in memory): fewer axis values or Monte Carlo samples"
+            )
         rng = np.random.default_rng(self.seed)
         # Each variable's draws in turn, so adding a draw does not change the earlier ones.
         drawn = (

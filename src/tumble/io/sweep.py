@@ -42,7 +42,7 @@ from pydantic import BaseModel, ConfigDict, Field, ValidationError
 
 from tumble._version import __version__
 from tumble.analysis.sweep import Axis, Draw, Keep, Record, SweepPlan, column_attrs
-from tumble.errors import ParameterError, ScenarioError
+from tumble.errors import ParameterError, ScenarioError, shorten
 from tumble.io.output import atomic_write
 from tumble.io.scenario import _one_line, key_units, parse_scenario
 from tumble.io.toml import read_file, read_toml
@@ -395,8 +395,10 @@ def _base(sf: SweepFile, path: Path) -> tuple[Path, dict[str, Any]]:
     try:
         raw = source.read_bytes()
     except OSError as exc:
-        raise ScenarioError(f"base = {sf.base!r}: cannot read it ({exc.strerror})") from None
-    return source, read_toml(raw, f"base = {sf.base!r}")
+        raise ScenarioError(
+            f"base = {shorten(repr(sf.base))}: cannot read it ({exc.strerror})"
+        ) from None
+    return source, read_toml(raw, f"base = {shorten(repr(sf.base))}")
 
 
 def _plan(sf: SweepFile, base: dict[str, Any]) -> SweepPlan:

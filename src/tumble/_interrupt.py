@@ -30,12 +30,13 @@ _TAKEN = threading.Event()
 _CLEANUPS: list[Callable[[], None]] = []
 
 
-def interrupted() -> None:
-    """Say so and exit 130 at once: the work's own clean-up has run (or the emergency ones),
-    and skipping the interpreter's teardown of numba and scipy makes the exit immediate."""
+def interrupted(message: str = "interrupted") -> None:
+    """Say so (one line) and exit 130 at once: the work's own clean-up has run (or the
+    emergency ones), and skipping the interpreter's teardown of numba and scipy makes the
+    exit immediate."""
     with contextlib.suppress(Exception):
         sys.stdout.flush()
-    os.write(2, b"interrupted\n")
+    os.write(2, (message + "\n").encode())
     os._exit(130)
 
 

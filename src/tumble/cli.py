@@ -59,13 +59,13 @@ def _shortened(message: str) -> str:
     return re.sub(r"\S{121,}", lambda m: m.group(0)[:77] + "...", message)
 
 
-def _guarded(work: Callable[[], Any]) -> Any:
+def _guarded(work: Callable[[], Any], interrupted: str = "interrupted") -> Any:
     """Run ``work``; turn tumble's errors into one red line and its exit code, and Ctrl-C into
-    one line and exit 130."""
+    one line (``interrupted``) and exit 130."""
     try:
         return work()
     except KeyboardInterrupt:
-        _interrupted()
+        _interrupted(interrupted)
     except TumbleError as exc:
         err.print(f"[red]error:[/red] {_shortened(str(exc))}", highlight=False, soft_wrap=True)
         raise typer.Exit(exc.exit_code) from None
@@ -114,11 +114,11 @@ def _load(scenario: Path, allow_module: list[str] | None) -> Any:
     return sc
 
 
-def _interrupted() -> None:
+def _interrupted(message: str = "interrupted") -> None:
     """Exit 130 at once after Ctrl-C, with one line (:func:`tumble._interrupt.interrupted`)."""
     from tumble._interrupt import interrupted
 
-    interrupted()
+    interrupted(message)
 
 
 @app.command("run")
@@ -675,30 +675,28 @@ def sweep_cmd(
         err.print("[red]error:[/red] --workers applies to the local cluster, not --scheduler")
         raise typer.Exit(2)
     _guarded(lambda: read_file(sweep_file, "sweep file"))  # a broken file, before Dask loads
+    # At Ctrl-C the local cluster's processes are ended, not shut down: multiprocessing's
+    # resource tracker (a child) would then warn about their semaphores on this terminal.
+    os.environ.setdefault("PYTHONWARNINGS", "ignore::UserWarning:multiprocessing.resource_tracker")
     from tumble.app.sweep import sweep
 
-    try:
-        with _sweep_progress() as progress:
-            result = _guarded(
-                lambda: sweep(
-                    sweep_file,
-                    out_dir,
-                    scheduler=scheduler,
-                    workers=workers,
-                    progress=progress,
-                    plot=plot,
-                    retry_failed=retry_failed,
-                    allow_modules=allow_module or (),
-                )
-            )
-    except KeyboardInterrupt:
-        err.print(
-            f"[yellow]interrupted:[/yellow] the finished points are kept in {out_dir}/; run the "
-            "same command to resume",
-            highlight=False,
-            soft_wrap=True,
+    resume = (
+        f"interrupted: the finished points are kept in {out_dir}/; run the same command to resume"
+    )
+    with _sweep_progress() as progress:
+        result = _guarded(
+            lambda: sweep(
+                sweep_file,
+                out_dir,
+                scheduler=scheduler,
+                workers=workers,
+                progress=progress,
+                plot=plot,
+                retry_failed=retry_failed,
+                allow_modules=allow_module or (),
+            ),
+            interrupted=resume,
         )
-        raise typer.Exit(130) from None
     _report_sweep(result)
 
 

@@ -234,6 +234,30 @@ def test_monte_carlo_on_a_local_cluster_started_by_tumble(tmp_path):
     assert (tmp_path / "out" / "sweep.png").stat().st_size > 0
 
 
+def test_ctrl_c_on_a_local_cluster_sweep_is_one_line_and_resumes(sweep_file, tmp_path):
+    """SIGINT once the first chunks are on disk: exit 130 with one line (no worker logs, no
+    warnings of multiprocessing's resource tracker); the same command finishes the sweep."""
+    out = tmp_path / "out"
+    args = [TUMBLE, "sweep", str(sweep_file), "-o", str(out), "--workers", "2", "--no-plot"]
+    proc = subprocess.Popen(
+        args,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),  # as in a terminal
+    )
+    parts = out / "parts"
+    _wait_for(lambda: parts.is_dir() and any(parts.glob("*.json")), 120, "a first chunk")
+    proc.send_signal(signal.SIGINT)
+    _, stderr = proc.communicate(timeout=60)
+    lines = [ln for ln in stderr.splitlines() if ln.strip()]
+    assert proc.returncode == 130, stderr
+    assert len(lines) == 1 and lines[0].startswith("interrupted: the finished points"), stderr
+    done = subprocess.run(args, capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "already done" in done.stdout
+
+
 def test_bad_sweep_input_is_one_line_and_exit_2(tmp_path):
     (tmp_path / "base.toml").write_text(BASE)
     (tmp_path / "bad.toml").write_text(

@@ -208,9 +208,10 @@ def _client(scheduler: str | None, workers: int | None) -> Iterator[Any]:
         # another cluster, and nothing tumble starts listens beyond this machine.
         dashboard_address="127.0.0.1:0",
         host="127.0.0.1",
-        # The workers' warnings (tasks cancelled at Ctrl-C, …) would break the progress bar;
-        # what matters to a sweep (a point's failure, a lost worker's task) is in its records.
-        silence_logs=logging.ERROR,
+        # The workers' warnings and errors (tasks cancelled, a scheduler gone at Ctrl-C, …)
+        # would break the progress bar and read as tracebacks; what matters to a sweep (a
+        # point's failure, a lost worker's task) is in its records or raised in this process.
+        silence_logs=logging.CRITICAL,
     )
     try:
         client = Client(cluster)

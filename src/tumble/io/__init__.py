@@ -15,7 +15,7 @@ _EXPORTS: dict[str, str] = {
     "Scenario": "tumble.io.scenario",
     "load_scenario": "tumble.io.scenario",
     "parse_scenario": "tumble.io.scenario",
-    "template": "tumble.io.scenario",
+    "template": "tumble.io.toml",
     "atomic_write": "tumble.io.output",
     "csv_text": "tumble.io.output",
     "render_outputs": "tumble.io.output",
@@ -40,7 +40,8 @@ __all__ = [
 if TYPE_CHECKING:
     from tumble.io.fileset import output_set
     from tumble.io.output import atomic_write, csv_text, render_outputs, summary, verify_outputs
-    from tumble.io.scenario import Scenario, load_scenario, parse_scenario, template
+    from tumble.io.scenario import Scenario, load_scenario, parse_scenario
+    from tumble.io.toml import template
 
 
 __getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)

@@ -16,7 +16,6 @@ import math
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from functools import cache
-from importlib import resources
 from pathlib import Path
 from typing import Annotated, Any, Literal
 
@@ -34,7 +33,7 @@ from pydantic import (
 from tumble.analysis import RunRequest
 from tumble.errors import ParameterError, ScenarioError, shorten
 from tumble.integrate import MAX_STEPS, check_times
-from tumble.io.toml import read_file
+from tumble.io.toml import read_file, template
 from tumble.io.user_code import UserFunction, user_function
 from tumble.models import MODELS, AnyModel, get_model
 from tumble.models.base import AveragingOptions
@@ -568,9 +567,3 @@ def load_scenario(path: str | Path, *, allow_modules: Iterable[str] = ()) -> Sce
         Importable modules the scenario may name functions of, besides files.
     """
     return parse_scenario(read_file(path), str(path), allow_modules=allow_modules)
-
-
-def template(model: str) -> str:
-    """A commented example scenario for ``model`` (what ``tumble init`` prints)."""
-    get_model(model)
-    return resources.files("tumble.io").joinpath("templates", f"{model}.toml").read_text("utf-8")

@@ -1,18 +1,22 @@
-"""Scenario and sweep files read as TOML, with nothing but the standard library.
+"""Scenario and sweep files read as TOML, and the shipped templates, with nothing but the
+standard library.
 
 Kept apart from the validation (:mod:`tumble.io.scenario`, which loads the models) so that a
-file that is missing, not UTF-8 or not TOML is reported at once.
+file that is missing, not UTF-8 or not TOML is reported at once, and ``tumble init`` answers
+at once.
 """
 
 from __future__ import annotations
 
 import tomllib
+from importlib import resources
 from pathlib import Path
 from typing import Any
 
+from tumble.catalogue import CATALOGUE
 from tumble.errors import ScenarioError, shorten
 
-__all__ = ["read_file", "read_toml"]
+__all__ = ["read_file", "read_toml", "template"]
 
 
 def read_toml(raw: bytes, where: str) -> dict[str, Any]:
@@ -40,3 +44,13 @@ def read_file(path: str | Path, what: str = "scenario") -> dict[str, Any]:
     except OSError as exc:
         raise ScenarioError(f"{path}: cannot read the {what} ({exc.strerror})") from None
     return read_toml(raw, str(path))
+
+
+def template(model: str) -> str:
+    """A commented example scenario for ``model`` (what ``tumble init`` prints)."""
+    if model not in CATALOGUE:
+        raise ScenarioError(
+            f"model = {shorten(repr(model), 60)} is not a known model "
+            f"(allowed: {', '.join(sorted(CATALOGUE))})"
+        )
+    return resources.files("tumble.io").joinpath("templates", f"{model}.toml").read_text("utf-8")

@@ -530,8 +530,9 @@ STARTUP_REPEAT = 3
 
 def _startup(log: Callable[[str], None]) -> dict[str, float]:
     """Wall time of ``tumble`` answering at once [s], best of :data:`STARTUP_REPEAT` fresh
-    processes: its help, the model list, a scenario file that is missing, and a scenario with
-    a parameter out of range (this one validates against the models, and loads them)."""
+    processes: its help, the model list, a template, a scenario file that is missing, and a
+    scenario with a parameter out of range (this one validates against the models, and loads
+    them)."""
     exe = Path(sys.executable).with_name("tumble")
     command = [str(exe)] if exe.exists() else [sys.executable, "-m", "tumble.cli"]
     out: dict[str, float] = {}
@@ -541,6 +542,7 @@ def _startup(log: Callable[[str], None]) -> dict[str, float]:
         cases = {
             "--help": ["--help"],
             "models": ["models"],
+            "init": ["init", "resisting_medium"],
             "input error: missing file": ["run", str(Path(tmp) / "missing.toml")],
             "input error: a value out of range": ["run", str(bad)],
         }

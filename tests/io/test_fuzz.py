@@ -126,15 +126,15 @@ def test_mutated_scenarios_are_accepted_or_refused_in_one_line_and_run(name, tmp
     assert ran > len(accepted) // 2, (ran, len(accepted))
 
 
-def _numeric_keys(d, path=()):
-    """The sweep keys (``parameters.b[2][2]``) of every number of a template."""
-    for k, v in d.items() if isinstance(d, dict) else enumerate(d):
-        here = (*path, k)
-        if isinstance(v, dict | list):
-            yield from _numeric_keys(v, here)
-        elif isinstance(v, int | float) and not isinstance(v, bool) and path != ("run",):
-            names = [str(p) for p in here if isinstance(p, str)]
-            yield ".".join(names) + "".join(f"[{p}]" for p in here if isinstance(p, int))
+def _numeric_keys(d):
+    """The sweep keys (``parameters.b[2][2]``) of every number of a template but ``[run]``."""
+    for path in _leaves(d):
+        value = d
+        for p in path:
+            value = value[p]
+        if isinstance(value, int | float) and not isinstance(value, bool) and path[0] != "run":
+            names = ".".join(str(p) for p in path if isinstance(p, str))
+            yield names + "".join(f"[{p}]" for p in path if isinstance(p, int))
 
 
 @pytest.mark.parametrize("name", NAMES)

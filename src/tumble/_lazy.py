@@ -6,17 +6,37 @@ from __future__ import annotations
 
 import importlib
 import sys
+import types
 from collections.abc import Callable
 from typing import Any
 
 __all__ = ["lazy_exports"]
 
 
+class _Package(types.ModuleType):
+    """A package some of whose public names are also its submodules' names (``run``, the
+    function, from ``run``, the module): the import system binds a submodule to its name on
+    the package once it is loaded, which would hide the function; such a binding is skipped
+    (the submodule stays in ``sys.modules``), as an eager ``from .run import run`` would
+    overwrite it."""
+
+    _shadowed: frozenset[str] = frozenset()
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        if name in self._shadowed and isinstance(value, types.ModuleType):
+            return
+        super().__setattr__(name, value)
+
+
 def lazy_exports(
     package: str, exports: dict[str, str]
 ) -> tuple[Callable[[str], Any], Callable[[], list[str]]]:
     """The ``__getattr__`` and ``__dir__`` of ``package`` for ``exports`` (name → module)."""
-    namespace = vars(sys.modules[package])
+    module = sys.modules[package]
+    shadowed = frozenset(n for n, m in exports.items() if m == f"{package}.{n}")
+    if shadowed:
+        module.__class__ = type("Package", (_Package,), {"_shadowed": shadowed})
+    namespace = vars(module)
 
     def __getattr__(name: str) -> Any:
         module = exports.get(name)

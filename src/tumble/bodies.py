@@ -9,7 +9,7 @@ import numpy as np
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import ParameterError, check_range
 
-__all__ = ["TRIANGLE_RTOL", "RigidBody"]
+__all__ = ["TRIANGLE_RTOL", "RigidBody", "proper_sorting"]
 
 TRIANGLE_RTOL = 1e-12
 """Relative slack in the triangle inequality, so that a thin plate I3 = I1 + I2 given in
@@ -80,3 +80,20 @@ class RigidBody:
         """
         w = np.asarray(omega, dtype=float)
         return 0.5 * np.sum(self.inertia * w * w, axis=-1)
+
+
+def proper_sorting(inertia: ArrayLike) -> FloatArray:
+    """Signed permutation Q (det +1) with Q diag(I) Qᵀ sorted ascending, spec §8 and §16.
+
+    ``v_sorted = Q v_user``; a transposition gets one axis reversed to stay proper.
+
+    Parameters
+    ----------
+    inertia : array_like, shape (3,)
+        Principal moments in the user's labels [inertia unit].
+    """
+    order = np.argsort(np.asarray(inertia, dtype=float), kind="stable")
+    Q = np.eye(3)[order]
+    if np.linalg.det(Q) < 0.0:
+        Q[0] *= -1.0  # a transposition: reverse the first sorted axis to keep det = +1
+    return Q

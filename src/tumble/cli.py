@@ -669,12 +669,13 @@ def sweep_cmd(
     only the others. A torque function the base scenario names (torque = "file:function")
     runs on every worker: each loads it from the Python file beside the scenario.
     """
-    from tumble.io.toml import read_file
-
     if scheduler is not None and workers is not None:
         err.print("[red]error:[/red] --workers applies to the local cluster, not --scheduler")
         raise typer.Exit(2)
-    _guarded(lambda: read_file(sweep_file, "sweep file"))  # a broken file, before Dask loads
+    from tumble.io.sweep import load_sweep
+
+    # Validated before Dask, xarray and the integrators load: a bad key answers at once.
+    spec = _guarded(lambda: load_sweep(sweep_file, allow_modules=allow_module or ()))
     # At Ctrl-C the local cluster's processes are ended, not shut down: multiprocessing's
     # resource tracker (a child) would then warn about their semaphores on this terminal.
     os.environ.setdefault("PYTHONWARNINGS", "ignore::UserWarning:multiprocessing.resource_tracker")
@@ -686,7 +687,7 @@ def sweep_cmd(
     with _sweep_progress() as progress:
         result = _guarded(
             lambda: sweep(
-                sweep_file,
+                spec,
                 out_dir,
                 scheduler=scheduler,
                 workers=workers,

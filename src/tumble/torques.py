@@ -31,7 +31,7 @@ import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import ParameterError, check_range
-from tumble.kernels.torque import (
+from tumble.kernels.codes import (
     RATE_ONLY_TERMS,
     TERM_BODY_CONSTANT,
     TERM_EDDY_CURRENT,
@@ -40,8 +40,6 @@ from tumble.kernels.torque import (
     TERM_LINEAR_DRAG,
     TERM_PAYLOAD,
     TERM_QUADRATIC_DRAG,
-    inertial_moments,
-    moments,
 )
 
 __all__ = [
@@ -178,6 +176,8 @@ def _evaluate(
         if x.shape[: x.ndim - len(tail)] not in ((), shape):  # a partial broadcast
             x = np.broadcast_to(x, (*shape, *tail))
         args.append(np.ascontiguousarray(x.reshape(-1, *tail)))
+    from tumble.kernels.torque import moments  # compiled: loaded on first evaluation
+
     return np.asarray(moments(program, *args)).reshape(*shape, 3)
 
 
@@ -205,6 +205,8 @@ def inertial_moments_on_grid(
     program = torque.program
     if program is None:
         raise ParameterError(f"{type(torque).__name__} is not compiled")
+    from tumble.kernels.torque import inertial_moments  # compiled
+
     times = np.ascontiguousarray(np.ravel(np.asarray(t, dtype=float)))
     return np.asarray(
         inertial_moments(

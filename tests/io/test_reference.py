@@ -7,6 +7,7 @@ from files import ROOT
 from tumble.io.reference import scenario_reference
 from tumble.io.scenario import run_keys, schema_for
 from tumble.models import MODELS
+from tumble.models.base import Declaration
 
 
 def test_the_committed_page_is_the_generated_one():
@@ -36,7 +37,7 @@ def test_every_declared_key_is_accepted_and_documented():
                     assert fields == [k.name for k in section.keys], (name, section.name)
                 for key in section.keys:
                     assert f"`{key.name}`" in page, (name, key.name)
-            run = [k.name for k in run_keys(model, variant)]
+            run = [k.name for k in run_keys(Declaration.of(model), variant)]
             assert set(_fields(schema.model_fields["run"].annotation)) == set(run)
 
 

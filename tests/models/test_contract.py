@@ -102,3 +102,13 @@ def test_the_catalogue_lists_every_shipped_model_as_registered():
     assert [m.name for m in shipped] == list(CATALOGUE)
     for m in shipped:
         assert (m.description, m.paper) == (CATALOGUE[m.name].description, CATALOGUE[m.name].paper)
+
+
+@pytest.mark.parametrize("name", sorted(MODELS))
+def test_declaration_is_the_models_own(name):
+    """A scenario is validated against the declaration alone: it must say what the model
+    does (time, methods, checks, keys, averaging choices)."""
+    from tumble.models import declaration
+    from tumble.models.base import Declaration
+
+    assert declaration(name) == Declaration.of(MODELS[name])

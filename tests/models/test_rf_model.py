@@ -176,7 +176,9 @@ def test_state_from_elements_round_trip(inertia, regime):
     """The slow variables of the built state are the prescribed ones, in any axis labelling."""
     p = rf.Params(inertia, 1.0, 0.01)
     for k2, u0, psi0 in [(0.3, 0.0, 0.0), (0.8, 1.3, 2.0), (0.0, 0.4, -1.0), (1.0, 0.2, 0.3)]:
-        s = rf.state_from_elements(p, 1.8, 0.7, -2.1, k2, regime, u0=u0, psi0=psi0).slow(p)
+        s = rf.slow_elements(
+            p, rf.state_from_elements(p, 1.8, 0.7, -2.1, k2, regime, u0=u0, psi0=psi0)
+        )
         # Each element goes through (3.1), a rotation and back: round-off of O(1) quantities.
         assert s["L"] == pytest.approx(1.8, rel=1e-13)
         assert s["rho"] == pytest.approx(0.7, abs=1e-13)

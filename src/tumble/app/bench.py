@@ -37,6 +37,7 @@ import json
 import math
 import os
 import platform
+import re
 import subprocess
 import sys
 import tempfile
@@ -53,6 +54,7 @@ from scipy.integrate import solve_ivp
 from tumble._typing import FloatArray
 from tumble.analysis.verify import slow_errors
 from tumble.app import heyoka_peer
+from tumble.catalogue import CATALOGUE
 from tumble.dynamics import rigid_body_kernel, rigid_body_rhs
 from tumble.errors import IntegrationError, ParameterError
 from tumble.integrate import dop853, simulate
@@ -525,27 +527,35 @@ print("JSON" + json.dumps(out))
 """
 
 
-STARTUP_REPEAT = 3
+STARTUP_REPEAT = 5
 
 
 def _startup(log: Callable[[str], None]) -> dict[str, float]:
     """Wall time of ``tumble`` answering at once [s], best of :data:`STARTUP_REPEAT` fresh
-    processes: its help, the model list, a template, a scenario file that is missing, and a
-    scenario with a parameter out of range (this one validates against the models, and loads
-    them)."""
+    processes: its help, the model list, a template, a scenario file that is missing, a
+    scenario of each shipped model with a parameter out of range (validated against the
+    model's declaration, before its numerics load) and a sweep file with a bad axis."""
     exe = Path(sys.executable).with_name("tumble")
     command = [str(exe)] if exe.exists() else [sys.executable, "-m", "tumble.cli"]
     out: dict[str, float] = {}
     with tempfile.TemporaryDirectory(prefix="tumble-bench-startup-") as tmp:
-        bad = Path(tmp) / "bad.toml"
-        bad.write_text(template("resisting_medium").replace("kappa = 0.5", "kappa = -5.0"))
         cases = {
             "--help": ["--help"],
             "models": ["models"],
             "init": ["init", "resisting_medium"],
             "input error: missing file": ["run", str(Path(tmp) / "missing.toml")],
-            "input error: a value out of range": ["run", str(bad)],
         }
+        for name in CATALOGUE:
+            bad = Path(tmp) / f"{name}.toml"
+            # Every shipped template has one line "eps = <value>"; ε < 0 is out of range.
+            bad.write_text(re.sub(r"(?m)^eps = \S+", "eps = -1.0", template(name), count=1))
+            cases[f"input error: {name} parameter out of range"] = ["run", str(bad)]
+        sweep = Path(tmp) / "sweep.toml"
+        sweep.write_text(
+            'base = "resisting_medium.toml"\n[[axis]]\nkey = "parameters.kappa"\n'
+            "linspace = [0.1, 0.5, 0]\n"  # num = 0: not an integer in [1, 1e7]
+        )
+        cases["input error: sweep file"] = ["sweep", str(sweep)]
         for name, args in cases.items():
             log(f"start-up: tumble {' '.join(args[:1])} ({name})")
             times = []

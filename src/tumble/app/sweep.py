@@ -228,7 +228,7 @@ def _threads(client: Any) -> int:
 
 
 def sweep(
-    path: str | Path,
+    path: str | Path | Sweep,
     out_dir: str | Path,
     *,
     scheduler: str | None = None,
@@ -246,8 +246,9 @@ def sweep(
 
     Parameters
     ----------
-    path : str or Path
-        The sweep file (see :mod:`tumble.io.sweep`).
+    path : str, Path or Sweep
+        The sweep file (see :mod:`tumble.io.sweep`), or the sweep already read from it
+        (:func:`tumble.io.sweep.load_sweep`, with its ``allow_modules``).
     out_dir : str or Path
         Output directory; if it holds this sweep's finished chunks they are kept and not
         computed again.
@@ -271,7 +272,7 @@ def sweep(
     SweepResult
     """
     start = time.perf_counter()
-    spec = load_sweep(path, allow_modules=allow_modules)
+    spec = path if isinstance(path, Sweep) else load_sweep(path, allow_modules=allow_modules)
     store = SweepStore(out_dir, spec)
     finished = store.finished()
     if retry_failed:
@@ -293,7 +294,7 @@ def sweep(
         ds = _dataset(spec, records)
         files = [store.write_dataset(ds), store.dir / "sweep.json"]
     if plot:
-        files.append(_write_figure(spec, ds, store.dir / "sweep.png", Path(path).name))
+        files.append(_write_figure(spec, ds, store.dir / "sweep.png", Path(spec.path).name))
     return SweepResult(
         ds,
         files,

@@ -12,6 +12,7 @@ from scipy.integrate import solve_ivp
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import IntegrationError, ParameterError
 from tumble.integrate import dop853
+from tumble.integrate.limits import check_times
 from tumble.kernels import Kernel
 from tumble.models.base import Breakpoint
 
@@ -55,22 +56,6 @@ class DenseSolution:
     def __call__(self, t: ArrayLike) -> FloatArray:
         """States at times ``t``, shape (n, dim)."""
         return np.asarray(self._sol(np.asarray(t, dtype=float)), dtype=float).T
-
-
-def check_times(tau: ArrayLike, *, field: str = "run.tau") -> FloatArray:
-    """Validate sample times: finite, ≥ 0, strictly ascending; return them as an array."""
-    t = np.asarray(tau, dtype=float)
-    if t.ndim != 1 or t.size == 0:
-        raise ParameterError(f"{field} must be a non-empty list of times")
-    if not np.all(np.isfinite(t)) or t[0] < 0.0:
-        raise ParameterError(f"{field} must contain finite times ≥ 0")
-    if np.any(np.diff(t) <= 0.0):
-        i = int(np.flatnonzero(np.diff(t) <= 0.0)[0])
-        raise ParameterError(
-            f"{field} must be strictly ascending, but {field}[{i + 1}] = {t[i + 1]:g} "
-            f"follows {t[i]:g}"
-        )
-    return t
 
 
 class _Piecewise:

@@ -18,6 +18,7 @@ import numpy as np
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import IntegrationError, ParameterError, TumbleError
 from tumble.integrate import dop853
+from tumble.integrate.limits import MAX_STEPS
 from tumble.integrate.ode import (
     DEFAULT_ATOL,
     DEFAULT_RTOL,
@@ -50,11 +51,6 @@ _BUDGET_MARGIN = 100.0
 many times its remaining step budget: steps grow, but not by a hundredfold on average."""
 
 _Job = tuple[int, Kernel, FloatArray]  # a point of a batch: its index, kernel, initial state
-
-MAX_STEPS = 100_000_000
-"""Default step budget of a full run (``[run] max_steps``): about a minute or two of the
-compiled integrator, beyond which a run is stopped with an error naming the key rather than
-left to run for hours (a stiff or mistyped input)."""
 
 INTEGRATORS = ("auto", "numba", "scipy")
 """How the full equations are integrated (the scenario key ``[run] integrator``): ``"numba"``

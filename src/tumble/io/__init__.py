@@ -16,7 +16,7 @@ _EXPORTS: dict[str, str] = {
     "load_scenario": "tumble.io.scenario",
     "parse_scenario": "tumble.io.scenario",
     "template": "tumble.io.toml",
-    "atomic_write": "tumble.io.output",
+    "atomic_write": "tumble.io.fileset",
     "csv_text": "tumble.io.output",
     "render_outputs": "tumble.io.output",
     "summary": "tumble.io.output",
@@ -38,8 +38,8 @@ __all__ = [
 ]
 
 if TYPE_CHECKING:
-    from tumble.io.fileset import output_set
-    from tumble.io.output import atomic_write, csv_text, render_outputs, summary, verify_outputs
+    from tumble.io.fileset import atomic_write, output_set
+    from tumble.io.output import csv_text, render_outputs, summary, verify_outputs
     from tumble.io.scenario import Scenario, load_scenario, parse_scenario
     from tumble.io.toml import template
 

@@ -40,13 +40,32 @@ try:  # POSIX; elsewhere the directory is checked but not locked
 except ImportError:  # pragma: no cover - Windows
     fcntl = None  # type: ignore[assignment]
 
-__all__ = ["MANIFEST", "OutputSet", "output_set", "read_manifest"]
+__all__ = ["MANIFEST", "OutputSet", "atomic_write", "output_set", "read_manifest"]
 
 MANIFEST = "manifest.json"
 """The file naming a set's command, scenario, inputs and files (written last)."""
 
 _NEW, _OLD = ".tumble-new-", ".tumble-old-"
 _IGNORED = {".tumble.lock"}  # left in a directory by tumble before sets were written whole
+
+
+def atomic_write(path: str | Path, data: bytes) -> None:
+    """Write ``data`` to ``path`` through a temporary file and ``os.replace``."""
+    path = Path(path)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        # mkstemp creates 0600; give the file the permissions a plain open() would.
+        umask = os.umask(0)
+        os.umask(umask)
+        os.fchmod(fd, 0o666 & ~umask)
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data)
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
 
 
 def read_manifest(out_dir: str | Path) -> dict[str, Any] | None:

@@ -11,6 +11,7 @@ from collections.abc import Iterable
 
 from tumble.io.scenario import describe, run_keys
 from tumble.models import MODELS, AnyModel
+from tumble.models.base import Declaration
 from tumble.models.schema import REQUIRED, Key, Section
 
 __all__ = ["scenario_reference"]
@@ -54,7 +55,7 @@ def _model(model: AnyModel) -> list[str]:
         out += [f"### {which}: {variant.doc}" if variant.doc else f"### {which}", ""]
         for section in variant.sections:
             out += _section(section)
-        out += ["#### `[run]`", "", *_table(run_keys(model, variant)), ""]
+        out += ["#### `[run]`", "", *_table(run_keys(Declaration.of(model), variant)), ""]
     return out
 
 

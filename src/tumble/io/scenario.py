@@ -1,6 +1,10 @@
 """Scenario files: TOML, validated against the keys each model declares, turned into a
 :class:`RunRequest`.
 
+Validation reads each model's :class:`~tumble.models.base.Declaration` only: a scenario is
+checked, and an input error reported, before numba, scipy or the model's equations load; the
+model itself loads once the scenario is valid.
+
 The loader is generic. A model states its tables and keys in its own module
 (:class:`tumble.models.schema.ScenarioSchema`); here they are compiled into pydantic models,
 so that every error is one line naming the key, the value and what is allowed. The ``[run]``
@@ -17,7 +21,7 @@ from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
 from functools import cache
 from pathlib import Path
-from typing import Annotated, Any, Literal
+from typing import TYPE_CHECKING, Annotated, Any, Literal
 
 import numpy as np
 from pydantic import (
@@ -30,14 +34,16 @@ from pydantic import (
     model_validator,
 )
 
-from tumble.analysis import RunRequest
 from tumble.errors import ParameterError, ScenarioError, shorten
-from tumble.integrate import MAX_STEPS, check_times
+from tumble.integrate.limits import MAX_STEPS, check_times
 from tumble.io.toml import read_file, template
 from tumble.io.user_code import UserFunction, user_function
-from tumble.models import MODELS, AnyModel, get_model
-from tumble.models.base import AveragingOptions
+from tumble.models import declaration, get_model, names
+from tumble.models.base import AveragingOptions, Declaration
 from tumble.models.schema import REQUIRED, Key, Section, Variant
+
+if TYPE_CHECKING:
+    from tumble.analysis import RunRequest
 
 __all__ = ["Scenario", "key_units", "load_scenario", "parse_scenario", "schema_for", "template"]
 
@@ -185,7 +191,7 @@ def section_model(section: Section) -> type[_Section]:
 _TIMES = {"tau": ("tau_end", "tau"), "t": ("t_end", "t")}
 
 
-def run_keys(model: AnyModel, variant: Variant[Any, Any]) -> tuple[Key, ...]:
+def run_keys(model: Declaration[Any, Any], variant: Variant[Any, Any]) -> tuple[Key, ...]:
     """The ``[run]`` keys of a model's scenario: common to every model, the averaging choices
     its averaged equations offer, and its own."""
     time = model.time.name
@@ -209,19 +215,18 @@ def run_keys(model: AnyModel, variant: Variant[Any, Any]) -> tuple[Key, ...]:
                 "once when its pace needs 100 times what is left (Python right-hand sides, "
                 "the averaged equations: at most 1e6)"),
     ]  # fmt: skip
-    avg = model.averaged
-    if avg is not None and avg.numeric:
+    if model.numeric:
         keys.append(
             Key("averaging", "text", '"closed_form" or "numeric"', default="closed_form",
                 choices=("closed_form", "numeric"),
                 doc="the paper's averaged equations, or the general engine's quadrature")
         )  # fmt: skip
-    if avg is not None and avg.coordinates:
-        choices = " or ".join(f'"{c}"' for c in avg.coordinates)
-        first = avg.coordinates[0]
-        keys.append(Key("averaged_form", "text", choices, default=first, choices=avg.coordinates,
+    if model.coordinates:
+        choices = " or ".join(f'"{c}"' for c in model.coordinates)
+        first = model.coordinates[0]
+        keys.append(Key("averaged_form", "text", choices, default=first, choices=model.coordinates,
                         doc="the slow coordinates the averaged run integrates"))  # fmt: skip
-    if avg is not None and avg.corrected_start:
+    if model.corrected_start:
         keys.append(
             Key("averaged_init", "text", '"exact" or "corrected"', default="exact",
                 choices=("exact", "corrected"),
@@ -238,7 +243,7 @@ def run_keys(model: AnyModel, variant: Variant[Any, Any]) -> tuple[Key, ...]:
     return (*keys, *model.scenario.run)
 
 
-def _methods_field(model: AnyModel) -> tuple[Any, Any]:
+def _methods_field(model: Declaration[Any, Any]) -> tuple[Any, Any]:
     allowed = ", ".join(f'"{m}"' for m in model.methods)
     kind = list[Literal[model.methods]]  # type: ignore[name-defined]
     return kind | None, Field(None, description=f"a non-empty list of {allowed}")
@@ -248,7 +253,7 @@ def _methods_field(model: AnyModel) -> tuple[Any, Any]:
 def _compiled(name: str, physical: bool) -> type[BaseModel] | None:
     """The pydantic model a scenario of model ``name`` (with or without ``[physical]``) is
     validated against; None if the model declares no such variant."""
-    model = MODELS[name]
+    model = declaration(name)
     if model.scenario is None:
         return None
     variant = model.scenario.variant(physical)
@@ -277,7 +282,7 @@ def _compiled(name: str, physical: bool) -> type[BaseModel] | None:
 def schema_for(data: Mapping[str, Any]) -> type[BaseModel] | None:
     """The pydantic schema a scenario dict is validated against (None: unknown model)."""
     name = data.get("model")
-    if not isinstance(name, str) or name not in MODELS:
+    if not isinstance(name, str) or name not in names():
         return None
     return _compiled(name, "physical" in data)
 
@@ -470,14 +475,12 @@ def parse_scenario(
     """
     if "model" not in data:
         raise ScenarioError(
-            "model: required key is missing (allowed: "
-            + ", ".join(n for n, m in MODELS.items() if m.scenario is not None)
-            + ")"
+            "model: required key is missing (allowed: " + ", ".join(names(scenario=True)) + ")"
         )
     name = data["model"]
     if not isinstance(name, str):
         raise ScenarioError(f"model = {name!r}: expected a string")
-    model = get_model(name)  # unknown model → one line naming the allowed ones
+    model = declaration(name)  # unknown model → one line naming the allowed ones
     physical = "physical" in data
     if physical and "parameters" in data:
         raise ScenarioError("give either [parameters] (normalized) or [physical] (SI), not both")
@@ -500,15 +503,16 @@ def parse_scenario(
         _methods(sc.run, model.methods, model.methods)
     inputs = _Inputs(values, Path(source).resolve().parent, times, frozenset(allow_modules))
     built = variant.build(inputs)
-    request = _request(model, sc.run, built, times)
+    request = _request(model, sc.run, built, times)  # loads the model: the scenario is valid
     for function in inputs.functions:
         function.load()
     user_code = tuple(dict.fromkeys(f.origin for f in inputs.functions))
     return Scenario(request, sc.model_dump(), source, user_code)
 
 
-def _request(model: AnyModel, run: Any, built: Any, times: np.ndarray) -> RunRequest:
-    """The run request of a validated scenario and its built parameters."""
+def _request(model: Declaration[Any, Any], run: Any, built: Any, times: np.ndarray) -> RunRequest:
+    """The run request of a validated scenario and its built parameters (every check first,
+    then the model loads)."""
     tau = built.scaling.tau_from_time(times) if built.scaling is not None else times
     methods = _methods(run, model.methods, built.methods or model.methods)
     for m in methods:
@@ -523,7 +527,9 @@ def _request(model: AnyModel, run: Any, built: Any, times: np.ndarray) -> RunReq
         raise ParameterError(
             f"run.max_steps = {shorten(str(run.max_steps))} is outside the allowed range [1, 1e12]"
         )
-    return RunRequest(model, built.params, built.initial, tau, methods, rtol, atol,
+    from tumble.analysis import RunRequest
+
+    return RunRequest(get_model(model.name), built.params, built.initial, tau, methods, rtol, atol,
                       built.scaling, run.verify, run.integrator, averaging,
                       run.max_steps)  # fmt: skip
 

@@ -35,18 +35,20 @@ import re
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
-import xarray as xr
 from pydantic import BaseModel, ConfigDict, Field, ValidationError
 
 from tumble._version import __version__
-from tumble.analysis.sweep import Axis, Draw, Keep, Record, SweepPlan, column_attrs
+from tumble.analysis.plan import Axis, Draw, Keep, Record, SweepPlan
 from tumble.errors import ParameterError, ScenarioError, shorten
-from tumble.io.output import atomic_write
+from tumble.io.fileset import atomic_write
 from tumble.io.scenario import _one_line, key_units, parse_scenario
 from tumble.io.toml import read_file, read_toml
 from tumble.models import AnyModel
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 __all__ = [
     "Sweep",
@@ -343,11 +345,13 @@ def parse_sweep(
     except ValidationError as exc:
         raise ScenarioError(f"{path}: {_one_line(exc, SweepFile)}") from None
     source, base = _base(sf, path)
+    plan = _plan(sf, base)  # the sweep's own keys, against the base's data, before any model
     try:  # the base itself must be a valid run; points that are not are recorded as failed
         sc = parse_scenario(copy.deepcopy(base), str(source), allow_modules=allow_modules)
     except (ScenarioError, ParameterError) as exc:
         raise ScenarioError(f"base scenario {source}: {exc}") from None
-    plan = _plan(sf, base)
+    from tumble.analysis.sweep import column_attrs  # the model is loaded: the base is valid
+
     model = sc.request.model
     keep = _keep(sf, model)
     if sf.sweep.chunk is not None and sf.sweep.chunk < 1:

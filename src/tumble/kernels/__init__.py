@@ -17,13 +17,12 @@ import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import ParameterError
-from tumble.kernels.rhs import (
+from tumble.kernels.codes import (
     EVENT_NONE,
     EVENT_THETA_DOT,
     KIND_NONLINEAR_MOMENT,
     KIND_RIGID_BODY,
     KIND_ROTATING_FIELD,
-    evaluate,
 )
 
 __all__ = [
@@ -71,5 +70,7 @@ class Kernel:
 
 def evaluate_rhs(kernel: Kernel, t: float, y: ArrayLike) -> FloatArray:
     """dy/dt of a compiled kernel at one state (for tests against the Python forms)."""
+    from tumble.kernels.rhs import evaluate  # compiled: loaded on first use
+
     state = np.ascontiguousarray(y, dtype=np.float64)
     return evaluate(kernel.kind, float(t), state, kernel.params)  # type: ignore[no-any-return]

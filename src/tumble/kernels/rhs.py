@@ -25,6 +25,13 @@ import math
 import numpy as np
 
 from tumble._typing import FloatArray
+from tumble.kernels.codes import (
+    EVENT_NONE,
+    EVENT_THETA_DOT,
+    KIND_NONLINEAR_MOMENT,
+    KIND_RIGID_BODY,
+    KIND_ROTATING_FIELD,
+)
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
 from tumble.kernels.torque import quaternion_rates, torque_moment
 
@@ -43,14 +50,6 @@ __all__ = [
     "rotating_field",
     "symmetric_body",
 ]
-
-KIND_RIGID_BODY = 1
-KIND_ROTATING_FIELD = 2
-KIND_NONLINEAR_MOMENT = 3
-
-EVENT_NONE = 0
-EVENT_THETA_DOT = 1
-"""Zeros of θ' of the nonlinear-moment quaternion form: the extrema of θ(t)."""
 
 
 @jit(INLINE)

@@ -16,6 +16,16 @@ import math
 import numpy as np
 
 from tumble._typing import FloatArray
+from tumble.kernels.codes import (
+    RATE_ONLY_TERMS,
+    TERM_BODY_CONSTANT,
+    TERM_EDDY_CURRENT,
+    TERM_GRAVITY_GRADIENT,
+    TERM_INERTIAL_CONSTANT,
+    TERM_LINEAR_DRAG,
+    TERM_PAYLOAD,
+    TERM_QUADRATIC_DRAG,
+)
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
 
 __all__ = [
@@ -34,25 +44,6 @@ __all__ = [
     "torque_moment",
 ]
 
-TERM_BODY_CONSTANT = 1  # body moment (3)
-TERM_LINEAR_DRAG = 2  # B by rows (9)
-TERM_QUADRATIC_DRAG = 3  # S by rows (9)
-TERM_INERTIAL_CONSTANT = 4  # inertial moment (3)
-TERM_GRAVITY_GRADIENT = 5  # inertia (3), n, u0, rows e1, e2, normal (9)
-TERM_EDDY_CURRENT = 6  # M0, field rate ω, cone angle β
-
-TERM_PAYLOAD: dict[int, int] = {
-    TERM_BODY_CONSTANT: 3,
-    TERM_LINEAR_DRAG: 9,
-    TERM_QUADRATIC_DRAG: 9,
-    TERM_INERTIAL_CONSTANT: 3,
-    TERM_GRAVITY_GRADIENT: 14,
-    TERM_EDDY_CURRENT: 3,
-}
-"""Length of each term code's payload (the stride of a torque program)."""
-
-RATE_ONLY_TERMS = frozenset({TERM_BODY_CONSTANT, TERM_LINEAR_DRAG, TERM_QUADRATIC_DRAG})
-"""Terms that read neither the attitude nor the time."""
 
 Vec3 = tuple[float, float, float]
 Mat3 = tuple[float, float, float, float, float, float, float, float, float]

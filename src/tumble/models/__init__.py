@@ -1,17 +1,25 @@
-"""Paper models, one module each, registered by name (STYLE.md section 2)."""
+"""Paper models, one module each, registered by name (STYLE.md section 2).
+
+The registry loads on first use (:data:`MODELS`, :func:`get_model`): a scenario is validated
+against a model's :class:`~tumble.models.base.Declaration` (:func:`declaration`), which the
+shipped models keep apart from their numerics in :mod:`tumble.models.inputs`.
+"""
 
 from __future__ import annotations
 
-from typing import Any
+import importlib
+from typing import TYPE_CHECKING, Any
 
+from tumble.catalogue import CATALOGUE
 from tumble.errors import ScenarioError, shorten
-from tumble.models import nonlinear_moment, resisting_medium, rotating_field, torqued_body
-from tumble.models.base import Model
+from tumble.models.base import Declaration, Model
 
 __all__ = [
     "MODELS",
     "AnyModel",
+    "declaration",
     "get_model",
+    "names",
     "nonlinear_moment",
     "register",
     "resisting_medium",
@@ -23,31 +31,84 @@ AnyModel = Model[Any, Any]
 """A registered model of any parameter and state types (the registry's view: each model is
 typed with its own Params and State where it is defined)."""
 
-MODELS: dict[str, AnyModel] = {}
-"""Every registered model, by the name a scenario's ``model`` key uses."""
+_MODELS: dict[str, AnyModel] = {}
+_LOADED = False
+
+
+def _registry() -> dict[str, AnyModel]:
+    """Every registered model by name, the shipped ones first (loaded on the first call)."""
+    global _LOADED
+    if not _LOADED:
+        shipped = {
+            name: importlib.import_module(f"tumble.models.{name}").MODEL for name in CATALOGUE
+        }
+        others = dict(_MODELS)
+        _MODELS.clear()
+        _MODELS.update(shipped)
+        _MODELS.update(others)
+        _LOADED = True
+    return _MODELS
 
 
 def register(model: AnyModel) -> AnyModel:
     """Add ``model`` to :data:`MODELS` under its name (a ValueError if the name is taken)."""
-    if model.name in MODELS and MODELS[model.name] is not model:
+    models = _registry()
+    if model.name in models and models[model.name] is not model:
         raise ValueError(f"a model called {model.name!r} is already registered")
-    MODELS[model.name] = model
+    models[model.name] = model
     return model
 
 
-# One line per model.
-register(resisting_medium.MODEL)
-register(rotating_field.MODEL)
-register(nonlinear_moment.MODEL)
-register(torqued_body.MODEL)
+def _unknown(name: object) -> ScenarioError:
+    known = sorted(names())
+    return ScenarioError(
+        f"model = {shorten(repr(name), 60)} is not a known model (allowed: {', '.join(known)})"
+    )
+
+
+def names(*, scenario: bool = False) -> list[str]:
+    """The names of every model, shipped first, without loading any; ``scenario``: only those
+    a scenario file can name (every shipped one does)."""
+    others = [n for n, m in _MODELS.items() if n not in CATALOGUE]
+    if scenario:
+        others = [n for n in others if _MODELS[n].scenario is not None]
+    return [*CATALOGUE, *others]
 
 
 def get_model(name: str) -> AnyModel:
     """The registered model called ``name``; :class:`ScenarioError` if there is none."""
     try:
-        return MODELS[name]
+        return _registry()[name]
     except (KeyError, TypeError):
-        raise ScenarioError(
-            f"model = {shorten(repr(name), 60)} is not a known model "
-            f"(allowed: {', '.join(sorted(MODELS))})"
-        ) from None
+        raise _unknown(name) from None
+
+
+def declaration(name: str) -> Declaration[Any, Any]:
+    """What a scenario of model ``name`` may ask for, without loading a shipped model's
+    numerics; :class:`ScenarioError` if there is no such model."""
+    if isinstance(name, str) and name in _MODELS:
+        return Declaration.of(_MODELS[name])
+    if isinstance(name, str) and name in CATALOGUE:
+        module = importlib.import_module(f"tumble.models.inputs.{name}")
+        found: Declaration[Any, Any] = module.DECLARED
+        return found
+    raise _unknown(name)
+
+
+if TYPE_CHECKING:
+    from tumble.models import nonlinear_moment, resisting_medium, rotating_field, torqued_body
+
+    MODELS: dict[str, AnyModel]
+    """Every registered model, by the name a scenario's ``model`` key uses."""
+
+
+def __getattr__(name: str) -> Any:
+    if name == "MODELS":
+        return _registry()
+    if name in CATALOGUE:
+        return importlib.import_module(f"{__name__}.{name}")
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted({*globals(), "MODELS", *CATALOGUE})

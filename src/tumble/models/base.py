@@ -20,7 +20,6 @@ from dataclasses import dataclass, field, replace
 from typing import Generic, Literal, Protocol, TypeAlias, TypeVar
 
 import numpy as np
-from scipy.optimize import brentq
 
 from tumble._typing import ArrayLike, ComplexArray, FloatArray, Json
 from tumble.catalogue import Paper
@@ -36,6 +35,7 @@ __all__ = [
     "ClosedForm",
     "Column",
     "Columns",
+    "Declaration",
     "Diagnostics",
     "Full",
     "FullForm",
@@ -477,6 +477,50 @@ class Model(Generic[P, S]):
         return self.averaged.form(p, st, opts).initial_state(p, st)
 
 
+@dataclass(frozen=True)
+class Declaration(Generic[P, S]):
+    """What a scenario of a model may ask for, known without the model's numerics.
+
+    A scenario is validated against this alone (its keys, its ``[run]`` choices, the methods
+    its parameters allow), so that an input error is reported before numba, scipy and the
+    model's equations load. A shipped model declares it in :mod:`tumble.models.inputs` and
+    builds its :class:`Model` from it; for any other model it is read off the model
+    (:meth:`of`).
+
+    Attributes
+    ----------
+    name, time, methods, check, scenario
+        As the :class:`Model` fields of those names.
+    numeric, coordinates, corrected_start
+        As the :class:`Averaged` fields of those names (False, (), False without averaged
+        equations).
+    """
+
+    name: str
+    time: Column
+    methods: tuple[Method, ...]
+    check: Callable[[P, str], None]
+    scenario: ScenarioSchema[P, S] | None = None
+    numeric: bool = False
+    coordinates: tuple[str, ...] = ()
+    corrected_start: bool = False
+
+    @classmethod
+    def of(cls, model: Model[P, S]) -> Declaration[P, S]:
+        """The declaration of ``model``."""
+        avg = model.averaged
+        return cls(
+            model.name,
+            model.time,
+            model.methods,
+            model.check,
+            model.scenario,
+            numeric=avg is not None and avg.numeric,
+            coordinates=avg.coordinates if avg is not None else (),
+            corrected_start=avg is not None and avg.corrected_start,
+        )
+
+
 def first_time(condition: Callable[[FloatArray], FloatArray], grid: FloatArray) -> float | None:
     """First τ on ``grid`` where ``condition(τ) > 0``, refined by root finding; None if never.
 
@@ -494,6 +538,8 @@ def first_time(condition: Callable[[FloatArray], FloatArray], grid: FloatArray) 
     i = int(hits[0])
     if i == 0:
         return float(grid[0])
+    from scipy.optimize import brentq  # loaded where a run is checked, not where it is read
+
     return float(
         brentq(lambda t: float(condition(np.array([t]))[0]), grid[i - 1], grid[i], xtol=1e-12)
     )

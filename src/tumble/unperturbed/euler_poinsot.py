@@ -41,7 +41,7 @@ import numpy as np
 from scipy import special
 
 from tumble._typing import ArrayLike, FloatArray
-from tumble.bodies import RigidBody
+from tumble.bodies import RigidBody, proper_sorting
 from tumble.errors import ParameterError, TumbleWarning, check_finite
 from tumble.rotations import (
     matrix_to_quat,
@@ -654,23 +654,6 @@ def _frame_with_third_row(v: FloatArray) -> FloatArray:
     r1 = np.cross(e, unit)
     r1 /= np.linalg.norm(r1)
     return np.stack([r1, np.cross(unit, r1), unit])
-
-
-def proper_sorting(inertia: ArrayLike) -> FloatArray:
-    """Signed permutation Q (det +1) with Q diag(I) Qᵀ sorted ascending, spec §8 and §16.
-
-    ``v_sorted = Q v_user``; a transposition gets one axis reversed to stay proper.
-
-    Parameters
-    ----------
-    inertia : array_like, shape (3,)
-        Principal moments in the user's labels [inertia unit].
-    """
-    order = np.argsort(np.asarray(inertia, dtype=float), kind="stable")
-    Q = np.eye(3)[order]
-    if np.linalg.det(Q) < 0.0:
-        Q[0] *= -1.0  # a transposition: reverse the first sorted axis to keep det = +1
-    return Q
 
 
 _CYCLE_TO_X1 = np.array([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]])

@@ -1,0 +1,393 @@
+"""The torqued body's inputs: the body, the torque terms, the initial state and the scenario
+keys, apart from its numerics (:mod:`tumble.models.torqued_body`).
+
+Principal moments in any order, a time t in which the rotation rates are O(1), and the moment
+ε M(t, q, ω) in body axes: a sum of built-in torques (:mod:`tumble.torques`) and user
+functions ``f(t, q, omega, params)``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+from functools import cached_property
+from typing import Any
+
+import numpy as np
+
+from tumble._typing import FloatArray
+from tumble.bodies import RigidBody
+from tumble.errors import ParameterError, ScenarioError, check_range, shorten
+from tumble.kernels import Kernel
+from tumble.models.base import Column, Declaration, frozen_array
+from tumble.models.schema import Built, Inputs, Key, ScenarioSchema, Section, Variant
+from tumble.rotations import euler313_to_matrix, matrix_to_quat, quat_normalize
+from tumble.torques import (
+    ConstantBodyTorque,
+    ConstantInertialTorque,
+    GravityGradientTorque,
+    LinearDrag,
+    QuadraticDrag,
+    ScaledTorque,
+    Torque,
+    TorqueSum,
+    UserTorque,
+    ZeroTorque,
+)
+
+__all__ = [
+    "DECLARED",
+    "SCENARIO",
+    "TERMS",
+    "TORQUE_KINDS",
+    "Params",
+    "State",
+    "torque_from_terms",
+]
+
+_BODY_ONLY = (ConstantBodyTorque, LinearDrag, QuadraticDrag, ZeroTorque)
+"""Torques that depend on the body angular velocity only: the body's phases enter them only
+through ω, so commensurabilities of the free motion (m = 0 resonances) do not matter."""
+
+
+def _terms(torque: Torque) -> tuple[Torque, ...]:
+    if isinstance(torque, TorqueSum):
+        return tuple(t for term in torque.terms for t in _terms(term))
+    if isinstance(torque, ScaledTorque):
+        return _terms(torque.torque)
+    return (torque,)
+
+
+TORQUE_KINDS = (
+    "gravity_gradient",
+    "inertial_constant",
+    "body_constant",
+    "linear_drag",
+    "quadratic_drag",
+    "user",
+)
+"""The ``kind`` of a torque term in a scenario."""
+
+PERIOD_RTOL = 1e-12
+"""Periods of two periodic torque terms equal to this are one forcing period."""
+
+
+def _term_torque(i: int, term: dict[str, Any], inertia: Any) -> tuple[Torque, str, float | None]:
+    """One torque term of :func:`torque_from_terms`: the torque, its label and its period."""
+    kind = term["kind"]
+    if kind == "gravity_gradient":
+        gg = GravityGradientTorque(inertia, term["n"], term["normal"], term["u0"])
+        return gg, f"gravity gradient (n = {gg.n:g})", gg.period
+    if kind == "inertial_constant":
+        return (
+            ConstantInertialTorque(term["moment"]),
+            f"inertial moment {list(term['moment'])}",
+            None,
+        )
+    if kind == "body_constant":
+        return ConstantBodyTorque(term["moment"]), f"body moment {list(term['moment'])}", None
+    if kind == "linear_drag":
+        return LinearDrag(term["B"]), "linear drag", None
+    if kind == "quadratic_drag":
+        return QuadraticDrag(term["S"]), "quadratic drag", None
+    if kind == "user":
+        period = term.get("period")
+        if period is not None:
+            check_range(f"torque[{i}].period", float(period), low=0.0)
+        user = UserTorque(term["function"], term.get("params", {}), term["name"])
+        return user, term["name"], None if period is None else float(period)
+    raise ParameterError(
+        f"torque[{i}].kind = {kind!r} is not a torque (allowed: {', '.join(TORQUE_KINDS)})"
+    )
+
+
+def torque_from_terms(
+    inertia: Any, terms: list[dict[str, Any]]
+) -> tuple[Torque, float | None, str]:
+    """The sum of torque terms, its forcing period and a label.
+
+    Parameters
+    ----------
+    inertia : array_like, shape (3,)
+        Principal moments of the body (the gravity gradient acts on them) [inertia unit].
+    terms : list of dict
+        Each with ``kind`` (one of :data:`TORQUE_KINDS`) and its values:
+        ``gravity_gradient``: ``n`` [rad/t], ``normal`` (3), ``u0`` [rad];
+        ``inertial_constant``, ``body_constant``: ``moment`` (3) [moment unit];
+        ``linear_drag``: ``B`` (3×3); ``quadratic_drag``: ``S`` (3×3);
+        ``user``: ``function`` (callable ``f(t, q, omega, params)``), ``name``, ``params``,
+        ``period`` [t] or None.
+
+    Returns
+    -------
+    torque : Torque
+    period : float or None
+        The common period of the explicit time dependence [t].
+    label : str
+
+    Raises
+    ------
+    ParameterError
+        For an unknown kind, bad values, or two periodic terms with different periods.
+    """
+    if not terms:
+        raise ParameterError("torque: give at least one torque term")
+    parts: list[Torque] = []
+    labels: list[str] = []
+    periods: list[float] = []
+    for i, term in enumerate(terms):
+        try:
+            part, label, period = _term_torque(i, term, inertia)
+        except ParameterError as exc:
+            where = f"torque[{i}]"
+            message = str(exc)
+            raise ParameterError(
+                message if message.startswith(where) else f"{where}.{message}"
+            ) from None
+        parts.append(part)
+        labels.append(label)
+        periods += [period] if period is not None else []
+    period = periods[0] if periods else None
+    for other in periods[1:]:
+        if abs(other - periods[0]) > PERIOD_RTOL * periods[0]:
+            raise ParameterError(
+                f"torque: periodic terms with periods {periods[0]:g} and {other:g} cannot be "
+                "averaged over one forcing phase (give them a common period)"
+            )
+    torque = parts[0] if len(parts) == 1 else TorqueSum(tuple(parts))
+    return torque, period, " + ".join(labels)
+
+
+@dataclass(frozen=True)
+class Params:
+    """Parameters of the torqued body.
+
+    Parameters
+    ----------
+    inertia : array_like, shape (3,)
+        Principal moments (I1, I2, I3), any order, positive and obeying the triangle
+        inequality [inertia unit].
+    eps : float
+        Small parameter ε ≥ 0 multiplying the torque [1] (0: the free body).
+    torque : Torque
+        The moment M(t, q, ω) in body axes before the factor ε [moment unit].
+    forcing_period : float, optional
+        Period of the torque's explicit time dependence [t] (the orbital period 2π/n of a
+        gravity gradient); None when the torque does not depend on time on the fast scale.
+    label : str
+        What the torque is, for messages and ``summary.json``.
+    """
+
+    inertia: FloatArray
+    eps: float
+    torque: Torque
+    forcing_period: float | None = None
+    label: str = "torque"
+    sorted_inertia: tuple[float, float, float] = field(init=False, repr=False)
+    scaled: Torque = field(init=False, repr=False)
+    attitude_dependent: bool = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        inertia = frozen_array("parameters.inertia", self.inertia, (3,))
+        RigidBody(*inertia.tolist())  # positive, triangle inequality
+        check_range("parameters.eps", float(self.eps), low=0.0, low_open=False)
+        if self.forcing_period is not None:
+            check_range("torque period", float(self.forcing_period), low=0.0)
+            object.__setattr__(self, "forcing_period", float(self.forcing_period))
+        object.__setattr__(self, "inertia", inertia)
+        object.__setattr__(self, "eps", float(self.eps))
+        object.__setattr__(self, "sorted_inertia", tuple(sorted(inertia.tolist())))
+        object.__setattr__(self, "scaled", self.eps * self.torque)
+        dependent = not all(isinstance(t, _BODY_ONLY) for t in _terms(self.torque))
+        object.__setattr__(self, "attitude_dependent", dependent or self.forcing_period is not None)
+
+    @cached_property
+    def kernel(self) -> Kernel | None:
+        """The full equations compiled; None when the torque holds a Python function. Built
+        on first use (a run), not when a scenario is read."""
+        from tumble.dynamics import rigid_body_kernel  # compiled code
+
+        return rigid_body_kernel(self.inertia, self.scaled)
+
+    def with_eps(self, eps: float) -> Params:
+        """The same body and torque at another ε (for error studies)."""
+        return replace(self, eps=eps)
+
+
+@dataclass(frozen=True)
+class State:
+    """Initial body angular velocity ω [rad/t] and attitude quaternion q (scalar first,
+    body → inertial; normalized here)."""
+
+    omega: FloatArray
+    q: FloatArray = field(default_factory=lambda: np.array([1.0, 0.0, 0.0, 0.0]))
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "omega", frozen_array("initial.omega", self.omega, (3,)))
+        q = frozen_array("initial.quaternion", self.q, (4,))
+        if not np.any(q):
+            raise ParameterError("initial.quaternion = [0, 0, 0, 0] is not a rotation")
+        object.__setattr__(self, "q", quat_normalize(q))
+
+
+def _check_method(p: Params, method: str) -> None:
+    if method == "averaged" and p.eps == 0.0:
+        raise ParameterError(
+            "parameters.eps = 0 is outside the allowed range (0, inf) for the averaged "
+            "method (there is nothing to average)"
+        )
+
+
+# ---------------------------------------------------------------------------------------------
+# Scenario keys.
+
+_PARAMETERS = Section(
+    "parameters",
+    (
+        Key("inertia", "vector3", "3 principal moments > 0 obeying the triangle inequality"),
+        Key("eps", "number", "a number ≥ 0 (the factor of the torque)"),
+    ),
+    doc="the body and the size of the torque",
+)
+_TORQUE = Section(
+    "",
+    (
+        Key(
+            "torque",
+            "any",
+            '"file:function" or a list of [[torque]] tables with a kind',
+            doc="a user function f(t, q, omega, params), or built-in terms",
+        ),
+        Key("torque_params", "table", "a table passed to the user function", default={}),
+        Key(
+            "torque_period",
+            "number",
+            "period of the user function's time dependence > 0",
+            "t",
+            None,
+        ),
+    ),
+    doc="the torque (top-level keys)",
+)
+_INITIAL = Section(
+    "initial",
+    (
+        Key("omega", "vector3", "body angular velocity, 3 numbers", "rad/t"),
+        Key("quaternion", "vector4", "attitude quaternion [q0, q1, q2, q3]", default=None),
+        Key("psi", "number", "3-1-3 Euler angle ψ", "rad", None, angle=True),
+        Key("theta", "number", "3-1-3 Euler angle ϑ", "rad", None, angle=True),
+        Key("phi", "number", "3-1-3 Euler angle φ", "rad", None, angle=True),
+    ),
+    doc="the body rate and its attitude (a quaternion or 3-1-3 Euler angles; default identity)",
+)
+
+
+def _term(kind: str, *keys: Key) -> Section:
+    return Section("torque", (Key("kind", "text", f'"{kind}"', choices=(kind,)), *keys))
+
+
+_MOMENT = Key("moment", "vector3", "3 components of the moment")
+TERMS: dict[str, Section] = {
+    "gravity_gradient": _term(
+        "gravity_gradient",
+        Key("n", "number", "orbital rate > 0", "rad/t"),
+        Key("normal", "vector3", "orbit normal", default=[0.0, 0.0, 1.0]),
+        Key("u0", "number", "argument of latitude at t = 0", "rad", 0.0, angle=True),
+    ),
+    "inertial_constant": _term("inertial_constant", _MOMENT),
+    "body_constant": _term("body_constant", _MOMENT),
+    "linear_drag": _term("linear_drag", Key("B", "matrix3", "3×3 damping matrix, M = −B ω")),
+    "quadratic_drag": _term("quadratic_drag", Key("S", "matrix3", "3×3 matrix, M = −S (ω ∘ |ω|)")),
+    "user": _term(
+        "user",
+        Key("function", "text", '"file:function", f(t, q, omega, params) -> body moment'),
+        Key("params", "table", "a table for f", default={}),
+        Key("period", "number", "period of f's time dependence > 0", "t", None),
+    ),
+}
+"""The [[torque]] tables by kind."""
+
+
+def _term_tables(inputs: Inputs) -> list[dict[str, Any]]:
+    top = inputs[""]
+    assert top is not None  # the top-level keys
+    torque = top["torque"]
+    if isinstance(torque, str):
+        function = inputs.import_function(torque, "torque")
+        return [
+            {"kind": "user", "function": function, "name": torque,
+             "params": top["torque_params"], "period": top["torque_period"]}
+        ]  # fmt: skip
+    if top["torque_params"] or top["torque_period"] is not None:
+        raise ScenarioError(
+            'torque_params, torque_period: only with torque = "file:function" (in a '
+            "[[torque]] table give params and period inside it)"
+        )
+    if not isinstance(torque, list) or not all(isinstance(t, dict) for t in torque):
+        raise ScenarioError(
+            f"torque = {torque!r}: expected " + '"file:function" or [[torque]] tables'
+        )
+    terms = []
+    for i, raw in enumerate(torque):
+        kind = raw.get("kind")
+        if not isinstance(kind, str) or kind not in TERMS:
+            raise ScenarioError(
+                f"torque[{i}].kind = {shorten(repr(kind), 60)} is not a torque "
+                f"(allowed: {', '.join(TERMS)})"
+            )
+        term = inputs.validate(TERMS[kind], raw, f"torque[{i}]")
+        if kind == "user":
+            term["name"] = term["function"]
+            term["function"] = inputs.import_function(term["function"], f"torque[{i}].function")
+        terms.append(term)
+    return terms
+
+
+def _check_user_torque(torque: Torque, st: State) -> None:
+    """Call the torque once at the initial state: a broken user function fails here, in one
+    line, rather than deep inside an integration."""
+    try:
+        m = np.asarray(torque(0.0, st.q, st.omega), dtype=float)
+    except Exception as exc:
+        raise ScenarioError(
+            f"torque: evaluating it at the initial state raised {type(exc).__name__}: {exc}"
+        ) from None
+    if m.shape != (3,) or not np.all(np.isfinite(m)):
+        raise ScenarioError(
+            f"torque: at the initial state it returned {m.tolist()!r} (expected 3 finite "
+            "numbers, the body components of the moment)"
+        )
+
+
+def _build(inputs: Inputs) -> Built[Params, State]:
+    par, ini = inputs["parameters"], inputs["initial"]
+    assert par is not None and ini is not None  # required sections
+    torque, period, label = torque_from_terms(par["inertia"], _term_tables(inputs))
+    angles = [n for n in ("psi", "theta", "phi") if ini[n] is not None]
+    if ini["quaternion"] is not None and angles:
+        raise ScenarioError("initial: give either quaternion or psi, theta, phi, not both")
+    if angles and len(angles) != 3:
+        raise ScenarioError("initial: give all of psi, theta, phi (3-1-3 Euler angles)")
+    if angles:
+        q = matrix_to_quat(euler313_to_matrix(ini["psi"], ini["theta"], ini["phi"]))
+    else:
+        q = np.array(ini["quaternion"] if ini["quaternion"] is not None else [1.0, 0.0, 0.0, 0.0])
+    st = State(np.array(ini["omega"]), q)
+    p = Params(np.array(par["inertia"]), par["eps"], torque, period, label)
+    if p.torque.program is None:  # it holds Python: a user function
+        _check_user_torque(p.torque, st)
+    return Built(p, st)
+
+
+SCENARIO: ScenarioSchema[Params, State] = ScenarioSchema(
+    variants=(Variant((_PARAMETERS, _TORQUE, _INITIAL), _build, doc="any time unit t"),)
+)
+
+
+DECLARED: Declaration[Params, State] = Declaration(
+    name="torqued_body",
+    time=Column("t", "time t", "t"),
+    methods=("full", "averaged"),
+    check=_check_method,
+    scenario=SCENARIO,
+)
+"""What a scenario of the model may ask for."""

@@ -38,18 +38,10 @@ from tumble.kernels.codes import (
     TERM_GRAVITY_GRADIENT,
     TERM_INERTIAL_CONSTANT,
     TERM_LINEAR_DRAG,
-    TERM_PAYLOAD,
     TERM_QUADRATIC_DRAG,
 )
 
 __all__ = [
-    "TERM_BODY_CONSTANT",
-    "TERM_EDDY_CURRENT",
-    "TERM_GRAVITY_GRADIENT",
-    "TERM_INERTIAL_CONSTANT",
-    "TERM_LINEAR_DRAG",
-    "TERM_PAYLOAD",
-    "TERM_QUADRATIC_DRAG",
     "CallableTorque",
     "CompiledTerm",
     "ConstantBodyTorque",

@@ -20,7 +20,7 @@ from tumble import kernels
 from tumble._typing import FloatArray
 from tumble.errors import IntegrationError, ParameterError
 from tumble.kernels import Kernel
-from tumble.kernels.torque import (
+from tumble.kernels.codes import (
     TERM_BODY_CONSTANT,
     TERM_EDDY_CURRENT,
     TERM_GRAVITY_GRADIENT,

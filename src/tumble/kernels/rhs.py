@@ -26,7 +26,6 @@ import numpy as np
 
 from tumble._typing import FloatArray
 from tumble.kernels.codes import (
-    EVENT_NONE,
     EVENT_THETA_DOT,
     KIND_NONLINEAR_MOMENT,
     KIND_RIGID_BODY,
@@ -36,11 +35,6 @@ from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
 from tumble.kernels.torque import quaternion_rates, torque_moment
 
 __all__ = [
-    "EVENT_NONE",
-    "EVENT_THETA_DOT",
-    "KIND_NONLINEAR_MOMENT",
-    "KIND_RIGID_BODY",
-    "KIND_ROTATING_FIELD",
     "euler_quaternion",
     "evaluate",
     "evaluate_event",

@@ -17,7 +17,6 @@ import numpy as np
 
 from tumble._typing import FloatArray
 from tumble.kernels.codes import (
-    RATE_ONLY_TERMS,
     TERM_BODY_CONSTANT,
     TERM_EDDY_CURRENT,
     TERM_GRAVITY_GRADIENT,
@@ -29,14 +28,6 @@ from tumble.kernels.codes import (
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
 
 __all__ = [
-    "RATE_ONLY_TERMS",
-    "TERM_BODY_CONSTANT",
-    "TERM_EDDY_CURRENT",
-    "TERM_GRAVITY_GRADIENT",
-    "TERM_INERTIAL_CONSTANT",
-    "TERM_LINEAR_DRAG",
-    "TERM_PAYLOAD",
-    "TERM_QUADRATIC_DRAG",
     "attitude_matrix",
     "inertial_moments",
     "moments",

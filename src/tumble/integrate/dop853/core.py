@@ -19,8 +19,9 @@ from tumble.integrate.dop853.dense import dense_coefficients, interpolate
 from tumble.integrate.dop853.events import event_root
 from tumble.integrate.dop853.steps import STEP_OK, attempt_step, initial_step
 from tumble.integrate.dop853.tableau import N_INTERPOLANT, N_STAGES, N_STAGES_EXTENDED
+from tumble.kernels.codes import EVENT_NONE
 from tumble.kernels.jit import ENTRY, INLINE, INNER, INNER_INLINE, KERNEL, jit
-from tumble.kernels.rhs import EVENT_NONE, event, rhs
+from tumble.kernels.rhs import event, rhs
 
 __all__ = ["FRESH", "NOT_FINITE", "OK", "RUNNING", "STEP_TOO_SMALL", "Chunk", "Options",
            "Progress", "advance"]  # fmt: skip

@@ -494,6 +494,7 @@ def _averaged_table(r: dict[str, Any]) -> Table:
         "speed-up",
         "at equal accuracy",
         "nfev ratio",
+        "eval [µs]: averaged / full",
         "closed form [s]",
         "speed-up",
     ):
@@ -510,6 +511,9 @@ def _averaged_table(r: dict[str, Any]) -> Table:
                 f"{a['speedup']:.3g}×",
                 f"{a['speedup_equal_accuracy']:.3g}×" if "speedup_equal_accuracy" in a else "—",
                 f"{a['nfev_ratio']:.0f}",
+                f"{v['eval_us']['averaged']:.3g} / {v['eval_us']['full']:.3g}"
+                if "eval_us" in v
+                else "—",
                 f"{c['time_s']:.3g}" if c else "—",
                 f"{c['speedup']:.3g}×" if c else "—",
             )

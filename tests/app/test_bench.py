@@ -56,11 +56,12 @@ def test_bench_json_contract():
         assert v["speedup"] > 5.0
     assert set(r["averaged_speedup"]) == set(bench.PAPER_MODELS)
     for by_eps in r["averaged_speedup"].values():
-        assert set(by_eps) == {"0.01", "0.001"}
+        assert set(by_eps) == {"0.01", "0.001", "0.0001"}
         for v in by_eps.values():
             # First-order averaging over the templates' slow horizons: measured ≤ 1.1 %.
             assert 0.0 < v["averaged"]["error"] < 0.05
             assert v["averaged"]["nfev_ratio"] > 1.0
+            assert v["eval_us"]["full"] > 0.0 and v["eval_us"]["averaged"] > 0.0
     assert "closed_form" in r["averaged_speedup"]["resisting_medium"]["0.001"]
     threads = r["batch_throughput"]["threads"]
     assert "1" in threads and "2" in threads

@@ -150,3 +150,42 @@ def test_scale_invariance():
     b = simulate(M, p2, START, tau, "full", rtol=1e-11, atol=1e-13)
     for name in ("k", "theta", "rho", "sigma"):
         assert np.max(np.abs(a.columns[name] - b.columns[name])) < 1e-9, name
+
+
+@settings(max_examples=40)
+@given(vectors(), matrices(), matrices(), kappa, st.floats(0.01, 3.0), st.floats(0.0, math.pi))
+def test_compiled_averaged_forms_equal_the_python_ones(a, b, s, kap, k, theta):
+    """(2.2) and (2.3) compiled are the same arithmetic as their Python forms."""
+    from tumble.kernels import evaluate_rhs
+
+    p = rm.Params(eps=0.01, kappa=kap, a=a, b=b, s=s)
+    st_ = rm.State(k, 0.4, 0.2, 0.0, theta, 0.0)
+    for form, y in (("k_theta", [k, theta]), ("W_V", [st_.W, st_.V])):
+        avg = next(f for f in (rm._AVERAGED_KTHETA, rm._AVERAGED_WV) if f.name == form)
+        assert avg.kernel is not None
+        compiled = evaluate_rhs(avg.kernel(p), 0.0, y)
+        python = avg.rhs(0.0, np.array(y), p)
+        # The same operations in the same order; LLVM may fuse a multiply-add: a few ulp of
+        # the largest term.
+        scale = 0.01 * (1.0 + np.max(np.abs(y))) ** 3 * (1.0 + np.max(np.abs([a, *b, *s])))
+        assert np.allclose(compiled, python, rtol=1e-14, atol=1e-15 * scale), form
+
+
+@pytest.mark.parametrize("theta0", [1.0, 2.2, 0.0])
+def test_compiled_averaged_run_equals_scipys_across_the_equator(theta0):
+    """The compiled run, split at the equator crossing the closed form of W gives, against
+    scipy's run of the same split system and against the closed form: the same solution."""
+    p = rm.Params(eps=0.02, kappa=0.5, a=[0.0, 0.0, -0.4 if theta0 < 1.5 else 0.4],
+                  b=np.diag([0.1, 0.1, 0.2]), s=np.diag([0.05, 0.05, 0.1]))  # fmt: skip
+    st_ = rm.State(1.0, 0.4, 0.2, 0.0, theta0, 0.0)
+    tau = np.linspace(0.0, 300.0, 301)
+    compiled = simulate(M, p, st_, tau, "averaged", rtol=1e-11, atol=1e-13)
+    scipy = simulate(M, p, st_, tau, "averaged", rtol=1e-11, atol=1e-13, integrator="scipy")
+    closed = simulate(M, p, st_, tau, "closed_form")
+    assert compiled.integrator == "numba" and scipy.integrator == "scipy"
+    if theta0 != 0.0:
+        assert np.isfinite(rm.crossing_time(st_.W, p)) and rm.crossing_time(st_.W, p) < 300.0
+    for v in ("k", "theta"):
+        # Two runs at rtol 1e-11 over ~300/h steps, each within ~1e-9 of the exact solution.
+        assert np.allclose(compiled.columns[v], scipy.columns[v], rtol=0.0, atol=1e-8), v
+        assert np.allclose(compiled.columns[v], closed.columns[v], rtol=0.0, atol=1e-8), v

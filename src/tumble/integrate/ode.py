@@ -12,7 +12,7 @@ from scipy.integrate import solve_ivp
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import IntegrationError, ParameterError
 from tumble.integrate import dop853
-from tumble.integrate.limits import check_times
+from tumble.integrate.limits import MAX_STEPS, check_times
 from tumble.kernels import Kernel
 from tumble.models.base import Breakpoint
 
@@ -146,7 +146,8 @@ def integrate(
     kernel : Kernel, optional
         The same right-hand side compiled: integrate it with the compiled DOP853
         (:mod:`tumble.integrate.dop853`, the same method and step control as scipy's) instead of
-        calling ``rhs``. Breakpoints are not supported on this path.
+        calling ``rhs``. Only breakpoints at known times are supported on this path (the run
+        is split there).
     event : callable, optional
         ``event(t, y)``, whose zeros are recorded (``DenseSolution.events`` and the sign
         before each) on the scipy path; the compiled path records the kernel's own event,
@@ -168,9 +169,12 @@ def integrate(
     if t_end == 0.0:
         return DenseSolution(np.array([0.0]), 0, lambda t: np.repeat(y0[:, None], np.size(t), 1))
     if kernel is not None:
-        if breakpoints:
-            raise ParameterError(f"{what}: the compiled integrator takes no breakpoints")
-        return _integrate_compiled(kernel, y0, t_end, rtol=rtol, atol=atol, what=what)
+        if any(b.time is None for b in breakpoints):
+            raise ParameterError(f"{what}: the compiled integrator takes no breakpoint surfaces")
+        times = sorted({float(b.time) for b in breakpoints if b.time is not None})
+        if not times:
+            return _integrate_compiled(kernel, y0, t_end, rtol=rtol, atol=atol, what=what)
+        return _integrate_compiled_split(kernel, y0, t_end, times, rtol, atol, what, max_steps)
     budget = min(PYTHON_MAX_STEPS, PYTHON_MAX_STEPS if max_steps is None else int(max_steps))
     try:
         return _integrate_scipy(
@@ -329,6 +333,56 @@ def _integrate_compiled(
     """:func:`integrate` through the compiled DOP853, with the same failure reports."""
     kernel.check_end(t_end)
     return compiled_dense(dop853.solve(kernel, y0, t_end, rtol=rtol, atol=atol), what)
+
+
+def _integrate_compiled_split(
+    kernel: Kernel,
+    y0: FloatArray,
+    t_end: float,
+    times: Sequence[float],
+    rtol: float,
+    atol: float,
+    what: str,
+    max_steps: int | None,
+) -> DenseSolution:
+    """:func:`integrate` through the compiled DOP853, split at the known ``times`` (a kink of
+    the right-hand side there) so that no step straddles one; each segment restarts with the
+    step size the last one had reached, and all of them share the step budget."""
+    kernel.check_end(t_end)
+    # A kink within round-off of either end is the start or the end itself.
+    slack = 1e-12 * max(1.0, t_end)
+    stops = [t for t in times if slack < t < t_end - slack] + [t_end]
+    budget = MAX_STEPS if max_steps is None else int(max_steps)
+    starts: list[float] = [0.0]
+    sols: list[Callable[[FloatArray], FloatArray]] = []
+    steps: list[float] = []
+    t0, y, first, nfev = 0.0, y0, 0.0, 0
+    for stop in stops:
+        options = dop853.Options(rtol, atol, min(first, stop - t0))
+        run = dop853.Integration(kernel, y, stop, options, t0=t0)
+        while not run.advance(dop853.CHUNK_STEPS):
+            if run.progress.n_steps + len(steps) > budget:
+                raise IntegrationError(f"{what}: run.max_steps = {budget} steps spent at t = "
+                                       f"{run.progress.t:.6g} of {t_end:.6g}")  # fmt: skip
+        res = run.solution()
+        sols.append(_states_by_rows(compiled_dense(res, what)))
+        steps.extend(res.ts[1:])
+        nfev += res.nfev
+        first = float(res.ts[-2] - res.ts[-3]) if res.ts.size > 2 else 0.0
+        t0, y = stop, res.y
+        starts.append(stop)
+    ts = np.concatenate([[0.0], np.asarray(steps)])
+    sol = sols[0] if len(sols) == 1 else _Piecewise(starts[:-1], sols)
+    return DenseSolution(ts, nfev, sol, "numba")
+
+
+def _states_by_rows(sol: DenseSolution) -> Callable[[FloatArray], FloatArray]:
+    """``sol`` as the piecewise output takes its pieces: states of shape (dim, n)."""
+
+    def states(t: FloatArray) -> FloatArray:
+        return sol(t).T
+
+    return states
 
 
 def compiled_dense(res: dop853.Solution, what: str) -> DenseSolution:

@@ -107,7 +107,9 @@ def _unwrap_columns(model: Model[P, S], p: P, method: str, cols: Columns, initia
     """Make angle columns continuous, starting from the initial value, not mod 2π."""
     for c in model.columns(p, method):
         if c.unwrap and c.name in cols:
-            angle = np.unwrap(cols[c.name])
+            angle = cols[c.name]
+            if angle.size > 1 and np.any(np.abs(np.diff(angle)) >= np.pi):  # else the same
+                angle = np.unwrap(angle)
             start = getattr(initial, c.name, angle[0])
             cols[c.name] = angle + 2.0 * np.pi * np.round((start - angle[0]) / (2.0 * np.pi))
 
@@ -167,9 +169,10 @@ def simulate(
     form : str, optional
         For ``full``: one of ``model.full.forms`` (default: the model's recommended form).
     integrator : {"auto", "numba", "scipy"}
-        For ``full``: the compiled integrator or scipy's (see :data:`INTEGRATORS`). The
-        averaged equations are always integrated by scipy: they take few steps, and their
-        right-hand sides (averages by elliptic integrals or quadrature) are Python.
+        The compiled integrator or scipy's (see :data:`INTEGRATORS`). The averaged equations
+        run compiled where their form has a kernel and breaks only at known times (the
+        resisting medium's (2.2), (2.3)); the others (averages by elliptic integrals or
+        quadrature in Python) on scipy's.
     averaging : AveragingOptions
         For ``averaged``: the paper's right-hand side or the general engine, the slow
         coordinates, and the start (checked against the model's ``Averaged`` capability).
@@ -209,7 +212,8 @@ def simulate(
     if method == "averaged" and model.averaged is not None:
         options = model.averaged.check(averaging)
         form_ = model.averaged.form(p, initial, options)
-        return _averaged(model, form_, p, initial, tau, rtol, atol, max_steps)
+        compiled = _averaged_kernel(form_, p, integrator)
+        return _averaged(model, form_, p, initial, tau, rtol, atol, max_steps, compiled)
     assert model.closed_form is not None  # the methods follow the capabilities
     return _closed(model.closed_form, p, initial, tau)
 
@@ -389,6 +393,16 @@ def _closed(closed: ClosedForm[P, S], p: P, initial: S, tau: FloatArray) -> Traj
     return Trajectory(tau, cols, "closed_form", "closed_form", wall, 0, slow)
 
 
+def _averaged_kernel(avg: AveragedForm[P, S], p: P, integrator: str) -> Kernel | None:
+    """The compiled averaged right-hand side to run, or None for scipy's path: none asked
+    (``integrator = "scipy"``), none written, or a breakpoint surface (located by scipy)."""
+    if integrator == "scipy" or avg.kernel is None:
+        return None
+    if any(b.time is None for b in avg.breakpoints):
+        return None
+    return avg.kernel(p)
+
+
 def _averaged(
     model: Model[P, S],
     avg: AveragedForm[P, S],
@@ -398,8 +412,10 @@ def _averaged(
     rtol: float,
     atol: float,
     max_steps: int = MAX_STEPS,
+    kernel: Kernel | None = None,
 ) -> Trajectory:
-    """The averaged equations integrated and sampled at ``tau``."""
+    """The averaged equations integrated (compiled when ``kernel`` is given) and sampled at
+    ``tau``."""
     start = time.perf_counter()
     try:
         sol = integrate(
@@ -410,6 +426,7 @@ def _averaged(
             atol=atol,
             what=f"{model.name} averaged equations {avg.equation}",
             breakpoints=avg.breakpoints,
+            kernel=kernel,
             max_steps=max_steps,
         )
     except IntegrationError as exc:

@@ -20,6 +20,7 @@ from tumble.errors import ParameterError
 from tumble.kernels.codes import (
     EVENT_NONE,
     EVENT_THETA_DOT,
+    KIND_MEDIUM_AVERAGED,
     KIND_NONLINEAR_MOMENT,
     KIND_RIGID_BODY,
     KIND_ROTATING_FIELD,
@@ -28,6 +29,7 @@ from tumble.kernels.codes import (
 __all__ = [
     "EVENT_NONE",
     "EVENT_THETA_DOT",
+    "KIND_MEDIUM_AVERAGED",
     "KIND_NONLINEAR_MOMENT",
     "KIND_RIGID_BODY",
     "KIND_ROTATING_FIELD",

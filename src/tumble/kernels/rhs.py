@@ -16,6 +16,9 @@ Kinds
 ``KIND_NONLINEAR_MOMENT``
     Euler's equations (1.1) of Serov (1991) with quaternions, under the moment
     A(a sinθ + b sin2θ) with damping.
+``KIND_MEDIUM_AVERAGED``
+    The averaged equations of Medvedev (1987): (2.2) for ``[k, ϑ]`` or (2.3) for ``[W, V]``,
+    parameters ``[ε, a3, α, β, γ, δ, form]`` (form 0: (2.2), 1: (2.3)).
 """
 
 from __future__ import annotations
@@ -27,6 +30,7 @@ import numpy as np
 from tumble._typing import FloatArray
 from tumble.kernels.codes import (
     EVENT_THETA_DOT,
+    KIND_MEDIUM_AVERAGED,
     KIND_NONLINEAR_MOMENT,
     KIND_RIGID_BODY,
     KIND_ROTATING_FIELD,
@@ -38,6 +42,7 @@ __all__ = [
     "euler_quaternion",
     "evaluate",
     "evaluate_event",
+    "evaluate_repeatedly",
     "event",
     "rhs",
     "rigid_body",
@@ -184,6 +189,25 @@ def symmetric_body(
 
 
 @jit(INLINE)
+def _medium_averaged(y: FloatArray, p: FloatArray, out: FloatArray) -> None:
+    """Averaged equations of Medvedev (1987) in τ: (2.2) for y = [k, ϑ] (the a3 term of the
+    ϑ-equation as a3 sin ϑ / k, regular at ϑ = π/2), or (2.3) for y = [W, V]."""
+    eps, a3, al, be, ga, de = p[0], p[1], p[2], p[3], p[4], p[5]
+    if p[6] == 0.0:
+        k, theta = y[0], y[1]
+        c, s = math.cos(theta), math.sin(theta)
+        ac, as_ = abs(c), abs(s)
+        out[0] = eps * (
+            a3 * c - k * (al * s * s + be * c * c + k * (ga * s * s * as_ + de * c * c * ac))
+        )
+        out[1] = -eps * (a3 * s / k + (al - be + k * (ga * as_ - de * ac)) * s * c)
+    else:
+        W, V = y[0], y[1]
+        out[0] = eps * (a3 - be * W - de * W * abs(W))
+        out[1] = -eps * (al * V + ga * V * V)
+
+
+@jit(INLINE)
 def rhs(kind: int, t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> None:
     """dy/dt of the right-hand side ``kind`` with parameters ``p`` into ``out`` (NaN for an
     unknown kind, so that the integration fails)."""
@@ -193,6 +217,8 @@ def rhs(kind: int, t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> N
         _rotating_field(y, p, out)
     elif kind == KIND_NONLINEAR_MOMENT:
         _nonlinear_moment(t, y, p, out)
+    elif kind == KIND_MEDIUM_AVERAGED:
+        _medium_averaged(y, p, out)
     else:
         for j in range(y.size):
             out[j] = math.nan
@@ -222,4 +248,23 @@ def evaluate(kind: int, t: float, y: FloatArray, p: FloatArray) -> FloatArray:
     """dy/dt of the right-hand side ``kind`` at one state, from Python."""
     out = np.empty(y.size)
     rhs(kind, t, y, p, out)
+    return out
+
+
+@jit(ENTRY)
+def evaluate_repeatedly(
+    kind: int, t: float, y: FloatArray, p: FloatArray, n: int, feedback: float
+) -> FloatArray:
+    """dy/dt of the right-hand side ``kind`` evaluated ``n`` times in compiled code (the
+    benchmark's cost of one evaluation, without the call from Python); the last result.
+
+    Each evaluation adds ``feedback`` times the previous derivative to the state (pass 0.0):
+    a dependence the compiler cannot see through, so that it cannot fold the repeated,
+    identical evaluations into one.
+    """
+    state = y.copy()
+    out = np.empty(y.size)
+    for _ in range(n):
+        rhs(kind, t, state, p, out)
+        state[0] += feedback * out[0]
     return out

@@ -175,7 +175,12 @@ class Breakpoint:
 @dataclass(frozen=True, slots=True)
 class AveragedForm(Generic[P, S]):
     """The averaged (evolution) equations in the coordinates used to integrate them, for one
-    parameter set and initial state; ``slow`` names the components of the slow state."""
+    parameter set and initial state; ``slow`` names the components of the slow state.
+
+    ``kernel(p)`` gives the same right-hand side compiled (:class:`tumble.kernels.Kernel`),
+    run by the compiled integrator when every breakpoint is at a known time; ``rhs`` stays
+    the reference (and the scipy path).
+    """
 
     name: str
     equation: str
@@ -187,6 +192,7 @@ class AveragedForm(Generic[P, S]):
     # The reason the right-hand side last refused a state (it returned NaN so the solver would
     # reject the step); reported if the integration then fails.
     failure: Callable[[], str | None] | None = None
+    kernel: Callable[[P], Kernel | None] | None = None
 
 
 @dataclass(frozen=True, slots=True)

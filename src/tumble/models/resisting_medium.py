@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -28,7 +28,7 @@ from tumble.errors import (
     IntegrationError,
     ParameterError,
 )
-from tumble.kernels import Kernel
+from tumble.kernels import KIND_MEDIUM_AVERAGED, Kernel
 from tumble.kernels.rhs import rigid_body
 from tumble.models.base import (
     Averaged,
@@ -302,6 +302,18 @@ def _averaged_columns_wv(
     }
 
 
+def _averaged_kernel(form: int) -> Callable[[Params], Kernel]:
+    """The compiled (2.2) (``form`` 0) or (2.3) (1): the same code as :func:`averaged_rhs`
+    and :func:`averaged_rhs_wv`."""
+
+    def kernel(p: Params) -> Kernel:
+        a3 = float(p.a[2])
+        packed = [p.eps, a3, p.alpha, p.beta, p.gamma, p.delta, float(form)]
+        return Kernel(KIND_MEDIUM_AVERAGED, np.array(packed))
+
+    return kernel
+
+
 _AVERAGED_KTHETA: AveragedForm[Params, State] = AveragedForm(
     name="k_theta",
     equation="(2.2)",
@@ -309,8 +321,7 @@ _AVERAGED_KTHETA: AveragedForm[Params, State] = AveragedForm(
     rhs=averaged_rhs,
     initial_state=lambda p, st: np.array([st.k, st.theta]),
     to_columns=_averaged_columns_ktheta,
-    # (2.2) holds |cos ϑ|: not smooth at the equator, which W crosses at most once (§8.4).
-    breakpoints=(Breakpoint(lambda t, y: math.cos(y[1])),),
+    kernel=_averaged_kernel(0),
 )
 _AVERAGED_WV: AveragedForm[Params, State] = AveragedForm(
     name="W_V",
@@ -319,8 +330,15 @@ _AVERAGED_WV: AveragedForm[Params, State] = AveragedForm(
     rhs=averaged_rhs_wv,
     initial_state=lambda p, st: np.array([st.W, st.V]),
     to_columns=_averaged_columns_wv,
-    breakpoints=(Breakpoint(lambda t, y: float(y[0])),),  # W|W| at W = 0, as above
+    kernel=_averaged_kernel(1),
 )
+
+
+def _equator(p: Params, st: State) -> tuple[Breakpoint, ...]:
+    """(2.2) and (2.3) hold |cos ϑ| and W|W|: not smooth at the equator, which W crosses at
+    most once, at the time the closed form of W gives (§8.4): the run is split there."""
+    tau1 = crossing_time(st.W, p)
+    return () if math.isinf(tau1) else (Breakpoint.at_time(tau1),)
 
 
 def averaged_rhs_numeric(t: float, y: FloatArray, p: Params) -> FloatArray:
@@ -364,7 +382,8 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
         return _AVERAGED_NUMERIC
     # (2.2) is written in polar coordinates (k, ϑ): at V0 = 0 (ϑ0 = 0 or π) the solution may
     # pass through k = 0, the polar singularity; (2.3) is the same system and regular there.
-    return _AVERAGED_WV if abs(math.sin(st.theta)) < 1e-12 else _AVERAGED_KTHETA
+    form = _AVERAGED_WV if abs(math.sin(st.theta)) < 1e-12 else _AVERAGED_KTHETA
+    return replace(form, breakpoints=_equator(p, st))
 
 
 # ---------------------------------------------------------------------------------------------

@@ -3,12 +3,14 @@
 
 from __future__ import annotations
 
+import numpy as np
+
 from tumble._typing import FloatArray
 from tumble.integrate.dop853.steps import stages
 from tumble.integrate.dop853.tableau import N_INTERPOLANT, N_STAGES, N_STAGES_EXTENDED, D
-from tumble.kernels.jit import INLINE, KERNEL, jit
+from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
 
-__all__ = ["dense_coefficients", "interpolate"]
+__all__ = ["dense_coefficients", "evaluate_dense", "interpolate"]
 
 
 @jit(KERNEL)
@@ -41,3 +43,16 @@ def interpolate(F: FloatArray, y: FloatArray, x: float, out: FloatArray) -> None
             acc += F[N_INTERPOLANT - 1 - i, j]
             acc *= x if i % 2 == 0 else 1.0 - x
         out[j] = acc + y[j]
+
+
+@jit(ENTRY)
+def evaluate_dense(ts: FloatArray, ys: FloatArray, F: FloatArray, t: FloatArray) -> FloatArray:
+    """The dense output of recorded steps (times ``ts``, states ``ys``, interpolants ``F``) at
+    the times ``t``, shape (m, n); a time outside the steps takes the nearest step's
+    interpolant (extrapolated)."""
+    m, n, last = t.size, ys.shape[1], F.shape[0] - 1
+    out = np.empty((m, n))
+    for q in range(m):
+        i = min(max(np.searchsorted(ts, t[q], side="right") - 1, 0), last)
+        interpolate(F[i], ys[i], (t[q] - ts[i]) / (ts[i + 1] - ts[i]), out[q])
+    return out

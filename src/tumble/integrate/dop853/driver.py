@@ -19,6 +19,7 @@ from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import ParameterError
 from tumble.integrate.dop853 import core
 from tumble.integrate.dop853.core import Chunk, Options, Progress
+from tumble.integrate.dop853.dense import evaluate_dense
 from tumble.integrate.dop853.tableau import N_INTERPOLANT
 from tumble.kernels import Kernel
 
@@ -79,16 +80,26 @@ def available_threads() -> int:
     return _MAX_THREADS
 
 
+_ENTRIES: dict[tuple[Any, ...], Callable[..., tuple[Any, Any]]] = {}
+
+
 def _specialised(kind: int, args: tuple[Any, ...]) -> Callable[..., tuple[Any, Any]]:
     """:func:`core.advance` compiled for the kernel kind ``kind`` as a compile-time constant.
 
     With the kind a ``Literal[int]``, LLVM folds the right-hand side's dispatch and inlines
     the one kernel into the stage loops (about 1.8× faster than a runtime kind). Each kind's
     specialisation is compiled once and cached on disk like any other signature; the batches
-    run the same one.
+    run the same one. The entry is kept per kind and per writability of the arrays (the only
+    parts of the argument types that vary between runs): typing the arguments again costs
+    ~0.1 ms, which a short run (an averaged one) would feel.
     """
-    signature = (numba.types.literal(kind), *(numba.typeof(a) for a in args))
-    return cast(Any, core.advance).compile(signature)  # type: ignore[no-any-return]
+    key = (kind, *(a.flags.writeable if isinstance(a, np.ndarray) else type(a) for a in args))
+    entry = _ENTRIES.get(key)
+    if entry is None:
+        signature = (numba.types.literal(kind), *(numba.typeof(a) for a in args))
+        entry = cast(Any, core.advance).compile(signature)
+        _ENTRIES[key] = entry
+    return entry
 
 
 @dataclass(frozen=True)
@@ -138,15 +149,7 @@ class Solution:
         t = np.atleast_1d(np.asarray(t, dtype=float))
         if self.F.shape[0] == 0:
             raise ValueError("this solution was computed without dense output")
-        i = np.clip(np.searchsorted(self.ts, t, side="right") - 1, 0, self.F.shape[0] - 1)
-        h = self.ts[i + 1] - self.ts[i]
-        x = ((t - self.ts[i]) / h)[:, None]
-        F = self.F[i]
-        acc = np.zeros((t.size, self.ys.shape[1]))
-        for k in range(N_INTERPOLANT):
-            acc += F[:, N_INTERPOLANT - 1 - k]
-            acc *= x if k % 2 == 0 else 1.0 - x
-        return acc + self.ys[i]
+        return evaluate_dense(self.ts, self.ys, self.F, np.ascontiguousarray(t))  # type: ignore[no-any-return]
 
 
 class Integration:

@@ -4,6 +4,7 @@ that notices an edit to any compiled source."""
 from __future__ import annotations
 
 import ast
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -142,3 +143,51 @@ def test_cached_functions_carry_the_stamp_of_every_compiled_source():
     source in it, an edit to a callee's file recompiles its callers too."""
     stamp = core.advance._cache._cache_file._source_stamp
     assert stamp[1] == jit.source_stamp()
+
+
+def test_a_terminal_event_stops_the_run_at_its_first_zero():
+    """Made terminal, the event ends the run at its first zero: the time the recording run
+    locates, the state its dense output gives there, the step that crossed it not taken."""
+    kernel, y0 = _nm_kernel()
+    recorded = dop853.solve(kernel, y0, 40.0, **TOL)
+    stopped = dop853.solve(replace(kernel, terminal=True), y0, 40.0, **TOL)
+    assert stopped.status == dop853.STOPPED and stopped.message
+    first = recorded.event_t[0]
+    # The same root finder on the same step: the zero to round-off of t.
+    assert stopped.t == pytest.approx(first, rel=1e-14, abs=1e-14)
+    assert list(stopped.event_t) == [stopped.t]  # the zero it stopped at, recorded once
+    assert stopped.ts[-1] == stopped.t and np.all(np.diff(stopped.ts) > 0.0)
+    # The last step lands on the zero with the usual error control: within ~rtol of the
+    # recording run's interpolant there.
+    assert np.allclose(stopped.y, recorded(np.array([first]))[0], rtol=1e-9, atol=1e-9)
+    assert stopped.nfev < recorded.nfev
+
+
+def test_a_breakpoint_surface_on_the_compiled_path_matches_scipys():
+    """integrate() with one surface breakpoint and its compiled event: stopped there,
+    restarted through the map, the same solution as scipy's path with the Python condition."""
+    from tumble.integrate.ode import integrate
+    from tumble.kernels import EVENT_NONE, EVENT_THETA_DOT, evaluate_rhs
+    from tumble.kernels.rhs import evaluate_event
+    from tumble.models.base import Breakpoint
+
+    kernel, y0 = _nm_kernel()
+    quiet = replace(kernel, event=EVENT_NONE)
+
+    def kick(t: float, y: np.ndarray) -> np.ndarray:
+        return y * np.array([1.0, 1.0, 1.01, 1, 1, 1, 1])  # a jump in r: visible after
+
+    surface = Breakpoint(
+        lambda t, y: evaluate_event(EVENT_THETA_DOT, t, y, kernel.params),
+        kick,
+        None,
+        event=EVENT_THETA_DOT,
+    )
+    compiled = integrate(None, y0, 20.0, breakpoints=(surface,), kernel=quiet, **TOL)
+    scipy = integrate(lambda t, y: evaluate_rhs(kernel, t, y), y0, 20.0, breakpoints=(surface,),
+                      **TOL)  # fmt: skip
+    assert compiled.integrator == "numba" and scipy.integrator == "scipy"
+    t = np.linspace(0.0, 20.0, 41)
+    # Two runs at rtol 1e-10 (the same method and controller), a restart each: ~1e-8.
+    assert np.allclose(compiled(t), scipy(t), rtol=0.0, atol=1e-7)
+    assert abs(compiled(t)[-1, 2] - y0[2]) > 1e-3  # the kick happened

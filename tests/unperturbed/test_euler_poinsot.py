@@ -500,3 +500,19 @@ def test_module_functions_validate():
     # Round-off outside [2T·I1, 2T·I3] is clipped: k = 0 exactly.
     L = 2.5
     assert modulus_squared(1.0, 2.0, 2.5, L, 0.5 * L * L / 2.5 * (1 - 1e-12)) == (0.0, "x3")
+
+
+def test_modulus_squared_of_ratio_is_modulus_squared_for_many_states():
+    """The vectorized k²(r) is modulus_squared at L = 1, T = r/2, regime by regime: both
+    sides of the separatrix, on it, and symmetric bodies."""
+    from tumble.unperturbed.euler_poinsot import modulus_squared, modulus_squared_of_ratio
+
+    rng = np.random.default_rng(11)
+    for inertia in [(1.0, 1.6, 2.2), (0.7, 1.3, 1.9), (1.0, 1.0, 1.5), (1.0, 1.5, 1.5)]:
+        I1, I2, I3 = inertia
+        r = np.concatenate([rng.uniform(1.0 / I3, 1.0 / I1, 200), [1.0 / I1, 1.0 / I3, 1.0 / I2]])
+        if I1 < I2 < I3:  # around the separatrix, in its band and beyond
+            r = np.concatenate([r, 1.0 / I2 * (1.0 + np.array([1e-13, -1e-13, 1e-9, -1e-9]))])
+        one_by_one = np.array([modulus_squared(I1, I2, I3, 1.0, 0.5 * ri)[0] for ri in r])
+        # The same formulas on the same numbers: equal to the bit.
+        assert np.array_equal(modulus_squared_of_ratio(I1, I2, I3, r), one_by_one), inertia

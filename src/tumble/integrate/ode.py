@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -13,7 +13,7 @@ from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import IntegrationError, ParameterError
 from tumble.integrate import dop853
 from tumble.integrate.limits import MAX_STEPS, check_times
-from tumble.kernels import Kernel
+from tumble.kernels import EVENT_NONE, Kernel
 from tumble.models.base import Breakpoint
 
 __all__ = [
@@ -146,8 +146,9 @@ def integrate(
     kernel : Kernel, optional
         The same right-hand side compiled: integrate it with the compiled DOP853
         (:mod:`tumble.integrate.dop853`, the same method and step control as scipy's) instead of
-        calling ``rhs``. Only breakpoints at known times are supported on this path (the run
-        is split there).
+        calling ``rhs``. On this path breakpoints are at known times (the run is split there)
+        or one surface with its compiled event function (``Breakpoint.event``, a terminal
+        event of the kernel; the kernel has no event of its own).
     event : callable, optional
         ``event(t, y)``, whose zeros are recorded (``DenseSolution.events`` and the sign
         before each) on the scipy path; the compiled path records the kernel's own event,
@@ -169,12 +170,11 @@ def integrate(
     if t_end == 0.0:
         return DenseSolution(np.array([0.0]), 0, lambda t: np.repeat(y0[:, None], np.size(t), 1))
     if kernel is not None:
-        if any(b.time is None for b in breakpoints):
-            raise ParameterError(f"{what}: the compiled integrator takes no breakpoint surfaces")
-        times = sorted({float(b.time) for b in breakpoints if b.time is not None})
-        if not times:
+        if not breakpoints:
             return _integrate_compiled(kernel, y0, t_end, rtol=rtol, atol=atol, what=what)
-        return _integrate_compiled_split(kernel, y0, t_end, times, rtol, atol, what, max_steps)
+        return _integrate_compiled_split(
+            kernel, y0, t_end, breakpoints, rtol, atol, what, max_steps
+        )
     budget = min(PYTHON_MAX_STEPS, PYTHON_MAX_STEPS if max_steps is None else int(max_steps))
     try:
         return _integrate_scipy(
@@ -339,40 +339,65 @@ def _integrate_compiled_split(
     kernel: Kernel,
     y0: FloatArray,
     t_end: float,
-    times: Sequence[float],
+    breakpoints: Sequence[Breakpoint],
     rtol: float,
     atol: float,
     what: str,
     max_steps: int | None,
 ) -> DenseSolution:
-    """:func:`integrate` through the compiled DOP853, split at the known ``times`` (a kink of
-    the right-hand side there) so that no step straddles one; each segment restarts with the
-    step size the last one had reached, and all of them share the step budget."""
+    """:func:`integrate` through the compiled DOP853 with breakpoints: split at the known
+    times (a kink of the right-hand side there), so that no step straddles one, and stopped
+    at a surface by the kernel's event made terminal, then restarted past it through its map.
+    Each piece restarts with the step size the last one had reached; all share the budget."""
     kernel.check_end(t_end)
+    surfaces = [b for b in breakpoints if b.time is None]
+    if (
+        len(surfaces) > 1
+        or any(b.event == EVENT_NONE for b in surfaces)
+        or (surfaces and kernel.event != EVENT_NONE)
+    ):
+        raise ParameterError(
+            f"{what}: the compiled integrator takes breakpoints at known times and at most "
+            "one surface with a compiled event function"
+        )
+    surface = surfaces[0] if surfaces else None
+    if surface is not None and surface.condition is not None and surface.condition(0.0, y0) == 0.0:
+        surface = None  # the start sits on it: already passed
     # A kink within round-off of either end is the start or the end itself.
     slack = 1e-12 * max(1.0, t_end)
+    times = sorted({float(b.time) for b in breakpoints if b.time is not None})
     stops = [t for t in times if slack < t < t_end - slack] + [t_end]
     budget = MAX_STEPS if max_steps is None else int(max_steps)
     starts: list[float] = [0.0]
     sols: list[Callable[[FloatArray], FloatArray]] = []
     steps: list[float] = []
     t0, y, first, nfev = 0.0, y0, 0.0, 0
-    for stop in stops:
+    while t0 < t_end:
+        stop = next(s for s in stops if s > t0)
+        watched = replace(kernel, event=surface.event, terminal=True) if surface else kernel
         options = dop853.Options(rtol, atol, min(first, stop - t0))
-        run = dop853.Integration(kernel, y, stop, options, t0=t0)
+        run = dop853.Integration(watched, y, stop, options, t0=t0)
         while not run.advance(dop853.CHUNK_STEPS):
             if run.progress.n_steps + len(steps) > budget:
                 raise IntegrationError(f"{what}: run.max_steps = {budget} steps spent at t = "
                                        f"{run.progress.t:.6g} of {t_end:.6g}")  # fmt: skip
         res = run.solution()
-        sols.append(_states_by_rows(compiled_dense(res, what)))
+        stopped = res.status == dop853.STOPPED
+        piece = compiled_dense(replace(res, status=0) if stopped else res, what)
+        sols.append(_states_by_rows(piece))
         steps.extend(res.ts[1:])
         nfev += res.nfev
         first = float(res.ts[-2] - res.ts[-3]) if res.ts.size > 2 else 0.0
-        t0, y = stop, res.y
-        starts.append(stop)
+        t0, y = float(res.t), res.y
+        if stopped:
+            assert surface is not None  # only a watched surface stops a run
+            if surface.restart is not None:
+                y = np.asarray(surface.restart(t0, y), dtype=float)
+            surface = None  # crossed at most once
+        if t0 < t_end:
+            starts.append(t0)
     ts = np.concatenate([[0.0], np.asarray(steps)])
-    sol = sols[0] if len(sols) == 1 else _Piecewise(starts[:-1], sols)
+    sol = sols[0] if len(sols) == 1 else _Piecewise(starts, sols)
     return DenseSolution(ts, nfev, sol, "numba")
 
 

@@ -170,9 +170,10 @@ def simulate(
         For ``full``: one of ``model.full.forms`` (default: the model's recommended form).
     integrator : {"auto", "numba", "scipy"}
         The compiled integrator or scipy's (see :data:`INTEGRATORS`). The averaged equations
-        run compiled where their form has a kernel and breaks only at known times (the
-        resisting medium's (2.2), (2.3)); the others (averages by elliptic integrals or
-        quadrature in Python) on scipy's.
+        run compiled where their form has a kernel (the resisting medium's (2.2), (2.3), split
+        at the equator; the rotating field's vector form, stopped at its separatrix by a
+        terminal event); the others (the general engine's quadrature, the nonlinear moment's
+        Volosov equations) are Python on scipy's.
     averaging : AveragingOptions
         For ``averaged``: the paper's right-hand side or the general engine, the slow
         coordinates, and the start (checked against the model's ``Averaged`` capability).
@@ -395,10 +396,12 @@ def _closed(closed: ClosedForm[P, S], p: P, initial: S, tau: FloatArray) -> Traj
 
 def _averaged_kernel(avg: AveragedForm[P, S], p: P, integrator: str) -> Kernel | None:
     """The compiled averaged right-hand side to run, or None for scipy's path: none asked
-    (``integrator = "scipy"``), none written, or a breakpoint surface (located by scipy)."""
+    (``integrator = "scipy"``), none written, or breakpoint surfaces the compiled integrator
+    cannot watch (more than one, or one without a compiled event function)."""
     if integrator == "scipy" or avg.kernel is None:
         return None
-    if any(b.time is None for b in avg.breakpoints):
+    surfaces = [b for b in avg.breakpoints if b.time is None]
+    if len(surfaces) > 1 or any(b.event == 0 for b in surfaces):
         return None
     return avg.kernel(p)
 

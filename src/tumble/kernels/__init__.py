@@ -18,8 +18,10 @@ import numpy as np
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import ParameterError
 from tumble.kernels.codes import (
+    EVENT_FIELD_SEPARATRIX,
     EVENT_NONE,
     EVENT_THETA_DOT,
+    KIND_FIELD_AVERAGED,
     KIND_MEDIUM_AVERAGED,
     KIND_NONLINEAR_MOMENT,
     KIND_RIGID_BODY,
@@ -27,8 +29,10 @@ from tumble.kernels.codes import (
 )
 
 __all__ = [
+    "EVENT_FIELD_SEPARATRIX",
     "EVENT_NONE",
     "EVENT_THETA_DOT",
+    "KIND_FIELD_AVERAGED",
     "KIND_MEDIUM_AVERAGED",
     "KIND_NONLINEAR_MOMENT",
     "KIND_RIGID_BODY",
@@ -53,6 +57,9 @@ class Kernel:
     t_max : float
         Last time the parameters cover (e.g. a pressure table); integrating beyond it is an
         error with ``t_max_message``.
+    terminal : bool
+        Whether the run stops at the event's first zero (a breakpoint of the equations),
+        rather than recording every zero.
     """
 
     kind: int
@@ -60,6 +67,7 @@ class Kernel:
     event: int = EVENT_NONE
     t_max: float = math.inf
     t_max_message: str = ""
+    terminal: bool = False
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "params", np.ascontiguousarray(self.params, dtype=np.float64))

@@ -8,8 +8,10 @@ numba; the compiled modules import them from here.
 from __future__ import annotations
 
 __all__ = [
+    "EVENT_FIELD_SEPARATRIX",
     "EVENT_NONE",
     "EVENT_THETA_DOT",
+    "KIND_FIELD_AVERAGED",
     "KIND_MEDIUM_AVERAGED",
     "KIND_NONLINEAR_MOMENT",
     "KIND_RIGID_BODY",
@@ -28,10 +30,13 @@ KIND_RIGID_BODY = 1
 KIND_ROTATING_FIELD = 2
 KIND_NONLINEAR_MOMENT = 3
 KIND_MEDIUM_AVERAGED = 4
+KIND_FIELD_AVERAGED = 5
 
 EVENT_NONE = 0
 EVENT_THETA_DOT = 1
 """Zeros of θ' of the nonlinear-moment quaternion form: the extrema of θ(t)."""
+EVENT_FIELD_SEPARATRIX = 2
+"""r − 1/I2 of the rotating field's averaged vector form: its separatrix."""
 
 TERM_BODY_CONSTANT = 1  # body moment (3)
 TERM_LINEAR_DRAG = 2  # B by rows (9)

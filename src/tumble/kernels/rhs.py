@@ -19,6 +19,9 @@ Kinds
 ``KIND_MEDIUM_AVERAGED``
     The averaged equations of Medvedev (1987): (2.2) for ``[k, ϑ]`` or (2.3) for ``[W, V]``,
     parameters ``[ε, a3, α, β, γ, δ, form]`` (form 0: (2.2), 1: (2.3)).
+``KIND_FIELD_AVERAGED``
+    The averaged equations of Martynenko (1979) in the vector form, state ``[L_ξ, r]`` with
+    r = 2T/L², parameters ``[ε, sin²β, cos²β, I1, I2, I3]`` (sorted moments).
 """
 
 from __future__ import annotations
@@ -29,12 +32,15 @@ import numpy as np
 
 from tumble._typing import FloatArray
 from tumble.kernels.codes import (
+    EVENT_FIELD_SEPARATRIX,
     EVENT_THETA_DOT,
+    KIND_FIELD_AVERAGED,
     KIND_MEDIUM_AVERAGED,
     KIND_NONLINEAR_MOMENT,
     KIND_RIGID_BODY,
     KIND_ROTATING_FIELD,
 )
+from tumble.kernels.elliptic import elliprd, elliprf
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
 from tumble.kernels.torque import quaternion_rates, torque_moment
 
@@ -207,6 +213,78 @@ def _medium_averaged(y: FloatArray, p: FloatArray, out: FloatArray) -> None:
         out[1] = -eps * (al * V + ga * V * V)
 
 
+# The Euler–Poinsot period averages, as tumble.unperturbed.euler_poinsot evaluates them.
+_SEPARATRIX_RTOL = 1e-12  # euler_poinsot.SEPARATRIX_RTOL
+_DEGENERATE_RTOL = 1e-12  # euler_poinsot.DEGENERATE_RTOL
+_MC_FLOOR = 1e-300  # euler_poinsot._MC_FLOOR
+_REACHED_MARGIN = 1e-3  # euler_poinsot.REACHED_MARGIN
+
+
+@jit(KERNEL)
+def _mean_square_rate(i1: float, i2: float, i3: float, r: float) -> float:
+    """⟨|z|²⟩/L² of the Euler–Poinsot motion with 2T/L² = r (sorted moments, r inside
+    [1/I3, 1/I1]): :func:`tumble.unperturbed.euler_poinsot.mean_square_rate` at L = 1."""
+    d1, d2, d3 = max(1.0 - r * i1, 0.0), 1.0 - r * i2, max(r * i3 - 1.0, 0.0)
+    tol = _DEGENERATE_RTOL * i3
+    if i3 - i1 <= 2.0 * tol:  # a sphere
+        return 1.0 / (i2 * i2)
+    x3 = d2 >= 0.0 if abs(d2) <= _SEPARATRIX_RTOL else d2 > 0.0
+    m, mc = 0.0, 1.0
+    if i2 - i1 <= tol:  # symmetric about x3
+        x3 = True
+    elif i3 - i2 <= tol:  # symmetric about x1
+        x3 = False
+    else:
+        if x3:
+            den = (i3 - i2) * d1
+            m, mc = (i2 - i1) * d3 / den, (i3 - i1) * d2 / den
+        else:
+            den = (i2 - i1) * d3
+            m, mc = (i3 - i2) * d1 / den, -(i3 - i1) * d2 / den
+        if mc < _MC_FLOOR:
+            m, mc = 1.0, 0.0
+        else:
+            m, mc = min(max(m, 0.0), 1.0), min(mc, 1.0)
+    if mc == 0.0:  # on the separatrix: both period averages vanish (E/K → 0)
+        cn2, dn2 = 0.0, 0.0
+    else:
+        rf = elliprf(0.0, mc, 1.0)
+        rd_over_3rf = elliprd(0.0, mc, 1.0) / (3.0 * rf)
+        dn2 = 1.0 - m * rd_over_3rf  # E/K, E = R_F − (m/3) R_D
+        cn2 = 1.0 - rd_over_3rf if m <= 0.5 else (dn2 - mc) / m
+    w1 = (i2 - i1) * d3 / (i1 * (i3 - i1))
+    w3 = (i3 - i2) * d1 / (i3 * (i3 - i1))
+    if x3:
+        return r / i2 + (w1 * cn2 - w3 * dn2) / i2
+    return r / i2 + (w1 * dn2 - w3 * cn2) / i2
+
+
+@jit(INLINE)
+def _field_averaged(y: FloatArray, p: FloatArray, out: FloatArray) -> None:
+    """The vector form of the averaged equations of Martynenko (1979):
+    dL_ξ/dτ = ε(r D L_ξ + sin²β ξ3), dr/dτ = (εA/2)(r² − ⟨z²⟩/L²), D = −diag(a, a, sin²β),
+    a = (1 + cos²β)/2, A = 2(1 + cos²β) + (1 − 3cos²β) sin²ρ; NaN beyond a pure rotation
+    (r outside [1/I3, 1/I1] by more than the margin), so that the step is rejected."""
+    eps, s2, c2, i1, i2, i3 = p[0], p[1], p[2], p[3], p[4], p[5]
+    lo, hi = 1.0 / i3, 1.0 / i1
+    margin = _REACHED_MARGIN * hi
+    r = y[3]
+    if not lo - margin <= r <= hi + margin:
+        for j in range(4):
+            out[j] = math.nan
+        return
+    r = min(max(r, lo), hi)
+    l1, l2, l3 = y[0], y[1], y[2]
+    big = l1 * l1 + l2 * l2 + l3 * l3
+    sin2_rho = (l1 * l1 + l2 * l2) / big if big > 0.0 else 0.0
+    a = 0.5 * (1.0 + c2)
+    out[0] = -eps * r * a * l1
+    out[1] = -eps * r * a * l2
+    out[2] = eps * (s2 - r * s2 * l3)
+    big_a = 2.0 * (1.0 + c2) + (1.0 - 3.0 * c2) * sin2_rho
+    out[3] = 0.5 * eps * big_a * (r * r - _mean_square_rate(i1, i2, i3, r))
+
+
 @jit(INLINE)
 def rhs(kind: int, t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> None:
     """dy/dt of the right-hand side ``kind`` with parameters ``p`` into ``out`` (NaN for an
@@ -219,6 +297,8 @@ def rhs(kind: int, t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> N
         _nonlinear_moment(t, y, p, out)
     elif kind == KIND_MEDIUM_AVERAGED:
         _medium_averaged(y, p, out)
+    elif kind == KIND_FIELD_AVERAGED:
+        _field_averaged(y, p, out)
     else:
         for j in range(y.size):
             out[j] = math.nan
@@ -234,6 +314,8 @@ def event(kind: int, t: float, y: FloatArray, p: FloatArray) -> float:
         ex = 2.0 * (q1 * q3 - q0 * q2) / n2
         ey = 2.0 * (q2 * q3 + q0 * q1) / n2
         return y[0] * ey - y[1] * ex
+    if kind == EVENT_FIELD_SEPARATRIX:
+        return y[3] - 1.0 / p[4]  # r − 1/I2, p = [ε, s², c², I1, I2, I3]
     return 1.0
 
 

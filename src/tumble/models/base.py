@@ -159,12 +159,15 @@ class Breakpoint:
     state). A restart map lets a solution leave a non-Lipschitz point it would otherwise stick
     to (e.g. the spurious k² ≡ 1 solution on a separatrix); one that raises stops the run
     there. A breakpoint at a known time (``Breakpoint.at_time``) splits the integration
-    interval there instead, so that no step ever straddles it.
+    interval there instead, so that no step ever straddles it. ``event``, an ``EVENT_*`` code
+    of :mod:`tumble.kernels`, is the same surface as a compiled event function of the form's
+    kernel: with it the compiled integrator stops there too (0: scipy's path only).
     """
 
     condition: Callable[[float, FloatArray], float] | None
     restart: Callable[[float, FloatArray], FloatArray] | None = None
     time: float | None = None  # a known time instead of a condition (a kink in a forcing)
+    event: int = 0  # the condition compiled (an EVENT_* code of the form's kernel)
 
     @classmethod
     def at_time(cls, t: float) -> Breakpoint:

@@ -27,7 +27,12 @@ from tumble._typing import ArrayLike, BoolArray, FloatArray
 from tumble.averaging.triaxial import triaxial_average_vector
 from tumble.catalogue import CATALOGUE
 from tumble.dynamics import rigid_body_kernel, rigid_body_rhs
-from tumble.kernels import KIND_ROTATING_FIELD, Kernel
+from tumble.kernels import (
+    EVENT_FIELD_SEPARATRIX,
+    KIND_FIELD_AVERAGED,
+    KIND_ROTATING_FIELD,
+    Kernel,
+)
 from tumble.kernels.rhs import rotating_field as rotating_field_rhs
 from tumble.models.base import (
     Averaged,
@@ -70,6 +75,7 @@ from tumble.unperturbed import (
     fast_frequencies,
     mean_square_rate,
     modulus_squared,
+    modulus_squared_of_ratio,
     reached_ratio,
 )
 
@@ -81,6 +87,7 @@ __all__ = [
     "Scaling",
     "State",
     "approximate_roots",
+    "averaged_kernel",
     "averaged_rhs",
     "averaged_rhs_k2",
     "averaged_rhs_numeric",
@@ -422,8 +429,8 @@ def _vector_from_slow(p: Params, st: State) -> FloatArray:
 
 
 def _r_to_k2(p: Params, r: ArrayLike) -> FloatArray:
-    # k² of the current regime as a function of r = 2T/L² only (L = 1).
-    return np.array([modulus_squared(*p.sorted_inertia, 1.0, 0.5 * ri)[0] for ri in np.ravel(r)])
+    # k² of the current regime as a function of r = 2T/L² only.
+    return modulus_squared_of_ratio(*p.sorted_inertia, np.ravel(r))
 
 
 def _vector_columns(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
@@ -483,7 +490,11 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
     I1, I2, I3 = p.sorted_inertia
     breakpoints: tuple[Breakpoint, ...] = ()
     if I1 < I2 < I3:
-        breakpoints = (Breakpoint(lambda t, y: float(y[3]) - 1.0 / I2, _step_over_separatrix),)
+        separatrix = Breakpoint(
+            lambda t, y: float(y[3]) - 1.0 / I2, _step_over_separatrix,
+            event=EVENT_FIELD_SEPARATRIX,
+        )  # fmt: skip
+        breakpoints = (separatrix,)
     numeric = options.averaging == "numeric"
     return AveragedForm(
         name="numeric" if numeric else "vector",
@@ -497,7 +508,14 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
         initial_state=_vector_from_slow,
         to_columns=_vector_columns,
         breakpoints=breakpoints,
+        kernel=None if numeric else averaged_kernel,
     )
+
+
+def averaged_kernel(p: Params) -> Kernel:
+    """:func:`averaged_rhs_vector` compiled (:mod:`tumble.kernels`), with the period averages
+    by Carlson's integrals; its event function is the separatrix r = 1/I2."""
+    return Kernel(KIND_FIELD_AVERAGED, np.array([p.eps, p.s2, p.c2, *p.sorted_inertia]))
 
 
 # ---------------------------------------------------------------------------------------------

@@ -62,6 +62,7 @@ __all__ = [
     "fast_frequencies",
     "mean_square_rate",
     "modulus_squared",
+    "modulus_squared_of_ratio",
     "proper_sorting",
     "reached_ratio",
     "regime",
@@ -313,6 +314,33 @@ def modulus_squared(I1: float, I2: float, I3: float, L: float, T: float) -> tupl
     if reg == "separatrix":
         return 1.0, reg
     return _side_modulus(reg, I1, I2, I3, d1, d2, d3)[0], reg
+
+
+def modulus_squared_of_ratio(I1: float, I2: float, I3: float, r: ArrayLike) -> FloatArray:
+    """:func:`modulus_squared` for many states at once, given by r = 2T/L² (k² depends on r
+    only): the same regimes and formulas, vectorized, for r on [1/I3, 1/I1] (an averaged
+    run's values; outside it the ends are taken).
+
+    Parameters
+    ----------
+    I1, I2, I3 : float
+        Principal moments, I1 ≤ I2 ≤ I3 [inertia unit].
+    r : array_like
+        2T/L² [1/inertia unit].
+    """
+    _check_sorted(I1, I2, I3)
+    r = np.asarray(r, dtype=float)
+    if _symmetry(I1, I2, I3):
+        return np.zeros_like(r)
+    d1 = np.maximum(1.0 - r * I1, 0.0)
+    d2 = 1.0 - r * I2
+    d3 = np.maximum(r * I3 - 1.0, 0.0)
+    x3 = d2 > 0.0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        m = np.where(x3, (I2 - I1) * d3 / ((I3 - I2) * d1), (I3 - I2) * d1 / ((I2 - I1) * d3))
+        mc = np.where(x3, (I3 - I1) * d2 / ((I3 - I2) * d1), -(I3 - I1) * d2 / ((I2 - I1) * d3))
+    k2 = np.clip(m, 0.0, 1.0)
+    return np.where((np.abs(d2) <= SEPARATRIX_RTOL) | ~(mc >= _MC_FLOOR), 1.0, k2)
 
 
 def energy_from_modulus(

@@ -12,6 +12,7 @@ the error norm, the step-size control), :mod:`~.dense` (the interpolant), :mod:`
 batches over threads with the GIL released).
 """
 
+from tumble.integrate.dop853.core import STOPPED
 from tumble.integrate.dop853.driver import (
     CHUNK_STEPS,
     BatchResult,
@@ -26,6 +27,7 @@ from tumble.integrate.dop853.driver import (
 
 __all__ = [
     "CHUNK_STEPS",
+    "STOPPED",
     "BatchResult",
     "Integration",
     "Options",

@@ -17,14 +17,14 @@ import numpy as np
 from tumble._typing import FloatArray
 from tumble.integrate.dop853.dense import dense_coefficients, interpolate
 from tumble.integrate.dop853.events import event_root
-from tumble.integrate.dop853.steps import STEP_OK, attempt_step, initial_step
+from tumble.integrate.dop853.steps import STEP_OK, attempt_step, initial_step, min_step
 from tumble.integrate.dop853.tableau import N_INTERPOLANT, N_STAGES, N_STAGES_EXTENDED
 from tumble.kernels.codes import EVENT_NONE
 from tumble.kernels.jit import ENTRY, INLINE, INNER, INNER_INLINE, KERNEL, jit
 from tumble.kernels.rhs import event, rhs
 
-__all__ = ["FRESH", "NOT_FINITE", "OK", "RUNNING", "STEP_TOO_SMALL", "Chunk", "Options",
-           "Progress", "advance"]  # fmt: skip
+__all__ = ["FRESH", "NOT_FINITE", "OK", "RUNNING", "STEP_TOO_SMALL", "STOPPED", "Chunk",
+           "Options", "Progress", "advance"]  # fmt: skip
 
 _NF = N_INTERPOLANT  # rows of a step's interpolant
 
@@ -34,6 +34,7 @@ STEP_TOO_SMALL = -1  # the step size fell below the resolution of t
 NOT_FINITE = -2  # the state stopped being finite
 RUNNING = 1  # stopped after max_steps, to be resumed
 FRESH = 2  # not started: advance() first evaluates f and chooses the starting step
+STOPPED = 3  # reached the first zero of a terminal event function (a breakpoint)
 
 
 class Options(NamedTuple):
@@ -46,6 +47,7 @@ class Options(NamedTuple):
     dense: bool = True  # keep every step's interpolant (with record)
     event: int = EVENT_NONE  # EVENT_* whose sign changes are located
     max_steps: int = 0  # steps per call of advance() before it returns; 0: no limit
+    terminal: bool = False  # stop at the event's first zero (the run ends there, STOPPED)
 
 
 class Progress(NamedTuple):
@@ -214,8 +216,13 @@ def advance(
     y_new, tmp = np.empty(n), np.empty(n)
     _copy(f, K[0], 0)
     status, n_rec, n_ev = RUNNING, 0, 0
-    while t < t_end and (opts.max_steps <= 0 or n_rec < opts.max_steps):
-        step, h, h_abs, used = attempt_step(kind, p, t, t_end, h_abs, y, K, y_new, tmp,
+    # A terminal event stops the run at its first zero: the step that crosses it is not
+    # taken; the run goes on to the zero instead, as if it were the end, with the usual step
+    # control (its last step lands on it), and the event is not looked for again.
+    looking = opts.event != EVENT_NONE
+    t_stop = t_end
+    while t < t_stop and (opts.max_steps <= 0 or n_rec < opts.max_steps):
+        step, h, h_abs, used = attempt_step(kind, p, t, t_stop, h_abs, y, K, y_new, tmp,
                                             opts.rtol, opts.atol)  # fmt: skip
         nfev += used
         if step != STEP_OK:
@@ -225,12 +232,24 @@ def advance(
             status = NOT_FINITE
             break
         t_new = t + h
-        if opts.dense or opts.event != EVENT_NONE or (ie < t_eval.size and t_eval[ie] <= t_new):
+        if opts.dense or looking or (ie < t_eval.size and t_eval[ie] <= t_new):
             dense_coefficients(kind, p, t, h, y, y_new, K, F, tmp)
             nfev += N_STAGES_EXTENDED - N_STAGES - 1
-        ie = _sample(t, h, t_new, y, y_new, F, t_eval, y_eval, ie, tmp)
-        if opts.event != EVENT_NONE:
-            g, count = _step_events(opts.event, p, t, h, y, y_new, F, g, found, states, tmp)
+        if looking:
+            g_new, count = _step_events(opts.event, p, t, h, y, y_new, F, g, found, states, tmp)
+            if count > 0 and opts.terminal:
+                looking = False  # this step is not taken: the run ends at the zero instead
+                ev_t, ev_s = _fit(ev_t, n_ev + 1, 1), _fit(ev_s, n_ev + 1, 1)
+                ev_y = _fit(ev_y, n_ev + 1, n)
+                ev_t[n_ev], ev_s[n_ev] = found[0, 0], found[0, 1]
+                _store(ev_y, n_ev, states[0])
+                n_ev += 1
+                if found[0, 0] - t <= min_step(t):  # already there, to the resolution of t
+                    t_stop = t
+                    break
+                t_stop, h_abs = found[0, 0], found[0, 0] - t
+                continue
+            g = g_new
             if count > 0:
                 ev_t, ev_s = _fit(ev_t, n_ev + count, 1), _fit(ev_s, n_ev + count, 1)
                 ev_y = _fit(ev_y, n_ev + count, n)
@@ -238,6 +257,7 @@ def advance(
                     ev_t[n_ev], ev_s[n_ev] = found[k, 0], found[k, 1]
                     _store(ev_y, n_ev, states[k])
                     n_ev += 1
+        ie = _sample(t, h, t_new, y, y_new, F, t_eval, y_eval, ie, tmp)
         if opts.record:
             if n_rec + 2 > ts.size:
                 ts, ys = _fit(ts, n_rec + 2, 1), _fit(ys, n_rec + 2, n)
@@ -255,6 +275,8 @@ def advance(
             K[0, j] = K[N_STAGES, j]
     if status == RUNNING and t >= t_end:
         status = OK
+    elif status == RUNNING and t >= t_stop:
+        status = STOPPED
     _copy(K[0], f, 0)
     # Plain tuples, not the named ones: numba boxes a named tuple by calling its class, Python
     # code during which a signal handler that raises (Ctrl-C, an alarm) used to leave a

@@ -41,6 +41,7 @@ _MESSAGES = {
     core.RUNNING: "the run was stopped before its end",
     core.STEP_TOO_SMALL: "the step size fell below the resolution of t",
     core.NOT_FINITE: "the state stopped being finite",
+    core.STOPPED: "the run stopped at its terminal event",
 }
 
 
@@ -110,7 +111,8 @@ class Solution:
     ----------
     status : int
         0 on success; −1 if the step size fell below the resolution of t; −2 if the state
-        stopped being finite; 1 if the run was stopped before its end.
+        stopped being finite; 1 if the run was stopped before its end; 3 if it stopped at the
+        first zero of a terminal event (at ``t``).
     t : float
         Time reached.
     y : ndarray
@@ -199,6 +201,7 @@ class Integration:
             record=bool(options.record),
             dense=bool(options.dense and options.record),
             event=int(kernel.event),
+            terminal=bool(kernel.terminal),
         )
         self.y = np.array(y0, dtype=np.float64)  # updated in place by the compiled code
         self._f = np.empty_like(self.y)

@@ -128,10 +128,15 @@ def _sampled(
     The solver's steps resolve every turn of the fast phases, so unwrapping on them gives the
     continuous angle even when the samples are sparser than a turn.
     """
-    grid, index = np.unique(np.concatenate([sol.ts, tau]), return_inverse=True)
+    # Both are ascending: a stable sort merges them (a time in both is kept twice, harmless).
+    times = np.concatenate([sol.ts, tau])
+    order = np.argsort(times, kind="stable")
+    grid = times[order]
     cols = to_columns(grid, sol(grid))
     _unwrap_columns(model, p, method, cols, initial)
-    at = index[sol.ts.size :]
+    where = np.empty(times.size, dtype=np.intp)
+    where[order] = np.arange(times.size)
+    at = where[sol.ts.size :]
     return {name: values[at] for name, values in cols.items()}
 
 

@@ -44,7 +44,7 @@ import tempfile
 import time
 import tomllib
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -78,6 +78,8 @@ TARGETS: dict[str, float] = {
     "averaged_speedup_1e-4": 1000.0,  # the same at ε = 1e-4
     "averaged_equal_accuracy_1e-4": 300.0,  # against the full run of equal slow error, ε = 1e-4
     "averaged_eval_us": 1.0,  # one evaluation of a paper model's averaged equations, at most
+    "engine_speedup_1e-4": 100.0,  # the general engine's averaged vs full, at least, ε = 1e-4
+    "engine_eval_us": 20.0,  # one evaluation of the engine's averaged right-hand side, at most
     "averaged_error": 0.01,  # at most, on the slow variables
     "batch_efficiency": 0.8,  # throughput on 2 cores over twice that on 1, at least
     "compile_s": 5.0,  # first call from an empty cache, at most
@@ -94,6 +96,14 @@ HEYOKA_REFERENCE_TOL = 1e-15  # heyoka's Taylor method near double precision
 HEYOKA_LADDER = tuple(10.0**-k for k in range(6, 16))
 FULL_LADDER = tuple(10.0**-k for k in range(3, 11))  # full runs for "equal accuracy"
 AVERAGED_EPS = (1e-2, 1e-3, 1e-4)
+ENGINE_EPS = (1e-3, 1e-4)
+ENGINE_CASES: dict[str, tuple[str, str | None]] = {
+    "spinner: resisting_medium moment": ("resisting_medium", "numeric"),
+    "triaxial: torqued_body gravity gradient": ("torqued_body", None),  # its own averaging
+    "nutation: nonlinear_moment damping and pressure": ("nonlinear_moment", "numeric"),
+}
+"""The general averaging engine in each of its settings, on a built-in torque: the model's
+default scenario with ``[run] averaging = "numeric"``, by the engine's setting and torque."""
 EVAL_SECONDS = 0.05  # time spent measuring the cost of one evaluation
 AVERAGED_SAMPLES = 201
 
@@ -121,6 +131,8 @@ class BenchSettings:
         Measure the cold compile in a fresh process with an empty cache.
     startup : bool
         Time ``tumble`` answering from a fresh process (help, models, input errors).
+    engine : bool
+        Time the general averaging engine against the full runs (:data:`ENGINE_CASES`).
     """
 
     horizon: float = 1e5
@@ -132,6 +144,7 @@ class BenchSettings:
     batch_size: int = 128
     compile: bool = True
     startup: bool = True
+    engine: bool = True
 
     def __post_init__(self) -> None:
         if not (self.horizon > 0.0 and math.isfinite(self.horizon)):
@@ -403,10 +416,17 @@ def _full_vs_full(model: Any, ref: Any, run: Any) -> dict[str, float]:
 
 
 def _averaged_case(
-    name: str, eps: float, s: BenchSettings, log: Callable[[str], None]
+    name: str,
+    eps: float,
+    s: BenchSettings,
+    log: Callable[[str], None],
+    averaging: str | None = None,
 ) -> dict[str, Any]:
-    """Averaged (and closed form) against full for model ``name`` at ``eps``."""
+    """Averaged (and closed form) against full for model ``name`` at ``eps``; ``averaging``
+    overrides the scenario's ``[run] averaging`` ("numeric": the general engine)."""
     req = _scenario_at(name, eps, None, AVERAGED_SAMPLES)
+    if averaging is not None:
+        req = replace(req, averaging=replace(req.averaging, averaging=averaging))
     model, p, ini, tau = req.model, req.params, req.initial, req.tau
 
     def run(method: str, rtol: float, atol: float) -> Any:
@@ -725,6 +745,14 @@ def run_benchmark(
         name: {f"{eps:g}": _averaged_case(name, eps, s, say) for eps in AVERAGED_EPS}
         for name in PAPER_MODELS
     }
+    result["engine_speedup"] = (
+        {
+            label: {f"{eps:g}": _averaged_case(name, eps, s, say, averaging) for eps in ENGINE_EPS}
+            for label, (name, averaging) in ENGINE_CASES.items()
+        }
+        if s.engine
+        else None
+    )
     result["batch_throughput"] = _batch(s, say)
     result["verdicts"] = verdicts(result)
     return result
@@ -763,6 +791,14 @@ def verdicts(result: dict[str, Any]) -> list[dict[str, Any]]:
                     TARGETS["averaged_equal_accuracy_1e-4"], True)  # fmt: skip
                 add(f"{where}: one averaged evaluation [µs]", v["eval_us"]["averaged"],
                     TARGETS["averaged_eval_us"], False)  # fmt: skip
+    for label, by_eps in (result.get("engine_speedup") or {}).items():
+        v = by_eps.get("0.0001")
+        if v is not None:
+            where = f"engine {label} ε = 0.0001"
+            add(f"{where}: speed-up vs full", v["averaged"]["speedup"],
+                TARGETS["engine_speedup_1e-4"], True)  # fmt: skip
+            add(f"{where}: one averaged evaluation [µs]", v["eval_us"]["averaged"],
+                TARGETS["engine_eval_us"], False)  # fmt: skip
     batch = result["batch_throughput"]["threads"]
     if "2" in batch:
         add(

@@ -21,6 +21,7 @@ __all__ = [
     "DEFAULT_RTOL",
     "DenseSolution",
     "check_times",
+    "compiled_breakpoints",
     "integrate",
 ]
 
@@ -335,6 +336,13 @@ def _integrate_compiled(
     return compiled_dense(dop853.solve(kernel, y0, t_end, rtol=rtol, atol=atol), what)
 
 
+def compiled_breakpoints(breakpoints: Sequence[Breakpoint]) -> bool:
+    """Whether the compiled integrator can honour ``breakpoints``: any at known times, and at
+    most one surface, with its compiled event function (:attr:`Breakpoint.event`)."""
+    surfaces = [b for b in breakpoints if b.time is None]
+    return len(surfaces) <= 1 and all(b.event != EVENT_NONE for b in surfaces)
+
+
 def _integrate_compiled_split(
     kernel: Kernel,
     y0: FloatArray,
@@ -351,11 +359,7 @@ def _integrate_compiled_split(
     Each piece restarts with the step size the last one had reached; all share the budget."""
     kernel.check_end(t_end)
     surfaces = [b for b in breakpoints if b.time is None]
-    if (
-        len(surfaces) > 1
-        or any(b.event == EVENT_NONE for b in surfaces)
-        or (surfaces and kernel.event != EVENT_NONE)
-    ):
+    if not compiled_breakpoints(breakpoints) or (surfaces and kernel.event != EVENT_NONE):
         raise ParameterError(
             f"{what}: the compiled integrator takes breakpoints at known times and at most "
             "one surface with a compiled event function"

@@ -24,6 +24,7 @@ from tumble.integrate.ode import (
     DEFAULT_RTOL,
     DenseSolution,
     check_times,
+    compiled_breakpoints,
     integrate,
 )
 from tumble.kernels import Kernel
@@ -403,10 +404,7 @@ def _averaged_kernel(avg: AveragedForm[P, S], p: P, integrator: str) -> Kernel |
     """The compiled averaged right-hand side to run, or None for scipy's path: none asked
     (``integrator = "scipy"``), none written, or breakpoint surfaces the compiled integrator
     cannot watch (more than one, or one without a compiled event function)."""
-    if integrator == "scipy" or avg.kernel is None:
-        return None
-    surfaces = [b for b in avg.breakpoints if b.time is None]
-    if len(surfaces) > 1 or any(b.event == 0 for b in surfaces):
+    if integrator == "scipy" or avg.kernel is None or not compiled_breakpoints(avg.breakpoints):
         return None
     return avg.kernel(p)
 

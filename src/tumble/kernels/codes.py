@@ -1,13 +1,16 @@
-"""The integer codes compiled code dispatches on: right-hand sides, events and torque terms.
+"""The integer codes compiled code dispatches on (right-hand sides, events, torque terms), and
+the thresholds it shares with Python (the Euler–Poinsot regimes of
+:mod:`tumble.unperturbed.euler_poinsot`, which the compiled averaged equations reproduce).
 
 Plain constants, apart from the compiled code that reads them, so that the classes which
 pack a kernel's parameters (:mod:`tumble.torques`, the models' parameters) load without
-numba; the compiled modules import them from here.
+numba; the compiled modules and the Python ones import them from here, once.
 """
 
 from __future__ import annotations
 
 __all__ = [
+    "DEGENERATE_RTOL",
     "EVENT_FIELD_SEPARATRIX",
     "EVENT_NONE",
     "EVENT_THETA_DOT",
@@ -16,7 +19,10 @@ __all__ = [
     "KIND_NONLINEAR_MOMENT",
     "KIND_RIGID_BODY",
     "KIND_ROTATING_FIELD",
+    "MC_FLOOR",
     "RATE_ONLY_TERMS",
+    "REACHED_MARGIN",
+    "SEPARATRIX_RTOL",
     "TERM_BODY_CONSTANT",
     "TERM_EDDY_CURRENT",
     "TERM_GRAVITY_GRADIENT",
@@ -57,3 +63,23 @@ TERM_PAYLOAD: dict[int, int] = {
 
 RATE_ONLY_TERMS = frozenset({TERM_BODY_CONSTANT, TERM_LINEAR_DRAG, TERM_QUADRATIC_DRAG})
 """Terms that read neither the attitude nor the time."""
+
+SEPARATRIX_RTOL = 1e-12
+"""A state is on the separatrix when |L² − 2T·I2| ≤ SEPARATRIX_RTOL·L². L² − 2T·I2 from a
+state known to a few ulps carries ~1e-16·L² of round-off, and ~1e-12·L² after an integration
+at rtol ~1e-12: inside the band its sign, hence the regime, is not determined by the data."""
+
+DEGENERATE_RTOL = 1e-12
+"""Two principal moments count as equal when they differ by ≤ DEGENERATE_RTOL·I3 (all
+three when I3 − I1 ≤ 2·DEGENERATE_RTOL·I3). With it each regime x3, x1 spans more than
+SEPARATRIX_RTOL·L² in L² − 2T·I2, so the separatrix band never swallows a whole regime;
+the symmetric formulas used for such bodies are off by O(DEGENERATE_RTOL)."""
+
+MC_FLOOR = 1e-300
+"""k'² below which the Euler–Poinsot motion is the separatrix itself (|d2| ≲ 1e-300 L²):
+K = R_F(0, mc, 1) overflows for subnormal mc."""
+
+REACHED_MARGIN = 1e-3
+"""How far, as a fraction of 1/I1 (the range's upper end: the width 1/I1 − 1/I3 vanishes for
+a sphere), an integrated 2T/L² may step beyond the range before
+:func:`tumble.unperturbed.euler_poinsot.reached_ratio` refuses it."""

@@ -32,6 +32,7 @@ import numpy as np
 
 from tumble._typing import FloatArray
 from tumble.kernels.codes import (
+    DEGENERATE_RTOL,
     EVENT_FIELD_SEPARATRIX,
     EVENT_THETA_DOT,
     KIND_FIELD_AVERAGED,
@@ -39,6 +40,9 @@ from tumble.kernels.codes import (
     KIND_NONLINEAR_MOMENT,
     KIND_RIGID_BODY,
     KIND_ROTATING_FIELD,
+    MC_FLOOR,
+    REACHED_MARGIN,
+    SEPARATRIX_RTOL,
 )
 from tumble.kernels.elliptic import elliprd, elliprf
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
@@ -213,22 +217,15 @@ def _medium_averaged(y: FloatArray, p: FloatArray, out: FloatArray) -> None:
         out[1] = -eps * (al * V + ga * V * V)
 
 
-# The Euler–Poinsot period averages, as tumble.unperturbed.euler_poinsot evaluates them.
-_SEPARATRIX_RTOL = 1e-12  # euler_poinsot.SEPARATRIX_RTOL
-_DEGENERATE_RTOL = 1e-12  # euler_poinsot.DEGENERATE_RTOL
-_MC_FLOOR = 1e-300  # euler_poinsot._MC_FLOOR
-_REACHED_MARGIN = 1e-3  # euler_poinsot.REACHED_MARGIN
-
-
 @jit(KERNEL)
 def _mean_square_rate(i1: float, i2: float, i3: float, r: float) -> float:
     """⟨|z|²⟩/L² of the Euler–Poinsot motion with 2T/L² = r (sorted moments, r inside
     [1/I3, 1/I1]): :func:`tumble.unperturbed.euler_poinsot.mean_square_rate` at L = 1."""
     d1, d2, d3 = max(1.0 - r * i1, 0.0), 1.0 - r * i2, max(r * i3 - 1.0, 0.0)
-    tol = _DEGENERATE_RTOL * i3
+    tol = DEGENERATE_RTOL * i3
     if i3 - i1 <= 2.0 * tol:  # a sphere
         return 1.0 / (i2 * i2)
-    x3 = d2 >= 0.0 if abs(d2) <= _SEPARATRIX_RTOL else d2 > 0.0
+    x3 = d2 >= 0.0 if abs(d2) <= SEPARATRIX_RTOL else d2 > 0.0
     m, mc = 0.0, 1.0
     if i2 - i1 <= tol:  # symmetric about x3
         x3 = True
@@ -241,7 +238,7 @@ def _mean_square_rate(i1: float, i2: float, i3: float, r: float) -> float:
         else:
             den = (i2 - i1) * d3
             m, mc = (i3 - i2) * d1 / den, -(i3 - i1) * d2 / den
-        if mc < _MC_FLOOR:
+        if mc < MC_FLOOR:
             m, mc = 1.0, 0.0
         else:
             m, mc = min(max(m, 0.0), 1.0), min(mc, 1.0)
@@ -267,7 +264,7 @@ def _field_averaged(y: FloatArray, p: FloatArray, out: FloatArray) -> None:
     (r outside [1/I3, 1/I1] by more than the margin), so that the step is rejected."""
     eps, s2, c2, i1, i2, i3 = p[0], p[1], p[2], p[3], p[4], p[5]
     lo, hi = 1.0 / i3, 1.0 / i1
-    margin = _REACHED_MARGIN * hi
+    margin = REACHED_MARGIN * hi
     r = y[3]
     if not lo - margin <= r <= hi + margin:
         for j in range(4):

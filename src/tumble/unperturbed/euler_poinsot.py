@@ -43,6 +43,8 @@ from scipy import special
 from tumble._typing import ArrayLike, FloatArray
 from tumble.bodies import RigidBody, proper_sorting
 from tumble.errors import ParameterError, TumbleWarning, check_finite
+from tumble.kernels.codes import DEGENERATE_RTOL, REACHED_MARGIN, SEPARATRIX_RTOL
+from tumble.kernels.codes import MC_FLOOR as _MC_FLOOR
 from tumble.rotations import (
     matrix_to_quat,
     quat_conjugate,
@@ -70,23 +72,11 @@ __all__ = [
 
 Regime = Literal["x3", "x1", "separatrix", "symmetric", "sphere", "rest"]
 
-SEPARATRIX_RTOL = 1e-12
-"""A state is on the separatrix when |L² − 2T·I2| ≤ SEPARATRIX_RTOL·L². L² − 2T·I2 from a
-state known to a few ulps carries ~1e-16·L² of round-off, and ~1e-12·L² after an integration
-at rtol ~1e-12: inside the band its sign, hence the regime, is not determined by the data."""
-
-DEGENERATE_RTOL = 1e-12
-"""Two principal moments count as equal when they differ by ≤ DEGENERATE_RTOL·I3 (all
-three when I3 − I1 ≤ 2·DEGENERATE_RTOL·I3). With it each regime x3, x1 spans more than
-SEPARATRIX_RTOL·L² in L² − 2T·I2, so the separatrix band never swallows a whole regime;
-the symmetric formulas used for such bodies are off by O(DEGENERATE_RTOL)."""
-
 ENERGY_RTOL = 1e-9
 """(L, T) pairs may violate 2T·I1 ≤ L² ≤ 2T·I3 by this fraction of L² (round-off or an
 integrator's step error at the pure rotations k2 = 0); they are clipped onto the range.
 Larger violations describe no motion and raise :class:`~tumble.errors.ParameterError`."""
 
-_MC_FLOOR = 1e-300  # k'² below this is the separatrix itself (|d2| ≲ 1e-300 L²)
 _ATTITUDE_ATOL = 1e-9  # ‖A Aᵀ − E‖ allowed for attitude0 (a rotation given to ~1e-9)
 
 
@@ -118,12 +108,6 @@ def _symmetry(I1: float, I2: float, I3: float) -> str:
     if I3 - I2 <= tol:
         return "x1"
     return ""
-
-
-REACHED_MARGIN = 1e-3
-"""How far, as a fraction of 1/I1 (the range's upper end: the width 1/I1 − 1/I3 vanishes for
-a sphere), an integrated 2T/L² may step beyond the range before :func:`reached_ratio`
-refuses it."""
 
 
 def reached_ratio(I1: float, I2: float, I3: float, r: float) -> float:

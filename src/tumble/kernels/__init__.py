@@ -20,10 +20,12 @@ from tumble.errors import ParameterError
 from tumble.kernels.codes import (
     EVENT_FIELD_SEPARATRIX,
     EVENT_NONE,
+    EVENT_NUTATION_SEPARATRIX,
     EVENT_THETA_DOT,
     KIND_FIELD_AVERAGED,
     KIND_MEDIUM_AVERAGED,
     KIND_NONLINEAR_MOMENT,
+    KIND_NUTATION_AVERAGED,
     KIND_RIGID_BODY,
     KIND_ROTATING_FIELD,
 )
@@ -31,10 +33,12 @@ from tumble.kernels.codes import (
 __all__ = [
     "EVENT_FIELD_SEPARATRIX",
     "EVENT_NONE",
+    "EVENT_NUTATION_SEPARATRIX",
     "EVENT_THETA_DOT",
     "KIND_FIELD_AVERAGED",
     "KIND_MEDIUM_AVERAGED",
     "KIND_NONLINEAR_MOMENT",
+    "KIND_NUTATION_AVERAGED",
     "KIND_RIGID_BODY",
     "KIND_ROTATING_FIELD",
     "Kernel",

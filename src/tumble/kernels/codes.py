@@ -13,13 +13,16 @@ __all__ = [
     "DEGENERATE_RTOL",
     "EVENT_FIELD_SEPARATRIX",
     "EVENT_NONE",
+    "EVENT_NUTATION_SEPARATRIX",
     "EVENT_THETA_DOT",
     "KIND_FIELD_AVERAGED",
     "KIND_MEDIUM_AVERAGED",
     "KIND_NONLINEAR_MOMENT",
+    "KIND_NUTATION_AVERAGED",
     "KIND_RIGID_BODY",
     "KIND_ROTATING_FIELD",
     "MC_FLOOR",
+    "NUTATION_SEPARATRIX_TOL",
     "RATE_ONLY_TERMS",
     "REACHED_MARGIN",
     "SEPARATRIX_RTOL",
@@ -37,12 +40,15 @@ KIND_ROTATING_FIELD = 2
 KIND_NONLINEAR_MOMENT = 3
 KIND_MEDIUM_AVERAGED = 4
 KIND_FIELD_AVERAGED = 5
+KIND_NUTATION_AVERAGED = 6
 
 EVENT_NONE = 0
 EVENT_THETA_DOT = 1
 """Zeros of θ' of the nonlinear-moment quaternion form: the extrema of θ(t)."""
 EVENT_FIELD_SEPARATRIX = 2
 """r − 1/I2 of the rotating field's averaged vector form: its separatrix."""
+EVENT_NUTATION_SEPARATRIX = 3
+"""The nonlinear moment's averaged energy below the barriers of the effective potential."""
 
 TERM_BODY_CONSTANT = 1  # body moment (3)
 TERM_LINEAR_DRAG = 2  # B by rows (9)
@@ -78,6 +84,15 @@ the symmetric formulas used for such bodies are off by O(DEGENERATE_RTOL)."""
 MC_FLOOR = 1e-300
 """k'² below which the Euler–Poinsot motion is the separatrix itself (|d2| ≲ 1e-300 L²):
 K = R_F(0, mc, 1) overflows for subnormal mc."""
+
+NUTATION_SEPARATRIX_TOL = 1e-9
+"""A nutation counts as at a separatrix (infinite period) when 1 − k² < NUTATION_SEPARATRIX_TOL.
+
+Near a separatrix 1 − k² ∝ (E − E_s) on the case-2 side (above a hump of W) but
+∝ sqrt(E_s − E) on the case-1 side (inside a well), where an E known to ε_machine fixes
+1 − k² only to ~1e-8: there values below 1e-9 arise only from an exact double root. The period
+grows like ln(16/(1 − k²))/β, so its relative uncertainty is
+δ(1 − k²)/((1 − k²) ln(16/(1 − k²)))."""
 
 REACHED_MARGIN = 1e-3
 """How far, as a fraction of 1/I1 (the range's upper end: the width 1/I1 − 1/I3 vanishes for

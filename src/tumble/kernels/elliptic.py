@@ -155,8 +155,14 @@ def elliprj(x: float, y: float, z: float, p: float) -> float:
 
 @jit(KERNEL)
 def ellipk_mc(mc: float) -> float:
-    """K(m) = R_F(0, 1 − m, 1) from the complementary parameter mc = 1 − m ∈ (0, 1]."""
-    return elliprf(0.0, mc, 1.0)
+    """K(m) = R_F(0, 1 − m, 1) = π/(2 AGM(1, √mc)) from the complementary parameter
+    mc = 1 − m ∈ (0, 1] (DLMF 19.8.5): the arithmetic-geometric mean converges
+    quadratically, a third of the cost of R_F's duplication (one square root a step, about
+    five steps for mc ≥ 1e-9)."""
+    a, g = 1.0, math.sqrt(mc)
+    while a - g > 1e-15 * a:
+        a, g = 0.5 * (a + g), math.sqrt(a * g)
+    return 0.5 * math.pi / (0.5 * (a + g))
 
 
 @jit(KERNEL)

@@ -22,6 +22,9 @@ Kinds
 ``KIND_FIELD_AVERAGED``
     The averaged equations of Martynenko (1979) in the vector form, state ``[L_ξ, r]`` with
     r = 2T/L², parameters ``[ε, sin²β, cos²β, I1, I2, I3]`` (sorted moments).
+``KIND_NUTATION_AVERAGED``
+    Volosov's averaged equations of Serov (1991) in the energy form, state ``[H, R, G, a, b]``
+    (:mod:`tumble.kernels.nutation`).
 """
 
 from __future__ import annotations
@@ -34,10 +37,12 @@ from tumble._typing import FloatArray
 from tumble.kernels.codes import (
     DEGENERATE_RTOL,
     EVENT_FIELD_SEPARATRIX,
+    EVENT_NUTATION_SEPARATRIX,
     EVENT_THETA_DOT,
     KIND_FIELD_AVERAGED,
     KIND_MEDIUM_AVERAGED,
     KIND_NONLINEAR_MOMENT,
+    KIND_NUTATION_AVERAGED,
     KIND_RIGID_BODY,
     KIND_ROTATING_FIELD,
     MC_FLOOR,
@@ -46,6 +51,7 @@ from tumble.kernels.codes import (
 )
 from tumble.kernels.elliptic import elliprd, elliprf
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
+from tumble.kernels.nutation import nutation_averaged, pressure, separatrix_distance
 from tumble.kernels.torque import quaternion_rates, torque_moment
 
 __all__ = [
@@ -134,28 +140,6 @@ def rotating_field(y: FloatArray, p: FloatArray) -> FloatArray:
     out = np.empty_like(y)
     _rotating_field(y, p, out)
     return out
-
-
-@jit(KERNEL)
-def pressure(p: FloatArray, tau: float) -> float:
-    """Q(τ)/Q(0) of the nonlinear-moment parameters: constant, exponential, or a table
-    (piecewise linear between its knots; the run was checked to stay inside)."""
-    kind = int(p[6])
-    if kind == 0:
-        return 1.0
-    if kind == 1:
-        return math.exp(tau) / p[7]
-    n = int(p[8])
-    lo, hi = 0, n - 1
-    while hi - lo > 1:
-        mid = (lo + hi) // 2
-        if p[9 + mid] <= tau:
-            lo = mid
-        else:
-            hi = mid
-    x0, x1 = p[9 + lo], p[9 + hi]
-    v0, v1 = p[9 + n + lo], p[9 + n + hi]
-    return (v0 + (v1 - v0) * (tau - x0) / (x1 - x0)) / p[7]
 
 
 @jit(INLINE)
@@ -296,6 +280,8 @@ def rhs(kind: int, t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> N
         _medium_averaged(y, p, out)
     elif kind == KIND_FIELD_AVERAGED:
         _field_averaged(y, p, out)
+    elif kind == KIND_NUTATION_AVERAGED:
+        nutation_averaged(t, y, p, out)
     else:
         for j in range(y.size):
             out[j] = math.nan
@@ -313,6 +299,8 @@ def event(kind: int, t: float, y: FloatArray, p: FloatArray) -> float:
         return y[0] * ey - y[1] * ex
     if kind == EVENT_FIELD_SEPARATRIX:
         return y[3] - 1.0 / p[4]  # r − 1/I2, p = [ε, s², c², I1, I2, I3]
+    if kind == EVENT_NUTATION_SEPARATRIX:
+        return separatrix_distance(y)
     return 1.0
 
 

@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping, Sequence
+from dataclasses import replace
 from typing import Any, Literal
 
 import numpy as np
@@ -39,7 +40,15 @@ from tumble.averaging.nutation import (
 )
 from tumble.catalogue import CATALOGUE
 from tumble.errors import IntegrationError, ParameterError
-from tumble.kernels import EVENT_THETA_DOT, KIND_NONLINEAR_MOMENT, Kernel
+from tumble.kernels import (
+    EVENT_NONE,
+    EVENT_NUTATION_SEPARATRIX,
+    EVENT_THETA_DOT,
+    KIND_NONLINEAR_MOMENT,
+    KIND_NUTATION_AVERAGED,
+    Kernel,
+)
+from tumble.kernels.nutation import evaluate_separatrix_distance, evaluate_well, nutation_columns
 from tumble.kernels.rhs import evaluate_event, symmetric_body
 from tumble.models.base import (
     Averaged,
@@ -548,19 +557,44 @@ _COORDINATES: dict[str, AveragedCoordinates] = {
 }
 
 
+def _compiled_start(p: Params, st: State) -> tuple[float, FloatArray, float] | None:
+    """The paper's start H̄(0) = H(0), z̄(0) = z(0) and the middle of its well from the
+    compiled well (:func:`tumble.kernels.nutation.well_averages`) instead of a Python orbit;
+    None where that has no answer (a pole, a separatrix: the Python orbit then says why)."""
+    if not 0.0 < st.theta < math.pi:
+        return None
+    a0, b0 = (float(v) for v in p.ab(0.0))
+    u = math.cos(st.theta)
+    H = 0.5 * st.theta_dot**2 + (st.G - st.R * u) ** 2 / (2.0 * math.sin(st.theta) ** 2)
+    H += a0 * u + b0 * u * u  # (1.6)
+    well = evaluate_well(st.R, st.G, a0, b0, H, u)
+    if well[0] == 0.0 or not well[2] <= u <= well[1]:
+        return None
+    return H, np.array([st.R, st.G, a0, b0]), 0.5 * float(well[1] + well[2])
+
+
 def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:
     """Volosov's equations (2.2)–(2.3) in the energy H (default) or a turning point besides z,
     their averages in closed form (§8–§9: K, E, Π) or by the general engine
     (:mod:`tumble.averaging.nutation`, ``averaging = "numeric"``), from the exact or the
-    corrected start."""
+    corrected start. The energy form with the closed-form averages is also compiled
+    (:mod:`tumble.kernels.nutation`)."""
     engine = engine_perturbation(p) if options.averaging == "numeric" else None
-    H, z, orbit = averaged_initial(p, st, engine, options.start)
     form = _COORDINATES[options.coordinates or "energy"]
-    u_hint = 0.5 * (orbit.u1 + orbit.u2)
-    if form == "energy":
-        y0 = np.array([H, *z.tolist()])
+    full = full_kernel(p)
+    compiled = engine is None and form == "energy" and full is not None
+    start = _compiled_start(p, st) if compiled and options.start == "exact" else None
+    if start is None:
+        H, z, orbit = averaged_initial(p, st, engine, options.start)
+        u_hint = 0.5 * (orbit.u1 + orbit.u2)
+        if form == "energy":
+            y0 = np.array([H, *z.tolist()])
+        else:
+            x0 = orbit.theta_max if form == "theta_max" else orbit.theta_min
+            y0 = np.array([x0, *z.tolist()])
     else:
-        y0 = np.array([orbit.theta_max if form == "theta_max" else orbit.theta_min, *z.tolist()])
+        H, z, u_hint = start
+        y0 = np.array([H, *z.tolist()])
 
     failures: list[str] = []
 
@@ -582,7 +616,7 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
         return y0
 
     def to_columns(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
-        return _averaged_columns(Y, p, form, u_hint)
+        return _averaged_columns(Y, p, form, u_hint, compiled)
 
     # dQ/dτ jumps at the table's knots: stop and restart there so no step straddles one.
     knots = tuple(Breakpoint.at_time(tk / p.eps) for tk in p.pressure.knots() if tk > 0.0)
@@ -594,6 +628,8 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
     def below_barriers(t: float, y: FloatArray) -> float:
         # > 0 while H is below every barrier of W, < 0 while above one: a sign change is a
         # separatrix crossing (spec §11), which one step could otherwise jump over unseen.
+        if compiled:  # the same sign, without the roots of the quintic
+            return float(evaluate_separatrix_distance(np.asarray(y, dtype=float)))
         barriers = barrier_energies(*(float(v) for v in y[1:]))
         return float(np.min(barriers) - energy_of(y)) if barriers.size else 1.0
 
@@ -604,7 +640,15 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
             "it (spec §11): run the full model there"
         )
 
-    separatrix = Breakpoint(below_barriers, refuse)
+    def kernel(p: Params) -> Kernel | None:
+        if full is None:
+            return None
+        params = np.append(full.params, u_hint)  # the full kernel's, and the well's hint
+        return replace(full, kind=KIND_NUTATION_AVERAGED, params=params, event=EVENT_NONE)
+
+    separatrix = Breakpoint(
+        below_barriers, refuse, event=EVENT_NUTATION_SEPARATRIX if compiled else EVENT_NONE
+    )
     return AveragedForm(
         name=form,
         equation="(2.2)-(2.3)" + (", energy form of spec §7" if form == "energy" else ""),
@@ -614,6 +658,7 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
         to_columns=to_columns,
         breakpoints=(*knots, separatrix),
         failure=failure,
+        kernel=kernel if compiled else None,
     )
 
 
@@ -624,10 +669,19 @@ def _slow_orbit(y: Sequence[float], p: Params, form: str, u_hint: float) -> Nuta
     return NutationOrbit.from_turning_point(p.mu, a, b, R, G, x)
 
 
-def _averaged_columns(Y: FloatArray, p: Params, form: str, u_hint: float) -> dict[str, FloatArray]:
+def _averaged_columns(
+    Y: FloatArray, p: Params, form: str, u_hint: float, compiled: bool = False
+) -> dict[str, FloatArray]:
     n = Y.shape[0]
-    out = {k: np.empty(n) for k in ("theta_max", "theta_min", "k2", "period", "root_case", "E")}
-    for i in range(n):
+    names = ("theta_max", "theta_min", "k2", "period", "root_case", "E")
+    if compiled:  # the compiled well; a row it has no answer for from the Python orbit
+        table = nutation_columns(np.ascontiguousarray(Y, dtype=float), u_hint)
+        out = {k: table[:, j].copy() for j, k in enumerate(names)}
+        rows = np.flatnonzero(np.isnan(table[:, 0])).tolist()
+    else:
+        out = {k: np.empty(n) for k in names}
+        rows = list(range(n))
+    for i in rows:
         orbit = _slow_orbit(Y[i], p, form, u_hint)
         out["theta_max"][i], out["theta_min"][i] = orbit.theta_max, orbit.theta_min
         out["k2"][i], out["period"][i] = orbit.k2, orbit.period

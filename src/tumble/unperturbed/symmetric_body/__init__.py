@@ -61,7 +61,7 @@ the quasi-periodic reduction of §5.
 Limits of the data: see :data:`SEPARATRIX_TOL`, which refuses 1 − k² below 1e-9.
 """
 
-from tumble.unperturbed.symmetric_body.charts import SEPARATRIX_TOL
+from tumble.kernels.codes import NUTATION_SEPARATRIX_TOL as SEPARATRIX_TOL
 from tumble.unperturbed.symmetric_body.orbit import NutationOrbit
 from tumble.unperturbed.symmetric_body.potential import (
     effective_potential,

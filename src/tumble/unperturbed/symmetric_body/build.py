@@ -11,11 +11,11 @@ from scipy import special
 
 from tumble._typing import FloatArray
 from tumble.errors import ParameterError, check_finite, check_range
+from tumble.kernels.codes import NUTATION_SEPARATRIX_TOL as SEPARATRIX_TOL
 from tumble.unperturbed.symmetric_body.carlson import _ellipf_scalar
 from tumble.unperturbed.symmetric_body.charts import (
     _EPS,
     _POLE_TOUCH,
-    SEPARATRIX_TOL,
     Kind,
     _Chart,
     _make_pole,

@@ -16,15 +16,6 @@ from tumble.unperturbed.symmetric_body.carlson import _lam_integral, _rj_complet
 if TYPE_CHECKING:
     from tumble.unperturbed.symmetric_body.orbit import NutationOrbit
 
-SEPARATRIX_TOL = 1e-9
-"""A motion counts as at a separatrix (infinite period, §11) when 1 − k² < SEPARATRIX_TOL.
-
-Near a separatrix 1 − k² ∝ (E − E_s) on the case-2 side (above a hump of W) but
-∝ sqrt(E_s − E) on the case-1 side (inside a well), where an E known to ε_machine fixes
-1 − k² only to ~1e-8: there values below 1e-9 arise only from an exact double root. The period
-grows like ln(16/(1 − k²))/β, so its relative uncertainty is
-δ(1 − k²)/((1 − k²) ln(16/(1 − k²)))."""
-
 _EPS = float(np.finfo(float).eps)
 _POLE_TOUCH = 1e-280  # 1 ∓ u at a turning point below this: the axis passes through ±e_z
 

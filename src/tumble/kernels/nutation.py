@@ -1,0 +1,532 @@
+"""The nutation of a symmetric body under the moment a sinθ + b sin2θ, compiled: the well of
+u = cos θ at a given energy, its period averages ⟨u⟩ and ⟨u²⟩, and Volosov's averaged
+equations of Serov (1991) with the capsule's damping and pressure, for the compiled
+integrator.
+
+The Python orbit (:class:`tumble.unperturbed.symmetric_body.NutationOrbit`) is the reference:
+the same roots of f(u) = u'² (Serov (1991), eq. (1.7)), the same labelling of the outer roots,
+modulus and charts, and the same closed forms of the averages by Carlson's R_J and its
+derivative in p. It also refines turning points next to the poles θ = 0, π to
+full relative accuracy, which ψ and φ need; the averages need the turning points only to
+absolute accuracy, which plain roots of f give. A test holds both to 1e-12.
+
+Where the closed form of ⟨u²⟩ has a removable singularity in both charts (outer roots far
+from the motion: small |b|, or a = b = 0), ⟨u²⟩ comes from the periodic trapezoid rule in the
+angle φ of u = c + h cos φ, in which dt ∝ dφ/√(−q(u)) with q the quadratic left when the
+turning points are divided out of f: smooth and periodic, and there far from its zeros, so the
+rule converges geometrically within a few dozen nodes.
+
+Parameters of ``KIND_NUTATION_AVERAGED`` (the full kernel's, and the well's hint last):
+``[μ, a0, b0, ε, d, ν, pressure kind, Q(0), table size n, τ_1..n, Q_1..n, u_hint]``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from tumble._typing import FloatArray
+from tumble.kernels.codes import NUTATION_SEPARATRIX_TOL
+from tumble.kernels.elliptic import ellipk_mc, elliprd, elliprj
+from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
+
+__all__ = [
+    "evaluate_separatrix_distance",
+    "evaluate_well",
+    "nutation_averaged",
+    "nutation_columns",
+    "pressure",
+    "pressure_rate",
+    "separatrix_distance",
+    "well_averages",
+]
+
+_EPS = 2.220446049250313e-16
+_X2_CLOSED_DIST = 0.02  # ⟨X²⟩ by ∂R_J/∂p only this far from its removable singularities
+_QUAD_RTOL = 1e-15  # trapezoid fallback: successive doublings agree to this (round-off)
+_QUAD_MAX = 1 << 16  # … within this many nodes, else the averages are refused (NaN)
+_MAXITER = 200  # Newton–bisection steps of a root (bisection alone needs ≤ ~1100 from [−1, 1])
+
+# The fields of a well's result (a tuple, in this order).
+_OK, _U1, _U2, _M1, _M2, _K2, _MC, _K, _BETA, _CASE = range(10)
+
+
+@jit(KERNEL)
+def pressure(p: FloatArray, tau: float) -> float:
+    """Q(τ)/Q(0) of the nonlinear-moment parameters: constant, exponential, or a table
+    (piecewise linear between its knots; the run was checked to stay inside)."""
+    kind = int(p[6])
+    if kind == 0:
+        return 1.0
+    if kind == 1:
+        return math.exp(tau) / p[7]
+    lo, hi = _segment(p, tau)
+    n = int(p[8])
+    x0, x1 = p[9 + lo], p[9 + hi]
+    v0, v1 = p[9 + n + lo], p[9 + n + hi]
+    return (v0 + (v1 - v0) * (tau - x0) / (x1 - x0)) / p[7]
+
+
+@jit(KERNEL)
+def pressure_rate(p: FloatArray, tau: float) -> float:
+    """dQ/dτ / Q(0): for a table the slope of the segment τ lies in (right-continuous, as
+    :meth:`tumble.models.inputs.nonlinear_moment.Pressure.rate`)."""
+    kind = int(p[6])
+    if kind == 0:
+        return 0.0
+    if kind == 1:
+        return math.exp(tau) / p[7]
+    lo, hi = _segment(p, tau)
+    n = int(p[8])
+    return (p[9 + n + hi] - p[9 + n + lo]) / (p[9 + hi] - p[9 + lo]) / p[7]
+
+
+@jit(KERNEL)
+def _segment(p: FloatArray, tau: float) -> tuple[int, int]:
+    """Knots (lo, hi = lo + 1) of the table segment holding τ, the right one at a knot."""
+    lo, hi = 0, int(p[8]) - 1
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if p[9 + mid] <= tau:
+            lo = mid
+        else:
+            hi = mid
+    return lo, hi
+
+
+@jit(INLINE)
+def _poly(
+    c0: float, c1: float, c2: float, c3: float, c4: float, c5: float, x: float
+) -> float:  # fmt: skip
+    return ((((c5 * x + c4) * x + c3) * x + c2) * x + c1) * x + c0
+
+
+@jit(KERNEL)
+def _root(
+    c0: float, c1: float, c2: float, c3: float, c4: float, c5: float,
+    lo: float, f_lo: float, hi: float, f_hi: float,
+) -> float:  # fmt: skip
+    """The root of the polynomial c (degree ≤ 5, ascending) in [lo, hi], where it is monotone
+    and changes sign: Newton steps inside the bracket, bisection when they leave it or stall."""
+    if f_lo == 0.0:
+        return lo
+    if f_hi == 0.0:
+        return hi
+    pos, neg = (lo, hi) if f_lo > 0.0 else (hi, lo)
+    x = lo + (hi - lo) * (f_lo / (f_lo - f_hi))
+    if not lo < x < hi:
+        x = 0.5 * (lo + hi)
+    a0, a1, a2, a3, a4, a5 = abs(c0), abs(c1), abs(c2), abs(c3), abs(c4), abs(c5)
+    last = hi - lo
+    for _ in range(_MAXITER):
+        fx = _poly(c0, c1, c2, c3, c4, c5, x)
+        if fx == 0.0:
+            return x
+        if fx > 0.0:
+            pos = x
+        else:
+            neg = x
+        left, right = min(pos, neg), max(pos, neg)
+        slope = _poly(c1, 2.0 * c2, 3.0 * c3, 4.0 * c4, 5.0 * c5, 0.0, x)
+        nxt = x - fx / slope if slope != 0.0 else left
+        if not left < nxt < right or abs(nxt - x) > 0.5 * last:
+            if abs(fx) <= 4.0 * _EPS * _poly(a0, a1, a2, a3, a4, a5, abs(x)):
+                return x  # Newton jitters in the round-off band of c: x is the root
+            nxt = 0.5 * (left + right)
+        last = abs(nxt - x)
+        x = nxt
+        if last <= 2.0 * _EPS * abs(x) or right - left <= 2.0 * _EPS * max(abs(left), abs(right)):
+            return x
+    return x
+
+
+@jit(INLINE)
+def _pick(i: int, x0: float, x1: float, x2: float, x3: float, x4: float) -> float:
+    """The i-th of five values (a short list without an array)."""
+    if i == 0:
+        return x0
+    if i == 1:
+        return x1
+    if i == 2:
+        return x2
+    if i == 3:
+        return x3
+    return x4
+
+
+_Roots = tuple[int, float, float, float, float, float]
+
+
+@jit(KERNEL)
+def _roots_on_pieces(
+    c0: float, c1: float, c2: float, c3: float, c4: float, c5: float,
+    k: int, s0: float, s1: float, s2: float, s3: float,
+) -> _Roots:  # fmt: skip
+    """The roots of c inside (−1, 1), ascending, where c is monotone between the k ascending
+    split points s0 … inside (−1, 1): (their number, the roots, NaN for absent ones)."""
+    n = 0
+    r0, r1, r2, r3, r4 = math.nan, math.nan, math.nan, math.nan, math.nan
+    lo = -1.0
+    v_lo = _poly(c0, c1, c2, c3, c4, c5, lo)
+    for i in range(k + 1):
+        hi = _pick(i, s0, s1, s2, s3, 1.0) if i < k else 1.0
+        v_hi = _poly(c0, c1, c2, c3, c4, c5, hi)
+        x = math.nan
+        if (v_lo < 0.0 < v_hi) or (v_lo > 0.0 > v_hi):
+            x = _root(c0, c1, c2, c3, c4, c5, lo, v_lo, hi, v_hi)
+        elif v_hi == 0.0 and hi < 1.0:
+            x = hi
+        if not math.isnan(x):
+            if n == 0:
+                r0 = x
+            elif n == 1:
+                r1 = x
+            elif n == 2:
+                r2 = x
+            elif n == 3:
+                r3 = x
+            else:
+                r4 = x
+            n += 1
+        lo, v_lo = hi, v_hi
+    return n, r0, r1, r2, r3, r4
+
+
+@jit(KERNEL)
+def _roots3(c0: float, c1: float, c2: float, c3: float) -> _Roots:
+    """The roots of a polynomial of degree ≤ 3 inside (−1, 1), split at those of its
+    derivative (a quadratic, in closed form)."""
+    h0, h1, h2 = c1, 2.0 * c2, 3.0 * c3
+    s0, s1, k = 1.0, 1.0, 0
+    if h2 != 0.0:
+        disc = h1 * h1 - 4.0 * h2 * h0
+        if disc > 0.0:
+            qq = -0.5 * (h1 + math.copysign(math.sqrt(disc), h1))
+            r1, r2 = qq / h2, (h0 / qq if qq != 0.0 else 0.0)
+            for r in (min(r1, r2), max(r1, r2)):
+                if -1.0 < r < 1.0 and (k == 0 or r > s0):
+                    if k == 0:
+                        s0 = r
+                    else:
+                        s1 = r
+                    k += 1
+    elif h1 != 0.0:
+        r = -h0 / h1
+        if -1.0 < r < 1.0:
+            s0, k = r, 1
+    return _roots_on_pieces(c0, c1, c2, c3, 0.0, 0.0, k, s0, s1, 1.0, 1.0)
+
+
+@jit(KERNEL)
+def _roots4(c0: float, c1: float, c2: float, c3: float, c4: float) -> _Roots:
+    """The roots of a polynomial of degree ≤ 4 inside (−1, 1)."""
+    k, s0, s1, s2, _, _ = _roots3(c1, 2.0 * c2, 3.0 * c3, 4.0 * c4)
+    return _roots_on_pieces(c0, c1, c2, c3, c4, 0.0, k, s0, s1, s2, 1.0)
+
+
+@jit(KERNEL)
+def _roots5(c0: float, c1: float, c2: float, c3: float, c4: float, c5: float) -> _Roots:
+    """The roots of a polynomial of degree ≤ 5 inside (−1, 1)."""
+    k, s0, s1, s2, s3, _ = _roots4(c1, 2.0 * c2, 3.0 * c3, 4.0 * c4, 5.0 * c5)
+    return _roots_on_pieces(c0, c1, c2, c3, c4, c5, k, s0, s1, s2, s3)
+
+
+@jit(KERNEL)
+def _well(
+    g0: float, g1: float, g2: float, g3: float, g4: float, f_dn: float, f_up: float,
+    u_hint: float,
+) -> tuple[float, float]:  # fmt: skip
+    """The turning points (u2, u1) of the well of f > 0 in [−1, 1] nearest to u_hint (the
+    lower one on a tie), f(−1) = f_dn and f(1) = f_up given exactly; (NaN, NaN) if none."""
+    nc, c0, c1, c2, _, _ = _roots3(g1, 2.0 * g2, 3.0 * g3, 4.0 * g4)  # f′ = 0
+    v0 = _poly(g0, g1, g2, g3, g4, 0.0, c0)
+    v1 = _poly(g0, g1, g2, g3, g4, 0.0, c1)
+    v2 = _poly(g0, g1, g2, g3, g4, 0.0, c2)
+    best_lo, best_hi, best = math.nan, math.nan, math.inf
+    start = -1.0
+    for i in range(nc + 1):
+        x0 = _pick(i, -1.0, c0, c1, c2, 1.0)
+        f0 = _pick(i, f_dn, v0, v1, v2, f_up)
+        x1 = 1.0 if i == nc else _pick(i + 1, -1.0, c0, c1, c2, 1.0)
+        f1 = f_up if i == nc else _pick(i + 1, f_dn, v0, v1, v2, f_up)
+        if f0 <= 0.0 < f1:  # f rises through 0 on this monotone piece
+            start = _root(g0, g1, g2, g3, g4, 0.0, x0, f0, x1, f1)
+        elif f0 > 0.0 >= f1:  # … and falls through 0: a well (start, end)
+            end = _root(g0, g1, g2, g3, g4, 0.0, x0, f0, x1, f1)
+            dist = max(start - u_hint, u_hint - end, 0.0)
+            if dist < best:
+                best_lo, best_hi, best = start, end, dist
+    return best_lo, best_hi
+
+
+@jit(KERNEL)
+def _drj_dp(mc: float, p: float, rf: float, rj: float) -> float:
+    """∂R_J(0, mc, 1, p)/∂p by integration by parts, given rf = R_F(0, mc, 1) and
+    rj = R_J(0, mc, 1, p) (as :func:`tumble.unperturbed.symmetric_body.carlson._drj_dp`;
+    removable 0/0 at p = mc and p = 1, which the callers keep away from)."""
+    if abs(p - mc) >= abs(p - 1.0):
+        Y, Z = mc, 1.0
+    else:
+        Y, Z = 1.0, mc
+    i_d = 2.0 / 3.0 * elliprd(0.0, Y, Z)
+    cb = Z * (Y - Z) / (p - Z)
+    cc = 3.0 * p - 2.0 * Y + Z - cb
+    cd = 2.0 * p * (Y - p)
+    return 1.5 * (-2.0 * rf + cb * i_d + cc * 2.0 / 3.0 * rj) / cd
+
+
+@jit(KERNEL)
+def _nu(A: float, B: float, P: float, big: bool, qq: float, c4: float) -> float:
+    """ν = (P − A)/(P − B) of the chart with anchor A and pole P (a big root through c4·P = qq)."""
+    if big:
+        return (qq - c4 * A) / (qq - c4 * B)
+    return (P - A) / (P - B)
+
+
+@jit(KERNEL)
+def _order(x: float, u1: float, u2: float) -> tuple[int, float]:
+    """Key of a real root on the cycle u1 → u4 → u3 → u2 upwards through ±∞; class 3
+    for a root inside the motion interval (a separatrix)."""
+    if not math.isfinite(x):
+        return 1, 0.0
+    if x >= u1:
+        return 0, x
+    if x <= u2:
+        return 2, x
+    return 3, 0.0
+
+
+@jit(KERNEL)
+def _x2_by_trapezoid(u1: float, u2: float, c4: float, q1: float, q0: float) -> float:
+    """⟨u²⟩ over the motion by the periodic trapezoid rule in φ, u = c + h cos φ (module
+    notes); NaN if it has not converged within _QUAD_MAX nodes."""
+    c, h = 0.5 * (u1 + u2), 0.5 * (u1 - u2)
+    s0, s2 = 0.0, 0.0
+    n, prev = 1, math.nan
+    scale = max(abs(u1), abs(u2)) ** 2
+    for j in range(2):  # φ = 0 and π, half weights
+        u = c + h * (1.0 - 2.0 * j)
+        w = 0.5 / math.sqrt(-((c4 * u + q1) * u + q0))
+        s0 += w
+        s2 += w * u * u
+    while n < _QUAD_MAX:
+        for j in range(n):  # the new nodes φ = π(2j + 1)/(2n)
+            u = c + h * math.cos(math.pi * (2 * j + 1) / (2 * n))
+            w = 1.0 / math.sqrt(-((c4 * u + q1) * u + q0))
+            s0 += w
+            s2 += w * u * u
+        n *= 2
+        new = s2 / s0
+        if n >= 32 and abs(new - prev) <= _QUAD_RTOL * max(abs(new), scale):
+            return new
+        prev = new
+    return math.nan
+
+
+@jit(KERNEL)
+def well_averages(
+    R: float, G: float, a: float, b: float, E: float, u_hint: float, moments: bool = True
+) -> tuple[float, float, float, float, float, float, float, float, float, float]:
+    """The nutation at energy E in the well nearest to u_hint: (ok, u1, u2, ⟨u⟩, ⟨u²⟩, k²,
+    1 − k², K, β, root case), Serov (1991), eqs. (1.7)–(1.10); ⟨u⟩ and ⟨u²⟩ are NaN unless
+    ``moments`` (the columns need the well only).
+
+    ok is 1.0, or 0.0 with the rest NaN: no motion at this energy, or a separatrix
+    (1 − k² below ``NUTATION_SEPARATRIX_TOL``), or a root inside the motion interval.
+    """
+    nan = math.nan
+    fail = (0.0, nan, nan, nan, nan, nan, nan, nan, nan, nan)
+    g0, g1, g2 = 2.0 * E - G * G, 2.0 * (G * R - a), -2.0 * b - R * R - 2.0 * E
+    g3, g4 = 2.0 * a, 2.0 * b
+    u2, u1 = _well(g0, g1, g2, g3, g4, -((G + R) ** 2), -((G - R) ** 2), u_hint)
+    if not (u1 >= u2):
+        return fail
+    # f = (u − u1)(u − u2) q(u), q = c4 u² + q1 u + q0 < 0 on the motion (deflation).
+    s, pr = u1 + u2, u1 * u2
+    c4 = g4
+    q1 = g3 + c4 * s
+    q0 = g2 + s * q1 - c4 * pr
+    free = a == 0.0 and b == 0.0
+    case = 1.0
+    x1_closed, x2_closed = nan, nan
+    ua, dab, nu, nu_other = u2, u1 - u2, 1.0, 1.0
+    if free:  # q ≡ q0 = −(2E + R²): u″ = −(2E + R²)u + GR, harmonic
+        m, mc, beta2 = 0.0, 1.0, -q0 / 4.0
+    else:
+        disc = q1 * q1 - 4.0 * c4 * q0
+        disc_noise = 64.0 * _EPS * (q1 * q1 + abs(4.0 * c4 * q0))
+        if disc < -disc_noise:  # complex outer roots c ± i d (case 2, b < 0)
+            if c4 >= 0.0:
+                return fail
+            case = 2.0
+            cc = -q1 / (2.0 * c4)
+            dd = math.sqrt(-disc) / (2.0 * abs(c4))
+            x1, x2 = u1 - cc, u2 - cc
+            r1, r2 = math.hypot(x1, dd), math.hypot(x2, dd)
+            if x1 >= 0.0:
+                e1m, e1p = dd * dd / (r1 + x1), r1 + x1
+            else:
+                e1m, e1p = r1 - x1, dd * dd / (r1 - x1)
+            if x2 >= 0.0:
+                e2m, e2p = dd * dd / (r2 + x2), r2 + x2
+            else:
+                e2m, e2p = r2 - x2, dd * dd / (r2 - x2)
+            w = (u1 - u2) / (r1 + r2)
+            m = 0.25 * w * w * ((e1m + e2m) / r1) * ((e1p + e2p) / r2)
+            mc = 0.25 * ((e1m + e2p) / r1) * ((e1p + e2m) / r2)
+            beta2 = (-c4 * r1) * r2
+            nu = r1 / r2  # ξ; the chart anchored at u1
+            ua, dab = u1, u2 - u1
+        else:
+            sq = math.sqrt(max(disc, 0.0))
+            qq = -0.5 * (q1 + math.copysign(sq, q1))
+            if qq == 0.0:
+                return fail
+            r_small = q0 / qq
+            r_big = qq / c4 if c4 != 0.0 else math.inf
+            ks, xs = _order(r_small, u1, u2)
+            kb, xb = _order(r_big, u1, u2)
+            if ks == 3 or kb == 3:
+                return fail
+            if ks < kb or (ks == kb and xs <= xb):
+                u4, u3, big4, big3 = r_small, r_big, False, True
+            else:
+                u4, u3, big4, big3 = r_big, r_small, True, False
+            A, B = u2, u1
+            if big4:  # Q big
+                daq = c4 * A - qq
+                m = (B - A) * (c4 * u3 - qq) / ((B - u3) * daq)
+                mc = (c4 * B - qq) * (A - u3) / ((B - u3) * daq)
+                beta2 = -0.25 * (B - u3) * daq
+            else:  # P big
+                dbp = c4 * B - qq
+                m = (B - A) * (qq - c4 * u4) / (dbp * (A - u4))
+                mc = (B - u4) * (c4 * A - qq) / (dbp * (A - u4))
+                beta2 = -0.25 * dbp * (A - u4)
+            nu = _nu(u2, u1, u3, big3, qq, c4)  # the main chart: anchor u2, pole u3
+            nu_other = _nu(u1, u2, u4, big4, qq, c4)  # the other: anchor u1, pole u4
+    if not (math.isfinite(m) and math.isfinite(mc)) or m < -1e-12 or mc < -1e-12:
+        return fail
+    m, mc = min(max(m, 0.0), 1.0), min(max(mc, 0.0), 1.0)
+    if mc < NUTATION_SEPARATRIX_TOL or not (beta2 > 0.0 and math.isfinite(beta2)):
+        return fail
+    K = ellipk_mc(mc)
+    if not moments:
+        return 1.0, u1, u2, nan, nan, m, mc, K, math.sqrt(beta2), case
+    if free:
+        m1 = u2 + 0.5 * (u1 - u2)  # ⟨X⟩ = 1/2 at ν = 1
+    elif case == 2.0:
+        xi = nu
+        pp = (xi + 1.0) ** 2 / (4.0 * xi)
+        rj = elliprj(0.0, mc, 1.0, pp)
+        x1_closed = (1.0 + (xi * xi - 1.0) / (4.0 * xi) * rj / (3.0 * K)) / (2.0 * xi)
+        x2_closed = 1.0 / (2.0 * xi * xi) - rj / (12.0 * K * xi**3)
+        if pp > 1.0:  # p = 1 in floating point: the term is O(ε_machine), ∂R_J is 0/0
+            x2_closed -= (xi * xi - 1.0) ** 2 * _drj_dp(mc, pp, K, rj) / (96.0 * K * xi**4)
+        m1 = ua + dab * xi * x1_closed
+    else:
+        rj = elliprj(0.0, mc, 1.0, nu)
+        x1_closed = rj / (3.0 * K)
+        m1 = ua + dab * nu * x1_closed
+        # ⟨X²⟩ = −∂⟨X⟩/∂ν in the chart farther from the singularities ν = 1 − k², ν = 1.
+        dist = min(abs(nu - mc), abs(nu - 1.0)) / max(1.0, nu)
+        dist_o = min(abs(nu_other - mc), abs(nu_other - 1.0)) / max(1.0, nu_other)
+        if dist_o > dist:
+            ua, dab, nu, dist = u1, u2 - u1, nu_other, dist_o
+            rj = elliprj(0.0, mc, 1.0, nu)
+            x1_closed = rj / (3.0 * K)
+        if dist >= _X2_CLOSED_DIST:
+            x2_closed = -_drj_dp(mc, nu, K, rj) / (3.0 * K)
+    if math.isnan(x2_closed):
+        m2 = _x2_by_trapezoid(u1, u2, c4, q1, q0)
+        if math.isnan(m2):
+            return fail
+    else:
+        m2 = ua * ua + 2.0 * ua * dab * nu * x1_closed + dab * dab * nu * nu * x2_closed
+    return 1.0, u1, u2, m1, m2, m, mc, K, math.sqrt(beta2), case
+
+
+@jit(INLINE)
+def nutation_averaged(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> None:
+    """Volosov's averaged equations (2.2)–(2.3) of Serov (1991) in the energy form,
+    y = [H, R, G, a, b], under the capsule's damping and pressure with the averages in closed
+    form: H′ = ε(−2d(H − a⟨u⟩ − b⟨u²⟩) + a′⟨u⟩ + b′⟨u²⟩), R′ = −ενR,
+    G′ = −ε(d(G − R⟨u⟩) + νR⟨u⟩), a′ = εa0 Q′/Q(0), b′ = εb0 Q′/Q(0); NaN where the averages
+    do not exist (no motion, a separatrix), so that the step is rejected."""
+    eps, d, nu = p[3], p[4], p[5]
+    H, R, G, a, b = y[0], y[1], y[2], y[3], y[4]
+    w = well_averages(R, G, a, b, H, p[p.size - 1])
+    if w[_OK] == 0.0:
+        for j in range(5):
+            out[j] = math.nan
+        return
+    m1, m2 = w[_M1], w[_M2]
+    rate = pressure_rate(p, eps * t)
+    da, db = p[1] * rate, p[2] * rate
+    out[0] = eps * (-2.0 * d * (H - a * m1 - b * m2) + da * m1 + db * m2)
+    out[1] = -eps * nu * R
+    out[2] = -eps * (d * (G - R * m1) + nu * R * m1)
+    out[3] = eps * da
+    out[4] = eps * db
+
+
+@jit(KERNEL)
+def separatrix_distance(y: FloatArray) -> float:
+    """min(barriers) − H for y = [H, R, G, a, b] (1.0 without a barrier): > 0 while the
+    energy is below every barrier of W(θ), < 0 above one, as
+    :func:`tumble.models.nonlinear_moment.barrier_energies` gives them. A barrier is a local
+    maximum of W, a root u* in (−1, 1) of the quintic
+    P(u) = (G − Ru)(R − Gu) − (1 − u²)²(a + 2bu) = F(θ) sin³θ at which P rises with u (F falls
+    from + to − as θ grows)."""
+    H, R, G, a, b = y[0], y[1], y[2], y[3], y[4]
+    # P ascending: GR − (G² + R²)u + GR u² − (a + 2bu)(1 − 2u² + u⁴)
+    c0, c1, c2 = G * R - a, -(G * G + R * R) - 2.0 * b, G * R + 2.0 * a
+    c3, c4, c5 = 4.0 * b, -a, -2.0 * b
+    n, r0, r1, r2, r3, r4 = _roots5(c0, c1, c2, c3, c4, c5)
+    out = 1.0
+    found = False
+    for i in range(n):
+        u = _pick(i, r0, r1, r2, r3, r4)
+        if _poly(c1, 2.0 * c2, 3.0 * c3, 4.0 * c4, 5.0 * c5, 0.0, u) > 0.0:
+            w = (G - R * u) ** 2 / (2.0 * (1.0 - u * u)) + a * u + b * u * u  # (1.6)
+            out = w - H if not found else min(out, w - H)
+            found = True
+    return out
+
+
+@jit(ENTRY)
+def nutation_columns(Y: FloatArray, u_hint: float) -> FloatArray:
+    """θmax, θmin, k², the period, the root case and H of each averaged state row
+    ``[H, R, G, a, b]`` (NaN rows where the averages do not exist), shape (n, 6)."""
+    n = Y.shape[0]
+    out = np.full((n, 6), math.nan)
+    for i in range(n):
+        H = Y[i, 0]
+        w = well_averages(Y[i, 1], Y[i, 2], Y[i, 3], Y[i, 4], H, u_hint, False)
+        if w[_OK] == 0.0:
+            continue
+        u1, u2 = w[_U1], w[_U2]
+        out[i, 0] = 2.0 * math.atan2(math.sqrt(max(1.0 - u2, 0.0)), math.sqrt(max(1.0 + u2, 0.0)))
+        out[i, 1] = 2.0 * math.atan2(math.sqrt(max(1.0 - u1, 0.0)), math.sqrt(max(1.0 + u1, 0.0)))
+        out[i, 2] = w[_K2]
+        out[i, 3] = (2.0 if w[_CASE] == 1.0 else 4.0) * w[_K] / w[_BETA]
+        out[i, 4] = w[_CASE]
+        out[i, 5] = H
+    return out
+
+
+@jit(ENTRY)
+def evaluate_well(R: float, G: float, a: float, b: float, E: float, u_hint: float) -> FloatArray:
+    """:func:`well_averages` from Python, as an array (tests, and the averaged start)."""
+    w = well_averages(R, G, a, b, E, u_hint)
+    out = np.empty(10)
+    for i in range(10):
+        out[i] = w[i]
+    return out
+
+
+@jit(ENTRY)
+def evaluate_separatrix_distance(y: FloatArray) -> float:
+    """:func:`separatrix_distance` from Python."""
+    return separatrix_distance(y)

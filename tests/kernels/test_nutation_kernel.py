@@ -1,0 +1,131 @@
+"""The compiled nutation well and averaged equations against the Python orbit and run."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from tumble.errors import IntegrationError, ParameterError
+from tumble.integrate import simulate
+from tumble.kernels.nutation import evaluate_separatrix_distance, evaluate_well
+from tumble.models import nonlinear_moment as nm
+from tumble.unperturbed.symmetric_body import NutationOrbit
+
+OK, U1, U2, M1, M2, K2, MC, K, BETA, CASE = range(10)
+
+# The compiled well finds the same roots of f as the orbit (its fast path refines them about
+# the start, the kernel about 0: both to a few ulps, measured 5e-15), and the closed forms
+# of ⟨u⟩, ⟨u²⟩ and the period amplify that by at most ~10 away from a separatrix (measured
+# 3.5e-14 over 3000 random states): 1e-12 is a decade and a half above.
+TOL = 1e-12
+
+
+def _compare(orbit: NutationOrbit, u_hint: float, tol: float = TOL) -> None:
+    w = evaluate_well(orbit.R, orbit.G, orbit.a, orbit.b, orbit.E, u_hint)
+    assert w[OK] == 1.0
+    assert w[U1] == pytest.approx(orbit.u1, abs=tol)
+    assert w[U2] == pytest.approx(orbit.u2, abs=tol)
+    assert w[M1] == pytest.approx(orbit.mean_u_power(1), abs=tol)
+    assert w[M2] == pytest.approx(orbit.mean_u_power(2), abs=tol)
+    assert w[K2] == pytest.approx(orbit.k2, abs=tol)
+    assert w[CASE] == orbit.root_case
+    period = (2.0 if w[CASE] == 1.0 else 4.0) * w[K] / w[BETA]
+    assert period == pytest.approx(orbit.period, rel=tol)
+
+
+def test_well_and_averages_equal_the_orbit_at_random_states():
+    rng = np.random.default_rng(7)
+    compared = 0
+    for _ in range(1500):
+        # a and b of order one, small, or zero: both root cases, the cubic (b = 0), the free
+        # body (a = b = 0) and outer roots far away, where ⟨u²⟩ takes the trapezoid rule.
+        a = float(rng.normal() * rng.choice([1.0, 1e-3, 0.0]))
+        b = float(rng.normal() * rng.choice([1.0, 1e-3, 0.0]))
+        mu, R, G = rng.uniform(0.2, 2.0), rng.normal(), rng.normal()
+        theta, theta_dot = rng.uniform(0.05, math.pi - 0.05), rng.normal()
+        try:
+            orbit = NutationOrbit.from_state(mu, a, b, R, G, theta, theta_dot)
+        except ParameterError:
+            continue  # a separatrix or a body at rest: no orbit to compare with
+        if orbit.kind == "steady":
+            continue
+        _compare(orbit, math.cos(theta))
+        compared += 1
+    assert compared > 1000
+
+
+@pytest.mark.parametrize("gap", [1e-2, 1e-4, 1e-6])
+@pytest.mark.parametrize("side", ["inside", "above"])
+def test_well_near_a_separatrix(gap, side):
+    # The double well b < 0 with its barrier at energy Eb: inside one well (case 1, the outer
+    # root next to the motion) or above the barrier (case 2), 1 − k² down to ~1e-6.
+    mu, a, b, R, G = 0.8, -0.2, -1.0, 0.1, 0.15
+    Eb = float(np.min(nm.barrier_energies(R, G, a, b)))
+    E = Eb - gap * abs(Eb) if side == "inside" else Eb + gap * abs(Eb)
+    orbit = NutationOrbit.from_energy(mu, a, b, R, G, E, u_hint=0.9)
+    # Two roots ∝ 1 − k² apart, each good to a few ulps, fix 1 − k² only to ~1e-15/(1 − k²)
+    # relative; the closed forms amplify that by up to ~10 (as above).
+    _compare(orbit, 0.9, tol=max(TOL, 1e-14 / orbit.mc))
+
+
+def test_no_motion_below_the_minimum_of_the_potential():
+    w = evaluate_well(0.4, 0.6, -1.0, -0.3, -5.0, 0.5)
+    assert w[OK] == 0.0 and np.all(np.isnan(w[1:]))
+
+
+def test_separatrix_distance_is_the_lowest_barrier_minus_the_energy():
+    rng = np.random.default_rng(3)
+    with_barrier = 0
+    for _ in range(400):
+        a, b = rng.normal() * rng.choice([1.0, 0.0]), rng.normal()
+        R, G, H = 0.3 * rng.normal(), 0.3 * rng.normal(), rng.normal()
+        barriers = nm.barrier_energies(R, G, a, b)
+        expected = float(np.min(barriers)) - H if barriers.size else 1.0
+        got = evaluate_separatrix_distance(np.array([H, R, G, a, b]))
+        # The same barriers: the roots of one quintic (numpy's companion matrix against
+        # bracketed Newton) agree to ~1e-12, and W is flat at them (a maximum).
+        assert got == pytest.approx(expected, abs=1e-10)
+        with_barrier += barriers.size > 0
+    assert with_barrier > 100
+
+
+def _capsule(pressure: nm.Pressure) -> tuple[nm.Params, nm.State]:
+    p = nm.Params(mu=0.8, a=-1.0, b=-0.3, eps=1e-3, d=0.5, nu=0.2, pressure=pressure)
+    return p, nm.State(1.0, 0.3, 0.2, -0.1, 0.4, 0.6)
+
+
+@pytest.mark.parametrize(
+    "pressure",
+    [nm.Pressure("exp"), nm.Pressure("table", tau=(0.0, 0.4, 1.0, 2.0), Q=(1.0, 1.5, 1.2, 2.0))],
+    ids=["exp", "table"],
+)
+def test_compiled_averaged_run_equals_the_python_one(pressure):
+    p, s0 = _capsule(pressure)
+    t = np.linspace(0.0, 1500.0, 31)
+    runs = [
+        simulate(nm.MODEL, p, s0, t, "averaged", rtol=1e-10, atol=1e-12, integrator=integrator)
+        for integrator in ("numba", "scipy")
+    ]
+    assert runs[0].integrator == "numba" and runs[1].integrator == "scipy"
+    for key in ("theta_max", "theta_min", "k2", "period", "E", "R", "G", "a", "b"):
+        # The same DOP853 on the same equations (the averages equal to 1e-12): measured 5e-14
+        # apart; 1e-9 is the runs' own tolerance.
+        assert np.max(np.abs(runs[0].columns[key] - runs[1].columns[key])) < 1e-9, key
+
+
+def test_compiled_run_stops_at_the_separatrix_where_the_python_one_does():
+    # Negative pitch damping pumps a planar swing (R = G = 0, f(±1) = 0) up to the barrier
+    # of the double well at θ = π/2.
+    p = nm.Params(mu=1.0, a=0.0, b=-1.0, eps=0.05, d=-1.0)
+    s0 = nm.State(0.6, 0.0, 0.0, 0.0, 0.0, 0.0)
+    times = []
+    for integrator in ("numba", "scipy"):
+        with pytest.raises(IntegrationError, match="reaches a separatrix at t = ") as info:
+            simulate(nm.MODEL, p, s0, np.linspace(0.0, 400.0, 11), "averaged",
+                     integrator=integrator)  # fmt: skip
+        times.append(float(str(info.value).split("at t = ")[1].split()[0]))
+    # Both locate the same zero (of different functions with the same sign) to the event
+    # tolerance; the message prints six digits.
+    assert times[0] == pytest.approx(times[1], rel=1e-5)

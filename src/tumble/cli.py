@@ -546,6 +546,31 @@ def _batch_table(r: dict[str, Any]) -> Table:
     return t
 
 
+def _ensemble_table(r: dict[str, Any]) -> Table | None:
+    """Averaged runs per second of the ensembles."""
+    tg = r["targets"]
+    ens = r.get("averaged_batch_throughput")
+    if not ens:
+        return None
+    t = Table(title="Averaged ensembles: runs per second (ε = 0.001)", title_justify="left")
+    for col in ("model", "size", "one simulate() per point", "1 thread", "all threads",
+                "efficiency", "≥ 0.8"):  # fmt: skip
+        t.add_column(col, justify="right" if col != "model" else "left")
+    for name, v in ens.items():
+        most = max(v["threads"], key=int)
+        row = v["threads"][most]
+        t.add_row(
+            name,
+            str(v["size"]),
+            f"{v['single_runs_per_s']:.4g}",
+            f"{v['threads']['1']['runs_per_s']:.4g}",
+            f"{row['runs_per_s']:.4g} ({most})",
+            f"{row['efficiency']:.2f}",
+            _yes(row["efficiency"] >= tg["averaged_batch_efficiency"]) if most != "1" else "",
+        )
+    return t
+
+
 def _compile_table(r: dict[str, Any]) -> Table | None:
     """The first call of each case from an empty cache."""
     tg = r["targets"]
@@ -584,8 +609,8 @@ def _startup_table(r: dict[str, Any]) -> Table | None:
 def _bench_tables(r: dict[str, Any]) -> list[Table]:
     """The benchmark's figures as tables, each target beside its figure."""
     tables = (_full_table(r), _heyoka_table(r), _averaged_table(r),
-              _averaged_table(r, "engine_speedup"), _batch_table(r), _compile_table(r),
-              _startup_table(r))  # fmt: skip
+              _averaged_table(r, "engine_speedup"), _batch_table(r), _ensemble_table(r),
+              _compile_table(r), _startup_table(r))  # fmt: skip
     return [t for t in tables if t is not None]
 
 

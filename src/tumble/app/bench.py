@@ -14,13 +14,18 @@ Four studies, each with its error figures and its target beside it:
     equal error: heyoka runs a ladder of tolerances and its time at tumble's error is
     interpolated (log time against log error) between the two rungs that bracket it.
 ``averaged_speedup``
-    Each paper model's default scenario at ε = 1e-2 and 1e-3 over the template's slow horizon:
+    Each paper model's default scenario at ε = 1e-2, 1e-3 and 1e-4 over the template's slow
+    horizon:
     the averaged equations (and the closed form, where the model has one) against the full
     ones, both through :func:`tumble.integrate.simulate` (what a user runs), with the slow
     variables' error against a full run at rtol 1e-12. "Equal accuracy" also times the
     loosest full run whose slow error does not exceed the averaged one.
 ``batch_throughput``
     Trajectories per second of :func:`tumble.integrate.dop853.solve_batch` on 1, 2 and all cores.
+``averaged_batch_throughput``
+    Averaged runs per second of an ensemble of 1000 initial states of each paper model
+    (:func:`tumble.integrate.simulate_batch` with ``method = "averaged"``) on 1 and all cores,
+    and of one :func:`tumble.integrate.simulate` per point.
 
 ``compile`` times the first call of each kernel kind from an empty disk cache, in a fresh
 process (numba's compile, once per installation), and the load from the cache.
@@ -32,6 +37,7 @@ difference, relative to the largest component of the reference (at least 1).
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import json
 import math
@@ -56,8 +62,8 @@ from tumble.analysis.verify import slow_errors
 from tumble.app import heyoka_peer
 from tumble.catalogue import CATALOGUE
 from tumble.dynamics import rigid_body_kernel, rigid_body_rhs
-from tumble.errors import IntegrationError, ParameterError
-from tumble.integrate import dop853, simulate
+from tumble.errors import IntegrationError, ParameterError, TumbleError
+from tumble.integrate import dop853, simulate, simulate_batch
 from tumble.io.scenario import parse_scenario, template
 from tumble.kernels import Kernel
 from tumble.kernels.rhs import evaluate_repeatedly
@@ -82,6 +88,7 @@ TARGETS: dict[str, float] = {
     "engine_eval_us": 20.0,  # one evaluation of the engine's averaged right-hand side, at most
     "averaged_error": 0.01,  # at most, on the slow variables
     "batch_efficiency": 0.8,  # throughput on 2 cores over twice that on 1, at least
+    "averaged_batch_efficiency": 0.8,  # the same for an averaged ensemble, on all cores
     "compile_s": 5.0,  # first call from an empty cache, at most
     "startup_s": 0.5,  # tumble --help, tumble models, an input error: the answer, at most
 }
@@ -106,6 +113,13 @@ ENGINE_CASES: dict[str, tuple[str, str | None]] = {
 default scenario with ``[run] averaging = "numeric"``, by the engine's setting and torque."""
 EVAL_SECONDS = 0.05  # time spent measuring the cost of one evaluation
 AVERAGED_SAMPLES = 201
+ENSEMBLE_SIZE = 1000
+ENSEMBLE_INITIAL: dict[str, dict[str, tuple[float, float]]] = {
+    "resisting_medium": {"rho": (0.2, 2.9), "theta": (0.3, 2.8), "k": (0.5, 2.0)},
+    "rotating_field": {"rho": (0.2, 2.9), "k2": (0.2, 0.8)},
+    "nonlinear_moment": {"theta": (0.8, 1.2), "theta_dot": (-0.3, 0.3)},
+}
+"""The initial keys an averaged ensemble of each paper model spreads (uniformly, seeded)."""
 
 
 @dataclass(frozen=True)
@@ -580,6 +594,56 @@ def _batch(s: BenchSettings, log: Callable[[str], None]) -> dict[str, Any]:
     }
 
 
+def _averaged_ensemble(name: str, s: BenchSettings, log: Callable[[str], None]) -> dict[str, Any]:
+    """Averaged runs per second of an ensemble of :data:`ENSEMBLE_SIZE` initial states of the
+    model's template at ε = 1e-3 (:func:`tumble.integrate.simulate_batch`, ``method =
+    "averaged"``) on 1 and on all cores, against one :func:`simulate` per point."""
+    rng = np.random.default_rng(8)
+    reqs = []
+    for _ in range(ENSEMBLE_SIZE):
+        ranges = ENSEMBLE_INITIAL[name]
+        initial = {key: float(rng.uniform(lo, hi)) for key, (lo, hi) in ranges.items()}
+        reqs.append(_scenario_at(name, 1e-3, None, AVERAGED_SAMPLES, initial))
+    first = reqs[0]
+    params, initials = [r.params for r in reqs], [r.initial for r in reqs]
+
+    def ensemble(threads: int) -> list[Any]:
+        return simulate_batch(first.model, params, initials, first.tau, rtol=s.rtol,
+                              atol=s.atol, method="averaged", averaging=first.averaging,
+                              threads=threads)  # fmt: skip
+
+    log(f"averaged ensemble {name}: compiling")
+    simulate_batch(first.model, params[:2], initials[:2], first.tau, rtol=s.rtol, atol=s.atol,
+                   method="averaged", averaging=first.averaging)  # fmt: skip
+    rows: dict[str, Any] = {}
+    for n in sorted({1, dop853.available_threads()}):
+        log(f"averaged ensemble {name}: {ENSEMBLE_SIZE} runs on {n} thread(s)")
+        best, out = _best(functools.partial(ensemble, n), s.repeat)
+        failed = sum(not hasattr(o, "columns") for o in out)
+        rows[str(n)] = {"time_s": best, "runs_per_s": ENSEMBLE_SIZE / best, "failed": failed}
+    one = rows["1"]["runs_per_s"]
+    for key, row in rows.items():
+        row["efficiency"] = row["runs_per_s"] / (int(key) * one)
+    log(f"averaged ensemble {name}: one simulate() per point")
+    subset = range(0, ENSEMBLE_SIZE, 10)
+
+    def singles() -> None:
+        for i in subset:
+            with contextlib.suppress(TumbleError):
+                simulate(first.model, params[i], initials[i], first.tau, "averaged",
+                         rtol=s.rtol, atol=s.atol, averaging=first.averaging)  # fmt: skip
+
+    single_s, _ = _best(singles, s.repeat)
+    return {
+        "case": f"{name} template at ε = 0.001, initial "
+        + ", ".join(f"{k} in [{lo:g}, {hi:g}]" for k, (lo, hi) in ENSEMBLE_INITIAL[name].items()),
+        "size": ENSEMBLE_SIZE,
+        "threads": rows,
+        "single_runs_per_s": len(subset) / single_s,
+        "cores": os.cpu_count(),
+    }
+
+
 # ---------------------------------------------------------------------------------------------
 # Compile time, in a fresh process with an empty cache.
 
@@ -712,9 +776,10 @@ def run_benchmark(
     -------
     dict
         JSON-ready: ``machine``, ``settings``, ``targets``, ``full_speedup_vs_scipy``,
-        ``full_time_ratio_vs_heyoka``, ``averaged_speedup``, ``batch_throughput``,
-        ``compile`` and ``verdicts`` (each target: the figure, the target and whether it is
-        met). Times in seconds; errors relative (see the module docstring).
+        ``full_time_ratio_vs_heyoka``, ``averaged_speedup``, ``engine_speedup``,
+        ``batch_throughput``, ``averaged_batch_throughput``, ``compile`` and ``verdicts``
+        (each target: the figure, the target and whether it is met). Times in seconds; errors
+        relative (see the module docstring).
     """
     s = settings or BenchSettings()
     say = log or (lambda _msg: None)
@@ -754,6 +819,8 @@ def run_benchmark(
         else None
     )
     result["batch_throughput"] = _batch(s, say)
+    result["averaged_batch_throughput"] = {name: _averaged_ensemble(name, s, say)
+                                           for name in PAPER_MODELS}  # fmt: skip
     result["verdicts"] = verdicts(result)
     return result
 
@@ -807,6 +874,12 @@ def verdicts(result: dict[str, Any]) -> list[dict[str, Any]]:
             TARGETS["batch_efficiency"],
             True,
         )
+    for name, ens in (result.get("averaged_batch_throughput") or {}).items():
+        most = max(ens["threads"], key=int)
+        if most != "1":
+            add(f"averaged ensemble {name}: efficiency on {most} cores",
+                ens["threads"][most]["efficiency"], TARGETS["averaged_batch_efficiency"],
+                True)  # fmt: skip
     for name, seconds in (result.get("startup_s") or {}).items():
         add(f"start-up: {name} [s]", seconds, TARGETS["startup_s"], False)
     if "compile" in result:

@@ -356,7 +356,8 @@ def _integrate_compiled_split(
     """:func:`integrate` through the compiled DOP853 with breakpoints: split at the known
     times (a kink of the right-hand side there), so that no step straddles one, and stopped
     at a surface by the kernel's event made terminal, then restarted past it through its map.
-    Each piece restarts with the step size the last one had reached; all share the budget."""
+    Each piece starts with the step size the controller proposed at the end of the last one (as
+    the ensembles of :mod:`tumble.integrate.ensemble` do); all share the budget."""
     kernel.check_end(t_end)
     surfaces = [b for b in breakpoints if b.time is None]
     if not compiled_breakpoints(breakpoints) or (surfaces and kernel.event != EVENT_NONE):
@@ -391,7 +392,7 @@ def _integrate_compiled_split(
         sols.append(_states_by_rows(piece))
         steps.extend(res.ts[1:])
         nfev += res.nfev
-        first = float(res.ts[-2] - res.ts[-3]) if res.ts.size > 2 else 0.0
+        first = float(run.progress.h_abs)  # the step the controller would try next
         t0, y = float(res.t), res.y
         if stopped:
             assert surface is not None  # only a watched surface stops a run

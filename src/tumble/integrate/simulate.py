@@ -178,8 +178,9 @@ def simulate(
         The compiled integrator or scipy's (see :data:`INTEGRATORS`). The averaged equations
         run compiled where their form has a kernel (the resisting medium's (2.2), (2.3), split
         at the equator; the rotating field's vector form, stopped at its separatrix by a
-        terminal event); the others (the general engine's quadrature, the nonlinear moment's
-        Volosov equations) are Python on scipy's.
+        terminal event; the nonlinear moment's Volosov equations in the energy form, stopped
+        at a barrier of the potential); the others (the general engine's quadrature, the
+        nonlinear moment's turning-point forms) are Python on scipy's.
     averaging : AveragingOptions
         For ``averaged``: the paper's right-hand side or the general engine, the slow
         coordinates, and the start (checked against the model's ``Averaged`` capability).
@@ -501,14 +502,25 @@ def simulate_batch(
     form: str | None = None,
     threads: int | None = 1,
     max_steps: int = MAX_STEPS,
+    method: Literal["full", "averaged"] = "full",
+    averaging: AveragingOptions = DEFAULT_AVERAGING,
 ) -> list[Trajectory | TumbleError]:
-    """The full method of many points of one model at once.
+    """The full or the averaged method of many points of one model at once.
 
-    Every point whose full form has a compiled kernel is integrated by the compiled DOP853,
-    its samples kept chunk by chunk as :func:`simulate` keeps them (memory bounded by the
-    samples), on a pool of ``threads`` (the compiled parts release the GIL); each Trajectory
-    then equals ``simulate(model, p, initial, tau, "full", integrator="numba")`` to the
-    bit, except its wall time.
+    ``full``: every point whose full form has a compiled kernel is integrated by the compiled
+    DOP853, its samples kept chunk by chunk as :func:`simulate` keeps them (memory bounded by
+    the samples), on a pool of ``threads`` (the compiled parts release the GIL); each
+    Trajectory then equals ``simulate(model, p, initial, tau, "full", integrator="numba")``
+    to the bit, except its wall time.
+
+    ``averaged`` (an ensemble: initial states or parameter sets by the thousand): the points
+    whose averaged form has a kernel go in blocks through one compiled call per piece of
+    their runs (:mod:`tumble.integrate.ensemble`), keeping their samples only; each equals
+    ``simulate(model, p, initial, tau, "averaged")`` to the integration's round-off (the
+    same steps; the samples are interpolated in the loop rather than from the dense output),
+    and its ``slow`` integrates the point again, alone, on first use. The others (a Python
+    right-hand side: the general engine, a user torque) run one by one through
+    :func:`simulate`.
 
     Parameters
     ----------
@@ -527,6 +539,11 @@ def simulate_batch(
     max_steps : int
         Step budget of each run.
 
+    method : {"full", "averaged"}
+        Which description of the motion to compute.
+    averaging : AveragingOptions
+        For ``averaged``: as in :func:`simulate`, shared by every point.
+
     Returns
     -------
     list
@@ -534,6 +551,15 @@ def simulate_batch(
         integration, a full form without a compiled kernel): a batch never stops for one point.
     """
     tau = check_times(tau)
+    if method == "averaged":
+        from tumble.integrate.ensemble import averaged_batch  # builds on this module
+
+        return averaged_batch(
+            model, params, initials, tau, rtol=rtol, atol=atol, averaging=averaging,
+            threads=threads, max_steps=max_steps,
+        )  # fmt: skip
+    if method != "full":
+        raise ParameterError(f"simulate_batch: method {method!r} is not 'full' or 'averaged'")
     t_end = float(tau[-1])
     full = model.full.form(form)
     out: list[Trajectory | TumbleError | None] = [None] * len(params)

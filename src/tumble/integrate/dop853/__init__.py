@@ -23,6 +23,7 @@ from tumble.integrate.dop853.driver import (
     solve,
     solve_batch,
     solve_many,
+    status_message,
 )
 
 __all__ = [
@@ -36,4 +37,5 @@ __all__ = [
     "solve",
     "solve_batch",
     "solve_many",
+    "status_message",
 ]

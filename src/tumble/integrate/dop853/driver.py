@@ -32,6 +32,7 @@ __all__ = [
     "solve",
     "solve_batch",
     "solve_many",
+    "status_message",
 ]
 
 _MAX_THREADS = numba.get_num_threads()  # the cores, or NUMBA_NUM_THREADS
@@ -74,6 +75,11 @@ def _signals_held() -> Iterator[None]:
         previous(signal.SIGINT, None)
     elif received and previous == signal.SIG_DFL:  # deliver it as it would have been
         os.kill(os.getpid(), signal.SIGINT)
+
+
+def status_message(status: int) -> str:
+    """Why a run with ``status`` (of :mod:`~.core`) stopped early (empty on success)."""
+    return _MESSAGES.get(status, f"status {status}")
 
 
 def available_threads() -> int:
@@ -144,7 +150,7 @@ class Solution:
     @property
     def message(self) -> str:
         """Why the integration stopped early (empty on success)."""
-        return _MESSAGES.get(self.status, f"status {self.status}")
+        return status_message(self.status)
 
     def __call__(self, t: ArrayLike) -> FloatArray:
         """Dense output at times ``t`` within the recorded steps, shape (m, n)."""

@@ -1,0 +1,82 @@
+"""Many short runs of one kernel kind in one compiled call: the averaged ensembles.
+
+An averaged run takes tens of steps: from Python each costs more in the calls around it than in
+its steps. :func:`advance_block` advances a block of runs, each by one piece (to its next stop,
+or to the first zero of its terminal event), keeping only their samples; a thread runs a block
+with the GIL released, so blocks on several threads use every core. The caller restarts the
+pieces (a breakpoint at a known time, the map past a surface) between calls.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any, cast
+
+import numba
+import numpy as np
+
+from tumble._typing import FloatArray
+from tumble.integrate.dop853.core import FRESH, Options, Progress, advance
+from tumble.kernels.jit import ENTRY, jit
+
+__all__ = ["advance_block", "block_entry"]
+
+
+@jit(ENTRY)
+def advance_block(
+    kind: int, rows: Any, P: FloatArray, T: FloatArray, events: Any, first: FloatArray,
+    t0: FloatArray, ie: Any, rtol: float, atol: float, max_steps: int, t_eval: FloatArray,
+    Y: FloatArray, F: FloatArray, Y_eval: FloatArray, status: Any, nfev: Any,
+) -> None:  # fmt: skip
+    """Advance each run ``i`` of ``rows`` from ``t0[i]`` (state ``Y[i]``) towards ``T[i]``.
+
+    Run i has parameters ``P[i]``, event code ``events[i]`` (terminal; 0: none), first step
+    ``first[i]`` (0: Hairer's estimate), and fills its samples ``Y_eval[i]`` (flat rows of
+    ``t_eval``) from index ``ie[i]``. On return ``t0[i]`` is the time reached, ``Y[i]`` the
+    state there, ``first[i]`` the step to try next, ``ie[i]`` the next sample, ``status[i]``
+    that of :mod:`tumble.integrate.dop853.core` (``RUNNING``: ``max_steps`` spent) and
+    ``nfev[i]`` grown by the evaluations of this piece.
+    """
+    for r in range(rows.size):
+        i = rows[r]
+        ev = events[i]
+        opts = Options(rtol, atol, first[i], False, False, ev, max_steps, ev != 0)
+        prog = Progress(FRESH, t0[i], 0.0, 1.0, 0, 0, ie[i])
+        progress, _ = advance(kind, P[i], T[i], opts, prog, Y[i], F[i], t_eval, Y_eval[i])
+        status[i] = progress[0]
+        t0[i] = progress[1]
+        first[i] = progress[2]
+        nfev[i] += progress[4]
+        ie[i] = progress[6]
+
+
+_ENTRIES: dict[tuple[Any, ...], Callable[..., None]] = {}
+
+
+def block_entry(kind: int, args: tuple[Any, ...]) -> Callable[..., None]:
+    """:func:`advance_block` compiled for ``kind`` as a compile-time constant (as
+    :func:`tumble.integrate.dop853.driver._specialised` compiles the single run), once per
+    kind and argument types; ``args`` are the arguments after the kind."""
+    key = (kind, *(numba.typeof(a) for a in args))
+    entry = _ENTRIES.get(key)
+    if entry is None:
+        signature = (numba.types.literal(kind), *key[1:])
+        entry = cast(Any, advance_block).compile(signature)
+        _ENTRIES[key] = entry
+    return entry
+
+
+def empty_block(n_runs: int, dim: int, n_eval: int) -> dict[str, FloatArray]:
+    """The per-run arrays of :func:`advance_block` for ``n_runs`` runs of dimension ``dim``."""
+    return {
+        "T": np.zeros(n_runs),
+        "events": np.zeros(n_runs, dtype=np.int64),
+        "first": np.zeros(n_runs),
+        "t0": np.zeros(n_runs),
+        "ie": np.zeros(n_runs, dtype=np.int64),
+        "Y": np.zeros((n_runs, dim)),
+        "F": np.zeros((n_runs, dim)),
+        "Y_eval": np.full((n_runs, n_eval * dim), np.nan),
+        "status": np.zeros(n_runs, dtype=np.int64),
+        "nfev": np.zeros(n_runs, dtype=np.int64),
+    }

@@ -1,0 +1,250 @@
+"""Averaged ensembles: the averaged equations of many points of one model in blocks of
+compiled runs over a thread pool (:func:`tumble.integrate.simulate_batch` with
+``method = "averaged"``).
+
+Each thread takes a block of points at a time: it builds their averaged forms (Python), then
+advances the whole block piece by piece in one compiled call per piece
+(:func:`tumble.integrate.dop853.block.advance_block`, the GIL released) and turns the samples
+into columns. The Python work of one thread overlaps the compiled work of the others.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Sequence
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass, field
+from typing import Any, Generic, TypeVar
+
+import numpy as np
+
+from tumble._typing import FloatArray
+from tumble.errors import IntegrationError, TumbleError
+from tumble.integrate import dop853
+from tumble.integrate.dop853.block import block_entry, empty_block
+from tumble.integrate.dop853.core import OK, RUNNING, STOPPED
+from tumble.integrate.limits import MAX_STEPS
+from tumble.integrate.ode import compiled_breakpoints
+from tumble.integrate.simulate import Trajectory, _unwrap_columns, simulate
+from tumble.kernels import EVENT_NONE, Kernel
+from tumble.models.base import AveragedForm, AveragingOptions, Breakpoint, Model
+
+__all__ = ["BLOCK_SIZE", "averaged_batch"]
+
+P = TypeVar("P")
+S = TypeVar("S")
+
+BLOCK_SIZE = 32
+"""Points per block: a thread's unit of work (large enough that the compiled call dominates
+its Python, small enough that every thread gets several)."""
+
+
+@dataclass
+class _Point(Generic[P, S]):
+    """One point of a block: its form, kernel and breakpoints."""
+
+    index: int
+    params: P
+    initial: S
+    form: AveragedForm[P, S]
+    kernel: Kernel
+    y0: FloatArray
+    stops: list[float]  # breakpoint times inside (0, t_end), ascending, then t_end
+    surface: Breakpoint | None  # the one surface, with its compiled event
+    samples: FloatArray = field(default_factory=lambda: np.empty(0))  # (len(tau), dim)
+    nfev: int = 0
+
+
+def averaged_batch(
+    model: Model[P, S],
+    params: Sequence[P],
+    initials: Sequence[S],
+    tau: FloatArray,
+    *,
+    rtol: float,
+    atol: float,
+    averaging: AveragingOptions,
+    threads: int | None,
+    max_steps: int = MAX_STEPS,
+) -> list[Trajectory | TumbleError]:
+    """The averaged method of many points (see :func:`tumble.integrate.simulate_batch`)."""
+    assert model.averaged is not None
+    options = model.averaged.check(averaging)
+    n_points = len(params)
+    if len(initials) != n_points:
+        raise ValueError(f"{n_points} parameter sets but {len(initials)} initial states")
+    out: list[Trajectory | TumbleError | None] = [None] * n_points
+    t_end = float(tau[-1])
+    # A form's kernel is a function of the parameters alone: points that share both the
+    # function and the parameter object (an ensemble over initial states) share the kernel.
+    kernels: dict[tuple[int, int], Kernel | None] = {}
+
+    def single(i: int) -> Trajectory | TumbleError:
+        try:
+            return simulate(model, params[i], initials[i], tau, "averaged", rtol=rtol,
+                            atol=atol, averaging=averaging, max_steps=max_steps)  # fmt: skip
+        except TumbleError as exc:
+            return exc
+
+    def prepare(i: int) -> _Point[P, S] | None:
+        """The point's compiled run, or None for the single path (no kernel, nothing to
+        integrate); a TumbleError (an invalid point) goes to ``out``."""
+        p, initial = params[i], initials[i]
+        try:
+            model.check(p, "averaged")
+            form = model.averaged.form(p, initial, options)  # type: ignore[union-attr]
+            if t_end == 0.0 or form.kernel is None or not compiled_breakpoints(form.breakpoints):
+                return None
+            key = (id(form.kernel), id(p))
+            if key not in kernels:
+                kernels[key] = form.kernel(p)
+            kernel = kernels[key]
+            if kernel is None:
+                return None
+            kernel.check_end(t_end)
+            y0 = np.asarray(form.initial_state(p, initial), dtype=np.float64)
+        except TumbleError as exc:
+            out[i] = exc
+            return None
+        slack = 1e-12 * max(1.0, t_end)
+        times = sorted({float(b.time) for b in form.breakpoints if b.time is not None})
+        stops = [t for t in times if slack < t < t_end - slack] + [t_end]
+        surfaces = [b for b in form.breakpoints if b.time is None]
+        surface = surfaces[0] if surfaces else None
+        if surface is not None and surface.condition is not None:
+            if surface.condition(0.0, y0) == 0.0:
+                surface = None  # the start sits on it: already passed
+        return _Point(i, p, initial, form, kernel, y0, stops, surface)
+
+    def run_block(indices: Sequence[int]) -> None:
+        points: list[_Point[P, S]] = []
+        for i in indices:
+            pt = prepare(i)
+            if pt is not None:
+                points.append(pt)
+            elif out[i] is None:
+                out[i] = single(i)
+        groups: dict[tuple[int, int, int], list[_Point[P, S]]] = {}
+        for pt in points:
+            key = (pt.kernel.kind, pt.kernel.params.size, pt.y0.size)
+            groups.setdefault(key, []).append(pt)
+        for group in groups.values():
+            start = time.perf_counter()
+            _integrate_group(model.name, group, tau, rtol, atol, max_steps, out)
+            wall = (time.perf_counter() - start) / len(group)
+            for pt in group:
+                if out[pt.index] is None:
+                    out[pt.index] = _trajectory(model, pt, tau, wall, single)
+
+    blocks = [range(k, min(k + BLOCK_SIZE, n_points)) for k in range(0, n_points, BLOCK_SIZE)]
+    workers = dop853.available_threads() if threads is None else max(1, int(threads))
+    if workers == 1 or len(blocks) < 2:
+        for block in blocks:
+            run_block(block)
+    else:
+        with ThreadPoolExecutor(max_workers=min(workers, len(blocks))) as pool:
+            list(pool.map(run_block, blocks))
+    return [o if o is not None else IntegrationError("not run") for o in out]
+
+
+def _integrate_group(
+    name: str,
+    group: Sequence[_Point[Any, Any]],
+    tau: FloatArray,
+    rtol: float,
+    atol: float,
+    max_steps: int,
+    out: list[Any],
+) -> None:
+    """Advance every run of ``group`` (one kind, one parameter length) to its end, piece by
+    piece; a failed run gets its IntegrationError in ``out``, the others their samples and
+    evaluation counts in their ``_Point``."""
+    n = len(group)
+    dim = group[0].y0.size
+    arrays = empty_block(n, dim, tau.size)
+    P = np.stack([pt.kernel.params for pt in group])
+    for r, pt in enumerate(group):
+        arrays["Y"][r] = pt.y0
+        arrays["events"][r] = pt.surface.event if pt.surface is not None else EVENT_NONE
+    piece = np.zeros(n, dtype=np.int64)  # index into each run's stops
+    active = np.arange(n)
+    kind = group[0].kernel.kind
+    while active.size:
+        for r in active.tolist():
+            arrays["T"][r] = group[r].stops[piece[r]]
+        args = (active, P, arrays["T"], arrays["events"], arrays["first"], arrays["t0"],
+                arrays["ie"], float(rtol), float(atol), int(max_steps), tau, arrays["Y"],
+                arrays["F"], arrays["Y_eval"], arrays["status"], arrays["nfev"])  # fmt: skip
+        block_entry(kind, args)(kind, *args)
+        going = []
+        for r in active.tolist():
+            pt, status = group[r], int(arrays["status"][r])
+            t = float(arrays["t0"][r])
+            what = f"{name} averaged equations {pt.form.equation}"
+            try:
+                if status == STOPPED:
+                    surface = pt.surface
+                    assert surface is not None  # only a watched surface stops a run
+                    if surface.restart is not None:
+                        arrays["Y"][r] = surface.restart(t, arrays["Y"][r].copy())
+                    arrays["events"][r] = EVENT_NONE  # crossed at most once
+                    going.append(r)
+                elif status == OK:
+                    if piece[r] + 1 < len(pt.stops):
+                        piece[r] += 1
+                        going.append(r)
+                elif status == RUNNING:
+                    raise IntegrationError(
+                        f"{what}: run.max_steps = {max_steps} steps spent at t = {t:.6g}"
+                    )
+                else:
+                    reason = pt.form.failure() if pt.form.failure else None
+                    message = dop853.status_message(status)
+                    text = f"{what}: integration failed at t = {t:.6g}: {message}"
+                    if reason:
+                        text += f"; last refused state: {reason}"
+                    raise IntegrationError(text)
+            except TumbleError as exc:
+                out[pt.index] = exc
+        active = np.array(going, dtype=np.int64)
+    for r, pt in enumerate(group):
+        pt.samples = arrays["Y_eval"][r].reshape(tau.size, dim)
+        pt.nfev = int(arrays["nfev"][r])
+
+
+def _trajectory(
+    model: Model[P, S],
+    pt: _Point[P, S],
+    tau: FloatArray,
+    wall: float,
+    single: Callable[[int], Trajectory | TumbleError],
+) -> Trajectory | TumbleError:
+    """The Trajectory of a point of a block from its samples."""
+    try:
+        cols = pt.form.to_columns(pt.params, pt.initial, tau, pt.samples)
+        _unwrap_columns(model, pt.params, "averaged", cols, pt.initial)
+    except TumbleError as exc:
+        return exc
+    rerun: list[Trajectory] = []
+
+    def slow(t: FloatArray) -> Any:
+        # The block kept the samples only: the first call integrates this point again, alone,
+        # with its dense output (the same equations and tolerances).
+        if not rerun:
+            again = single(pt.index)
+            if isinstance(again, TumbleError):
+                raise again
+            rerun.append(again)
+        return rerun[0].slow(t)
+
+    return Trajectory(
+        tau,
+        cols,
+        "averaged",
+        pt.form.name,
+        wall,
+        pt.nfev,
+        slow,
+        np.empty(0),
+        "numba",
+    )

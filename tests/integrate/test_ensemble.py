@@ -1,0 +1,150 @@
+"""Averaged ensembles: simulate_batch(method="averaged") against one simulate() per point."""
+
+from __future__ import annotations
+
+import dataclasses
+import tomllib
+
+import numpy as np
+import pytest
+
+from tumble.errors import ParameterError, TumbleError
+from tumble.integrate import Trajectory, simulate, simulate_batch
+from tumble.io.scenario import parse_scenario, template
+from tumble.models.base import AveragingOptions
+
+
+def _same(batch: Trajectory, single: Trajectory) -> None:
+    assert batch.method == "averaged" and batch.integrator == "numba"
+    for name, ref in single.columns.items():
+        # The same steps (the pieces restart alike); the samples come from the same
+        # interpolant evaluated in the loop instead of from the dense output: round-off.
+        scale = max(1.0, float(np.max(np.abs(ref))))
+        assert np.max(np.abs(batch.columns[name] - ref)) <= 1e-12 * scale, name
+
+
+def _ensemble(name: str, vary: dict[str, tuple[float, float]], n: int, **section):
+    """Requests of the model's template with the ``[initial]`` keys of ``vary`` drawn
+    uniformly (seeded) and the other sections updated by ``section``."""
+    rng = np.random.default_rng(11)
+    out = []
+    for _ in range(n):
+        data = tomllib.loads(template(name))
+        for sec, values in section.items():
+            data[sec].update(values)
+        for key, (lo, hi) in vary.items():
+            data["initial"][key] = float(rng.uniform(lo, hi))
+        out.append(parse_scenario(data, f"<{name} ensemble>").request)
+    return out
+
+
+CASES = {
+    # The medium: its runs split at an equator crossing of their own.
+    "resisting_medium": ({"theta": (0.2, 2.9), "k": (0.5, 2.0)}, {}),
+    # The rotating field: a terminal event at the separatrix and the restart past it.
+    "rotating_field": ({"rho": (0.2, 2.9), "k2": (0.2, 0.8)}, {}),
+    # The nonlinear moment under growing pressure, stopped at the barrier where it reaches it.
+    "nonlinear_moment": ({"theta": (0.6, 1.4)}, {"run": {"t_end": 60.0}}),
+}
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_ensemble_equals_one_run_per_point(name):
+    vary, section = CASES[name]
+    reqs = _ensemble(name, vary, 12, **section)
+    first = reqs[0]
+    params, initials = [r.params for r in reqs], [r.initial for r in reqs]
+    batch = simulate_batch(first.model, params, initials, first.tau, method="averaged",
+                           averaging=first.averaging, threads=2)  # fmt: skip
+    assert len(batch) == len(reqs)
+    for req, got in zip(reqs, batch, strict=True):
+        try:
+            single = simulate(req.model, req.params, req.initial, req.tau, "averaged",
+                              averaging=req.averaging)  # fmt: skip
+        except TumbleError as exc:
+            # The point fails alike, with the same message, and the batch goes on.
+            assert isinstance(got, TumbleError) and str(got) == str(exc)
+            continue
+        assert isinstance(got, Trajectory), got
+        _same(got, single)
+
+
+def test_ensemble_results_do_not_depend_on_the_threads():
+    vary, section = CASES["resisting_medium"]
+    reqs = _ensemble("resisting_medium", vary, 70, **section)  # three blocks
+    args = (reqs[0].model, [r.params for r in reqs], [r.initial for r in reqs], reqs[0].tau)
+    one = simulate_batch(*args, method="averaged", threads=1)
+    two = simulate_batch(*args, method="averaged", threads=2)
+    for a, b in zip(one, two, strict=True):
+        for name in a.columns:
+            assert np.array_equal(a.columns[name], b.columns[name])
+
+
+def test_an_invalid_point_fails_alone():
+    from tumble.models.nonlinear_moment import Pressure
+
+    vary, section = CASES["nonlinear_moment"]
+    reqs = _ensemble("nonlinear_moment", vary, 3, **section)
+    params = [r.params for r in reqs]
+    # A pressure table that ends before the run does: refused before it starts.
+    short = Pressure("table", tau=(0.0, 0.1), Q=(1.0, 1.1))
+    params[1] = dataclasses.replace(params[1], pressure=short)
+    out = simulate_batch(reqs[0].model, params, [r.initial for r in reqs], reqs[0].tau,
+                         method="averaged")  # fmt: skip
+    assert isinstance(out[0], Trajectory) and isinstance(out[2], Trajectory)
+    assert isinstance(out[1], ParameterError) and "pressure" in str(out[1])
+
+
+def test_slow_of_an_ensemble_member_integrates_it_again():
+    vary, section = CASES["resisting_medium"]
+    req = _ensemble("resisting_medium", vary, 1, **section)[0]
+    (got,) = simulate_batch(req.model, [req.params], [req.initial], req.tau, method="averaged")
+    single = simulate(req.model, req.params, req.initial, req.tau, "averaged")
+    t = np.linspace(0.0, float(req.tau[-1]), 17)
+    for name, values in single.slow(t).items():
+        assert np.array_equal(got.slow(t)[name], values)
+
+
+def test_a_python_right_hand_side_runs_point_by_point():
+    # The general engine's averages are Python: each point goes through simulate().
+    vary, section = CASES["resisting_medium"]
+    reqs = _ensemble("resisting_medium", vary, 2, **section)
+    numeric = AveragingOptions(averaging="numeric")
+    out = simulate_batch(reqs[0].model, [r.params for r in reqs], [r.initial for r in reqs],
+                         reqs[0].tau, method="averaged", averaging=numeric)  # fmt: skip
+    for req, got in zip(reqs, out, strict=True):
+        single = simulate(req.model, req.params, req.initial, req.tau, "averaged",
+                          averaging=numeric)  # fmt: skip
+        assert got.integrator == single.integrator
+        _same_columns = all(np.array_equal(got.columns[k], v) for k, v in single.columns.items())
+        assert _same_columns
+
+
+def test_method_is_checked():
+    req = _ensemble("resisting_medium", {}, 1)[0]
+    with pytest.raises(ParameterError, match="method"):
+        simulate_batch(req.model, [req.params], [req.initial], req.tau, method="closed_form")
+
+
+def test_runs_that_fail_fail_as_alone():
+    from tumble.models import nonlinear_moment as nm
+
+    # Negative pitch damping pumps planar swings up to the barrier of the double well: from
+    # θ = 0.6 the run stops at the separatrix; from 0.4 and 0.8 the step size collapses
+    # first (the averaged system nears its singular limit): each fails alike, alone.
+    p = nm.Params(mu=1.0, a=0.0, b=-1.0, eps=0.05, d=-1.0)
+    initials = [nm.State(theta, 0.0, 0.0, 0.0, 0.0, 0.0) for theta in (0.4, 0.6, 0.8)]
+    initials.append(nm.State(0.6, 0.0, 0.0, 0.0, 0.0, 0.0))
+    params = [p] * 3 + [dataclasses.replace(p, d=0.5)]  # and one that does not fail
+    tau = np.linspace(0.0, 400.0, 11)
+    out = simulate_batch(nm.MODEL, params, initials, tau, method="averaged")
+    messages = []
+    for pp, st, got in zip(params, initials, out, strict=True):
+        try:
+            single = simulate(nm.MODEL, pp, st, tau, "averaged")
+        except TumbleError as exc:
+            assert isinstance(got, TumbleError) and str(got) == str(exc)
+            messages.append(str(exc))
+        else:
+            _same(got, single)
+    assert len(messages) == 3 and "reaches a separatrix" in messages[1]

@@ -18,6 +18,7 @@ import numpy as np
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import ParameterError
 from tumble.kernels.codes import (
+    EVENT_EQUATOR,
     EVENT_FIELD_SEPARATRIX,
     EVENT_NONE,
     EVENT_NUTATION_SEPARATRIX,
@@ -28,9 +29,11 @@ from tumble.kernels.codes import (
     KIND_NUTATION_AVERAGED,
     KIND_RIGID_BODY,
     KIND_ROTATING_FIELD,
+    KIND_SPINNER_AVERAGED,
 )
 
 __all__ = [
+    "EVENT_EQUATOR",
     "EVENT_FIELD_SEPARATRIX",
     "EVENT_NONE",
     "EVENT_NUTATION_SEPARATRIX",
@@ -41,6 +44,7 @@ __all__ = [
     "KIND_NUTATION_AVERAGED",
     "KIND_RIGID_BODY",
     "KIND_ROTATING_FIELD",
+    "KIND_SPINNER_AVERAGED",
     "Kernel",
     "evaluate_rhs",
 ]

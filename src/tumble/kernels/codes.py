@@ -11,6 +11,7 @@ from __future__ import annotations
 
 __all__ = [
     "DEGENERATE_RTOL",
+    "EVENT_EQUATOR",
     "EVENT_FIELD_SEPARATRIX",
     "EVENT_NONE",
     "EVENT_NUTATION_SEPARATRIX",
@@ -21,6 +22,7 @@ __all__ = [
     "KIND_NUTATION_AVERAGED",
     "KIND_RIGID_BODY",
     "KIND_ROTATING_FIELD",
+    "KIND_SPINNER_AVERAGED",
     "MC_FLOOR",
     "NUTATION_SEPARATRIX_TOL",
     "RATE_ONLY_TERMS",
@@ -41,6 +43,7 @@ KIND_NONLINEAR_MOMENT = 3
 KIND_MEDIUM_AVERAGED = 4
 KIND_FIELD_AVERAGED = 5
 KIND_NUTATION_AVERAGED = 6
+KIND_SPINNER_AVERAGED = 7
 
 EVENT_NONE = 0
 EVENT_THETA_DOT = 1
@@ -49,6 +52,8 @@ EVENT_FIELD_SEPARATRIX = 2
 """r − 1/I2 of the rotating field's averaged vector form: its separatrix."""
 EVENT_NUTATION_SEPARATRIX = 3
 """The nonlinear moment's averaged energy below the barriers of the effective potential."""
+EVENT_EQUATOR = 4
+"""cos ϑ of a spinner's averaged state [k, ρ, σ, ϑ]: the equator, where its rates kink."""
 
 TERM_BODY_CONSTANT = 1  # body moment (3)
 TERM_LINEAR_DRAG = 2  # B by rows (9)

@@ -25,6 +25,9 @@ Kinds
 ``KIND_NUTATION_AVERAGED``
     Volosov's averaged equations of Serov (1991) in the energy form, state ``[H, R, G, a, b]``
     (:mod:`tumble.kernels.nutation`).
+``KIND_SPINNER_AVERAGED``
+    The general engine's spinner setting for a moment of the body rate only, state
+    ``[k, ρ, σ, ϑ]``, parameters ``[κ, rtol, torque program]`` (:mod:`tumble.kernels.spinner`).
 """
 
 from __future__ import annotations
@@ -36,6 +39,7 @@ import numpy as np
 from tumble._typing import FloatArray
 from tumble.kernels.codes import (
     DEGENERATE_RTOL,
+    EVENT_EQUATOR,
     EVENT_FIELD_SEPARATRIX,
     EVENT_NUTATION_SEPARATRIX,
     EVENT_THETA_DOT,
@@ -45,6 +49,7 @@ from tumble.kernels.codes import (
     KIND_NUTATION_AVERAGED,
     KIND_RIGID_BODY,
     KIND_ROTATING_FIELD,
+    KIND_SPINNER_AVERAGED,
     MC_FLOOR,
     REACHED_MARGIN,
     SEPARATRIX_RTOL,
@@ -52,6 +57,7 @@ from tumble.kernels.codes import (
 from tumble.kernels.elliptic import elliprd, elliprf
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
 from tumble.kernels.nutation import nutation_averaged, pressure, separatrix_distance
+from tumble.kernels.spinner import spinner_averaged
 from tumble.kernels.torque import quaternion_rates, torque_moment
 
 __all__ = [
@@ -282,6 +288,8 @@ def rhs(kind: int, t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> N
         _field_averaged(y, p, out)
     elif kind == KIND_NUTATION_AVERAGED:
         nutation_averaged(t, y, p, out)
+    elif kind == KIND_SPINNER_AVERAGED:
+        spinner_averaged(t, y, p, out)
     else:
         for j in range(y.size):
             out[j] = math.nan
@@ -301,6 +309,8 @@ def event(kind: int, t: float, y: FloatArray, p: FloatArray) -> float:
         return y[3] - 1.0 / p[4]  # r − 1/I2, p = [ε, s², c², I1, I2, I3]
     if kind == EVENT_NUTATION_SEPARATRIX:
         return separatrix_distance(y)
+    if kind == EVENT_EQUATOR:
+        return math.cos(y[3])  # a spinner's averaged state [k, ρ, σ, ϑ]
     return 1.0
 
 

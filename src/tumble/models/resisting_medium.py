@@ -22,13 +22,14 @@ from typing import Any
 import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
+from tumble.averaging.quadrature import AVERAGE_RTOL
 from tumble.averaging.spinner import body_momentum, spinner_average, standard_form
 from tumble.catalogue import CATALOGUE
 from tumble.errors import (
     IntegrationError,
     ParameterError,
 )
-from tumble.kernels import KIND_MEDIUM_AVERAGED, Kernel
+from tumble.kernels import EVENT_EQUATOR, KIND_MEDIUM_AVERAGED, KIND_SPINNER_AVERAGED, Kernel
 from tumble.kernels.rhs import rigid_body
 from tumble.models.base import (
     Averaged,
@@ -364,6 +365,16 @@ def _averaged_columns_numeric(
     return {"k": Y[:, 0], "rho": Y[:, 1], "sigma": Y[:, 2], "theta": Y[:, 3]}
 
 
+def spinner_kernel(p: Params) -> Kernel | None:
+    """:func:`averaged_rhs_numeric` compiled (:mod:`tumble.kernels.spinner`) when the moment
+    depends on the body rate alone (the law (1.2) and its built-in parts); None otherwise
+    (an attitude-dependent or a Python torque: the Python engine)."""
+    program = p.torque.program
+    if program is None or not p.torque.rate_only or p.kappa == 0.0:
+        return None
+    return Kernel(KIND_SPINNER_AVERAGED, np.concatenate([[p.kappa, AVERAGE_RTOL], program]))
+
+
 _AVERAGED_NUMERIC: AveragedForm[Params, State] = AveragedForm(
     name="numeric",
     equation="(1.3) averaged over ψ, φ by quadrature (tumble.averaging)",
@@ -371,7 +382,9 @@ _AVERAGED_NUMERIC: AveragedForm[Params, State] = AveragedForm(
     rhs=averaged_rhs_numeric,
     initial_state=lambda p, st: np.array([st.k, st.rho, st.sigma, st.theta]),
     to_columns=_averaged_columns_numeric,
-    breakpoints=(Breakpoint(lambda t, y: math.cos(y[3])),),  # the equator, as above
+    # the equator, as above; a moment of the body rate only runs compiled
+    breakpoints=(Breakpoint(lambda t, y: math.cos(y[3]), event=EVENT_EQUATOR),),
+    kernel=spinner_kernel,
 )
 
 

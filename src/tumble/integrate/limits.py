@@ -3,6 +3,8 @@ table is validated with before any numerics load."""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
@@ -21,6 +23,10 @@ def check_times(tau: ArrayLike, *, field: str = "run.tau") -> FloatArray:
     t = np.asarray(tau, dtype=float)
     if t.ndim != 1 or t.size == 0:
         raise ParameterError(f"{field} must be a non-empty list of times")
+    # The usual case in one pass: ascending from t[0] ≥ 0 to a finite end means every time is
+    # finite (a NaN fails every comparison); anything else goes through the checks below.
+    if t[0] >= 0.0 and math.isfinite(t[-1]) and (t.size == 1 or bool((t[1:] > t[:-1]).all())):
+        return t
     if not np.all(np.isfinite(t)) or t[0] < 0.0:
         raise ParameterError(f"{field} must contain finite times ≥ 0")
     if np.any(np.diff(t) <= 0.0):

@@ -77,7 +77,9 @@ def averaged_batch(
     t_end = float(tau[-1])
     # A form's kernel is a function of the parameters alone: points that share both the
     # function and the parameter object (an ensemble over initial states) share the kernel.
-    kernels: dict[tuple[int, int], Kernel | None] = {}
+    # The key holds the function itself (alive while cached) and the id of a parameter set
+    # that ``params`` keeps alive: no id is reused while the batch runs.
+    kernels: dict[tuple[Callable[[P], Kernel | None], int], Kernel | None] = {}
 
     def single(i: int) -> Trajectory | TumbleError:
         try:
@@ -95,7 +97,7 @@ def averaged_batch(
             form = model.averaged.form(p, initial, options)  # type: ignore[union-attr]
             if t_end == 0.0 or form.kernel is None or not compiled_breakpoints(form.breakpoints):
                 return None
-            key = (id(form.kernel), id(p))
+            key = (form.kernel, id(p))
             if key not in kernels:
                 kernels[key] = form.kernel(p)
             kernel = kernels[key]
@@ -144,7 +146,9 @@ def averaged_batch(
     else:
         with ThreadPoolExecutor(max_workers=min(workers, len(blocks))) as pool:
             list(pool.map(run_block, blocks))
-    return [o if o is not None else IntegrationError("not run") for o in out]
+    done = [o for o in out if o is not None]
+    assert len(done) == n_points  # every point is a Trajectory or its error
+    return done
 
 
 def _integrate_group(

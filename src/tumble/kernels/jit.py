@@ -25,6 +25,7 @@ __all__ = [
     "INNER",
     "INNER_INLINE",
     "KERNEL",
+    "OVERLOAD",
     "jit",
     "source_stamp",
 ]
@@ -55,6 +56,10 @@ KERNEL: dict[str, Any] = {**INNER, "_nrt": False}
 INLINE: dict[str, Any] = {**KERNEL, "forceinline": True}
 """Small helpers LLVM must inline into the integrator's loops (alwaysinline): the right-hand
 side's dispatch on the kind then folds away in a specialisation on one kind."""
+OVERLOAD: dict[str, Any] = {
+    k: v for k, v in INLINE.items() if k not in ("cache", "no_cpython_wrapper", "no_cfunc_wrapper")
+}
+"""The options of a compiled overload (numba caches it within its callers)."""
 
 
 def source_stamp() -> tuple[tuple[str, int, int], ...]:

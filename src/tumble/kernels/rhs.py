@@ -33,8 +33,12 @@ Kinds
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import Any, cast
 
 import numpy as np
+from numba import types
+from numba.extending import overload
 
 from tumble._typing import FloatArray
 from tumble.kernels.codes import (
@@ -55,7 +59,7 @@ from tumble.kernels.codes import (
     SEPARATRIX_RTOL,
 )
 from tumble.kernels.elliptic import elliprd, elliprf
-from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
+from tumble.kernels.jit import ENTRY, INLINE, KERNEL, OVERLOAD, jit
 from tumble.kernels.nutation import nutation_averaged, pressure, separatrix_distance
 from tumble.kernels.spinner import spinner_averaged
 from tumble.kernels.torque import quaternion_rates, torque_moment
@@ -273,9 +277,9 @@ def _field_averaged(y: FloatArray, p: FloatArray, out: FloatArray) -> None:
 
 
 @jit(INLINE)
-def rhs(kind: int, t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> None:
-    """dy/dt of the right-hand side ``kind`` with parameters ``p`` into ``out`` (NaN for an
-    unknown kind, so that the integration fails)."""
+def _any_kind(kind: int, t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> None:
+    """:func:`rhs` for a kind known only at run time (NaN for an unknown one, so that the
+    integration fails)."""
     if kind == KIND_RIGID_BODY:
         _rigid_body(t, y, p, out)
     elif kind == KIND_ROTATING_FIELD:
@@ -293,6 +297,55 @@ def rhs(kind: int, t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> N
     else:
         for j in range(y.size):
             out[j] = math.nan
+
+
+def rhs(kind: int, t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> None:
+    """dy/dt of the right-hand side ``kind`` with parameters ``p`` into ``out``.
+
+    In compiled code an overload: where ``kind`` is a compile-time constant (the integrator
+    specialised on one kind, :func:`tumble.integrate.dop853.driver._specialised`) it is that
+    kind's kernel alone, so that compiling an integrator types and lowers one right-hand side,
+    not all of them; otherwise the dispatch on the run-time kind. From Python: that dispatch.
+    """
+    cast(Any, _any_kind).py_func(kind, t, y, p, out)
+
+
+def _with_time(kernel: Callable[..., None]) -> Callable[..., None]:
+    """A kernel of (y, p, out) as one of (t, y, p, out)."""
+
+    @jit(INLINE)
+    def wrapped(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> None:
+        kernel(y, p, out)
+
+    return wrapped
+
+
+_BY_KIND: dict[int, Callable[..., None]] = {
+    KIND_RIGID_BODY: _rigid_body,
+    KIND_ROTATING_FIELD: _with_time(_rotating_field),
+    KIND_NONLINEAR_MOMENT: _nonlinear_moment,
+    KIND_MEDIUM_AVERAGED: _with_time(_medium_averaged),
+    KIND_FIELD_AVERAGED: _with_time(_field_averaged),
+    KIND_NUTATION_AVERAGED: nutation_averaged,
+    KIND_SPINNER_AVERAGED: spinner_averaged,
+}
+
+
+@overload(rhs, prefer_literal=True, jit_options=cast(Any, OVERLOAD))
+def _rhs_by_kind(kind: Any, t: Any, y: Any, p: Any, out: Any) -> Callable[..., None]:
+    if isinstance(kind, types.IntegerLiteral) and kind.literal_value in _BY_KIND:
+        one = _BY_KIND[kind.literal_value]
+
+        # (numba compares the parameters, annotations included, with the typing function's)
+        def impl(kind: Any, t: Any, y: Any, p: Any, out: Any) -> None:
+            one(t, y, p, out)
+
+        return impl
+
+    def dispatch(kind: Any, t: Any, y: Any, p: Any, out: Any) -> None:
+        _any_kind(kind, t, y, p, out)
+
+    return dispatch
 
 
 @jit(INLINE)

@@ -190,5 +190,6 @@ def test_an_engine_case_runs_the_general_engine():
     engine = bench._averaged_case("resisting_medium", 1e-2, s, lambda m: None, "numeric")
     # The engine's quadrature equals (2.2) to ~1e-13 (its own tests); both run at rtol 1e-10.
     assert engine["averaged"]["error"] == pytest.approx(paper["averaged"]["error"], rel=1e-6)
-    # Python quadrature against the compiled (2.2): measured ~2 ms against 0.014 µs.
+    # The engine's φ quadrature (512 nodes, compiled for this body-rate moment) against the
+    # compiled (2.2): measured ~14 µs against 0.03 µs.
     assert engine["eval_us"]["averaged"] > 100.0 * paper["eval_us"]["averaged"]

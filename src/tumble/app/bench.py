@@ -89,7 +89,8 @@ TARGETS: dict[str, float] = {
     "averaged_error": 0.01,  # at most, on the slow variables
     "batch_efficiency": 0.8,  # throughput on 2 cores over twice that on 1, at least
     "averaged_batch_efficiency": 0.8,  # the same for an averaged ensemble, on all cores
-    "compile_s": 5.0,  # first call from an empty cache, at most
+    "compile_s": 10.0,  # first calls of every kind from an empty cache, in all, at most
+    "compile_cached_s": 0.5,  # the same calls loading from the disk cache, at most
     "startup_s": 0.5,  # tumble --help, tumble models, an input error: the answer, at most
 }
 """The issue's targets, printed beside the measurements."""
@@ -485,6 +486,12 @@ def _averaged_case(
             out["full_equal_accuracy"] = {"rtol": rtol, "time_s": t_s, "error": err}
             out["averaged"]["speedup_equal_accuracy"] = t_s / out["averaged"]["time_s"]
             break
+    else:
+        # Not even the tightest full run of the ladder is as accurate as the averaged one: a
+        # full run of equal accuracy would be tighter still, and slower. Its time is a bound.
+        out["full_equal_accuracy"] = {"rtol": None, "tightest_rtol": rtol, "time_s": t_s,
+                                      "error": err}  # fmt: skip
+        out["averaged"]["speedup_equal_accuracy_at_least"] = t_s / out["averaged"]["time_s"]
     out["averaged"]["nfev_ratio"] = ref.nfev / max(out["averaged"]["nfev"], 1)
     return out
 
@@ -854,7 +861,12 @@ def verdicts(result: dict[str, Any]) -> list[dict[str, Any]]:
             add(f"{where}: speed-up vs full", avg["speedup"],
                 TARGETS[f"averaged_speedup_{tag}"], True)  # fmt: skip
             if tag == "1e-4":
-                add(f"{where}: speed-up at equal accuracy", avg.get("speedup_equal_accuracy", 0.0),
+                bound = "speedup_equal_accuracy_at_least" in avg
+                value = avg.get(
+                    "speedup_equal_accuracy", avg.get("speedup_equal_accuracy_at_least")
+                )
+                add(f"{where}: speed-up at equal accuracy" + (" (at least)" if bound else ""),
+                    value if value is not None else 0.0,
                     TARGETS["averaged_equal_accuracy_1e-4"], True)  # fmt: skip
                 add(f"{where}: one averaged evaluation [µs]", v["eval_us"]["averaged"],
                     TARGETS["averaged_eval_us"], False)  # fmt: skip
@@ -887,6 +899,12 @@ def verdicts(result: dict[str, Any]) -> list[dict[str, Any]]:
             "compile: first calls from an empty cache, all kinds [s]",
             result["compile"]["total_s"],
             TARGETS["compile_s"],
+            False,
+        )
+        add(
+            "compile: the same first calls from the disk cache [s]",
+            result["compile"]["cached_total_s"],
+            TARGETS["compile_cached_s"],
             False,
         )
     return rows

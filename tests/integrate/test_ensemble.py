@@ -106,15 +106,13 @@ def test_slow_of_an_ensemble_member_integrates_it_again():
 
 
 def test_a_python_right_hand_side_runs_point_by_point():
-    # The nutation setting of the general engine is Python: each point goes through simulate().
-    vary, _ = CASES["nonlinear_moment"]
-    reqs = _ensemble("nonlinear_moment", vary, 2, run={"t_end": 20.0, "samples": 5})
-    numeric = AveragingOptions(averaging="numeric")
+    # The triaxial setting of the general engine is Python: each point goes through simulate().
+    reqs = _ensemble("torqued_body", {}, 2, run={"t_end": 20.0, "samples": 5})
     out = simulate_batch(reqs[0].model, [r.params for r in reqs], [r.initial for r in reqs],
-                         reqs[0].tau, method="averaged", averaging=numeric)  # fmt: skip
+                         reqs[0].tau, method="averaged", averaging=reqs[0].averaging)  # fmt: skip
     for req, got in zip(reqs, out, strict=True):
         single = simulate(req.model, req.params, req.initial, req.tau, "averaged",
-                          averaging=numeric)  # fmt: skip
+                          averaging=req.averaging)  # fmt: skip
         assert got.integrator == single.integrator == "scipy"
         for name, values in single.columns.items():
             assert np.array_equal(got.columns[name], values), name

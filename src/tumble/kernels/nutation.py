@@ -30,12 +30,14 @@ from tumble._typing import FloatArray
 from tumble.kernels.codes import NUTATION_SEPARATRIX_TOL
 from tumble.kernels.elliptic import ellipk_mc, elliprd, elliprj
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
+from tumble.kernels.torque import _program
 
 __all__ = [
     "evaluate_separatrix_distance",
     "evaluate_well",
     "nutation_averaged",
     "nutation_columns",
+    "nutation_engine",
     "pressure",
     "pressure_rate",
     "separatrix_distance",
@@ -467,6 +469,164 @@ def nutation_averaged(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -
     out[0] = eps * (-2.0 * d * (H - a * m1 - b * m2) + da * m1 + db * m2)
     out[1] = -eps * nu * R
     out[2] = -eps * (d * (G - R * m1) + nu * R * m1)
+    out[3] = eps * da
+    out[4] = eps * db
+
+
+_SPIN_MAX = 4096  # most spin nodes of the engine's mean over φ (the Python engine's limit)
+_NUTATION_MAX = 1 << 14  # most nodes over the nutation of the engine's time average
+
+
+@jit(KERNEL)
+def _spin_mean(
+    p: FloatArray, start: int, tau: float, ps: float, thd: float, r: float, s: float,
+    c: float, rtol: float,
+) -> tuple[bool, float, float, float]:  # fmt: skip
+    """(converged, Φθ, Φ_R, Φ_G) of the body moment of the torque program ``p[start:]``
+    averaged over the spin φ at one point of the nutation: ω = (ψ' sinθ sinφ + θ' cosφ,
+    ψ' sinθ cosφ − θ' sinφ, r), Φθ = M_p cosφ − M_q sinφ, Φ_R = M_r,
+    Φ_G = (M_p sinφ + M_q cosφ) sinθ + M_r cosθ (``ps`` = ψ' sinθ, ``thd`` = θ'). The
+    trapezoidal rule from 4 nodes, doubled until two levels agree to ``rtol`` of the largest
+    mean, as :func:`tumble.averaging.nutation.torque_perturbation` averages a moment of the
+    body rate only."""
+    eye = (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)
+    t0, t1, t2 = 0.0, 0.0, 0.0
+    n, offset = 4, 0.0
+    old0, old1, old2 = 0.0, 0.0, 0.0
+    while n <= _SPIN_MAX:
+        a0, a1, a2 = 0.0, 0.0, 0.0
+        step = 2.0 * math.pi / n
+        for j in range(n):
+            phi = (j + offset) * step
+            cf, sf = math.cos(phi), math.sin(phi)
+            m1, m2, m3 = _program(p, start, tau, ps * sf + thd * cf, ps * cf - thd * sf, r, eye)
+            a0 += m1 * cf - m2 * sf
+            a1 += m3
+            a2 += (m1 * sf + m2 * cf) * s + m3 * c
+        if offset == 0.0:
+            t0, t1, t2 = a0 / n, a1 / n, a2 / n
+            offset = 0.5
+            continue
+        old0, old1, old2 = t0, t1, t2
+        t0, t1, t2 = 0.5 * (t0 + a0 / n), 0.5 * (t1 + a1 / n), 0.5 * (t2 + a2 / n)
+        n *= 2
+        tol = rtol * max(abs(t0), abs(t1), abs(t2))
+        if max(abs(t0 - old0), abs(t1 - old1), abs(t2 - old2)) <= tol:
+            return True, t0, t1, t2
+    return False, math.nan, math.nan, math.nan
+
+
+@jit(KERNEL)
+def _nutation_sums(
+    p: FloatArray, start: int, tau: float, rtol: float, mu: float, R: float, G: float,
+    da: float, db: float, cc: float, hh: float, c4: float, q1: float, q0: float, n: int,
+    offset: float,
+) -> tuple[bool, float, float, float, float, float, float, float]:  # fmt: skip
+    """Weighted sums over the nodes φ = (j + offset) 2π/n of u = cc + hh cos φ: Σw, Σw g,
+    Σw Φ_R, Σw Φ_G and Σw |g|, Σw |Φ_R|, Σw |Φ_G| (``_engine_averages``)."""
+    sw, sg, sr, sgg, ag, ar, agg = 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    step = 2.0 * math.pi / n
+    for j in range(n):
+        phi = (j + offset) * step
+        cphi, sphi = math.cos(phi), math.sin(phi)
+        u = cc + hh * cphi
+        sq = math.sqrt(-((c4 * u + q1) * u + q0))
+        s_th = math.sqrt((1.0 - u) * (1.0 + u))
+        thd = hh * sphi * sq / s_th  # θ' = −u'/sin θ, u' = −hh sin φ √(−q(u))
+        # ψ' = (G − Ru)/(1 − u²) = ½[(G + R)/(1 + u) + (G − R)/(1 − u)]: a pole term whose
+        # coefficient vanishes is absent (as in potential_gradient)
+        h = 0.0
+        if G + R != 0.0:
+            h += 0.5 * (G + R) / (1.0 + u)
+        if G - R != 0.0:
+            h += 0.5 * (G - R) / (1.0 - u)
+        ok, ph, pr, pg = _spin_mean(p, start, tau, h * s_th, thd, R / mu, s_th, u, rtol)
+        if not ok:
+            return False, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+        g = ph * thd - pr * u * h + pg * h + da * u + db * u * u  # Φθθ' + Φz·W^z, (2.3)
+        w = 1.0 / sq  # dt ∝ dφ/√(−q(u))
+        sw += w
+        sg += w * g
+        sr += w * pr
+        sgg += w * pg
+        ag += w * abs(g)
+        ar += w * abs(pr)
+        agg += w * abs(pg)
+    return True, sw, sg, sr, sgg, ag, ar, agg
+
+
+@jit(KERNEL)
+def _engine_averages(
+    p: FloatArray, start: int, tau: float, rtol: float, mu: float, R: float, G: float,
+    da: float, db: float, u1: float, u2: float, c4: float, q1: float, q0: float,
+) -> tuple[bool, float, float, float]:  # fmt: skip
+    """(converged, ⟨g⟩, ⟨Φ_R⟩, ⟨Φ_G⟩) over one nutation period for the torque program,
+    g = Φθθ' + Φz·W^z: the general engine's nutation setting
+    (:func:`tumble.averaging.nutation.numeric_averages`) for a moment of the body rate only.
+
+    The time average as a periodic trapezoidal rule in φ, u = c + h cos φ, where
+    dt ∝ dφ/√(−q(u)) (``_x2_by_trapezoid``): the nodes' weights are those of time. Doubled
+    from 16 nodes until two levels agree to ``rtol`` of the integrand's size (the largest
+    mean |row|, or the largest average), as the Python engine's rule uniform in time. Both
+    converge geometrically; next to a separatrix this one needs more nodes (its rate falls
+    like √(1 − k²))."""
+    cc, hh = 0.5 * (u1 + u2), 0.5 * (u1 - u2)
+    ok, sw, sg, sr, sgg, ag, ar, agg = _nutation_sums(
+        p, start, tau, rtol, mu, R, G, da, db, cc, hh, c4, q1, q0, 16, 0.0
+    )
+    if not ok:
+        return False, math.nan, math.nan, math.nan
+    n = 16
+    while n < _NUTATION_MAX:
+        ok, sw2, sg2, sr2, sgg2, ag2, ar2, agg2 = _nutation_sums(
+            p, start, tau, rtol, mu, R, G, da, db, cc, hh, c4, q1, q0, n, 0.5
+        )
+        if not ok:
+            return False, math.nan, math.nan, math.nan
+        old_g, old_r, old_gg = sg / sw, sr / sw, sgg / sw
+        sw, sg, sr, sgg = sw + sw2, sg + sg2, sr + sr2, sgg + sgg2
+        ag, ar, agg = ag + ag2, ar + ar2, agg + agg2
+        n *= 2
+        new_g, new_r, new_gg = sg / sw, sr / sw, sgg / sw
+        size = max(ag / sw, ar / sw, agg / sw, abs(da), abs(db))
+        top = max(abs(new_g), abs(new_r), abs(new_gg), abs(da), abs(db), size, 1e-300)
+        change = max(abs(new_g - old_g), abs(new_r - old_r), abs(new_gg - old_gg))
+        if change <= rtol * top:
+            return True, new_g, new_r, new_gg
+    return False, math.nan, math.nan, math.nan
+
+
+@jit(INLINE)
+def nutation_engine(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> None:
+    """Volosov's averaged equations in the energy form, y = [H, R, G, a, b], with the averages
+    of a moment of the body rate only (a torque program) by the general engine's nutation
+    setting: H′ = ε⟨Φθθ' + Φz·W^z⟩, z′ = ε⟨Φz⟩, Φ_a, Φ_b the pressure's law. Parameters: the
+    full kernel's, then [u_hint, rtol, torque program]; NaN where the averages do not exist or
+    do not converge, so that the step is rejected."""
+    eps = p[3]
+    base = 9 + 2 * int(p[8])
+    u_hint, rtol = p[base], p[base + 1]
+    H, R, G, a, b = y[0], y[1], y[2], y[3], y[4]
+    w = well_averages(R, G, a, b, H, u_hint, False)
+    ok = w[_OK] == 1.0
+    if ok:
+        u1, u2 = w[_U1], w[_U2]
+        s, pr = u1 + u2, u1 * u2
+        c4 = 2.0 * b  # the deflation of f, as in well_averages
+        q1 = 2.0 * a + c4 * s
+        q0 = -2.0 * b - R * R - 2.0 * H + s * q1 - c4 * pr
+        tau = eps * t
+        rate = pressure_rate(p, tau)
+        da, db = p[1] * rate, p[2] * rate
+        ok, g, pR, pG = _engine_averages(p, base + 2, tau, rtol, p[0], R, G, da, db, u1, u2,
+                                         c4, q1, q0)  # fmt: skip
+    if not ok:
+        for j in range(5):
+            out[j] = math.nan
+        return
+    out[0] = eps * g
+    out[1] = eps * pR
+    out[2] = eps * pG
     out[3] = eps * da
     out[4] = eps * db
 

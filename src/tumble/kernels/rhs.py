@@ -25,6 +25,9 @@ Kinds
 ``KIND_NUTATION_AVERAGED``
     Volosov's averaged equations of Serov (1991) in the energy form, state ``[H, R, G, a, b]``
     (:mod:`tumble.kernels.nutation`).
+``KIND_NUTATION_ENGINE``
+    The same in the general engine's nutation setting, for a moment of the body rate only
+    (:func:`tumble.kernels.nutation.nutation_engine`).
 ``KIND_SPINNER_AVERAGED``
     The general engine's spinner setting for a moment of the body rate only, state
     ``[k, ρ, σ, ϑ]``, parameters ``[κ, rtol, torque program]`` (:mod:`tumble.kernels.spinner`).
@@ -51,6 +54,7 @@ from tumble.kernels.codes import (
     KIND_MEDIUM_AVERAGED,
     KIND_NONLINEAR_MOMENT,
     KIND_NUTATION_AVERAGED,
+    KIND_NUTATION_ENGINE,
     KIND_RIGID_BODY,
     KIND_ROTATING_FIELD,
     KIND_SPINNER_AVERAGED,
@@ -60,7 +64,12 @@ from tumble.kernels.codes import (
 )
 from tumble.kernels.elliptic import elliprd, elliprf
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, OVERLOAD, jit
-from tumble.kernels.nutation import nutation_averaged, pressure, separatrix_distance
+from tumble.kernels.nutation import (
+    nutation_averaged,
+    nutation_engine,
+    pressure,
+    separatrix_distance,
+)
 from tumble.kernels.spinner import spinner_averaged
 from tumble.kernels.torque import quaternion_rates, torque_moment
 
@@ -294,6 +303,8 @@ def _any_kind(kind: int, t: float, y: FloatArray, p: FloatArray, out: FloatArray
         nutation_averaged(t, y, p, out)
     elif kind == KIND_SPINNER_AVERAGED:
         spinner_averaged(t, y, p, out)
+    elif kind == KIND_NUTATION_ENGINE:
+        nutation_engine(t, y, p, out)
     else:
         for j in range(y.size):
             out[j] = math.nan
@@ -328,6 +339,7 @@ _BY_KIND: dict[int, Callable[..., None]] = {
     KIND_FIELD_AVERAGED: _with_time(_field_averaged),
     KIND_NUTATION_AVERAGED: nutation_averaged,
     KIND_SPINNER_AVERAGED: spinner_averaged,
+    KIND_NUTATION_ENGINE: nutation_engine,
 }
 
 

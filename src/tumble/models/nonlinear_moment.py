@@ -46,6 +46,7 @@ from tumble.kernels import (
     EVENT_THETA_DOT,
     KIND_NONLINEAR_MOMENT,
     KIND_NUTATION_AVERAGED,
+    KIND_NUTATION_ENGINE,
     Kernel,
 )
 from tumble.kernels.nutation import evaluate_separatrix_distance, evaluate_well, nutation_columns
@@ -582,7 +583,8 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
     engine = engine_perturbation(p) if options.averaging == "numeric" else None
     form = _COORDINATES[options.coordinates or "energy"]
     full = full_kernel(p)
-    compiled = engine is None and form == "energy" and full is not None
+    program = damping_torque(p).program if engine is not None else None
+    compiled = form == "energy" and full is not None and (engine is None or program is not None)
     start = _compiled_start(p, st) if compiled and options.start == "exact" else None
     if start is None:
         H, z, orbit = averaged_initial(p, st, engine, options.start)
@@ -643,8 +645,13 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
     def kernel(p: Params) -> Kernel | None:
         if full is None:
             return None
-        params = np.append(full.params, u_hint)  # the full kernel's, and the well's hint
-        return replace(full, kind=KIND_NUTATION_AVERAGED, params=params, event=EVENT_NONE)
+        if engine is None:  # the closed-form averages: the full kernel's, and the well's hint
+            params = np.append(full.params, u_hint)
+            return replace(full, kind=KIND_NUTATION_AVERAGED, params=params, event=EVENT_NONE)
+        # the general engine on the damping as a torque program (a moment of the body rate)
+        assert program is not None
+        params = np.concatenate([full.params, [u_hint, AVERAGE_RTOL], program])
+        return replace(full, kind=KIND_NUTATION_ENGINE, params=params, event=EVENT_NONE)
 
     separatrix = Breakpoint(
         below_barriers, refuse, event=EVENT_NUTATION_SEPARATRIX if compiled else EVENT_NONE

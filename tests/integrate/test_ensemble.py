@@ -11,7 +11,6 @@ import pytest
 from tumble.errors import ParameterError, TumbleError
 from tumble.integrate import Trajectory, simulate, simulate_batch
 from tumble.io.scenario import parse_scenario, template
-from tumble.models.base import AveragingOptions
 
 
 def _same(batch: Trajectory, single: Trajectory) -> None:

@@ -22,11 +22,11 @@ import math
 from collections.abc import Callable
 from typing import cast
 
-import numpy as np
 from numba.cpython.unsafe.tuple import tuple_setitem as _tuple_setitem
 
 from tumble._typing import FloatArray
 from tumble.kernels.jit import INLINE, KERNEL, jit
+from tumble.kernels.romberg import romberg_weights
 from tumble.kernels.torque import _program
 from tumble.rotations import SINGULAR_SIN
 
@@ -37,20 +37,7 @@ _LEVELS = 11  # 16 … 16384 nodes, the Python engine's limit
 _ROMBERG_PREVIOUS = 1e3  # the Romberg test's bound on the previous change, × tol
 
 
-def _romberg_weights(levels: int) -> FloatArray:
-    """W with R(j, j) = Σ_i W[j, i] T_i, as :func:`tumble.averaging.quadrature` builds it."""
-    rows = [np.eye(levels)[0]]
-    weights = np.zeros((levels, levels))
-    weights[0] = rows[0]
-    for j in range(1, levels):
-        fresh = [np.eye(levels)[j]]
-        for m, coarse in enumerate(rows, start=1):
-            fresh.append(fresh[-1] + (fresh[-1] - coarse) / (4.0**m - 1.0))
-        weights[j], rows = fresh[-1], fresh
-    return weights
-
-
-_W = _romberg_weights(_LEVELS)  # a constant of the compiled code
+_W = romberg_weights(_LEVELS)  # a constant of the compiled code
 
 _Table = tuple[float, ...]  # T_j of μ3 at 2j, of μ2 at 2j + 1 (fixed size, no allocation)
 _EMPTY = (0.0,) * (2 * _LEVELS)

@@ -373,35 +373,49 @@ def _integrate_compiled_split(
     times = sorted({float(b.time) for b in breakpoints if b.time is not None})
     stops = [t for t in times if slack < t < t_end - slack] + [t_end]
     budget = MAX_STEPS if max_steps is None else int(max_steps)
-    starts: list[float] = [0.0]
-    sols: list[Callable[[FloatArray], FloatArray]] = []
-    steps: list[float] = []
-    t0, y, first, nfev = 0.0, y0, 0.0, 0
+    results: list[dop853.Solution] = []
+    t0, y, first, steps = 0.0, y0, 0.0, 0
     while t0 < t_end:
         stop = next(s for s in stops if s > t0)
         watched = replace(kernel, event=surface.event, terminal=True) if surface else kernel
         options = dop853.Options(rtol, atol, min(first, stop - t0))
         run = dop853.Integration(watched, y, stop, options, t0=t0)
         while not run.advance(dop853.CHUNK_STEPS):
-            if run.progress.n_steps + len(steps) > budget:
+            if run.progress.n_steps + steps > budget:
                 raise IntegrationError(f"{what}: run.max_steps = {budget} steps spent at t = "
                                        f"{run.progress.t:.6g} of {t_end:.6g}")  # fmt: skip
         res = run.solution()
-        stopped = res.status == dop853.STOPPED
-        piece = compiled_dense(replace(res, status=0) if stopped else res, what)
-        sols.append(_states_by_rows(piece))
-        steps.extend(res.ts[1:])
-        nfev += res.nfev
+        if res.status not in (0, dop853.STOPPED):
+            compiled_dense(res, what)  # raises: the piece failed
+        results.append(res)
+        steps += res.ts.size - 1
         first = float(run.progress.h_abs)  # the step the controller would try next
         t0, y = float(res.t), res.y
-        if stopped:
+        if res.status == dop853.STOPPED:
             assert surface is not None  # only a watched surface stops a run
             if surface.restart is not None:
                 y = np.asarray(surface.restart(t0, y), dtype=float)
             surface = None  # crossed at most once
-        if t0 < t_end:
-            starts.append(t0)
-    ts = np.concatenate([[0.0], np.asarray(steps)])
+    return joined_pieces(results, what)
+
+
+def joined_pieces(results: Sequence[dop853.Solution], what: str) -> DenseSolution:
+    """The dense output of consecutive compiled pieces of one run (each restarted at the end
+    of the last: a breakpoint's time, or a surface's terminal event); IntegrationError if a
+    piece failed. The ensembles join their pieces the same way."""
+    sols: list[Callable[[FloatArray], FloatArray]] = []
+    starts: list[float] = [0.0]
+    steps: list[FloatArray] = []
+    nfev = 0
+    for k, res in enumerate(results):
+        stopped = res.status == dop853.STOPPED
+        piece = compiled_dense(replace(res, status=0) if stopped else res, what)
+        sols.append(_states_by_rows(piece))
+        steps.append(res.ts[1:])
+        nfev += res.nfev
+        if k + 1 < len(results):
+            starts.append(float(res.t))
+    ts = np.concatenate([[0.0], *steps])
     sol = sols[0] if len(sols) == 1 else _Piecewise(starts, sols)
     return DenseSolution(ts, nfev, sol, "numba")
 

@@ -25,7 +25,7 @@ import uuid
 from collections.abc import Callable, Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal
 
 import numpy as np
 import xarray as xr
@@ -85,24 +85,36 @@ class SweepResult:
         return self.computed / self.wall_time if self.wall_time > 0 else 0.0
 
 
-def _batchable(req: RunRequest) -> bool:
-    """Whether the full run of ``req`` can go through the compiled batch."""
-    if "full" not in req.methods or req.integrator == "scipy":
+def _batchable(req: RunRequest, method: str) -> bool:
+    """Whether ``method`` of ``req`` can go through the compiled batch: the full run of a
+    compiled full form, or the averaged run of a form with a kernel (decided point by point
+    inside the batch; the others run there as :func:`simulate` would)."""
+    if method not in req.methods or req.integrator == "scipy":
         return False
+    if method == "averaged":
+        return req.model.averaged is not None
     full = req.model.full.form()
     return full.kernel is not None and full.kernel(req.params) is not None
 
 
 def _batched(requests: Sequence[RunRequest | None]) -> list[dict[str, Trajectory]]:
-    """The full trajectories of every batchable request, integrated together per (model, times,
-    tolerances); the others get an empty mapping and are run point by point."""
+    """The full and averaged trajectories of every batchable request, integrated together
+    per (model, method, times, tolerances, averaging); the others get no entry and are run
+    point by point. Averaged ensembles keep their dense output: a point's validity checks
+    evaluate it anywhere, as for a run of its own."""
     out: list[dict[str, Trajectory]] = [{} for _ in requests]
     groups: dict[tuple[Any, ...], list[int]] = {}
     for i, req in enumerate(requests):
-        if req is not None and _batchable(req):
-            key = (req.model.name, req.tau.tobytes(), req.rtol, req.atol, req.max_steps)
-            groups.setdefault(key, []).append(i)
-    for members in groups.values():
+        if req is None:
+            continue
+        for method in ("full", "averaged"):
+            if _batchable(req, method):
+                extra = req.averaging if method == "averaged" else None
+                key = (req.model.name, method, req.tau.tobytes(), req.rtol, req.atol,
+                       req.max_steps, extra)  # fmt: skip
+                groups.setdefault(key, []).append(i)
+    for key, members in groups.items():
+        which: Literal["full", "averaged"] = "averaged" if key[1] == "averaged" else "full"
         first = requests[members[0]]
         assert first is not None
         try:
@@ -114,6 +126,9 @@ def _batched(requests: Sequence[RunRequest | None]) -> list[dict[str, Trajectory
                 rtol=first.rtol,
                 atol=first.atol,
                 max_steps=first.max_steps,
+                method=which,
+                averaging=first.averaging,
+                dense=which == "averaged",
             )
         except Exception:  # each point then runs, and fails, on its own
             continue
@@ -121,7 +136,7 @@ def _batched(requests: Sequence[RunRequest | None]) -> list[dict[str, Trajectory
             # A point that failed in the batch is run again on its own, so that its failure
             # is reported by run() exactly as ``tumble run`` would report it.
             if isinstance(traj, Trajectory):
-                out[i] = {"full": traj}
+                out[i][which] = traj
     return out
 
 
@@ -146,7 +161,7 @@ def compute_chunk(
     keep : Keep
         What to keep.
     batch : bool
-        Integrate the chunk's full runs together with the compiled batch path
+        Integrate the chunk's full and averaged runs together with the compiled batch path
         (:func:`tumble.integrate.simulate_batch`); the records are the same either way.
 
     Returns
@@ -174,7 +189,7 @@ def compute_chunk(
             records.append(failed_record(invalid[i]))
         else:
             rec = run_point(req, keep, pre[i])
-            if "full" in pre[i]:
+            if pre[i]:  # its full or averaged run went through the compiled batch
                 rec["batch"] = 1
             records.append(rec)
     return records

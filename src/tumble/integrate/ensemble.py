@@ -23,9 +23,11 @@ from tumble.errors import IntegrationError, TumbleError
 from tumble.integrate import dop853
 from tumble.integrate.dop853.block import block_entry, empty_block
 from tumble.integrate.dop853.core import OK, RUNNING, STOPPED
+from tumble.integrate.dop853.tableau import N_INTERPOLANT
 from tumble.integrate.limits import MAX_STEPS
-from tumble.integrate.ode import compiled_breakpoints
+from tumble.integrate.ode import compiled_breakpoints, joined_pieces
 from tumble.integrate.simulate import Trajectory, _unwrap_columns, simulate
+from tumble.integrate.simulate import _trajectory as _dense_trajectory
 from tumble.kernels import EVENT_NONE, Kernel
 from tumble.models.base import AveragedForm, AveragingOptions, Breakpoint, Model
 
@@ -53,6 +55,7 @@ class _Point(Generic[P, S]):
     surface: Breakpoint | None  # the one surface, with its compiled event
     samples: FloatArray = field(default_factory=lambda: np.empty(0))  # (len(tau), dim)
     nfev: int = 0
+    pieces: list[dop853.Solution] = field(default_factory=list)  # with ``dense``
 
 
 def averaged_batch(
@@ -66,6 +69,7 @@ def averaged_batch(
     averaging: AveragingOptions,
     threads: int | None,
     max_steps: int = MAX_STEPS,
+    dense: bool = False,
 ) -> list[Trajectory | TumbleError]:
     """The averaged method of many points (see :func:`tumble.integrate.simulate_batch`)."""
     assert model.averaged is not None
@@ -132,10 +136,18 @@ def averaged_batch(
             groups.setdefault(key, []).append(pt)
         for group in groups.values():
             start = time.perf_counter()
-            _integrate_group(model.name, group, tau, rtol, atol, max_steps, out)
+            _integrate_group(model.name, group, tau, rtol, atol, max_steps, dense, out)
             wall = (time.perf_counter() - start) / len(group)
             for pt in group:
-                if out[pt.index] is None:
+                if out[pt.index] is not None:
+                    continue
+                if dense:
+                    what = f"{model.name} averaged equations {pt.form.equation}"
+                    sol = joined_pieces(pt.pieces, what)
+                    out[pt.index] = _dense_trajectory(model, pt.params, pt.initial, tau,
+                                                      "averaged", pt.form, sol,
+                                                      time.perf_counter() - wall)  # fmt: skip
+                else:
                     out[pt.index] = _trajectory(model, pt, tau, wall, single)
 
     blocks = [range(k, min(k + BLOCK_SIZE, n_points)) for k in range(0, n_points, BLOCK_SIZE)]
@@ -158,6 +170,7 @@ def _integrate_group(
     rtol: float,
     atol: float,
     max_steps: int,
+    dense: bool,
     out: list[Any],
 ) -> None:
     """Advance every run of ``group`` (one kind, one parameter length) to its end, piece by
@@ -177,13 +190,23 @@ def _integrate_group(
         for r in active.tolist():
             arrays["T"][r] = group[r].stops[piece[r]]
         args = (active, P, arrays["T"], arrays["events"], arrays["first"], arrays["t0"],
-                arrays["ie"], float(rtol), float(atol), int(max_steps), tau, arrays["Y"],
-                arrays["F"], arrays["Y_eval"], arrays["status"], arrays["nfev"])  # fmt: skip
-        block_entry(kind, args)(kind, *args)
+                arrays["ie"], float(rtol), float(atol), int(max_steps), bool(dense), tau,
+                arrays["Y"], arrays["F"], arrays["Y_eval"], arrays["status"],
+                arrays["nfev"])  # fmt: skip
+        pieces = {int(pc[0]): pc[1:] for pc in block_entry(kind, args)(kind, *args)}
         going = []
         for r in active.tolist():
             pt, status = group[r], int(arrays["status"][r])
             t = float(arrays["t0"][r])
+            if dense:  # the piece as a Solution of the single run's integrator
+                n_rec, nfev, ts, ys, Fs = pieces[r]
+                kept = int(n_rec) + 1
+                pt.pieces.append(dop853.Solution(
+                    status, t, arrays["Y"][r].copy(), int(nfev), ts[:kept],
+                    ys[: kept * dim].reshape(kept, dim),
+                    Fs[: int(n_rec) * N_INTERPOLANT * dim].reshape(-1, N_INTERPOLANT, dim),
+                    np.empty((0, dim)), np.empty(0), np.empty(0), np.empty((0, dim)),
+                ))  # fmt: skip
             what = f"{name} averaged equations {pt.form.equation}"
             try:
                 if status == STOPPED:

@@ -504,6 +504,7 @@ def simulate_batch(
     max_steps: int = MAX_STEPS,
     method: Literal["full", "averaged"] = "full",
     averaging: AveragingOptions = DEFAULT_AVERAGING,
+    dense: bool = False,
 ) -> list[Trajectory | TumbleError]:
     """The full or the averaged method of many points of one model at once.
 
@@ -515,12 +516,14 @@ def simulate_batch(
 
     ``averaged`` (an ensemble: initial states or parameter sets by the thousand): the points
     whose averaged form has a kernel go in blocks through one compiled call per piece of
-    their runs (:mod:`tumble.integrate.ensemble`), keeping their samples only; each equals
-    ``simulate(model, p, initial, tau, "averaged")`` to the integration's round-off (the
-    same steps; the samples are interpolated in the loop rather than from the dense output),
-    and its ``slow`` integrates the point again, alone, on first use. The others (a Python
-    right-hand side: the general engine, a user torque) run one by one through
-    :func:`simulate`.
+    their runs (:mod:`tumble.integrate.ensemble`). By default they keep their samples only:
+    each equals ``simulate(model, p, initial, tau, "averaged")`` to the integration's
+    round-off (the same steps; the samples are interpolated in the loop rather than from the
+    dense output), and its ``slow`` integrates the point again, alone, on first use. With
+    ``dense`` they keep every step's interpolant too: each then equals ``simulate``'s to the
+    bit, ``slow`` included (what a sweep needs for the validity checks), at the cost of the
+    columns on every step. The others (a Python right-hand side: the triaxial engine, a user
+    torque) run one by one through :func:`simulate`.
 
     Parameters
     ----------
@@ -543,6 +546,8 @@ def simulate_batch(
         Which description of the motion to compute.
     averaging : AveragingOptions
         For ``averaged``: as in :func:`simulate`, shared by every point.
+    dense : bool
+        For ``averaged``: keep the dense output of every point.
 
     Returns
     -------
@@ -556,7 +561,7 @@ def simulate_batch(
 
         return averaged_batch(
             model, params, initials, tau, rtol=rtol, atol=atol, averaging=averaging,
-            threads=threads, max_steps=max_steps,
+            threads=threads, max_steps=max_steps, dense=dense,
         )  # fmt: skip
     if method != "full":
         raise ParameterError(f"simulate_batch: method {method!r} is not 'full' or 'averaged'")

@@ -14,6 +14,7 @@ from typing import Any, cast
 
 import numba
 import numpy as np
+from numba.typed import List
 
 from tumble._typing import FloatArray
 from tumble.integrate.dop853.core import FRESH, Options, Progress, advance
@@ -22,12 +23,20 @@ from tumble.kernels.jit import ENTRY, jit
 __all__ = ["advance_block", "block_entry"]
 
 
+_PIECE = numba.types.Tuple(
+    (numba.int64, numba.int64, numba.int64, numba.float64[::1], numba.float64[::1],
+     numba.float64[::1])
+)  # fmt: skip
+"""A piece of a dense run: (run, steps, evaluations, times, states, interpolants), flat."""
+
+
 @jit(ENTRY)
 def advance_block(
     kind: int, rows: Any, P: FloatArray, T: FloatArray, events: Any, first: FloatArray,
-    t0: FloatArray, ie: Any, rtol: float, atol: float, max_steps: int, t_eval: FloatArray,
-    Y: FloatArray, F: FloatArray, Y_eval: FloatArray, status: Any, nfev: Any,
-) -> None:  # fmt: skip
+    t0: FloatArray, ie: Any, rtol: float, atol: float, max_steps: int, dense: bool,
+    t_eval: FloatArray, Y: FloatArray, F: FloatArray, Y_eval: FloatArray, status: Any,
+    nfev: Any,
+) -> Any:  # fmt: skip
     """Advance each run ``i`` of ``rows`` from ``t0[i]`` (state ``Y[i]``) towards ``T[i]``.
 
     Run i has parameters ``P[i]``, event code ``events[i]`` (terminal; 0: none), first step
@@ -35,25 +44,30 @@ def advance_block(
     ``t_eval``) from index ``ie[i]``. On return ``t0[i]`` is the time reached, ``Y[i]`` the
     state there, ``first[i]`` the step to try next, ``ie[i]`` the next sample, ``status[i]``
     that of :mod:`tumble.integrate.dop853.core` (``RUNNING``: ``max_steps`` spent) and
-    ``nfev[i]`` grown by the evaluations of this piece.
+    ``nfev[i]`` grown by the evaluations of this piece. With ``dense`` every step and its
+    interpolant are kept as well, and returned as one ``_PIECE`` per run (else none).
     """
+    pieces = List.empty_list(_PIECE)
     for r in range(rows.size):
         i = rows[r]
         ev = events[i]
-        opts = Options(rtol, atol, first[i], False, False, ev, max_steps, ev != 0)
+        opts = Options(rtol, atol, first[i], dense, dense, ev, max_steps, ev != 0)
         prog = Progress(FRESH, t0[i], 0.0, 1.0, 0, 0, ie[i])
-        progress, _ = advance(kind, P[i], T[i], opts, prog, Y[i], F[i], t_eval, Y_eval[i])
+        progress, chunk = advance(kind, P[i], T[i], opts, prog, Y[i], F[i], t_eval, Y_eval[i])
         status[i] = progress[0]
         t0[i] = progress[1]
         first[i] = progress[2]
         nfev[i] += progress[4]
         ie[i] = progress[6]
+        if dense:
+            pieces.append((i, chunk[0], progress[4], chunk[1], chunk[2], chunk[3]))
+    return pieces
 
 
-_ENTRIES: dict[tuple[Any, ...], Callable[..., None]] = {}
+_ENTRIES: dict[tuple[Any, ...], Callable[..., Any]] = {}
 
 
-def block_entry(kind: int, args: tuple[Any, ...]) -> Callable[..., None]:
+def block_entry(kind: int, args: tuple[Any, ...]) -> Callable[..., Any]:
     """:func:`advance_block` compiled for ``kind`` as a compile-time constant (as
     :func:`tumble.integrate.dop853.driver._specialised` compiles the single run), once per
     kind and argument types; ``args`` are the arguments after the kind."""

@@ -4,8 +4,9 @@ A :class:`Kernel` names a right-hand side of :mod:`tumble.kernels.rhs` by its ki
 its parameters into one float array; the integrator of :mod:`tumble.integrate.dop853` runs
 it. The built-in torques are defined here too, once (:mod:`tumble.kernels.torque`): the
 classes of :mod:`tumble.torques` evaluate them from Python, the right-hand sides from
-compiled code. This package reads nothing of tumble but the errors and types, so that every
-other part may build on it.
+compiled code. This package reads nothing of tumble but the errors, the types and one
+threshold of the rotations (where 3-1-3 angles are singular), so that every other part may build
+on it.
 """
 
 from __future__ import annotations

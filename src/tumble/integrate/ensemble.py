@@ -22,10 +22,10 @@ from tumble._typing import FloatArray
 from tumble.errors import IntegrationError, TumbleError
 from tumble.integrate import dop853
 from tumble.integrate.dop853.block import block_entry, empty_block
-from tumble.integrate.dop853.core import OK, RUNNING, STOPPED
-from tumble.integrate.dop853.tableau import N_INTERPOLANT
+from tumble.integrate.dop853.core import OK, RUNNING, STOPPED, Chunk
+from tumble.integrate.dop853.driver import _cut
 from tumble.integrate.limits import MAX_STEPS
-from tumble.integrate.ode import compiled_breakpoints, joined_pieces
+from tumble.integrate.ode import compiled_breakpoints, joined_pieces, split_plan
 from tumble.integrate.simulate import Trajectory, _unwrap_columns, simulate
 from tumble.integrate.simulate import _trajectory as _dense_trajectory
 from tumble.kernels import EVENT_NONE, Kernel
@@ -112,14 +112,7 @@ def averaged_batch(
         except TumbleError as exc:
             out[i] = exc
             return None
-        slack = 1e-12 * max(1.0, t_end)
-        times = sorted({float(b.time) for b in form.breakpoints if b.time is not None})
-        stops = [t for t in times if slack < t < t_end - slack] + [t_end]
-        surfaces = [b for b in form.breakpoints if b.time is None]
-        surface = surfaces[0] if surfaces else None
-        if surface is not None and surface.condition is not None:
-            if surface.condition(0.0, y0) == 0.0:
-                surface = None  # the start sits on it: already passed
+        stops, surface = split_plan(form.breakpoints, y0, t_end)
         return _Point(i, p, initial, form, kernel, y0, stops, surface)
 
     def run_block(indices: Sequence[int]) -> None:
@@ -200,13 +193,12 @@ def _integrate_group(
             t = float(arrays["t0"][r])
             if dense:  # the piece as a Solution of the single run's integrator
                 n_rec, nfev, ts, ys, Fs = pieces[r]
-                kept = int(n_rec) + 1
-                pt.pieces.append(dop853.Solution(
-                    status, t, arrays["Y"][r].copy(), int(nfev), ts[:kept],
-                    ys[: kept * dim].reshape(kept, dim),
-                    Fs[: int(n_rec) * N_INTERPOLANT * dim].reshape(-1, N_INTERPOLANT, dim),
-                    np.empty((0, dim)), np.empty(0), np.empty(0), np.empty((0, dim)),
-                ))  # fmt: skip
+                no_events = np.empty(0)
+                chunk = Chunk(int(n_rec), ts, ys, Fs, no_events, no_events, no_events, 0)
+                ts_, ys_, F_, ev_t, ev_s, ev_y = _cut(chunk, dim, True)
+                pt.pieces.append(dop853.Solution(status, t, arrays["Y"][r].copy(), int(nfev),
+                                                 ts_, ys_, F_, np.empty((0, dim)), ev_t,
+                                                 ev_s, ev_y))  # fmt: skip
             what = f"{name} averaged equations {pt.form.equation}"
             try:
                 if status == STOPPED:

@@ -365,13 +365,7 @@ def _integrate_compiled_split(
             f"{what}: the compiled integrator takes breakpoints at known times and at most "
             "one surface with a compiled event function"
         )
-    surface = surfaces[0] if surfaces else None
-    if surface is not None and surface.condition is not None and surface.condition(0.0, y0) == 0.0:
-        surface = None  # the start sits on it: already passed
-    # A kink within round-off of either end is the start or the end itself.
-    slack = 1e-12 * max(1.0, t_end)
-    times = sorted({float(b.time) for b in breakpoints if b.time is not None})
-    stops = [t for t in times if slack < t < t_end - slack] + [t_end]
+    stops, surface = split_plan(breakpoints, y0, t_end)
     budget = MAX_STEPS if max_steps is None else int(max_steps)
     results: list[dop853.Solution] = []
     t0, y, first, steps = 0.0, y0, 0.0, 0
@@ -397,6 +391,22 @@ def _integrate_compiled_split(
                 y = np.asarray(surface.restart(t0, y), dtype=float)
             surface = None  # crossed at most once
     return joined_pieces(results, what)
+
+
+def split_plan(
+    breakpoints: Sequence[Breakpoint], y0: FloatArray, t_end: float
+) -> tuple[list[float], Breakpoint | None]:
+    """Where a compiled run stops (the breakpoints' known times inside (0, t_end), then
+    t_end) and the one surface it watches (None if the start sits on it: already passed).
+    The single runs and the ensembles split alike."""
+    surfaces = [b for b in breakpoints if b.time is None]
+    surface = surfaces[0] if surfaces else None
+    if surface is not None and surface.condition is not None and surface.condition(0.0, y0) == 0.0:
+        surface = None
+    # A kink within round-off of either end is the start or the end itself.
+    slack = 1e-12 * max(1.0, t_end)
+    times = sorted({float(b.time) for b in breakpoints if b.time is not None})
+    return [t for t in times if slack < t < t_end - slack] + [t_end], surface
 
 
 def joined_pieces(results: Sequence[dop853.Solution], what: str) -> DenseSolution:

@@ -363,11 +363,13 @@ def test_the_step_budget_stops_a_run_with_the_key_to_change(tmp_path):
 
 
 def test_the_step_budget_holds_on_the_scipy_path_too():
-    # The averaged equations (Python right-hand side, scipy; ~6 steps here) spend the same
-    # key's budget...
+    # The averaged equations (~6 steps here) spend the same key's budget, on the Python
+    # engine under scipy and compiled alike (a budget below one chunk of steps included)...
     r = load_scenario(EXAMPLES / "tb_gravity_gradient.toml").request
-    with pytest.raises(IntegrationError, match=r"run\.max_steps = 2 steps spent at t = "):
-        simulate(r.model, r.params, r.initial, r.tau, "averaged", max_steps=2)
+    for integrator in ("scipy", "numba"):
+        with pytest.raises(IntegrationError, match=r"run\.max_steps = 2 steps spent at t = "):
+            simulate(r.model, r.params, r.initial, r.tau, "averaged", max_steps=2,
+                     integrator=integrator)  # fmt: skip
     # ...and a stiff Python right-hand side is stopped from its pace after ~1000 steps (the
     # message says so), not after the hours its 2e10 steps would take.
     with pytest.raises(IntegrationError, match=r"far beyond run\.max_steps = 1000000"):

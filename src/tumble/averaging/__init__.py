@@ -10,7 +10,12 @@
 
 from tumble.averaging.quadrature import AVERAGE_RTOL, AveragingError, torus_mean
 from tumble.averaging.spinner import spinner_average
-from tumble.averaging.triaxial import nearest_resonance, triaxial_average, triaxial_average_vector
+from tumble.averaging.triaxial import (
+    nearest_resonance,
+    triaxial_average,
+    triaxial_average_vector,
+    triaxial_kernel,
+)
 
 __all__ = [
     "AVERAGE_RTOL",
@@ -20,4 +25,5 @@ __all__ = [
     "torus_mean",
     "triaxial_average",
     "triaxial_average_vector",
+    "triaxial_kernel",
 ]

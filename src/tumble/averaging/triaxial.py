@@ -54,7 +54,14 @@ from scipy import special
 
 from tumble._typing import ArrayLike, FloatArray
 from tumble.averaging.quadrature import AVERAGE_RTOL, AveragingError, BatchedTorque
+from tumble.bodies import proper_sorting
 from tumble.errors import ParameterError, TumbleWarning, check_finite, check_range
+from tumble.kernels import KIND_TRIAXIAL_AVERAGED, Kernel
+from tumble.kernels.codes import (
+    DEGENERATE_RTOL,
+    TERM_EDDY_CURRENT,
+    TERM_GRAVITY_GRADIENT,
+)
 from tumble.rotations import matrix_to_quat, quat_multiply
 from tumble.torques import (
     ConstantBodyTorque,
@@ -71,7 +78,6 @@ from tumble.unperturbed.euler_poinsot import (
     SEPARATRIX_RTOL,
     EulerPoinsot,
     fast_frequencies,
-    proper_sorting,
     regime,
 )
 
@@ -83,6 +89,7 @@ __all__ = [
     "nearest_resonance",
     "triaxial_average",
     "triaxial_average_vector",
+    "triaxial_kernel",
 ]
 
 MOMENTUM_FLOOR = 1e-12
@@ -725,6 +732,76 @@ def triaxial_average_vector(
     T = 0.5 * r * L * L
     mean, _ = _means(torque, I_user, Lv, L, T, float(t), forcing_period, rtol, _GROUPS_R, batched)
     return np.array([*mean[:3], 2.0 * mean[4] / (L * L)])
+
+
+_PERIOD_RTOL = 1e-9
+"""How close to a whole number the forcing period must be in periods of each time-dependent
+term for the compiled engine (which averages each term over its own period)."""
+
+
+def triaxial_kernel(
+    torque: Any,
+    inertia: ArrayLike,
+    forcing_period: float | None = None,
+    *,
+    factor: float = 1.0,
+    rtol: float = AVERAGE_RTOL,
+) -> Kernel | None:
+    """:func:`triaxial_average_vector` compiled (:mod:`tumble.kernels.triaxial`), times
+    ``factor``; None where only the Python engine applies. Its separatrix r = 1/I2 is the
+    compiled event ``EVENT_TRIAXIAL_SEPARATRIX``.
+
+    The compiled engine averages each time-dependent term over its own phase in closed form
+    and the precession on four nodes, which is exact for the built-in terms and only for
+    them; it refines the polhode phase with the Python engine's test.
+
+    Parameters
+    ----------
+    torque : Torque or callable
+        The moment; compiled only when every term is built in (:attr:`Torque.program`).
+    inertia : array_like, shape (3,)
+        Principal moments, any order [inertia unit].
+    forcing_period : float, optional
+        Period of the explicit time dependence [τ]; every time-dependent term's period must
+        divide it.
+    factor : float
+        Multiplies the rates (the ε of a model whose torque is given without it) [1].
+    rtol : float
+        As in :func:`triaxial_average` [1].
+
+    Returns
+    -------
+    Kernel or None
+        None for a Python torque, a body with two equal moments (within DEGENERATE_RTOL·I3:
+        the Python engine's symmetric formulas), a time-dependent term without a forcing
+        period, or one whose period does not divide it.
+    """
+    terms = torque.compiled_terms() if hasattr(torque, "compiled_terms") else None
+    program = getattr(torque, "program", None)
+    if terms is None or program is None:
+        return None
+    I_user = np.asarray(inertia, dtype=float).reshape(3)
+    I1, I2, I3 = sorted(I_user.tolist())
+    if min(I2 - I1, I3 - I2) <= DEGENERATE_RTOL * I3:
+        return None
+    for code, _, payload in terms:
+        if code == TERM_GRAVITY_GRADIENT:
+            rate = float(payload[3])  # the orbital rate n
+        elif code == TERM_EDDY_CURRENT:
+            rate = float(payload[1])  # the field's rate
+        else:
+            continue
+        if rate == 0.0:
+            continue
+        if forcing_period is None:
+            return None
+        cycles = float(forcing_period) * abs(float(rate)) / (2.0 * math.pi)
+        if round(cycles) < 1 or abs(cycles - round(cycles)) > _PERIOD_RTOL * cycles:
+            return None
+    omega_ref = 1.0 if forcing_period is None else 2.0 * math.pi / float(forcing_period)
+    floor = MOMENTUM_FLOOR * I3 * omega_ref
+    head = [factor, rtol, floor, I1, I2, I3, *proper_sorting(I_user).ravel(), *I_user]
+    return Kernel(KIND_TRIAXIAL_AVERAGED, np.concatenate([head, program]))
 
 
 # ---------------------------------------------------------------------------------------------

@@ -374,8 +374,11 @@ def _integrate_compiled_split(
         watched = replace(kernel, event=surface.event, terminal=True) if surface else kernel
         options = dop853.Options(rtol, atol, min(first, stop - t0))
         run = dop853.Integration(watched, y, stop, options, t0=t0)
-        while not run.advance(dop853.CHUNK_STEPS):
-            if run.progress.n_steps + steps > budget:
+        # Chunks no longer than the budget left, so that a small budget is kept exactly.
+        while not run.advance(
+            min(dop853.CHUNK_STEPS, max(1, budget - steps - run.progress.n_steps))
+        ):
+            if run.progress.n_steps + steps >= budget:
                 raise IntegrationError(f"{what}: run.max_steps = {budget} steps spent at t = "
                                        f"{run.progress.t:.6g} of {t_end:.6g}")  # fmt: skip
         res = run.solution()

@@ -24,6 +24,7 @@ from tumble.kernels.codes import (
     EVENT_NONE,
     EVENT_NUTATION_SEPARATRIX,
     EVENT_THETA_DOT,
+    EVENT_TRIAXIAL_SEPARATRIX,
     KIND_FIELD_AVERAGED,
     KIND_MEDIUM_AVERAGED,
     KIND_NONLINEAR_MOMENT,
@@ -32,6 +33,7 @@ from tumble.kernels.codes import (
     KIND_RIGID_BODY,
     KIND_ROTATING_FIELD,
     KIND_SPINNER_AVERAGED,
+    KIND_TRIAXIAL_AVERAGED,
 )
 
 __all__ = [
@@ -40,6 +42,7 @@ __all__ = [
     "EVENT_NONE",
     "EVENT_NUTATION_SEPARATRIX",
     "EVENT_THETA_DOT",
+    "EVENT_TRIAXIAL_SEPARATRIX",
     "KIND_FIELD_AVERAGED",
     "KIND_MEDIUM_AVERAGED",
     "KIND_NONLINEAR_MOMENT",
@@ -48,6 +51,7 @@ __all__ = [
     "KIND_RIGID_BODY",
     "KIND_ROTATING_FIELD",
     "KIND_SPINNER_AVERAGED",
+    "KIND_TRIAXIAL_AVERAGED",
     "Kernel",
     "evaluate_rhs",
 ]

@@ -16,6 +16,7 @@ __all__ = [
     "EVENT_NONE",
     "EVENT_NUTATION_SEPARATRIX",
     "EVENT_THETA_DOT",
+    "EVENT_TRIAXIAL_SEPARATRIX",
     "KIND_FIELD_AVERAGED",
     "KIND_MEDIUM_AVERAGED",
     "KIND_NONLINEAR_MOMENT",
@@ -24,6 +25,7 @@ __all__ = [
     "KIND_RIGID_BODY",
     "KIND_ROTATING_FIELD",
     "KIND_SPINNER_AVERAGED",
+    "KIND_TRIAXIAL_AVERAGED",
     "MC_FLOOR",
     "NUTATION_SEPARATRIX_TOL",
     "RATE_ONLY_TERMS",
@@ -46,6 +48,7 @@ KIND_FIELD_AVERAGED = 5
 KIND_NUTATION_AVERAGED = 6
 KIND_SPINNER_AVERAGED = 7
 KIND_NUTATION_ENGINE = 8
+KIND_TRIAXIAL_AVERAGED = 9
 
 EVENT_NONE = 0
 EVENT_THETA_DOT = 1
@@ -56,6 +59,8 @@ EVENT_NUTATION_SEPARATRIX = 3
 """The nonlinear moment's averaged energy below the barriers of the effective potential."""
 EVENT_EQUATOR = 4
 """cos ϑ of a spinner's averaged state [k, ρ, σ, ϑ]: the equator, where its rates kink."""
+EVENT_TRIAXIAL_SEPARATRIX = 5
+"""r − 1/I2 of the triaxial engine's state [L_ξ, r]: the separatrix."""
 
 TERM_BODY_CONSTANT = 1  # body moment (3)
 TERM_LINEAR_DRAG = 2  # B by rows (9)

@@ -31,6 +31,9 @@ Kinds
 ``KIND_SPINNER_AVERAGED``
     The general engine's spinner setting for a moment of the body rate only, state
     ``[k, ρ, σ, ϑ]``, parameters ``[κ, rtol, torque program]`` (:mod:`tumble.kernels.spinner`).
+``KIND_TRIAXIAL_AVERAGED``
+    The general engine's triaxial setting for a sum of built-in torques, state ``[L_ξ, r]``
+    (:mod:`tumble.kernels.triaxial`).
 """
 
 from __future__ import annotations
@@ -50,6 +53,7 @@ from tumble.kernels.codes import (
     EVENT_FIELD_SEPARATRIX,
     EVENT_NUTATION_SEPARATRIX,
     EVENT_THETA_DOT,
+    EVENT_TRIAXIAL_SEPARATRIX,
     KIND_FIELD_AVERAGED,
     KIND_MEDIUM_AVERAGED,
     KIND_NONLINEAR_MOMENT,
@@ -58,6 +62,7 @@ from tumble.kernels.codes import (
     KIND_RIGID_BODY,
     KIND_ROTATING_FIELD,
     KIND_SPINNER_AVERAGED,
+    KIND_TRIAXIAL_AVERAGED,
     MC_FLOOR,
     REACHED_MARGIN,
     SEPARATRIX_RTOL,
@@ -72,6 +77,7 @@ from tumble.kernels.nutation import (
 )
 from tumble.kernels.spinner import spinner_averaged
 from tumble.kernels.torque import quaternion_rates, torque_moment
+from tumble.kernels.triaxial import triaxial_averaged
 
 __all__ = [
     "euler_quaternion",
@@ -305,6 +311,8 @@ def _any_kind(kind: int, t: float, y: FloatArray, p: FloatArray, out: FloatArray
         spinner_averaged(t, y, p, out)
     elif kind == KIND_NUTATION_ENGINE:
         nutation_engine(t, y, p, out)
+    elif kind == KIND_TRIAXIAL_AVERAGED:
+        triaxial_averaged(t, y, p, out)
     else:
         for j in range(y.size):
             out[j] = math.nan
@@ -340,6 +348,7 @@ _BY_KIND: dict[int, Callable[..., None]] = {
     KIND_NUTATION_AVERAGED: nutation_averaged,
     KIND_SPINNER_AVERAGED: spinner_averaged,
     KIND_NUTATION_ENGINE: nutation_engine,
+    KIND_TRIAXIAL_AVERAGED: triaxial_averaged,
 }
 
 
@@ -376,6 +385,8 @@ def event(kind: int, t: float, y: FloatArray, p: FloatArray) -> float:
         return separatrix_distance(y)
     if kind == EVENT_EQUATOR:
         return math.cos(y[3])  # a spinner's averaged state [k, ρ, σ, ϑ]
+    if kind == EVENT_TRIAXIAL_SEPARATRIX:
+        return y[3] - 1.0 / p[4]  # r − 1/I2, p = [ε, rtol, floor, I1, I2, I3, …]
     return 1.0
 
 

@@ -24,11 +24,12 @@ import numpy as np
 from scipy.special import ellipe, ellipk
 
 from tumble._typing import ArrayLike, BoolArray, FloatArray
-from tumble.averaging.triaxial import triaxial_average_vector
+from tumble.averaging.triaxial import triaxial_average_vector, triaxial_kernel
 from tumble.catalogue import CATALOGUE
 from tumble.dynamics import rigid_body_kernel, rigid_body_rhs
 from tumble.kernels import (
     EVENT_FIELD_SEPARATRIX,
+    EVENT_TRIAXIAL_SEPARATRIX,
     KIND_FIELD_AVERAGED,
     KIND_ROTATING_FIELD,
     Kernel,
@@ -74,8 +75,8 @@ from tumble.unperturbed import (
     energy_from_modulus,
     fast_frequencies,
     mean_square_rate,
-    modulus_squared,
     modulus_squared_of_ratio,
+    modulus_squared_of_states,
     reached_ratio,
 )
 
@@ -187,9 +188,7 @@ def _columns_from_momentum(L_xi: FloatArray, T: FloatArray, p: Params) -> dict[s
     perp = np.hypot(L_xi[..., 0], L_xi[..., 1])
     rho = np.arctan2(perp, L_xi[..., 2])
     sigma = np.arctan2(L_xi[..., 1], L_xi[..., 0])
-    k2 = np.array(
-        [modulus_squared(*p.sorted_inertia, Li, Ti)[0] for Li, Ti in zip(L, T, strict=True)]
-    )
+    k2 = modulus_squared_of_states(*p.sorted_inertia, L, T)
     return {"L": L, "rho": rho, "sigma": sigma, "T": T, "k2": k2}
 
 
@@ -489,13 +488,13 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
     polhode, the precession about L and the field's rotation)."""
     I1, I2, I3 = p.sorted_inertia
     breakpoints: tuple[Breakpoint, ...] = ()
+    numeric = options.averaging == "numeric"
     if I1 < I2 < I3:
         separatrix = Breakpoint(
             lambda t, y: float(y[3]) - 1.0 / I2, _step_over_separatrix,
-            event=EVENT_FIELD_SEPARATRIX,
+            event=EVENT_TRIAXIAL_SEPARATRIX if numeric else EVENT_FIELD_SEPARATRIX,
         )  # fmt: skip
         breakpoints = (separatrix,)
-    numeric = options.averaging == "numeric"
     return AveragedForm(
         name="numeric" if numeric else "vector",
         equation=(
@@ -508,8 +507,14 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
         initial_state=_vector_from_slow,
         to_columns=_vector_columns,
         breakpoints=breakpoints,
-        kernel=None if numeric else averaged_kernel,
+        kernel=numeric_kernel if numeric else averaged_kernel,
     )
+
+
+def numeric_kernel(p: Params) -> Kernel | None:
+    """:func:`averaged_rhs_numeric` compiled (:func:`tumble.averaging.triaxial_kernel`);
+    None for a body with two equal moments (the Python engine's symmetric formulas)."""
+    return triaxial_kernel(p.torque, p.inertia, 2.0 * math.pi)
 
 
 def averaged_kernel(p: Params) -> Kernel:

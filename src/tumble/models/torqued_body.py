@@ -30,11 +30,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from tumble._typing import BoolArray, FloatArray
-from tumble.averaging import nearest_resonance, triaxial_average_vector
+from tumble.averaging import nearest_resonance, triaxial_average_vector, triaxial_kernel
 from tumble.catalogue import CATALOGUE
 from tumble.dynamics import rigid_body_rhs
 from tumble.errors import ParameterError
-from tumble.kernels import Kernel
+from tumble.kernels import EVENT_TRIAXIAL_SEPARATRIX, Kernel
 from tumble.kernels.rhs import rigid_body
 from tumble.models.base import (
     Averaged,
@@ -65,7 +65,7 @@ from tumble.rotations import quat_normalize, quat_to_matrix
 from tumble.unperturbed.euler_poinsot import (
     EulerPoinsot,
     fast_frequencies,
-    modulus_squared,
+    modulus_squared_of_states,
     reached_ratio,
 )
 
@@ -118,12 +118,6 @@ def _full_from_slow(p: Params, st: State) -> FloatArray:
     return np.concatenate([st.omega, st.q])
 
 
-def _modulus(p: Params, L: FloatArray, T: FloatArray) -> FloatArray:
-    return np.array(
-        [modulus_squared(*p.sorted_inertia, Li, Ti)[0] for Li, Ti in zip(L, T, strict=True)]
-    )
-
-
 def _momentum_columns(L_xi: FloatArray, T: FloatArray, p: Params) -> dict[str, FloatArray]:
     L = np.linalg.norm(L_xi, axis=-1)
     return {
@@ -134,7 +128,7 @@ def _momentum_columns(L_xi: FloatArray, T: FloatArray, p: Params) -> dict[str, F
         "rho": np.arctan2(np.hypot(L_xi[:, 0], L_xi[:, 1]), L_xi[:, 2]),
         "sigma": np.arctan2(L_xi[:, 1], L_xi[:, 0]),
         "T": T,
-        "k2": _modulus(p, L, T),
+        "k2": modulus_squared_of_states(*p.sorted_inertia, L, T),
     }
 
 
@@ -219,7 +213,8 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
             out[3] = (1.0 - side * SEPARATRIX_STEP) / I2
             return out
 
-        breakpoints = (Breakpoint(lambda t, y: float(y[3]) - 1.0 / I2, across),)
+        separatrix = EVENT_TRIAXIAL_SEPARATRIX  # compiled with the kernel
+        breakpoints = (Breakpoint(lambda t, y: float(y[3]) - 1.0 / I2, across, event=separatrix),)
     return AveragedForm(
         name="numeric",
         equation="the triaxial averaging (3.5)-(3.7) with the scenario's torque, by quadrature",
@@ -228,7 +223,15 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
         initial_state=_vector_from_slow,
         to_columns=_vector_columns,
         breakpoints=breakpoints,
+        kernel=averaged_kernel,
     )
+
+
+def averaged_kernel(p: Params) -> Kernel | None:
+    """:func:`averaged_rhs` compiled when the torque is a sum of built-in terms
+    (:func:`tumble.averaging.triaxial_kernel`); None for a user torque or a body with two
+    equal moments (the Python engine)."""
+    return triaxial_kernel(p.torque, p.inertia, p.forcing_period, factor=p.eps)
 
 
 # ---------------------------------------------------------------------------------------------

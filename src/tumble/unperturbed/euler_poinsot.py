@@ -65,6 +65,7 @@ __all__ = [
     "mean_square_rate",
     "modulus_squared",
     "modulus_squared_of_ratio",
+    "modulus_squared_of_states",
     "proper_sorting",
     "reached_ratio",
     "regime",
@@ -325,6 +326,26 @@ def modulus_squared_of_ratio(I1: float, I2: float, I3: float, r: ArrayLike) -> F
         mc = np.where(x3, (I3 - I1) * d2 / ((I3 - I2) * d1), -(I3 - I1) * d2 / ((I2 - I1) * d3))
     k2 = np.clip(m, 0.0, 1.0)
     return np.where((np.abs(d2) <= SEPARATRIX_RTOL) | ~(mc >= _MC_FLOOR), 1.0, k2)
+
+
+def modulus_squared_of_states(
+    I1: float, I2: float, I3: float, L: ArrayLike, T: ArrayLike
+) -> FloatArray:
+    """:func:`modulus_squared` (k² alone) for many states (L, T) at once: by
+    :func:`modulus_squared_of_ratio` of r = 2T/L², and 0 at rest (L = 0).
+
+    Parameters
+    ----------
+    I1, I2, I3 : float
+        Principal moments, I1 ≤ I2 ≤ I3 [inertia unit].
+    L, T : array_like
+        Angular momentum magnitudes [inertia unit · rad/τ] and kinetic energies
+        [inertia unit · (rad/τ)²], broadcasting.
+    """
+    L, T = np.broadcast_arrays(np.asarray(L, dtype=float), np.asarray(T, dtype=float))
+    moving = L > 0.0
+    r = np.divide(2.0 * T, L * L, out=np.full(L.shape, 1.0 / I2), where=moving)
+    return np.where(moving, modulus_squared_of_ratio(I1, I2, I3, r), 0.0)
 
 
 def energy_from_modulus(

@@ -1,0 +1,390 @@
+"""The general averaging engine's triaxial setting, compiled, for the built-in torques.
+
+:func:`tumble.averaging.triaxial_average_vector` averages the rates of the slow variables
+``[L_ξ, r = 2T/L²]`` of a triaxial body over the Euler–Poinsot motion (Martynenko (1979),
+eq. (3.1)): the polhode phase, the precession angle χ about L and, for a torque with explicit
+periodic time dependence, the forcing phase, independently (the non-resonant average). This
+module computes the same average in compiled code when the torque is a sum of built-in terms
+(:mod:`tumble.kernels.torque`), with two reductions that are exact for them:
+
+* **The forcing phase in closed form.** The explicit time enters the built-in terms only
+  through a unit vector turning uniformly on a circle: the orbit radius r̂(u) of the gravity
+  gradient, the field direction ĥ(Ωt) of the eddy current. Every channel of the integrand is
+  linear in r̂ r̂ᵀ, or in ĥ and ĥ ĥᵀ, so its mean over the phase is its value at the means
+  ⟨r̂ r̂ᵀ⟩ = ½(e₁e₁ᵀ + e₂e₂ᵀ) and ⟨ĥ ĥᵀ⟩ = diag(½ sin²β, ½ sin²β, cos²β), ⟨ĥ⟩ = cos β ξ₃
+  (each term over its own period, which divides the forcing period).
+* **The precession angle on four nodes.** With the attitude ``A = F Rz(χ) G(τ)`` the channels
+  are trigonometric polynomials of degree ≤ 3 in χ (the gravity gradient's ⟨A M⟩ is
+  quadratic in A, its power ω·M cubic; the other terms are of lower degree), which the
+  trapezoidal rule on χ = 0, π/2, π, 3π/2 integrates exactly; at those angles Rz(χ) only
+  permutes rows.
+
+The polhode phase is refined as in the Python engine (:func:`tumble.averaging.triaxial.
+_product_mean`): 16 nodes, doubled until the means change by at most ``rtol`` times the mean
+size of their integrands (|M| for ⟨A M⟩, |Ω||M| for the power), or by √(rtol/100) once the
+changes square from one doubling to the next. Its nodes are uniform in the argument u of the
+Jacobi functions over one period 4K; those of the first quarter give the other three by the
+shifts u + K, u + 2K, u + 3K, and within the quarter the points beyond K/2 come from K − u
+(DLMF 22.4.iii), so that dn is only ever formed where it is at least √k′ (:func:`_quarter`).
+
+Parameters of ``KIND_TRIAXIAL_AVERAGED``: ``[ε, rtol, L_floor, I1, I2, I3 (ascending),
+Q (sorted ← user, by rows, 9), I_user (3), torque program]``; state ``[L_ξ1, L_ξ2, L_ξ3, r]``.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import cast
+
+import numpy as np
+from numba.cpython.unsafe.tuple import tuple_setitem as _tuple_setitem
+
+from tumble._typing import FloatArray
+from tumble.kernels.codes import (
+    MC_FLOOR,
+    REACHED_MARGIN,
+    SEPARATRIX_RTOL,
+    TERM_EDDY_CURRENT,
+    TERM_GRAVITY_GRADIENT,
+    TERM_PAYLOAD,
+)
+from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
+from tumble.kernels.torque import Mat3, Vec3, _term, _to_body
+
+__all__ = ["PROGRAM_START", "jacobi_functions", "triaxial_averaged"]
+
+PROGRAM_START = 18
+"""Index of the torque program in the parameters."""
+
+_N_START = 16  # first polhode grid (a multiple of 4: the quarter shifts map nodes to nodes)
+_N_MAX = 2**14  # the Python engine's limit
+_SQUARING_SAFETY = 100.0  # the Python engine's margin of the squaring shortcut
+_AGM_STEPS = 24  # more than the AGM needs down to mc = MC_FLOOR (about 13 steps)
+
+_Table = tuple[float, ...]
+_EMPTY = (0.0,) * _AGM_STEPS
+# numba's tuple "assignment" (a new tuple with one entry replaced): fixed-size tables without
+# an allocation, which the right-hand sides may not make.
+tuple_setitem = cast(Callable[[_Table, int, float], _Table], _tuple_setitem)
+
+_SIZES = tuple(TERM_PAYLOAD.get(code, 0) for code in range(max(TERM_PAYLOAD) + 1))
+
+
+# ---------------------------------------------------------------------------------------------
+# Jacobi elliptic functions by the arithmetic-geometric mean.
+
+
+@jit(KERNEL)
+def _agm(mc: float) -> tuple[_Table, _Table, int, float]:
+    """The AGM of 1 and √mc with c_n = (a_{n−1} − b_{n−1})/2 (DLMF 22.20.1): the ratios
+    c_n/a_n (n = 1 … N), N, and a_N; K = π/(2 a_N) (DLMF 19.8.5)."""
+    ratios, a_n = _EMPTY, _EMPTY
+    a, b = 1.0, math.sqrt(mc)
+    n = 0
+    while n < _AGM_STEPS - 1 and a - b > 1e-16 * a:
+        c = 0.5 * (a - b)
+        a, b = 0.5 * (a + b), math.sqrt(a * b)
+        n += 1
+        ratios = tuple_setitem(ratios, n, c / a)
+        a_n = tuple_setitem(a_n, n, a)
+    return ratios, a_n, n, a
+
+
+@jit(KERNEL)
+def _jacobi(u: float, ratios: _Table, n: int, a: float) -> tuple[float, float, float]:
+    """sn, cn, dn of u by the descending recurrence of the AGM's phases (DLMF 22.20.ii):
+    φ_N = 2ᴺ a_N u, φ_{n−1} = (φ_n + arcsin((c_n/a_n) sin φ_n))/2, then sn = sin φ₀,
+    cn = cos φ₀, dn = cos φ₀ / cos(φ₁ − φ₀)."""
+    phi = u * a * 2.0**n
+    before = phi
+    for j in range(n, 0, -1):
+        before = phi
+        phi = 0.5 * (phi + math.asin(ratios[j] * math.sin(phi)))
+    c = math.cos(phi)
+    dn = c / math.cos(before - phi) if n > 0 else 1.0
+    return math.sin(phi), c, dn
+
+
+@jit(KERNEL)
+def _quarter(
+    v: float, big_k: float, kc: float, ratios: _Table, n: int, a: float
+) -> tuple[float, float, float]:
+    """sn, cn, dn of v ∈ [0, K]: directly up to K/2, beyond it from w = K − v by
+    sn(K − w) = cn w/dn w, cn(K − w) = k′ sn w/dn w, dn(K − w) = k′/dn w (DLMF 22.4.iii):
+    dn is then never formed below √k′ (its value at K/2), where it would lose digits."""
+    if v <= 0.5 * big_k:
+        return _jacobi(v, ratios, n, a)
+    s, c, d = _jacobi(big_k - v, ratios, n, a)
+    return c / d, kc * s / d, kc / d
+
+
+@jit(ENTRY)
+def jacobi_functions(u: FloatArray, mc: float) -> FloatArray:
+    """sn, cn, dn (columns) of u ∈ [0, 4K) at the parameter m = 1 − mc (for tests against
+    scipy), the way the kernel forms them: the first quarter, then the shifts by K."""
+    ratios, _, n, a = _agm(mc)
+    big_k = 0.5 * math.pi / a
+    kc = math.sqrt(mc)
+    out = np.empty((u.size, 3))
+    for i in range(u.size):
+        q = min(int(u[i] / big_k), 3)
+        s, c, d = _quarter(u[i] - q * big_k, big_k, kc, ratios, n, a)
+        out[i, 0], out[i, 1], out[i, 2] = _shifted(q, s, c, d, kc)
+    return out
+
+
+@jit(INLINE)
+def _shifted(q: int, s: float, c: float, d: float, kc: float) -> tuple[float, float, float]:
+    """sn, cn, dn at u + qK from their values at u (DLMF 22.4.iii)."""
+    if q == 0:
+        return s, c, d
+    if q == 1:
+        return c / d, -kc * s / d, kc / d
+    if q == 2:
+        return -s, -c, d
+    return -c / d, kc * s / d, kc / d
+
+
+# ---------------------------------------------------------------------------------------------
+# The torque, averaged over its forcing phase.
+
+
+@jit(INLINE)
+def _gravity_gradient_at(f: float, prog: FloatArray, v: int, a: Mat3, e: int) -> Vec3:
+    """f·3n² r × (I r) for the inertial unit vector prog[e : e + 3] as r, in body axes."""
+    r1, r2, r3 = _to_body(a, prog[e], prog[e + 1], prog[e + 2])
+    g = 3.0 * prog[v + 3] ** 2 * f
+    i1, i2, i3 = prog[v], prog[v + 1], prog[v + 2]
+    return g * (i3 - i2) * r2 * r3, g * (i1 - i3) * r3 * r1, g * (i2 - i1) * r1 * r2
+
+
+@jit(INLINE)
+def _mean_term(
+    code: int, f: float, prog: FloatArray, v: int, w1: float, w2: float, w3: float, a: Mat3
+) -> Vec3:
+    """Body moment of one term averaged over its forcing phase (module notes): the gravity
+    gradient at ⟨r̂ r̂ᵀ⟩ = ½(e₁e₁ᵀ + e₂e₂ᵀ), the eddy current of a rotating field at
+    ⟨ĥ ĥᵀ⟩ = diag(½ sin²β, ½ sin²β, cos²β); a term without time dependence as it is."""
+    if code == TERM_GRAVITY_GRADIENT:
+        x1, x2, x3 = _gravity_gradient_at(f, prog, v, a, v + 5)
+        y1, y2, y3 = _gravity_gradient_at(f, prog, v, a, v + 8)
+        return 0.5 * (x1 + y1), 0.5 * (x2 + y2), 0.5 * (x3 + y3)
+    if code == TERM_EDDY_CURRENT and prog[v + 1] != 0.0:
+        M0, rate, beta = prog[v], prog[v + 1], prog[v + 2]
+        s2 = math.sin(beta) ** 2  # 1 − ⟨ĥĥᵀ⟩ = diag(1 − ½ s², 1 − ½ s², s²)
+        x1 = a[0] * w1 + a[1] * w2 + a[2] * w3
+        x2 = a[3] * w1 + a[4] * w2 + a[5] * w3
+        x3 = a[6] * w1 + a[7] * w2 + a[8] * w3 - rate
+        g = f * M0
+        return _to_body(a, -g * (1.0 - 0.5 * s2) * x1, -g * (1.0 - 0.5 * s2) * x2, -g * s2 * x3)
+    return _term(code, f, prog, v, 0.0, w1, w2, w3, a)
+
+
+@jit(INLINE)
+def _mean_program(prog: FloatArray, start: int, w1: float, w2: float, w3: float, a: Mat3) -> Vec3:
+    """Body moment of the program ``prog[start:]``, each term averaged over its phase."""
+    m1 = m2 = m3 = 0.0
+    i = start + 1
+    for _ in range(int(prog[start])):
+        code = int(prog[i])
+        d1, d2, d3 = _mean_term(code, prog[i + 1], prog, i + 2, w1, w2, w3, a)
+        m1 += d1
+        m2 += d2
+        m3 += d3
+        if not 0 <= code < len(_SIZES) or _SIZES[code] == 0:
+            break
+        i += 2 + _SIZES[code]
+    return m1, m2, m3
+
+
+# ---------------------------------------------------------------------------------------------
+# The average over the polhode and the precession.
+
+
+@jit(KERNEL)
+def _node_sums(
+    p: FloatArray, z1: float, z2: float, z3: float, F: Mat3, rl1: float, rl2: float, rl3: float
+) -> tuple[float, float, float, float, float, float]:
+    """Sums over the four precession nodes at the body rate z (user axes): A M (3),
+    (Ω − r L_ξ)·M, |M| and |Ω||M|, with A = F Rz(χ) G and G = Rx(θ) Rz(φ) taking the body
+    direction of L to the third axis (:func:`tumble.averaging.triaxial._polhode_attitudes`)."""
+    j1, j2, j3 = p[15] * z1, p[16] * z2, p[17] * z3
+    size = math.sqrt(j1 * j1 + j2 * j2 + j3 * j3)
+    l1, l2, l3 = j1 / size, j2 / size, j3 / size
+    st = math.sqrt(l1 * l1 + l2 * l2)
+    sp, cp = (l1 / st, l2 / st) if st > 0.0 else (0.0, 1.0)
+    g0 = (cp, -sp, 0.0)
+    g1 = (l3 * sp, l3 * cp, -st)
+    g2 = (l1, l2, l3)
+    s1 = s2 = s3 = s4 = s5 = s6 = 0.0
+    for k in range(4):
+        # Rz(χ) G at χ = kπ/2: its first two rows (cos χ g0 − sin χ g1, sin χ g0 + cos χ g1).
+        if k == 0:
+            h0, h1 = g0, g1
+        elif k == 1:
+            h0, h1 = (-g1[0], -g1[1], -g1[2]), g0
+        elif k == 2:
+            h0, h1 = (-g0[0], -g0[1], -g0[2]), (-g1[0], -g1[1], -g1[2])
+        else:
+            h0, h1 = g1, (-g0[0], -g0[1], -g0[2])
+        a = (
+            F[0] * h0[0] + F[1] * h1[0] + F[2] * g2[0],
+            F[0] * h0[1] + F[1] * h1[1] + F[2] * g2[1],
+            F[0] * h0[2] + F[1] * h1[2] + F[2] * g2[2],
+            F[3] * h0[0] + F[4] * h1[0] + F[5] * g2[0],
+            F[3] * h0[1] + F[4] * h1[1] + F[5] * g2[1],
+            F[3] * h0[2] + F[4] * h1[2] + F[5] * g2[2],
+            F[6] * h0[0] + F[7] * h1[0] + F[8] * g2[0],
+            F[6] * h0[1] + F[7] * h1[1] + F[8] * g2[1],
+            F[6] * h0[2] + F[7] * h1[2] + F[8] * g2[2],
+        )
+        m1, m2, m3 = _mean_program(p, PROGRAM_START, z1, z2, z3, a)
+        n1 = a[0] * m1 + a[1] * m2 + a[2] * m3
+        n2 = a[3] * m1 + a[4] * m2 + a[5] * m3
+        n3 = a[6] * m1 + a[7] * m2 + a[8] * m3
+        o1 = a[0] * z1 + a[1] * z2 + a[2] * z3
+        o2 = a[3] * z1 + a[4] * z2 + a[5] * z3
+        o3 = a[6] * z1 + a[7] * z2 + a[8] * z3
+        mag = math.sqrt(m1 * m1 + m2 * m2 + m3 * m3)
+        s1 += n1
+        s2 += n2
+        s3 += n3
+        s4 += (o1 - rl1) * n1 + (o2 - rl2) * n2 + (o3 - rl3) * n3
+        s5 += mag
+        s6 += mag * math.sqrt(o1 * o1 + o2 * o2 + o3 * o3)
+    return s1, s2, s3, s4, s5, s6
+
+
+@jit(KERNEL)
+def _polhode_sums(
+    p: FloatArray, nodes: int, offset: float, amp: Vec3, x3: bool, big_k: float, kc: float,
+    ratios: _Table, n_agm: int, a_agm: float, F: Mat3, rl1: float, rl2: float, rl3: float,
+) -> tuple[float, float, float, float, float, float]:  # fmt: skip
+    """:func:`_node_sums` summed over the polhode nodes u = (j + offset)·4K/nodes, j < nodes:
+    one Jacobi evaluation serves the four nodes a quarter period apart."""
+    s1 = s2 = s3 = s4 = s5 = s6 = 0.0
+    step = 4.0 * big_k / nodes
+    for j in range(nodes // 4):
+        sn0, cn0, dn0 = _quarter((j + offset) * step, big_k, kc, ratios, n_agm, a_agm)
+        for q in range(4):
+            sn, cn, dn = _shifted(q, sn0, cn0, dn0, kc)
+            # Sorted components: regime x3 (L² > 2T·I2) (cn, sn, dn); x1 (dn, sn, cn).
+            if x3:
+                w1, w2, w3 = amp[0] * cn, amp[1] * sn, amp[2] * dn
+            else:
+                w1, w2, w3 = amp[2] * dn, amp[1] * sn, amp[0] * cn
+            # User axes: z_user = Qᵀ z_sorted.
+            z1 = p[6] * w1 + p[9] * w2 + p[12] * w3
+            z2 = p[7] * w1 + p[10] * w2 + p[13] * w3
+            z3 = p[8] * w1 + p[11] * w2 + p[14] * w3
+            t1, t2, t3, t4, t5, t6 = _node_sums(p, z1, z2, z3, F, rl1, rl2, rl3)
+            s1 += t1
+            s2 += t2
+            s3 += t3
+            s4 += t4
+            s5 += t5
+            s6 += t6
+    return s1, s2, s3, s4, s5, s6
+
+
+@jit(KERNEL)
+def _frame(l1: float, l2: float, l3: float) -> Mat3:
+    """A rotation (by rows) whose third column is the unit vector l
+    (:func:`tumble.averaging.triaxial._frame_with_third_column`)."""
+    b1, b2, b3 = abs(l1), abs(l2), abs(l3)
+    if b1 <= b2 and b1 <= b3:  # e1 = a × l with a the axis of the smallest component
+        e1, e2, e3 = 0.0, -l3, l2
+    elif b2 <= b3:
+        e1, e2, e3 = l3, 0.0, -l1
+    else:
+        e1, e2, e3 = -l2, l1, 0.0
+    size = math.sqrt(e1 * e1 + e2 * e2 + e3 * e3)
+    e1, e2, e3 = e1 / size, e2 / size, e3 / size
+    f1, f2, f3 = l2 * e3 - l3 * e2, l3 * e1 - l1 * e3, l1 * e2 - l2 * e1
+    return (e1, f1, l1, e2, f2, l2, e3, f3, l3)
+
+
+@jit(INLINE)
+def _nan(out: FloatArray) -> None:
+    for j in range(4):
+        out[j] = math.nan
+
+
+@jit(INLINE)
+def triaxial_averaged(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> None:
+    """ε⟨A M⟩ and ε·2⟨(Ω − r L_ξ)·M⟩/L² for y = [L_ξ, r] (module notes); NaN where the
+    Python engine refuses the state (r beyond a pure rotation by more than the margin,
+    L at or below the floor, the separatrix band) or where the quadrature does not converge,
+    so that the step is rejected."""
+    eps, rtol, floor = p[0], p[1], p[2]
+    i1, i2, i3 = p[3], p[4], p[5]
+    lo, hi = 1.0 / i3, 1.0 / i1
+    r = y[3]
+    if not lo - REACHED_MARGIN * hi <= r <= hi + REACHED_MARGIN * hi:
+        _nan(out)
+        return
+    r = min(max(r, lo), hi)
+    L = math.sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2])
+    d1, d2, d3 = max(1.0 - r * i1, 0.0), 1.0 - r * i2, max(r * i3 - 1.0, 0.0)
+    if not L > floor or abs(d2) <= SEPARATRIX_RTOL:
+        _nan(out)
+        return
+    x3 = d2 > 0.0
+    if x3:
+        mc = (i3 - i1) * d2 / ((i3 - i2) * d1)
+        amp = (
+            L * math.sqrt(d3 / (i1 * (i3 - i1))),  # cn
+            L * math.sqrt(d3 / (i2 * (i3 - i2))),  # sn
+            L * math.sqrt(d1 / (i3 * (i3 - i1))),  # dn
+        )
+    else:
+        mc = -(i3 - i1) * d2 / ((i2 - i1) * d3)
+        amp = (
+            L * math.sqrt(d1 / (i3 * (i3 - i1))),
+            L * math.sqrt(d1 / (i2 * (i2 - i1))),
+            L * math.sqrt(d3 / (i1 * (i3 - i1))),
+        )
+    if not mc >= MC_FLOOR:
+        _nan(out)
+        return
+    mc = min(mc, 1.0)
+    ratios, _, n_agm, a_agm = _agm(mc)
+    big_k = 0.5 * math.pi / a_agm
+    kc = math.sqrt(mc)
+    F = _frame(y[0] / L, y[1] / L, y[2] / L)
+    rl1, rl2, rl3 = r * y[0], r * y[1], r * y[2]
+    nodes = _N_START
+    s1, s2, s3, s4, s5, s6 = _polhode_sums(
+        p, nodes, 0.0, amp, x3, big_k, kc, ratios, n_agm, a_agm, F, rl1, rl2, rl3
+    )
+    m1, m2, m3, m4 = s1 / (4 * nodes), s2 / (4 * nodes), s3 / (4 * nodes), s4 / (4 * nodes)
+    size_m, size_p = s5 / (4 * nodes), s6 / (4 * nodes)
+    shortcut = math.sqrt(rtol / _SQUARING_SAFETY)
+    previous = math.inf
+    while True:
+        if 2 * nodes > _N_MAX:
+            _nan(out)
+            return
+        t1, t2, t3, t4, t5, t6 = _polhode_sums(
+            p, nodes, 0.5, amp, x3, big_k, kc, ratios, n_agm, a_agm, F, rl1, rl2, rl3
+        )
+        scale = 0.5 / (4 * nodes)
+        n1, n2, n3 = 0.5 * m1 + scale * t1, 0.5 * m2 + scale * t2, 0.5 * m3 + scale * t3
+        n4 = 0.5 * m4 + scale * t4
+        size_m, size_p = 0.5 * size_m + scale * t5, 0.5 * size_p + scale * t6
+        change = 0.0
+        if size_m > 0.0:
+            change = max(abs(n1 - m1), abs(n2 - m2), abs(n3 - m3)) / size_m
+        if size_p > 0.0:
+            change = max(change, abs(n4 - m4) / size_p)
+        squaring = previous < math.inf and change <= _SQUARING_SAFETY * previous * previous
+        m1, m2, m3, m4 = n1, n2, n3, n4
+        nodes *= 2
+        previous = change
+        if change <= rtol or (change <= shortcut and squaring):
+            break
+    out[0] = eps * m1
+    out[1] = eps * m2
+    out[2] = eps * m3
+    out[3] = eps * 2.0 * m4 / (L * L)

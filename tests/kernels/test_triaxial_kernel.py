@@ -1,0 +1,151 @@
+"""The compiled triaxial average (built-in torques) against the Python engine, and its Jacobi
+functions against scipy's."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy import special
+
+from tumble.averaging import triaxial_average_vector, triaxial_kernel
+from tumble.integrate import simulate
+from tumble.kernels import KIND_TRIAXIAL_AVERAGED
+from tumble.kernels.rhs import evaluate
+from tumble.kernels.triaxial import jacobi_functions
+from tumble.models import rotating_field as rf
+from tumble.models import torqued_body as tb
+from tumble.models.base import AveragingOptions
+from tumble.torques import (
+    ConstantBodyTorque,
+    ConstantInertialTorque,
+    EddyCurrentTorque,
+    GravityGradientTorque,
+    LinearDrag,
+    QuadraticDrag,
+)
+
+INERTIA = np.array([1.5, 1.0, 2.2])  # unsorted on purpose: the kernel reads them through Q
+
+
+# Powers of two, so that scipy, which takes m, gets exactly m = 1 − mc (near m = 1 it forms
+# 1 − m itself); and down to mc = 2⁻¹⁰ only, below which scipy's own error grows (4e-13 at
+# 2⁻²⁹ against 40-digit values, where the kernel's stays within 6e-15).
+@pytest.mark.parametrize("mc", [1.0, 0.75, 2.0**-4, 2.0**-10])
+def test_jacobi_functions_equal_scipys(mc):
+    m = 1.0 - mc
+    K = float(special.ellipk(m))
+    u = np.linspace(0.0, 4.0 * K, 203, endpoint=False)
+    got = jacobi_functions(u, mc)
+    sn, cn, dn, _ = special.ellipj(u, m)
+    # Both accurate to a few ulps in absolute terms (all three functions are ≤ 1).
+    assert np.max(np.abs(got - np.stack([sn, cn, dn], 1))) < 2e-14
+
+
+@pytest.mark.parametrize("mc", [2.0**-20, 2.0**-29, 1e-12, 1e-15])
+def test_jacobi_functions_invert_the_elliptic_integral_near_the_separatrix(mc):
+    # Over the first quarter period u = F(am u | m) = sn·R_F(cn², dn², 1) (DLMF 19.25.5) with
+    # scipy's R_F (a few ulps for any arguments), and dn² = mc + m cn² (DLMF 22.6.1): both
+    # hold to round-off in absolute terms, however close to the separatrix.
+    m = 1.0 - mc
+    K = float(special.elliprf(0.0, mc, 1.0))
+    u = np.linspace(0.0, K, 101)
+    sn, cn, dn = jacobi_functions(u, mc).T
+    back = sn * special.elliprf(cn * cn, dn * dn, 1.0)
+    # F(φ) = u amplifies an error δ of sn by dF/d(sn) = 1/(cn dn), up to 1/k′ near u = K:
+    # the bound is a few ulps of K through that factor (measured: at most 1.4 % of it).
+    assert np.all(np.abs(back - u) <= 1e-15 * K * (1.0 + 1.0 / (cn * dn + 1e-300)))
+    assert np.max(np.abs(dn * dn - (mc + m * cn * cn))) < 1e-15
+
+
+def _torques():
+    gg = GravityGradientTorque(INERTIA, 0.3, np.array([0.2, -0.4, 0.9]), 0.3)
+    return {
+        "gravity gradient": (gg, gg.period),
+        "eddy current": (EddyCurrentTorque(0.7, 1.0, 0.6), 2.0 * math.pi),
+        "all terms": (
+            gg
+            + ConstantInertialTorque(np.array([0.1, -0.2, 0.05]))
+            + ConstantBodyTorque(np.array([0.0, 0.1, -0.1]))
+            + LinearDrag(np.diag([0.3, 0.2, 0.1]))
+            + QuadraticDrag(np.diag([0.05, 0.1, 0.02])),
+            gg.period,
+        ),
+        "harmonic": (EddyCurrentTorque(0.7, 2.0, 0.9), 2.0 * math.pi),  # two field turns a period
+    }
+
+
+@pytest.mark.parametrize("name", sorted(_torques()))
+def test_compiled_average_equals_the_python_engine(name):
+    torque, period = _torques()[name]
+    kernel = triaxial_kernel(torque, INERTIA, period)
+    assert kernel is not None and kernel.kind == KIND_TRIAXIAL_AVERAGED
+    rng = np.random.default_rng(11)
+    I1, I2, I3 = sorted(INERTIA)
+    for _ in range(30):
+        L_xi = rng.normal(size=3)
+        # r over both regimes, away from the separatrix band and the pure rotations.
+        r = rng.uniform(1.0 / I3, 1.0 / I1)
+        if abs(r * I2 - 1.0) < 1e-6:
+            continue
+        y = np.array([*L_xi, r])
+        got = evaluate(kernel.kind, 0.0, y, kernel.params)
+        ref = triaxial_average_vector(torque, INERTIA, y, 0.0, forcing_period=period)
+        # Both stop refining the polhode when two levels agree to 1e-12 of the torque's size;
+        # the forcing phase (closed form here) and the precession (exact on 4 nodes here, 8
+        # there) add round-off only: agreement to 1e-10 of the largest rate (measured 2e-14).
+        scale = max(float(np.max(np.abs(ref))), 1e-300)
+        assert np.max(np.abs(got - ref)) <= 1e-10 * scale, (y, got, ref)
+
+
+def test_what_the_compiled_engine_refuses():
+    gg = GravityGradientTorque(INERTIA, 0.3, np.array([0.0, 0.0, 1.0]), 0.0)
+    assert triaxial_kernel(gg, INERTIA, None) is None  # time-dependent, no forcing period
+    assert triaxial_kernel(gg, INERTIA, 1.5 * gg.period) is None  # not a whole number of orbits
+    assert triaxial_kernel(gg, [1.0, 1.0, 2.0], gg.period) is None  # symmetric: Python engine
+    assert triaxial_kernel(lambda t, q, w: np.zeros(3), INERTIA, None) is None  # Python torque
+    kernel = triaxial_kernel(gg, INERTIA, 2.0 * gg.period)  # two orbits a period: fine
+    assert kernel is not None
+    I1, I2, _ = sorted(INERTIA)
+    for y in ([1.0, 0.0, 0.0, 1.2 / I1], [0.0, 0.0, 0.0, 1.0 / I2], [1.0, 0.0, 0.0, 1.0 / I2]):
+        # beyond a pure rotation, L = 0, on the separatrix: the step is rejected
+        assert np.all(np.isnan(evaluate(kernel.kind, 0.0, np.array(y), kernel.params)))
+
+
+NUMERIC = AveragingOptions(averaging="numeric")
+
+
+def test_compiled_engine_run_equals_the_python_one_across_the_separatrix():
+    # The rotating field takes r = 2T/L² down through 1/I2 from a spin near the axis of the
+    # least moment (regime x1): the compiled run stops at the event there, steps over and
+    # restarts, as scipy's does with the Python engine.
+    p = rf.Params(inertia=[1.0, 1.6, 2.0], eps=0.05, beta=0.6)
+    st = rf.State([1.2, 0.3, 0.2], np.eye(3))
+    tau = np.linspace(0.0, 150.0, 31)
+    runs = {}
+    for i in ("numba", "scipy"):
+        runs[i] = simulate(rf.MODEL, p, st, tau, "averaged", rtol=1e-10, atol=1e-12,
+                           averaging=NUMERIC, integrator=i)  # fmt: skip
+    assert runs["numba"].integrator == "numba" and runs["scipy"].integrator == "scipy"
+    cols = runs["numba"].columns
+    r = 2.0 * cols["T"] / cols["L"] ** 2
+    assert r[0] > 1.0 / 1.6 > r[-1]  # the run crosses the separatrix
+    for name, ref in runs["scipy"].columns.items():
+        # The same DOP853 on rates equal to 1e-10 of their size: the runs agree to its
+        # tolerance, except k² after the separatrix, where the step over it (relative
+        # 1e-6 in r) leaves k² = 1 − O(1e-6) sensitive to the last digits of r (measured:
+        # 1e-8 on L and T, 1.3e-7 on k²).
+        assert np.max(np.abs(cols[name] - ref)) < 1e-6, name
+
+
+def test_torqued_body_runs_compiled():
+    p = tb.Params(inertia=INERTIA, eps=0.02, torque=_torques()["all terms"][0],
+                  forcing_period=_torques()["all terms"][1])  # fmt: skip
+    st = tb.State(omega=np.array([0.2, 0.3, 1.0]), q=np.array([1.0, 0.0, 0.0, 0.0]))
+    tau = np.linspace(0.0, 100.0, 11)
+    runs = {i: simulate(tb.MODEL, p, st, tau, "averaged", rtol=1e-10, atol=1e-12, integrator=i)
+            for i in ("numba", "scipy")}  # fmt: skip
+    assert runs["numba"].integrator == "numba"
+    for name, ref in runs["scipy"].columns.items():
+        assert np.max(np.abs(runs["numba"].columns[name] - ref)) < 1e-7, name

@@ -1,4 +1,5 @@
-"""The compiled spinner average (a moment of the body rate only) against the Python engine."""
+"""The compiled spinner average (a moment of the body rate only, in closed form) against the
+Python engine's quadrature."""
 
 from __future__ import annotations
 
@@ -34,9 +35,9 @@ def test_compiled_average_equals_the_python_engine(law, kappa):
                       rng.uniform(0.05, 3.09)])  # fmt: skip
         got = evaluate(kernel.kind, 0.0, y, kernel.params)
         ref = spinner_average(p.torque, p.kappa, 1.0, *y)
-        # Both rules stop when two levels agree to 1e-12 of the largest moment on the torus
-        # (the compiled one's test is never looser): they agree to that tolerance, ~1e-12 of
-        # the largest rate (measured 3e-15).
+        # The compiled means are the closed forms; the Python engine's quadrature stops when
+        # two levels agree to 1e-12 of the largest moment on the torus: they agree to that
+        # tolerance, ~1e-12 of the largest rate (measured 1e-15).
         assert np.max(np.abs(got - ref)) <= 1e-12 * max(float(np.max(np.abs(ref))), 1e-300)
 
 

@@ -26,7 +26,6 @@ import numpy as np
 
 from tumble._typing import FloatArray
 from tumble.errors import IntegrationError, ParameterError
-from tumble.kernels.romberg import romberg_weights
 from tumble.torques import (
     ConstantBodyTorque,
     LinearDrag,
@@ -57,9 +56,20 @@ tolerance (measured), so the pair is met at the level of the single test or one 
 
 @functools.cache
 def _romberg_weights(levels: int) -> FloatArray:
-    """:func:`tumble.kernels.romberg.romberg_weights` (the compiled φ-mean's too), read-only
-    and cached per number of levels."""
-    weights = romberg_weights(levels)
+    """W with R(j, j) = Σ_i W[j, i] T_i: the diagonal of the Romberg table of T_0 … T_{L−1},
+    read-only and cached per number of levels.
+
+    The recurrence R(j, m) = R(j, m−1) + (R(j, m−1) − R(j−1, m−1))/(4^m − 1), run on weight
+    vectors (the rows of W sum to 1). Row j depends on j only, not on ``levels``.
+    """
+    rows = [np.eye(levels)[0]]
+    weights = np.zeros((levels, levels))
+    weights[0] = rows[0]
+    for j in range(1, levels):
+        fresh = [np.eye(levels)[j]]
+        for m, coarse in enumerate(rows, start=1):
+            fresh.append(fresh[-1] + (fresh[-1] - coarse) / (4.0**m - 1.0))
+        weights[j], rows = fresh[-1], fresh
     weights.setflags(write=False)
     return weights
 

@@ -24,7 +24,7 @@ from tumble.integrate import dop853
 from tumble.integrate.dop853.block import block_entry, empty_block
 from tumble.integrate.dop853.core import OK, RUNNING, STOPPED, Chunk
 from tumble.integrate.dop853.driver import _cut
-from tumble.integrate.limits import MAX_STEPS
+from tumble.integrate.limits import FIRST_CHUNK, MAX_STEPS, pace_message
 from tumble.integrate.ode import compiled_breakpoints, joined_pieces, split_plan
 from tumble.integrate.simulate import Trajectory, _unwrap_columns, simulate
 from tumble.integrate.simulate import _trajectory as _dense_trajectory
@@ -177,15 +177,21 @@ def _integrate_group(
         arrays["Y"][r] = pt.y0
         arrays["events"][r] = pt.surface.event if pt.surface is not None else EVENT_NONE
     piece = np.zeros(n, dtype=np.int64)  # index into each run's stops
+    spent = np.zeros(n, dtype=np.int64)  # steps of the calls that ended with the budget spent
     active = np.arange(n)
     kind = group[0].kernel.kind
+    # Steps a run may take in one call: from FIRST_CHUNK, doubled each call, so that a run
+    # whose pace is hopeless is refused early (as a single run is), not after its budget.
+    allowance = FIRST_CHUNK
     while active.size:
         for r in active.tolist():
             arrays["T"][r] = group[r].stops[piece[r]]
+        steps = min(allowance, max_steps)
         args = (active, P, arrays["T"], arrays["events"], arrays["first"], arrays["t0"],
-                arrays["ie"], float(rtol), float(atol), int(max_steps), bool(dense), tau,
+                arrays["ie"], float(rtol), float(atol), int(steps), bool(dense), tau,
                 arrays["Y"], arrays["F"], arrays["Y_eval"], arrays["status"],
                 arrays["nfev"])  # fmt: skip
+        allowance *= 2
         pieces = {int(pc[0]): pc[1:] for pc in block_entry(kind, args)(kind, *args)}
         going = []
         for r in active.tolist():
@@ -213,9 +219,16 @@ def _integrate_group(
                         piece[r] += 1
                         going.append(r)
                 elif status == RUNNING:
-                    raise IntegrationError(
-                        f"{what}: run.max_steps = {max_steps} steps spent at t = {t:.6g}"
-                    )
+                    spent[r] += steps
+                    if spent[r] >= max_steps:
+                        raise IntegrationError(
+                            f"{what}: run.max_steps = {max_steps} steps spent at t = {t:.6g}"
+                        )
+                    slow = pace_message(t, float(tau[-1]), float(arrays["first"][r]),
+                                        max_steps - int(spent[r]), max_steps)  # fmt: skip
+                    if slow:
+                        raise IntegrationError(f"{what}: {slow}")
+                    going.append(r)  # the same piece, on from where it stopped
                 else:
                     reason = pt.form.failure() if pt.form.failure else None
                     message = dop853.status_message(status)

@@ -10,12 +10,36 @@ import numpy as np
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import ParameterError
 
-__all__ = ["MAX_STEPS", "check_times"]
+__all__ = ["BUDGET_MARGIN", "FIRST_CHUNK", "MAX_STEPS", "check_times", "pace_message"]
 
 MAX_STEPS = 100_000_000
 """Default step budget of a full run (``[run] max_steps``): about a minute or two of the
 compiled integrator, beyond which a run is stopped with an error naming the key rather than
 left to run for hours (a stiff or mistyped input)."""
+
+
+BUDGET_MARGIN = 100.0
+"""A run is refused early when, at its current step size, the rest would take more than this
+many times its remaining step budget: steps grow, but not by a hundredfold on average."""
+
+FIRST_CHUNK = 1000
+"""Steps a compiled run of averaged equations takes before its pace is first checked (then
+twice as many each time): their right-hand sides may cost microseconds (the engine's
+quadratures), so a hopeless run is refused within a fraction of a second, not after its
+whole budget."""
+
+
+def pace_message(t: float, t_end: float, h_abs: float, steps_left: int, max_steps: int) -> str:
+    """Why a run at time t with step ``h_abs`` is refused, or "" if its pace can still reach
+    ``t_end`` within :data:`BUDGET_MARGIN` times the ``steps_left`` of its budget."""
+    ahead = (t_end - t) / max(h_abs, 1e-300)
+    if ahead <= BUDGET_MARGIN * steps_left:
+        return ""
+    return (
+        f"at t = {t:.6g} the step is {h_abs:.3g}, so the run to {t_end:.6g} needs about "
+        f"{ahead:.2g} more steps, far beyond run.max_steps = {max_steps} (shorten the run, or "
+        "check the input: a very fast or stiff motion)"
+    )
 
 
 def check_times(tau: ArrayLike, *, field: str = "run.tau") -> FloatArray:

@@ -12,7 +12,7 @@ from scipy.integrate import solve_ivp
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import IntegrationError, ParameterError
 from tumble.integrate import dop853
-from tumble.integrate.limits import MAX_STEPS, check_times
+from tumble.integrate.limits import FIRST_CHUNK, MAX_STEPS, check_times, pace_message
 from tumble.kernels import EVENT_NONE, Kernel
 from tumble.models.base import Breakpoint
 
@@ -374,13 +374,18 @@ def _integrate_compiled_split(
         watched = replace(kernel, event=surface.event, terminal=True) if surface else kernel
         options = dop853.Options(rtol, atol, min(first, stop - t0))
         run = dop853.Integration(watched, y, stop, options, t0=t0)
-        # Chunks no longer than the budget left, so that a small budget is kept exactly.
-        while not run.advance(
-            min(dop853.CHUNK_STEPS, max(1, budget - steps - run.progress.n_steps))
-        ):
-            if run.progress.n_steps + steps >= budget:
+        # Chunks growing from FIRST_CHUNK steps and no longer than the budget left, so that a
+        # small budget is kept exactly and a hopeless pace is seen early.
+        chunk = FIRST_CHUNK
+        while not run.advance(min(chunk, max(1, budget - steps - run.progress.n_steps))):
+            spent = run.progress.n_steps + steps
+            if spent >= budget:
                 raise IntegrationError(f"{what}: run.max_steps = {budget} steps spent at t = "
                                        f"{run.progress.t:.6g} of {t_end:.6g}")  # fmt: skip
+            slow = pace_message(run.progress.t, t_end, run.progress.h_abs, budget - spent, budget)
+            if slow:
+                raise IntegrationError(f"{what}: {slow}")
+            chunk = min(2 * chunk, dop853.CHUNK_STEPS)
         res = run.solution()
         if res.status not in (0, dop853.STOPPED):
             compiled_dense(res, what)  # raises: the piece failed

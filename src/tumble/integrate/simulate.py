@@ -18,7 +18,7 @@ import numpy as np
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import IntegrationError, ParameterError, TumbleError
 from tumble.integrate import dop853
-from tumble.integrate.limits import MAX_STEPS
+from tumble.integrate.limits import MAX_STEPS, pace_message
 from tumble.integrate.ode import (
     DEFAULT_ATOL,
     DEFAULT_RTOL,
@@ -46,10 +46,6 @@ S = TypeVar("S")
 
 DEFAULT_AVERAGING = AveragingOptions()
 """The paper's averaged equations in the model's default coordinates, from the given state."""
-
-_BUDGET_MARGIN = 100.0
-"""A run is refused early when, at its current step size, the rest would take more than this
-many times its remaining step budget: steps grow, but not by a hundredfold on average."""
 
 _Job = tuple[int, Kernel, FloatArray]  # a point of a batch: its index, kernel, initial state
 
@@ -318,14 +314,10 @@ def _consume(
                 f"{float(tau[-1]):.6g} (raise run.max_steps, shorten the run, or check the "
                 "input: a very fast or stiff motion)"
             )
-        ahead = (float(tau[-1]) - run.progress.t) / max(run.progress.h_abs, 1e-300)
-        if not done and ahead > _BUDGET_MARGIN * (max_steps - run.progress.n_steps):
-            raise IntegrationError(
-                f"{what}: at t = {piece.t:.6g} the step is {run.progress.h_abs:.3g}, so the run "
-                f"to {float(tau[-1]):.6g} needs about {ahead:.2g} more steps, far beyond "
-                f"run.max_steps = {max_steps} (shorten the run, or check the input: a very "
-                "fast or stiff motion)"
-            )
+        left = max_steps - run.progress.n_steps
+        slow = pace_message(piece.t, float(tau[-1]), run.progress.h_abs, left, max_steps)
+        if not done and slow:
+            raise IntegrationError(f"{what}: {slow}")
         upto = tau.size if done else int(np.searchsorted(tau, piece.ts[-1], side="right"))
         t_samples = tau[done_samples:upto]
         if t_samples.size:

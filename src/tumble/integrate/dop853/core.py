@@ -23,8 +23,8 @@ from tumble.kernels.codes import EVENT_NONE
 from tumble.kernels.jit import ENTRY, INLINE, INNER, INNER_INLINE, KERNEL, jit
 from tumble.kernels.rhs import event, rhs
 
-__all__ = ["FRESH", "NOT_FINITE", "OK", "RUNNING", "STEP_TOO_SMALL", "STOPPED", "Chunk",
-           "Options", "Progress", "advance"]  # fmt: skip
+__all__ = ["BAD_START", "FRESH", "NOT_FINITE", "OK", "RUNNING", "STEP_TOO_SMALL", "STOPPED",
+           "Chunk", "Options", "Progress", "advance"]  # fmt: skip
 
 _NF = N_INTERPOLANT  # rows of a step's interpolant
 
@@ -32,6 +32,7 @@ _NF = N_INTERPOLANT  # rows of a step's interpolant
 OK = 0  # reached t_end
 STEP_TOO_SMALL = -1  # the step size fell below the resolution of t
 NOT_FINITE = -2  # the state stopped being finite
+BAD_START = -3  # the right-hand side is not finite at the start (a state it refuses)
 RUNNING = 1  # stopped after max_steps, to be resumed
 FRESH = 2  # not started: advance() first evaluates f and chooses the starting step
 STOPPED = 3  # reached the first zero of a terminal event function (a breakpoint)
@@ -216,12 +217,14 @@ def advance(
     y_new, tmp = np.empty(n), np.empty(n)
     _copy(f, K[0], 0)
     status, n_rec, n_ev = RUNNING, 0, 0
+    if not (_finite(f) and h_abs == h_abs):  # no step can start from there
+        status = BAD_START
     # A terminal event stops the run at its first zero: the step that crosses it is not
     # taken; the run goes on to the zero instead, as if it were the end, with the usual step
     # control (its last step lands on it), and the event is not looked for again.
     looking = opts.event != EVENT_NONE
     t_stop = t_end
-    while t < t_stop and (opts.max_steps <= 0 or n_rec < opts.max_steps):
+    while status == RUNNING and t < t_stop and (opts.max_steps <= 0 or n_rec < opts.max_steps):
         step, h, h_abs, used = attempt_step(kind, p, t, t_stop, h_abs, y, K, y_new, tmp,
                                             opts.rtol, opts.atol)  # fmt: skip
         nfev += used

@@ -43,6 +43,7 @@ _MESSAGES = {
     core.RUNNING: "the run was stopped before its end",
     core.STEP_TOO_SMALL: "the step size fell below the resolution of t",
     core.NOT_FINITE: "the state stopped being finite",
+    core.BAD_START: "the right-hand side is not finite at the initial state",
     core.STOPPED: "the run stopped at its terminal event",
 }
 

@@ -133,7 +133,7 @@ def attempt_step(
     lowest = min_step(t)
     h_abs = max(h_abs, lowest)
     while True:
-        if h_abs < lowest:
+        if not h_abs >= lowest:  # NaN too: an error estimate that is not a number
             return STEP_TOO_SMALL, 0.0, h_abs, nfev
         t_new = min(t + h_abs, t1)
         h = t_new - t

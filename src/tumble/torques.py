@@ -22,6 +22,7 @@ integrator or Python calls it. The classes here validate the parameters and pack
 
 from __future__ import annotations
 
+import inspect
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -39,6 +40,7 @@ from tumble.kernels.codes import (
     TERM_INERTIAL_CONSTANT,
     TERM_LINEAR_DRAG,
     TERM_QUADRATIC_DRAG,
+    TERM_USER,
 )
 
 __all__ = [
@@ -93,6 +95,14 @@ class Torque:
         super().__init_subclass__(**kwargs)
         if "__call__" in cls.__dict__ and "compiled_terms" not in cls.__dict__:
             cls.compiled_terms = Torque.compiled_terms  # type: ignore[method-assign]
+
+    def __getstate__(self) -> dict[str, Any]:
+        # The program is rebuilt where the torque is unpickled: a user term's holds the
+        # address of a callback of this process (:mod:`tumble.kernels.user`).
+        state = dict(self.__dict__)
+        state.pop("program", None)
+        state.pop("rate_only", None)
+        return state
 
     def __call__(self, t: ArrayLike, q: ArrayLike | None, omega: ArrayLike) -> FloatArray:
         program = self.program
@@ -330,7 +340,9 @@ class UserTorque(Torque):
     The form a scenario names as ``torque = "module:function"``: ``params`` is the
     scenario's ``[torque_params]`` table, passed unchanged. A function written with numpy
     broadcasting over leading axes of ``q`` and ``omega`` is evaluated on whole quadrature
-    grids by the averaging engine; any other is called one state at a time.
+    grids by the averaging engine; any other is called one state at a time. A function
+    compiled with ``numba.njit`` runs in the compiled integrators and averaging kernels
+    instead (:meth:`compiled_terms`), with ``params`` as a float array of the table's values.
 
     Parameters
     ----------
@@ -342,12 +354,34 @@ class UserTorque(Torque):
         ``"module:function"``, for messages.
     """
 
-    function: Callable[[float, Any, Any, Mapping[str, Any]], ArrayLike]
+    function: Callable[[float, Any, Any, Any], ArrayLike]
     params: Mapping[str, Any] = field(default_factory=dict)
     name: str = "user torque"
 
     def __call__(self, t: ArrayLike, q: ArrayLike | None, omega: ArrayLike) -> FloatArray:
+        if self.program is not None:  # a numba function: through its compiled callback
+            return super().__call__(t, q, omega)
         return np.asarray(self.function(t, q, omega, self.params), dtype=float)
+
+    def compiled_terms(self) -> tuple[CompiledTerm, ...] | None:
+        """A function compiled with ``numba.njit`` runs in the compiled code through a C
+        callback (:mod:`tumble.kernels.user`), with ``params`` as a float array of the
+        table's values in their order; any other is Python (None)."""
+        from tumble.kernels.user import compiled_user_torque, is_numba_function  # numba
+
+        function = inspect.unwrap(self.function, stop=is_numba_function)  # a lazy import too
+        if not is_numba_function(function):
+            return None
+        values = []
+        for key, value in self.params.items():
+            if isinstance(value, bool) or not isinstance(value, int | float):
+                raise ParameterError(
+                    f"torque_params.{key} = {value!r}: a numba torque function takes numbers "
+                    "only (its params arrive as a float array, in the table's order)"
+                )
+            values.append(float(value))
+        address = compiled_user_torque(function).address
+        return ((TERM_USER, 1.0, (float(address), float(len(values)), *values)),)
 
 
 @dataclass(frozen=True, eq=False)

@@ -142,6 +142,24 @@ def test_user_torque_is_imported_next_to_the_scenario(tmp_path):
     assert sc.request.params.attitude_dependent
 
 
+def test_a_numba_user_torque_runs_compiled_and_equals_the_python_one(tmp_path):
+    """The example's B-dot law written with numba runs in the compiled integrators (full and
+    averaged) and gives the Python function's runs."""
+    shutil.copy(EXAMPLES / "user_torques.py", tmp_path / "user_torques.py")
+    text = (EXAMPLES / "tb_bdot.toml").read_text().replace("t_end = 150.0", "t_end = 40.0")
+    req = load_scenario(write(tmp_path, text)).request
+    fast = load_scenario(write(tmp_path, text.replace(":bdot", ":bdot_compiled"), "f.toml"))
+    fast = fast.request
+    for method in ("full", "averaged"):
+        ref = simulate(req.model, req.params, req.initial, req.tau, method)
+        got = simulate(fast.model, fast.params, fast.initial, fast.tau, method)
+        assert got.integrator == "numba" and ref.integrator == "scipy", method
+        for name, values in ref.columns.items():
+            # The same law in two transcriptions, integrated at rtol 1e-10 (the averaged one
+            # on rates equal to 1e-10 of their size): agreement to 1e-7.
+            assert np.max(np.abs(got.columns[name] - values)) < 1e-7, (method, name)
+
+
 BAD = {
     "unknown_kind": (
         '[[torque]]\nkind = "solar"\n',

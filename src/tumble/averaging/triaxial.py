@@ -61,6 +61,7 @@ from tumble.kernels.codes import (
     DEGENERATE_RTOL,
     TERM_EDDY_CURRENT,
     TERM_GRAVITY_GRADIENT,
+    TERM_USER,
 )
 from tumble.rotations import matrix_to_quat, quat_multiply
 from tumble.torques import (
@@ -751,14 +752,16 @@ def triaxial_kernel(
     ``factor``; None where only the Python engine applies. Its separatrix r = 1/I2 is the
     compiled event ``EVENT_TRIAXIAL_SEPARATRIX``.
 
-    The compiled engine averages each time-dependent term over its own phase in closed form
-    and the precession on four nodes, which is exact for the built-in terms and only for
-    them; it refines the polhode phase with the Python engine's test.
+    For built-in terms the compiled engine averages each time-dependent term over its own
+    phase in closed form and the precession on four nodes, which is exact for them, and
+    refines the polhode phase with the Python engine's test; a user's numba function
+    (:mod:`tumble.kernels.user`) gets the Python engine's product rule on all phases.
 
     Parameters
     ----------
     torque : Torque or callable
-        The moment; compiled only when every term is built in (:attr:`Torque.program`).
+        The moment; compiled when every term is built in or a numba function
+        (:attr:`Torque.program`).
     inertia : array_like, shape (3,)
         Principal moments, any order [inertia unit].
     forcing_period : float, optional
@@ -784,7 +787,11 @@ def triaxial_kernel(
     I1, I2, I3 = sorted(I_user.tolist())
     if min(I2 - I1, I3 - I2) <= DEGENERATE_RTOL * I3:
         return None
+    exact = True  # built-in terms only: the kernel's reductions apply
     for code, _, payload in terms:
+        if code == TERM_USER:
+            exact = False  # a user's numba function: the general product rule
+            continue
         if code == TERM_GRAVITY_GRADIENT:
             rate = float(payload[3])  # the orbital rate n
         elif code == TERM_EDDY_CURRENT:
@@ -800,7 +807,9 @@ def triaxial_kernel(
             return None
     omega_ref = 1.0 if forcing_period is None else 2.0 * math.pi / float(forcing_period)
     floor = MOMENTUM_FLOOR * I3 * omega_ref
-    head = [factor, rtol, floor, I1, I2, I3, *proper_sorting(I_user).ravel(), *I_user]
+    period = 0.0 if forcing_period is None else float(forcing_period)
+    head = [factor, rtol, floor, I1, I2, I3, *proper_sorting(I_user).ravel(), *I_user,
+            1.0 if exact else 0.0, period]  # fmt: skip
     return Kernel(KIND_TRIAXIAL_AVERAGED, np.concatenate([head, program]))
 
 

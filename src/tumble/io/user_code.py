@@ -127,6 +127,12 @@ class UserFunction:
     def __call__(self, *args: Any) -> Any:
         return self.load()(*args)
 
+    @property
+    def __wrapped__(self) -> Callable[..., Any]:
+        """The loaded function (``inspect.unwrap`` reaches it: a numba function is then run
+        compiled, :meth:`tumble.torques.UserTorque.compiled_terms`)."""
+        return self.load()
+
     def __reduce__(self) -> tuple[Any, ...]:
         return (_rebuild, (self.spec, self.function, self.path, self.module, self.where))
 

@@ -38,6 +38,7 @@ __all__ = [
     "TERM_LINEAR_DRAG",
     "TERM_PAYLOAD",
     "TERM_QUADRATIC_DRAG",
+    "TERM_USER",
 ]
 
 KIND_RIGID_BODY = 1
@@ -68,6 +69,7 @@ TERM_QUADRATIC_DRAG = 3  # S by rows (9)
 TERM_INERTIAL_CONSTANT = 4  # inertial moment (3)
 TERM_GRAVITY_GRADIENT = 5  # inertia (3), n, u0, rows e1, e2, normal (9)
 TERM_EDDY_CURRENT = 6  # M0, field rate ω, cone angle β
+TERM_USER = 7  # address of the compiled function, n, then its n parameters
 
 TERM_PAYLOAD: dict[int, int] = {
     TERM_BODY_CONSTANT: 3,
@@ -76,8 +78,10 @@ TERM_PAYLOAD: dict[int, int] = {
     TERM_INERTIAL_CONSTANT: 3,
     TERM_GRAVITY_GRADIENT: 14,
     TERM_EDDY_CURRENT: 3,
+    TERM_USER: 2,
 }
-"""Length of each term code's payload (the stride of a torque program)."""
+"""Length of each term code's payload (the stride of a torque program); a user term's
+parameters follow its fixed part, their number in it."""
 
 RATE_ONLY_TERMS = frozenset({TERM_BODY_CONSTANT, TERM_LINEAR_DRAG, TERM_QUADRATIC_DRAG})
 """Terms that read neither the attitude nor the time."""

@@ -32,17 +32,16 @@ from tumble._typing import FloatArray
 from tumble.kernels.codes import (
     TERM_BODY_CONSTANT,
     TERM_LINEAR_DRAG,
-    TERM_PAYLOAD,
     TERM_QUADRATIC_DRAG,
 )
 from tumble.kernels.jit import INLINE, KERNEL, jit
+from tumble.kernels.torque import next_term
 from tumble.rotations import SINGULAR_SIN
 
 __all__ = ["spinner_averaged"]
 
 _PROGRAM = 2  # index of the torque program in the parameters
 _CUBE_MEAN = 4.0 / (3.0 * math.pi)  # ⟨|sin φ|³⟩ over a turn
-_SIZES = tuple(TERM_PAYLOAD.get(code, 0) for code in range(max(TERM_PAYLOAD) + 1))
 
 
 @jit(KERNEL)
@@ -63,7 +62,7 @@ def _phi_means(p: FloatArray, a: float, c: float) -> tuple[bool, float, float]:
             m3 -= f * p[v + 8] * c * abs(c)
         else:
             return False, math.nan, math.nan
-        i += 2 + _SIZES[code]
+        i = next_term(p, i)
     return True, x, m3
 
 

@@ -24,13 +24,16 @@ from tumble.kernels.codes import (
     TERM_LINEAR_DRAG,
     TERM_PAYLOAD,
     TERM_QUADRATIC_DRAG,
+    TERM_USER,
 )
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
+from tumble.kernels.user import call_user
 
 __all__ = [
     "attitude_matrix",
     "inertial_moments",
     "moments",
+    "next_term",
     "quaternion_rates",
     "torque_moment",
 ]
@@ -117,6 +120,35 @@ def _eddy_current(
 
 
 @jit(INLINE)
+def _matrix_quaternion(a: Mat3) -> tuple[float, float, float, float]:
+    """A unit quaternion (sign arbitrary) of the rotation matrix a (by rows), by the largest of
+    its four squared components (Shepperd's method: no cancellation)."""
+    tr = a[0] + a[4] + a[8]
+    if tr >= a[0] and tr >= a[4] and tr >= a[8]:
+        s = 2.0 * math.sqrt(1.0 + tr)
+        return 0.25 * s, (a[7] - a[5]) / s, (a[2] - a[6]) / s, (a[3] - a[1]) / s
+    if a[0] >= a[4] and a[0] >= a[8]:
+        s = 2.0 * math.sqrt(1.0 + a[0] - a[4] - a[8])
+        return (a[7] - a[5]) / s, 0.25 * s, (a[1] + a[3]) / s, (a[2] + a[6]) / s
+    if a[4] >= a[8]:
+        s = 2.0 * math.sqrt(1.0 - a[0] + a[4] - a[8])
+        return (a[2] - a[6]) / s, (a[1] + a[3]) / s, 0.25 * s, (a[5] + a[7]) / s
+    s = 2.0 * math.sqrt(1.0 - a[0] - a[4] + a[8])
+    return (a[3] - a[1]) / s, (a[2] + a[6]) / s, (a[5] + a[7]) / s, 0.25 * s
+
+
+@jit(INLINE)
+def _user(f: float, prog: FloatArray, v: int, t: float, w1: float, w2: float, w3: float,
+          a: Mat3) -> Vec3:  # fmt: skip
+    """f times the moment of a user's compiled function (:mod:`tumble.kernels.user`); payload
+    [address, n, n parameters]."""
+    q0, q1, q2, q3 = _matrix_quaternion(a)
+    m1, m2, m3 = call_user(int(prog[v]), t, q0, q1, q2, q3, w1, w2, w3, prog, v + 2,
+                           int(prog[v + 1]))  # fmt: skip
+    return f * m1, f * m2, f * m3
+
+
+@jit(INLINE)
 def _term(
     code: int, f: float, prog: FloatArray, v: int, t: float, w1: float, w2: float, w3: float,
     a: Mat3,
@@ -138,11 +170,26 @@ def _term(
         return _gravity_gradient(f, prog, v, t, a)
     if code == TERM_EDDY_CURRENT:
         return _eddy_current(f, prog, v, t, w1, w2, w3, a)
+    if code == TERM_USER:
+        return _user(f, prog, v, t, w1, w2, w3, a)
     return math.nan, math.nan, math.nan
 
 
 # The program's stride by term code, as a tuple numba freezes into the compiled code.
 _SIZES = tuple(TERM_PAYLOAD.get(code, 0) for code in range(max(TERM_PAYLOAD) + 1))
+
+
+@jit(INLINE)
+def next_term(prog: FloatArray, i: int) -> int:
+    """Index of the term after the one at ``prog[i]`` (its code), or −1 for an unknown code
+    (the caller stops there: the term's moment is NaN)."""
+    code = int(prog[i])
+    if not 0 <= code < len(_SIZES) or _SIZES[code] == 0:
+        return -1
+    end = i + 2 + _SIZES[code]
+    if code == TERM_USER:
+        end += int(prog[i + 3])
+    return end
 
 
 @jit(INLINE)
@@ -158,9 +205,9 @@ def _program(
         m1 += d1
         m2 += d2
         m3 += d3
-        if not 0 <= code < len(_SIZES) or _SIZES[code] == 0:
+        i = next_term(prog, i)
+        if i < 0:
             break
-        i += 2 + _SIZES[code]
     return m1, m2, m3
 
 

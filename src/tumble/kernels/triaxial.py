@@ -27,8 +27,13 @@ Jacobi functions over one period 4K; those of the first quarter give the other t
 shifts u + K, u + 2K, u + 3K, and within the quarter the points beyond K/2 come from K − u
 (DLMF 22.4.iii), so that dn is only ever formed where it is at least √k′ (:func:`_quarter`).
 
+Any other program (mode 0: a user's numba function, :mod:`tumble.kernels.user`) is averaged as
+the Python engine averages it: the product rule on all three phases, each refined in turn
+from 16, 4 and 4 nodes with the same test, the moment at its explicit time.
+
 Parameters of ``KIND_TRIAXIAL_AVERAGED``: ``[ε, rtol, L_floor, I1, I2, I3 (ascending),
-Q (sorted ← user, by rows, 9), I_user (3), torque program]``; state ``[L_ξ1, L_ξ2, L_ξ3, r]``.
+Q (sorted ← user, by rows, 9), I_user (3), mode, forcing period (0: none), torque program]``;
+state ``[L_ξ1, L_ξ2, L_ξ3, r]``.
 """
 
 from __future__ import annotations
@@ -47,18 +52,24 @@ from tumble.kernels.codes import (
     SEPARATRIX_RTOL,
     TERM_EDDY_CURRENT,
     TERM_GRAVITY_GRADIENT,
-    TERM_PAYLOAD,
 )
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
-from tumble.kernels.torque import Mat3, Vec3, _term, _to_body
+from tumble.kernels.torque import Mat3, Vec3, _program, _term, _to_body, next_term
 
 __all__ = ["PROGRAM_START", "jacobi_functions", "triaxial_averaged"]
 
-PROGRAM_START = 18
+MODE = 18
+"""Index of the mode: 1 for built-in terms only (the reductions above), 0 for any program."""
+PERIOD = 19
+"""Index of the forcing period [τ] (0: none, the time frozen at t)."""
+PROGRAM_START = 20
 """Index of the torque program in the parameters."""
 
 _N_START = 16  # first polhode grid (a multiple of 4: the quarter shifts map nodes to nodes)
-_N_MAX = 2**14  # the Python engine's limit
+_N_MAX = 2**14  # the Python engine's limits: polhode, precession and forcing, the whole grid
+_N_MAX_PHASE = 2**9
+_MAX_GRID = 2**18
+_N_START_PHASE = 4  # first precession and forcing grids (exact for degree ≤ 3; then doubled)
 _SQUARING_SAFETY = 100.0  # the Python engine's margin of the squaring shortcut
 _AGM_STEPS = 24  # more than the AGM needs down to mc = MC_FLOOR (about 13 steps)
 
@@ -68,18 +79,16 @@ _EMPTY = (0.0,) * _AGM_STEPS
 # an allocation, which the right-hand sides may not make.
 tuple_setitem = cast(Callable[[_Table, int, float], _Table], _tuple_setitem)
 
-_SIZES = tuple(TERM_PAYLOAD.get(code, 0) for code in range(max(TERM_PAYLOAD) + 1))
-
 
 # ---------------------------------------------------------------------------------------------
 # Jacobi elliptic functions by the arithmetic-geometric mean.
 
 
 @jit(KERNEL)
-def _agm(mc: float) -> tuple[_Table, _Table, int, float]:
+def _agm(mc: float) -> tuple[_Table, int, float]:
     """The AGM of 1 and √mc with c_n = (a_{n−1} − b_{n−1})/2 (DLMF 22.20.1): the ratios
     c_n/a_n (n = 1 … N), N, and a_N; K = π/(2 a_N) (DLMF 19.8.5)."""
-    ratios, a_n = _EMPTY, _EMPTY
+    ratios = _EMPTY
     a, b = 1.0, math.sqrt(mc)
     n = 0
     while n < _AGM_STEPS - 1 and a - b > 1e-16 * a:
@@ -87,8 +96,7 @@ def _agm(mc: float) -> tuple[_Table, _Table, int, float]:
         a, b = 0.5 * (a + b), math.sqrt(a * b)
         n += 1
         ratios = tuple_setitem(ratios, n, c / a)
-        a_n = tuple_setitem(a_n, n, a)
-    return ratios, a_n, n, a
+    return ratios, n, a
 
 
 @jit(KERNEL)
@@ -123,7 +131,7 @@ def _quarter(
 def jacobi_functions(u: FloatArray, mc: float) -> FloatArray:
     """sn, cn, dn (columns) of u ∈ [0, 4K) at the parameter m = 1 − mc (for tests against
     scipy), the way the kernel forms them: the first quarter, then the shifts by K."""
-    ratios, _, n, a = _agm(mc)
+    ratios, n, a = _agm(mc)
     big_k = 0.5 * math.pi / a
     kc = math.sqrt(mc)
     out = np.empty((u.size, 3))
@@ -192,9 +200,9 @@ def _mean_program(prog: FloatArray, start: int, w1: float, w2: float, w3: float,
         m1 += d1
         m2 += d2
         m3 += d3
-        if not 0 <= code < len(_SIZES) or _SIZES[code] == 0:
+        i = next_term(prog, i)
+        if i < 0:
             break
-        i += 2 + _SIZES[code]
     return m1, m2, m3
 
 
@@ -202,21 +210,59 @@ def _mean_program(prog: FloatArray, start: int, w1: float, w2: float, w3: float,
 # The average over the polhode and the precession.
 
 
-@jit(KERNEL)
-def _node_sums(
-    p: FloatArray, z1: float, z2: float, z3: float, F: Mat3, rl1: float, rl2: float, rl3: float
-) -> tuple[float, float, float, float, float, float]:
-    """Sums over the four precession nodes at the body rate z (user axes): A M (3),
-    (Ω − r L_ξ)·M, |M| and |Ω||M|, with A = F Rz(χ) G and G = Rx(θ) Rz(φ) taking the body
-    direction of L to the third axis (:func:`tumble.averaging.triaxial._polhode_attitudes`)."""
+@jit(INLINE)
+def _body_frame(p: FloatArray, z1: float, z2: float, z3: float) -> tuple[Vec3, Vec3, Vec3]:
+    """The rows of G = Rx(θ) Rz(φ), the rotation taking the body direction of L = I z to the
+    third axis (:func:`tumble.averaging.triaxial._polhode_attitudes`)."""
     j1, j2, j3 = p[15] * z1, p[16] * z2, p[17] * z3
     size = math.sqrt(j1 * j1 + j2 * j2 + j3 * j3)
     l1, l2, l3 = j1 / size, j2 / size, j3 / size
     st = math.sqrt(l1 * l1 + l2 * l2)
     sp, cp = (l1 / st, l2 / st) if st > 0.0 else (0.0, 1.0)
-    g0 = (cp, -sp, 0.0)
-    g1 = (l3 * sp, l3 * cp, -st)
-    g2 = (l1, l2, l3)
+    return (cp, -sp, 0.0), (l3 * sp, l3 * cp, -st), (l1, l2, l3)
+
+
+@jit(INLINE)
+def _attitude(F: Mat3, h0: Vec3, h1: Vec3, g2: Vec3) -> Mat3:
+    """A = F R with R the rotation of rows h0, h1, g2 (by rows)."""
+    return (
+        F[0] * h0[0] + F[1] * h1[0] + F[2] * g2[0],
+        F[0] * h0[1] + F[1] * h1[1] + F[2] * g2[1],
+        F[0] * h0[2] + F[1] * h1[2] + F[2] * g2[2],
+        F[3] * h0[0] + F[4] * h1[0] + F[5] * g2[0],
+        F[3] * h0[1] + F[4] * h1[1] + F[5] * g2[1],
+        F[3] * h0[2] + F[4] * h1[2] + F[5] * g2[2],
+        F[6] * h0[0] + F[7] * h1[0] + F[8] * g2[0],
+        F[6] * h0[1] + F[7] * h1[1] + F[8] * g2[1],
+        F[6] * h0[2] + F[7] * h1[2] + F[8] * g2[2],
+    )
+
+
+@jit(INLINE)
+def _channels(
+    a: Mat3, z1: float, z2: float, z3: float, m1: float, m2: float, m3: float, rl1: float,
+    rl2: float, rl3: float,
+) -> tuple[float, float, float, float, float, float]:  # fmt: skip
+    """The integrand at one node: A M (3), (Ω − r L_ξ)·A M with Ω = A z, and the sizes |M|
+    and |Ω||M| of the engine's convergence test."""
+    n1 = a[0] * m1 + a[1] * m2 + a[2] * m3
+    n2 = a[3] * m1 + a[4] * m2 + a[5] * m3
+    n3 = a[6] * m1 + a[7] * m2 + a[8] * m3
+    o1 = a[0] * z1 + a[1] * z2 + a[2] * z3
+    o2 = a[3] * z1 + a[4] * z2 + a[5] * z3
+    o3 = a[6] * z1 + a[7] * z2 + a[8] * z3
+    mag = math.sqrt(m1 * m1 + m2 * m2 + m3 * m3)
+    power = (o1 - rl1) * n1 + (o2 - rl2) * n2 + (o3 - rl3) * n3
+    return n1, n2, n3, power, mag, mag * math.sqrt(o1 * o1 + o2 * o2 + o3 * o3)
+
+
+@jit(KERNEL)
+def _node_sums(
+    p: FloatArray, z1: float, z2: float, z3: float, F: Mat3, rl1: float, rl2: float, rl3: float
+) -> tuple[float, float, float, float, float, float]:
+    """Built-in terms (mode 1): the channels summed over the four precession nodes at the
+    body rate z (user axes), with A = F Rz(χ) G and each term at its phase mean."""
+    g0, g1, g2 = _body_frame(p, z1, z2, z3)
     s1 = s2 = s3 = s4 = s5 = s6 = 0.0
     for k in range(4):
         # Rz(χ) G at χ = kπ/2: its first two rows (cos χ g0 − sin χ g1, sin χ g0 + cos χ g1).
@@ -228,31 +274,15 @@ def _node_sums(
             h0, h1 = (-g0[0], -g0[1], -g0[2]), (-g1[0], -g1[1], -g1[2])
         else:
             h0, h1 = g1, (-g0[0], -g0[1], -g0[2])
-        a = (
-            F[0] * h0[0] + F[1] * h1[0] + F[2] * g2[0],
-            F[0] * h0[1] + F[1] * h1[1] + F[2] * g2[1],
-            F[0] * h0[2] + F[1] * h1[2] + F[2] * g2[2],
-            F[3] * h0[0] + F[4] * h1[0] + F[5] * g2[0],
-            F[3] * h0[1] + F[4] * h1[1] + F[5] * g2[1],
-            F[3] * h0[2] + F[4] * h1[2] + F[5] * g2[2],
-            F[6] * h0[0] + F[7] * h1[0] + F[8] * g2[0],
-            F[6] * h0[1] + F[7] * h1[1] + F[8] * g2[1],
-            F[6] * h0[2] + F[7] * h1[2] + F[8] * g2[2],
-        )
+        a = _attitude(F, h0, h1, g2)
         m1, m2, m3 = _mean_program(p, PROGRAM_START, z1, z2, z3, a)
-        n1 = a[0] * m1 + a[1] * m2 + a[2] * m3
-        n2 = a[3] * m1 + a[4] * m2 + a[5] * m3
-        n3 = a[6] * m1 + a[7] * m2 + a[8] * m3
-        o1 = a[0] * z1 + a[1] * z2 + a[2] * z3
-        o2 = a[3] * z1 + a[4] * z2 + a[5] * z3
-        o3 = a[6] * z1 + a[7] * z2 + a[8] * z3
-        mag = math.sqrt(m1 * m1 + m2 * m2 + m3 * m3)
-        s1 += n1
-        s2 += n2
-        s3 += n3
-        s4 += (o1 - rl1) * n1 + (o2 - rl2) * n2 + (o3 - rl3) * n3
-        s5 += mag
-        s6 += mag * math.sqrt(o1 * o1 + o2 * o2 + o3 * o3)
+        t1, t2, t3, t4, t5, t6 = _channels(a, z1, z2, z3, m1, m2, m3, rl1, rl2, rl3)
+        s1 += t1
+        s2 += t2
+        s3 += t3
+        s4 += t4
+        s5 += t5
+        s6 += t6
     return s1, s2, s3, s4, s5, s6
 
 
@@ -268,16 +298,7 @@ def _polhode_sums(
     for j in range(nodes // 4):
         sn0, cn0, dn0 = _quarter((j + offset) * step, big_k, kc, ratios, n_agm, a_agm)
         for q in range(4):
-            sn, cn, dn = _shifted(q, sn0, cn0, dn0, kc)
-            # Sorted components: regime x3 (L² > 2T·I2) (cn, sn, dn); x1 (dn, sn, cn).
-            if x3:
-                w1, w2, w3 = amp[0] * cn, amp[1] * sn, amp[2] * dn
-            else:
-                w1, w2, w3 = amp[2] * dn, amp[1] * sn, amp[0] * cn
-            # User axes: z_user = Qᵀ z_sorted.
-            z1 = p[6] * w1 + p[9] * w2 + p[12] * w3
-            z2 = p[7] * w1 + p[10] * w2 + p[13] * w3
-            z3 = p[8] * w1 + p[11] * w2 + p[14] * w3
+            z1, z2, z3 = _user_rates(p, amp, x3, *_shifted(q, sn0, cn0, dn0, kc))
             t1, t2, t3, t4, t5, t6 = _node_sums(p, z1, z2, z3, F, rl1, rl2, rl3)
             s1 += t1
             s2 += t2
@@ -286,6 +307,160 @@ def _polhode_sums(
             s5 += t5
             s6 += t6
     return s1, s2, s3, s4, s5, s6
+
+
+@jit(KERNEL)
+def _exact_mean(
+    p: FloatArray, rtol: float, amp: Vec3, x3: bool, big_k: float, kc: float, ratios: _Table,
+    n_agm: int, a_agm: float, F: Mat3, rl1: float, rl2: float, rl3: float,
+) -> tuple[bool, float, float, float, float]:  # fmt: skip
+    """(converged, ⟨A M⟩ (3), ⟨(Ω − r L_ξ)·M⟩) of built-in terms (mode 1): the polhode refined
+    with the engine's test, the precession and the forcing phase exact (module notes)."""
+    nodes = _N_START
+    s1, s2, s3, s4, s5, s6 = _polhode_sums(
+        p, nodes, 0.0, amp, x3, big_k, kc, ratios, n_agm, a_agm, F, rl1, rl2, rl3
+    )
+    size = 4 * nodes
+    m1, m2, m3, m4 = s1 / size, s2 / size, s3 / size, s4 / size
+    size_m, size_p = s5 / size, s6 / size
+    shortcut = math.sqrt(rtol / _SQUARING_SAFETY)
+    previous = math.inf
+    while True:
+        if 2 * nodes > _N_MAX:
+            return False, math.nan, math.nan, math.nan, math.nan
+        t1, t2, t3, t4, t5, t6 = _polhode_sums(
+            p, nodes, 0.5, amp, x3, big_k, kc, ratios, n_agm, a_agm, F, rl1, rl2, rl3
+        )
+        scale = 0.5 / (4 * nodes)
+        n1, n2, n3 = 0.5 * m1 + scale * t1, 0.5 * m2 + scale * t2, 0.5 * m3 + scale * t3
+        n4 = 0.5 * m4 + scale * t4
+        size_m, size_p = 0.5 * size_m + scale * t5, 0.5 * size_p + scale * t6
+        change = _change(m1, m2, m3, m4, n1, n2, n3, n4, size_m, size_p)
+        squaring = previous < math.inf and change <= _SQUARING_SAFETY * previous * previous
+        m1, m2, m3, m4, previous = n1, n2, n3, n4, change
+        nodes *= 2
+        if change <= rtol or (change <= shortcut and squaring):
+            return True, m1, m2, m3, m4
+
+
+@jit(KERNEL)
+def _rates_at(
+    p: FloatArray, u: float, amp: Vec3, x3: bool, big_k: float, kc: float, ratios: _Table,
+    n_agm: int, a_agm: float,
+) -> Vec3:  # fmt: skip
+    """The body rate (user axes) at the argument u ∈ [0, 4K) of the Jacobi functions."""
+    q = min(int(u / big_k), 3)
+    sn, cn, dn = _quarter(u - q * big_k, big_k, kc, ratios, n_agm, a_agm)
+    return _user_rates(p, amp, x3, *_shifted(q, sn, cn, dn, kc))
+
+
+@jit(INLINE)
+def _user_rates(p: FloatArray, amp: Vec3, x3: bool, sn: float, cn: float, dn: float) -> Vec3:
+    """The body rate in user axes, z_user = Qᵀ z_sorted, from the Jacobi functions: sorted
+    components (cn, sn, dn) in regime x3 (L² > 2T·I2), (dn, sn, cn) in regime x1, times
+    their amplitudes (Martynenko (1979), eq. (3.1))."""
+    if x3:
+        w1, w2, w3 = amp[0] * cn, amp[1] * sn, amp[2] * dn
+    else:
+        w1, w2, w3 = amp[2] * dn, amp[1] * sn, amp[0] * cn
+    return (
+        p[6] * w1 + p[9] * w2 + p[12] * w3,
+        p[7] * w1 + p[10] * w2 + p[13] * w3,
+        p[8] * w1 + p[11] * w2 + p[14] * w3,
+    )
+
+
+@jit(KERNEL)
+def _grid_sums(
+    p: FloatArray, t: float, n0: int, o0: float, n1: int, o1: float, n2: int, o2: float,
+    amp: Vec3, x3: bool, big_k: float, kc: float, ratios: _Table, n_agm: int, a_agm: float,
+    F: Mat3, rl1: float, rl2: float, rl3: float,
+) -> tuple[float, float, float, float, float, float]:  # fmt: skip
+    """Any program (mode 0): the channels of :func:`_node_sums` summed over the product grid
+    of n0 polhode phases, n1 precession angles and n2 forcing phases, each axis uniform with
+    its offset (in nodes), the moment at its explicit time t + s·P/2π (the Python engine's
+    integrand, :func:`tumble.averaging.triaxial._means`)."""
+    s1 = s2 = s3 = s4 = s5 = s6 = 0.0
+    period = p[PERIOD]
+    for j0 in range(n0):
+        z1, z2, z3 = _rates_at(p, (j0 + o0) * 4.0 * big_k / n0, amp, x3, big_k, kc, ratios,
+                               n_agm, a_agm)  # fmt: skip
+        g0, g1, g2 = _body_frame(p, z1, z2, z3)
+        for j1 in range(n1):
+            chi = (j1 + o1) * 2.0 * math.pi / n1
+            c, s = math.cos(chi), math.sin(chi)
+            h0 = (c * g0[0] - s * g1[0], c * g0[1] - s * g1[1], c * g0[2] - s * g1[2])
+            h1 = (s * g0[0] + c * g1[0], s * g0[1] + c * g1[1], s * g0[2] + c * g1[2])
+            a = _attitude(F, h0, h1, g2)
+            for j2 in range(n2):
+                tt = t + (j2 + o2) * period / n2 if period > 0.0 else t
+                m1, m2, m3 = _program(p, PROGRAM_START, tt, z1, z2, z3, a)
+                t1, t2, t3, t4, t5, t6 = _channels(a, z1, z2, z3, m1, m2, m3, rl1, rl2, rl3)
+                s1 += t1
+                s2 += t2
+                s3 += t3
+                s4 += t4
+                s5 += t5
+                s6 += t6
+    return s1, s2, s3, s4, s5, s6
+
+
+@jit(KERNEL)
+def _general_mean(
+    p: FloatArray, t: float, rtol: float, amp: Vec3, x3: bool, big_k: float, kc: float,
+    ratios: _Table, n_agm: int, a_agm: float, F: Mat3, rl1: float, rl2: float, rl3: float,
+) -> tuple[bool, float, float, float, float]:  # fmt: skip
+    """(converged, ⟨A M⟩ (3), ⟨(Ω − r L_ξ)·M⟩) of any program: the product rule refined axis
+    by axis (polhode, precession, forcing) with the Python engine's test and limits
+    (:func:`tumble.averaging.triaxial._product_mean`)."""
+    forced = p[PERIOD] > 0.0
+    n0, n1, n2 = _N_START, _N_START_PHASE, _N_START_PHASE if forced else 1
+    size = n0 * n1 * n2
+    m1, m2, m3, m4, sm, sp = _grid_sums(p, t, n0, 0.0, n1, 0.0, n2, 0.0, amp, x3, big_k, kc,
+                                        ratios, n_agm, a_agm, F, rl1, rl2, rl3)  # fmt: skip
+    m1, m2, m3, m4, sm, sp = m1 / size, m2 / size, m3 / size, m4 / size, sm / size, sp / size
+    shortcut = math.sqrt(rtol / _SQUARING_SAFETY)
+    for axis in range(3 if forced else 2):
+        previous = math.inf
+        while True:
+            n = n0 if axis == 0 else (n1 if axis == 1 else n2)
+            if 2 * n > (_N_MAX if axis == 0 else _N_MAX_PHASE) or 2 * n0 * n1 * n2 > _MAX_GRID:
+                return False, math.nan, math.nan, math.nan, math.nan
+            t1, t2, t3, t4, t5, t6 = _grid_sums(
+                p, t, n0, 0.5 if axis == 0 else 0.0, n1, 0.5 if axis == 1 else 0.0, n2,
+                0.5 if axis == 2 else 0.0, amp, x3, big_k, kc, ratios, n_agm, a_agm, F, rl1,
+                rl2, rl3,
+            )  # fmt: skip
+            scale = 0.5 / (n0 * n1 * n2)
+            n1_, n2_, n3_ = 0.5 * m1 + scale * t1, 0.5 * m2 + scale * t2, 0.5 * m3 + scale * t3
+            n4_ = 0.5 * m4 + scale * t4
+            sm, sp = 0.5 * sm + scale * t5, 0.5 * sp + scale * t6
+            change = _change(m1, m2, m3, m4, n1_, n2_, n3_, n4_, sm, sp)
+            squaring = previous < math.inf and change <= _SQUARING_SAFETY * previous * previous
+            m1, m2, m3, m4, previous = n1_, n2_, n3_, n4_, change
+            if axis == 0:
+                n0 *= 2
+            elif axis == 1:
+                n1 *= 2
+            else:
+                n2 *= 2
+            if change <= rtol or (change <= shortcut and squaring):
+                break
+    return True, m1, m2, m3, m4
+
+
+@jit(INLINE)
+def _change(
+    m1: float, m2: float, m3: float, m4: float, n1: float, n2: float, n3: float, n4: float,
+    size_m: float, size_p: float,
+) -> float:  # fmt: skip
+    """The change of the means relative to their integrands' sizes (the engine's test)."""
+    change = 0.0
+    if size_m > 0.0:
+        change = max(abs(n1 - m1), abs(n2 - m2), abs(n3 - m3)) / size_m
+    if size_p > 0.0:
+        change = max(change, abs(n4 - m4) / size_p)
+    return change
 
 
 @jit(KERNEL)
@@ -349,41 +524,20 @@ def triaxial_averaged(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -
         _nan(out)
         return
     mc = min(mc, 1.0)
-    ratios, _, n_agm, a_agm = _agm(mc)
+    ratios, n_agm, a_agm = _agm(mc)
     big_k = 0.5 * math.pi / a_agm
     kc = math.sqrt(mc)
     F = _frame(y[0] / L, y[1] / L, y[2] / L)
     rl1, rl2, rl3 = r * y[0], r * y[1], r * y[2]
-    nodes = _N_START
-    s1, s2, s3, s4, s5, s6 = _polhode_sums(
-        p, nodes, 0.0, amp, x3, big_k, kc, ratios, n_agm, a_agm, F, rl1, rl2, rl3
-    )
-    m1, m2, m3, m4 = s1 / (4 * nodes), s2 / (4 * nodes), s3 / (4 * nodes), s4 / (4 * nodes)
-    size_m, size_p = s5 / (4 * nodes), s6 / (4 * nodes)
-    shortcut = math.sqrt(rtol / _SQUARING_SAFETY)
-    previous = math.inf
-    while True:
-        if 2 * nodes > _N_MAX:
-            _nan(out)
-            return
-        t1, t2, t3, t4, t5, t6 = _polhode_sums(
-            p, nodes, 0.5, amp, x3, big_k, kc, ratios, n_agm, a_agm, F, rl1, rl2, rl3
-        )
-        scale = 0.5 / (4 * nodes)
-        n1, n2, n3 = 0.5 * m1 + scale * t1, 0.5 * m2 + scale * t2, 0.5 * m3 + scale * t3
-        n4 = 0.5 * m4 + scale * t4
-        size_m, size_p = 0.5 * size_m + scale * t5, 0.5 * size_p + scale * t6
-        change = 0.0
-        if size_m > 0.0:
-            change = max(abs(n1 - m1), abs(n2 - m2), abs(n3 - m3)) / size_m
-        if size_p > 0.0:
-            change = max(change, abs(n4 - m4) / size_p)
-        squaring = previous < math.inf and change <= _SQUARING_SAFETY * previous * previous
-        m1, m2, m3, m4 = n1, n2, n3, n4
-        nodes *= 2
-        previous = change
-        if change <= rtol or (change <= shortcut and squaring):
-            break
+    if p[MODE] == 1.0:
+        ok, m1, m2, m3, m4 = _exact_mean(p, rtol, amp, x3, big_k, kc, ratios, n_agm, a_agm, F,
+                                         rl1, rl2, rl3)  # fmt: skip
+    else:
+        ok, m1, m2, m3, m4 = _general_mean(p, t, rtol, amp, x3, big_k, kc, ratios, n_agm,
+                                           a_agm, F, rl1, rl2, rl3)  # fmt: skip
+    if not ok:
+        _nan(out)
+        return
     out[0] = eps * m1
     out[1] = eps * m2
     out[2] = eps * m3

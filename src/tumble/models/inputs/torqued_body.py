@@ -208,6 +208,12 @@ class Params:
 
         return rigid_body_kernel(self.inertia, self.scaled)
 
+    def __getstate__(self) -> dict[str, Any]:
+        # Without the compiled kernel: it may hold a user callback's address in this process.
+        state = dict(self.__dict__)
+        state.pop("kernel", None)
+        return state
+
     def with_eps(self, eps: float) -> Params:
         """The same body and torque at another ε (for error studies)."""
         return replace(self, eps=eps)

@@ -84,9 +84,9 @@ def markdown(r: dict[str, Any]) -> str:
     if r.get("engine_speedup"):
         lines += [
             "",
-            "The general engine (quadrature over the unperturbed motion; compiled for the "
-            "spinner setting with a moment of the body rate only) against full, one built-in "
-            "torque per setting:",
+            "The general engine (the torque averaged over the unperturbed motion; compiled in "
+            "all three settings for these torques) against full, one built-in torque per "
+            "setting:",
             "",
             "| case | ε | full [s] | averaged [s] | error | speed-up (≥ 100× at 1e-4) "
             "| at equal accuracy | nfev ratio | one evaluation [µs] (≤ 20): averaged / full |",

@@ -224,10 +224,10 @@ def _integrate_group(
                         raise IntegrationError(
                             f"{what}: run.max_steps = {max_steps} steps spent at t = {t:.6g}"
                         )
-                    slow = pace_message(t, float(tau[-1]), float(arrays["first"][r]),
+                    refused = pace_message(t, float(tau[-1]), float(arrays["first"][r]),
                                         max_steps - int(spent[r]), max_steps)  # fmt: skip
-                    if slow:
-                        raise IntegrationError(f"{what}: {slow}")
+                    if refused:
+                        raise IntegrationError(f"{what}: {refused}")
                     going.append(r)  # the same piece, on from where it stopped
                 else:
                     reason = pt.form.failure() if pt.form.failure else None

@@ -382,9 +382,11 @@ def _integrate_compiled_split(
             if spent >= budget:
                 raise IntegrationError(f"{what}: run.max_steps = {budget} steps spent at t = "
                                        f"{run.progress.t:.6g} of {t_end:.6g}")  # fmt: skip
-            slow = pace_message(run.progress.t, t_end, run.progress.h_abs, budget - spent, budget)
-            if slow:
-                raise IntegrationError(f"{what}: {slow}")
+            refused = pace_message(
+                run.progress.t, t_end, run.progress.h_abs, budget - spent, budget
+            )
+            if refused:
+                raise IntegrationError(f"{what}: {refused}")
             chunk = min(2 * chunk, dop853.CHUNK_STEPS)
         res = run.solution()
         if res.status not in (0, dop853.STOPPED):

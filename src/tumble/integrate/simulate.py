@@ -315,9 +315,9 @@ def _consume(
                 "input: a very fast or stiff motion)"
             )
         left = max_steps - run.progress.n_steps
-        slow = pace_message(piece.t, float(tau[-1]), run.progress.h_abs, left, max_steps)
-        if not done and slow:
-            raise IntegrationError(f"{what}: {slow}")
+        refused = pace_message(piece.t, float(tau[-1]), run.progress.h_abs, left, max_steps)
+        if not done and refused:
+            raise IntegrationError(f"{what}: {refused}")
         upto = tau.size if done else int(np.searchsorted(tau, piece.ts[-1], side="right"))
         t_samples = tau[done_samples:upto]
         if t_samples.size:

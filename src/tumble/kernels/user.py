@@ -21,7 +21,8 @@ depend on the sign, as any attitude-dependent torque must not.
 from __future__ import annotations
 
 import functools
-from typing import Any
+from collections.abc import Callable
+from typing import Any, cast
 
 import numba
 import numpy as np
@@ -64,7 +65,7 @@ def compiled_user_torque(function: Any) -> Any:
 
 
 @intrinsic
-def call_user(
+def _call_user(
     typingctx: Any, address: Any, t: Any, q0: Any, q1: Any, q2: Any, q3: Any, w1: Any,
     w2: Any, w3: Any, prog: Any, start: Any, n: Any,
 ) -> Any:  # fmt: skip
@@ -88,3 +89,8 @@ def call_user(
         return context.make_tuple(builder, result, values)
 
     return sig, codegen
+
+
+call_user = cast(Callable[..., tuple[float, float, float]], _call_user)
+"""``call_user(address, t, q0, q1, q2, q3, w1, w2, w3, prog, start, n) -> (m1, m2, m3)`` from
+compiled code (the intrinsic above, typed for the callers)."""

@@ -1,4 +1,5 @@
-"""The general averaging engine's triaxial setting, compiled, for the built-in torques.
+"""The general averaging engine's triaxial setting, compiled, for the built-in torques and a
+user's numba function.
 
 :func:`tumble.averaging.triaxial_average_vector` averages the rates of the slow variables
 ``[L_ξ, r = 2T/L²]`` of a triaxial body over the Euler–Poinsot motion (Martynenko (1979),
@@ -56,7 +57,7 @@ from tumble.kernels.codes import (
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
 from tumble.kernels.torque import Mat3, Vec3, _program, _term, _to_body, next_term
 
-__all__ = ["PROGRAM_START", "jacobi_functions", "triaxial_averaged"]
+__all__ = ["MODE", "PERIOD", "PROGRAM_START", "jacobi_functions", "triaxial_averaged"]
 
 MODE = 18
 """Index of the mode: 1 for built-in terms only (the reductions above), 0 for any program."""

@@ -149,3 +149,19 @@ def test_torqued_body_runs_compiled():
     assert runs["numba"].integrator == "numba"
     for name, ref in runs["scipy"].columns.items():
         assert np.max(np.abs(runs["numba"].columns[name] - ref)) < 1e-7, name
+
+
+def test_a_run_refused_at_its_start_says_why():
+    # A spin about the intermediate axis sits on the separatrix: the kernel's rates are NaN
+    # there, and the failed run carries the Python engine's reason, alone and in an ensemble.
+    from tumble.errors import IntegrationError
+    from tumble.integrate import simulate_batch
+
+    torque, period = _torques()["gravity gradient"]
+    p = tb.Params(inertia=INERTIA, eps=0.02, torque=torque, forcing_period=period)
+    st = tb.State(omega=np.array([1.0, 0.0, 0.0]))  # the first moment, 1.5, is the middle one
+    tau = np.linspace(0.0, 10.0, 3)
+    with pytest.raises(IntegrationError, match=r"initial state; last refused state: .*separatrix"):
+        simulate(tb.MODEL, p, st, tau, "averaged")
+    (got,) = simulate_batch(tb.MODEL, [p], [st], tau, method="averaged")
+    assert isinstance(got, IntegrationError) and "separatrix" in str(got)

@@ -22,11 +22,11 @@ from tumble._typing import FloatArray
 from tumble.errors import IntegrationError, TumbleError
 from tumble.integrate import dop853
 from tumble.integrate.dop853.block import block_entry, empty_block
-from tumble.integrate.dop853.core import OK, RUNNING, STOPPED, Chunk
+from tumble.integrate.dop853.core import BAD_START, OK, RUNNING, STOPPED, Chunk
 from tumble.integrate.dop853.driver import _cut
 from tumble.integrate.limits import FIRST_CHUNK, MAX_STEPS, pace_message
 from tumble.integrate.ode import compiled_breakpoints, joined_pieces, split_plan
-from tumble.integrate.simulate import Trajectory, _unwrap_columns, simulate
+from tumble.integrate.simulate import Trajectory, _unwrap_columns, simulate, start_refusal
 from tumble.integrate.simulate import _trajectory as _dense_trajectory
 from tumble.kernels import EVENT_NONE, Kernel
 from tumble.models.base import AveragedForm, AveragingOptions, Breakpoint, Model
@@ -231,6 +231,8 @@ def _integrate_group(
                     going.append(r)  # the same piece, on from where it stopped
                 else:
                     reason = pt.form.failure() if pt.form.failure else None
+                    if reason is None and status == BAD_START:
+                        reason = start_refusal(pt.form, pt.params, t, arrays["Y"][r].copy())
                     message = dop853.status_message(status)
                     text = f"{what}: integration failed at t = {t:.6g}: {message}"
                     if reason:

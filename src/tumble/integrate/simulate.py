@@ -416,10 +416,11 @@ def _averaged(
     """The averaged equations integrated (compiled when ``kernel`` is given) and sampled at
     ``tau``."""
     start = time.perf_counter()
+    y0 = avg.initial_state(p, initial)
     try:
         sol = integrate(
             lambda t, y: avg.rhs(t, y, p),
-            avg.initial_state(p, initial),
+            y0,
             float(tau[-1]),
             rtol=rtol,
             atol=atol,
@@ -430,10 +431,22 @@ def _averaged(
         )
     except IntegrationError as exc:
         reason = avg.failure() if avg.failure else None
+        if reason is None and kernel is not None:
+            reason = start_refusal(avg, p, 0.0, y0)
         if reason is None:
             raise
         raise IntegrationError(f"{exc}; last refused state: {reason}") from None
     return _trajectory(model, p, initial, tau, "averaged", avg, sol, start)
+
+
+def start_refusal(avg: AveragedForm[P, S], p: P, t: float, y: FloatArray) -> str | None:
+    """Why the Python form refuses the state (t, y) (its error's message), or None: what a
+    compiled kernel's NaN at a run's start meant, for the message of the failed run."""
+    try:
+        avg.rhs(t, np.asarray(y, dtype=float), p)
+    except TumbleError as exc:
+        return str(exc)
+    return None
 
 
 def _trajectory(

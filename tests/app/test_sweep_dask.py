@@ -44,12 +44,12 @@ def _start(args, log):
     return subprocess.Popen(args, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
 
 
-def _wait_for(predicate, timeout, what):
+def _wait_for(predicate, timeout, what, poll=0.05):
     end = time.monotonic() + timeout
     while time.monotonic() < end:
         if predicate():
             return
-        time.sleep(0.05)
+        time.sleep(poll)
     raise AssertionError(f"timed out after {timeout} s waiting for {what}")
 
 
@@ -198,11 +198,17 @@ def test_a_killed_sweep_resumes_to_the_uninterrupted_dataset(
         args, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True
     )
     parts = out / "parts"
-    _wait_for(lambda: parts.is_dir() and len(list(parts.glob("*.json"))) >= 2, 120, "2 chunks")
+
+    # Killed as soon as a first chunk is on disk (polled every 5 ms): a chunk of these short
+    # runs takes a few ms once the workers are warm, so waiting for more lets the sweep end.
+    def first_chunk():
+        return parts.is_dir() and any(parts.glob("*.json"))
+
+    _wait_for(first_chunk, 120, "a first chunk", poll=0.005)
     os.killpg(proc.pid, signal.SIGKILL)  # no chance to clean up: killed at an arbitrary point
     proc.wait(timeout=20)
     kept = {p.name: p.stat().st_mtime_ns for p in parts.glob("*.json")}
-    assert 2 <= len(kept) < 6, "the sweep should be killed before it ends"
+    assert 1 <= len(kept) < 6, "the sweep should be killed before it ends"
     # The cluster lets go of the dead client's tasks before the second run submits them again.
     time.sleep(1.0)
     done = subprocess.run(args, capture_output=True, text=True, timeout=300)

@@ -380,6 +380,14 @@ class UserTorque(Torque):
                     "only (its params arrive as a float array, in the table's order)"
                 )
             values.append(float(value))
+        # One call from Python first: inside the C callback an exception could not reach
+        # anyone, so a broken function fails here, with its own error.
+        trial = function(0.0, np.array([1.0, 0.0, 0.0, 0.0]), np.zeros(3), np.array(values))
+        if np.shape(trial) != (3,):
+            raise ParameterError(
+                f"{self.name}: a numba torque function must return the 3 body components of "
+                f"the moment, got shape {np.shape(trial)}"
+            )
         address = compiled_user_torque(function).address
         return ((TERM_USER, 1.0, (float(address), float(len(values)), *values)),)
 

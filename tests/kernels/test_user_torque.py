@@ -127,3 +127,22 @@ def test_a_pickled_torque_rebuilds_its_program_where_it_lands():
     again = pickle.loads(pickle.dumps(p))
     assert "kernel" not in again.__dict__ and "program" not in again.torque.__dict__
     assert np.array_equal(again.torque.program, p.torque.program)  # rebuilt (same process)
+
+
+@numba.njit
+def _two_numbers(t, q, omega, params):  # type: ignore[no-untyped-def]
+    return np.array([0.0, 0.0])
+
+
+def test_a_broken_numba_torque_fails_from_python_not_inside_the_callback():
+    with pytest.raises(ParameterError, match="must return the 3 body components"):
+        _ = UserTorque(_two_numbers, {}, "test:two").program
+    # An exception of the function (here numba's bounds check, on for this one) is raised
+    # where Python sees it.
+    with pytest.raises(IndexError):
+        _ = UserTorque(_broken_checked, {"a": 1.0, "b": 2.0}, "test:broken").program
+
+
+@numba.njit(boundscheck=True)
+def _broken_checked(t, q, omega, params):  # type: ignore[no-untyped-def]
+    return np.array([params[5], 0.0, 0.0])

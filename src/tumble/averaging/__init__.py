@@ -6,8 +6,11 @@
 * :mod:`~tumble.averaging.triaxial`: the triaxial body of spec/martynenko.md (slow L_ξ, T;
   averaged over the polhode, the precession about L and a periodic forcing).
 * :mod:`~tumble.averaging.nutation`: Volosov averaging over the nutation of spec/serov.md.
+* :mod:`~tumble.averaging.generator`: the first-order generator w₁ of the near-identity
+  transformation on a torus grid (FFT), with its small divisors reported.
 """
 
+from tumble.averaging.generator import SmallDivisorError, zero_mean_antiderivative
 from tumble.averaging.quadrature import AVERAGE_RTOL, AveragingError, torus_mean
 from tumble.averaging.spinner import spinner_average
 from tumble.averaging.triaxial import (
@@ -20,10 +23,12 @@ from tumble.averaging.triaxial import (
 __all__ = [
     "AVERAGE_RTOL",
     "AveragingError",
+    "SmallDivisorError",
     "nearest_resonance",
     "spinner_average",
     "torus_mean",
     "triaxial_average",
     "triaxial_average_vector",
     "triaxial_kernel",
+    "zero_mean_antiderivative",
 ]

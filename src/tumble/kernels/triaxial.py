@@ -318,30 +318,19 @@ def _exact_mean(
     """(converged, ⟨A M⟩ (3), ⟨(Ω − r L_ξ)·M⟩) of built-in terms (mode 1): the polhode refined
     with the engine's test, the precession and the forcing phase exact (module notes)."""
     nodes = _N_START
-    s1, s2, s3, s4, s5, s6 = _polhode_sums(
-        p, nodes, 0.0, amp, x3, big_k, kc, ratios, n_agm, a_agm, F, rl1, rl2, rl3
-    )
-    size = 4 * nodes
-    m1, m2, m3, m4 = s1 / size, s2 / size, s3 / size, s4 / size
-    size_m, size_p = s5 / size, s6 / size
-    shortcut = math.sqrt(rtol / _SQUARING_SAFETY)
+    m = _scaled(_polhode_sums(p, nodes, 0.0, amp, x3, big_k, kc, ratios, n_agm, a_agm, F, rl1,
+                              rl2, rl3), 1.0 / (4 * nodes))  # fmt: skip
     previous = math.inf
     while True:
         if 2 * nodes > _N_MAX:
             return False, math.nan, math.nan, math.nan, math.nan
-        t1, t2, t3, t4, t5, t6 = _polhode_sums(
+        fresh = _polhode_sums(
             p, nodes, 0.5, amp, x3, big_k, kc, ratios, n_agm, a_agm, F, rl1, rl2, rl3
         )
-        scale = 0.5 / (4 * nodes)
-        n1, n2, n3 = 0.5 * m1 + scale * t1, 0.5 * m2 + scale * t2, 0.5 * m3 + scale * t3
-        n4 = 0.5 * m4 + scale * t4
-        size_m, size_p = 0.5 * size_m + scale * t5, 0.5 * size_p + scale * t6
-        change = _change(m1, m2, m3, m4, n1, n2, n3, n4, size_m, size_p)
-        squaring = previous < math.inf and change <= _SQUARING_SAFETY * previous * previous
-        m1, m2, m3, m4, previous = n1, n2, n3, n4, change
+        m, previous, done = _doubled(m, fresh, 0.5 / (4 * nodes), previous, rtol)
         nodes *= 2
-        if change <= rtol or (change <= shortcut and squaring):
-            return True, m1, m2, m3, m4
+        if done:
+            return True, m[0], m[1], m[2], m[3]
 
 
 @jit(KERNEL)
@@ -416,52 +405,60 @@ def _general_mean(
     (:func:`tumble.averaging.triaxial._product_mean`)."""
     forced = p[PERIOD] > 0.0
     n0, n1, n2 = _N_START, _N_START_PHASE, _N_START_PHASE if forced else 1
-    size = n0 * n1 * n2
-    m1, m2, m3, m4, sm, sp = _grid_sums(p, t, n0, 0.0, n1, 0.0, n2, 0.0, amp, x3, big_k, kc,
-                                        ratios, n_agm, a_agm, F, rl1, rl2, rl3)  # fmt: skip
-    m1, m2, m3, m4, sm, sp = m1 / size, m2 / size, m3 / size, m4 / size, sm / size, sp / size
-    shortcut = math.sqrt(rtol / _SQUARING_SAFETY)
+    m = _scaled(_grid_sums(p, t, n0, 0.0, n1, 0.0, n2, 0.0, amp, x3, big_k, kc, ratios, n_agm,
+                           a_agm, F, rl1, rl2, rl3), 1.0 / (n0 * n1 * n2))  # fmt: skip
     for axis in range(3 if forced else 2):
         previous = math.inf
         while True:
             n = n0 if axis == 0 else (n1 if axis == 1 else n2)
             if 2 * n > (_N_MAX if axis == 0 else _N_MAX_PHASE) or 2 * n0 * n1 * n2 > _MAX_GRID:
                 return False, math.nan, math.nan, math.nan, math.nan
-            t1, t2, t3, t4, t5, t6 = _grid_sums(
+            fresh = _grid_sums(
                 p, t, n0, 0.5 if axis == 0 else 0.0, n1, 0.5 if axis == 1 else 0.0, n2,
                 0.5 if axis == 2 else 0.0, amp, x3, big_k, kc, ratios, n_agm, a_agm, F, rl1,
                 rl2, rl3,
             )  # fmt: skip
-            scale = 0.5 / (n0 * n1 * n2)
-            n1_, n2_, n3_ = 0.5 * m1 + scale * t1, 0.5 * m2 + scale * t2, 0.5 * m3 + scale * t3
-            n4_ = 0.5 * m4 + scale * t4
-            sm, sp = 0.5 * sm + scale * t5, 0.5 * sp + scale * t6
-            change = _change(m1, m2, m3, m4, n1_, n2_, n3_, n4_, sm, sp)
-            squaring = previous < math.inf and change <= _SQUARING_SAFETY * previous * previous
-            m1, m2, m3, m4, previous = n1_, n2_, n3_, n4_, change
+            m, previous, done = _doubled(m, fresh, 0.5 / (n0 * n1 * n2), previous, rtol)
             if axis == 0:
                 n0 *= 2
             elif axis == 1:
                 n1 *= 2
             else:
                 n2 *= 2
-            if change <= rtol or (change <= shortcut and squaring):
+            if done:
                 break
-    return True, m1, m2, m3, m4
+    return True, m[0], m[1], m[2], m[3]
+
+
+_Sums = tuple[float, float, float, float, float, float]
+"""The channels of the integrand: ⟨A M⟩ (3), ⟨(Ω − r L_ξ)·M⟩, and the sizes ⟨|M|⟩, ⟨|Ω||M|⟩."""
 
 
 @jit(INLINE)
-def _change(
-    m1: float, m2: float, m3: float, m4: float, n1: float, n2: float, n3: float, n4: float,
-    size_m: float, size_p: float,
-) -> float:  # fmt: skip
-    """The change of the means relative to their integrands' sizes (the engine's test)."""
+def _scaled(s: _Sums, f: float) -> _Sums:
+    return f * s[0], f * s[1], f * s[2], f * s[3], f * s[4], f * s[5]
+
+
+@jit(INLINE)
+def _doubled(m: _Sums, fresh: _Sums, scale: float, previous: float, rtol: float
+             ) -> tuple[_Sums, float, bool]:  # fmt: skip
+    """A doubling of one axis: the means (the old ones halved, plus the new nodes' sums times
+    ``scale``), their change relative to the integrands' sizes, and whether the engine's test
+    accepts them (:func:`tumble.averaging.triaxial._product_mean`: the change at most
+    ``rtol``, or at most √(rtol/100) once the changes square from one doubling to the next)."""
+    new = (
+        0.5 * m[0] + scale * fresh[0], 0.5 * m[1] + scale * fresh[1],
+        0.5 * m[2] + scale * fresh[2], 0.5 * m[3] + scale * fresh[3],
+        0.5 * m[4] + scale * fresh[4], 0.5 * m[5] + scale * fresh[5],
+    )  # fmt: skip
     change = 0.0
-    if size_m > 0.0:
-        change = max(abs(n1 - m1), abs(n2 - m2), abs(n3 - m3)) / size_m
-    if size_p > 0.0:
-        change = max(change, abs(n4 - m4) / size_p)
-    return change
+    if new[4] > 0.0:
+        change = max(abs(new[0] - m[0]), abs(new[1] - m[1]), abs(new[2] - m[2])) / new[4]
+    if new[5] > 0.0:
+        change = max(change, abs(new[3] - m[3]) / new[5])
+    squaring = previous < math.inf and change <= _SQUARING_SAFETY * previous * previous
+    done = change <= rtol or (change <= math.sqrt(rtol / _SQUARING_SAFETY) and squaring)
+    return new, change, done
 
 
 @jit(KERNEL)

@@ -91,7 +91,9 @@ def _columns_dataset(
     time_name: str,
     time_units: str = "1",
 ) -> xr.Dataset:
-    """Columns as a Dataset on ``tau``, with units, long names and equations in ``attrs``."""
+    """Columns as a Dataset on ``tau``, with units, long names and equations in ``attrs``
+    (a declared column the run did not produce, such as the mean variables of a run of order
+    1, is left out)."""
     data_vars = {
         col.name: xr.DataArray(
             values[col.name],
@@ -104,6 +106,7 @@ def _columns_dataset(
             },
         )
         for col in columns
+        if col.name in values
     }
     # The coordinate is "tau" for every model; its attrs carry the paper's own time name.
     symbol = {"tau": "τ"}.get(time_name, time_name)

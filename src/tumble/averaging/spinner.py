@@ -39,12 +39,18 @@ from tumble.averaging.quadrature import (
     torus_mean,
 )
 from tumble.errors import ParameterError, check_finite, check_range
-from tumble.rotations import SINGULAR_SIN, quat_multiply
+from tumble.rotations import (
+    SINGULAR_SIN,
+    attitude_from_kframe_angles,
+    matrix_to_quat,
+    quat_multiply,
+)
 
 __all__ = [
     "TorqueLike",
     "body_momentum",
     "spinner_average",
+    "spinner_system",
     "standard_form",
 ]
 
@@ -530,3 +536,74 @@ def spinner_average(
     A. V. Medvedev (1987), seed 000; spec/medvedev.md (1.3), (2.1), (2.2).
     """
     return _spinner_average(torque, kappa, eps, k, rho, sigma, theta, t, rtol, batched)[0]
+
+
+# ---------------------------------------------------------------------------------------------
+# The standard form (1.3) as a fast system, for second-order averaging.
+
+SPINNER_GRID = (4, 64)
+"""First torus grid (ψ, φ) of :func:`spinner_system`: a body-fixed moment enters the slow
+rates through Rz(ψ) only (harmonics 0 and ±1 in ψ, resolved by 4 nodes); the grid is doubled
+where the moment needs more (:func:`tumble.averaging.second_order.second_order`)."""
+
+
+def spinner_system(
+    torque: TorqueLike, kappa: float
+) -> tuple[
+    Callable[[float, FloatArray, Any], tuple[FloatArray, FloatArray]],
+    Callable[[FloatArray], FloatArray],
+]:
+    """The standard form (1.3) split into slow rates and phase rates for the fast system of
+    :mod:`tumble.averaging.second_order`.
+
+    Slow x = (k, ρ, σ, ϑ); phases (ψ, φ) with the unperturbed rates ν = (k, −kκ cos ϑ/(1+κ))
+    of (2.1). f holds the slow rates of (1.3) and g the phases' rates less ν, both under the
+    moment ``torque(t, q, w)`` (which carries ε, as ``resisting_medium.Params.torque`` does).
+
+    Returns
+    -------
+    rates : callable
+        ``rates(t, x, (ψ, φ)) -> (f, g)``, vectorised over the grid and over slow states that
+        vary from node to node.
+    frequencies : callable
+        ``frequencies(x) -> ν`` [rad/τ].
+    """
+    attitude = not rate_only(torque)
+    ratio = kappa / (1.0 + kappa)
+
+    def rates(t: float, x: FloatArray, phases: Any) -> tuple[FloatArray, FloatArray]:
+        k, rho, sigma, theta = x
+        psi, phi = phases
+        shape = np.broadcast_shapes(*(np.shape(v) for v in (k, rho, sigma, theta, psi, phi)))
+        if attitude:
+            R = attitude_from_kframe_angles(rho, sigma, psi, theta, phi)
+            q = matrix_to_quat(np.broadcast_to(R, (*shape, 3, 3))).reshape(-1, 4)
+            w = body_momentum(k, theta, phi) / np.array([1.0, 1.0, 1.0 + kappa])
+            w = np.broadcast_to(w, (*shape, 3)).reshape(-1, 3)
+            m = np.broadcast_to(np.asarray(torque(t, q, w), dtype=float), w.shape)
+            m = m.reshape(*shape, 3)
+        else:  # the body rate alone: on the φ nodes only when k and ϑ do not vary with ψ
+            k_, theta_ = (_along_phi(v) for v in (k, theta))
+            w = body_momentum(k_, theta_, phi) / np.array([1.0, 1.0, 1.0 + kappa])
+            m = np.asarray(torque(t, None, w.reshape(-1, 3)), dtype=float)
+            m = np.broadcast_to(np.broadcast_to(m, (w.size // 3, 3)).reshape(w.shape), (*shape, 3))
+        out = standard_form(m, k, rho, psi, theta, phi, kappa, 1.0)
+        out = np.moveaxis(out, -1, 0)
+        f = out[[0, 1, 2, 4]]
+        g = np.stack([out[3] - k, out[5] + k * ratio * np.cos(theta)])
+        return f, g
+
+    def frequencies(x: FloatArray) -> FloatArray:
+        k, theta = float(x[0]), float(x[3])
+        return np.array([k, -k * ratio * math.cos(theta)])
+
+    return rates, frequencies
+
+
+def _along_phi(values: Any) -> Any:
+    """``values`` (on the (ψ, φ) grid) reduced to their first ψ row where they do not vary
+    with ψ, so that a moment of the body rate is evaluated on the φ nodes only."""
+    v = np.asarray(values)
+    if v.ndim == 2 and v.shape[0] > 1 and np.all(v == v[:1]):
+        return v[:1]
+    return v

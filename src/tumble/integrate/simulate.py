@@ -473,6 +473,8 @@ def _trajectory(
             return full.to_columns(p, t, Y)
 
     cols = _sampled(model, p, method, sol, to_columns, tau, initial)
+    if isinstance(eq, AveragedForm) and eq.osculating is not None:
+        cols.update(eq.osculating(p, initial, tau, sol(tau)))
 
     def slow(t: FloatArray) -> Columns:
         return to_columns(t, sol(t))

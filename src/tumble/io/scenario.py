@@ -232,6 +232,16 @@ def run_keys(model: Declaration[Any, Any], variant: Variant[Any, Any]) -> tuple[
                 choices=("exact", "corrected"),
                 doc="start from the given state, or from its first-order mean")
         )  # fmt: skip
+    if max(model.orders) > 1:
+        keys += [
+            Key("averaging_order", "integer", "1 or 2", default=1,
+                doc="the order of the averaged equations; 2 adds the second-order rates and "
+                    "the mean ↔ osculating map"),
+            Key("initial", "text", '"osculating" or "mean"', default="osculating",
+                choices=("osculating", "mean"),
+                doc="for averaging_order = 2: the initial state is the physical one "
+                    "(converted to the mean one) or the mean one"),
+        ]  # fmt: skip
     keys += [
         Key("verify", "boolean", "true or false", default=False,
             doc="also measure the averaging error at ε, ε/2, ε/4"),
@@ -522,6 +532,8 @@ def _request(model: Declaration[Any, Any], run: Any, built: Any, times: np.ndarr
         averaging=getattr(run, "averaging", "closed_form"),
         coordinates=getattr(run, "averaged_form", ""),
         start=getattr(run, "averaged_init", "exact"),
+        order=getattr(run, "averaging_order", 1),
+        initial=getattr(run, "initial", "osculating"),
     )
     if not 1 <= run.max_steps <= 10**12:
         raise ParameterError(

@@ -97,11 +97,22 @@ class AveragingOptions:
     start : {"exact", "corrected"}
         Start the averaged run from the initial state as given, or from the mean state
         corrected to first order where the model has that map (``[run] averaged_init``).
+    order : {1, 2}
+        The order of the averaged equations (``[run] averaging_order``): F₁, or F₁ + F₂ with
+        the mean ↔ osculating map to second order (:mod:`tumble.averaging.second_order`),
+        where the model offers it (``Averaged.orders``).
+    initial : {"osculating", "mean"}
+        What the initial state of a run of order 2 is (``[run] initial``): the physical
+        (osculating) state, converted to the mean one before the run; or the mean state
+        itself. Output columns of such a run are the osculating variables rebuilt at the
+        sample times, with the mean ones beside them (``*_mean``).
     """
 
     averaging: Literal["closed_form", "numeric"] = "closed_form"
     coordinates: str = ""
     start: Literal["exact", "corrected"] = "exact"
+    order: int = 1
+    initial: Literal["osculating", "mean"] = "osculating"
 
     def __post_init__(self) -> None:
         if self.averaging not in AVERAGING_METHODS:
@@ -113,6 +124,15 @@ class AveragingOptions:
             raise ParameterError(
                 f"run.averaged_init = {self.start!r} is not an initialisation "
                 '(allowed: "exact", "corrected")'
+            )
+        if self.order not in (1, 2):
+            raise ParameterError(
+                f"run.averaging_order = {self.order!r} is not an order of averaging (allowed: 1, 2)"
+            )
+        if self.initial not in ("osculating", "mean"):
+            raise ParameterError(
+                f"run.initial = {self.initial!r} is not a meaning of the initial state "
+                '(allowed: "osculating", "mean")'
             )
 
 
@@ -196,6 +216,10 @@ class AveragedForm(Generic[P, S]):
     # reject the step); reported if the integration then fails.
     failure: Callable[[], str | None] | None = None
     kernel: Callable[[P], Kernel | None] | None = None
+    # The osculating variables rebuilt from the mean ones (a run of order 2): costly, so a run
+    # evaluates it at the sample times only, over the columns of ``to_columns`` (the mean
+    # ones, which the validity checks and the unwrapping of angles read).
+    osculating: Callable[[P, S, FloatArray, FloatArray], Columns] | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -293,6 +317,7 @@ class Averaged(Generic[P, S]):
     coordinates: tuple[str, ...] = ()  # choices of AveragingOptions.coordinates; first: default
     corrected_start: bool = False  # whether it has the first-order mean ↔ osculating start
     numeric: bool = False  # whether the general engine can replace the paper's right-hand side
+    orders: tuple[int, ...] = (1,)  # orders of averaging it offers (AveragingOptions.order)
     errors: Callable[[P, Sampled, Sampled], Mapping[str, tuple[FloatArray, FloatArray]]] | None = (
         None
     )
@@ -310,6 +335,12 @@ class Averaged(Generic[P, S]):
         if options.start == "corrected" and not self.corrected_start:
             raise ParameterError(
                 'run.averaged_init = "corrected" is not available for this model (allowed: "exact")'
+            )
+        if options.order not in self.orders:
+            allowed = ", ".join(map(str, self.orders))
+            raise ParameterError(
+                f"run.averaging_order = {options.order} is not available for this model "
+                f"(allowed: {allowed})"
             )
         if not options.coordinates and self.coordinates:
             return replace(options, coordinates=self.coordinates[0])
@@ -500,9 +531,9 @@ class Declaration(Generic[P, S]):
     ----------
     name, time, methods, check, scenario
         As the :class:`Model` fields of those names.
-    numeric, coordinates, corrected_start
-        As the :class:`Averaged` fields of those names (False, (), False without averaged
-        equations).
+    numeric, coordinates, corrected_start, orders
+        As the :class:`Averaged` fields of those names (False, (), False, (1,) without
+        averaged equations).
     """
 
     name: str
@@ -513,6 +544,7 @@ class Declaration(Generic[P, S]):
     numeric: bool = False
     coordinates: tuple[str, ...] = ()
     corrected_start: bool = False
+    orders: tuple[int, ...] = (1,)
 
     @classmethod
     def of(cls, model: Model[P, S]) -> Declaration[P, S]:
@@ -527,6 +559,7 @@ class Declaration(Generic[P, S]):
             numeric=avg is not None and avg.numeric,
             coordinates=avg.coordinates if avg is not None else (),
             corrected_start=avg is not None and avg.corrected_start,
+            orders=avg.orders if avg is not None else (1,),
         )
 
 

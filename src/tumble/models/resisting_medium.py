@@ -23,7 +23,14 @@ import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
 from tumble.averaging.quadrature import AVERAGE_RTOL
-from tumble.averaging.spinner import body_momentum, spinner_average, standard_form
+from tumble.averaging.second_order import MeanSystem
+from tumble.averaging.spinner import (
+    SPINNER_GRID,
+    body_momentum,
+    spinner_average,
+    spinner_system,
+    standard_form,
+)
 from tumble.catalogue import CATALOGUE
 from tumble.errors import (
     IntegrationError,
@@ -388,9 +395,64 @@ _AVERAGED_NUMERIC: AveragedForm[Params, State] = AveragedForm(
 )
 
 
+_SLOW = ("k", "rho", "sigma", "theta")
+_PHASES = ("psi", "phi")
+
+
+def mean_system(p: Params, order: int) -> MeanSystem:
+    """The averaged equations of ``order`` in mean variables (k, ρ, σ, ϑ) and mean phases
+    (ψ, φ), with the mean ↔ osculating map (:mod:`tumble.averaging.second_order` on the
+    standard form (1.3)); F₁ by :func:`tumble.averaging.spinner_average`."""
+
+    def first(t: float, y: FloatArray) -> FloatArray:
+        k, rho, sigma, theta = (float(v) for v in y)
+        return spinner_average(p.torque, p.kappa, 1.0, k, rho, sigma, theta, t=t)
+
+    rates, frequencies = spinner_system(p.torque, p.kappa)
+    return MeanSystem(rates, frequencies, SPINNER_GRID, order, first)
+
+
+def _mean_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:
+    """The averaged equations of order ``options.order`` in mean variables, started from the
+    mean state of the given one (``options.initial = "osculating"``) or from it, with the
+    osculating variables rebuilt at the samples (:func:`mean_system`)."""
+    system = mean_system(p, options.order)
+
+    def initial_state(p: Params, st: State) -> FloatArray:
+        x = np.array([st.k, st.rho, st.sigma, st.theta])
+        phases = np.array([st.psi, st.phi])
+        if options.initial == "mean":
+            return np.concatenate([x, phases])
+        return system.start(0.0, x, phases)
+
+    def mean_columns(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
+        Y = np.atleast_2d(Y)
+        cols = {name: Y[:, i] for i, name in enumerate(_SLOW)}
+        cols |= {f"{name}_mean": Y[:, i] for i, name in enumerate(_SLOW + _PHASES)}
+        return cols
+
+    def osculating(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
+        X, _ = system.osculating(t, Y)
+        return {name: X[:, i] for i, name in enumerate(_SLOW)}
+
+    return AveragedForm(
+        name=f"mean_order{options.order}",
+        equation=f"(1.3) averaged to order {options.order} in mean variables (tumble.averaging)",
+        slow=(*(f"{v}_mean" for v in _SLOW), *(f"{v}_mean" for v in _PHASES)),
+        rhs=lambda t, y, p: system.rhs(t, y),
+        initial_state=initial_state,
+        to_columns=mean_columns,
+        breakpoints=(Breakpoint(lambda t, y: math.cos(y[3])),),
+        osculating=osculating,
+    )
+
+
 def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:
-    """(2.2), its W, V form (2.3), or the general engine (``averaging = "numeric"``,
-    :func:`tumble.averaging.spinner_average`: the moment (1.2) averaged over ψ and φ)."""
+    """(2.2), its W, V form (2.3), the general engine (``averaging = "numeric"``,
+    :func:`tumble.averaging.spinner_average`: the moment (1.2) averaged over ψ and φ), or the
+    equations of order 2 in mean variables (:func:`_mean_form`)."""
+    if options.order == 2:
+        return _mean_form(p, st, options)
     if options.averaging == "numeric":
         return _AVERAGED_NUMERIC
     # (2.2) is written in polar coordinates (k, ϑ): at V0 = 0 (ϑ0 = 0 or π) the solution may
@@ -1089,6 +1151,15 @@ _COLUMNS_SLOW = (
     Column("rho", "polar angle ρ of K from X3", _ANGLE, "(1.3)"),
     Column("sigma", "azimuth σ of K about X3", _ANGLE, "(1.3)", angle=True, unwrap=True),
 )
+_COLUMNS_MEAN = tuple(
+    Column(f"{c.name}_mean", f"mean {c.long_name} (averaging of order 2)", c.units, c.equation,
+           angle=c.angle)
+    for c in (
+        *_COLUMNS_SLOW,
+        Column("psi", "precession angle ψ of x3 about K", _ANGLE, "(1.3)", angle=True),
+        Column("phi", "proper rotation angle φ", _ANGLE, "(1.3)", angle=True),
+    )
+)  # fmt: skip
 _COLUMNS_FULL = (
     *_COLUMNS_SLOW,
     Column("psi", "precession angle ψ of x3 about K", _ANGLE, "(1.3)", angle=True, unwrap=True),
@@ -1124,6 +1195,7 @@ FULL_OSCULATING: FullForm[Params, State] = FullForm(
 
 _COLUMNS_FULL_OF = fixed_columns(_COLUMNS_FULL)
 _COLUMNS_SLOW_OF = fixed_columns(_COLUMNS_SLOW)
+_COLUMNS_AVERAGED_OF = fixed_columns((*_COLUMNS_SLOW, *_COLUMNS_MEAN))
 
 _ENTRY = CATALOGUE["resisting_medium"]  # name, description and paper
 
@@ -1141,9 +1213,10 @@ MODEL: Model[Params, State] = Model(
     methods=DECLARED.methods,
     averaged=Averaged(
         form=_averaged_form,
-        columns=_COLUMNS_SLOW_OF,
+        columns=_COLUMNS_AVERAGED_OF,
         compare=("k", "rho", "sigma", "theta"),
         numeric=DECLARED.numeric,
+        orders=DECLARED.orders,
     ),
     closed_form=ClosedForm(evaluate=closed_form, columns=_COLUMNS_SLOW_OF),
     unperturbed=Unperturbed(

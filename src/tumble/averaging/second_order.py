@@ -1,0 +1,523 @@
+"""Second-order averaging and the mean ↔ osculating map, numerically, for any right-hand side.
+
+The system is in the standard form of the method of averaging with slow variables x (m of them)
+and fast phases φ on a d-torus,
+
+    dx/dt = f(t, x, φ),    dφ/dt = ν(x) + g(t, x, φ),
+
+where f and g are small (of order ε; tumble's models carry ε in them) and the frequencies ν are
+not. A near-identity transformation to mean variables y and mean phases ψ,
+
+    x = y + u(t, y, ψ),    φ = ψ + v(t, y, ψ),
+
+with u and v zero-mean in ψ and of order ε, removes the phases from the equations up to terms
+of order ε³ in the slow rates:
+
+    dy/dt = F₁(y) + F₂(y),    dψ/dt = ν(y) + G₁(y),
+
+with
+
+    ν·∂u/∂ψ = f − ⟨f⟩,                       F₁ = ⟨f⟩,
+    ν·∂v/∂ψ = g − ⟨g⟩ + (∂ν/∂x) u,           G₁ = ⟨g⟩,
+    F₂ = ⟨(∂f/∂x) u + (∂f/∂φ) v⟩,
+
+all at (t, y, ψ), ⟨·⟩ the mean over the torus (J. A. Sanders, F. Verhulst and J. Murdock,
+*Averaging Methods in Nonlinear Dynamical Systems*, 2nd ed., Springer 2007, §2.9 and ch. 7;
+the same second-order terms as the Lie-series form of A. Deprit, Celest. Mech. 1, 1969 and
+H. Kamel, Celest. Mech. 1, 1970). The term (∂ν/∂x) u is the shear of the phases: a slow
+variable displaced by u moves the frequencies, hence the phases, at first order. The mean phase
+needs only G₁: an O(ε²) error of its rate shifts ψ by O(ε) over the slow time 1/ε, and u by
+O(ε²).
+
+The generator is u = u₁ + u₂ with u₁ the part of order ε above and u₂ that of order ε²,
+
+    ν·∂u₂/∂ψ = (∂f/∂x) u₁ + (∂f/∂φ) v − (∂u₁/∂y) F₁ − (∂u₁/∂ψ) G₁ − F₂,
+
+the balance of the terms of order ε² in dx/dt once F₂ is chosen (its right-hand side has zero
+mean). v needs no second-order part: an O(ε²) error of the phases moves x by O(ε³).
+
+Why second order. Started from the mean state of the physical (osculating) one, the solution of
+the averaged equations with F₁ + F₂ stays within O(ε²) of the mean variables over times of
+order 1/ε, and the osculating variables rebuilt by x = y + u(y, ψ) within O(ε²) of the true
+ones; with F₁ alone both errors are O(ε). u₂ enters neither rate: without it the start and the
+rebuilt values are off by O(ε²), the order kept, with it by O(ε³), so the error of a second-order
+run is that of its rates alone.
+
+How. At one slow state the functions f and g are evaluated on a uniform grid of the torus, u
+and v follow by FFT (:func:`~tumble.averaging.generator.zero_mean_antiderivative`, small
+divisors reported), ∂f/∂φ spectrally, the product (∂f/∂x) u as a central difference of f along
+u at every node, and ∂ν/∂x by central differences. The grid is doubled along each phase until
+the harmonics in its upper half are below ``GRID_RTOL`` of the largest: F₂ and u are corrections
+of order ε, so a relative 1e-6 of them is far below what the averaging leaves (ε³ in the rates).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from tumble._typing import ArrayLike, FloatArray
+from tumble.averaging.generator import DIVISOR_RTOL, zero_mean_antiderivative
+from tumble.averaging.quadrature import AveragingError
+from tumble.errors import ParameterError
+
+__all__ = [
+    "GRID_RTOL",
+    "FastRates",
+    "Frequencies",
+    "MeanMap",
+    "MeanSystem",
+    "SecondOrder",
+    "second_order",
+    "torus_values",
+]
+
+FastRates = Callable[[float, FloatArray, Sequence[FloatArray]], tuple[FloatArray, FloatArray]]
+"""``rates(t, x, phases) -> (f, g)``: ``x`` has shape (m, ...) and ``phases`` are d arrays,
+all broadcasting to the grid's shape; f has shape (m, *grid), g shape (d, *grid)."""
+
+Frequencies = Callable[[FloatArray], FloatArray]
+"""``frequencies(x) -> ν``, shape (d,), for one slow state x of shape (m,)."""
+
+GRID_RTOL = 1e-6
+"""The torus grid resolves f when its harmonics above a quarter of the grid (the upper half of
+those it holds) are below this fraction of the largest: u, v and F₂ are corrections of order ε
+and need no more than this relative accuracy."""
+
+GRID_MAX = 1 << 12
+"""Most nodes along one phase."""
+
+_FD_STEP = 1e-5
+"""Central differences along u and in x take steps of this size relative to the slow scale:
+truncation (step²) and round-off (1e-16/step) of the difference both near 1e-10."""
+
+MAP_TOL = 1e-13
+"""The fixed-point iterations of the inverse map stop when a step changes the mean state by
+less than this relative to its scale."""
+
+_MAP_ITERATIONS = 20
+
+
+@dataclass(frozen=True, slots=True)
+class SecondOrder:
+    """The averaged rates and the generator at one slow state (module notes).
+
+    Attributes
+    ----------
+    t : float
+        The (frozen) time [time unit].
+    x : ndarray, shape (m,)
+        The mean slow state the terms are taken at.
+    first : ndarray, shape (m,)
+        F₁ = ⟨f⟩ [slow unit / time unit].
+    second : ndarray, shape (m,)
+        F₂ = ⟨(∂f/∂x) u + (∂f/∂φ) v⟩ [slow unit / time unit].
+    frequencies : ndarray, shape (d,)
+        ν(x) [rad / time unit].
+    phase : ndarray, shape (d,)
+        G₁ = ⟨g⟩, the first-order shift of the mean phases' rates [rad / time unit].
+    u, v : ndarray, shapes (m, *grid) and (d, *grid)
+        The generator's first-order parts u₁, v on the grid's nodes [slow unit], [rad].
+    u2 : ndarray, shape (m, *grid), or None
+        Its second-order part u₂ [slow unit], where asked for (``generator_order=2``).
+    """
+
+    t: float
+    x: FloatArray
+    first: FloatArray
+    second: FloatArray
+    frequencies: FloatArray
+    phase: FloatArray
+    u: FloatArray
+    v: FloatArray
+    u2: FloatArray | None = None
+
+    @property
+    def grid(self) -> tuple[int, ...]:
+        """Nodes along each phase."""
+        return tuple(self.u.shape[1:])
+
+    def generator(self, phases: ArrayLike) -> tuple[FloatArray, FloatArray]:
+        """u (u₁ + u₂ where it has u₂) and v at the mean phases ``phases`` (shape (d,) or
+        (n, d)) by Fourier interpolation of the grid values: spectrally accurate, exact for the
+        harmonics the grid resolves."""
+        u = self.u if self.u2 is None else self.u + self.u2
+        values = torus_values(np.concatenate([u, self.v]), phases)
+        m = self.u.shape[0]
+        return values[..., :m], values[..., m:]
+
+
+def _nodes(shape: Sequence[int]) -> list[FloatArray]:
+    """The phases of a uniform grid, one array per axis shaped to broadcast (ij indexing)."""
+    d = len(shape)
+    out: list[FloatArray] = []
+    for axis, n in enumerate(shape):
+        view = [1] * d
+        view[axis] = n
+        out.append(np.asarray(np.arange(n) * (2.0 * math.pi / n), dtype=float).reshape(view))
+    return out
+
+
+def _waves(shape: Sequence[int]) -> list[FloatArray]:
+    """Integer harmonics of each axis, shaped to broadcast over the grid, Nyquist set to 0."""
+    d = len(shape)
+    out: list[FloatArray] = []
+    for axis, n in enumerate(shape):
+        k = np.asarray(np.fft.fftfreq(n) * n, dtype=float)
+        if n % 2 == 0:
+            k[n // 2] = 0.0  # the Nyquist harmonic is not resolved: treated as absent
+        view = [1] * d
+        view[axis] = n
+        out.append(k.reshape(view))
+    return out
+
+
+def torus_values(values: ArrayLike, phases: ArrayLike) -> FloatArray:
+    """The trigonometric interpolant of grid values at arbitrary phases.
+
+    Parameters
+    ----------
+    values : array_like, shape (c, n_1, …, n_d)
+        c functions at the nodes φ_j = 2π i_j / n_j.
+    phases : array_like, shape (d,) or (n, d)
+        Where to evaluate them [rad].
+
+    Returns
+    -------
+    ndarray, shape (c,) or (n, c)
+        The interpolant (the Nyquist harmonic of an even axis dropped).
+    """
+    f = np.asarray(values, dtype=float)
+    at = np.asarray(phases, dtype=float)
+    single = at.ndim == 1
+    at = np.atleast_2d(at)
+    shape = f.shape[1:]
+    d = len(shape)
+    if at.shape[-1] != d:
+        raise ParameterError(f"phases: {at.shape[-1]} phases given for a {d}-torus")
+    coef = np.fft.fftn(f, axes=tuple(range(1, d + 1))) / math.prod(shape)
+    waves = _waves(shape)
+    for axis, n in enumerate(shape):
+        if n % 2 == 0:
+            index = [slice(None)] * (d + 1)
+            index[axis + 1] = slice(n // 2, n // 2 + 1)
+            coef[tuple(index)] = 0.0
+    flat = coef.reshape(f.shape[0], -1)  # (c, N)
+    k = np.stack([np.broadcast_to(w, shape).reshape(-1) for w in waves], -1)  # (N, d)
+    phase = np.exp(1j * (at @ k.T))  # (n, N)
+    out = np.real(phase @ flat.T)  # (n, c)
+    return out[0] if single else out
+
+
+def _resolved(values: FloatArray, rtol: float) -> list[bool]:
+    """Per phase axis: whether the harmonics above a quarter of the grid are below ``rtol``
+    of the largest coefficient of ``values`` (shape (c, *grid))."""
+    d = values.ndim - 1
+    coef = np.abs(np.fft.fftn(values, axes=tuple(range(1, d + 1)))).max(axis=0)
+    top = float(coef.max())
+    if top == 0.0:
+        return [True] * d
+    out = []
+    for axis, n in enumerate(coef.shape):
+        k = np.abs(np.fft.fftfreq(n) * n)
+        high = np.moveaxis(coef, axis, 0)[k > n / 4]
+        out.append(n < 4 or high.size == 0 or float(high.max()) <= rtol * top)
+    return out
+
+
+def _evaluate(
+    rates: FastRates, t: float, x: FloatArray, shape: tuple[int, ...]
+) -> tuple[FloatArray, FloatArray]:
+    d = len(shape)
+    phases = _nodes(shape)
+    m = x.shape[0]
+    f, g = rates(t, x.reshape(m, *([1] * d)) if x.ndim == 1 else x, phases)
+    f = np.broadcast_to(np.asarray(f, dtype=float), (m, *shape))
+    g = np.broadcast_to(np.asarray(g, dtype=float), (len(shape), *shape))
+    if not (np.all(np.isfinite(f)) and np.all(np.isfinite(g))):
+        raise AveragingError(
+            f"the fast right-hand side is not finite on the torus near x = "
+            f"{x.reshape(m, -1)[:, 0].tolist()}: no "
+            "average can be formed"
+        )
+    return f, g
+
+
+def _jacobian(frequencies: Frequencies, x: FloatArray, scale: FloatArray) -> FloatArray:
+    """∂ν/∂x by central differences, shape (d, m)."""
+    columns = []
+    for i in range(x.size):
+        h = _FD_STEP * scale[i]
+        up, down = x.copy(), x.copy()
+        up[i] += h
+        down[i] -= h
+        columns.append((np.asarray(frequencies(up)) - np.asarray(frequencies(down))) / (2 * h))
+    return np.stack(columns, -1)
+
+
+def second_order(
+    rates: FastRates,
+    frequencies: Frequencies,
+    t: float,
+    x: ArrayLike,
+    *,
+    grid: Sequence[int],
+    scale: ArrayLike | None = None,
+    rtol: float = GRID_RTOL,
+    divisor_rtol: float = DIVISOR_RTOL,
+    generator_order: int = 1,
+) -> SecondOrder:
+    """The averaged rates to second order and the generator at one slow state (module notes).
+
+    Parameters
+    ----------
+    rates : callable
+        ``rates(t, x, phases) -> (f, g)`` (:data:`FastRates`), vectorised over the grid and
+        over slow states that differ from node to node.
+    frequencies : callable
+        ``frequencies(x) -> ν`` (:data:`Frequencies`), the unperturbed rates of the phases.
+    t : float
+        Time, frozen [time unit].
+    x : array_like, shape (m,)
+        Slow state.
+    grid : sequence of int
+        Nodes along each phase to start from (doubled along a phase until it is resolved).
+    scale : array_like, shape (m,), optional
+        The size of each slow variable, for the finite-difference steps (default
+        max(|x|, 1)).
+    rtol : float
+        Resolution test of the grid (:data:`GRID_RTOL`).
+    divisor_rtol : float
+        Small-divisor test of the generator
+        (:func:`~tumble.averaging.generator.zero_mean_antiderivative`).
+    generator_order : {1, 2}
+        2: also the generator's second-order part u₂ (for the mean ↔ osculating map; two
+        more evaluations of f on the grid).
+
+    Returns
+    -------
+    SecondOrder
+
+    Raises
+    ------
+    SmallDivisorError
+        A harmonic of f or g at or near a resonance k·ν = 0.
+    AveragingError
+        The right-hand side is not finite on the torus, or the grid needs more than
+        ``GRID_MAX`` nodes along a phase.
+    """
+    x = np.asarray(x, dtype=float).reshape(-1)
+    shape = tuple(int(n) for n in grid)
+    scale_ = np.maximum(np.abs(x), 1.0) if scale is None else np.asarray(scale, dtype=float)
+    while True:
+        f, g = _evaluate(rates, t, x, shape)
+        done = _resolved(np.concatenate([f, g]), rtol)
+        if all(done):
+            break
+        if max(shape) >= GRID_MAX:
+            raise AveragingError(
+                f"the fast right-hand side needs more than {GRID_MAX} nodes along a phase at "
+                f"x = {x.tolist()}: it varies too fast (or is not smooth) on the torus"
+            )
+        shape = tuple(n if ok else 2 * n for n, ok in zip(shape, done, strict=True))
+    nu = np.asarray(frequencies(x), dtype=float).reshape(-1)
+    u = zero_mean_antiderivative(f, nu, divisor_rtol=divisor_rtol)
+    shear = np.tensordot(_jacobian(frequencies, x, scale_), u, axes=(1, 0))  # (∂ν/∂x) u
+    v = zero_mean_antiderivative(g + shear, nu, divisor_rtol=divisor_rtol)
+    axes = tuple(range(1, len(shape) + 1))
+    x_grid = x.reshape(-1, *([1] * len(shape)))
+    # (∂f/∂x) u at every node: a central difference of f along u.
+    h = _step(u, scale_)
+    if h:
+        up = _evaluate(rates, t, x_grid + h * u, shape)[0]
+        down = _evaluate(rates, t, x_grid - h * u, shape)[0]
+        along = (up - down) / (2.0 * h)
+    else:
+        along = np.zeros_like(f)
+    # (∂f/∂φ) v, spectrally.
+    across = sum(d_f * v_j for d_f, v_j in zip(_phase_derivatives(f), v, strict=True))
+    first, phase = f.mean(axis=axes), g.mean(axis=axes)
+    second = (along + across).mean(axis=axes)
+    u2 = None
+    if generator_order == 2:
+        # (∂u₁/∂y) F₁: u₁ at y ± h F₁ on the same grid, by central differences.
+        h = _step(first, scale_)
+        shifted = []
+        for sign in (1.0, -1.0):
+            y = x + sign * h * first
+            f_y = _evaluate(rates, t, y, shape)[0]
+            nu_y = np.asarray(frequencies(y), dtype=float).reshape(-1)
+            shifted.append(zero_mean_antiderivative(f_y, nu_y, divisor_rtol=divisor_rtol))
+        drift = (shifted[0] - shifted[1]) / (2.0 * h) if h else np.zeros_like(u)
+        turn = sum(d_u * g_j for d_u, g_j in zip(_phase_derivatives(u), phase, strict=True))
+        rest = along + across - drift - turn - second.reshape(x_grid.shape)
+        u2 = zero_mean_antiderivative(rest, nu, divisor_rtol=divisor_rtol)
+    return SecondOrder(
+        t=float(t),
+        x=x,
+        first=first,
+        second=second,
+        frequencies=nu,
+        phase=phase,
+        u=u,
+        v=v,
+        u2=u2,
+    )
+
+
+def _step(direction: FloatArray, scale: FloatArray) -> float:
+    """The step h of a central difference along ``direction`` (shape (m, ...)): h·direction
+    is ``_FD_STEP`` of the slow scale at its largest; 0 for a zero direction."""
+    size = float(np.max(np.abs(direction) / scale.reshape(-1, *([1] * (direction.ndim - 1)))))
+    return _FD_STEP / size if size > 0.0 else 0.0
+
+
+def _phase_derivatives(values: FloatArray) -> list[FloatArray]:
+    """∂/∂φ_j of grid values (shape (c, *grid)), spectrally, one array per phase."""
+    shape = values.shape[1:]
+    axes = tuple(range(1, len(shape) + 1))
+    coef = np.fft.fftn(values, axes=axes)
+    return [np.fft.ifftn(1j * k * coef, axes=axes).real for k in _waves(shape)]
+
+
+@dataclass(frozen=True)
+class MeanMap:
+    """The near-identity map between osculating (x, φ) and mean (y, ψ) variables.
+
+    ``terms(t, y)`` gives the :class:`SecondOrder` terms at a mean state (e.g.
+    :func:`second_order` with the system's rates bound); the map is x = y + u(y, ψ),
+    φ = ψ + v(y, ψ), accurate to O(ε²), and :meth:`to_mean` is its inverse, solved by
+    fixed-point iteration so that the two are inverse to round-off.
+    """
+
+    terms: Callable[[float, FloatArray], SecondOrder]
+    scale: FloatArray | None = None
+
+    def to_osculating(
+        self, t: float, y: ArrayLike, psi: ArrayLike
+    ) -> tuple[FloatArray, FloatArray]:
+        """(x, φ) from the mean (y, ψ) at time t."""
+        y = np.asarray(y, dtype=float)
+        psi = np.asarray(psi, dtype=float)
+        u, v = self.terms(t, y).generator(psi)
+        return y + u, psi + v
+
+    def to_mean(self, t: float, x: ArrayLike, phi: ArrayLike) -> tuple[FloatArray, FloatArray]:
+        """(y, ψ) from the osculating (x, φ) at time t: x = y + u(y, ψ), φ = ψ + v(y, ψ)."""
+        x = np.asarray(x, dtype=float)
+        phi = np.asarray(phi, dtype=float)
+        scale = np.maximum(np.abs(x), 1.0) if self.scale is None else self.scale
+        y, psi = x.copy(), phi.copy()
+        for _ in range(_MAP_ITERATIONS):
+            u, v = self.terms(t, y).generator(psi)
+            y_new, psi_new = x - u, phi - v
+            change = max(
+                float(np.max(np.abs(y_new - y) / scale)), float(np.max(np.abs(psi_new - psi)))
+            )
+            y, psi = y_new, psi_new
+            if change <= MAP_TOL:
+                return y, psi
+        raise AveragingError(
+            f"the osculating → mean map did not converge at x = {x.tolist()}: the generator is "
+            "not small there (ε too large, or near a resonance or separatrix)"
+        )
+
+
+@dataclass(frozen=True)
+class MeanSystem:
+    """Averaged equations of order 1 or 2 in mean variables, with the maps to and from the
+    osculating ones: what a model's averaged form needs from this module.
+
+    The state integrated is z = (y, ψ): the m mean slow variables and the d mean phases
+    (the phases are kept to rebuild the osculating variables at the output times).
+
+    Parameters
+    ----------
+    rates, frequencies
+        The fast system (:data:`FastRates`, :data:`Frequencies`).
+    grid : tuple of int
+        Starting torus grid of :func:`second_order`.
+    order : {1, 2}
+        Order of the averaged rates (F₁, or F₁ + F₂) and of the generator of the maps (u₁,
+        or u₁ + u₂).
+    first : callable, optional
+        ``first(t, y) -> F₁``, the first-order averaged rates from a more accurate engine (a
+        closed form, or an adaptive quadrature); default: the mean over the grid.
+    scale : ndarray, optional
+        Size of each slow variable (finite-difference steps, convergence of the inverse map).
+    """
+
+    rates: FastRates
+    frequencies: Frequencies
+    grid: tuple[int, ...]
+    order: int = 2
+    first: Callable[[float, FloatArray], FloatArray] | None = None
+    scale: FloatArray | None = None
+
+    def __post_init__(self) -> None:
+        if self.order not in (1, 2):
+            raise ParameterError(
+                f"run.averaging_order = {self.order!r} is not an order of averaging (allowed: 1, 2)"
+            )
+        # The grid the last state needed: the next one, nearby, starts there.
+        object.__setattr__(self, "_last", [tuple(self.grid)])
+
+    def terms(self, t: float, y: FloatArray, generator_order: int = 1) -> SecondOrder:
+        """:func:`second_order` at the mean state y."""
+        last: list[tuple[int, ...]] = self._last  # type: ignore[attr-defined]
+        so = second_order(
+            self.rates,
+            self.frequencies,
+            t,
+            y,
+            grid=last[0],
+            scale=self.scale,
+            generator_order=generator_order,
+        )
+        last[0] = so.grid
+        return so
+
+    def rhs(self, t: float, z: FloatArray) -> FloatArray:
+        """dz/dt of z = (y, ψ): (F₁ [+ F₂], ν + G₁)."""
+        m = z.size - len(self.grid)
+        y = np.asarray(z[:m], dtype=float)
+        so = self.terms(t, y)
+        rate = so.first if self.first is None else np.asarray(self.first(t, y), dtype=float)
+        if self.order == 2:
+            rate = rate + so.second
+        return np.concatenate([rate, so.frequencies + so.phase])
+
+    def map(self) -> MeanMap:
+        """The mean ↔ osculating map of this order."""
+        return MeanMap(lambda t, y: self.terms(t, y, self.order), self.scale)
+
+    def start(self, t: float, x: ArrayLike, phi: ArrayLike) -> FloatArray:
+        """z(t) of the osculating state (x, φ)."""
+        y, psi = self.map().to_mean(t, x, phi)
+        return np.concatenate([y, psi])
+
+    def osculating(self, t: ArrayLike, Z: ArrayLike) -> tuple[FloatArray, FloatArray]:
+        """The osculating slow variables and phases rebuilt along mean states.
+
+        Parameters
+        ----------
+        t : array_like, shape (n,)
+            Times [time unit].
+        Z : array_like, shape (n, m + d)
+            Mean states z = (y, ψ).
+
+        Returns
+        -------
+        x : ndarray, shape (n, m)
+        phi : ndarray, shape (n, d)
+        """
+        Z = np.atleast_2d(np.asarray(Z, dtype=float))
+        m = Z.shape[1] - len(self.grid)
+        mapping = self.map()
+        x, phi = np.empty((Z.shape[0], m)), np.empty((Z.shape[0], Z.shape[1] - m))
+        for i, (ti, zi) in enumerate(zip(np.broadcast_to(t, Z.shape[:1]), Z, strict=True)):
+            x[i], phi[i] = mapping.to_osculating(float(ti), zi[:m], zi[m:])
+        return x, phi

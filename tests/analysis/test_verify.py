@@ -7,6 +7,7 @@ from files import EXAMPLES
 from tumble.analysis import RunRequest, verify
 from tumble.analysis.verify import _verdict
 from tumble.io import load_scenario
+from tumble.models.base import AveragingOptions
 from tumble.models import nonlinear_moment as nm
 from tumble.models import resisting_medium as rm
 
@@ -31,6 +32,35 @@ def test_verdict_reads_orders_and_issues():
     status, text = _verdict({}, [], [None, failure, None], EPS, "t")
     assert status == "invalid"
     assert text.startswith("invalid: the averaged run at ε = 0.01 stops at t ≈ 210.5")
+
+
+def test_the_second_order_verdict_needs_a_slope_of_1_75():
+    status, text = _verdict({"k": 1.9, "theta": 2.1}, [], [None] * 3, EPS, "τ", target=2)
+    assert (status, text) == ("second-order", "second-order accurate (slowest order 1.90, in k)")
+    status, text = _verdict({"k": 1.6, "theta": 2.1}, [], [None] * 3, EPS, "τ", target=2)
+    assert status == "first-order" and text.startswith("first-order only: slope 1.60 in k")
+
+
+def test_verify_measures_both_orders_of_the_resisting_medium():
+    """Away from resonances and the equator (the prolate case of test_rm_second_order), the
+    run of order 2 is second-order accurate in every slow variable, and verify.json gives
+    both orders' slopes and errors per variable."""
+    p = rm.Params(eps=4e-3, kappa=-0.8, a=[0.1, 0.2, 1.0], s=np.diag([0.2, 0.1, 0.3]),
+                  b=[[0.3, 0.1, 0.0], [0.0, 0.4, 0.0], [0.0, 0.0, 0.5]])  # fmt: skip
+    st = rm.State(k=1.0, rho=0.8, sigma=0.3, psi=0.2, theta=0.6, phi=0.4)
+    tau = np.linspace(0.0, 1.0 / p.eps, 101)
+    request = RunRequest(rm.MODEL, p, st, tau, ("full", "averaged"),
+                         averaging=AveragingOptions(order=2))  # fmt: skip
+    result = verify(request)
+    assert result.status == "second-order", result.verdict
+    table = result.summary()["per_variable"]
+    assert set(table) == {"k", "rho", "sigma", "theta"}
+    for v, row in table.items():
+        # Measured slopes 0.98–1.14 and 1.94–2.12: the band ±0.25 of the error studies.
+        assert abs(row["slope_order1"] - 1.0) <= 0.25 and abs(row["slope_order2"] - 2.0) <= 0.25
+        # At the scenario's own ε the second-order error is 40–1400 times smaller.
+        assert row["error_order2"] < 0.02 * row["error_order1"], (v, row)
+        assert row["verdict"] == "second-order accurate"
 
 
 def test_resisting_medium_example_is_first_order():

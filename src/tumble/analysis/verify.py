@@ -16,7 +16,7 @@ import math
 import re
 import warnings
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -24,13 +24,14 @@ import numpy as np
 from tumble._typing import FloatArray
 from tumble.analysis.compare import angle_difference, fitted_order
 from tumble.analysis.run import RunRequest, _merge_issues
-from tumble.errors import IntegrationError, ParameterError, TumbleWarning
+from tumble.errors import IntegrationError, ParameterError, TumbleError, TumbleWarning
 from tumble.integrate import Trajectory, simulate
 from tumble.models import AnyModel
 
 __all__ = [
     "DEGRADED_ORDER",
     "FIRST_ORDER",
+    "SECOND_ORDER",
     "VERIFY_FACTORS",
     "VerifyResult",
     "slow_errors",
@@ -44,6 +45,10 @@ FIRST_ORDER = 0.75
 """A fitted order at or above this is first order: the band ±0.25 of the error studies of
 issues 2–4 (three points of an O(ε) error with an O(ε²) term and the phase of the O(ε)
 oscillation at the sampled maxima scatter by up to ±0.2)."""
+
+SECOND_ORDER = 1.75
+"""A fitted order at or above this is second order (the same band, 2 − 0.25), for runs of
+averaging order 2."""
 
 DEGRADED_ORDER = 0.25
 """Below this order the error does not shrink with ε at all: the averaged model is invalid
@@ -83,9 +88,14 @@ class VerifyResult:
         Per ε: the validity issues the averaged run entered (condition, tau, message, label).
     failures : list of str or None
         Per ε: why the averaged run stopped, if it did.
-    status : {"first-order", "degraded", "invalid"}
+    status : {"second-order", "first-order", "degraded", "invalid"}
     verdict : str
-        One line for the user.
+        One line for the user, on the scenario's own order of averaging.
+    by_order : dict
+        Averaging order → variable → (max errors at each ε, fitted order or None), for every
+        order the model offers (1 and 2 where it has the second-order equations).
+    variable_verdicts : dict
+        Variable → its verdict on the scenario's order ("second-order accurate", …).
     """
 
     model: str
@@ -100,6 +110,24 @@ class VerifyResult:
     failures: list[str | None] = field(default_factory=list)
     status: str = "first-order"
     verdict: str = "first-order accurate"
+    by_order: dict[int, dict[str, tuple[FloatArray, float | None]]] = field(default_factory=dict)
+    variable_verdicts: dict[str, str] = field(default_factory=dict)
+
+    def per_variable(self) -> dict[str, dict[str, Any]]:
+        """Per slow variable: ``slope_order1``, ``slope_order2`` (fitted orders, None where
+        not measured) and ``error_order1``, ``error_order2`` (the max error at the scenario's
+        own ε), and its verdict."""
+        out: dict[str, dict[str, Any]] = {}
+        for v in self.variables:
+            entry: dict[str, Any] = {}
+            for order in (1, 2):
+                errors, slope = self.by_order.get(order, {}).get(v, (np.array([math.nan]), None))
+                first = float(errors[0])
+                entry[f"slope_order{order}"] = slope
+                entry[f"error_order{order}"] = first if math.isfinite(first) else None
+            entry["verdict"] = self.variable_verdicts.get(v, "")
+            out[v] = entry
+        return out
 
     def summary(self) -> dict[str, Any]:
         """Plain values for ``verify.json`` and ``summary.json``."""
@@ -116,6 +144,7 @@ class VerifyResult:
                 for run in self.issues
             ],
             "failures": self.failures,
+            "per_variable": self.per_variable(),
         }
 
 
@@ -204,12 +233,24 @@ def _blamed(
     return [culprit, *(i for i in issues if i is not culprit)]
 
 
+def _variable_verdict(order: float | None, target: int) -> str:
+    """One slow variable's verdict from its fitted order."""
+    if order is None:
+        return "at the integration tolerance"
+    if target == 2 and order >= SECOND_ORDER:
+        return "second-order accurate"
+    if order >= FIRST_ORDER:
+        return "first-order accurate"
+    return "degraded" if order >= DEGRADED_ORDER else "invalid"
+
+
 def _verdict(
     orders: dict[str, float | None],
     issues: list[dict[str, Any]],
     failures: list[str | None],
     eps: FloatArray,
     time_symbol: str,
+    target: int = 1,
 ) -> tuple[str, str]:
     for e, failure in zip(eps, failures, strict=True):
         if failure is not None:
@@ -218,12 +259,23 @@ def _verdict(
             reason = failure.split(": ", 1)[-1].split(";")[0]
             return "invalid", f"invalid: the averaged run at ε = {e:.4g} stops{where}: {reason}"
     fitted = {v: o for v, o in orders.items() if o is not None}
+    name = "second" if target == 2 else "first"
     if not fitted:
-        return "first-order", "first-order accurate (every error at the integration tolerance)"
+        return f"{name}-order", f"{name}-order accurate (every error at the integration tolerance)"
     worst = min(fitted, key=lambda v: fitted[v])
     order = fitted[worst]
     issue = issues[0] if issues else None
+    if target == 2 and order >= SECOND_ORDER:
+        verdict = f"second-order accurate (slowest order {order:.2f}, in {worst})"
+        if issue is not None:
+            verdict += f"; passes {_phrase(issue, time_symbol)} without losing order"
+        return "second-order", verdict
     if order >= FIRST_ORDER:
+        if target == 2:
+            verdict = f"first-order only: slope {order:.2f} in {worst} (averaging of order 2)"
+            if issue is not None:
+                verdict += f" near {_phrase(issue, time_symbol)}"
+            return "first-order", verdict
         verdict = f"first-order accurate (slowest order {order:.2f}, in {worst})"
         if issue is not None:
             verdict += f"; passes {_phrase(issue, time_symbol)} without losing order"
@@ -332,37 +384,32 @@ def verify(request: RunRequest, factors: Sequence[float] = VERIFY_FACTORS) -> Ve
     model.check(p, "averaged")
     eps = eps0 * np.asarray(factors, dtype=float)
     symbol = {"tau": "τ"}.get(model.time.name, model.time.name)
-    runs = [_one_epsilon(request, float(e), float(f)) for e, f in zip(eps, factors, strict=True)]
-    curves = [r.curves for r in runs]
+    target = request.averaging.order
+    assert model.averaged is not None
+    measured = sorted({1, target} | ({2} if 2 in model.averaged.orders else set()))
+    runs = [
+        _one_epsilon(request, float(e), float(f), measured)
+        for e, f in zip(eps, factors, strict=True)
+    ]
+    fits = {order: _fit(request, eps, [r.curves.get(order, {}) for r in runs], runs)
+            for order in measured}  # fmt: skip
+    curves = [r.curves.get(target, {}) for r in runs]
     issues = [r.issues for r in runs]
-    failures = [r.failure for r in runs]
-    variables = list(dict.fromkeys(v for r in runs for v in r.curves))
-    scales: dict[str, float] = {}
-    for r in runs:
-        for v, scale in r.scales.items():
-            scales[v] = max(scales.get(v, 0.0), scale)
-    errors: dict[str, FloatArray] = {}
-    orders: dict[str, float | None] = {}
-    for v in variables:
-        err = np.array(
-            [float(np.max(c[v][1])) if v in c and c[v][1].size else math.nan for c in curves]
-        )
-        errors[v] = err
-        floor = FLOOR * request.rtol * max(scales.get(v, 1.0), 1.0)
-        if not np.all(np.isfinite(err)) or np.all(err <= floor):
-            orders[v] = None
-        else:
-            orders[v] = fitted_order(eps, np.maximum(err, 1e-300))
+    failures = [r.failures.get(target) for r in runs]
+    errors = {v: e for v, (e, _) in fits[target].items()}
+    orders = {v: o for v, (_, o) in fits[target].items()}
     # The scenario's own run (the first) says where its averaged trajectory goes; the others
     # follow the same slow path.
     seen = next((run for run in issues if run), [])
-    status, verdict = _verdict(orders, _blamed(seen, orders, curves, eps0), failures, eps, symbol)
+    status, verdict = _verdict(
+        orders, _blamed(seen, orders, curves, eps0), failures, eps, symbol, target
+    )
     return VerifyResult(
         model.name,
         eps,
         eps0 * float(request.tau[-1]),
         model.time.name,
-        tuple(variables),
+        tuple(errors),
         errors,
         curves,
         orders,
@@ -370,36 +417,80 @@ def verify(request: RunRequest, factors: Sequence[float] = VERIFY_FACTORS) -> Ve
         failures,
         status,
         verdict,
+        fits,
+        {v: _variable_verdict(o, target) for v, o in orders.items()},
     )
+
+
+def _fit(
+    request: RunRequest,
+    eps: FloatArray,
+    curves: list[dict[str, tuple[FloatArray, FloatArray]]],
+    runs: list[_Run],
+) -> dict[str, tuple[FloatArray, float | None]]:
+    """Per variable: the max error at each ε and the fitted order (None at the tolerance
+    floor or where a run failed)."""
+    variables = list(dict.fromkeys(v for c in curves for v in c))
+    scales: dict[str, float] = {}
+    for r in runs:
+        for v, scale in r.scales.items():
+            scales[v] = max(scales.get(v, 0.0), scale)
+    out: dict[str, tuple[FloatArray, float | None]] = {}
+    for v in variables:
+        err = np.array(
+            [float(np.max(c[v][1])) if v in c and c[v][1].size else math.nan for c in curves]
+        )
+        floor = FLOOR * request.rtol * max(scales.get(v, 1.0), 1.0)
+        if not np.all(np.isfinite(err)) or np.all(err <= floor):
+            out[v] = (err, None)
+        else:
+            out[v] = (err, fitted_order(eps, np.maximum(err, 1e-300)))
+    return out
 
 
 @dataclass(frozen=True)
 class _Run:
-    """Full against averaged at one ε: the error curves (slow time εt, |error|), the validity
-    issues of the averaged run, why the averaged run stopped (None: it did not), and the size
-    of each compared variable in the full run."""
+    """Full against averaged at one ε, for each order of averaging measured: the error curves
+    (slow time εt, |error|), why an averaged run stopped (None: it did not); the validity
+    issues of the scenario's averaged run, and the size of each compared variable in the full
+    run."""
 
-    curves: dict[str, tuple[FloatArray, FloatArray]]
+    curves: dict[int, dict[str, tuple[FloatArray, FloatArray]]]
     issues: list[dict[str, Any]]
-    failure: str | None
+    failures: dict[int, str | None]
     scales: dict[str, float]
 
 
-def _one_epsilon(request: RunRequest, e: float, factor: float) -> _Run:
-    """The averaged run first: where it stops, the verdict needs no full run."""
+def _one_epsilon(request: RunRequest, e: float, factor: float, orders: Sequence[int]) -> _Run:
+    """The averaged runs first: where they all stop, the verdict needs no full run."""
     model, st = request.model, request.initial
     pe = request.params.with_eps(e)
     tau = np.asarray(request.tau, dtype=float) / factor
-    try:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", TumbleWarning)
-            avg = simulate(model, pe, st, tau, "averaged", rtol=request.rtol, atol=request.atol,
-                           averaging=request.averaging)  # fmt: skip
-    except IntegrationError as exc:
-        return _Run({}, [], str(exc), {})
+    averaged: dict[int, Trajectory] = {}
+    failures: dict[int, str | None] = {}
+    for order in orders:
+        options = replace(request.averaging, order=order)
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", TumbleWarning)
+                averaged[order] = simulate(model, pe, st, tau, "averaged", rtol=request.rtol,
+                                           atol=request.atol, averaging=options)  # fmt: skip
+            failures[order] = None
+        except IntegrationError as exc:
+            failures[order] = str(exc)
+        except TumbleError as exc:  # e.g. a state the second-order map cannot take
+            if order == request.averaging.order:
+                raise
+            failures[order] = str(exc)
+    if not averaged:
+        return _Run({}, [], failures, {})
     full = _full(request, pe, tau)
-    errs = slow_errors(model, pe, full, avg)
-    scales = {v: float(np.max(np.abs(full.columns[v]))) for v in errs if v in full.columns}
-    found = model.validity.check(pe, st, avg.slow, tau[-1]) if model.validity else []
-    curves = {v: (e * t, d) for v, (t, d) in errs.items()}
-    return _Run(curves, _merge_issues({"averaged": found}), None, scales)
+    curves: dict[int, dict[str, tuple[FloatArray, FloatArray]]] = {}
+    scales: dict[str, float] = {}
+    for order, avg in averaged.items():
+        errs = slow_errors(model, pe, full, avg)
+        scales |= {v: float(np.max(np.abs(full.columns[v]))) for v in errs if v in full.columns}
+        curves[order] = {v: (e * t, d) for v, (t, d) in errs.items()}
+    own = averaged.get(request.averaging.order, next(iter(averaged.values())))
+    found = model.validity.check(pe, st, own.slow, tau[-1]) if model.validity else []
+    return _Run(curves, _merge_issues({"averaged": found}), failures, scales)

@@ -154,15 +154,19 @@ def render_outputs(
 def verify_outputs(result: VerifyResult, source: str) -> dict[str, bytes]:
     """Text outputs of ``tumble verify``.
 
-    ``verify.csv``: one row per slow variable and ε (``variable, eps, max_error, order``);
-    ``verify_curves.csv``: the error curves (``eps, slow_time, variable, error``);
-    ``verify.json``: verdict, orders, errors, the validity issues met and any failed run.
+    ``verify.csv``: one row per order of averaging measured, slow variable and ε
+    (``averaging_order, variable, eps, max_error, order``, the last the fitted order);
+    ``verify_curves.csv``: the error curves of the scenario's order (``eps, slow_time,
+    variable, error``); ``verify.json``: verdict, orders, errors, per variable the slopes and
+    errors of both orders (``per_variable``), the validity issues met and any failed run.
     """
     time_name = result.time_name
+    fits = result.by_order or {1: {v: (result.errors[v], result.orders[v]) for v in result.errors}}
     rows = [
-        (v, float(e), float(err), "" if (o := result.orders[v]) is None else float(o))
-        for v in result.variables
-        for e, err in zip(result.eps, result.errors[v], strict=True)
+        (order, v, float(e), float(err), "" if o is None else float(o))
+        for order, fit in sorted(fits.items())
+        for v, (errors, o) in fit.items()
+        for e, err in zip(result.eps, errors, strict=True)
     ]
     curves = [
         (float(e), float(s), v, float(d))
@@ -179,7 +183,9 @@ def verify_outputs(result: VerifyResult, source: str) -> dict[str, bytes]:
     }
     text = json.dumps(plain(doc), indent=2, ensure_ascii=False)
     return {
-        "verify.csv": table_text(("variable", "eps", "max_error", "order"), rows).encode(),
+        "verify.csv": table_text(
+            ("averaging_order", "variable", "eps", "max_error", "order"), rows
+        ).encode(),
         "verify_curves.csv": table_text(("eps", "slow_time", "variable", "error"), curves).encode(),
         "verify.json": (text + "\n").encode(),
     }

@@ -7,9 +7,9 @@ from files import EXAMPLES
 from tumble.analysis import RunRequest, verify
 from tumble.analysis.verify import _verdict
 from tumble.io import load_scenario
-from tumble.models.base import AveragingOptions
 from tumble.models import nonlinear_moment as nm
 from tumble.models import resisting_medium as rm
+from tumble.models.base import AveragingOptions
 
 EPS = np.array([0.02, 0.01, 0.005])
 

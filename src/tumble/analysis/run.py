@@ -47,6 +47,10 @@ class RunRequest:
         ``averaged_form``, ``averaged_init``).
     max_steps : int
         Step budget of a full run (``[run] max_steps``).
+    family : dict, optional
+        How ``tumble verify`` scales the parameters with ε (``[run] verify_scaling``):
+        parameter → exponent of ε/ε₀; None for the model's default
+        (:func:`tumble.models.base.scaling_family`).
     """
 
     model: AnyModel
@@ -61,6 +65,7 @@ class RunRequest:
     integrator: str = "auto"
     averaging: AveragingOptions = field(default_factory=AveragingOptions)
     max_steps: int = MAX_STEPS
+    family: Mapping[str, float] | None = None
 
 
 @dataclass(frozen=True)

@@ -27,6 +27,7 @@ from tumble.analysis.run import RunRequest, _merge_issues
 from tumble.errors import IntegrationError, ParameterError, TumbleError, TumbleWarning
 from tumble.integrate import Trajectory, simulate
 from tumble.models import AnyModel
+from tumble.models.base import family_params, scaling_family
 
 __all__ = [
     "DEGRADED_ORDER",
@@ -96,6 +97,9 @@ class VerifyResult:
         order the model offers (1 and 2 where it has the second-order equations).
     variable_verdicts : dict
         Variable → its verdict on the scenario's order ("second-order accurate", …).
+    family : dict
+        How the parameters scaled with ε: parameter → exponent of ε/ε₀ (``eps`` 1 and
+        nothing else: ε alone).
     """
 
     model: str
@@ -112,6 +116,7 @@ class VerifyResult:
     verdict: str = "first-order accurate"
     by_order: dict[int, dict[str, tuple[FloatArray, float | None]]] = field(default_factory=dict)
     variable_verdicts: dict[str, str] = field(default_factory=dict)
+    family: dict[str, float] = field(default_factory=lambda: {"eps": 1.0})
 
     def per_variable(self) -> dict[str, dict[str, Any]]:
         """Per slow variable: ``slope_order1``, ``slope_order2`` (fitted orders, None where
@@ -135,6 +140,7 @@ class VerifyResult:
             "verdict": self.verdict,
             "status": self.status,
             "eps": self.eps.tolist(),
+            "scaling": self.family,
             "slow_horizon": self.horizon,
             "variables": list(self.variables),
             "max_errors": {v: _floats(e) for v, e in self.errors.items()},
@@ -382,15 +388,13 @@ def verify(request: RunRequest, factors: Sequence[float] = VERIFY_FACTORS) -> Ve
             "needs a perturbation (eps > 0)"
         )
     model.check(p, "averaged")
+    family = scaling_family(p, request.family)
     eps = eps0 * np.asarray(factors, dtype=float)
     symbol = {"tau": "τ"}.get(model.time.name, model.time.name)
     target = request.averaging.order
     assert model.averaged is not None
     measured = sorted({1, target} | ({2} if 2 in model.averaged.orders else set()))
-    runs = [
-        _one_epsilon(request, float(e), float(f), measured)
-        for e, f in zip(eps, factors, strict=True)
-    ]
+    runs = [_one_epsilon(request, family, float(f), measured) for f in factors]
     fits = {order: _fit(request, eps, [r.curves.get(order, {}) for r in runs], runs)
             for order in measured}  # fmt: skip
     curves = [r.curves.get(target, {}) for r in runs]
@@ -419,6 +423,7 @@ def verify(request: RunRequest, factors: Sequence[float] = VERIFY_FACTORS) -> Ve
         verdict,
         fits,
         {v: _variable_verdict(o, target) for v, o in orders.items()},
+        family,
     )
 
 
@@ -461,10 +466,14 @@ class _Run:
     scales: dict[str, float]
 
 
-def _one_epsilon(request: RunRequest, e: float, factor: float, orders: Sequence[int]) -> _Run:
-    """The averaged runs first: where they all stop, the verdict needs no full run."""
+def _one_epsilon(
+    request: RunRequest, family: dict[str, float], factor: float, orders: Sequence[int]
+) -> _Run:
+    """The averaged runs at ε₀·factor along ``family``, first: where they all stop, the
+    verdict needs no full run."""
     model, st = request.model, request.initial
-    pe = request.params.with_eps(e)
+    e = float(request.params.eps) * factor
+    pe = family_params(request.params, factor, family)
     tau = np.asarray(request.tau, dtype=float) / factor
     averaged: dict[int, Trajectory] = {}
     failures: dict[int, str | None] = {}

@@ -39,7 +39,7 @@ from tumble.integrate.limits import MAX_STEPS, check_times
 from tumble.io.toml import read_file, template
 from tumble.io.user_code import UserFunction, user_function
 from tumble.models import declaration, get_model, names
-from tumble.models.base import AveragingOptions, Declaration
+from tumble.models.base import AveragingOptions, Declaration, scaling_family
 from tumble.models.schema import REQUIRED, Key, Section, Variant
 
 if TYPE_CHECKING:
@@ -245,6 +245,10 @@ def run_keys(model: Declaration[Any, Any], variant: Variant[Any, Any]) -> tuple[
     keys += [
         Key("verify", "boolean", "true or false", default=False,
             doc="also measure the averaging error at ε, ε/2, ε/4"),
+        Key("verify_scaling", "table", "a table of parameter = exponent in [-4, 4]",
+            default=None,
+            doc="how verify scales the parameters with ε: each x as x·(ε/ε₀)^exponent "
+                "(default: ε alone; for a gravity gradient n ∝ √ε at fixed eps)"),
         Key("integrator", "text", '"auto", "numba" or "scipy"', default="auto",
             choices=("auto", "numba", "scipy"),
             doc="the compiled DOP853 (auto: unless the parameters hold Python) or scipy's"),
@@ -535,6 +539,9 @@ def _request(model: Declaration[Any, Any], run: Any, built: Any, times: np.ndarr
         order=getattr(run, "averaging_order", 1),
         initial=getattr(run, "initial", "osculating"),
     )
+    family = getattr(run, "verify_scaling", None)
+    if family is not None:
+        family = scaling_family(built.params, family)  # a name it cannot scale: refused here
     if not 1 <= run.max_steps <= 10**12:
         raise ParameterError(
             f"run.max_steps = {shorten(str(run.max_steps))} is outside the allowed range [1, 1e12]"
@@ -543,7 +550,7 @@ def _request(model: Declaration[Any, Any], run: Any, built: Any, times: np.ndarr
 
     return RunRequest(get_model(model.name), built.params, built.initial, tau, methods, rtol, atol,
                       built.scaling, run.verify, run.integrator, averaging,
-                      run.max_steps)  # fmt: skip
+                      run.max_steps, family)  # fmt: skip
 
 
 def key_units(data: dict[str, Any], path: tuple[str | int, ...]) -> str:

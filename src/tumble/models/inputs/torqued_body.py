@@ -57,6 +57,18 @@ def _terms(torque: Torque) -> tuple[Torque, ...]:
     return (torque,)
 
 
+def _orbit_rate_scaled(torque: Torque, factor: float) -> Torque:
+    """``torque`` with the orbital rate n of every gravity-gradient term multiplied by
+    ``factor``."""
+    if isinstance(torque, GravityGradientTorque):
+        return replace(torque, n=torque.n * factor)
+    if isinstance(torque, TorqueSum):
+        return TorqueSum(tuple(_orbit_rate_scaled(t, factor) for t in torque.terms))
+    if isinstance(torque, ScaledTorque):
+        return ScaledTorque(torque.factor, _orbit_rate_scaled(torque.torque, factor))
+    return torque
+
+
 TORQUE_KINDS = (
     "gravity_gradient",
     "inertial_constant",
@@ -217,6 +229,32 @@ class Params:
     def with_eps(self, eps: float) -> Params:
         """The same body and torque at another ε (for error studies)."""
         return replace(self, eps=eps)
+
+    SCALABLE = ("n",)
+    """Parameters ``tumble verify`` can scale with ε besides ε itself: the orbital rate n of
+    the gravity-gradient terms (``[run] verify_scaling``)."""
+
+    def family(self) -> dict[str, float]:
+        """The default family of ``tumble verify``: with a gravity-gradient term, the physical
+        one, orbits of other radii: the torque 3n² r̂ × I r̂ is of the size n²/ω², so ε ∝ n²,
+        n ∝ √ε and the given ε stays (the orbital phase is then only √ε-fast); otherwise ε
+        alone."""
+        terms = _terms(self.torque)
+        user = any(isinstance(t, UserTorque) for t in terms)
+        if not user and any(isinstance(t, GravityGradientTorque) for t in terms):
+            return {"eps": 0.0, "n": 0.5}
+        return {"eps": 1.0}
+
+    def along(self, ratio: float, exponents: dict[str, float]) -> Params:
+        """The parameters with n scaled by ratio^exponents["n"] (the forcing period with it)."""
+        factor = ratio ** exponents.get("n", 0.0)
+        if factor != 1.0 and any(isinstance(t, UserTorque) for t in _terms(self.torque)):
+            raise ParameterError(
+                "run.verify_scaling: n cannot scale beside a user torque term (its period, if "
+                "any, would no longer be the orbit's); give verify_scaling = { n = 0 }"
+            )
+        period = None if self.forcing_period is None else self.forcing_period / factor
+        return replace(self, torque=_orbit_rate_scaled(self.torque, factor), forcing_period=period)
 
 
 @dataclass(frozen=True)

@@ -216,6 +216,8 @@ def simulate(
     if method == "averaged" and model.averaged is not None:
         options = model.averaged.check(averaging)
         form_ = model.averaged.form(p, initial, options)
+        if options.hybrid:
+            return _hybrid(model, form_, p, initial, tau, rtol, atol, integrator, max_steps)
         compiled = _averaged_kernel(form_, p, integrator)
         return _averaged(model, form_, p, initial, tau, rtol, atol, max_steps, compiled)
     assert model.closed_form is not None  # the methods follow the capabilities
@@ -437,6 +439,41 @@ def _averaged(
             raise
         raise IntegrationError(f"{exc}; last refused state: {reason}") from None
     return _trajectory(model, p, initial, tau, "averaged", avg, sol, start)
+
+
+def _hybrid(
+    model: Model[P, S],
+    avg: AveragedForm[P, S],
+    p: P,
+    initial: S,
+    tau: FloatArray,
+    rtol: float,
+    atol: float,
+    integrator: str,
+    max_steps: int,
+) -> Trajectory:
+    """The averaged form with its band crossed on the full equations
+    (:func:`tumble.integrate.hybrid.hybrid`), sampled at ``tau``."""
+    from tumble.integrate.hybrid import hybrid
+
+    if avg.crossing is None:
+        raise ParameterError(
+            f'run.averaged_method = "hybrid" is not available for the averaged form {avg.name} '
+            f"of {model.name} (it has no band to hand to the full equations)"
+        )
+    start = time.perf_counter()
+    full = model.full.form()
+    kernel = _kernel(model, full, p, integrator)
+    run = hybrid(avg, full, p, initial, float(tau[-1]), rtol, atol, kernel, max_steps)
+    cols = run.columns(tau)
+    _unwrap_columns(model, p, "averaged", cols, initial)
+
+    def slow(t: FloatArray) -> Columns:
+        return run.columns(t, osculating=False)
+
+    wall = time.perf_counter() - start
+    return Trajectory(tau, cols, "averaged", f"{avg.name} hybrid", wall, run.nfev, slow,
+                      run.steps, "numba" if kernel is not None else "scipy")  # fmt: skip
 
 
 def start_refusal(avg: AveragedForm[P, S], p: P, t: float, y: FloatArray) -> str | None:

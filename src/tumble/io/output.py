@@ -118,6 +118,9 @@ def summary(
         out["averaging"] = opts.averaging
         out["averaged_form"] = opts.coordinates or None
         out["averaged_init"] = opts.start
+        out["averaging_order"] = opts.order
+        out["initial"] = opts.initial if opts.order == 2 else None
+        out["averaged_method"] = "hybrid" if opts.hybrid else "plain"
     out.update(result.report.summary)
     if verification is not None:
         out["verify"] = verification.summary()

@@ -242,6 +242,14 @@ def run_keys(model: Declaration[Any, Any], variant: Variant[Any, Any]) -> tuple[
                 doc="for averaging_order = 2: the initial state is the physical one "
                     "(converted to the mean one) or the mean one"),
         ]  # fmt: skip
+    if model.hybrid:
+        keys.append(
+            Key("averaged_method", "text", '"plain" or "hybrid"', default="plain",
+                choices=("plain", "hybrid"),
+                doc="hybrid: the bands where averaging fails (ϑ = π/2 for the resisting "
+                    "medium) are crossed on the full equations, re-entered through the "
+                    "osculating → mean map")
+        )  # fmt: skip
     keys += [
         Key("verify", "boolean", "true or false", default=False,
             doc="also measure the averaging error at ε, ε/2, ε/4"),
@@ -538,6 +546,7 @@ def _request(model: Declaration[Any, Any], run: Any, built: Any, times: np.ndarr
         start=getattr(run, "averaged_init", "exact"),
         order=getattr(run, "averaging_order", 1),
         initial=getattr(run, "initial", "osculating"),
+        hybrid=getattr(run, "averaged_method", "plain") == "hybrid",
     )
     family = getattr(run, "verify_scaling", None)
     if family is not None:

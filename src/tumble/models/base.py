@@ -35,6 +35,7 @@ __all__ = [
     "ClosedForm",
     "Column",
     "Columns",
+    "Crossing",
     "Declaration",
     "Diagnostics",
     "Full",
@@ -108,6 +109,11 @@ class AveragingOptions:
         (osculating) state, converted to the mean one before the run; or the mean state
         itself. Output columns of such a run are the osculating variables rebuilt at the
         sample times, with the mean ones beside them (``*_mean``).
+    hybrid : bool
+        Hand the bands where averaging fails (a resonance, the stop of a fast phase) to the
+        full equations and re-enter the averaged ones through the osculating → mean map
+        (``[run] averaged_method = "hybrid"``), where the averaged form has such a band
+        (``AveragedForm.crossing``).
     """
 
     averaging: Literal["closed_form", "numeric"] = "closed_form"
@@ -115,6 +121,7 @@ class AveragingOptions:
     start: Literal["exact", "corrected"] = "exact"
     order: int = 1
     initial: Literal["osculating", "mean"] = "osculating"
+    hybrid: bool = False
 
     def __post_init__(self) -> None:
         if self.averaging not in AVERAGING_METHODS:
@@ -197,6 +204,30 @@ class Breakpoint:
         return cls(None, None, float(t))
 
 
+@dataclass(frozen=True)
+class Crossing:
+    """A band of the slow variables where the averaged equations fail (a fast phase that stops,
+    a resonance), which a hybrid run crosses with the full equations.
+
+    ``band(z)`` on the averaged form's state and ``band_full(y)`` on a full state are the same
+    measure: negative inside the band, 0 on its edge, 1 at twice its half-width. A hybrid run
+    integrates the averaged equations until ``band`` falls to 0, converts the state with
+    ``to_full(t, z)``, integrates the full equations until ``band_full`` exceeds
+    ``LEAVE`` (the hysteresis keeps an oscillating osculating state from re-entering at once)
+    and re-enters the averaged ones through ``to_mean(t, y, z_entry)`` (the mean state at
+    entry picks the branch of angles such as an azimuth, so that they stay continuous).
+    """
+
+    band: Callable[[FloatArray], float]
+    band_full: Callable[[FloatArray], float]
+    to_full: Callable[[float, FloatArray], FloatArray]
+    to_mean: Callable[[float, FloatArray, FloatArray], FloatArray]
+    label: str
+    chunk: float  # length of one full-equation leg between checks of the band [time unit]
+
+    LEAVE = 0.5
+
+
 @dataclass(frozen=True, slots=True)
 class AveragedForm(Generic[P, S]):
     """The averaged (evolution) equations in the coordinates used to integrate them, for one
@@ -222,6 +253,8 @@ class AveragedForm(Generic[P, S]):
     # evaluates it at the sample times only, over the columns of ``to_columns`` (the mean
     # ones, which the validity checks and the unwrapping of angles read).
     osculating: Callable[[P, S, FloatArray, FloatArray], Columns] | None = None
+    # The band a hybrid run hands to the full equations (AveragingOptions.hybrid).
+    crossing: Crossing | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -320,6 +353,7 @@ class Averaged(Generic[P, S]):
     corrected_start: bool = False  # whether it has the first-order mean ↔ osculating start
     numeric: bool = False  # whether the general engine can replace the paper's right-hand side
     orders: tuple[int, ...] = (1,)  # orders of averaging it offers (AveragingOptions.order)
+    hybrid: bool = False  # whether its forms have bands a hybrid run crosses (Crossing)
     errors: Callable[[P, Sampled, Sampled], Mapping[str, tuple[FloatArray, FloatArray]]] | None = (
         None
     )
@@ -337,6 +371,10 @@ class Averaged(Generic[P, S]):
         if options.start == "corrected" and not self.corrected_start:
             raise ParameterError(
                 'run.averaged_init = "corrected" is not available for this model (allowed: "exact")'
+            )
+        if options.hybrid and not self.hybrid:
+            raise ParameterError(
+                'run.averaged_method = "hybrid" is not available for this model (allowed: "plain")'
             )
         if options.order not in self.orders:
             allowed = ", ".join(map(str, self.orders))
@@ -533,8 +571,8 @@ class Declaration(Generic[P, S]):
     ----------
     name, time, methods, check, scenario
         As the :class:`Model` fields of those names.
-    numeric, coordinates, corrected_start, orders
-        As the :class:`Averaged` fields of those names (False, (), False, (1,) without
+    numeric, coordinates, corrected_start, orders, hybrid
+        As the :class:`Averaged` fields of those names (False, (), False, (1,), False without
         averaged equations).
     """
 
@@ -547,6 +585,7 @@ class Declaration(Generic[P, S]):
     coordinates: tuple[str, ...] = ()
     corrected_start: bool = False
     orders: tuple[int, ...] = (1,)
+    hybrid: bool = False
 
     @classmethod
     def of(cls, model: Model[P, S]) -> Declaration[P, S]:
@@ -562,6 +601,7 @@ class Declaration(Generic[P, S]):
             coordinates=avg.coordinates if avg is not None else (),
             corrected_start=avg is not None and avg.corrected_start,
             orders=avg.orders if avg is not None else (1,),
+            hybrid=avg is not None and avg.hybrid,
         )
 
 

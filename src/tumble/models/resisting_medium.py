@@ -45,6 +45,7 @@ from tumble.models.base import (
     Breakpoint,
     ClosedForm,
     Column,
+    Crossing,
     Full,
     FullForm,
     Model,
@@ -436,6 +437,7 @@ def _mean_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[
         return {name: X[:, i] for i, name in enumerate(_SLOW)}
 
     return AveragedForm(
+        crossing=_equator_band(p, st, system) if options.hybrid else None,
         name=f"mean_order{options.order}",
         equation=f"(1.3) averaged to order {options.order} in mean variables (tumble.averaging)",
         slow=(*(f"{v}_mean" for v in _SLOW), *(f"{v}_mean" for v in _PHASES)),
@@ -447,11 +449,50 @@ def _mean_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[
     )
 
 
+BAND_WIDTH = 1.0
+"""Half-width of the band about the equator that a hybrid run crosses on the full equations,
+in units of √ε of the phase rate |ν_φ|/k = |κ cos ϑ|/(1 + κ). At its edge the generator is
+of the size ε/|ν_φ| ~ √ε, so the maps at the hand-overs err by O(ε) (first order) or
+O(ε^{3/2}) (second); inside it φ turns too slowly to be averaged over (§10.2)."""
+
+
+def _equator_band(p: Params, st: State, system: MeanSystem) -> Crossing:
+    """The band |κ cos ϑ|/(1 + κ) < BAND_WIDTH·√ε about ϑ = π/2, where φ stops: crossed on
+    the full equations (Euler + quaternions) by a hybrid run."""
+    width = BAND_WIDTH * math.sqrt(p.eps)
+    ratio = abs(p.kappa) / (1.0 + p.kappa)
+    mapping = system.map()
+
+    def band(z: FloatArray) -> float:
+        return ratio * abs(math.cos(float(z[3]))) / width - 1.0
+
+    def band_full(y: FloatArray) -> float:
+        kb = np.asarray(y[:3]) * p.inertia
+        return ratio * abs(float(kb[2])) / float(np.linalg.norm(kb)) / width - 1.0
+
+    def to_full(t: float, z: FloatArray) -> FloatArray:
+        x, phases = mapping.to_osculating(t, z[:4], z[4:])
+        k, rho, sigma, theta = (float(v) for v in x)
+        return full_from_slow(p, State(k, rho, sigma, float(phases[0]), theta, float(phases[1])))
+
+    def to_mean(t: float, y: FloatArray, z_entry: FloatArray) -> FloatArray:
+        cols = slow_from_full(p, np.array([t]), np.asarray(y)[None, :])
+        x = np.array([float(cols[name][0]) for name in _SLOW])
+        phases = np.array([float(cols["psi"][0]), float(cols["phi"][0])])
+        # σ on the branch of the mean σ at entry (the azimuth is continuous)
+        x[2] += 2.0 * math.pi * round((float(z_entry[2]) - x[2]) / (2.0 * math.pi))
+        y_mean, psi = mapping.to_mean(t, x, phases)
+        return np.concatenate([y_mean, psi])
+
+    chunk = 20.0 * 2.0 * math.pi / max(st.k, 1e-3)  # 20 turns of ψ at the initial spin
+    return Crossing(band, band_full, to_full, to_mean, "ϑ ≈ π/2 (φ stops)", chunk)
+
+
 def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:
     """(2.2), its W, V form (2.3), the general engine (``averaging = "numeric"``,
     :func:`tumble.averaging.spinner_average`: the moment (1.2) averaged over ψ and φ), or the
     equations of order 2 in mean variables (:func:`_mean_form`)."""
-    if options.order == 2:
+    if options.order == 2 or options.hybrid:
         return _mean_form(p, st, options)
     if options.averaging == "numeric":
         return _AVERAGED_NUMERIC
@@ -1217,6 +1258,7 @@ MODEL: Model[Params, State] = Model(
         compare=("k", "rho", "sigma", "theta"),
         numeric=DECLARED.numeric,
         orders=DECLARED.orders,
+        hybrid=DECLARED.hybrid,
     ),
     closed_form=ClosedForm(evaluate=closed_form, columns=_COLUMNS_SLOW_OF),
     unperturbed=Unperturbed(

@@ -383,5 +383,6 @@ DECLARED: Declaration[Params, State] = Declaration(
     scenario=SCENARIO,
     numeric=True,
     orders=(1, 2),
+    hybrid=True,
 )
 """What a scenario of the model may ask for."""

@@ -18,6 +18,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from tumble._typing import FloatArray
+from tumble.averaging.generator import zero_mean_antiderivative
 from tumble.averaging.quadrature import (
     AVERAGE_RTOL,
     AveragingError,
@@ -31,6 +32,7 @@ __all__ = [
     "AVERAGE_RTOL",
     "Perturbation",
     "numeric_averages",
+    "nutation_generator",
     "potential_gradient",
     "torque_perturbation",
 ]
@@ -181,6 +183,63 @@ def numeric_averages(
             n *= 2
     raise AveragingError(
         f"averages over the nutation period did not converge with {n_max} nodes "
+        f"(k² = {orbit.k2:.12g}, 1 − k² = {orbit.mc:.3g}): the motion is too near a separatrix"
+    )
+
+
+def nutation_generator(
+    orbit: NutationOrbit,
+    perturbation: Perturbation,
+    tau: float,
+    *,
+    rtol: float = AVERAGE_RTOL,
+    n_start: int = 16,
+    n_max: int = 1 << 12,
+) -> tuple[float, FloatArray]:
+    """The first-order generator u₁ of the mean ↔ osculating map of (H, z) at the orbit's
+    own state (its t = 0), per unit ε: the general construction of
+    :mod:`tumble.averaging.second_order` on the nutation's phase.
+
+    The phase is the time along the orbit in units of the period, w = 2πt/T, uniform in the
+    Jacobi argument; ν = 2π/T. u₁ is the zero-mean solution of ν ∂u₁/∂w = f − ⟨f⟩ with
+    f = (Φθθ' + Φz·W^z, Φz), by FFT on the nodes of :meth:`NutationOrbit.nodes` (the first at
+    t = 0), doubled until u₁(0) changes by less than ``rtol`` of the integrand's size. The
+    osculating (H, z) of the orbit's state and the mean ones differ by ε u₁: H̄ = H − ε u₁_H,
+    z̄ = z − ε u₁_z. For perturbations with Φθθ' even in θ' and Φz independent of θ' (the
+    paper's), f − ⟨f⟩ is even about every turning point, so its zero-mean antiderivative is
+    the one that vanishes there: u₁(0) = ∫_{t*}^0 (f − ⟨f⟩) dt, t* the last turning point.
+
+    Returns
+    -------
+    u_H : float
+        u₁ of H per unit ε [1/t²].
+    u_z : ndarray, shape (4,)
+        u₁ of z = (R, G, a, b) per unit ε [1/t, 1/t, 1/t², 1/t²].
+
+    Raises
+    ------
+    AveragingError
+        Not converged by ``n_max`` nodes (near a separatrix).
+    """
+    z = np.array([orbit.R, orbit.G, orbit.a, orbit.b])
+    if orbit.kind == "steady":  # no oscillation: nothing to remove
+        return 0.0, np.zeros(4)
+    nu = 2.0 * math.pi / orbit.period
+    last: FloatArray | None = None
+    n = n_start
+    while n <= n_max:
+        _, theta, theta_dot, _ = orbit.nodes(n)
+        ph, pz = perturbation.evaluate(tau, theta, theta_dot, z)
+        f = np.empty((5, n))
+        f[0] = ph * theta_dot + np.add.reduce(pz * potential_gradient(np.cos(theta), z))
+        f[1:] = pz
+        u0 = zero_mean_antiderivative(f, [nu])[:, 0]
+        size = float(np.max(np.abs(f))) / nu
+        if last is not None and float(np.max(np.abs(u0 - last))) <= rtol * max(size, 1e-300):
+            return float(u0[0]), u0[1:]
+        last, n = u0, 2 * n
+    raise AveragingError(
+        f"the generator over the nutation period did not converge with {n_max} nodes "
         f"(k² = {orbit.k2:.12g}, 1 − k² = {orbit.mc:.3g}): the motion is too near a separatrix"
     )
 

@@ -35,6 +35,7 @@ from tumble.averaging.nutation import (
     AVERAGE_RTOL,
     Perturbation,
     numeric_averages,
+    nutation_generator,
     potential_gradient,
     torque_perturbation,
 )
@@ -464,9 +465,12 @@ def averaged_initial(
 ) -> tuple[float, FloatArray, NutationOrbit]:
     """The averaged initial state H̄(0), z̄(0) of spec §7 and §14 (``[run] averaged_init``).
 
-    ``start = "exact"``: H̄ = H(0), z̄ = z(0) (the paper's). ``"corrected"``:
-    H̄ = H(0) − ε∫_{t*}^0 (g − ⟨g⟩)dt, z̄ = z(0) − ε∫_{t*}^0 (Φz − ⟨Φz⟩)dt along the frozen
-    orbit, t* ≤ 0 its last turning point, g = Φθθ' + W^z·Φz.
+    ``start = "exact"``: H̄ = H(0), z̄ = z(0) (the paper's). ``"corrected"``: the first-order
+    mean state H̄ = H(0) − ε u₁_H, z̄ = z(0) − ε u₁_z, u₁ the generator of the general
+    mean ↔ osculating map at the initial state (:func:`tumble.averaging.nutation
+    .nutation_generator`); for the perturbations of the paper it equals
+    ∫_{t*}^0 (g − ⟨g⟩)dt, ∫_{t*}^0 (Φz − ⟨Φz⟩)dt along the frozen orbit, t* ≤ 0 its last
+    turning point, g = Φθθ' + W^z·Φz (measured to 1e-16).
 
     Parameters
     ----------
@@ -491,30 +495,13 @@ def averaged_initial(
     H = orbit.E
     z = np.array([st.R, st.G, a0, b0])
     if start == "corrected" and p.perturbed:
+        # The first-order generator of the general map at the initial state: for this
+        # paper's perturbations it is the integral from the last turning point of spec §7.
         pert = builtin_perturbation(p) if perturbation is None else perturbation
-        if perturbation is None:
-            g_mean, pz_mean = _builtin_averages(orbit, p, 0.0)
-        else:
-            g_mean, pz_mean = numeric_averages(orbit, pert, 0.0)
-        t_star = orbit.turning_time("last")
-        if t_star < 0.0:
-
-            def g(theta: FloatArray, theta_dot: FloatArray) -> FloatArray:
-                ph, pz = pert.evaluate(0.0, theta, theta_dot, z)
-                return ph * theta_dot + np.sum(pz * potential_gradient(np.cos(theta), z), axis=0)
-
-            def component(i: int) -> Callable[[FloatArray, FloatArray], FloatArray]:
-                def f(theta: FloatArray, theta_dot: FloatArray) -> FloatArray:
-                    return pert.evaluate(0.0, theta, theta_dot, z)[1][i]
-
-                return f
-
-            H -= p.eps * (orbit.time_integral(g, t_star, 0.0) + g_mean * t_star)
-            dz = [
-                orbit.time_integral(component(i), t_star, 0.0) + pz_mean[i] * t_star
-                for i in range(4)
-            ]
-            z = z - p.eps * np.array(dz)
+        u_H, u_z = nutation_generator(orbit, pert, 0.0)
+        if u_H != 0.0 or np.any(u_z):
+            H -= p.eps * u_H
+            z = z - p.eps * u_z
             orbit = NutationOrbit.from_energy(
                 p.mu, z[2], z[3], z[0], z[1], H, u_hint=0.5 * (orbit.u1 + orbit.u2)
             )

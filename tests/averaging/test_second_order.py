@@ -83,7 +83,7 @@ X0, PHI0 = np.array([1.0, 0.5]), np.array([0.3, 1.1])
 def _error(eps, order):
     """Max |x − x_full| over the slow time 1 from the osculating start."""
     rates, freq = _two_phases(eps)
-    system = MeanSystem(rates, freq, (16, 16), order)
+    system = MeanSystem.of_rates(rates, freq, (16, 16), order)
 
     def full(t, z):
         f, g = rates(t, z[:2], z[2:])
@@ -113,7 +113,7 @@ def test_second_order_error_falls_as_eps_squared():
 def test_the_maps_are_inverse_to_each_other():
     rates, freq = _two_phases(0.01)
     for order in (1, 2):
-        mapping = MeanSystem(rates, freq, (16, 16), order).map()
+        mapping = MeanSystem.of_rates(rates, freq, (16, 16), order).map()
         y, psi = mapping.to_mean(0.0, X0, PHI0)
         x, phi = mapping.to_osculating(0.0, y, psi)
         # The inverse is iterated to 1e-13 of the scale: round trip to that.

@@ -17,7 +17,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from tumble._typing import FloatArray
+from tumble._typing import ArrayLike, FloatArray
 from tumble.averaging.generator import zero_mean_antiderivative
 from tumble.averaging.quadrature import (
     AVERAGE_RTOL,
@@ -25,6 +25,13 @@ from tumble.averaging.quadrature import (
     BatchedTorque,
     rate_only,
     torus_mean,
+)
+from tumble.averaging.second_order import (
+    GRID_MAX,
+    GRID_RTOL,
+    SecondOrder,
+    grid_terms,
+    resolved,
 )
 from tumble.unperturbed.symmetric_body import NutationOrbit
 
@@ -423,3 +430,128 @@ def _phis(m: FloatArray, sp: Any, cp: Any, s: FloatArray, c: FloatArray) -> Floa
     out[1] = m3
     out[2] = (m1 * sp + m2 * cp) * s + m3 * c
     return out
+
+
+# ---------------------------------------------------------------------------------------------
+# The nutation as the fast phase of second-order averaging.
+
+NUTATION_NODES = 32
+"""First number of phase nodes of :class:`NutationSystem` (doubled until resolved): θ(t) on
+an orbit away from a separatrix is analytic, its harmonics fall geometrically."""
+
+_ORBIT_STEP = 1e-5
+"""Central differences between neighbouring orbits take steps of this size relative to the
+slow variable's scale."""
+
+
+class NutationSystem:
+    """The reduced motion θ'' = −F(θ, z) + εΦθ, z' = εΦz in the standard form of
+    :mod:`tumble.averaging.second_order`: slow x = (H, R, G, a, b), one phase w.
+
+    w is the angle variable of the nutation, 2πt/T from the turning point θmax of the orbit of
+    energy H (:meth:`NutationOrbit.from_energy`), turning at ν = 2π/T(H, z). The slow rates
+    are f = ε(Φθθ' + W^z·Φz, Φz) at the orbit's nodes; the phase's perturbation is
+
+        g = ε(∂w/∂θ' Φθ + ∂w/∂z·Φz),  ∂w/∂θ' = −ν Θ_H,
+        ∂w/∂z = −ν(V_H Θ_z|_J − Θ_H V_z|_J),  Θ_z|_J = Θ_z|_H + Θ_H ⟨W_z⟩,
+
+    with θ = Θ(w; H, z), θ' = V(w; H, z) the orbit at fixed phase: the angle's derivatives
+    along the perturbation follow from the action–angle variables (J, w) being canonical
+    (det ∂(θ, θ')/∂(w, J) = 1, ∂H/∂J = ν) and from ∂H/∂z at fixed action, ⟨W_z⟩ (the mean of
+    ∂W/∂z over the orbit). Every derivative in H and z at fixed phase is a central difference
+    between neighbouring orbits, their nodes at the same phases; ∂f/∂x comes the same way,
+    whole, so that (∂f/∂x)u at the nodes is a contraction.
+
+    Parameters
+    ----------
+    mu : float
+        C/A [1].
+    perturbation : Perturbation
+        Φθ, Φz (without ε).
+    eps : float
+        ε [1].
+    u_hint : float
+        cos θ inside the well of the motion (kept up to date as the orbits move).
+    """
+
+    def __init__(self, mu: float, perturbation: Perturbation, eps: float, u_hint: float) -> None:
+        self.mu, self.perturbation, self.eps = mu, perturbation, eps
+        self.u_hint = u_hint
+        self.n = NUTATION_NODES
+
+    def orbit(self, x: FloatArray) -> NutationOrbit:
+        """The orbit of energy x[0] in the well of ``u_hint``, z = x[1:]."""
+        H, R, G, a, b = (float(v) for v in x)
+        return NutationOrbit.from_energy(self.mu, a, b, R, G, H, self.u_hint)
+
+    def _on(self, tau: float, x: FloatArray, n: int) -> tuple[FloatArray, ...]:
+        """θ, θ', f (shape (5, n)), Φθ, Φz and ν on the orbit of x at the n phase nodes."""
+        orbit = self.orbit(x)
+        _, theta, theta_dot, _ = orbit.nodes(n)
+        z = np.asarray(x[1:], dtype=float)
+        ph, pz = self.perturbation.evaluate(tau, theta, theta_dot, z)
+        f = np.empty((5, n))
+        f[0] = ph * theta_dot + np.add.reduce(pz * potential_gradient(np.cos(theta), z))
+        f[1:] = pz
+        return theta, theta_dot, self.eps * f, ph, pz, np.array([2.0 * math.pi / orbit.period])
+
+    def terms(self, t: float, x: ArrayLike, generator_order: int = 1) -> SecondOrder:
+        """:class:`~tumble.averaging.second_order.SecondOrder` at the slow state x (t is the
+        fast time; the slow time εt is the perturbation's)."""
+        x = np.asarray(x, dtype=float)
+        tau = self.eps * t
+        while True:
+            theta, _, f, ph, pz, nu = self._on(tau, x, self.n)
+            if all(resolved(f, GRID_RTOL)):
+                break
+            if self.n >= GRID_MAX:
+                raise AveragingError(
+                    f"the nutation needs more than {GRID_MAX} phase nodes at H = {x[0]:.6g}: "
+                    "the orbit is too near a separatrix"
+                )
+            self.n *= 2
+        n = self.n
+        orbit = self.orbit(x)
+        self.u_hint = 0.5 * (orbit.u1 + orbit.u2)
+        scale = np.maximum(np.abs(x), 1.0)
+        # Neighbouring orbits: Θ, V, f and ν at fixed phase, differentiated in each slow
+        # variable.
+        d_theta, d_dot, d_f, d_nu = (np.empty((5, n)), np.empty((5, n)), np.empty((5, 5, n)),
+                                     np.empty((1, 5)))  # fmt: skip
+        for i in range(5):
+            h = _ORBIT_STEP * scale[i]
+            up, down = x.copy(), x.copy()
+            up[i] += h
+            down[i] -= h
+            a, b = self._on(tau, up, n), self._on(tau, down, n)
+            d_theta[i] = (a[0] - b[0]) / (2 * h)
+            d_dot[i] = (a[1] - b[1]) / (2 * h)
+            d_f[:, i] = (a[2] - b[2]) / (2 * h)
+            d_nu[0, i] = (a[5][0] - b[5][0]) / (2 * h)
+        z = x[1:]
+        mean_wz = potential_gradient(np.cos(theta), z).mean(axis=1)  # ⟨W_z⟩, (4,)
+        theta_z = d_theta[1:] + d_theta[0] * mean_wz[:, None]  # at fixed action
+        dot_z = d_dot[1:] + d_dot[0] * mean_wz[:, None]
+        w_v = -nu[0] * d_theta[0]
+        w_z = -nu[0] * (d_dot[0] * theta_z - d_theta[0] * dot_z)
+        g = self.eps * (w_v * ph + np.add.reduce(w_z * pz))[None, :]
+
+        def along(u: FloatArray) -> FloatArray:
+            return np.einsum("cin,in->cn", d_f, u)
+
+        def drift(first: FloatArray) -> FloatArray:
+            size = float(np.max(np.abs(first) / scale))
+            if size == 0.0:
+                return np.zeros((5, n))
+            h = _ORBIT_STEP / size
+            shifted = []
+            for sign in (1.0, -1.0):
+                _, _, f_y, _, _, nu_y = self._on(tau, x + sign * h * first, n)
+                shifted.append(zero_mean_antiderivative(f_y, nu_y))
+            return (shifted[0] - shifted[1]) / (2 * h)
+
+        return grid_terms(t, x, f, g, nu, d_nu, along, drift if generator_order == 2 else None)
+
+    def frequencies(self, x: FloatArray) -> FloatArray:
+        """ν = 2π/T of the orbit of x [rad/t]."""
+        return np.array([2.0 * math.pi / self.orbit(x).period])

@@ -71,6 +71,8 @@ __all__ = [
     "MeanMap",
     "MeanSystem",
     "SecondOrder",
+    "grid_terms",
+    "resolved",
     "second_order",
     "torus_values",
 ]
@@ -212,7 +214,7 @@ def torus_values(values: ArrayLike, phases: ArrayLike) -> FloatArray:
     return out[0] if single else out
 
 
-def _resolved(values: FloatArray, rtol: float) -> list[bool]:
+def resolved(values: FloatArray, rtol: float) -> list[bool]:
     """Per phase axis: whether the harmonics above a quarter of the grid are below ``rtol``
     of the largest coefficient of ``values`` (shape (c, *grid))."""
     d = values.ndim - 1
@@ -314,7 +316,7 @@ def second_order(
     scale_ = np.maximum(np.abs(x), 1.0) if scale is None else np.asarray(scale, dtype=float)
     while True:
         f, g = _evaluate(rates, t, x, shape)
-        done = _resolved(np.concatenate([f, g]), rtol)
+        done = resolved(np.concatenate([f, g]), rtol)
         if all(done):
             break
         if max(shape) >= GRID_MAX:
@@ -324,43 +326,99 @@ def second_order(
             )
         shape = tuple(n if ok else 2 * n for n, ok in zip(shape, done, strict=True))
     nu = np.asarray(frequencies(x), dtype=float).reshape(-1)
-    u = zero_mean_antiderivative(f, nu, divisor_rtol=divisor_rtol)
-    shear = np.tensordot(_jacobian(frequencies, x, scale_), u, axes=(1, 0))  # (∂ν/∂x) u
-    v = zero_mean_antiderivative(g + shear, nu, divisor_rtol=divisor_rtol)
-    axes = tuple(range(1, len(shape) + 1))
     x_grid = x.reshape(-1, *([1] * len(shape)))
-    # (∂f/∂x) u at every node: a central difference of f along u.
-    h = _step(u, scale_)
-    if h:
+
+    def along(u: FloatArray) -> FloatArray:
+        # (∂f/∂x) u at every node: a central difference of f along u.
+        h = _step(u, scale_)
+        if not h:
+            return np.zeros_like(f)
         up = _evaluate(rates, t, x_grid + h * u, shape)[0]
         down = _evaluate(rates, t, x_grid - h * u, shape)[0]
-        along = (up - down) / (2.0 * h)
-    else:
-        along = np.zeros_like(f)
-    # (∂f/∂φ) v, spectrally.
-    across = sum(d_f * v_j for d_f, v_j in zip(_phase_derivatives(f), v, strict=True))
-    first, phase = f.mean(axis=axes), g.mean(axis=axes)
-    second = (along + across).mean(axis=axes)
-    u2 = None
-    if generator_order == 2:
+        return (up - down) / (2.0 * h)
+
+    def drift(first: FloatArray) -> FloatArray:
         # (∂u₁/∂y) F₁: u₁ at y ± h F₁ on the same grid, by central differences.
         h = _step(first, scale_)
+        if not h:
+            return np.zeros_like(f)
         shifted = []
         for sign in (1.0, -1.0):
             y = x + sign * h * first
             f_y = _evaluate(rates, t, y, shape)[0]
             nu_y = np.asarray(frequencies(y), dtype=float).reshape(-1)
             shifted.append(zero_mean_antiderivative(f_y, nu_y, divisor_rtol=divisor_rtol))
-        drift = (shifted[0] - shifted[1]) / (2.0 * h) if h else np.zeros_like(u)
+        return (shifted[0] - shifted[1]) / (2.0 * h)
+
+    return grid_terms(
+        t,
+        x,
+        f,
+        g,
+        nu,
+        _jacobian(frequencies, x, scale_),
+        along,
+        drift if generator_order == 2 else None,
+        divisor_rtol=divisor_rtol,
+    )
+
+
+def grid_terms(
+    t: float,
+    x: FloatArray,
+    f: FloatArray,
+    g: FloatArray,
+    nu: FloatArray,
+    nu_jacobian: FloatArray,
+    along: Callable[[FloatArray], FloatArray],
+    drift: Callable[[FloatArray], FloatArray] | None = None,
+    *,
+    divisor_rtol: float = DIVISOR_RTOL,
+) -> SecondOrder:
+    """The terms of :func:`second_order` from the fast system's values on a resolved grid:
+    the formulas of the module notes, for a system that knows its own derivatives.
+
+    Parameters
+    ----------
+    t : float
+        Time [time unit].
+    x : ndarray, shape (m,)
+        The slow state.
+    f, g : ndarray, shapes (m, *grid), (d, *grid)
+        The slow rates and the phases' perturbation at the nodes.
+    nu : ndarray, shape (d,)
+        ν(x).
+    nu_jacobian : ndarray, shape (d, m)
+        ∂ν/∂x.
+    along : callable
+        ``along(u) -> (∂f/∂x) u`` at every node, shape (m, *grid), for u of that shape.
+    drift : callable, optional
+        ``drift(F₁) -> (∂u₁/∂y) F₁`` at every node; given, the generator's u₂ is formed too.
+    divisor_rtol : float
+        Small-divisor test of the generator.
+    """
+    shape = f.shape[1:]
+    axes = tuple(range(1, len(shape) + 1))
+    u = zero_mean_antiderivative(f, nu, divisor_rtol=divisor_rtol)
+    shear = np.tensordot(nu_jacobian, u, axes=(1, 0))  # (∂ν/∂x) u
+    v = zero_mean_antiderivative(g + shear, nu, divisor_rtol=divisor_rtol)
+    along_u = along(u)
+    # (∂f/∂φ) v, spectrally.
+    across = sum(d_f * v_j for d_f, v_j in zip(_phase_derivatives(f), v, strict=True))
+    first, phase = f.mean(axis=axes), g.mean(axis=axes)
+    second = (along_u + across).mean(axis=axes)
+    u2 = None
+    if drift is not None:
         turn = sum(d_u * g_j for d_u, g_j in zip(_phase_derivatives(u), phase, strict=True))
-        rest = along + across - drift - turn - second.reshape(x_grid.shape)
+        rest = along_u + across - drift(first) - turn
+        rest = rest - second.reshape(-1, *([1] * len(shape)))
         u2 = zero_mean_antiderivative(rest, nu, divisor_rtol=divisor_rtol)
     return SecondOrder(
         t=float(t),
-        x=x,
+        x=np.asarray(x, dtype=float),
         first=first,
         second=second,
-        frequencies=nu,
+        frequencies=np.asarray(nu, dtype=float),
         phase=phase,
         u=u,
         v=v,
@@ -436,10 +494,11 @@ class MeanSystem:
 
     Parameters
     ----------
-    rates, frequencies
-        The fast system (:data:`FastRates`, :data:`Frequencies`).
-    grid : tuple of int
-        Starting torus grid of :func:`second_order`.
+    terms_of : callable
+        ``terms_of(t, y, generator_order) -> SecondOrder`` at a mean state: :func:`second_order`
+        on a fast system's rates (:meth:`of_rates`), or a setting's own construction.
+    phases : int
+        d, the number of fast phases.
     order : {1, 2}
         Order of the averaged rates (F₁, or F₁ + F₂) and of the generator of the maps (u₁,
         or u₁ + u₂).
@@ -447,12 +506,11 @@ class MeanSystem:
         ``first(t, y) -> F₁``, the first-order averaged rates from a more accurate engine (a
         closed form, or an adaptive quadrature); default: the mean over the grid.
     scale : ndarray, optional
-        Size of each slow variable (finite-difference steps, convergence of the inverse map).
+        Size of each slow variable (convergence of the inverse map).
     """
 
-    rates: FastRates
-    frequencies: Frequencies
-    grid: tuple[int, ...]
+    terms_of: Callable[[float, FloatArray, int], SecondOrder]
+    phases: int
     order: int = 2
     first: Callable[[float, FloatArray], FloatArray] | None = None
     scale: FloatArray | None = None
@@ -462,27 +520,36 @@ class MeanSystem:
             raise ParameterError(
                 f"run.averaging_order = {self.order!r} is not an order of averaging (allowed: 1, 2)"
             )
-        # The grid the last state needed: the next one, nearby, starts there.
-        object.__setattr__(self, "_last", [tuple(self.grid)])
+
+    @classmethod
+    def of_rates(
+        cls,
+        rates: FastRates,
+        frequencies: Frequencies,
+        grid: tuple[int, ...],
+        order: int = 2,
+        first: Callable[[float, FloatArray], FloatArray] | None = None,
+        scale: FloatArray | None = None,
+    ) -> MeanSystem:
+        """The mean system of a fast system given by its rates (:func:`second_order`, the
+        grid the last state needed being the next one's start)."""
+        last = [tuple(grid)]
+
+        def terms_of(t: float, y: FloatArray, generator_order: int) -> SecondOrder:
+            so = second_order(rates, frequencies, t, y, grid=last[0], scale=scale,
+                              generator_order=generator_order)  # fmt: skip
+            last[0] = so.grid
+            return so
+
+        return cls(terms_of, len(grid), order, first, scale)
 
     def terms(self, t: float, y: FloatArray, generator_order: int = 1) -> SecondOrder:
-        """:func:`second_order` at the mean state y."""
-        last: list[tuple[int, ...]] = self._last  # type: ignore[attr-defined]
-        so = second_order(
-            self.rates,
-            self.frequencies,
-            t,
-            y,
-            grid=last[0],
-            scale=self.scale,
-            generator_order=generator_order,
-        )
-        last[0] = so.grid
-        return so
+        """The terms at the mean state y."""
+        return self.terms_of(t, np.asarray(y, dtype=float), generator_order)
 
     def rhs(self, t: float, z: FloatArray) -> FloatArray:
         """dz/dt of z = (y, ψ): (F₁ [+ F₂], ν + G₁)."""
-        m = z.size - len(self.grid)
+        m = z.size - self.phases
         y = np.asarray(z[:m], dtype=float)
         so = self.terms(t, y)
         rate = so.first if self.first is None else np.asarray(self.first(t, y), dtype=float)
@@ -515,9 +582,9 @@ class MeanSystem:
         phi : ndarray, shape (n, d)
         """
         Z = np.atleast_2d(np.asarray(Z, dtype=float))
-        m = Z.shape[1] - len(self.grid)
+        m = Z.shape[1] - self.phases
         mapping = self.map()
-        x, phi = np.empty((Z.shape[0], m)), np.empty((Z.shape[0], Z.shape[1] - m))
+        x, phi = np.empty((Z.shape[0], m)), np.empty((Z.shape[0], self.phases))
         for i, (ti, zi) in enumerate(zip(np.broadcast_to(t, Z.shape[:1]), Z, strict=True)):
             x[i], phi[i] = mapping.to_osculating(float(ti), zi[:m], zi[m:])
         return x, phi

@@ -410,7 +410,7 @@ def mean_system(p: Params, order: int) -> MeanSystem:
         return spinner_average(p.torque, p.kappa, 1.0, k, rho, sigma, theta, t=t)
 
     rates, frequencies = spinner_system(p.torque, p.kappa)
-    return MeanSystem(rates, frequencies, SPINNER_GRID, order, first)
+    return MeanSystem.of_rates(rates, frequencies, SPINNER_GRID, order, first)
 
 
 def _mean_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:

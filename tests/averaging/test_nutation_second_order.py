@@ -39,7 +39,7 @@ def _start(eps):
 
 
 def test_the_first_rates_equal_the_engine():
-    p, st, x0, _, orbit = _start(1e-2)
+    p, _, x0, _, orbit = _start(1e-2)
     pert = _perturbation(p)
     system = NutationSystem(p.mu, pert, p.eps, 0.5 * (orbit.u1 + orbit.u2))
     so = system.terms(0.0, x0)

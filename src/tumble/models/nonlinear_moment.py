@@ -33,12 +33,14 @@ import numpy as np
 from tumble._typing import FloatArray
 from tumble.averaging.nutation import (
     AVERAGE_RTOL,
+    NutationSystem,
     Perturbation,
     numeric_averages,
     nutation_generator,
     potential_gradient,
     torque_perturbation,
 )
+from tumble.averaging.second_order import MeanSystem
 from tumble.catalogue import CATALOGUE
 from tumble.errors import IntegrationError, ParameterError
 from tumble.kernels import (
@@ -561,12 +563,85 @@ def _compiled_start(p: Params, st: State) -> tuple[float, FloatArray, float] | N
     return H, np.array([st.R, st.G, a0, b0]), 0.5 * float(well[1] + well[2])
 
 
+def nutation_phase(p: Params, st: State) -> float:
+    """The nutation's angle variable of the state ``st`` on its own orbit: 2πt/T from the
+    turning point θmax (the origin of :class:`tumble.averaging.nutation.NutationSystem`)
+    [rad]."""
+    orbit = orbit_of(p, st)
+    if orbit.kind == "steady":
+        return 0.0
+    t_last = orbit.turning_time("last")
+    at_max = abs(float(orbit.theta(t_last)) - orbit.theta_max) <= abs(
+        float(orbit.theta(t_last)) - orbit.theta_min
+    )
+    return 2.0 * math.pi * (-t_last) / orbit.period + (0.0 if at_max else math.pi)
+
+
+_MEAN_SLOW = ("H", "R", "G", "a", "b", "w")
+
+
+def _well_columns(X: FloatArray, system: NutationSystem) -> FloatArray:
+    """θmax, θmin, k², period, root case of the orbits of rows [H, R, G, a, b], shape (n, 5)."""
+    table = nutation_columns(np.ascontiguousarray(X, dtype=float), system.u_hint)
+    for i in np.flatnonzero(np.isnan(table[:, 0])):
+        orbit = system.orbit(X[i])
+        table[i, :5] = orbit.theta_max, orbit.theta_min, orbit.k2, orbit.period, orbit.root_case
+    return table[:, :5]
+
+
+def _mean_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:
+    """The averaged equations of order 2 in mean variables (H̄, z̄) and the mean nutation
+    phase w̄ (:class:`tumble.averaging.nutation.NutationSystem`), started from the mean state
+    of the given one (``options.initial = "osculating"``) or from it; the envelope and z
+    columns are those of the osculating orbit rebuilt at every time asked for (at an
+    extremum of the full motion its θ is that orbit's turning point)."""
+    perturbation = engine_perturbation(p) if options.averaging == "numeric" else None
+    pert = builtin_perturbation(p) if perturbation is None else perturbation
+    orbit0 = orbit_of(p, st)
+    system = NutationSystem(p.mu, pert, p.eps, 0.5 * (orbit0.u1 + orbit0.u2))
+    mean = MeanSystem(system.terms, 1, options.order)
+    a0, b0 = (float(v) for v in p.ab(0.0))
+    x0 = np.array([orbit0.E, st.R, st.G, a0, b0])
+    w0 = nutation_phase(p, st)
+
+    def initial_state(p: Params, st: State) -> FloatArray:
+        if options.initial == "mean":
+            return np.array([*x0, w0])
+        return mean.start(0.0, x0, [w0])
+
+    def to_columns(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
+        Y = np.atleast_2d(Y)
+        X, _ = mean.osculating(t, Y)
+        # The osculating orbit's turning points and the mean orbit's k², period, root case:
+        # the compiled well, the Python orbit for a row it has no answer for.
+        osc, avg = (_well_columns(rows, system) for rows in (X, Y[:, :5]))
+        cols = {"theta_max": osc[:, 0], "theta_min": osc[:, 1], "k2": avg[:, 2],
+                "period": avg[:, 3], "root_case": avg[:, 4], "E": Y[:, 0].copy()}  # fmt: skip
+        for j, name in enumerate(("R", "G", "a", "b")):
+            cols[name] = X[:, j + 1]
+        cols |= {f"{name}_mean": Y[:, j] for j, name in enumerate(_MEAN_SLOW)}
+        return cols
+
+    knots = tuple(Breakpoint.at_time(tk / p.eps) for tk in p.pressure.knots() if tk > 0.0)
+    return AveragedForm(
+        name=f"mean_order{options.order}",
+        equation=f"(2.1) averaged to order {options.order} in mean variables (tumble.averaging)",
+        slow=tuple(f"{name}_mean" for name in _MEAN_SLOW),
+        rhs=lambda t, y, p: mean.rhs(t, y),
+        initial_state=initial_state,
+        to_columns=to_columns,
+        breakpoints=knots,
+    )
+
+
 def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:
     """Volosov's equations (2.2)–(2.3) in the energy H (default) or a turning point besides z,
     their averages in closed form (§8–§9: K, E, Π) or by the general engine
     (:mod:`tumble.averaging.nutation`, ``averaging = "numeric"``), from the exact or the
     corrected start. The energy form with the closed-form averages is also compiled
     (:mod:`tumble.kernels.nutation`)."""
+    if options.order == 2:
+        return _mean_form(p, st, options)
     engine = engine_perturbation(p) if options.averaging == "numeric" else None
     form = _COORDINATES[options.coordinates or "energy"]
     full = full_kernel(p)
@@ -957,6 +1032,12 @@ _AVERAGED = (
     _A,
     _B,
 )
+_AVERAGED_MEAN = (
+    Column("H_mean", "mean energy H̄ (averaging of order 2)", "1/t^2", "(1.6)"),
+    *(Column(f"{c.name}_mean", f"mean {c.long_name} (averaging of order 2)", c.units,
+             c.equation) for c in (_R, _G, _A, _B)),
+    Column("w_mean", "mean nutation phase w̄ from θmax (averaging of order 2)", "rad", "§4"),
+)  # fmt: skip
 _DIAGNOSTICS = (
     Column("k2", "modulus squared k² of the nutation", "1", "§4"),
     Column("period", "nutation period T", "t", "§4"),
@@ -1050,10 +1131,11 @@ MODEL: Model[Params, State] = Model(
     methods=DECLARED.methods,
     averaged=Averaged(
         form=_averaged_form,
-        columns=fixed_columns(_AVERAGED),
+        columns=fixed_columns((*_AVERAGED, *_AVERAGED_MEAN)),
         coordinates=DECLARED.coordinates,
         corrected_start=DECLARED.corrected_start,
         numeric=DECLARED.numeric,
+        orders=DECLARED.orders,
         errors=slow_errors,
         diagnostics=Diagnostics(_diagnostics, _DIAGNOSTICS),
     ),

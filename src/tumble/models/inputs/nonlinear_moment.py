@@ -408,5 +408,6 @@ DECLARED: Declaration[Params, State] = Declaration(
     numeric=True,
     coordinates=("energy", "theta_max", "theta_min"),
     corrected_start=True,
+    orders=(1, 2),
 )
 """What a scenario of the model may ask for."""

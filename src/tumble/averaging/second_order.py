@@ -60,12 +60,17 @@ from dataclasses import dataclass
 import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
-from tumble.averaging.generator import DIVISOR_RTOL, zero_mean_antiderivative
+from tumble.averaging.generator import (
+    DIVISOR_RTOL,
+    SmallDivisorError,
+    zero_mean_antiderivative,
+)
 from tumble.averaging.quadrature import AveragingError
-from tumble.errors import ParameterError
+from tumble.errors import IntegrationError, ParameterError
 
 __all__ = [
     "GRID_RTOL",
+    "RESONANCE_WIDTHS",
     "FastRates",
     "Frequencies",
     "MeanMap",
@@ -73,6 +78,7 @@ __all__ = [
     "SecondOrder",
     "grid_terms",
     "resolved",
+    "resonance_distance",
     "second_order",
     "torus_values",
 ]
@@ -125,6 +131,9 @@ class SecondOrder:
         The generator's first-order parts u₁, v on the grid's nodes [slow unit], [rad].
     u2 : ndarray, shape (m, *grid), or None
         Its second-order part u₂ [slow unit], where asked for (``generator_order=2``).
+    resonance : (float, tuple of int)
+        The distance to the nearest resonance in units of its width, and its harmonic k
+        (:func:`resonance_distance`; inf and () where no harmonic can resonate).
     """
 
     t: float
@@ -136,6 +145,7 @@ class SecondOrder:
     u: FloatArray
     v: FloatArray
     u2: FloatArray | None = None
+    resonance: tuple[float, tuple[int, ...]] = (math.inf, ())
 
     @property
     def grid(self) -> tuple[int, ...]:
@@ -423,7 +433,68 @@ def grid_terms(
         u=u,
         v=v,
         u2=u2,
+        resonance=resonance_distance(f, nu, nu_jacobian, first),
     )
+
+
+RESONANCE_WIDTHS = 3.0
+"""A mean state closer than this many widths to a resonance is refused by a run of order 2
+(and handed to the full equations by a hybrid one): there the generator, of the size
+|f̂_k|/|k·ν| ≳ √ε/RESONANCE_WIDTHS, no longer makes a small correction."""
+
+
+def resonance_distance(
+    f: FloatArray, nu: FloatArray, nu_jacobian: FloatArray, drift: FloatArray
+) -> tuple[float, tuple[int, ...]]:
+    """How far the phases are from their nearest resonance, in units of its width.
+
+    The combination θ = k·φ of a harmonic k of the slow rates (coefficient f̂_k) turns at
+    k·ν, which changes at the rate (k·∂ν/∂x)·(F₁ + f̂_k e^{iθ}): the mean drift carries the
+    solution through the resonance k·ν = 0, and the harmonic itself drives θ like a pendulum.
+    Both give the resonance the width w_k = √(|(k·∂ν/∂x)·F₁| + |(k·∂ν/∂x)·f̂_k|) in k·ν:
+    within a few widths the phase no longer turns many times while k·ν changes (the
+    adiabatic condition |k·ν|² ≫ |d(k·ν)/dt| fails), the solution passes with an O(√ε) jump
+    or is captured, and the generator's terms f̂_k/(k·ν) stop being small. The distance is
+    the least |k·ν|/w_k over the harmonics above 1e-6 of the largest.
+
+    Parameters
+    ----------
+    f : ndarray, shape (m, *grid)
+        The slow rates on the grid.
+    nu : ndarray, shape (d,)
+        ν.
+    nu_jacobian : ndarray, shape (d, m)
+        ∂ν/∂x.
+    drift : ndarray, shape (m,)
+        F₁.
+
+    Returns
+    -------
+    distance : float
+        inf where no harmonic present can resonate (k·∂ν/∂x = 0 for all of them).
+    harmonic : tuple of int
+        The nearest resonance's k.
+    """
+    shape = f.shape[1:]
+    d = len(shape)
+    coef = np.fft.fftn(f, axes=tuple(range(1, d + 1))) / math.prod(shape)
+    waves = _waves(shape)
+    k_nu = sum(w * n for w, n in zip(waves, nu, strict=True))
+    # k·∂ν/∂x, shape (m, *grid)
+    k_jac = sum(w[None] * np.reshape(row, (-1, *([1] * d)))
+                for w, row in zip(waves, nu_jacobian, strict=True))  # fmt: skip
+    width2 = np.abs(np.tensordot(drift, k_jac, axes=(0, 0)))
+    width2 = width2 + np.abs(np.sum(k_jac * coef, axis=0))
+    size = np.abs(coef).max(axis=0)
+    present = size > 1e-6 * float(size.max())
+    present &= sum(np.abs(w) for w in waves) != 0
+    present &= width2 > 0.0
+    if not np.any(present):
+        return math.inf, ()
+    ratio = np.full(shape, math.inf)
+    ratio[present] = np.abs(k_nu[present]) / np.sqrt(width2[present])
+    at = np.unravel_index(int(np.argmin(ratio)), shape)
+    return float(ratio[at]), tuple(int(np.broadcast_to(w, shape)[at]) for w in waves)
 
 
 def _step(direction: FloatArray, scale: FloatArray) -> float:
@@ -507,6 +578,10 @@ class MeanSystem:
         closed form, or an adaptive quadrature); default: the mean over the grid.
     scale : ndarray, optional
         Size of each slow variable (convergence of the inverse map).
+    refuse : bool
+        Whether the order-2 rates refuse a mean state within ``RESONANCE_WIDTHS`` of a
+        resonance (SmallDivisorError); a hybrid run, which leaves such states to the full
+        equations at the edge of the band, turns it off so that its steps may probe them.
     """
 
     terms_of: Callable[[float, FloatArray, int], SecondOrder]
@@ -514,6 +589,7 @@ class MeanSystem:
     order: int = 2
     first: Callable[[float, FloatArray], FloatArray] | None = None
     scale: FloatArray | None = None
+    refuse: bool = True
 
     def __post_init__(self) -> None:
         if self.order not in (1, 2):
@@ -530,6 +606,7 @@ class MeanSystem:
         order: int = 2,
         first: Callable[[float, FloatArray], FloatArray] | None = None,
         scale: FloatArray | None = None,
+        refuse: bool = True,
     ) -> MeanSystem:
         """The mean system of a fast system given by its rates (:func:`second_order`, the
         grid the last state needed being the next one's start)."""
@@ -541,17 +618,43 @@ class MeanSystem:
             last[0] = so.grid
             return so
 
-        return cls(terms_of, len(grid), order, first, scale)
+        return cls(terms_of, len(grid), order, first, scale, refuse)
 
     def terms(self, t: float, y: FloatArray, generator_order: int = 1) -> SecondOrder:
         """The terms at the mean state y."""
         return self.terms_of(t, np.asarray(y, dtype=float), generator_order)
+
+    def guarded(self) -> Callable[[float, FloatArray], FloatArray]:
+        """:meth:`rhs` for an ODE solver: an AveragingError or ParameterError (a resonance, a
+        small divisor, an orbit that does not exist) stops the run at once as an
+        IntegrationError naming the time and the reason. (Returning NaN to make the solver
+        try shorter steps would cost hundreds of refused evaluations of a few ms each before
+        the step size collapses; the states refused are those the solution is about to reach,
+        not a trial stage's overshoot.)"""
+
+        def rhs(t: float, z: FloatArray) -> FloatArray:
+            try:
+                return self.rhs(t, z)
+            except (AveragingError, ParameterError) as exc:  # no average, or no orbit, there
+                raise IntegrationError(
+                    f"the averaged equations of order {self.order} stop at t = {t:.6g}: {exc}"
+                ) from None
+
+        return rhs
 
     def rhs(self, t: float, z: FloatArray) -> FloatArray:
         """dz/dt of z = (y, ψ): (F₁ [+ F₂], ν + G₁)."""
         m = z.size - self.phases
         y = np.asarray(z[:m], dtype=float)
         so = self.terms(t, y)
+        distance, k = so.resonance
+        if self.refuse and self.order == 2 and distance < RESONANCE_WIDTHS:
+            raise SmallDivisorError(
+                f"the mean state at t = {t:.6g} is {distance:.3g} widths from the resonance "
+                f"k·ν = 0, k = {k} (ν = {so.frequencies.tolist()}): the second-order "
+                "generator is no longer small there (a hybrid run crosses it on the full "
+                "equations)"
+            )
         rate = so.first if self.first is None else np.asarray(self.first(t, y), dtype=float)
         if self.order == 2:
             rate = rate + so.second

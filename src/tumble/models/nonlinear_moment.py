@@ -600,6 +600,7 @@ def _mean_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[
     orbit0 = orbit_of(p, st)
     system = NutationSystem(p.mu, pert, p.eps, 0.5 * (orbit0.u1 + orbit0.u2))
     mean = MeanSystem(system.terms, 1, options.order)
+    guarded = mean.guarded()
     a0, b0 = (float(v) for v in p.ab(0.0))
     x0 = np.array([orbit0.E, st.R, st.G, a0, b0])
     w0 = nutation_phase(p, st)
@@ -627,7 +628,7 @@ def _mean_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[
         name=f"mean_order{options.order}",
         equation=f"(2.1) averaged to order {options.order} in mean variables (tumble.averaging)",
         slow=tuple(f"{name}_mean" for name in _MEAN_SLOW),
-        rhs=lambda t, y, p: mean.rhs(t, y),
+        rhs=lambda t, y, p: guarded(t, y),
         initial_state=initial_state,
         to_columns=to_columns,
         breakpoints=knots,

@@ -23,7 +23,7 @@ import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
 from tumble.averaging.quadrature import AVERAGE_RTOL
-from tumble.averaging.second_order import MeanSystem
+from tumble.averaging.second_order import RESONANCE_WIDTHS, MeanSystem
 from tumble.averaging.spinner import (
     SPINNER_GRID,
     body_momentum,
@@ -400,7 +400,7 @@ _SLOW = ("k", "rho", "sigma", "theta")
 _PHASES = ("psi", "phi")
 
 
-def mean_system(p: Params, order: int) -> MeanSystem:
+def mean_system(p: Params, order: int, refuse: bool = True) -> MeanSystem:
     """The averaged equations of ``order`` in mean variables (k, ρ, σ, ϑ) and mean phases
     (ψ, φ), with the mean ↔ osculating map (:mod:`tumble.averaging.second_order` on the
     standard form (1.3)); F₁ by :func:`tumble.averaging.spinner_average`."""
@@ -410,14 +410,15 @@ def mean_system(p: Params, order: int) -> MeanSystem:
         return spinner_average(p.torque, p.kappa, 1.0, k, rho, sigma, theta, t=t)
 
     rates, frequencies = spinner_system(p.torque, p.kappa)
-    return MeanSystem.of_rates(rates, frequencies, SPINNER_GRID, order, first)
+    return MeanSystem.of_rates(rates, frequencies, SPINNER_GRID, order, first, refuse=refuse)
 
 
 def _mean_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:
     """The averaged equations of order ``options.order`` in mean variables, started from the
     mean state of the given one (``options.initial = "osculating"``) or from it, with the
     osculating variables rebuilt at the samples (:func:`mean_system`)."""
-    system = mean_system(p, options.order)
+    system = mean_system(p, options.order, refuse=not options.hybrid)
+    guarded = system.guarded()
 
     def initial_state(p: Params, st: State) -> FloatArray:
         x = np.array([st.k, st.rho, st.sigma, st.theta])
@@ -437,11 +438,11 @@ def _mean_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[
         return {name: X[:, i] for i, name in enumerate(_SLOW)}
 
     return AveragedForm(
-        crossing=_equator_band(p, st, system) if options.hybrid else None,
+        crossing=_resonance_band(p, st, system) if options.hybrid else None,
         name=f"mean_order{options.order}",
         equation=f"(1.3) averaged to order {options.order} in mean variables (tumble.averaging)",
         slow=(*(f"{v}_mean" for v in _SLOW), *(f"{v}_mean" for v in _PHASES)),
-        rhs=lambda t, y, p: system.rhs(t, y),
+        rhs=lambda t, y, p: guarded(t, y),
         initial_state=initial_state,
         to_columns=mean_columns,
         breakpoints=(Breakpoint(lambda t, y: math.cos(y[3])),),
@@ -449,26 +450,27 @@ def _mean_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[
     )
 
 
-BAND_WIDTH = 1.0
-"""Half-width of the band about the equator that a hybrid run crosses on the full equations,
-in units of √ε of the phase rate |ν_φ|/k = |κ cos ϑ|/(1 + κ). At its edge the generator is
-of the size ε/|ν_φ| ~ √ε, so the maps at the hand-overs err by O(ε) (first order) or
-O(ε^{3/2}) (second); inside it φ turns too slowly to be averaged over (§10.2)."""
-
-
-def _equator_band(p: Params, st: State, system: MeanSystem) -> Crossing:
-    """The band |κ cos ϑ|/(1 + κ) < BAND_WIDTH·√ε about ϑ = π/2, where φ stops: crossed on
-    the full equations (Euler + quaternions) by a hybrid run."""
-    width = BAND_WIDTH * math.sqrt(p.eps)
-    ratio = abs(p.kappa) / (1.0 + p.kappa)
+def _resonance_band(p: Params, st: State, system: MeanSystem) -> Crossing:
+    """The bands where the mean state is within RESONANCE_WIDTHS widths of a resonance of
+    the phases (:func:`tumble.averaging.second_order.resonance_distance`): about ϑ = π/2,
+    where φ stops (the harmonic (0, 1)), and about the commensurabilities ψ̇ = j|φ̇| the
+    moment's harmonics (±1, j) meet as ϑ drifts. A hybrid run crosses them on the full
+    equations (Euler + quaternions)."""
     mapping = system.map()
 
+    def distance(x: FloatArray) -> float:
+        return system.terms(0.0, np.asarray(x[:4], dtype=float)).resonance[0]
+
     def band(z: FloatArray) -> float:
-        return ratio * abs(math.cos(float(z[3]))) / width - 1.0
+        return distance(z) / RESONANCE_WIDTHS - 1.0
+
+    def osculating(y: FloatArray) -> tuple[FloatArray, FloatArray]:
+        cols = slow_from_full(p, np.zeros(1), np.asarray(y)[None, :])
+        x = np.array([float(cols[name][0]) for name in _SLOW])
+        return x, np.array([float(cols["psi"][0]), float(cols["phi"][0])])
 
     def band_full(y: FloatArray) -> float:
-        kb = np.asarray(y[:3]) * p.inertia
-        return ratio * abs(float(kb[2])) / float(np.linalg.norm(kb)) / width - 1.0
+        return distance(osculating(y)[0]) / RESONANCE_WIDTHS - 1.0
 
     def to_full(t: float, z: FloatArray) -> FloatArray:
         x, phases = mapping.to_osculating(t, z[:4], z[4:])
@@ -476,16 +478,14 @@ def _equator_band(p: Params, st: State, system: MeanSystem) -> Crossing:
         return full_from_slow(p, State(k, rho, sigma, float(phases[0]), theta, float(phases[1])))
 
     def to_mean(t: float, y: FloatArray, z_entry: FloatArray) -> FloatArray:
-        cols = slow_from_full(p, np.array([t]), np.asarray(y)[None, :])
-        x = np.array([float(cols[name][0]) for name in _SLOW])
-        phases = np.array([float(cols["psi"][0]), float(cols["phi"][0])])
+        x, phases = osculating(y)
         # σ on the branch of the mean σ at entry (the azimuth is continuous)
         x[2] += 2.0 * math.pi * round((float(z_entry[2]) - x[2]) / (2.0 * math.pi))
         y_mean, psi = mapping.to_mean(t, x, phases)
         return np.concatenate([y_mean, psi])
 
     chunk = 20.0 * 2.0 * math.pi / max(st.k, 1e-3)  # 20 turns of ψ at the initial spin
-    return Crossing(band, band_full, to_full, to_mean, "ϑ ≈ π/2 (φ stops)", chunk)
+    return Crossing(band, band_full, to_full, to_mean, "a resonance of ψ and φ", chunk)
 
 
 def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:

@@ -106,6 +106,11 @@ MAP_TOL = 1e-13
 """The fixed-point iterations of the inverse map stop when a step changes the mean state by
 less than this relative to its scale."""
 
+MAP_NOISE = 1e-9
+"""…or when a step no longer halves the change and it is below this: the noise of a generator
+whose phase part comes from differences between neighbouring motions (the triaxial setting's
+~1e-11 in the phases)."""
+
 _MAP_ITERATIONS = 20
 
 
@@ -540,6 +545,7 @@ class MeanMap:
         phi = np.asarray(phi, dtype=float)
         scale = np.maximum(np.abs(x), 1.0) if self.scale is None else self.scale
         y, psi = x.copy(), phi.copy()
+        last = math.inf
         for _ in range(_MAP_ITERATIONS):
             u, v = self.terms(t, y).generator(psi)
             y_new, psi_new = x - u, phi - v
@@ -547,8 +553,10 @@ class MeanMap:
                 float(np.max(np.abs(y_new - y) / scale)), float(np.max(np.abs(psi_new - psi)))
             )
             y, psi = y_new, psi_new
-            if change <= MAP_TOL:
+            # converged, or at the noise of a generator built from finite differences
+            if change <= MAP_TOL or (change <= MAP_NOISE and change >= 0.5 * last):
                 return y, psi
+            last = change
         raise AveragingError(
             f"the osculating → mean map did not converge at x = {x.tolist()}: the generator is "
             "not small there (ε too large, or near a resonance or separatrix)"

@@ -1,0 +1,246 @@
+"""The triaxial body as a fast system of second-order averaging: slow (L_ξ, T), the angle
+variables of the Euler–Poinsot motion, and a forcing phase.
+
+Slow x = (L_ξ1, L_ξ2, L_ξ3, T): the inertial angular momentum and the kinetic energy. Phases:
+w1, the polhode phase (2πτ/T_p from a reference point of the polhode), w2, the precession
+angle variable about L (uniform, at the mean precession rate ν2), and, for a torque with a
+periodic time dependence, w3 = 2πt/T_f. On the torus the attitude is
+
+    A(w) = F(L̂) Rz(w2 + P(w1)) C(τ),   τ = w1 T_p/2π,
+
+with C(τ) = Rx(θ(τ)) Rz(φ(τ)) P_polar the free motion's body → L-frame rotation without its
+precession ψ(τ), P(w1) = ψ(τ) − ν2 τ the periodic part of ψ, and F(L̂) a frame whose third
+column is L̂ (its first axis from a fixed auxiliary direction, so that F is smooth in L̂). Along
+the free motion w1 and w2 turn uniformly and A(w(t)) is the Euler–Poinsot attitude.
+
+The slow rates are exact: dL_ξ/dt = A εM, dT/dt = ω·εM. The phases' perturbation follows from
+the forward map Y(x, w) = (attitude, body momentum L_b = Iω): the perturbation of the full
+equations is δL_b = εM at a fixed attitude, and (ẋ, ẇ) solve ∂Y/∂(x, w) · (ẋ, ẇ) = (0, εM)
+at each node, the attitude's part as an inertial rotation vector. Its columns are central
+differences between neighbouring motions in x at fixed phases, spectral derivatives in w1, and
+the rotation about L̂ for w2. (The slow rows reproduce the exact rates, a check of the map.)
+
+The polhode of given (|L|, T) is one of two tori, mirror images through the body, told apart
+by the sign of the body momentum along the polar axis (axis 3 in regime x3, axis 1 in regime
+x1): the ``sign`` of a system, constant away from the separatrix.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from tumble._typing import ArrayLike, FloatArray
+from tumble.averaging.quadrature import AveragingError, BatchedTorque
+from tumble.averaging.second_order import GRID_MAX, GRID_RTOL, SecondOrder, grid_terms, resolved
+from tumble.bodies import proper_sorting
+from tumble.rotations import matrix_to_quat, rot_x, rot_z
+from tumble.unperturbed.euler_poinsot import EulerPoinsot, fast_frequencies
+
+__all__ = ["TriaxialSystem"]
+
+_STEP = 1e-6
+"""Central differences between neighbouring motions: steps of this size relative to |L|
+(the energy's relative to T)."""
+
+
+def _vee(S: FloatArray) -> FloatArray:
+    """The vector of (the skew part of) matrices S, shape (..., 3)."""
+    return 0.5 * np.stack(
+        [S[..., 2, 1] - S[..., 1, 2], S[..., 0, 2] - S[..., 2, 0], S[..., 1, 0] - S[..., 0, 1]], -1
+    )
+
+
+class TriaxialSystem:
+    """The fast system of a triaxial body under ``eps·torque`` (module notes).
+
+    Parameters
+    ----------
+    inertia : array_like, shape (3,)
+        Principal moments in the user's axis order [inertia unit].
+    torque : callable
+        ``torque(t, q, ω) -> body moment`` (batched; any :class:`~tumble.torques.Torque`).
+    eps : float
+        Its factor ε [1].
+    sign : {+1, −1}
+        Which of the two mirror tori (module notes).
+    auxiliary : array_like, shape (3,)
+        The fixed direction F(L̂)'s first axis is built from (not parallel to L̂).
+    forcing_period : float, optional
+        Period of the torque's explicit time dependence [time].
+    """
+
+    def __init__(
+        self,
+        inertia: ArrayLike,
+        torque: Callable[..., Any],
+        eps: float,
+        sign: float,
+        auxiliary: ArrayLike,
+        forcing_period: float | None = None,
+    ) -> None:
+        self.inertia = np.asarray(inertia, dtype=float)
+        self.Q = proper_sorting(self.inertia)
+        self.sorted = np.sort(self.inertia)
+        self.torque = BatchedTorque(torque, True, "the Euler–Poinsot motion")
+        self.eps, self.sign = float(eps), float(sign)
+        self.auxiliary = np.asarray(auxiliary, dtype=float)
+        self.period = forcing_period
+        self.grid: tuple[int, ...] = (32, 8) if forcing_period is None else (32, 8, 8)
+        self.residual = math.nan  # of the last terms: the Jacobian's slow rows − the rates
+
+    # -- the unperturbed motion ------------------------------------------------------------
+
+    def frequencies(self, x: FloatArray) -> FloatArray:
+        """ν = (ν1, ν2[, 2π/T_f]) [rad/time]."""
+        L = float(np.linalg.norm(x[:3]))
+        I1, I2, I3 = (float(v) for v in self.sorted)
+        nu1, nu2 = fast_frequencies(I1, I2, I3, L, float(x[3]))
+        out = [nu1, nu2] + ([2.0 * math.pi / self.period] if self.period else [])
+        return np.array(out)
+
+    def _reference(self, x: FloatArray) -> EulerPoinsot:
+        """The free motion of (|L|, T) started at the polhode's reference point."""
+        I1, I2, I3 = self.sorted
+        L2, T2 = float(x[:3] @ x[:3]), 2.0 * float(x[3])
+        z1 = math.sqrt(max((I3 * T2 - L2) / (I1 * (I3 - I1)), 0.0))
+        z3 = math.sqrt(max((L2 - I1 * T2) / (I3 * (I3 - I1)), 0.0))
+        if L2 > T2 * I2:  # regime x3: the polar axis is 3
+            zs = np.array([z1, 0.0, self.sign * z3])
+        else:
+            zs = np.array([self.sign * z1, 0.0, z3])
+        return EulerPoinsot.from_state(self.inertia, self.Q.T @ zs)
+
+    def _frame(self, L: FloatArray) -> FloatArray:
+        e3 = L / np.linalg.norm(L)
+        e1 = np.cross(self.auxiliary, e3)
+        e1 /= np.linalg.norm(e1)
+        return np.stack([e1, np.cross(e3, e1), e3], axis=1)
+
+    def states(self, x: FloatArray, shape: tuple[int, ...]) -> tuple[FloatArray, ...]:
+        """Attitudes A (shape (*shape[:2], 3, 3)), body rates ω (shape (shape[0], 3)) and
+        the forcing times (shape (shape[2],) or (1,)) on the phase grid of ``shape``."""
+        ep = self._reference(x)
+        n1, n2 = shape[0], shape[1]
+        w1 = np.arange(n1) * (2.0 * math.pi / n1)
+        tau = w1 * ep.period / (2.0 * math.pi)
+        omega = ep.omega(tau)
+        psi, theta, phi = ep.euler_angles(tau)
+        C = rot_x(theta) @ rot_z(phi) @ ep.polar_frame  # (n1, 3, 3)
+        P = psi - ep.nu2 * tau
+        w2 = np.arange(n2) * (2.0 * math.pi / n2)
+        R = rot_z(w2[None, :] + P[:, None])  # (n1, n2, 3, 3)
+        A = self._frame(x[:3]) @ R @ C[:, None]
+        if len(shape) > 2:
+            t = np.arange(shape[2]) * (self.period / shape[2])  # type: ignore[operator]
+        else:
+            t = np.zeros(1)
+        return A, omega, t
+
+    def _rates(self, x: FloatArray, shape: tuple[int, ...]) -> tuple[FloatArray, ...]:
+        """f (shape (4, *shape)), the body moment εM (shape (*shape, 3)), A and ω."""
+        A, omega, t = self.states(x, shape)
+        n1, n2 = shape[0], shape[1]
+        q = matrix_to_quat(A).reshape(-1, 4)
+        w = np.broadcast_to(omega[:, None, :], (n1, n2, 3)).reshape(-1, 3)
+        M = np.empty((n1, n2, t.size, 3))
+        for j, tj in enumerate(t):
+            M[:, :, j] = np.broadcast_to(self.torque(float(tj), q, w), (n1 * n2, 3)).reshape(
+                n1, n2, 3
+            )
+        M *= self.eps
+        f = np.empty((4, n1, n2, t.size))
+        f[:3] = np.moveaxis(np.einsum("abij,abkj->abki", A, M), -1, 0)
+        f[3] = np.einsum("ai,abki->abk", omega, M)
+        if len(shape) == 2:
+            f, M = f[..., 0], M[:, :, 0]
+        return f, M, A, omega
+
+    # -- the terms -------------------------------------------------------------------------
+
+    def terms(self, t: float, x: ArrayLike, generator_order: int = 1) -> SecondOrder:
+        """:class:`~tumble.averaging.second_order.SecondOrder` at the slow state x."""
+        x = np.asarray(x, dtype=float)
+        shape = self.grid
+        while True:
+            f, M, A, omega = self._rates(x, shape)
+            done = resolved(f, GRID_RTOL)
+            if all(done):
+                break
+            if max(shape) >= GRID_MAX:
+                raise AveragingError(
+                    f"the Euler–Poinsot motion needs more than {GRID_MAX} phase nodes at "
+                    f"x = {x.tolist()}: too near the separatrix"
+                )
+            shape = tuple(n if ok else 2 * n for n, ok in zip(shape, done, strict=True))
+        self.grid = shape
+        n1, n2 = shape[0], shape[1]
+        L = float(np.linalg.norm(x[:3]))
+        steps = np.array([_STEP * L] * 3 + [_STEP * float(x[3])])
+        # Neighbouring motions at fixed phases: the Jacobian's slow columns and ∂f/∂x.
+        d_att = np.empty((4, n1, n2, 3))
+        d_mom = np.empty((4, n1, 3))
+        d_f = np.empty((4, *f.shape))
+        d_nu = np.empty((len(shape), 4))
+        for i in range(4):
+            up, down = x.copy(), x.copy()
+            up[i] += steps[i]
+            down[i] -= steps[i]
+            fu, _, Au, wu = self._rates(up, shape)
+            fd, _, Ad, wd = self._rates(down, shape)
+            dA = (Au - Ad) / (2.0 * steps[i])
+            d_att[i] = _vee(dA @ np.swapaxes(A, -1, -2))
+            d_mom[i] = (wu - wd) / (2.0 * steps[i]) * self.inertia
+            d_f[:, i] = (fu - fd) / (2.0 * steps[i])
+            d_nu[:, i] = (self.frequencies(up) - self.frequencies(down)) / (2.0 * steps[i])
+        # The phases' columns: w1 spectrally, w2 the rotation about L̂.
+        k1 = np.fft.fftfreq(n1) * n1
+        if n1 % 2 == 0:
+            k1[n1 // 2] = 0.0
+
+        def d_w1(values: FloatArray) -> FloatArray:
+            return np.fft.ifft(1j * k1.reshape(-1, *([1] * (values.ndim - 1)))
+                               * np.fft.fft(values, axis=0), axis=0).real  # fmt: skip
+
+        att_w1 = _vee(d_w1(A) @ np.swapaxes(A, -1, -2))  # (n1, n2, 3)
+        mom_w1 = d_w1(omega * self.inertia)  # (n1, 3)
+        J = np.zeros((n1, n2, 6, 6))
+        J[..., :3, :4] = np.moveaxis(d_att, 0, -1)
+        J[..., 3:, :4] = np.moveaxis(d_mom, 0, -1)[:, None]
+        J[..., :3, 4] = att_w1
+        J[..., 3:, 4] = mom_w1[:, None]
+        J[..., :3, 5] = x[:3] / L
+        rhs = np.zeros((*M.shape[:-1], 6))
+        rhs[..., 3:] = M
+        if len(shape) > 2:
+            sol = np.linalg.solve(J[:, :, None], rhs[..., None])[..., 0]
+            g = np.asarray(np.moveaxis(sol[..., 4:], -1, 0), dtype=float)
+            g = np.concatenate([g, np.zeros((1, *shape))])
+        else:
+            sol = np.linalg.solve(J, rhs[..., None])[..., 0]
+            g = np.asarray(np.moveaxis(sol[..., 4:], -1, 0), dtype=float)
+        # The solve's slow rows against the exact rates: how well the map is differentiated.
+        self.residual = float(np.max(np.abs(np.moveaxis(sol[..., :4], -1, 0) - f)))
+        nu = self.frequencies(x)
+
+        def along(u: FloatArray) -> FloatArray:
+            return np.einsum("ci...,i...->c...", d_f, u)
+
+        def drift(first: FloatArray) -> FloatArray:
+            from tumble.averaging.generator import zero_mean_antiderivative
+
+            size = float(np.max(np.abs(first) / np.abs(steps / _STEP)))
+            if size == 0.0:
+                return np.zeros_like(f)
+            h = _STEP / size
+            shifted = []
+            for s in (1.0, -1.0):
+                y = x + s * h * first
+                shifted.append(zero_mean_antiderivative(self._rates(y, shape)[0],
+                                                        self.frequencies(y)))  # fmt: skip
+            return (shifted[0] - shifted[1]) / (2.0 * h)
+
+        return grid_terms(t, x, f, g, nu, d_nu, along, drift if generator_order == 2 else None)

@@ -85,12 +85,63 @@ class TriaxialSystem:
         self.inertia = np.asarray(inertia, dtype=float)
         self.Q = proper_sorting(self.inertia)
         self.sorted = np.sort(self.inertia)
-        self.torque = BatchedTorque(torque, True, "the Euler–Poinsot motion")
+        self.torque = BatchedTorque(torque, None, "the Euler–Poinsot motion")
         self.eps, self.sign = float(eps), float(sign)
         self.auxiliary = np.asarray(auxiliary, dtype=float)
         self.period = forcing_period
         self.grid: tuple[int, ...] = (32, 8) if forcing_period is None else (32, 8, 8)
         self.residual = math.nan  # of the last terms: the Jacobian's slow rows − the rates
+
+    @classmethod
+    def through(
+        cls,
+        inertia: ArrayLike,
+        torque: Callable[..., Any],
+        eps: float,
+        omega: ArrayLike,
+        attitude: ArrayLike,
+        forcing_period: float | None = None,
+    ) -> tuple[TriaxialSystem, FloatArray, FloatArray]:
+        """The system of the torus through the state (ω, A) at t = 0, with that state's slow
+        variables x = (A Iω, ½ω·Iω) and phases w (w3 = 0 at t = 0)."""
+        inertia_ = np.asarray(inertia, dtype=float)
+        w = np.asarray(omega, dtype=float)
+        A = np.asarray(attitude, dtype=float)
+        L_xi = A @ (inertia_ * w)
+        x = np.array([*L_xi, 0.5 * float(w @ (inertia_ * w))])
+        Q = proper_sorting(inertia_)
+        zs, Is = Q @ w, np.sort(inertia_)
+        polar = 2 if float(L_xi @ L_xi) > 2.0 * x[3] * Is[1] else 0
+        sign = 1.0 if zs[polar] >= 0.0 else -1.0
+        auxiliary = np.zeros(3)
+        auxiliary[int(np.argmin(np.abs(L_xi)))] = 1.0
+        system = cls(inertia_, torque, eps, sign, auxiliary, forcing_period)
+        return system, x, system.phases_of(x, w, A)
+
+    def phases_of(self, x: FloatArray, omega: FloatArray, attitude: FloatArray) -> FloatArray:
+        """The phases (w1, w2[, 0]) of the state (ω, A) on the torus of x [rad]."""
+        from scipy.optimize import minimize_scalar  # loaded where a run starts
+
+        ep = self._reference(x)
+        n = 512
+        tau = np.arange(n) * (ep.period / n)
+        miss = np.sum((ep.omega(tau) - omega) ** 2, axis=1)
+        i = int(np.argmin(miss))
+        step = ep.period / n
+        best = minimize_scalar(
+            lambda s: float(np.sum((ep.omega(np.array([s]))[0] - omega) ** 2)),
+            bounds=(tau[i] - step, tau[i] + step),
+            method="bounded",
+            options={"xatol": 1e-14 * ep.period},
+        )
+        t_star = float(best.x) % ep.period
+        psi, theta, phi = (float(v[0]) for v in ep.euler_angles(np.array([t_star])))
+        C = rot_x(theta) @ rot_z(phi) @ ep.polar_frame
+        R = self._frame(x[:3]).T @ attitude @ C.T
+        chi = math.atan2(R[1, 0], R[0, 0])
+        w1 = 2.0 * math.pi * t_star / ep.period
+        w2 = chi - (psi - ep.nu2 * t_star)
+        return np.array([w1, w2] + ([0.0] if self.period else []))
 
     # -- the unperturbed motion ------------------------------------------------------------
 

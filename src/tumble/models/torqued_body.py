@@ -31,6 +31,8 @@ import numpy as np
 
 from tumble._typing import BoolArray, FloatArray
 from tumble.averaging import nearest_resonance, triaxial_average_vector, triaxial_kernel
+from tumble.averaging.second_order import MeanSystem
+from tumble.averaging.triaxial_second import TriaxialSystem
 from tumble.catalogue import CATALOGUE
 from tumble.dynamics import rigid_body_rhs
 from tumble.errors import ParameterError
@@ -200,8 +202,47 @@ def _vector_columns(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[
     return _momentum_columns(L_xi, 0.5 * Y[:, 3] * L * L, p)
 
 
+_MEAN = ("L1", "L2", "L3", "T")
+
+
+def _mean_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:
+    """The averaged equations of order 2 in mean variables (L̄_ξ, T̄) and the mean angle
+    variables of the Euler–Poinsot motion (and the forcing phase)
+    (:class:`tumble.averaging.triaxial_second.TriaxialSystem`), from the mean state of the
+    given one (``options.initial = "osculating"``) or from it; the columns are those of the
+    osculating variables rebuilt at each time asked for, the mean ones beside them."""
+    system, x0, w0 = TriaxialSystem.through(p.inertia, p.torque, p.eps, st.omega,
+                                            quat_to_matrix(st.q), p.forcing_period)  # fmt: skip
+    mean = MeanSystem(system.terms, w0.size, options.order)
+    guarded = mean.guarded()
+
+    def initial_state(p: Params, st: State) -> FloatArray:
+        if options.initial == "mean":
+            return np.concatenate([x0, w0])
+        return mean.start(0.0, x0, w0)
+
+    def to_columns(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
+        Y = np.atleast_2d(Y)
+        X, _ = mean.osculating(t, Y)
+        cols = _momentum_columns(X[:, :3], X[:, 3], p)
+        cols |= {f"{name}_mean": Y[:, i] for i, name in enumerate(_MEAN)}
+        return cols
+
+    return AveragedForm(
+        name=f"mean_order{options.order}",
+        equation=f"Euler's equations averaged to order {options.order} in mean variables",
+        slow=(*(f"{v}_mean" for v in _MEAN), *(f"w{i + 1}_mean" for i in range(w0.size))),
+        rhs=lambda t, y, p: guarded(t, y),
+        initial_state=initial_state,
+        to_columns=to_columns,
+    )
+
+
 def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:
-    """The general engine: the only averaged form of any torque (``averaging`` is moot)."""
+    """The general engine: the only averaged form of any torque (``averaging`` is moot); of
+    order 2 in mean variables (:func:`_mean_form`)."""
+    if options.order == 2:
+        return _mean_form(p, st, options)
     I1, I2, I3 = p.sorted_inertia
     breakpoints: tuple[Breakpoint, ...] = ()
     if I1 < I2 < I3:
@@ -371,6 +412,11 @@ _COLUMNS_SLOW = (
     Column("T", "kinetic energy T", "1", "§10"),
     Column("k2", "Euler–Poinsot modulus k² of the current regime", "1", "§8"),
 )
+_COLUMNS_MEAN = tuple(
+    Column(f"{c.name}_mean", f"mean {c.long_name} (averaging of order 2)", c.units, c.equation)
+    for c in _COLUMNS_SLOW
+    if c.name in _MEAN
+)
 _COLUMNS_FULL = (
     *_COLUMNS_SLOW,
     Column("w1", "body angular velocity ω1", "rad/t", "Euler"),
@@ -414,7 +460,10 @@ MODEL: Model[Params, State] = Model(
     check=DECLARED.check,
     methods=DECLARED.methods,
     averaged=Averaged(
-        form=_averaged_form, columns=fixed_columns(_COLUMNS_SLOW), compare=("L1", "L2", "L3", "T")
+        form=_averaged_form,
+        columns=fixed_columns((*_COLUMNS_SLOW, *_COLUMNS_MEAN)),
+        compare=("L1", "L2", "L3", "T"),
+        orders=DECLARED.orders,
     ),
     unperturbed=Unperturbed(
         "the free body (3.1)",

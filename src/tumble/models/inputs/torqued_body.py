@@ -433,5 +433,6 @@ DECLARED: Declaration[Params, State] = Declaration(
     methods=("full", "averaged"),
     check=_check_method,
     scenario=SCENARIO,
+    orders=(1, 2),
 )
 """What a scenario of the model may ask for."""

@@ -24,7 +24,9 @@ import numpy as np
 from scipy.special import ellipe, ellipk
 
 from tumble._typing import ArrayLike, BoolArray, FloatArray
+from tumble.averaging.second_order import MeanSystem
 from tumble.averaging.triaxial import triaxial_average_vector, triaxial_kernel
+from tumble.averaging.triaxial_second import TriaxialSystem
 from tumble.catalogue import CATALOGUE
 from tumble.dynamics import rigid_body_kernel, rigid_body_rhs
 from tumble.kernels import (
@@ -482,10 +484,50 @@ def averaged_rhs_numeric(t: float, y: FloatArray, p: Params) -> FloatArray:
     return triaxial_average_vector(p.torque, p.inertia, state, t, forcing_period=2.0 * math.pi)
 
 
+_MEAN = ("L1", "L2", "L3", "T")
+
+
+def _mean_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:
+    """The averaged equations of order 2 in mean variables (L̄_ξ, T̄), the mean angle
+    variables of the Euler–Poinsot motion and the field's phase
+    (:class:`tumble.averaging.triaxial_second.TriaxialSystem` on the eddy-current torque,
+    period 2π in τ), from the mean state of the given one (``options.initial =
+    "osculating"``) or from it; the columns are the osculating ones rebuilt at each time asked
+    for, the mean L_ξ and T beside them."""
+    system, x0, w0 = TriaxialSystem.through(p.inertia, p.torque, 1.0, st.z, st.gamma,
+                                            2.0 * math.pi)  # fmt: skip
+    mean = MeanSystem(system.terms, w0.size, options.order)
+    guarded = mean.guarded()
+
+    def initial_state(p: Params, st: State) -> FloatArray:
+        if options.initial == "mean":
+            return np.concatenate([x0, w0])
+        return mean.start(0.0, x0, w0)
+
+    def to_columns(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
+        Y = np.atleast_2d(Y)
+        X, _ = mean.osculating(t, Y)
+        cols = _columns_from_momentum(X[:, :3], X[:, 3], p)
+        cols |= {f"{name}_mean": Y[:, i] for i, name in enumerate(_MEAN)}
+        return cols
+
+    return AveragedForm(
+        name=f"mean_order{options.order}",
+        equation=f"(1.5) averaged to order {options.order} in mean variables (tumble.averaging)",
+        slow=(*(f"{v}_mean" for v in _MEAN), "w1_mean", "w2_mean", "w3_mean"),
+        rhs=lambda t, y, p: guarded(t, y),
+        initial_state=initial_state,
+        to_columns=to_columns,
+    )
+
+
 def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:
     """(3.5)–(3.7) in the vector form, or the general engine (``averaging = "numeric"``,
     :func:`tumble.averaging.triaxial_average_vector`: the eddy-current torque averaged over the
-    polhode, the precession about L and the field's rotation)."""
+    polhode, the precession about L and the field's rotation), or the equations of order 2 in
+    mean variables (:func:`_mean_form`)."""
+    if options.order == 2:
+        return _mean_form(p, st, options)
     I1, I2, I3 = p.sorted_inertia
     breakpoints: tuple[Breakpoint, ...] = ()
     numeric = options.averaging == "numeric"
@@ -918,6 +960,11 @@ def predicted_limits(p: Params, st: State) -> dict[str, Any]:
 # ---------------------------------------------------------------------------------------------
 # Registry record.
 
+_COLUMNS_MEAN = (
+    *(Column(f"L{i}_mean", f"mean inertial angular momentum L_ξ{i} (averaging of order 2)",
+             "1", "(3.5)") for i in (1, 2, 3)),
+    Column("T_mean", "mean kinetic energy T (averaging of order 2)", "1", "(3.6)"),
+)  # fmt: skip
 _COLUMNS_SLOW = (
     Column("L", "angular momentum |L|", "1", "(3.5)"),
     Column("rho", "polar angle ρ of L from ξ3", "rad", "(3.5)"),
@@ -1009,12 +1056,13 @@ MODEL: Model[Params, State] = Model(
     methods=DECLARED.methods,
     averaged=Averaged(
         form=_averaged_form,
-        columns=fixed_columns(_COLUMNS_SLOW),
+        columns=fixed_columns((*_COLUMNS_SLOW, *_COLUMNS_MEAN)),
         # σ is left out: it is the azimuth of L about ξ3, undefined as the transient aligns L
         # with ξ3 (ρ → 0), where its error says nothing about the motion.
         compare=("L", "rho", "T"),
         diagnostics=Diagnostics(diagnostics, _DIAGNOSTICS),
         numeric=DECLARED.numeric,
+        orders=DECLARED.orders,
     ),
     unperturbed=Unperturbed("the free body (3.1)", free_motion, _free_rhs),
     validity=Validity(check=validity, limits=predicted_limits),

@@ -457,5 +457,6 @@ DECLARED: Declaration[Params, State] = Declaration(
     check=_check_method,
     scenario=SCENARIO,
     numeric=True,
+    orders=(1, 2),
 )
 """What a scenario of the model may ask for."""

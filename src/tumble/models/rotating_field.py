@@ -24,9 +24,7 @@ import numpy as np
 from scipy.special import ellipe, ellipk
 
 from tumble._typing import ArrayLike, BoolArray, FloatArray
-from tumble.averaging.second_order import MeanSystem
 from tumble.averaging.triaxial import triaxial_average_vector, triaxial_kernel
-from tumble.averaging.triaxial_second import TriaxialSystem
 from tumble.catalogue import CATALOGUE
 from tumble.dynamics import rigid_body_kernel, rigid_body_rhs
 from tumble.kernels import (
@@ -66,6 +64,7 @@ from tumble.models.inputs.rotating_field import (
     normalize_physical,
     state_from_elements,
 )
+from tumble.models.triaxial_mean import triaxial_mean_form
 from tumble.rotations import (
     matrix_to_quat,
     quat_normalize,
@@ -484,9 +483,6 @@ def averaged_rhs_numeric(t: float, y: FloatArray, p: Params) -> FloatArray:
     return triaxial_average_vector(p.torque, p.inertia, state, t, forcing_period=2.0 * math.pi)
 
 
-_MEAN = ("L1", "L2", "L3", "T")
-
-
 def _mean_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:
     """The averaged equations of order 2 in mean variables (L̄_ξ, T̄), the mean angle
     variables of the Euler–Poinsot motion and the field's phase
@@ -494,31 +490,9 @@ def _mean_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[
     period 2π in τ), from the mean state of the given one (``options.initial =
     "osculating"``) or from it; the columns are the osculating ones rebuilt at each time asked
     for, the mean L_ξ and T beside them."""
-    system, x0, w0 = TriaxialSystem.through(p.inertia, p.torque, 1.0, st.z, st.gamma,
-                                            2.0 * math.pi)  # fmt: skip
-    mean = MeanSystem(system.terms, w0.size, options.order)
-    guarded = mean.guarded()
-
-    def initial_state(p: Params, st: State) -> FloatArray:
-        if options.initial == "mean":
-            return np.concatenate([x0, w0])
-        return mean.start(0.0, x0, w0)
-
-    def to_columns(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
-        Y = np.atleast_2d(Y)
-        X, _ = mean.osculating(t, Y)
-        cols = _columns_from_momentum(X[:, :3], X[:, 3], p)
-        cols |= {f"{name}_mean": Y[:, i] for i, name in enumerate(_MEAN)}
-        return cols
-
-    return AveragedForm(
-        name=f"mean_order{options.order}",
-        equation=f"(1.5) averaged to order {options.order} in mean variables (tumble.averaging)",
-        slow=(*(f"{v}_mean" for v in _MEAN), "w1_mean", "w2_mean", "w3_mean"),
-        rhs=lambda t, y, p: guarded(t, y),
-        initial_state=initial_state,
-        to_columns=to_columns,
-    )
+    return triaxial_mean_form(p.torque, p.inertia, 1.0, st.z, st.gamma, 2.0 * math.pi, options,
+                              lambda L_xi, T: _columns_from_momentum(L_xi, T, p),
+                              "(1.5)")  # fmt: skip
 
 
 def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:

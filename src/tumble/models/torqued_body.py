@@ -31,8 +31,6 @@ import numpy as np
 
 from tumble._typing import BoolArray, FloatArray
 from tumble.averaging import nearest_resonance, triaxial_average_vector, triaxial_kernel
-from tumble.averaging.second_order import MeanSystem
-from tumble.averaging.triaxial_second import TriaxialSystem
 from tumble.catalogue import CATALOGUE
 from tumble.dynamics import rigid_body_rhs
 from tumble.errors import ParameterError
@@ -63,6 +61,7 @@ from tumble.models.inputs.torqued_body import (
     State,
     torque_from_terms,
 )
+from tumble.models.triaxial_mean import MEAN_SLOW, triaxial_mean_form
 from tumble.rotations import quat_normalize, quat_to_matrix
 from tumble.unperturbed.euler_poinsot import (
     EulerPoinsot,
@@ -202,40 +201,16 @@ def _vector_columns(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[
     return _momentum_columns(L_xi, 0.5 * Y[:, 3] * L * L, p)
 
 
-_MEAN = ("L1", "L2", "L3", "T")
-
-
 def _mean_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:
     """The averaged equations of order 2 in mean variables (L̄_ξ, T̄) and the mean angle
     variables of the Euler–Poinsot motion (and the forcing phase)
     (:class:`tumble.averaging.triaxial_second.TriaxialSystem`), from the mean state of the
     given one (``options.initial = "osculating"``) or from it; the columns are those of the
     osculating variables rebuilt at each time asked for, the mean ones beside them."""
-    system, x0, w0 = TriaxialSystem.through(p.inertia, p.torque, p.eps, st.omega,
-                                            quat_to_matrix(st.q), p.forcing_period)  # fmt: skip
-    mean = MeanSystem(system.terms, w0.size, options.order)
-    guarded = mean.guarded()
-
-    def initial_state(p: Params, st: State) -> FloatArray:
-        if options.initial == "mean":
-            return np.concatenate([x0, w0])
-        return mean.start(0.0, x0, w0)
-
-    def to_columns(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
-        Y = np.atleast_2d(Y)
-        X, _ = mean.osculating(t, Y)
-        cols = _momentum_columns(X[:, :3], X[:, 3], p)
-        cols |= {f"{name}_mean": Y[:, i] for i, name in enumerate(_MEAN)}
-        return cols
-
-    return AveragedForm(
-        name=f"mean_order{options.order}",
-        equation=f"Euler's equations averaged to order {options.order} in mean variables",
-        slow=(*(f"{v}_mean" for v in _MEAN), *(f"w{i + 1}_mean" for i in range(w0.size))),
-        rhs=lambda t, y, p: guarded(t, y),
-        initial_state=initial_state,
-        to_columns=to_columns,
-    )
+    return triaxial_mean_form(p.torque, p.inertia, p.eps, st.omega, quat_to_matrix(st.q),
+                              p.forcing_period, options,
+                              lambda L_xi, T: _momentum_columns(L_xi, T, p),
+                              "Euler's equations")  # fmt: skip
 
 
 def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:
@@ -415,7 +390,7 @@ _COLUMNS_SLOW = (
 _COLUMNS_MEAN = tuple(
     Column(f"{c.name}_mean", f"mean {c.long_name} (averaging of order 2)", c.units, c.equation)
     for c in _COLUMNS_SLOW
-    if c.name in _MEAN
+    if c.name in MEAN_SLOW
 )
 _COLUMNS_FULL = (
     *_COLUMNS_SLOW,

@@ -8,6 +8,11 @@ order is the least-squares slope of log error against log ε. The verdict reads 
 together with the model's validity checks (the regions where the papers' conclusions fail:
 ϑ = π/2, resonances, separatrices), e.g. "first-order accurate", "degraded: slope 0.5 near
 ϑ = π/2 (τ ≈ 53.2)" or "invalid: the averaged run stops at the separatrix (t ≈ 210)".
+
+Where the model has averaged equations of order 2 the orders of both are fitted, per slow
+variable, and "second-order accurate" needs a slope of at least 1.75. The parameters scale
+with ε along the scenario's family (``[run] verify_scaling``; by default ε alone, or the
+model's physical family: docs/second-order-averaging.md).
 """
 
 from __future__ import annotations

@@ -498,7 +498,7 @@ def averaged_initial(
     z = np.array([st.R, st.G, a0, b0])
     if start == "corrected" and p.perturbed:
         # The first-order generator of the general map at the initial state: for this
-        # paper's perturbations it is the integral from the last turning point of spec §7.
+        # paper's perturbations it is the integral from the last turning point (Serov 1991).
         pert = builtin_perturbation(p) if perturbation is None else perturbation
         u_H, u_z = nutation_generator(orbit, pert, 0.0)
         if u_H != 0.0 or np.any(u_z):

@@ -141,6 +141,9 @@ def test_the_general_generator_is_the_turning_point_correction(theta, theta_dot,
     from tumble.averaging.nutation import nutation_generator, potential_gradient
     from tumble.models.inputs.nonlinear_moment import orbit_of
 
+    # |G ∓ R| small: the axis passes (near) a pole, where W_R, W_G are singular and the
+    # averages are refused (tested elsewhere), not computed.
+    assume(abs(G - R) > 0.05 and abs(G + R) > 0.05)
     p = nm.Params(mu=1.2, a=-1.0, b=0.3, eps=0.02, d=0.5, nu=0.2)
     s0 = nm.State(theta, theta_dot, 0.0, 0.0, R, G)
     try:
@@ -148,6 +151,7 @@ def test_the_general_generator_is_the_turning_point_correction(theta, theta_dot,
     except ParameterError:  # a separatrix, a pole: no orbit to average over
         assume(False)
     assume(orbit.kind == "elliptic" and orbit.mc > 1e-3)
+    assume(0.15 < orbit.theta_min and orbit.theta_max < math.pi - 0.15)  # away from the poles
     pert = nm.builtin_perturbation(p)
     u_H, u_z = nutation_generator(orbit, pert, 0.0)
     z = np.array([R, G, *p.ab(0.0)])

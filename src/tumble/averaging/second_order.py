@@ -55,7 +55,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -79,6 +79,8 @@ __all__ = [
     "grid_terms",
     "resolved",
     "resonance_distance",
+    "resonance_table",
+    "resonances_at",
     "second_order",
     "torus_values",
 ]
@@ -136,9 +138,9 @@ class SecondOrder:
         The generator's first-order parts u₁, v on the grid's nodes [slow unit], [rad].
     u2 : ndarray, shape (m, *grid), or None
         Its second-order part u₂ [slow unit], where asked for (``generator_order=2``).
-    resonance : (float, tuple of int)
-        The distance to the nearest resonance in units of its width, and its harmonic k
-        (:func:`resonance_distance`; inf and () where no harmonic can resonate).
+    resonances : dict
+        The signed distance k·ν/w_k of each harmonic from its resonance, in units of its
+        width (:func:`resonance_table`).
     """
 
     t: float
@@ -150,7 +152,13 @@ class SecondOrder:
     u: FloatArray
     v: FloatArray
     u2: FloatArray | None = None
-    resonance: tuple[float, tuple[int, ...]] = (math.inf, ())
+    resonances: dict[tuple[int, ...], float] = field(default_factory=dict)
+
+    @property
+    def resonance(self) -> tuple[float, tuple[int, ...]]:
+        """The distance to the nearest resonance in units of its width, and its harmonic k
+        (inf and () where no harmonic can resonate)."""
+        return _nearest(self.resonances)
 
     @property
     def grid(self) -> tuple[int, ...]:
@@ -327,19 +335,9 @@ def second_order(
         ``GRID_MAX`` nodes along a phase.
     """
     x = np.asarray(x, dtype=float).reshape(-1)
-    shape = tuple(int(n) for n in grid)
     scale_ = np.maximum(np.abs(x), 1.0) if scale is None else np.asarray(scale, dtype=float)
-    while True:
-        f, g = _evaluate(rates, t, x, shape)
-        done = resolved(np.concatenate([f, g]), rtol)
-        if all(done):
-            break
-        if max(shape) >= GRID_MAX:
-            raise AveragingError(
-                f"the fast right-hand side needs more than {GRID_MAX} nodes along a phase at "
-                f"x = {x.tolist()}: it varies too fast (or is not smooth) on the torus"
-            )
-        shape = tuple(n if ok else 2 * n for n, ok in zip(shape, done, strict=True))
+    f, g = _resolved(rates, t, x, grid, rtol)
+    shape = f.shape[1:]
     nu = np.asarray(frequencies(x), dtype=float).reshape(-1)
     x_grid = x.reshape(-1, *([1] * len(shape)))
 
@@ -375,6 +373,45 @@ def second_order(
         along,
         drift if generator_order == 2 else None,
         divisor_rtol=divisor_rtol,
+    )
+
+
+def _resolved(
+    rates: FastRates, t: float, x: FloatArray, grid: Sequence[int], rtol: float
+) -> tuple[FloatArray, FloatArray]:
+    """f and g on a grid doubled along each phase from ``grid`` until resolved."""
+    shape = tuple(int(n) for n in grid)
+    while True:
+        f, g = _evaluate(rates, t, x, shape)
+        done = resolved(np.concatenate([f, g]), rtol)
+        if all(done):
+            return f, g
+        if max(shape) >= GRID_MAX:
+            raise AveragingError(
+                f"the fast right-hand side needs more than {GRID_MAX} nodes along a phase at "
+                f"x = {x.tolist()}: it varies too fast (or is not smooth) on the torus"
+            )
+        shape = tuple(n if ok else 2 * n for n, ok in zip(shape, done, strict=True))
+
+
+def resonances_at(
+    rates: FastRates,
+    frequencies: Frequencies,
+    t: float,
+    x: ArrayLike,
+    *,
+    grid: Sequence[int],
+    scale: ArrayLike | None = None,
+    rtol: float = GRID_RTOL,
+) -> dict[tuple[int, ...], float]:
+    """:func:`resonance_table` at one slow state, without the generator: defined at a
+    resonance too, where :func:`second_order` meets a zero divisor (arguments as there)."""
+    x = np.asarray(x, dtype=float).reshape(-1)
+    scale_ = np.maximum(np.abs(x), 1.0) if scale is None else np.asarray(scale, dtype=float)
+    f, _ = _resolved(rates, t, x, grid, rtol)
+    nu = np.asarray(frequencies(x), dtype=float).reshape(-1)
+    return resonance_table(
+        f, nu, _jacobian(frequencies, x, scale_), f.mean(axis=tuple(range(1, f.ndim)))
     )
 
 
@@ -438,7 +475,7 @@ def grid_terms(
         u=u,
         v=v,
         u2=u2,
-        resonance=resonance_distance(f, nu, nu_jacobian, first),
+        resonances=resonance_table(f, nu, nu_jacobian, first),
     )
 
 
@@ -448,10 +485,11 @@ RESONANCE_WIDTHS = 3.0
 |f̂_k|/|k·ν| ≳ √ε/RESONANCE_WIDTHS, no longer makes a small correction."""
 
 
-def resonance_distance(
+def resonance_table(
     f: FloatArray, nu: FloatArray, nu_jacobian: FloatArray, drift: FloatArray
-) -> tuple[float, tuple[int, ...]]:
-    """How far the phases are from their nearest resonance, in units of its width.
+) -> dict[tuple[int, ...], float]:
+    """The signed distance of each harmonic of the slow rates from its resonance, in units of
+    its width.
 
     The combination θ = k·φ of a harmonic k of the slow rates (coefficient f̂_k) turns at
     k·ν, which changes at the rate (k·∂ν/∂x)·(F₁ + f̂_k e^{iθ}): the mean drift carries the
@@ -459,8 +497,7 @@ def resonance_distance(
     Both give the resonance the width w_k = √(|(k·∂ν/∂x)·F₁| + |(k·∂ν/∂x)·f̂_k|) in k·ν:
     within a few widths the phase no longer turns many times while k·ν changes (the
     adiabatic condition |k·ν|² ≫ |d(k·ν)/dt| fails), the solution passes with an O(√ε) jump
-    or is captured, and the generator's terms f̂_k/(k·ν) stop being small. The distance is
-    the least |k·ν|/w_k over the harmonics above 1e-6 of the largest.
+    or is captured, and the generator's terms f̂_k/(k·ν) stop being small.
 
     Parameters
     ----------
@@ -475,10 +512,11 @@ def resonance_distance(
 
     Returns
     -------
-    distance : float
-        inf where no harmonic present can resonate (k·∂ν/∂x = 0 for all of them).
-    harmonic : tuple of int
-        The nearest resonance's k.
+    dict
+        k·ν/w_k for each harmonic k above 1e-6 of the largest that can resonate
+        (k·∂ν/∂x ≠ 0), one of each pair ±k (the one whose first non-zero entry is positive).
+        Its sign tells on which side of the resonance the state is, so that a step of an
+        integrator that jumps a whole band is seen by the sign's change.
     """
     shape = f.shape[1:]
     d = len(shape)
@@ -492,14 +530,38 @@ def resonance_distance(
     width2 = width2 + np.abs(np.sum(k_jac * coef, axis=0))
     size = np.abs(coef).max(axis=0)
     present = size > 1e-6 * float(size.max())
-    present &= sum(np.abs(w) for w in waves) != 0
     present &= width2 > 0.0
-    if not np.any(present):
+    table: dict[tuple[int, ...], float] = {}
+    for at in zip(*np.nonzero(present), strict=True):
+        k = tuple(int(np.broadcast_to(w, shape)[at]) for w in waves)
+        leading = next((c for c in k if c != 0), 0)
+        if leading > 0:  # k = 0 has no width; of ±k the one leading with a positive entry
+            table[k] = float(k_nu[at] / math.sqrt(float(width2[at])))
+    return table
+
+
+def resonance_distance(
+    f: FloatArray, nu: FloatArray, nu_jacobian: FloatArray, drift: FloatArray
+) -> tuple[float, tuple[int, ...]]:
+    """How far the phases are from their nearest resonance, in units of its width: the least
+    |k·ν|/w_k of :func:`resonance_table`, and that k.
+
+    Returns
+    -------
+    distance : float
+        inf where no harmonic present can resonate (k·∂ν/∂x = 0 for all of them).
+    harmonic : tuple of int
+        The nearest resonance's k.
+    """
+    return _nearest(resonance_table(f, nu, nu_jacobian, drift))
+
+
+def _nearest(table: dict[tuple[int, ...], float]) -> tuple[float, tuple[int, ...]]:
+    """The least |distance| of a :func:`resonance_table` and its harmonic (inf, () if empty)."""
+    if not table:
         return math.inf, ()
-    ratio = np.full(shape, math.inf)
-    ratio[present] = np.abs(k_nu[present]) / np.sqrt(width2[present])
-    at = np.unravel_index(int(np.argmin(ratio)), shape)
-    return float(ratio[at]), tuple(int(np.broadcast_to(w, shape)[at]) for w in waves)
+    k = min(table, key=lambda h: abs(table[h]))
+    return abs(table[k]), k
 
 
 def _step(direction: FloatArray, scale: FloatArray) -> float:
@@ -598,6 +660,7 @@ class MeanSystem:
     first: Callable[[float, FloatArray], FloatArray] | None = None
     scale: FloatArray | None = None
     refuse: bool = True
+    resonances_of: Callable[[float, FloatArray], dict[tuple[int, ...], float]] | None = None
 
     def __post_init__(self) -> None:
         if self.order not in (1, 2):
@@ -626,11 +689,23 @@ class MeanSystem:
             last[0] = so.grid
             return so
 
-        return cls(terms_of, len(grid), order, first, scale, refuse)
+        def resonances_of(t: float, y: FloatArray) -> dict[tuple[int, ...], float]:
+            return resonances_at(rates, frequencies, t, y, grid=last[0], scale=scale)
+
+        return cls(terms_of, len(grid), order, first, scale, refuse, resonances_of)
 
     def terms(self, t: float, y: FloatArray, generator_order: int = 1) -> SecondOrder:
         """The terms at the mean state y."""
         return self.terms_of(t, np.asarray(y, dtype=float), generator_order)
+
+    def resonances(self, t: float, y: FloatArray) -> dict[tuple[int, ...], float]:
+        """The signed distances from the resonances at the mean state y
+        (:func:`resonance_table`), defined at a resonance too where ``resonances_of`` is
+        given (else from :meth:`terms`, which refuses a state there)."""
+        y = np.asarray(y, dtype=float)
+        if self.resonances_of is not None:
+            return self.resonances_of(t, y)
+        return self.terms(t, y).resonances
 
     def guarded(self) -> Callable[[float, FloatArray], FloatArray]:
         """:meth:`rhs` for an ODE solver: an AveragingError or ParameterError (a resonance, a

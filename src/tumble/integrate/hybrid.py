@@ -18,7 +18,8 @@ from dataclasses import dataclass
 from typing import Generic, TypeVar
 
 import numpy as np
-from scipy.integrate import solve_ivp
+from scipy.integrate import DOP853, OdeSolution
+from scipy.optimize import brentq
 
 from tumble._typing import FloatArray
 from tumble.errors import IntegrationError
@@ -111,30 +112,81 @@ def _averaged_leg(
     atol: float,
 ) -> tuple[_Leg, int, float | None, FloatArray]:
     """The averaged equations from (t0, z) until the band is entered or ``t_end``; the leg,
-    its evaluations, the time of entry (None: not entered) and the state there."""
+    its evaluations, the time of entry (None: not entered) and the state there.
 
-    def entered(t: float, y: FloatArray) -> float:
-        return crossing.band(y)
-
-    entered.terminal = True  # type: ignore[attr-defined]
-    entered.direction = -1.0  # type: ignore[attr-defined]
-    res = solve_ivp(lambda t, y: avg.rhs(t, y, p), (t0, t_end), z, method="DOP853",
-                    rtol=rtol, atol=atol, dense_output=True, events=[entered])  # fmt: skip
-    if res.status < 0 or not np.all(np.isfinite(res.y)):
-        raise IntegrationError(
-            f"hybrid run: the averaged equations failed at t = {float(res.t[-1]):.6g}: "
-            f"{res.message}"
-        )
-    sol = res.sol
+    Stepped one step at a time (DOP853) with the band checked after each: at small ε a step
+    of the averaged equations (∝ 1/ε) outlasts the crossing of a resonance band (∝ 1/√ε), so
+    the band can be jumped between two checks; ``crossing.signed`` then changes sign over the
+    step, and the edge is found inside it."""
+    solver = DOP853(lambda t, y: avg.rhs(t, y, p), t0, z, t_end, rtol=rtol, atol=atol)
+    times, pieces = [t0], []
+    signs = crossing.signed(z) if crossing.signed is not None else {}
+    outside = crossing.band(z) >= 0.0  # a leg re-entered by the map may start inside
+    entry: float | None = None
+    while solver.status == "running":
+        message = solver.step()
+        if solver.status == "failed" or not np.all(np.isfinite(solver.y)):
+            raise IntegrationError(
+                f"hybrid run: the averaged equations failed at t = {solver.t:.6g}: {message}"
+            )
+        piece = solver.dense_output()
+        times.append(solver.t)
+        pieces.append(piece)
+        band_end = crossing.band(solver.y)
+        if outside:
+            entry = _entry(crossing, piece, solver.t_old, solver.t, band_end, signs)
+            if entry is not None:
+                break
+        outside = outside or band_end >= 0.0
+        if crossing.signed is not None:
+            signs = crossing.signed(solver.y)
+    sol = OdeSolution(times, pieces)
 
     def states(t: FloatArray) -> FloatArray:
         return np.asarray(sol(t), dtype=float).T
 
-    t1 = float(res.t[-1])
-    leg = _Leg("averaged", t0, t1, states, np.asarray(res.t[1:]))
-    if res.status == 1:
-        return leg, int(res.nfev), t1, np.asarray(res.y_events[0][0])
-    return leg, int(res.nfev), None, np.asarray(res.y[:, -1])
+    t1 = times[-1] if entry is None else entry
+    leg = _Leg("averaged", t0, t1, states, np.asarray(times[1:]))
+    return leg, int(solver.nfev), entry, np.asarray(sol(t1), dtype=float)
+
+
+def _entry(
+    crossing: Crossing,
+    piece: Callable[[float], FloatArray],
+    t0: float,
+    t1: float,
+    band_end: float,
+    before: dict[tuple[int, ...], float],
+) -> float | None:
+    """The time at which the step [t0, t1] (dense output ``piece``), started outside the band,
+    enters it: where the band ends inside, or where a resonance whose signed distance changed
+    sign over the step was crossed; None if neither."""
+    xtol = 1e-9 * abs(t1 - t0) + 1e-300
+
+    def band(t: float) -> float:
+        return crossing.band(piece(t))
+
+    if band_end < 0.0:
+        return float(brentq(band, t0, t1, xtol=xtol))
+    if crossing.signed is None:
+        return None
+    after = crossing.signed(piece(t1))
+    jumped = [k for k, d in before.items() if k in after and d * after[k] < 0.0]
+    if not jumped:
+        return None
+
+    def distance(t: float, k: tuple[int, ...]) -> float:
+        table = crossing.signed(piece(t))  # type: ignore[misc]
+        if k not in table:
+            raise IntegrationError(
+                f"hybrid run: the harmonic {k} of {crossing.label} vanished inside a step of "
+                f"the averaged equations at t = {t:.6g}"
+            )
+        return table[k]
+
+    # the first resonance crossed, then the band's edge before it
+    centre = min(float(brentq(distance, t0, t1, args=(k,), xtol=xtol)) for k in jumped)
+    return float(brentq(band, t0, centre, xtol=xtol))
 
 
 def _full_leg(

@@ -211,7 +211,8 @@ class Crossing:
 
     ``band(z)`` on the averaged form's state and ``band_full(y)`` on a full state are the same
     measure: negative inside the band, 0 on its edge, 1 at twice its half-width. A hybrid run
-    integrates the averaged equations until ``band`` falls to 0, converts the state with
+    integrates the averaged equations until ``band`` falls to 0 (or ``signed`` changes sign
+    within a step: the band was jumped, its edge is found inside the step), converts the state with
     ``to_full(t, z)``, integrates the full equations until ``band_full`` exceeds
     ``LEAVE`` (the hysteresis keeps an oscillating osculating state from re-entering at once)
     and re-enters the averaged ones through ``to_mean(t, y, z_entry)`` (the mean state at
@@ -224,6 +225,11 @@ class Crossing:
     to_mean: Callable[[float, FloatArray, FloatArray], FloatArray]
     label: str
     chunk: float  # length of one full-equation leg between checks of the band [time unit]
+    # The signed distances of the state from each resonance whose band this is, keyed by the
+    # resonance (e.g. a harmonic k, the distance k·ν/w_k): a step of the averaged equations
+    # long enough to jump a whole band (at small ε a step outlasts a band's crossing) shows
+    # as a change of sign, where ``band``, positive on both sides, would not.
+    signed: Callable[[FloatArray], dict[tuple[int, ...], float]] | None = None
 
     LEAVE = 0.5
 

@@ -458,8 +458,11 @@ def _resonance_band(p: Params, st: State, system: MeanSystem) -> Crossing:
     equations (Euler + quaternions)."""
     mapping = system.map()
 
+    def signed(x: FloatArray) -> dict[tuple[int, ...], float]:
+        return system.resonances(0.0, x[:4])
+
     def distance(x: FloatArray) -> float:
-        return system.terms(0.0, np.asarray(x[:4], dtype=float)).resonance[0]
+        return min((abs(d) for d in signed(x).values()), default=math.inf)
 
     def band(z: FloatArray) -> float:
         return distance(z) / RESONANCE_WIDTHS - 1.0
@@ -485,7 +488,7 @@ def _resonance_band(p: Params, st: State, system: MeanSystem) -> Crossing:
         return np.concatenate([y_mean, psi])
 
     chunk = 20.0 * 2.0 * math.pi / max(st.k, 1e-3)  # 20 turns of ψ at the initial spin
-    return Crossing(band, band_full, to_full, to_mean, "a resonance of ψ and φ", chunk)
+    return Crossing(band, band_full, to_full, to_mean, "a resonance of ψ and φ", chunk, signed)
 
 
 def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:

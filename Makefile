@@ -5,6 +5,7 @@
 #   make test    the test suite without the slow studies (what CI runs: .ci/run)
 #   make bench   the slow studies only (pytest -m slow), with heyoka.py (the bench extra)
 #   make lint    ruff (lint and format), mypy and the import-layer contract (CI runs it)
+#   make docs    the documentation site → out/docs/index.html (warnings are errors; CI runs it)
 #   make clean   remove outputs and caches (keeps .venv; `make distclean` removes it too)
 
 PYTHON ?= python3
@@ -15,10 +16,11 @@ BIN    := $(VENV)/bin
 # (or the virtualenv was recreated).
 TEST_STAMP := $(VENV)/.installed-test
 DEV_STAMP  := $(VENV)/.installed-dev
+DOCS_STAMP := $(VENV)/.installed-docs
 
 EXAMPLES := $(wildcard examples/*.toml)
 
-.PHONY: reproduce demo test bench lint clean distclean
+.PHONY: reproduce demo test bench lint docs clean distclean
 .DELETE_ON_ERROR:
 
 $(BIN)/python:
@@ -30,6 +32,10 @@ $(TEST_STAMP): pyproject.toml | $(BIN)/python
 
 $(DEV_STAMP): pyproject.toml $(TEST_STAMP)
 	$(BIN)/python -m pip install -e ".[test,dev]"
+	touch $@
+
+$(DOCS_STAMP): pyproject.toml $(TEST_STAMP)
+	$(BIN)/python -m pip install -e ".[test,docs]"
 	touch $@
 
 reproduce: $(TEST_STAMP)
@@ -56,8 +62,11 @@ lint: $(DEV_STAMP)
 	$(BIN)/mypy src examples/models
 	$(BIN)/lint-imports
 
+docs: $(DOCS_STAMP)
+	$(BIN)/sphinx-build -W --keep-going -q -b html docs out/docs
+
 clean:
-	rm -rf out build dist .pytest_cache .hypothesis .mypy_cache .ruff_cache .import_linter_cache
+	rm -rf out build dist docs/generated .pytest_cache .hypothesis .mypy_cache .ruff_cache .import_linter_cache
 	find . -path ./$(VENV) -prune -o \( -name __pycache__ -o -name '*.egg-info' \) -type d -prune \
 		-exec rm -rf {} +
 

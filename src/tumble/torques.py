@@ -266,7 +266,8 @@ class LinearDrag(Torque):
 
 @dataclass(frozen=True, eq=False)
 class QuadraticDrag(Torque):
-    """Quadratic drag, M = −S (ω ∘ |ω|) component-wise; the third term of (1.2) of Medvedev (1987).
+    """Quadratic drag, ``M = −S (ω ∘ |ω|)`` component-wise; the third term of (1.2) of
+    Medvedev (1987).
 
     Parameters
     ----------

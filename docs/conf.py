@@ -1,0 +1,43 @@
+"""Sphinx configuration of tumble's documentation: ``make docs`` builds it into out/docs."""
+
+from __future__ import annotations
+
+import tumble
+
+project = "tumble"
+author = "tumble developers"
+copyright = "2026, tumble developers"  # noqa: A001 (Sphinx's name)
+release = tumble.__version__
+version = release
+
+extensions = [
+    "myst_parser",
+    "numpydoc",
+    "sphinx.ext.autodoc",
+    "sphinx.ext.autosummary",
+    "sphinx.ext.mathjax",
+    "sphinxcontrib.typer",
+]
+
+source_suffix = {".md": "markdown", ".rst": "restructuredtext"}
+root_doc = "index"
+exclude_patterns = ["_build", "generated/.*"]
+
+# Markdown: $…$ maths, ::: fences, anchors for the ## and ### headings (links within a page).
+myst_enable_extensions = ["dollarmath", "colon_fence", "deflist"]
+myst_heading_anchors = 3
+
+# The API reference: one page per public name, from the numpydoc docstrings.
+autosummary_generate = True
+autodoc_typehints = "none"  # the numpydoc Parameters sections give the types with their units
+numpydoc_show_class_members = False
+numpydoc_class_members_toctree = False
+
+html_theme = "pydata_sphinx_theme"
+html_title = f"tumble {release}"
+html_theme_options = {
+    "navigation_depth": 2,
+    "show_toc_level": 2,
+    "secondary_sidebar_items": ["page-toc"],
+}
+html_static_path: list[str] = []

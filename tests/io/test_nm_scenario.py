@@ -15,6 +15,9 @@ from typer.testing import CliRunner
 from tumble.cli import app
 from tumble.io import parse_scenario, template
 from tumble.models import nonlinear_moment as nm
+from tumble.models.base import attitude_columns
+
+ATTITUDE = [c.name for c in attitude_columns("t")]  # every full run's last columns
 
 runner = CliRunner()
 
@@ -71,7 +74,9 @@ def test_unperturbed_run_writes_the_contract_outputs(tmp_path):
     assert res.exit_code == 0, res.output
     for method in ("full", "closed_form"):
         header, data = read_csv(out / f"{method}.csv")
-        assert header == ["t", "theta", "psi", "phi", "theta_dot"]
+        # A full run adds its attitude and body rate (every model's full runs do).
+        attitude = ATTITUDE if method == "full" else []
+        assert header == ["t", "theta", "psi", "phi", "theta_dot", *attitude]
         assert np.array_equal(data[:, 0], np.linspace(0.0, 30.0, 61))
         # ψ, φ continuous from their initial values (spec §14).
         assert data[0, 2:4] == pytest.approx([0.2, -0.1], abs=1e-12)
@@ -79,7 +84,7 @@ def test_unperturbed_run_writes_the_contract_outputs(tmp_path):
     _, closed = read_csv(out / "closed_form.csv")
     # The closed form against the run's own integration at rtol 1e-10 over ~5 periods: the
     # integration error (≈ 1e-10 per unit time, accumulated) dominates; 1e-7 rad is generous.
-    assert np.max(np.abs(full[:, 1:] - closed[:, 1:])) < 1e-7
+    assert np.max(np.abs(full[:, 1:5] - closed[:, 1:])) < 1e-7
     summary = json.loads((out / "summary.json").read_text())
     for key in ("root_case", "roots", "k2", "E", "theta_min", "theta_max", "period"):
         assert key in summary, key
@@ -95,7 +100,7 @@ def test_perturbed_run_writes_the_contract_outputs(tmp_path):
     res = runner.invoke(app, ["run", str(write(tmp_path, PERTURBED)), "-o", str(out)])
     assert res.exit_code == 0, res.output
     header, full = read_csv(out / "full.csv")
-    assert header == ["t", "theta", "psi", "phi", "R", "G", "a", "b"]
+    assert header == ["t", "theta", "psi", "phi", "R", "G", "a", "b", *ATTITUDE]
     assert full[0, 1] == pytest.approx(math.radians(60.0), abs=1e-12)
     header, avg = read_csv(out / "averaged.csv")
     assert header == ["t", "theta_max", "theta_min", "R", "G", "a", "b"]

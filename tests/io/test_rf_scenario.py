@@ -13,6 +13,9 @@ from typer.testing import CliRunner
 from tumble.cli import app
 from tumble.io import parse_scenario, template
 from tumble.models import rotating_field as rf
+from tumble.models.base import attitude_columns
+
+ATTITUDE = [c.name for c in attitude_columns("t")]  # every full run's last columns
 
 runner = CliRunner()
 
@@ -57,14 +60,14 @@ def test_run_writes_the_contract_outputs(tmp_path):
     res = runner.invoke(app, ["run", str(write(tmp_path, CONTRACT)), "-o", str(out)])
     assert res.exit_code == 0, res.output
     header, full = read_csv(out / "full.csv")
-    assert header == ["tau", "L", "rho", "sigma", "T", "k2", "z1", "z2", "z3"]
+    assert header == ["tau", "L", "rho", "sigma", "T", "k2", "z1", "z2", "z3", *ATTITUDE]
     h, avg = read_csv(out / "averaged.csv")
     assert h == ["tau", "L", "rho", "sigma", "T", "k2"]
     assert np.array_equal(full[:, 0], np.linspace(0.0, 50.0, 51))
     assert np.array_equal(avg[:, 0], full[:, 0])
     # First row: the initial state's slow variables, identical for both methods.
     assert np.allclose(full[0, 1:6], avg[0, 1:], rtol=1e-12, atol=1e-14)
-    assert full[0, 6:] == pytest.approx([0.2, 0.3, 1.2], abs=1e-15)
+    assert full[0, 6:9] == pytest.approx([0.2, 0.3, 1.2], abs=1e-15)
     assert np.all((full[:, 5] >= 0.0) & (full[:, 5] <= 1.0))
     summary = json.loads((out / "summary.json").read_text())
     assert summary["model"] == "rotating_field"

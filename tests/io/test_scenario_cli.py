@@ -14,6 +14,9 @@ from typer.testing import CliRunner
 
 from tumble.cli import app
 from tumble.io import load_scenario, parse_scenario, template
+from tumble.models.base import attitude_columns
+
+ATTITUDE = [c.name for c in attitude_columns("t")]  # every full run's last columns
 
 runner = CliRunner()
 
@@ -46,14 +49,14 @@ def test_run_writes_the_contract_outputs(tmp_path):
     res = runner.invoke(app, ["run", str(write(tmp_path, CONTRACT)), "-o", str(out)])
     assert res.exit_code == 0, res.output
     header, full = read_csv(out / "full.csv")
-    assert header == ["tau", "k", "theta", "rho", "sigma", "psi", "phi"]
+    assert header == ["tau", "k", "theta", "rho", "sigma", "psi", "phi", *ATTITUDE]
     for method in ("averaged", "closed_form"):
         h, data = read_csv(out / f"{method}.csv")
         assert h == ["tau", "k", "theta", "rho", "sigma"]
         assert data.shape == (101, 5)
     # Values at exactly the requested times, the first row the initial state.
     assert np.array_equal(full[:, 0], np.linspace(0.0, 100.0, 101))
-    assert full[0, 1:] == pytest.approx([1.0, 1.0, 0.4, 0.0, 0.0, 0.0], abs=1e-12)
+    assert full[0, 1:7] == pytest.approx([1.0, 1.0, 0.4, 0.0, 0.0, 0.0], abs=1e-12)
     summary = json.loads((out / "summary.json").read_text())
     for key in ("inputs", "methods", "max_differences", "predicted_limits", "warnings"):
         assert key in summary

@@ -112,7 +112,9 @@ def run(
 ) -> RunResult:
     """Run a scenario, and write its outputs to ``out_dir`` if one is given.
 
-    The outputs are ``<method>.csv`` for every method (plus ``<method>_si.csv`` for
+    The outputs are ``<method>.csv`` and ``<method>.nc`` (the same columns with their units as
+    NetCDF attributes; a full run's include its attitude quaternion and body angular
+    velocity) for every method (plus ``<method>_si.csv`` for
     physical-units scenarios and ``averaged_diagnostics.csv`` where the model has diagnostics),
     ``summary.json`` and the model's figure (``comparison.png``, ``evolution.png``); with
     ``[run] verify = true`` also the files of :func:`verify` and the verdict in

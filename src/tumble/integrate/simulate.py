@@ -11,7 +11,7 @@ import time
 from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
-from typing import Literal, TypeVar
+from typing import Any, Literal, TypeVar
 
 import numpy as np
 
@@ -98,6 +98,29 @@ class Trajectory:
     events: FloatArray = field(default_factory=lambda: np.empty(0), repr=False)
     event_signs: FloatArray = field(default_factory=lambda: np.empty(0), repr=False)
     event_columns: Columns = field(default_factory=dict, repr=False)
+
+    def attitude(self) -> Any:
+        """The attitude at the samples, body → inertial, from the columns q0 … q3 of a full
+        run (scalar first; :func:`tumble.models.base.attitude_columns`).
+
+        Returns
+        -------
+        scipy.spatial.transform.Rotation
+            One rotation per sample: ``.as_matrix()`` gives R with v_inertial = R v_body.
+
+        Raises
+        ------
+        ParameterError
+            The run has no attitude (an averaged or closed-form run).
+        """
+        if "q0" not in self.columns:
+            raise ParameterError(
+                f"the {self.method} run has no attitude: only full runs write q0 … q3"
+            )
+        from scipy.spatial.transform import Rotation  # loaded where asked for: import time
+
+        q = np.stack([self.columns[f"q{i}"] for i in (1, 2, 3, 0)], axis=-1)  # scalar last
+        return Rotation.from_quat(q)
 
 
 def _unwrap_columns(model: Model[P, S], p: P, method: str, cols: Columns, initial: S) -> None:

@@ -133,12 +133,15 @@ def render_outputs(
     source: str,
     verification: VerifyResult | None = None,
 ) -> dict[str, bytes]:
-    """File name → content of every text output of a run (CSV and summary.json; with a
-    verification, its files of :func:`verify_outputs` too)."""
+    """File name → content of every output of a run but its figure (per method CSV and NetCDF,
+    summary.json; with a verification, its files of :func:`verify_outputs` too)."""
     files: dict[str, bytes] = {}
     scaling = result.request.scaling
     for method, ds in result.datasets.items():
         files[f"{method}.csv"] = csv_text(ds).encode()
+        # The same columns with their units, long names and equations as attributes (NetCDF 3,
+        # which needs no library beyond scipy).
+        files[f"{method}.nc"] = bytes(ds.to_netcdf(engine="scipy"))
         if scaling is not None:
             cols = {str(v): ds[v].values for v in ds.data_vars}
             si = scaling.si_columns(cols, ds["tau"].values)

@@ -49,6 +49,8 @@ __all__ = [
     "StationaryMotion",
     "Validity",
     "ValidityIssue",
+    "attitude_columns",
+    "attitude_values",
     "family_params",
     "first_time",
     "fixed_columns",
@@ -78,6 +80,37 @@ class Column:
     equation: str = ""
     angle: bool = False  # compare modulo 2π
     unwrap: bool = False  # reported as a continuous function of time (spec/medvedev.md §14)
+
+
+def attitude_columns(time: str) -> tuple[Column, ...]:
+    """The attitude and body angular velocity every full run writes, in a model whose time
+    is called ``time`` ("τ", "t").
+
+    The attitude quaternion q = (q0, q1, q2, q3) is scalar first and maps body components to
+    inertial ones, v_inertial = R(q) v_body (:mod:`tumble.rotations`), of unit norm and with
+    q0 ≥ 0 (q and −q are one attitude: every form of every model writes the same one, at the
+    cost of a change of sign where q0 passes 0); ω = (ω1, ω2, ω3) is the body angular velocity
+    in body axes, in the model's normalised units (rad per unit of its time)."""
+    parts = ("scalar part", "x component", "y component", "z component")
+    return (
+        *(Column(f"q{i}", f"attitude quaternion q{i}, {part} (body → inertial)", "1",
+                 "dq/dt = ½ q ⊗ (0, ω)") for i, part in enumerate(parts)),
+        *(Column(f"omega{i}", f"body angular velocity ω{i} about body axis x{i}", f"rad/{time}",
+                 "Euler's equations") for i in (1, 2, 3)),
+    )  # fmt: skip
+
+
+def attitude_values(q: FloatArray, omega: FloatArray) -> Columns:
+    """The columns of :func:`attitude_columns` of quaternions ``q`` (shape (n, 4), scalar first,
+    body → inertial; normalised here, q0 ≥ 0) and body angular velocities ``omega`` (shape
+    (n, 3))."""
+    q = np.asarray(q, dtype=float)
+    q = q / np.linalg.norm(q, axis=-1, keepdims=True)
+    q = np.where(q[:, :1] < 0.0, -q, q)
+    omega = np.asarray(omega, dtype=float)
+    out = {f"q{i}": q[:, i] for i in range(4)}
+    out |= {f"omega{i + 1}": omega[:, i] for i in range(3)}
+    return out
 
 
 AVERAGING_METHODS = ("closed_form", "numeric")

@@ -72,6 +72,8 @@ from tumble.models.base import (
     Unperturbed,
     Validity,
     ValidityIssue,
+    attitude_columns,
+    attitude_values,
     first_time,
     fixed_columns,
 )
@@ -125,9 +127,8 @@ EPS_PERIOD_LIMIT = 0.5
 
 
 def full_from_slow(p: Params, st: State) -> FloatArray:
-    """State ``[p, q, r, q0, q1, q2, q3]`` of the quaternion form from Euler angles and R, G.
-
-    Inverts (1.2) with R = μr, ψ' = (G − R cosθ)/sin²θ, φ' = r − ψ' cosθ (1.3).
+    """State ``[p, q, r, q0, q1, q2, q3]`` of the quaternion form from Euler angles and R, G
+    (:func:`_rate_and_attitude`).
 
     Parameters
     ----------
@@ -139,13 +140,29 @@ def full_from_slow(p: Params, st: State) -> FloatArray:
     ndarray, shape (7,)
         Body angular velocity [rad/t] and the body → inertial quaternion (z–x–z angles).
     """
-    s, c = math.sin(st.theta), math.cos(st.theta)
-    r = st.R / p.mu
-    psid = (st.G - st.R * c) / (s * s)
-    sp, cp = math.sin(st.phi), math.cos(st.phi)
-    om = [psid * s * sp + st.theta_dot * cp, psid * s * cp - st.theta_dot * sp, r]
-    q = matrix_to_quat(euler313_to_matrix(st.psi, st.theta, st.phi))
-    return np.array([*om, *q.tolist()])
+    w, q = _rate_and_attitude(p, *(np.array([v], dtype=float) for v in (
+        st.theta, st.theta_dot, st.psi, st.phi, st.R, st.G)))  # fmt: skip
+    return np.concatenate([w[0], q[0]])
+
+
+def _rate_and_attitude(
+    p: Params,
+    theta: FloatArray,
+    theta_dot: FloatArray,
+    psi: FloatArray,
+    phi: FloatArray,
+    R: FloatArray,
+    G: FloatArray,
+) -> tuple[FloatArray, FloatArray]:
+    """Body angular velocities (shape (n, 3)) [rad/t] and body → inertial quaternions
+    (shape (n, 4)) of Euler angles (z–x–z) and R, G: (1.2) inverted with R = μr,
+    ψ' = (G − R cosθ)/sin²θ, φ' = r − ψ' cosθ (1.3)."""
+    s, c = np.sin(theta), np.cos(theta)
+    r = R / p.mu
+    psid = (G - R * c) / (s * s)
+    sp, cp = np.sin(phi), np.cos(phi)
+    w = np.stack([psid * s * sp + theta_dot * cp, psid * s * cp - theta_dot * sp, r], -1)
+    return w, matrix_to_quat(euler313_to_matrix(psi, theta, phi))
 
 
 def full_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
@@ -329,7 +346,14 @@ def _reduced_from_slow(p: Params, st: State) -> FloatArray:
 
 def _reduced_columns(p: Params, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
     names = ("theta", "theta_dot", "psi", "phi", "R", "G", "a", "b")
-    return {n: Y[:, i].copy() for i, n in enumerate(names)}
+    cols = {n: Y[:, i].copy() for i, n in enumerate(names)}
+    w, q = _rate_and_attitude(p, *(cols[n] for n in names[:6]))
+    return cols | attitude_values(q, w)
+
+
+def _quaternion_columns(p: Params, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
+    """:func:`slow_from_full` and the attitude (:func:`~tumble.models.base.attitude_values`)."""
+    return slow_from_full(p, t, Y) | attitude_values(Y[:, 3:], Y[:, :3])
 
 
 def _builtin_reduced_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
@@ -1048,8 +1072,8 @@ _DIAGNOSTICS = (
 
 
 def _full_columns(p: Params) -> tuple[Column, ...]:
-    # A perturbed run also writes the moment coefficients and the slow time.
-    return _PERTURBED_FULL if p.perturbed else _UNPERTURBED
+    # A perturbed run also writes the moment coefficients; every full run its attitude.
+    return (*(_PERTURBED_FULL if p.perturbed else _UNPERTURBED), *attitude_columns("t"))
 
 
 _PRESSURE_CODES = {"constant": 0, "exp": 1, "table": 2}
@@ -1099,7 +1123,7 @@ FULL_QUATERNION: FullForm[Params, State] = FullForm(
     state=("w1", "w2", "w3", "q0", "q1", "q2", "q3"),
     rhs=full_rhs,
     initial_state=full_from_slow,
-    to_columns=slow_from_full,
+    to_columns=_quaternion_columns,
     state_of=lambda p, y: _state_from_columns(slow_from_full(p, np.zeros(1), y[None, :])),
     kernel=full_kernel,
     invariants=invariants,

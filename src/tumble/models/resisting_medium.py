@@ -53,6 +53,8 @@ from tumble.models.base import (
     Unperturbed,
     Validity,
     ValidityIssue,
+    attitude_columns,
+    attitude_values,
     first_time,
     fixed_columns,
 )
@@ -233,10 +235,21 @@ def osculating_from_slow(p: Params, st: State) -> FloatArray:
     return np.array([st.k, st.rho, st.sigma, st.psi, st.theta, st.phi])
 
 
+def _euler_columns(p: Params, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
+    """:func:`slow_from_full` and the attitude (:func:`~tumble.models.base.attitude_values`)."""
+    Y = np.atleast_2d(Y)
+    return slow_from_full(p, t, Y) | attitude_values(Y[:, 3:], Y[:, :3])
+
+
 def _osculating_columns(p: Params, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
+    """The state's angles, and the attitude Ξ(ρ, σ) C(ψ, ϑ, φ) and body rate they give."""
     Y = np.atleast_2d(Y)
     names = ("k", "rho", "sigma", "psi", "theta", "phi")
-    return {name: Y[:, i] for i, name in enumerate(names)}
+    cols = {name: Y[:, i] for i, name in enumerate(names)}
+    R = attitude_from_kframe_angles(cols["rho"], cols["sigma"], cols["psi"], cols["theta"],
+                                    cols["phi"])  # fmt: skip
+    w = body_momentum(cols["k"], cols["theta"], cols["phi"]) / p.inertia
+    return cols | attitude_values(matrix_to_quat(R), w)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -1208,6 +1221,7 @@ _COLUMNS_FULL = (
     *_COLUMNS_SLOW,
     Column("psi", "precession angle ψ of x3 about K", _ANGLE, "(1.3)", angle=True, unwrap=True),
     Column("phi", "proper rotation angle φ", _ANGLE, "(1.3)", angle=True, unwrap=True),
+    *attitude_columns("τ"),
 )
 
 
@@ -1222,7 +1236,7 @@ FULL_EULER: FullForm[Params, State] = FullForm(
     state=("w1", "w2", "w3", "q0", "q1", "q2", "q3"),
     rhs=full_rhs,
     initial_state=full_from_slow,
-    to_columns=slow_from_full,
+    to_columns=_euler_columns,
     state_of=state_from_full,
     kernel=full_kernel,
     invariants=invariants,

@@ -50,6 +50,8 @@ from tumble.models.base import (
     Unperturbed,
     Validity,
     ValidityIssue,
+    attitude_columns,
+    attitude_values,
     first_time,
     fixed_columns,
     separatrix_issue,
@@ -215,6 +217,13 @@ def slow_from_full(p: Params, t: FloatArray, Y: FloatArray) -> dict[str, FloatAr
     return _full_columns(_momentum(p, t, Y), Y[:, :3], p)
 
 
+def _rotating_columns(p: Params, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
+    """:func:`slow_from_full` and the attitude A = Rz(τ) Γ with the body rate z
+    (:func:`~tumble.models.base.attitude_values`)."""
+    A = np.matmul(rot_z(np.asarray(t, dtype=float)), Y[:, 3:].reshape(-1, 3, 3))
+    return slow_from_full(p, t, Y) | attitude_values(matrix_to_quat(A), Y[:, :3])
+
+
 def slow_elements(p: Params, st: State) -> dict[str, float]:
     """Slow variables L, ρ, σ, T, k² of the state ``st``, §9."""
     cols = slow_from_full(p, np.zeros(1), full_from_slow(p, st)[None, :])
@@ -244,7 +253,7 @@ def _full_columns(L_xi: FloatArray, z: FloatArray, p: Params) -> dict[str, Float
 def _inertial_columns(p: Params, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
     z = Y[:, :3]
     L_xi = np.einsum("nij,nj->ni", quat_to_matrix(Y[:, 3:]), p.inertia * z)
-    return _full_columns(L_xi, z, p)
+    return _full_columns(L_xi, z, p) | attitude_values(Y[:, 3:], z)
 
 
 def invariants(p: Params, Y: FloatArray) -> dict[str, FloatArray]:
@@ -951,6 +960,7 @@ _COLUMNS_FULL = (
     Column("z1", "body angular velocity z1 = Ω1/ω", "1", "(1.5)"),
     Column("z2", "body angular velocity z2 = Ω2/ω", "1", "(1.5)"),
     Column("z3", "body angular velocity z3 = Ω3/ω", "1", "(1.5)"),
+    *attitude_columns("τ"),  # ω1, ω2, ω3 = z1, z2, z3, as in every model
 )
 _DIAGNOSTICS = (
     Column("nu1", "polhode frequency ν1 = 2πν/4K", "1", "§8"),
@@ -996,7 +1006,7 @@ FULL_ROTATING: FullForm[Params, State] = FullForm(
     state=("z1", "z2", "z3", "G11", "G12", "G13", "G21", "G22", "G23", "G31", "G32", "G33"),
     rhs=full_rhs,
     initial_state=full_from_slow,
-    to_columns=slow_from_full,
+    to_columns=_rotating_columns,
     state_of=lambda p, y: State(y[:3], y[3:].reshape(3, 3)),
     angles=_rotating_angles,
     kernel=full_kernel,

@@ -51,6 +51,8 @@ from tumble.models.base import (
     Unperturbed,
     Validity,
     ValidityIssue,
+    attitude_columns,
+    attitude_values,
     fixed_columns,
     separatrix_issue,
 )
@@ -149,8 +151,7 @@ def _full_columns(p: Params, t: FloatArray, Y: FloatArray) -> dict[str, FloatArr
     w = Y[:, :3]
     L_xi = _momentum(p, Y)
     cols = _momentum_columns(L_xi, 0.5 * np.sum(p.inertia * w * w, axis=1), p)
-    cols.update(w1=w[:, 0], w2=w[:, 1], w3=w[:, 2])
-    return cols
+    return cols | attitude_values(Y[:, 3:], w)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -394,9 +395,7 @@ _COLUMNS_MEAN = tuple(
 )
 _COLUMNS_FULL = (
     *_COLUMNS_SLOW,
-    Column("w1", "body angular velocity ω1", "rad/t", "Euler"),
-    Column("w2", "body angular velocity ω2", "rad/t", "Euler"),
-    Column("w3", "body angular velocity ω3", "rad/t", "Euler"),
+    *attitude_columns("t"),
 )
 
 

@@ -208,3 +208,24 @@ def test_moments_on_a_grid_are_calls_at_each_node_and_time():
             want = quat_to_matrix(q[k]) @ torque(t[j], q[k], w[k])
             assert np.allclose(grid[k, j], want, atol=1e-14)
     assert isinstance(torque, TorqueSum)
+
+
+def test_gravity_gradient_u0_is_the_argument_of_latitude():
+    # An orbit of inclination i and ascending node Ω: at u0 = 0 the body is at the node,
+    # (cos Ω, sin Ω, 0), and a quarter orbit later at its northernmost point, ξ3 = sin i.
+    # (The former convention measured u0 from ξ1 projected on the orbit plane: 0.84 rad off
+    # the node here.)
+    inc, node = math.radians(50.0), math.radians(60.0)
+    h = [math.sin(node) * math.sin(inc), -math.cos(node) * math.sin(inc), math.cos(inc)]
+    gg = GravityGradientTorque([1.0, 2.0, 3.0], n=0.5, normal=h)
+    assert np.allclose(gg.radial(0.0), [math.cos(node), math.sin(node), 0.0], atol=1e-15)
+    north = gg.radial(0.25 * gg.period)
+    assert north[2] == pytest.approx(math.sin(inc), abs=1e-15)
+    # The motion runs counter-clockwise about the normal; u0 shifts it along the orbit.
+    assert np.cross(gg.radial(0.0), north) @ gg.normal == pytest.approx(1.0, abs=1e-15)
+    shifted = GravityGradientTorque([1.0, 2.0, 3.0], n=0.5, normal=h, u0=0.3)
+    assert np.allclose(shifted.radial(0.0), gg.radial(0.3 / 0.5), atol=1e-15)
+    # An equatorial orbit has no node: u is measured from ξ1 (prograde and retrograde).
+    for sign in (1.0, -1.0):
+        flat = GravityGradientTorque([1.0, 2.0, 3.0], n=0.5, normal=[0.0, 0.0, sign])
+        assert np.allclose(flat.radial(0.0), [1.0, 0.0, 0.0], atol=1e-15)

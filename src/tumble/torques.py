@@ -465,10 +465,13 @@ class GravityGradientTorque(Torque):
     """Gravity-gradient moment on a body in a circular orbit: M = 3n² r̂ × (I r̂), body axes.
 
     r̂ is the unit vector from the attracting centre to the body, in body axes; n the orbital
-    mean motion (n² = μ_E/r³). The orbit lies in the inertial plane normal to ``normal`` and
-    r̂(t) = cos(nt + u0) e1 + sin(nt + u0) e2, with (e1, e2, normal) right-handed and e1 the
-    projection of ξ1 on the orbit plane (of ξ2 if the normal is within 26° of ξ1). Accepts
-    batches of states.
+    mean motion (n² = μ_E/r³). The orbit frame: the orbit lies in the inertial plane normal
+    to ĥ = ``normal`` (its angular momentum: the body moves counter-clockwise about ĥ), e1 is
+    the direction of the ascending node, where the orbit crosses the inertial equator ξ1ξ2
+    northwards, e1 = ξ3 × ĥ / |ξ3 × ĥ| (ξ1 for an equatorial orbit, where no node exists), and
+    e2 = ĥ × e1; the body is at r̂(t) = cos u e1 + sin u e2, with u = u0 + nt the argument of
+    latitude. For ĥ = (sin Ω sin i, −cos Ω sin i, cos i) (inclination i, right ascension of the
+    ascending node Ω) e1 = (cos Ω, sin Ω, 0). Accepts batches of states.
 
     Parameters
     ----------
@@ -479,7 +482,7 @@ class GravityGradientTorque(Torque):
     normal : array_like, shape (3,)
         Orbit normal in inertial axes (normalized here) [1].
     u0 : float
-        Argument of latitude at t = 0 [rad].
+        Argument of latitude at t = 0, from the ascending node [rad].
 
     References
     ----------
@@ -504,9 +507,10 @@ class GravityGradientTorque(Torque):
         if norm == 0.0:
             raise ParameterError("normal must be a nonzero vector")
         k = normal / norm
-        ref = np.array([1.0, 0.0, 0.0]) if abs(k[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
-        e1 = ref - (ref @ k) * k  # ξ1 (or ξ2) projected onto the orbit plane
-        e1 /= np.linalg.norm(e1)
+        node = np.cross([0.0, 0.0, 1.0], k)  # towards the ascending node, |node| = sin i
+        size = float(np.linalg.norm(node))
+        # An equatorial orbit (sin i below 1e-12) has no node: u is then measured from ξ1.
+        e1 = node / size if size > 1e-12 else np.array([1.0, 0.0, 0.0])
         e2 = np.cross(k, e1)
         basis = np.array([e1, e2, k])
         basis.setflags(write=False)

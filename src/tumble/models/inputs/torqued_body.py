@@ -8,6 +8,7 @@ functions ``f(t, q, omega, params)``.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from functools import cached_property
 from typing import Any
@@ -36,11 +37,16 @@ from tumble.torques import (
 
 __all__ = [
     "DECLARED",
+    "EARTH_MU",
+    "EARTH_RADIUS",
+    "PHYSICAL_TERMS",
     "SCENARIO",
     "TERMS",
     "TORQUE_KINDS",
     "Params",
+    "Scaling",
     "State",
+    "orbital_rate",
     "torque_from_terms",
 ]
 
@@ -335,7 +341,14 @@ TERMS: dict[str, Section] = {
         "gravity_gradient",
         Key("n", "number", "orbital rate > 0", "rad/t"),
         Key("normal", "vector3", "orbit normal", default=[0.0, 0.0, 1.0]),
-        Key("u0", "number", "argument of latitude at t = 0", "rad", 0.0, angle=True),
+        Key(
+            "u0",
+            "number",
+            "argument of latitude at t = 0, from the ascending node",
+            "rad",
+            0.0,
+            angle=True,
+        ),
     ),
     "inertial_constant": _term("inertial_constant", _MOMENT),
     "body_constant": _term("body_constant", _MOMENT),
@@ -405,7 +418,15 @@ def _check_user_torque(torque: Torque, st: State) -> None:
 def _build(inputs: Inputs) -> Built[Params, State]:
     par, ini = inputs["parameters"], inputs["initial"]
     assert par is not None and ini is not None  # required sections
-    torque, period, label = torque_from_terms(par["inertia"], _term_tables(inputs))
+    p, st = _params_and_state(np.array(par["inertia"]), par["eps"], _term_tables(inputs), ini)
+    return Built(p, st)
+
+
+def _params_and_state(
+    inertia: FloatArray, eps: float, terms: list[dict[str, Any]], ini: Mapping[str, Any]
+) -> tuple[Params, State]:
+    """Params and State of normalised inertia, ε, torque terms and [initial] values."""
+    torque, period, label = torque_from_terms(inertia, terms)
     angles = [n for n in ("psi", "theta", "phi") if ini[n] is not None]
     if ini["quaternion"] is not None and angles:
         raise ScenarioError("initial: give either quaternion or psi, theta, phi, not both")
@@ -416,14 +437,183 @@ def _build(inputs: Inputs) -> Built[Params, State]:
     else:
         q = np.array(ini["quaternion"] if ini["quaternion"] is not None else [1.0, 0.0, 0.0, 0.0])
     st = State(np.array(ini["omega"]), q)
-    p = Params(np.array(par["inertia"]), par["eps"], torque, period, label)
+    p = Params(np.asarray(inertia, dtype=float), eps, torque, period, label)
     if p.torque.program is None:  # it holds Python: a user function
         _check_user_torque(p.torque, st)
-    return Built(p, st)
+    return p, st
+
+
+# ---------------------------------------------------------------------------------------------
+# Physical units.
+
+EARTH_MU = 3.986004418e14
+"""The Earth's gravitational parameter GM [m³/s²] (WGS 84)."""
+EARTH_RADIUS = 6378137.0
+"""The Earth's equatorial radius [m] (WGS 84): a circular orbit's altitude is above it."""
+
+
+def orbital_rate(altitude_km: float) -> float:
+    """Mean motion n = √(GM/r³) of a circular orbit about the Earth [rad/s] at ``altitude_km``
+    above the equatorial radius (r = R + h)."""
+    check_range("torque.altitude [km]", altitude_km, low=0.0)
+    r = EARTH_RADIUS + 1e3 * altitude_km
+    return float(np.sqrt(EARTH_MU / r**3))
+
+
+@dataclass(frozen=True)
+class Scaling:
+    """The normalisation of a physical scenario: t = T0 τ with T0 = 1/|ω(0)| (the initial
+    rotation turns at 1 rad per unit of time), moments of inertia over I0 = max I_i, moments
+    over I0/T0². The torque is then the physical one, ε = 1: its size relative to the
+    rotation (e.g. 3n²T0² for the gravity gradient) is what makes it small."""
+
+    T0: float  # [s]
+    I0: float  # [kg·m²]
+    eps: float = 1.0  # [1]
+
+    def tau_from_time(self, t_s: Any) -> FloatArray:
+        """τ = t / T0 for times in seconds."""
+        return np.asarray(t_s, dtype=float) / self.T0
+
+    def time_from_tau(self, tau: Any) -> FloatArray:
+        """t = T0 τ [s]."""
+        return np.asarray(tau, dtype=float) * self.T0
+
+    def summary(self) -> dict[str, float]:
+        """The scales, for summary.json."""
+        return {"T0_s": self.T0, "I0_kgm2": self.I0, "eps": self.eps}
+
+    def si_columns(self, cols: dict[str, FloatArray], tau: FloatArray) -> dict[str, FloatArray]:
+        """Columns in SI: t [s], L [kg·m²/s], T [J], ω [rad/s]; angles, q and k² unchanged."""
+        momentum, energy = self.I0 / self.T0, self.I0 / self.T0**2
+        out = {"t_s": self.time_from_tau(tau)}
+        for name, values in cols.items():
+            if name in ("L1", "L2", "L3", "L"):
+                out[f"{name}_kgm2_s"] = momentum * values
+            elif name == "T":
+                out["T_J"] = energy * values
+            elif name in ("omega1", "omega2", "omega3"):
+                out[f"{name}_rad_s"] = values / self.T0
+            else:
+                out[name] = values
+        return out
+
+
+_PHYSICAL = Section(
+    "physical",
+    (
+        Key(
+            "inertia",
+            "vector3",
+            "3 principal moments > 0 obeying the triangle inequality",
+            "kg m^2",
+        ),
+    ),
+    doc="the body in SI units; the [[torque]] terms and [initial] in SI too",
+)
+_PHYSICAL_TORQUE = Section(
+    "",
+    (
+        Key(
+            "torque",
+            "any",
+            "a list of [[torque]] tables with a kind",
+            doc="built-in terms in SI units",
+        ),
+    ),
+    doc="the torque (top-level keys)",
+)
+_PHYSICAL_INITIAL = Section(
+    "initial",
+    (
+        Key("omega", "vector3", "body angular velocity, 3 numbers, not all 0", "rad/s"),
+        *_INITIAL.keys[1:],
+    ),
+    doc="the body rate and its attitude (a quaternion or 3-1-3 Euler angles; default identity)",
+)
+PHYSICAL_TERMS: dict[str, Section] = {
+    "gravity_gradient": _term(
+        "gravity_gradient",
+        Key("altitude", "number", "circular orbit's altitude above the Earth > 0", "km", None),
+        Key("n", "number", "orbital rate > 0", "rad/s", None),
+        *TERMS["gravity_gradient"].keys[2:],
+    ),
+    "inertial_constant": _term("inertial_constant", Key("moment", "vector3", "3 numbers", "N m")),
+    "body_constant": _term("body_constant", Key("moment", "vector3", "3 numbers", "N m")),
+    "linear_drag": _term("linear_drag", Key("B", "matrix3", "3×3, M = −B ω", "N m s")),
+    "quadratic_drag": _term(
+        "quadratic_drag", Key("S", "matrix3", "3×3, M = −S (ω ∘ |ω|)", "N m s^2")
+    ),
+}
+"""The [[torque]] tables of a physical scenario by kind, in SI units."""
+
+
+def _physical_term(i: int, term: dict[str, Any], T0: float, I0: float) -> dict[str, Any]:
+    """A [[torque]] table in SI converted to the normalised units of :func:`torque_from_terms`."""
+    kind, out = term["kind"], dict(term)
+    if kind == "gravity_gradient":
+        given = [k for k in ("altitude", "n") if term[k] is not None]
+        if len(given) != 1:
+            raise ScenarioError(
+                f"torque[{i}]: give the orbit by altitude [km] or by n [rad/s], one of them"
+            )
+        n = orbital_rate(term["altitude"]) if given == ["altitude"] else term["n"]
+        check_range(f"torque[{i}].n [rad/s]", n, low=0.0)
+        out["n"] = n * T0
+        del out["altitude"]
+    elif kind in ("inertial_constant", "body_constant"):
+        out["moment"] = np.asarray(term["moment"], dtype=float) * T0**2 / I0
+    elif kind == "linear_drag":
+        out["B"] = np.asarray(term["B"], dtype=float) * T0 / I0
+    elif kind == "quadratic_drag":
+        out["S"] = np.asarray(term["S"], dtype=float) / I0
+    return out
+
+
+def _build_physical(inputs: Inputs) -> Built[Params, State]:
+    ph, ini, top = inputs["physical"], inputs["initial"], inputs[""]
+    assert ph is not None and ini is not None and top is not None  # required sections
+    inertia = frozen_array("physical.inertia", ph["inertia"], (3,))
+    RigidBody(*inertia.tolist())
+    rate = float(np.linalg.norm(ini["omega"]))
+    if rate == 0.0:
+        raise ScenarioError(
+            "initial.omega = [0, 0, 0]: a physical scenario needs a rotating body (|ω| > 0 "
+            "sets its time scale)"
+        )
+    T0, I0 = 1.0 / rate, float(np.max(inertia))
+    torque = top["torque"]
+    if not isinstance(torque, list) or not all(isinstance(t, dict) for t in torque):
+        raise ScenarioError(
+            f"torque = {shorten(repr(torque), 60)}: a physical scenario takes [[torque]] tables "
+            f"of the kinds {', '.join(PHYSICAL_TERMS)} (a user function works in normalised "
+            "units: use [parameters])"
+        )
+    terms = []
+    for i, raw in enumerate(torque):
+        kind = raw.get("kind")
+        if not isinstance(kind, str) or kind not in PHYSICAL_TERMS:
+            raise ScenarioError(
+                f"torque[{i}].kind = {shorten(repr(kind), 60)} is not a torque of a physical "
+                f"scenario (allowed: {', '.join(PHYSICAL_TERMS)})"
+            )
+        term = inputs.validate(PHYSICAL_TERMS[kind], raw, f"torque[{i}]")
+        terms.append(_physical_term(i, term, T0, I0))
+    normalised = {**ini, "omega": np.asarray(ini["omega"], dtype=float) * T0}
+    p, st = _params_and_state(inertia / I0, 1.0, terms, normalised)
+    return Built(p, st, Scaling(T0, I0))
 
 
 SCENARIO: ScenarioSchema[Params, State] = ScenarioSchema(
-    variants=(Variant((_PARAMETERS, _TORQUE, _INITIAL), _build, doc="any time unit t"),)
+    variants=(
+        Variant((_PARAMETERS, _TORQUE, _INITIAL), _build, doc="any time unit t"),
+        Variant(
+            (_PHYSICAL, _PHYSICAL_TORQUE, _PHYSICAL_INITIAL),
+            _build_physical,
+            physical=True,
+            doc="SI units: t = T0 τ with T0 = 1/|ω(0)|",
+        ),
+    )
 )
 
 

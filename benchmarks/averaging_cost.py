@@ -6,7 +6,7 @@ Issue 5: "one evaluation ≤ 1 ms for the symmetric (spinner) and nonlinear-mome
 settings and ≤ 5 ms for the triaxial one". Each right-hand side is called the way its model
 calls it during an averaged run, at the default tolerance AVERAGE_RTOL = 1e-12:
 
-* spinner (spec/medvedev.md): ``resisting_medium.averaged_rhs_numeric`` with the moment (1.2)
+* spinner (the resisting medium): ``resisting_medium.averaged_rhs_numeric`` with the moment (1.2)
   as ``Params.torque``: the constant body moment a, the linear drag b, the quadratic drag s,
   and all three (full random a, b, s in [−1, 1]);
 * nutation (spec/serov.md): ``nonlinear_moment.averaged_rhs`` (energy form) with

@@ -1,4 +1,5 @@
-"""Rotations: quaternions, matrices, 3-1-3 angles and the K-frame angles of spec/medvedev.md §2."""
+"""Rotations: quaternions, matrices, 3-1-3 angles and the K-frame angles of
+docs/theory/resisting-medium.md §2."""
 
 import math
 

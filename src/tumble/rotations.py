@@ -8,10 +8,10 @@ Conventions (used everywhere in tumble)
 * ``rot_x(a)``, ``rot_z(a)`` are the active rotations by ``a`` about x and z.
 * Euler angles 3-1-3: ``C(ψ, ϑ, φ) = Rz(ψ) Rx(ϑ) Rz(φ)``; the columns of C are the body axes in
   the components of the reference frame.
-* K-frame of the resisting-medium paper (spec/medvedev.md §2): for the direction of the
-  angular momentum at polar angle ρ from the inertial axis X3 and azimuth σ about X3 (from X1),
-  ``Ξ(ρ, σ)`` has the columns ξ1 = ∂e_K/∂ρ, ξ2 = (−sin σ, cos σ, 0), ξ3 = e_K; the attitude is
-  ``R = Ξ(ρ, σ) C(ψ, ϑ, φ)``.
+* K-frame of the resisting-medium paper (docs/theory/resisting-medium.md §2): for the
+  direction of the angular momentum at polar angle ρ from the inertial axis X3 and azimuth σ
+  about X3 (from X1), ``Ξ(ρ, σ)`` has the columns ξ1 = ∂e_K/∂ρ, ξ2 = (−sin σ, cos σ, 0),
+  ξ3 = e_K; the attitude is ``R = Ξ(ρ, σ) C(ψ, ϑ, φ)``.
 
 Every function accepts arrays with leading batch dimensions.
 """
@@ -185,7 +185,7 @@ def rot_z(a: ArrayLike) -> FloatArray:
 
 
 def euler313_to_matrix(psi: ArrayLike, theta: ArrayLike, phi: ArrayLike) -> FloatArray:
-    """C(ψ, ϑ, φ) = Rz(ψ) Rx(ϑ) Rz(φ), spec/medvedev.md §2.
+    """C(ψ, ϑ, φ) = Rz(ψ) Rx(ϑ) Rz(φ), docs/theory/resisting-medium.md §2.
 
     Parameters
     ----------
@@ -224,7 +224,8 @@ def matrix_to_euler313(C: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray
 
 
 def kframe_matrix(rho: ArrayLike, sigma: ArrayLike) -> FloatArray:
-    """Ξ(ρ, σ): columns ξ1, ξ2, ξ3 of the angular-momentum frame, spec/medvedev.md §2.
+    """Ξ(ρ, σ): columns ξ1, ξ2, ξ3 of the angular-momentum frame
+    (docs/theory/resisting-medium.md §2).
 
     Parameters
     ----------
@@ -263,7 +264,7 @@ def direction_angles(v: ArrayLike) -> tuple[FloatArray, FloatArray]:
 def attitude_from_kframe_angles(
     rho: ArrayLike, sigma: ArrayLike, psi: ArrayLike, theta: ArrayLike, phi: ArrayLike
 ) -> FloatArray:
-    """Attitude matrix R = Ξ(ρ, σ) C(ψ, ϑ, φ) (body → inertial), spec/medvedev.md §2.
+    """Attitude matrix R = Ξ(ρ, σ) C(ψ, ϑ, φ) (body → inertial), docs/theory/resisting-medium.md §2.
 
     Parameters
     ----------

@@ -468,7 +468,7 @@ class GravityGradientTorque(Torque):
     mean motion (n² = μ_E/r³). The orbit frame: the orbit lies in the inertial plane normal
     to ĥ = ``normal`` (its angular momentum: the body moves counter-clockwise about ĥ), e1 is
     the direction of the ascending node, where the orbit crosses the inertial equator ξ1ξ2
-    northwards, e1 = ξ3 × ĥ / |ξ3 × ĥ| (ξ1 for an equatorial orbit, where no node exists), and
+    northwards, e1 = ξ3 × ĥ normalised (ξ1 for an equatorial orbit, where no node exists), and
     e2 = ĥ × e1; the body is at r̂(t) = cos u e1 + sin u e2, with u = u0 + nt the argument of
     latitude. For ĥ = (sin Ω sin i, −cos Ω sin i, cos i) (inclination i, right ascension of the
     ascending node Ω) e1 = (cos Ω, sin Ω, 0). Accepts batches of states.

@@ -1,5 +1,5 @@
-"""The averaging engine in the fast-spinner setting (issue 5): any torque averaged over ψ and φ
-of the unperturbed motion (2.1), against spec/medvedev.md (2.2) and against hand-derived rates."""
+"""The averaging engine in the fast-spinner setting: any torque averaged over ψ and φ of the
+unperturbed motion (2.1), against the paper's (2.2) and against hand-derived rates."""
 
 from __future__ import annotations
 
@@ -107,7 +107,7 @@ def test_model_torque_takes_the_rate_path_and_equals_2_2(
 
 @pytest.mark.parametrize("offset", [0.0, 1e-9, -1e-6, 1e-3])
 def test_engine_near_theta_pi_half_with_phi_dependent_moment(offset):
-    """At and near ϑ = π/2 (φ stops there, spec §10.2) the mean over the torus still equals
+    """At and near ϑ = π/2 (φ stops there, §10.2) the mean over the torus still equals
     (2.2), which is regular at π/2, for a moment whose k, ϑ equations depend on φ."""
     p = rm.Params(
         eps=0.02,
@@ -250,7 +250,7 @@ def test_torque_receives_the_models_attitude_and_rate():
 @settings(max_examples=30)
 @given(vectors(), kappa, st.floats(0.2, 3.0), rho_regular, angle, theta_regular, angle)
 def test_standard_form_from_kframe_components(m, kap, k, rho, psi, theta, phi):
-    """standard_form (via the μ identity of spec §3) equals (1.3) written with the K-frame
+    """standard_form (via the μ identity of §3) equals (1.3) written with the K-frame
     components m_K = C(ψ, ϑ, φ) m directly."""
     eps = 0.03
     m1, m2, m3 = euler313_to_matrix(psi, theta, phi) @ m
@@ -285,7 +285,7 @@ def test_standard_form_from_kframe_components(m, kap, k, rho, psi, theta, phi):
     ],
 )
 def test_refuses_singular_or_degenerate_states(kap, rho, theta, field):
-    """sin ϑ = 0, sin ρ = 0 (standard form singular, spec §11), κ = 0 (no fast φ, §10.5)."""
+    """sin ϑ = 0, sin ρ = 0 (standard form singular, §11), κ = 0 (no fast φ, §10.5)."""
     with pytest.raises(ParameterError, match=f"^{field} = "):
         spinner_average(lambda t, q, w: np.zeros(3), kap, 0.01, 1.0, rho, 0.0, theta)
 
@@ -370,12 +370,12 @@ def test_known_values_serve_the_coarse_levels():
 
 
 # ---------------------------------------------------------------------------------------------
-# Cost, issue 5 item 5
+# Cost
 
 
 @pytest.mark.slow
 def test_benchmark_resisting_medium_evaluation():
-    """One evaluation of the engine for the moment (1.2) at default tolerance (issue 5: ≤ 1 ms),
+    """One evaluation of the engine for the moment (1.2) at default tolerance (target ≤ 1 ms),
     as resisting_medium.averaged_rhs_numeric makes it (``Params.torque``); the same law as a
     plain batched function goes by the general path (printed, no target).
     benchmarks/averaging_cost.py times every setting."""

@@ -34,7 +34,7 @@ HEMISPHERE_CASES = {
 
 @pytest.mark.parametrize("name", list(HEMISPHERE_CASES))
 def test_averaging_error_is_first_order(name):
-    """Issue 2 / spec §10.1: max |Δk|, |Δϑ| over τ ∈ [0, 2/ε] shrink as O(ε)."""
+    """Issue 2 / §10.1: max |Δk|, |Δϑ| over τ ∈ [0, 2/ε] shrink as O(ε)."""
     p, st = HEMISPHERE_CASES[name]
     tau_end = 2.0 / min(EPS)
     assert rm.crossing_time(st.W, p) > tau_end  # stays in its hemisphere

@@ -119,7 +119,7 @@ def test_equatorial_component_is_2_4():
     e = np.exp(-p.eps * p.alpha * tau)
     printed = p.alpha * V0 * e / (p.alpha + p.gamma * V0 * (1 - e))
     assert np.allclose(rm.equatorial_momentum(tau, V0, p), printed, rtol=1e-13, atol=0)
-    # α → 0 limit V0/(1 + εγV0τ), and α = γ = 0: V constant (spec §8.1).
+    # α → 0 limit V0/(1 + εγV0τ), and α = γ = 0: V constant (§8.1).
     p0 = medium(0.0, 0.3, 0.1, 0.2)
     assert np.allclose(
         rm.equatorial_momentum(tau, V0, p0), V0 / (1 + p0.eps * p0.gamma * V0 * tau), rtol=1e-14
@@ -153,7 +153,7 @@ def test_tan_theta_a3_zero_lower_2_10(p, st):
 
 @pytest.mark.parametrize("theta0", [0.5, 2.5])
 def test_quadratic_only_law_both_hemispheres(theta0):
-    """Spec §8.7 and erratum E8: tan ϑ → δ/γ (upper) or −δ/γ (lower); k → 0 like 1/(ετ)."""
+    """Spec §8.7 and correction E8: tan ϑ → δ/γ (upper) or −δ/γ (lower); k → 0 like 1/(ετ)."""
     p = medium(gamma=0.3, delta=0.2)
     st = state(1.0, theta0)
     tau = np.linspace(0.0, 1e6, 201)
@@ -170,7 +170,7 @@ def test_quadratic_only_law_both_hemispheres(theta0):
     assert rm.predicted_limits(p, st)["theta"] == pytest.approx(limit, abs=1e-15)
 
 
-def test_crossing_times_match_the_spec_table():
+def test_crossing_times_match_the_table_of_the_theory_page():
     """Spec §8.4: τ1 from the table against the closed form's root of W."""
     rows = []
     p = medium(0.1, 0.6, 0.1, 0.1, a3=-0.05)  # W0 > 0, a3 < 0, (2.5) branch

@@ -75,7 +75,7 @@ def test_two_full_forms_agree(p, st_):
     # Asked 1e-11 per step over ~5e3 steps; both forms carry it into k, ρ, σ, ϑ as ~1e-9.
     for name in ("k", "theta", "rho", "sigma"):
         assert np.max(np.abs(a.columns[name] - b.columns[name])) < 1e-7, name
-    # ψ, φ accumulate phase at rate ~k: the same budget ×10 (spec §13.2).
+    # ψ, φ accumulate phase at rate ~k: the same budget ×10 (§13.2).
     for name in ("psi", "phi"):
         assert np.max(np.abs(a.columns[name] - b.columns[name])) < 1e-6, name
 

@@ -23,7 +23,8 @@ __all__ = [
 
 
 def angle_difference(x: FloatArray, y: FloatArray) -> FloatArray:
-    """x − y wrapped to (−π, π] [rad]: angles compared modulo 2π (spec/medvedev.md §14)."""
+    """x − y wrapped to (−π, π] [rad]: angles compared modulo 2π
+    (docs/theory/resisting-medium.md §14)."""
     return np.angle(np.exp(1j * (np.asarray(x) - np.asarray(y))))
 
 

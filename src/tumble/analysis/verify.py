@@ -58,8 +58,8 @@ averaging order 2."""
 
 DEGRADED_ORDER = 0.25
 """Below this order the error does not shrink with ε at all: the averaged model is invalid
-on this horizon (between the two, e.g. the O(√ε) across ϑ = π/2 of spec/medvedev.md §10.2,
-it is degraded)."""
+on this horizon (between the two, e.g. the O(√ε) across ϑ = π/2 of
+docs/theory/resisting-medium.md §10.2, it is degraded)."""
 
 FLOOR = 100.0
 """An error below FLOOR·rtol times the variable's scale at every ε is at the integration

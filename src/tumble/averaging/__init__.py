@@ -1,8 +1,8 @@
 """Averaging any torque over the unperturbed motion: plain numerics below the models.
 
 * :mod:`~tumble.averaging.quadrature`: adaptive periodic trapezoidal means over fast phases.
-* :mod:`~tumble.averaging.spinner`: the fast symmetric spinner of spec/medvedev.md (slow k, ρ,
-  σ, ϑ; averaged over ψ and φ).
+* :mod:`~tumble.averaging.spinner`: the fast symmetric spinner of the resisting-medium paper
+  (slow k, ρ, σ, ϑ; averaged over ψ and φ).
 * :mod:`~tumble.averaging.triaxial`: the triaxial body of spec/martynenko.md (slow L_ξ, T;
   averaged over the polhode, the precession about L and a periodic forcing).
 * :mod:`~tumble.averaging.nutation`: Volosov averaging over the nutation of spec/serov.md.

@@ -1,6 +1,6 @@
 """Averaging over the fast spin of a symmetric body: the resisting-medium setting.
 
-A. V. Medvedev (1987), seed 000; spec/medvedev.md supersedes the seed where they differ. In the
+A. V. Medvedev (1987); sections (§) are those of docs/theory/resisting-medium.md. In the
 normalized variables of (1.3) (I1 = 1, I3 = 1 + κ, time τ) a fast-spinning symmetric body under
 a small body moment ε m has the slow variables k, ρ, σ, ϑ and the fast phases ψ, φ. Along the
 unperturbed motion (2.1) at frozen slow variables the phases run uniformly round a 2-torus with
@@ -92,7 +92,7 @@ costs about what one on 16 does (the cost is Python's, not the arithmetic's): th
 
 
 def body_momentum(k: ArrayLike, theta: ArrayLike, phi: ArrayLike) -> FloatArray:
-    """k_b = k (sin ϑ sin φ, sin ϑ cos φ, cos ϑ): body components of k, spec/medvedev.md §2.
+    """k_b = k (sin ϑ sin φ, sin ϑ cos φ, cos ϑ): body components of k, §2.
 
     Parameters
     ----------
@@ -114,7 +114,7 @@ def body_momentum(k: ArrayLike, theta: ArrayLike, phi: ArrayLike) -> FloatArray:
 def _nodal(
     m: FloatArray, ct: ArrayLike, st: ArrayLike, cf: ArrayLike, sf: ArrayLike
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """μ = Rx(ϑ) Rz(φ) m from the cosines and sines of ϑ, φ (spec §3 identity).
+    """μ = Rx(ϑ) Rz(φ) m from the cosines and sines of ϑ, φ (§3 identity).
 
     μ is the moment in the frame turned back by ψ: the K-frame components of (1.3) are
     m_K = Rz(ψ) μ (:func:`_kframe`), and μ3 = m3.
@@ -143,7 +143,7 @@ def standard_form(
 ) -> FloatArray:
     """Rates of (k, ρ, σ, ψ, ϑ, φ) under the body moment ε m: the standard form (1.3).
 
-    Erratum E1 applied (k dρ/dτ = ε m1). Singular where sin ϑ = 0 or sin ρ = 0 (spec §11).
+    Correction E1 applied (k dρ/dτ = ε m1). Singular where sin ϑ = 0 or sin ρ = 0 (§11).
 
     Parameters
     ----------
@@ -225,7 +225,7 @@ class _Torus:
         self.ct, self.st = math.cos(theta), math.sin(theta)
         # Body rate w = k_b / (1, 1, 1 + κ): the last component does not depend on φ.
         self.kst, self.r = k * self.st, k * self.ct / (1.0 + kappa)
-        # Ξ(ρ, σ) = Rz(σ) Ry(ρ) (spec §2), so its quaternion is (cos σ/2, 0, 0, sin σ/2) ⊗
+        # Ξ(ρ, σ) = Rz(σ) Ry(ρ) (§2), so its quaternion is (cos σ/2, 0, 0, sin σ/2) ⊗
         # (cos ρ/2, 0, sin ρ/2, 0); xi_left[j] = Ξ ⊗ (unit quaternion j), see :meth:`grid`.
         cs, ss, cr, sr = (f(0.5 * x) for x in (sigma, rho) for f in (math.cos, math.sin))
         xi = np.array([cs * cr, -ss * sr, cs * sr, ss * cr])
@@ -248,7 +248,7 @@ class _Torus:
         return _PsiGrid(psi, e @ self.xi_left, np.cos(psi)[:, None], np.sin(psi)[:, None])
 
     def nodal(self, grid: _PsiGrid, phi: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
-        """μ1, μ2, μ3 (spec §3) of the moment at the nodes ψ × φ, each (len(psi), len(phi))."""
+        """μ1, μ2, μ3 (§3) of the moment at the nodes ψ × φ, each (len(psi), len(phi))."""
         half = np.stack([np.cos(0.5 * phi), np.sin(0.5 * phi)], -1)
         cf = (half[:, 0] - half[:, 1]) * (half[:, 0] + half[:, 1])
         sf = 2.0 * half[:, 0] * half[:, 1]
@@ -339,7 +339,7 @@ def _rate_mean(
     """(⟨μ3⟩, ⟨μ2⟩) over φ for a moment of the body rate only (``rate_only``); φ nodes used.
 
     The body rate w = (k sin ϑ sin φ, k sin ϑ cos φ, k cos ϑ/(1 + κ)) of (2.1) does not
-    involve ψ, so neither does μ = Rx(ϑ) Rz(φ) m (spec §3): the K-frame components
+    involve ψ, so neither does μ = Rx(ϑ) Rz(φ) m (§3): the K-frame components
     m_K = Rz(ψ) μ average over ψ to (0, 0, μ3) exactly, and the slow rates need only the φ
     means of μ3 and μ2. The torque is called on the rates alone (q = None: these torques do
     not read it).
@@ -385,7 +385,8 @@ def _check_state(
     if kappa == 0.0:
         raise ParameterError(
             "kappa = 0 is outside the allowed range (−1, 0) ∪ (0, 1] of the spinner average: "
-            "a spherical inertia ellipsoid has no fast spin φ (spec/medvedev.md §10.5)"
+            "a spherical inertia ellipsoid has no fast spin φ "
+            "(docs/theory/resisting-medium.md §10.5)"
         )
     check_range("eps", eps, low=0.0, low_open=False)
     check_range("k", k, low=0.0)
@@ -396,7 +397,7 @@ def _check_state(
             raise ParameterError(
                 f"{name} = {value:g} is outside the allowed range (0, π) of the spinner "
                 f"average: sin {name} = 0 is a singularity of the standard form (1.3) "
-                "(spec/medvedev.md §11)"
+                "(docs/theory/resisting-medium.md §11)"
             )
 
 
@@ -462,7 +463,7 @@ def spinner_average(
     ``m = torque(t, q, w)``, averaged over the fast phases ψ and φ of the unperturbed motion
     (2.1) at frozen k, ρ, σ, ϑ and t: the mean over the 2-torus, i.e. the time average when
     the rates k of ψ and −kκ cos ϑ/(1+κ) of φ are not commensurate (first-order averaging,
-    spec/medvedev.md §6; at ϑ = π/2 φ stops and the result is the limit of the average, §10.2).
+    §6; at ϑ = π/2 φ stops and the result is the limit of the average, §10.2).
 
     A torque built of the body-rate laws of (1.2) (sums and multiples of the built-in
     :class:`~tumble.torques.ConstantBodyTorque`, :class:`~tumble.torques.LinearDrag`,
@@ -527,13 +528,13 @@ def spinner_average(
     ------
     ParameterError
         κ = 0 (φ is not a fast phase), sin ϑ = 0 or sin ρ = 0 (the standard form (1.3) is
-        singular, spec §11), k ≤ 0, or a torque that returns the wrong shape.
+        singular, §11), k ≤ 0, or a torque that returns the wrong shape.
     AveragingError
         The quadrature did not converge, or the torque is not finite on the torus.
 
     References
     ----------
-    A. V. Medvedev (1987), seed 000; spec/medvedev.md (1.3), (2.1), (2.2).
+    A. V. Medvedev (1987), (1.3), (2.1), (2.2); docs/theory/resisting-medium.md §4–§6.
     """
     return _spinner_average(torque, kappa, eps, k, rho, sigma, theta, t, rtol, batched)[0]
 

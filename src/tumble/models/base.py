@@ -79,7 +79,7 @@ class Column:
     units: str
     equation: str = ""
     angle: bool = False  # compare modulo 2π
-    unwrap: bool = False  # reported as a continuous function of time (spec/medvedev.md §14)
+    unwrap: bool = False  # written as a continuous function of time (theory/resisting-medium §14)
 
 
 def attitude_columns(time: str) -> tuple[Column, ...]:

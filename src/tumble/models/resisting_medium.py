@@ -1,12 +1,13 @@
 """Fast-spinning symmetric gyroscope under a constant body-fixed moment in a resisting medium.
 
 A. V. Medvedev, *Motion of a fast-spinning gyroscope under a constant moment in a resisting
-medium* (1987), seed ``000_5a157e916f67cb33.txt``; ``spec/medvedev.md`` supersedes the seed
-where they differ (errata E1–E10). Equation numbers below are the paper's.
+medium* (1987). Equation numbers are the paper's; section numbers (§) are those of
+``docs/theory/resisting-medium.md``, which states where tumble departs from the printed paper
+and why (corrections E1–E10).
 
 Everything here is in the paper's normalized variables (1.3): time τ, angular momentum
 ``k = |K|/K0``, inertia ``I1 = 1``, ``I3 = 1 + κ``, moment ``ε m`` with
-``m = a − b w − s (w ∘ |w|)``, body angular velocity ``w = (p, q, r)``. Angles follow spec §2:
+``m = a − b w − s (w ∘ |w|)``, body angular velocity ``w = (p, q, r)``. Angles follow §2:
 ρ, σ locate K in the inertial frame; ψ, ϑ, φ are the 3-1-3 Euler angles of the body in the
 K-frame. The averaged system and its closed forms are written in the slow time ``s = ε τ``
 internally and take τ at the interface.
@@ -111,7 +112,7 @@ __all__ = [
 
 VALIDITY_RATIO = 0.1
 """Averaging is trusted while the slow rates stay below this fraction of the fast rates
-(spec §6: ``ε(|a|/k² + |b|/k + |s|) ≪ |κ cos ϑ|/(1+κ)``); beyond it a run is warned."""
+(§6: ``ε(|a|/k² + |b|/k + |s|) ≪ |κ cos ϑ|/(1+κ)``); beyond it a run is warned."""
 
 
 # ---------------------------------------------------------------------------------------------
@@ -119,7 +120,7 @@ VALIDITY_RATIO = 0.1
 
 
 def full_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
-    """Full equations of motion, Euler + quaternions with the moment (1.2), spec §4: the
+    """Full equations of motion, Euler + quaternions with the moment (1.2), §4: the
     compiled code the integrator runs (:func:`tumble.kernels.rhs.rigid_body`).
 
     Parameters
@@ -135,7 +136,7 @@ def full_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
 
 
 def full_from_slow(p: Params, st: State) -> FloatArray:
-    """State vector of form (a) from (k, ρ, σ, ψ, ϑ, φ), spec §2 and §4.
+    """State vector of form (a) from (k, ρ, σ, ψ, ϑ, φ), §2 and §4.
 
     Returns
     -------
@@ -148,7 +149,7 @@ def full_from_slow(p: Params, st: State) -> FloatArray:
 
 
 def slow_from_full(p: Params, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
-    """(k, ϑ, ρ, σ, ψ, φ) from states of form (a), with atan2 as in spec §4.
+    """(k, ϑ, ρ, σ, ψ, φ) from states of form (a), with atan2 as in §4.
 
     Parameters
     ----------
@@ -180,7 +181,7 @@ _STATE_FIELDS = ("k", "rho", "sigma", "psi", "theta", "phi")
 
 
 def invariants(p: Params, Y: FloatArray) -> dict[str, FloatArray]:
-    """First integrals of the unperturbed motion (ε = 0), spec §5 and §13 item 1.
+    """First integrals of the unperturbed motion (ε = 0), §5 and §13 item 1.
 
     Returns
     -------
@@ -211,10 +212,10 @@ def _body_moment(p: Params, w: FloatArray) -> FloatArray:
 
 
 def osculating_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
-    """Standard form (1.3) for (k, ρ, σ, ψ, ϑ, φ), with erratum E1 applied.
+    """Standard form (1.3) for (k, ρ, σ, ψ, ϑ, φ), with correction E1 applied.
 
     The kinematics is :func:`tumble.averaging.spinner.standard_form`; this model supplies the
-    moment (1.2). Singular where sin ϑ = 0 or sin ρ = 0 (spec §11); use :func:`full_rhs` there.
+    moment (1.2). Singular where sin ϑ = 0 or sin ρ = 0 (§11); use :func:`full_rhs` there.
 
     Parameters
     ----------
@@ -259,7 +260,7 @@ def _osculating_columns(p: Params, t: FloatArray, Y: FloatArray) -> dict[str, Fl
 def averaged_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
     """Averaged equations (2.2) for (k, ϑ); ρ and σ are constant.
 
-    The a3 term of the ϑ-equation is evaluated as a3 sin ϑ / k, regular at ϑ = π/2 (spec §6).
+    The a3 term of the ϑ-equation is evaluated as a3 sin ϑ / k, regular at ϑ = π/2 (§6).
 
     Parameters
     ----------
@@ -519,14 +520,14 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
 
 
 # ---------------------------------------------------------------------------------------------
-# Closed forms, spec §8. Internally in slow time s = ε τ.
+# Closed forms, §8. Internally in slow time s = ε τ.
 #
 # Both components obey scalar Riccati equations. In a window where W keeps its sign, with
 # d = δ (W ≥ 0) or d = −δ (W < 0):  dW/ds = a3 − βW − dW².  V obeys dV/ds = −αV − γV².
 # Real roots: with r the root that stays bounded as d → 0 and λ = β + 2dr, u = W − r solves the
 # Bernoulli equation du/ds = −λu − du² (this is (2.4) for V, and (2.5)/(2.7) rewritten so that
 # neither d → 0 nor a double root loses digits). Complex roots: the tangent law (2.6)/(2.8), in
-# the division-free form of spec §8.5.
+# the division-free form of §8.5.
 
 
 def _bernoulli(u0: float, lam: float, d: float, s: FloatArray) -> FloatArray:
@@ -580,7 +581,7 @@ class _Riccati:
         if self._disc >= 0.0:
             r, lam = self._root_rate()
             return r + _bernoulli(W0 - r, lam, d, s)
-        # Complex roots: y = W + h obeys dy/dx = −(y² + μ²), x = d s (spec §8.5, tan branch).
+        # Complex roots: y = W + h obeys dy/dx = −(y² + μ²), x = d s (§8.5, tan branch).
         h = beta / (2.0 * d)
         mu = math.sqrt(-self._disc) / (2.0 * abs(d))
         x = d * s
@@ -604,7 +605,7 @@ class _Riccati:
         return x_pole / self.d
 
     def zero_crossing(self) -> float:
-        """Slow time at which W reaches 0 (inf if it does not), spec §8.4."""
+        """Slow time at which W reaches 0 (inf if it does not), §8.4."""
         a3, beta, d, W0 = self.a3, self.beta, self.d, self.W0
         if W0 == 0.0 or a3 == 0.0 or (a3 > 0) == (W0 > 0):
             return math.inf  # W = 0 is crossed only in the direction of a3
@@ -627,7 +628,7 @@ class _Riccati:
             h = beta / (2.0 * d)
             mu = math.sqrt(-self._disc) / (2.0 * abs(d))
             y0 = W0 + h
-            # (arctan(y0/μ) − arctan(h/μ))/μ without losing the branch (spec §8.4 table);
+            # (arctan(y0/μ) − arctan(h/μ))/μ without losing the branch (§8.4 table);
             # y0 − h is W0 itself, kept exact for a start near ϑ = π/2.
             s1 = math.atan2(mu * W0, mu * mu + y0 * h) / mu / d
         return s1 if (s1 >= 0.0 and s1 < self.blowup()) else math.inf
@@ -635,7 +636,7 @@ class _Riccati:
 
 @dataclass(frozen=True)
 class _AxialSolution:
-    """W(s) over both sign windows, switching branch at the crossing (spec §8.4)."""
+    """W(s) over both sign windows, switching branch at the crossing (§8.4)."""
 
     first: _Riccati | None  # None: W ≡ 0
     s_cross: float
@@ -675,7 +676,7 @@ def _check_no_blowup(s: FloatArray, s_blow: float, what: str, p: Params) -> None
     if s.size and np.max(s) >= s_blow:
         raise IntegrationError(
             f"the closed-form {what} diverges at τ = {s_blow / p.eps:.6g} (negative damping "
-            f"coefficients, spec §11); request times before it"
+            f"coefficients, §11); request times before it"
         )
 
 
@@ -702,11 +703,11 @@ def equatorial_momentum(tau: ArrayLike, V0: float, p: Params) -> FloatArray:
 
 
 def axial_momentum(tau: ArrayLike, W0: float, p: Params) -> FloatArray:
-    """W(τ) = k cos ϑ, closed forms (2.5)–(2.8) with the branch switch of spec §8.4.
+    """W(τ) = k cos ϑ, closed forms (2.5)–(2.8) with the branch switch of §8.4.
 
     Each hemisphere's formula is used only while W keeps its sign; at the crossing time τ1 the
     other hemisphere's formula continues from W = 0. Written in the well-conditioned forms of
-    spec §8.5 (algebraically identical to (2.5)–(2.8), the double roots and δ = 0).
+    §8.5 (algebraically identical to (2.5)–(2.8), the double roots and δ = 0).
 
     Parameters
     ----------
@@ -729,7 +730,7 @@ def axial_momentum(tau: ArrayLike, W0: float, p: Params) -> FloatArray:
 
 
 def crossing_time(W0: float, p: Params) -> float:
-    """Time τ1 at which the averaged W = k cos ϑ reaches 0 (ϑ = π/2), spec §8.4; inf if never.
+    """Time τ1 at which the averaged W = k cos ϑ reaches 0 (ϑ = π/2), §8.4; inf if never.
 
     Parameters
     ----------
@@ -745,7 +746,7 @@ def crossing_time(W0: float, p: Params) -> float:
 def closed_form(p: Params, st: State, tau: ArrayLike) -> dict[str, FloatArray]:
     """Averaged motion in closed form: k, ϑ from (2.4)–(2.8) through W and V, ρ, σ constant.
 
-    ϑ = atan2(V, W) (spec §8.6: no trouble at ϑ = π/2, no α/β division).
+    ϑ = atan2(V, W) (§8.6: no trouble at ϑ = π/2, no α/β division).
 
     Parameters
     ----------
@@ -773,7 +774,7 @@ def closed_form(p: Params, st: State, tau: ArrayLike) -> dict[str, FloatArray]:
     }
 
 
-# The paper's printed formulas, one per case, each valid only in its window (spec §8).
+# The paper's printed formulas, one per case, each valid only in its window (§8).
 
 
 def _coeffs(p: Params) -> tuple[float, float, float, float]:
@@ -783,7 +784,7 @@ def _coeffs(p: Params) -> tuple[float, float, float, float]:
 
 
 def axial_upper_exp(tau: ArrayLike, W0: float, p: Params) -> FloatArray:
-    """(2.5) with erratum E3: k cos ϑ for W ≥ 0 when a3/δ > −h², h = β/(2δ).
+    """(2.5) with correction E3: k cos ϑ for W ≥ 0 when a3/δ > −h², h = β/(2δ).
 
     Parameters
     ----------
@@ -857,7 +858,7 @@ def axial_lower_double_root(tau: ArrayLike, W0: float, p: Params) -> FloatArray:
 
 
 def tan_theta_a3_zero_upper(tau: ArrayLike, k0: float, theta0: float, p: Params) -> FloatArray:
-    """(2.9): tan ϑ for a3 = 0, α, β > 0, 0 ≤ ϑ < π/2 (erratum E7)."""
+    """(2.9): tan ϑ for a3 = 0, α, β > 0, 0 ≤ ϑ < π/2 (correction E7)."""
     t = np.asarray(tau, dtype=float)
     al, be, ga, de, e = p.alpha, p.beta, p.gamma, p.delta, p.eps
     num = be + de * k0 * math.cos(theta0) * (-np.expm1(-e * be * t))
@@ -876,7 +877,7 @@ def tan_theta_a3_zero_lower(tau: ArrayLike, k0: float, theta0: float, p: Params)
 
 
 def tan_theta_quadratic(tau: ArrayLike, k0: float, theta0: float, p: Params) -> FloatArray:
-    """Quadratic-only medium (a3 = α = β = 0), spec §8.7, both hemispheres (erratum E8).
+    """Quadratic-only medium (a3 = α = β = 0), §8.7, both hemispheres (correction E8).
 
     tan ϑ = tan ϑ0 (1 + εδ k0 |cos ϑ0| τ)/(1 + εγ k0 sin ϑ0 τ).
     """
@@ -887,7 +888,7 @@ def tan_theta_quadratic(tau: ArrayLike, k0: float, theta0: float, p: Params) -> 
 
 
 # ---------------------------------------------------------------------------------------------
-# Asymptotic conclusions, spec §9.
+# Asymptotic conclusions, §9.
 
 
 def _scalar_limit(x0: float, f: Callable[[float], float], roots: list[float]) -> float:
@@ -929,7 +930,7 @@ def _W_limit(W0: float, a3: float, beta: float, delta: float) -> float:
 
 
 def predicted_limits(p: Params, st: State) -> dict[str, Any]:
-    """Limits of ϑ and k of the averaged system as τ → ∞, spec §9 (the paper's conclusions).
+    """Limits of ϑ and k of the averaged system as τ → ∞, §9 (the paper's conclusions).
 
     Handles every sign of a3, the a3 = 0 split by β ≷ α, β = α, the quadratic-only medium,
     degenerate and negative coefficients (by the phase line of each scalar equation of (2.3)).
@@ -945,7 +946,7 @@ def predicted_limits(p: Params, st: State) -> dict[str, Any]:
     -------
     dict
         ``theta`` [rad] (None where undefined), ``k``, ``W``, ``V`` [1] (may be ±inf), and
-        ``statement``: which conclusion of spec §9 applies.
+        ``statement``: which conclusion of §9 applies.
     """
     a3, al, be, ga, de = float(p.a[2]), p.alpha, p.beta, p.gamma, p.delta
     W0, V0 = st.W, st.V
@@ -991,7 +992,7 @@ def predicted_limits(p: Params, st: State) -> dict[str, Any]:
             statement = "a3 = 0, α > 0 = β: ϑ → 0 or π by hemisphere"
         else:
             theta = math.atan2(de, math.copysign(ga, W0))
-            statement = "quadratic-only medium: tan ϑ → ±δ/γ (spec §8.7, erratum E8)"
+            statement = "quadratic-only medium: tan ϑ → ±δ/γ (§8.7, correction E8)"
     return {
         "theta": theta,
         "k": math.hypot(W_inf, V_inf),
@@ -1002,11 +1003,11 @@ def predicted_limits(p: Params, st: State) -> dict[str, Any]:
 
 
 # ---------------------------------------------------------------------------------------------
-# Where averaging fails, spec §10 and §11.
+# Where averaging fails, §10 and §11.
 
 
 def moment_depends_on_phi(p: Params) -> bool:
-    """True if the k, ϑ equations of the full model depend on φ (spec §10.1 special case).
+    """True if the k, ϑ equations of the full model depend on φ (§10.1 special case).
 
     They do not (and then (2.2) is exact for k, ϑ, even across ϑ = π/2) when a1 = a2 = 0,
     b11 = b22, b12 = −b21, b13 = b23 = b31 = b32 = 0, and s has no entry but s33.
@@ -1025,7 +1026,7 @@ def moment_depends_on_phi(p: Params) -> bool:
 
 
 def _slow_rate_per_k(p: Params, k: FloatArray) -> FloatArray:
-    """Slow rate per unit k, ε(|a|/k² + c|b|/k + c²|s|), spec §6.
+    """Slow rate per unit k, ε(|a|/k² + c|b|/k + c²|s|), §6.
 
     It bounds |dϑ/dτ|/k and |dk/dτ|/k² since |m| ≤ |a| + |b||w| + |s||w|² with
     |w| ≤ c k, c = 1/min(1, 1+κ); norms are Euclidean (matrix 2-norms).
@@ -1039,7 +1040,7 @@ def _slow_rate_per_k(p: Params, k: FloatArray) -> FloatArray:
 
 
 def validity(p: Params, st: State, slow: SlowPath, tau_end: float) -> list[ValidityIssue]:
-    """Regions of spec §10–§11 that an averaged trajectory enters, with the first τ of each.
+    """Regions of §10–§11 that an averaged trajectory enters, with the first τ of each.
 
     Parameters
     ----------
@@ -1096,7 +1097,7 @@ def _crossing_issue(
             tau1,
             f"ϑ0 is 0 or π and W = k cos ϑ changes sign at τ = {tau1:.6g}: the averaged "
             "solution passes through k = 0 and ϑ jumps between 0 and π, outside the "
-            "validity of averaging (spec/medvedev.md §11)",
+            "validity of averaging (docs/theory/resisting-medium.md §11)",
         )
     if crosses and phi_dependent:
         return ValidityIssue(
@@ -1104,7 +1105,7 @@ def _crossing_issue(
             tau1,
             f"the averaged trajectory crosses ϑ = π/2 at τ = {tau1:.6g}: φ stops rotating "
             "there and, with a φ-dependent moment, the averaged model is only O(√ε) "
-            "accurate after the passage (spec/medvedev.md §10.2)",
+            "accurate after the passage (docs/theory/resisting-medium.md §10.2)",
             label="ϑ = π/2",
         )
     return None
@@ -1122,7 +1123,7 @@ def _resonance_issue(p: Params, cols: _KTheta, grid: FloatArray) -> ValidityIssu
         f"at τ ≈ {tau_r:.6g} the precession rate k equals {n}× the spin rate "
         f"|Ω_φ| (|cos ϑ| = (1+κ)/({n}|κ|)): the resonant terms, which first-order "
         "averaging drops, can shift ρ and σ; k and ϑ are unaffected "
-        "(spec/medvedev.md §10.5)",
+        "(docs/theory/resisting-medium.md §10.5)",
         label=f"resonance ψ̇ = {n}·|φ̇|",
     )
 
@@ -1143,7 +1144,7 @@ def _phi_issue(p: Params, cols: _KTheta, grid: FloatArray) -> ValidityIssue | No
         t_phi,
         f"from τ = {t_phi:.6g} the spin φ is no longer fast against the slow drift "
         f"(ε(|a|/k² + |b|/k + |s|) > {VALIDITY_RATIO:g}·|κ cos ϑ|/(1+κ)): averaging "
-        "loses accuracy there (spec/medvedev.md §6, §10.3)",
+        "loses accuracy there (docs/theory/resisting-medium.md §6, §10.3)",
     )
 
 
@@ -1163,12 +1164,12 @@ def _spin_issue(p: Params, cols: _KTheta, grid: FloatArray) -> ValidityIssue | N
         t_spin,
         f"from τ = {t_spin:.6g} (k = {k_at:.3g}) the body no longer spins fast against "
         f"the moment (ε(|a|/k² + |b|/k + |s|) > {VALIDITY_RATIO:g}): the averaged model "
-        "is invalid as k → 0 (spec/medvedev.md §10.5)",
+        "is invalid as k → 0 (docs/theory/resisting-medium.md §10.5)",
     )
 
 
 RESONANCE_ORDER = 4
-"""Largest n of the resonances k = n|Ω_φ| reported (spec §10.5): for a smooth moment the
+"""Largest n of the resonances k = n|Ω_φ| reported (§10.5): for a smooth moment the
 resonant harmonics fall off with n, and a pass through one of order n costs O(ε^{1/2})
 times that harmonic."""
 

@@ -41,7 +41,7 @@ REFUTED = "refuted"
 VERDICTS = (CONFIRMED, QUALIFIED, REFUTED)
 
 PAPERS = {
-    "resisting_medium": "A. V. Medvedev (1987), seed 000; spec/medvedev.md",
+    "resisting_medium": "A. V. Medvedev (1987); docs/theory/resisting-medium.md",
     "rotating_field": "Yu. G. Martynenko (1979), seed 002; spec/martynenko.md",
     "nonlinear_moment": "V. M. Serov (1991), seed 003; spec/serov.md",
 }

@@ -309,5 +309,6 @@ def max_abs(x: Any) -> float:
 
 
 def wrap(x: Any) -> FloatArray:
-    """Angle difference wrapped to (−π, π] [rad] (angles compared modulo 2π, medvedev.md §14)."""
+    """Angle difference wrapped to (−π, π] [rad]: angles are compared modulo 2π
+    (docs/theory/resisting-medium.md §14)."""
     return np.asarray(np.angle(np.exp(1j * np.asarray(x, dtype=float))), dtype=float)

@@ -2,15 +2,16 @@
 
 One function per claim, :func:`rm_1` … :func:`rm_16`, in the order of the paper. Each runs its
 check with tumble's public API and returns a :class:`~tumble.analysis.claims.base.Claim`: the
-paper's statement with its equation numbers, the spec sections that qualify it, one measured
-figure against a threshold justified in a comment, the verdict computed from it, and the
-figure as a :class:`~tumble.analysis.claims.base.FigureSpec`. Time is the paper's τ, angles
-are radians. Parameters are the spec's §13 test cases, tumble's tests or the spec's own
-counterexamples; none is tuned toward an expected number.
+paper's statement with its equation numbers, the sections of the theory page that qualify
+it, one measured figure against a threshold justified in a comment, the verdict computed
+from it, and the figure as a :class:`~tumble.analysis.claims.base.FigureSpec`. Time is the
+paper's τ, angles are radians. Parameters are the test cases of §13, tumble's tests or the
+theory page's own counterexamples; none is tuned toward an expected number.
 
 References
 ----------
-A. V. Medvedev (1987), seed 000; spec/medvedev.md supersedes the seed where they differ.
+A. V. Medvedev (1987). Sections (§) and corrections (E1–E10) are those of
+docs/theory/resisting-medium.md.
 """
 
 from __future__ import annotations
@@ -62,7 +63,7 @@ __all__ = [
 
 RM = "resisting_medium"
 RM_KAPPA = 0.5
-"""κ of the closed-form cases (an oblate body, as in the spec's §13 checks and tumble's tests)."""
+"""κ of the closed-form cases (an oblate body, as in §13 checks and tumble's tests)."""
 
 RM_GENERAL = rm.Params(
     eps=0.01,
@@ -99,7 +100,7 @@ def _rm_medium(
     a12: tuple[float, float] = (0.0, 0.0),
 ) -> rm.Params:
     """Params with the given α, β, γ, δ of (2.2): diagonal b, s inverting the definitions of
-    spec §6 (α = (b11+b22)/2, β = b33/(1+κ), γ = 4(s11+s22)/(3π), δ = s33/(1+κ)²)."""
+    §6 (α = (b11+b22)/2, β = b33/(1+κ), γ = 4(s11+s22)/(3π), δ = s33/(1+κ)²)."""
     k1 = 1.0 + RM_KAPPA
     b = np.diag([alpha, alpha, beta * k1])
     s = np.diag([gamma * 3.0 * math.pi / 8.0, gamma * 3.0 * math.pi / 8.0, delta * k1 * k1])
@@ -139,10 +140,10 @@ def _rm_random_states(n: int, seed: int) -> list[tuple[rm.Params, float, float, 
     "equations of motion (1.1)/(1.3)",
     "(1.1): K dρ/dt = M1, K sinρ dσ/dt = M2, dK/dt = M3 and the ψ, ϑ, φ equations; (1.3) "
     "their normalized standard form with small parameter ε.",
-    "medvedev.md §2, §3, §4; errata E1, E2; §13.2",
+    "docs/theory/resisting-medium.md §2, §3, §4; corrections E1, E2; §13.2",
 )
 def rm_1() -> Measurement:
-    """Equations of motion (1.1)/(1.3) against Euler + quaternions (spec §3, §4, E1, E2).
+    """Equations of motion (1.1)/(1.3) against Euler + quaternions (§3, §4, E1, E2).
 
     Returns
     -------
@@ -186,8 +187,8 @@ def rm_1() -> Measurement:
         conv,
         "1 (k), rad (angles)",
         "max |Δ| of k, ϑ, ρ, σ between Euler+quaternions and the standard form (1.3), τ ≤ 2/ε",
-        "E1: the first equation is K dρ/dt = M1 (seed: K dφ/dt); E2: ρ, σ are the polar angle "
-        "and azimuth of K about the inertial X3 (the seed's labels were lost in OCR)",
+        "E1: the first equation is K dρ/dt = M1 (printed: K dφ/dt); E2: ρ, σ are the polar angle "
+        "and azimuth of K about the inertial X3 (the paper's labels were lost in OCR)",
         max_diff_psi_phi_mod_2pi=fast,
         eps=p.eps,
     )
@@ -200,10 +201,10 @@ def rm_1() -> Measurement:
     RM,
     "unperturbed regular precession (2.1)",
     "(2.1): for ε = 0, k, ρ, σ, ϑ are constant, ψ = kτ + ψ0, φ = −kκτ cosϑ/(1+κ) + φ0.",
-    "medvedev.md §5; §13.1",
+    "docs/theory/resisting-medium.md §5; §13.1",
 )
 def rm_2() -> Measurement:
-    """Unperturbed motion (2.1): regular precession (spec §5, §13.1).
+    """Unperturbed motion (2.1): regular precession (§5, §13.1).
 
     Returns
     -------
@@ -259,7 +260,7 @@ def rm_2() -> Measurement:
     "averaged system (2.2)",
     "(2.2): averaging (1.3) over ψ and φ gives dρ = dσ = 0 and the k, ϑ equations with "
     "α = (b11+b22)/2, β = b33/(1+κ), γ = 4/3 π⁻¹ (s11+s22), δ = s33/(1+κ)².",
-    "medvedev.md §6; erratum E6; §13.3",
+    "docs/theory/resisting-medium.md §6; correction E6; §13.3",
 )
 def rm_3() -> Measurement:
     """Averaged system (2.2) against direct averaging of the full right-hand side (§6, E6).
@@ -312,7 +313,7 @@ def rm_3() -> Measurement:
         "with full B, S and a1, a2 ≠ 0 (including ⟨dρ/dτ⟩, ⟨dσ/dτ⟩ = 0)",
         1e-9,
         "value ≤ 1e-9",
-        "E6: γ = 4(s11+s22)/(3π) (the seed's '4/3 π⁻¹' is ambiguous); the off-diagonal entries "
+        "E6: γ = 4(s11+s22)/(3π) (the paper's '4/3 π⁻¹' is ambiguous); the off-diagonal entries "
         "and a1, a2 drop out only while φ rotates (κ ≠ 0, ϑ ≠ π/2, §10)",
     )
     return Measurement(holds, True, m, panels)
@@ -323,10 +324,10 @@ def rm_3() -> Measurement:
     RM,
     "decoupled W, V form (2.3)",
     "(2.3): dW/dτ = ε(a3 − βW ∓ δW²), dV/dτ = −ε(αV + γV²), − for 0 ≤ ϑ ≤ π/2, + for π/2 < ϑ ≤ π.",
-    "medvedev.md §7; §13.4",
+    "docs/theory/resisting-medium.md §7; §13.4",
 )
 def rm_4() -> Measurement:
-    """(2.2) in W = k cosϑ, V = k sinϑ is the decoupled (2.3) (spec §7, §13.4).
+    """(2.2) in W = k cosϑ, V = k sinϑ is the decoupled (2.3) (§7, §13.4).
 
     Returns
     -------
@@ -372,7 +373,7 @@ def rm_4() -> Measurement:
     RM,
     "equatorial component (2.4)",
     "(2.4): k sinϑ = αV0 e^{−εατ}/[α + γV0(1 − e^{−εατ})], in both hemispheres.",
-    "medvedev.md §8.1; §13.5",
+    "docs/theory/resisting-medium.md §8.1; §13.5",
 )
 def rm_5() -> Measurement:
     """Closed form (2.4) of the equatorial component against integration of (2.2) (§8.1).
@@ -425,9 +426,9 @@ def rm_5() -> Measurement:
     return Measurement(holds, False, m, panels)
 
 
-def _seed_printed_2_5_at_zero(W0: float, p: rm.Params) -> float:
-    """The seed's (2.5) with its printed exponent −1/(2δ) on the denominator, at τ = 0
-    (erratum E3 shows it does not even return W0)."""
+def _printed_2_5_at_zero(W0: float, p: rm.Params) -> float:
+    """The paper's (2.5) with its printed exponent −1/(2δ) on the denominator, at τ = 0
+    (correction E3 shows it does not even return W0)."""
     a3, be, de = float(p.a[2]), p.beta, p.delta
     nu1 = math.sqrt((be / (2 * de)) ** 2 + a3 / de)
     c1 = (2 * de * W0 + be - 2 * de * nu1) / (2 * de * W0 + be + 2 * de * nu1)
@@ -496,10 +497,10 @@ RM_AXIAL_CASES = {
     "axial component (2.5)–(2.8)",
     "(2.5)/(2.6) give k cosϑ in the upper hemisphere for a3/δ ≷ −(β/2δ)², (2.7)/(2.8) in the "
     "lower one for a3/δ ≶ (β/2δ)².",
-    "medvedev.md §8.2–§8.5; erratum E3; §13.5",
+    "docs/theory/resisting-medium.md §8.2–§8.5; correction E3; §13.5",
 )
 def rm_6() -> Measurement:
-    """Closed forms (2.5)–(2.8) with the branch switch at τ1 (spec §8.2–§8.5, E3).
+    """Closed forms (2.5)–(2.8) with the branch switch at τ1 (§8.2–§8.5, E3).
 
     Returns
     -------
@@ -553,7 +554,7 @@ def rm_6() -> Measurement:
         ),
     )
     p0, st0 = RM_AXIAL_CASES["(2.5) a3 > 0, upper"][:2]
-    e3 = abs(_seed_printed_2_5_at_zero(st0.W, p0) - st0.W)
+    e3 = abs(_printed_2_5_at_zero(st0.W, p0) - st0.W)
     worst_printed = max(printed.values())
     # The printed formulas equal the well-conditioned closed form inside their windows: two
     # closed forms, no integration tolerance enters (1e-8: far below an O(1) wrong exponent).
@@ -563,12 +564,12 @@ def rm_6() -> Measurement:
         "1 (k), rad (ϑ)",
         "max |closed form − (2.2) integrated| of k and ϑ over 10 branch cases (ετ ≤ 10, "
         "through the ϑ = π/2 switch)",
-        "E3: the denominator of (2.5) is [1 − c1 e^{−2εδν1τ}]⁻¹/(2δ) (seed: exponent −1/2δ); "
+        "E3: the denominator of (2.5) is [1 − c1 e^{−2εδν1τ}]⁻¹/(2δ) (printed: exponent −1/2δ); "
         "each formula holds only while W keeps its sign, the branch switches at τ1 (§8.4)",
         also="; printed (2.5)–(2.8) = closed form to 1e-8 before τ1",
         per_case=per,
         printed_formula_vs_closed_form=printed,
-        seed_printed_2_5_W0_error=e3,
+        printed_2_5_W0_error=e3,
     )
     return Measurement(holds, True, m, panels)
 
@@ -579,10 +580,10 @@ def rm_6() -> Measurement:
     "a3 = 0: tan ϑ (2.9), (2.10)",
     "(2.9), (2.10): for a3 = 0 the nutation angle follows tanϑ = (α/β) tanϑ0 … "
     "e^{ε(β−α)τ} (upper) and … e^{−εατ} (lower), obtained from (2.4), (2.5).",
-    "medvedev.md §8.6; erratum E7; §13.5",
+    "docs/theory/resisting-medium.md §8.6; correction E7; §13.5",
 )
 def rm_7() -> Measurement:
-    """tan ϑ for a3 = 0, (2.9) and (2.10) (spec §8.6, E7).
+    """tan ϑ for a3 = 0, (2.9) and (2.10) (§8.6, E7).
 
     Returns
     -------
@@ -635,7 +636,7 @@ def rm_7() -> Measurement:
         conv,
         "rad",
         "max |ϑ from (2.9)/(2.10) − ϑ of (2.2) integrated| over ετ ≤ 10",
-        "E7: (2.9) is (2.4)/(2.5) and (2.10) is (2.4)/(2.7) at a3 = 0 (the seed's 'inequality' "
+        "E7: (2.9) is (2.4)/(2.5) and (2.10) is (2.4)/(2.7) at a3 = 0 (the paper's 'inequality' "
         "is the condition of (2.7)); they are 0/0 for α = 0 or β = 0 (use W, V)",
         per_case=per,
     )
@@ -648,7 +649,7 @@ def rm_7() -> Measurement:
     "a3 ≷ 0: ϑ → 0 or π, monotonically",
     "§2 conclusion: if a3 > 0 the angle ϑ decreases and tends to zero; if a3 < 0 it "
     "increases and tends to π (from either hemisphere).",
-    "medvedev.md §9 item 1 and table; erratum E9",
+    "docs/theory/resisting-medium.md §9 item 1 and table; correction E9",
 )
 def rm_8() -> Measurement:
     """Conclusion 1: a3 > 0 ⇒ ϑ decreases to 0; a3 < 0 ⇒ ϑ increases to π (§9 item 1, E9).
@@ -656,7 +657,7 @@ def rm_8() -> Measurement:
     Returns
     -------
     Claim
-        Measured: the rise max ϑ(τ) − ϑ0 [rad] of the spec's counterexample (qualification if >
+        Measured: the rise max ϑ(τ) − ϑ0 [rad] of the counterexample of §9 (qualification if >
         1e-3); the claim holds if both limits are reached to 1e-6 rad.
     """
     limit_cases = {
@@ -678,7 +679,7 @@ def rm_8() -> Measurement:
             "error": abs(th_end - target),
         }
     limits_ok = all(e["error"] <= 1e-6 for e in ends.values())
-    # The spec's counterexample to monotonicity: β ≫ α and W0 above W+ = a3/β (δ = 0). The
+    # The counterexample of §9 to monotonicity: β ≫ α and W0 above W+ = a3/β (δ = 0). The
     # moment is φ-independent (a1 = a2 = 0, b11 = b22, S = 0), so the full model's k, ϑ follow
     # (2.2) exactly (§10.1) and show the same rise.
     p, st = _rm_medium(alpha=0.05, beta=1.0, a3=0.2), _rm_state(1.0, 0.5)
@@ -724,10 +725,10 @@ def rm_8() -> Measurement:
     "worked example: lower hemisphere, a3/δ > h²",
     "§2 example (π/2 < ϑ0 < π, a3/δ > (β/2δ)²): from (2.8), k cosϑ → (β + δμ2π)/(2δ) > 0, "
     "then by (2.5) k cosϑ → ½(2δν1 − β)/δ and ϑ → 0.",
-    "medvedev.md §9 item 2, §8.4; errata E4, E5",
+    "docs/theory/resisting-medium.md §9 item 2, §8.4; corrections E4, E5",
 )
 def rm_9() -> Measurement:
-    """The worked example π/2 < ϑ0 < π, a3/δ > h² (spec §9 item 2, §8.4, E4, E5).
+    """The worked example π/2 < ϑ0 < π, a3/δ > h² (§9 item 2, §8.4, E4, E5).
 
     Returns
     -------
@@ -767,7 +768,7 @@ def rm_9() -> Measurement:
             ),
             xlabel="ετ",
             ylabel="W",
-            hlines=((W_plus, "W+ (E5)"), (paper_limit, "seed's limit (β+δμ2π)/(2δ) (E4)")),
+            hlines=((W_plus, "W+ (E5)"), (paper_limit, "printed limit (β+δμ2π)/(2δ) (E4)")),
             vlines=((p.eps * tau1, ""),),
         ),
     )
@@ -787,7 +788,7 @@ def rm_9() -> Measurement:
         tau1_integrated=tau1_int,
         theta_end=theta_end,
         W_plus=W_plus,
-        seed_limit_of_2_8=paper_limit,
+        printed_limit_of_2_8=paper_limit,
         tau_pole_of_2_8=tau_pole,
         W_2_8_just_before_pole=W28_near_pole,
     )
@@ -800,7 +801,7 @@ def rm_9() -> Measurement:
     "a3 = 0: ϑ → π/2 (β > α) or 0/π (β < α)",
     "From (2.9), (2.10): for β > α the angle ϑ tends to π/2; for β < α to 0 if 0 ≤ ϑ0 < "
     "π/2 or to π if π/2 < ϑ0 ≤ π.",
-    "medvedev.md §9 item 3 and table",
+    "docs/theory/resisting-medium.md §9 item 3 and table",
 )
 def rm_10() -> Measurement:
     """a3 = 0: β > α ⇒ ϑ → π/2, β < α ⇒ ϑ → 0 or π by hemisphere (§9 item 3).
@@ -878,7 +879,7 @@ def rm_10() -> Measurement:
     RM,
     "quadratic-only medium: tan ϑ law",
     "§2, a3 = α = β = 0: tanϑ = tanϑ0 (1 + εδk0τ cosϑ0)(1 + εγk0τ sinϑ0)⁻¹.",
-    "medvedev.md §8.7; §13.5",
+    "docs/theory/resisting-medium.md §8.7; §13.5",
 )
 def rm_11() -> Measurement:
     """Quadratic-only medium: the tan ϑ law of §8.7 in both hemispheres.
@@ -924,7 +925,7 @@ def rm_11() -> Measurement:
         conv,
         "rad",
         "max |ϑ of the §8.7 law − ϑ of (2.2) integrated| over ετ ≤ 20, ϑ0 = 0.5 and 2.5",
-        "the seed gives the upper hemisphere only; in general |cos ϑ0| appears, and the "
+        "the paper gives the upper hemisphere only; in general |cos ϑ0| appears, and the "
         "lower-hemisphere solution is ϑ = π + arctan(…)",
         per_case=per,
     )
@@ -937,7 +938,7 @@ def rm_11() -> Measurement:
     "quadratic-only medium: a unique new position",
     "§2, end: tanϑ → δ/γ, i.e. the symmetry axis tends to a unique new position relative "
     "to K, other than 0, π/2 and π, if δ, γ ≠ 0.",
-    "medvedev.md §9 item 4, §8.7; erratum E8",
+    "docs/theory/resisting-medium.md §9 item 4, §8.7; correction E8",
 )
 def rm_12() -> Measurement:
     """Quadratic-only medium: 'a unique new position' tan ϑ = δ/γ (E8).
@@ -969,7 +970,7 @@ def rm_12() -> Measurement:
             title="quadratic-only medium, ε = 0.05",
             xscale="log",
             hlines=(
-                (target, "arctan(δ/γ) (the seed's unique position)"),
+                (target, "arctan(δ/γ) (the paper's unique position)"),
                 (math.pi - target, "π − arctan(δ/γ) (E8)"),
             ),
         ),
@@ -1015,7 +1016,7 @@ def _rm_accuracy_study() -> dict[str, Any]:
     "direction of K fixed (ρ, σ constant)",
     "(2.2): k dρ/dτ = 0, k sinρ dσ/dτ = 0 — the angular momentum keeps its direction in "
     "inertial space.",
-    "medvedev.md §6, §9 item 5, §10.1",
+    "docs/theory/resisting-medium.md §6, §9 item 5, §10.1",
 )
 def rm_13() -> Measurement:
     """ρ, σ constant: the direction of K is fixed to first order (§9 item 5).
@@ -1082,10 +1083,10 @@ def rm_13() -> Measurement:
     "averaged model is first-order accurate",
     "§2: the averaged system (2.2) describes the evolution of k, ϑ to first order in ε on "
     "τ ~ 1/ε (Volosov–Morgunov averaging).",
-    "medvedev.md §10.1, §13.6",
+    "docs/theory/resisting-medium.md §10.1, §13.6",
 )
 def rm_14() -> Measurement:
-    """Averaged-vs-full accuracy O(ε) away from ϑ = π/2 (spec §10.1, §13.6).
+    """Averaged-vs-full accuracy O(ε) away from ϑ = π/2 (§10.1, §13.6).
 
     Returns
     -------
@@ -1134,7 +1135,7 @@ def rm_14() -> Measurement:
     "φ fast everywhere: averaging valid through ϑ = π/2",
     "§2: k, ρ, σ, ϑ are slow and ψ, φ fast; the averaged solution is used through ϑ = π/2 "
     "(worked example, branch switch).",
-    "medvedev.md §10.2, §11; erratum E10; §13.7",
+    "docs/theory/resisting-medium.md §10.2, §11; correction E10; §13.7",
 )
 def rm_15() -> Measurement:
     """φ is a fast variable everywhere (E10): through ϑ = π/2 averaging is only O(√ε) (§10.2).
@@ -1205,7 +1206,7 @@ def rm_15() -> Measurement:
     RM,
     "full model: ϑ → 0 is a steady O(ε) tilt",
     "§2: for a3 > 0 the symmetry axis tends to the angular momentum (ϑ → 0).",
-    "medvedev.md §9 item 1, §10.4; §13.8",
+    "docs/theory/resisting-medium.md §9 item 1, §10.4; §13.8",
 )
 def rm_16() -> Measurement:
     """The final state of the full model: ϑ → O(ε), a steady tilt (§10.4).
@@ -1239,7 +1240,7 @@ def rm_16() -> Measurement:
     rel = abs(theta_end / tilt - 1.0)
     # ϑ → 0 in the qualified sense: the final ϑ is O(ε) (≤ 3ε). The qualification is measured:
     # the axis stays tilted (ϑ_end far above the integration error, 1e-6 rad). Whether the tilt
-    # is the §10.4 value (first order: within 5 % = O(ε) relative at ε = 0.05) checks the spec.
+    # is the §10.4 value (first order: within 5 % = O(ε) relative at ε = 0.05) checks §10.4.
     holds = theta_end <= 3 * p.eps
     qualified = theta_end > 1e-6
     m = measured(

@@ -35,7 +35,7 @@ __all__ = [
 
 @dataclass(frozen=True, eq=False)
 class Params:
-    """Normalized parameters of (1.3), spec/medvedev.md §4.
+    """Normalized parameters of (1.3), docs/theory/resisting-medium.md §4.
 
     Parameters
     ----------
@@ -66,7 +66,7 @@ class Params:
         object.__setattr__(self, "b", frozen_array("parameters.b", self.b, (3, 3)))
         object.__setattr__(self, "s", frozen_array("parameters.s", self.s, (3, 3)))
 
-    # Combinations of (2.2), spec §6.
+    # Combinations of (2.2), §6.
     @property
     def alpha(self) -> float:
         """α = (b11 + b22)/2 of (2.2) [1]."""
@@ -79,7 +79,7 @@ class Params:
 
     @property
     def gamma(self) -> float:
-        """γ = 4 (s11 + s22)/(3π) of (2.2), erratum E6 [1]."""
+        """γ = 4 (s11 + s22)/(3π) of (2.2), correction E6 [1]."""
         return 4.0 * float(self.s[0, 0] + self.s[1, 1]) / (3.0 * math.pi)
 
     @property
@@ -120,7 +120,7 @@ class Params:
 
 @dataclass(frozen=True)
 class State:
-    """Slow and fast variables (k, ρ, σ, ψ, ϑ, φ) of (1.3), spec §2 conventions [1, rad]."""
+    """Slow and fast variables (k, ρ, σ, ψ, ϑ, φ) of (1.3), §2 conventions [1, rad]."""
 
     k: float
     rho: float
@@ -153,18 +153,18 @@ def _check_method(p: Params, method: str) -> None:
     if method in ("averaged", "closed_form") and p.kappa == 0.0:
         raise ParameterError(
             "parameters.kappa = 0 is outside the allowed range for the averaged and closed_form "
-            "methods (κ ≠ 0: a spherical inertia ellipsoid has no fast spin φ, spec §10.5); "
+            "methods (κ ≠ 0: a spherical inertia ellipsoid has no fast spin φ, §10.5); "
             'use methods = ["full"]'
         )
 
 
 # ---------------------------------------------------------------------------------------------
-# Physical units, spec §4.
+# Physical units, §4.
 
 
 @dataclass(frozen=True, eq=False)
 class PhysicalParams:
-    """The body and the medium in SI units, converted with the scaling of spec §4.
+    """The body and the medium in SI units, converted with the scaling of §4.
 
     Parameters
     ----------
@@ -177,7 +177,7 @@ class PhysicalParams:
     S : array_like, shape (3, 3)
         Quadratic drag [N·m·s²].
     M0 : float, optional
-        Moment scale [N·m]; default max(|A_i|, |B_ij|/T0, |S_ij|/T0²) (spec §4).
+        Moment scale [N·m]; default max(|A_i|, |B_ij|/T0, |S_ij|/T0²) (§4).
     """
 
     I1: float
@@ -198,7 +198,7 @@ class PhysicalParams:
 
 @dataclass(frozen=True)
 class Scaling:
-    """Scales of spec §4: K = K0 k, t = T0 τ, M = M0 m, ε = M0 I1 / K0²."""
+    """Scales of §4: K = K0 k, t = T0 τ, M = M0 m, ε = M0 I1 / K0²."""
 
     K0: float  # [N·m·s]
     T0: float  # [s]
@@ -233,7 +233,7 @@ def normalize_physical(
     sigma: float | None = None,
     psi: float | None = None,
 ) -> tuple[Params, State, Scaling]:
-    """Normalized parameters and initial state of a physical scenario, spec §4.
+    """Normalized parameters and initial state of a physical scenario, §4.
 
     K0 = |K(0)| (so k0 = 1), T0 = I1/K0, M0 as in :class:`PhysicalParams`, ε = M0 I1/K0²,
     a = A/M0, b = B/(M0 T0), s = S/(M0 T0²), κ = I3/I1 − 1.

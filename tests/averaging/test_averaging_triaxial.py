@@ -1,5 +1,5 @@
-"""The averaging engine over the Euler–Poinsot motion (issue 5, the triaxial setting): against
-the closed-form averaged equations (3.5)–(3.7) of spec/martynenko.md §10 for the eddy-current
+"""The averaging engine over the Euler–Poinsot motion (the triaxial setting): against the
+closed-form averaged equations (3.5)–(3.7) of docs/theory/rotating-field.md §10 for the eddy-current
 torque, against exact averages for simple torques, and its refusals (§12)."""
 
 from __future__ import annotations
@@ -48,7 +48,7 @@ K2_MAX = 1.0 - 1e-4
 
 
 def rates_scale(p: rf.Params, y: np.ndarray) -> tuple[float, float]:
-    """Sizes of the two sides of the vector form, spec §10: ε(r L + 1) for dL_ξ/dτ (|D| ≤ 1)
+    """Sizes of the two sides of the vector form, §10: ε(r L + 1) for dL_ξ/dτ (|D| ≤ 1)
     and ε r² for dr/dτ (A ≤ 4): relative errors are taken against these."""
     L, r = float(np.linalg.norm(y[:3])), float(y[3])
     return p.eps * (r * L + 1.0), p.eps * r * r
@@ -87,7 +87,7 @@ def triaxial_states(draw: st.DrawFn) -> tuple[rf.Params, np.ndarray, str]:
 
 
 # ---------------------------------------------------------------------------------------------
-# The engine reproduces the closed-form averaged equations (3.5)–(3.7), spec §10
+# The engine reproduces the closed-form averaged equations (3.5)–(3.7), §10
 
 
 @settings(max_examples=300, deadline=None)
@@ -157,7 +157,7 @@ def test_eddy_current_average_symmetric_bodies(inertia, r_frac):
     st.floats(0.0, math.pi),
 )
 def test_energy_rate_is_corrected_3_6(rho, sigma, k2, regime, beta):
-    """dT/dτ of the engine is the corrected (3.6) (erratum 5: (1 − 3cos²ρ)), and the
+    """dT/dτ of the engine is the corrected (3.6) (correction C5: (1 − 3cos²ρ)), and the
     projections of dL_ξ/dτ are L′ and ρ′ of (3.5): the T-form of §10."""
     p = rf.Params((1.0, 1.6, 2.2), beta, 0.01)
     L = 1.7
@@ -347,12 +347,12 @@ def test_nearest_resonance_finds_co_rotation():
 
 
 # ---------------------------------------------------------------------------------------------
-# Cost, issue 5 item 5
+# Cost
 
 
 @pytest.mark.slow
 def test_benchmark_eddy_current_evaluation():
-    """One evaluation of the eddy-current average at default tolerance: ≤ 5 ms (issue 5)."""
+    """One evaluation of the eddy-current average at default tolerance: ≤ 5 ms (the target)."""
     p = rf.Params((1.0, 1.6, 2.2), 1.0, 0.01)
     times = []
     for regime in ("x3", "x1"):

@@ -1,5 +1,5 @@
 """Rotating-field model: the averaged transient (3.5)–(3.7) and its forms, against the full
-model, and the paper's conclusions as spec/martynenko.md §11–§12 qualifies them."""
+model, and the paper's conclusions as docs/theory/rotating-field.md §11–§12 qualifies them."""
 
 from __future__ import annotations
 
@@ -33,7 +33,7 @@ def averaged_vs_full(p, st0, tau_end, samples=601):
 
 
 # ---------------------------------------------------------------------------------------------
-# The forms of the averaged system agree with one another (spec §10)
+# The forms of the averaged system agree with one another (§10)
 
 
 @settings(max_examples=30, deadline=None)
@@ -44,7 +44,7 @@ def averaged_vs_full(p, st0, tau_end, samples=601):
     st.floats(0.0, math.pi),
 )
 def test_vector_form_equals_polar_t_form_and_k2_form(rho, k2, regime, beta):
-    """The vector form, (3.5) + corrected (3.6) and (3.5) + (3.7) are one system (spec §10)."""
+    """The vector form, (3.5) + corrected (3.6) and (3.5) + (3.7) are one system (§10)."""
     p = rf.Params(BODY, beta, 0.01)
     L, sigma = 1.7, 0.4
     T = energy_from_modulus(*p.sorted_inertia, L, k2, regime)
@@ -77,7 +77,7 @@ def test_vector_form_equals_polar_t_form_and_k2_form(rho, k2, regime, beta):
 
 
 def test_corrected_energy_equation_vanishes_at_the_stationary_rotation():
-    """Erratum 5: with (1 − 3cos²ρ), T′ = 0 at ρ = 0, k = 0, L = I3; the printed (1 − 3sin²ρ)
+    """Correction C5: with (1 − 3cos²ρ), T′ = 0 at ρ = 0, k = 0, L = I3; the printed (1 − 3sin²ρ)
     gives −¾ε(3cos²β − 1) ≠ 0."""
     for beta in (0.3, 0.9, math.pi / 2):
         p = rf.Params(BODY, beta, 0.01)
@@ -95,7 +95,7 @@ def test_corrected_energy_equation_vanishes_at_the_stationary_rotation():
 @pytest.mark.parametrize("regime", ["x3", "x1"])
 def test_modulus_rate_is_negative_in_x3_and_positive_in_x1(regime):
     """(3.7): F < 0 on (0, 1) and A ≥ 2, so k² decreases in regime x3; in regime x1 the
-    prefactor changes sign and k̃² increases toward the separatrix (spec §10)."""
+    prefactor changes sign and k̃² increases toward the separatrix (§10)."""
     p = rf.Params(BODY, 1.0, 0.01)
     for k2 in np.linspace(0.001, 0.999, 50):
         for rho in (0.0, 1.0, math.pi / 2, 3.0):
@@ -108,7 +108,7 @@ def test_modulus_rate_is_negative_in_x3_and_positive_in_x1(regime):
 
 
 def test_averaging_error_is_first_order():
-    """max |Δ| of L, ρ, T, k² over τ ≤ 3/ε shrinks as O(ε): fitted slope 1 ± 0.25 (issue 3)."""
+    """max |Δ| of L, ρ, T, k² over τ ≤ 3/ε shrinks as O(ε): fitted slope 1 ± 0.25."""
     eps = np.array([0.02, 0.01, 0.005])
     errors = {k: [] for k in ("L", "rho", "T", "k2")}
     for e in eps:
@@ -126,7 +126,7 @@ def test_averaging_error_is_first_order():
 
 def test_separatrix_crossing_stays_first_order():
     """From regime x1 k̃² rises to 1, the run crosses the separatrix into x3 and k² then falls
-    (spec §10, §11.4); full and averaged agree to O(ε) through it (§12)."""
+    (§10, §11.4); full and averaged agree to O(ε) through it (§12)."""
     eps = 0.01
     p = rf.Params((1.0, 2.0, 2.5), math.pi / 2, eps)
     st0 = rf.state_from_elements(p, 1.5, 0.6, 0.0, 0.5, "x1")
@@ -142,7 +142,7 @@ def test_separatrix_crossing_stays_first_order():
 
 
 # ---------------------------------------------------------------------------------------------
-# The paper's conclusions, as the spec qualifies them (§11)
+# The paper's conclusions, as §11 of the theory page qualifies them
 
 
 def test_sigma_is_constant_to_first_order():
@@ -267,7 +267,7 @@ def test_phase_dependent_decay_rate_matches_the_exact_roots(beta):
 
 
 def test_mean_square_rate_continuity_used_by_the_vector_form():
-    """⟨z²⟩/L² is a function of r = 2T/L² only, continuous through the separatrix (spec §10)."""
+    """⟨z²⟩/L² is a function of r = 2T/L² only, continuous through the separatrix (§10)."""
     moments = (1.0, 1.6, 2.2)
     r_star = 1.0 / moments[1]
     left = mean_square_rate(*moments, 1.0, 0.5 * r_star * (1 - 1e-12))
@@ -295,7 +295,7 @@ def test_averaged_run_reports_frequencies_and_warnings():
 
 
 def test_sphere_and_symmetric_bodies_run_averaged():
-    """Equal moments: ⟨z²⟩ of the symmetric body and no separatrix (spec §8, §13)."""
+    """Equal moments: ⟨z²⟩ of the symmetric body and no separatrix (§8, §13)."""
     for inertia in ((1.0, 1.0, 1.5), (1.0, 1.5, 1.5), (1.2, 1.2, 1.2)):
         p = rf.Params(inertia, 1.0, 0.01)
         st0 = rf.State([0.3, -0.2, 1.4], np.eye(3))

@@ -1,5 +1,5 @@
-"""Rotating-field model: torque, the two full forms, invariants, slow elements (spec/martynenko.md
-§§3–4, 9)."""
+"""Rotating-field model: torque, the two full forms, invariants, slow elements
+(docs/theory/rotating-field.md §§3–4, 9)."""
 
 from __future__ import annotations
 
@@ -35,7 +35,7 @@ def random_rotation(rng: np.random.Generator) -> np.ndarray:
     st.integers(0, 2**32 - 1),
 )
 def test_torque_matrix_form_equals_cross_product_form(beta, omega, t, seed):
-    """(1.3) ≡ (1.2) with the dot being d/dt (erratum 1): M = k_f H × (H × Ω + Ḣ)."""
+    """(1.3) ≡ (1.2) with the dot being d/dt (correction C1): M = k_f H × (H × Ω + Ḣ)."""
     rng = np.random.default_rng(seed)
     torque = EddyCurrentTorque(0.7, omega, beta)
     q = quat_normalize(rng.normal(size=4))
@@ -61,7 +61,7 @@ def test_torque_vanishes_at_co_rotation_and_spins_up_a_body_at_rest():
 
 
 def test_static_field_damps_any_rotation():
-    """Static field (ω = 0), spec §3: T decreases monotonically, L·H is conserved, and the body
+    """Static field (ω = 0), §3: T decreases monotonically, L·H is conserved, and the body
     ends spinning about the field direction."""
     torque = EddyCurrentTorque(0.3, 0.0, 0.9)
     inertia = np.array(BODY)
@@ -101,7 +101,7 @@ def test_rotating_field_drags_a_body_at_rest_into_co_rotation():
 
 
 def test_inertial_form_equals_rotating_form():
-    """(1.4) ≡ the corrected (1.5) (erratum 3), to 1e-8 over τ = 1/ε: z and Γ = B A."""
+    """(1.4) ≡ the corrected (1.5) (correction C3), to 1e-8 over τ = 1/ε: z and Γ = B A."""
     eps = 0.02
     p = rf.Params((1.3, 1.0, 1.9), 1.1, eps)
     st0 = rf.State([0.4, -0.7, 1.6], random_rotation(np.random.default_rng(11)))
@@ -129,7 +129,7 @@ def test_inertial_form_equals_rotating_form():
 
 
 def test_other_readings_of_gamma_prime_disagree():
-    """Erratum 3: the readings +ξ̂3Γ or −Γξ̂3 of the last term do not reproduce (1.4)."""
+    """Correction C3: the readings +ξ̂3Γ or −Γξ̂3 of the last term do not reproduce (1.4)."""
     p = rf.Params(BODY, 0.7, 0.05)
     st0 = rf.State([0.3, 0.2, 1.2], np.eye(3))
 
@@ -167,7 +167,7 @@ def test_free_body_conserves_energy_momentum_and_orthogonality(seed):
 
 
 # ---------------------------------------------------------------------------------------------
-# Slow elements (spec §9, §16)
+# Slow elements (§9, §16)
 
 
 @pytest.mark.parametrize("inertia", [BODY, (2.3, 1.0, 1.7), (1.7, 2.3, 1.0)])
@@ -190,7 +190,7 @@ def test_state_from_elements_round_trip(inertia, regime):
 
 
 def test_full_state_slow_variables_at_tau_zero():
-    """σ is the inertial azimuth: σ = atan2(L_η2, L_η1) + τ (spec §9)."""
+    """σ is the inertial azimuth: σ = atan2(L_η2, L_η1) + τ (§9)."""
     p = rf.Params(BODY, 1.0, 0.01)
     st0 = rf.state_from_elements(p, 2.0, 1.1, 0.5, 0.4)
     sol = integrate(lambda t, y: rf.full_rhs(t, y, p), rf.full_from_slow(p, st0), 3.0)

@@ -1,4 +1,4 @@
-"""Stability of the co-rotation in a rotating field: spec/martynenko.md §§5–7 and §16.
+"""Stability of the co-rotation in a rotating field: docs/theory/rotating-field.md §§5–7 and §16.
 
 The linearization is checked against the paper's (2.4)/(2.5)/(2.6), the classification against
 the table and critical cases of §7, and every verdict against the nonlinear model (1.5)
@@ -218,7 +218,7 @@ def test_thin_plate_in_planar_field_is_critical(inertia, eps):
 
 def test_thin_plate_critical_also_at_tiny_eps():
     # At ε = 1e-6 the roots ±i and ±iω0 ≈ ±i nearly coincide: their real parts are only known to
-    # ~1e-9 > CRITICAL_TOL, and the verdict must not rest on that rounding (spec §16).
+    # ~1e-9 > CRITICAL_TOL, and the verdict must not rest on that rounding (§16).
     rep = _report((1.0, 2.0, 3.0), math.pi / 2, 1e-6)
     assert rep.classification == "critical"
 
@@ -369,7 +369,7 @@ def test_thin_plate_planar_field_mode_does_not_decay_exponentially():
     rate = _envelope_rate(t, _deviation(Y), math.pi)
     print(f"\nthin plate, β = π/2: envelope rate {rate:.3g}; slowest other mode {-others:.3g}")
     # The mode at λ = ±i has no linear damping; it decays only through nonlinear terms, of
-    # higher order in the amplitude δ = 1e-3 (spec §7). Measured |rate| ≈ 1e-4 of the slowest
+    # higher order in the amplitude δ = 1e-3 (§7). Measured |rate| ≈ 1e-4 of the slowest
     # other rate; any linear decay would be comparable to it, so 1e-2 separates the two.
     assert abs(rate) < 1e-2 * others
 
@@ -397,7 +397,7 @@ def test_thin_plate_planar_field_nonlinear_decay_law():
     exponent = float(np.polyfit(np.log(A), np.log(rate), 1)[0])
     print(f"\nthin plate, β = π/2: A {A[0]:.3f} → {A[-1]:.3f}, rate ∝ A^{exponent:.2f}")
     # Algebraic, not exponential, decay: the rate vanishes with the amplitude (an exponent of 2
-    # is the spec's τ^(−1/2); measured ≈ 4.2 here, i.e. A ~ τ^(−1/4)).
+    # is the τ^(−1/2) of §7; measured ≈ 4.2 here, i.e. A ~ τ^(−1/4)).
     assert np.all(np.diff(A) < 0.0)
     assert exponent > 1.0
 

@@ -1,4 +1,5 @@
-"""Euler–Poinsot motion (3.1), its averages (3.6) and fast frequencies, spec/martynenko.md §8."""
+"""Euler–Poinsot motion (3.1), its averages (3.6) and fast frequencies
+(docs/theory/rotating-field.md §8)."""
 
 import math
 import warnings
@@ -323,7 +324,7 @@ def test_mean_square_rate_symmetric_body(moments):
     zperp2 = (2 * T * Ic - L * L) / (Ia * (Ic - Ia))
     zc2 = (L * L - 2 * T * Ia) / (Ic * (Ic - Ia))
     value = mean_square_rate(I1, I2, I3, L, T)
-    # The spec's form subtracts O(1) numbers: a few ulps of L²/I².
+    # The form of §8 subtracts O(1) numbers: a few ulps of L²/I².
     assert value == pytest.approx(zperp2 + zc2, rel=1e-13)
     assert value == pytest.approx(float(np.dot(z, z)), rel=1e-13)
     assert modulus_squared(I1, I2, I3, L, T) == (0.0, "symmetric")

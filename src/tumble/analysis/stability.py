@@ -4,7 +4,7 @@ The linearization is taken from the model's own full right-hand side by complex-
 differentiation (exact to round-off, no step-size trade-off), in the local coordinates the
 model's :class:`~tumble.models.base.StationaryMotion` defines. The characteristic polynomial
 follows from the Jacobian by sums of principal minors; its roots decide the classification
-(spec/martynenko.md §16):
+(docs/theory/rotating-field.md §16):
 
 * ``"unstable"`` if max Re λ > :data:`CRITICAL_TOL`;
 * ``"critical"`` if |max Re λ| ≤ :data:`CRITICAL_TOL` (or a structural zero root);
@@ -48,7 +48,7 @@ __all__ = [
 ]
 
 CRITICAL_TOL = 1e-10
-"""|max Re λ| at or below this is a critical case (spec/martynenko.md §16)."""
+"""|max Re λ| at or below this is a critical case (docs/theory/rotating-field.md §16)."""
 
 Classification = Literal["asymptotically stable", "critical", "unstable"]
 CLASSES: tuple[Classification, ...] = ("asymptotically stable", "critical", "unstable")

@@ -1,6 +1,6 @@
 """Stability maps of the co-rotation of a conducting body in a rotating magnetic field.
 
-Yu. G. Martynenko (1979), seed 002; spec/martynenko.md §§5–7 and §16. The stationary rotation
+Yu. G. Martynenko (1979); docs/theory/rotating-field.md §§5–7 and §16. The stationary rotation
 (2.1) about body axis x3 is classified from the roots of (2.5) over a 2-D grid of parameters
 with :func:`tumble.analysis.stability.stability_grid`:
 
@@ -200,7 +200,7 @@ def _finish(ds: xr.Dataset) -> xr.Dataset:
     ds.attrs.update(
         motion="co-rotation about body x3 (2.1), phase φ = 0",
         equation="(2.5)",
-        reference="Yu. G. Martynenko (1979); spec/martynenko.md §§5–7, §16",
+        reference="Yu. G. Martynenko (1979); docs/theory/rotating-field.md §§5–7, §16",
     )
     return ds
 

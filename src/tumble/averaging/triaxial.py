@@ -1,8 +1,7 @@
 """Averaging any torque over the Euler–Poinsot motion of a triaxial body.
 
-The rotating-field setting of spec/martynenko.md (Yu. G. Martynenko 1979, seed 002; the spec
-supersedes the seed where they differ). For a small body-axes moment ``M = torque(t, q, ω)``
-the exact rates of the slow variables are
+The rotating-field setting of Yu. G. Martynenko (1979), docs/theory/rotating-field.md. For a
+small body-axes moment ``M = torque(t, q, ω)`` the exact rates of the slow variables are
 
 * ``dL_ξ/dτ = A(q) M`` (Euler's law in inertial axes, the vector form of §10), and
 * ``dT/dτ = ω·M`` (the power balance of §4),
@@ -310,7 +309,8 @@ def _check_inputs(
     if not L > floor:
         raise AveragingError(
             f"|L_xi| = {L:g} is at or below {floor:g} (L → 0): the fast frequencies vanish "
-            "and averaging over the Euler–Poinsot motion is undefined (spec/martynenko.md §12)"
+            "and averaging over the Euler–Poinsot motion is undefined "
+            "(docs/theory/rotating-field.md §12)"
         )
     return I_user, Lv, L
 
@@ -318,7 +318,7 @@ def _check_inputs(
 _SCIPY_MC_FLOOR = 1e-9
 """Below this 1 − k², scipy's ``ellipj`` switches to an expansion in 1 − k² that is good only
 to O(1 − k²) near u = K; the body rates then come from :class:`EulerPoinsot`, whose Jacobi
-functions are Newton-polished (spec §8, accurate for any 1 − k² > 0)."""
+functions are Newton-polished (§8, accurate for any 1 − k² > 0)."""
 
 
 def _polhode(
@@ -333,7 +333,7 @@ def _polhode(
     Triaxial bodies with 1 − k² ≥ :data:`_SCIPY_MC_FLOOR`: (3.1) with scipy's Jacobi
     functions in sorted axes, u uniform over [0, 4K) (regime x3: z = (a_cn cn u, a_sn sn u,
     a_dn dn u); regime x1: indices 1 and 3 exchanged, every root of a product of positive
-    factors, erratum 7), K of the same floating-point parameter as ``ellipj`` so that the
+    factors, correction C7), K of the same floating-point parameter as ``ellipj`` so that the
     nodes span exactly its period. This skips building an :class:`EulerPoinsot` (1.3 ms, a
     third of an evaluation), whose attitude the average does not need. Otherwise (symmetric
     bodies, the sphere, 1 − k² < floor): :class:`EulerPoinsot` from a state on the polhode
@@ -354,7 +354,7 @@ def _polhode(
         d2 = (L * L - 2.0 * T * I2) / (L * L)
         raise AveragingError(
             f"(L² − 2T·I2)/L² = {d2:.3g} is within ±{SEPARATRIX_RTOL:g} (separatrix, 1 − k² → "
-            "0): the polhode period is infinite and averaging is undefined (spec §12)"
+            "0): the polhode period is infinite and averaging is undefined (§12)"
         )
     Q = proper_sorting(I_user)  # v_sorted = Q v_user, so a row z_user = z_sorted @ Q
     r = 2.0 * T / (L * L)
@@ -622,7 +622,7 @@ def triaxial_average(
     Jacobi functions) and the precession angle about L, independently (non-resonant, §10,
     §12), and, when ``forcing_period`` is given, the time t + s over one forcing period as a
     third independent phase. For the eddy-current torque (1.3) this is (3.5) and the
-    corrected (3.6) (erratum 5), in inertial components.
+    corrected (3.6) (correction C5), in inertial components.
 
     Parameters
     ----------
@@ -819,7 +819,7 @@ def triaxial_kernel(
 
 @dataclass(frozen=True)
 class Resonance:
-    """The fast frequencies at (L, T) and the nearest low-order resonance, spec §12.
+    """The fast frequencies at (L, T) and the nearest low-order resonance, §12.
 
     Attributes
     ----------
@@ -837,7 +837,7 @@ class Resonance:
         n1 ν1 + n2 ν2 − m Ω_f [rad/τ].
     relative : float
         |detuning| / Ω_ref, Ω_ref = Ω_f, or max(ν1, ν2) without forcing [1]. Averaging is
-        trustworthy while this is large against √(ε/I) (spec §12).
+        trustworthy while this is large against √(ε/I) (§12).
     """
 
     nu1: float
@@ -876,7 +876,7 @@ def nearest_resonance(
     forcing_period : float, optional
         Period of the torque's explicit time dependence [τ].
     max_harmonic, max_order : int
-        Largest m and |n1|, |n2| (spec §12 watches m ∈ {1, 2}, |n2| ≤ 2).
+        Largest m and |n1|, |n2| (§12 watches m ∈ {1, 2}, |n2| ≤ 2).
 
     Returns
     -------

@@ -2,11 +2,12 @@
 stationary rotation, and the averaged transient.
 
 Yu. G. Martynenko, *On the stability of stationary rotations of a rigid body in a magnetic
-field* (1979), seed ``002_6c0d72cdb918d198.txt``; ``spec/martynenko.md`` supersedes the seed
-where they differ (errata 1–7 of its §14: the Γ′ equation of (1.5) and the sign in (3.6) among
-them). Equation numbers below are the paper's.
+field* (1979). Equation numbers are the paper's; section numbers (§) are those of
+``docs/theory/rotating-field.md``, which states where tumble departs from the printed paper and
+why (corrections C1–C7 of its §14: the Γ′ equation of (1.5) and the middle term of (3.6) among
+them).
 
-Variables (spec §2, §4): time τ = ωt, body angular velocity z = Ω/ω, ε = M0/ω with M0 = k_f H²
+Variables (§2, §4): time τ = ωt, body angular velocity z = Ω/ω, ε = M0/ω with M0 = k_f H²
 (in the units of the moments of inertia), Γ the body → field-frame rotation (v_η = Γ v_x). The
 full model keeps the user's axis labels (the stationary rotation is about body axis x3). The
 averaged transient (§§8–10) needs I1 < I2 < I3: it relabels the axes internally by a proper
@@ -131,7 +132,7 @@ def _hat(v: Any) -> Any:
 
 
 def full_rhs(t: float, y: Any, p: Params) -> Any:
-    """Right-hand side of the rotating-frame form (1.5), with the corrected Γ′ (erratum 3).
+    """Right-hand side of the rotating-frame form (1.5), with the corrected Γ′ (correction C3).
 
     ``I z′ + z × I z = ε Γᵀ ĥĥ (Γ z − ξ3)``, ``Γ′ = Γ ẑ − ξ̂3 Γ``. One definition: the
     compiled kernel the integrator runs (:func:`tumble.kernels.rhs.rotating_field`).
@@ -196,7 +197,7 @@ def _columns_from_momentum(L_xi: FloatArray, T: FloatArray, p: Params) -> dict[s
 
 
 def slow_from_full(p: Params, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
-    """Slow variables and z of full states of (1.5), spec §9:
+    """Slow variables and z of full states of (1.5), §9:
 
     ``L_η = Γ I z``, ``L = |L_η|``, ``ρ = arccos(L_η3/L)``, ``σ = atan2(L_η2, L_η1) + τ``,
     ``T = ½ z·Iz``, k² of the current regime.
@@ -271,11 +272,11 @@ def invariants(p: Params, Y: FloatArray) -> dict[str, FloatArray]:
 
 
 # ---------------------------------------------------------------------------------------------
-# Averaged equations (3.5)–(3.7) and the vector form, spec §10.
+# Averaged equations (3.5)–(3.7) and the vector form, §10.
 
 
 def field_average(p: Params) -> FloatArray:
-    """D = mean of Bᵀ ĥĥ B over the field phase, spec §10: −diag((1+c²)/2, (1+c²)/2, s²)."""
+    """D = mean of Bᵀ ĥĥ B over the field phase, §10: −diag((1+c²)/2, (1+c²)/2, s²)."""
     a = 0.5 * (1.0 + p.c2)
     return -np.array([a, a, p.s2])
 
@@ -285,12 +286,12 @@ def _A(p: Params, sin2_rho: float) -> float:
 
 
 def averaged_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
-    """(3.5) and the corrected (3.6) (erratum 5): the T-form, state ``[L, ρ, σ, T]``.
+    """(3.5) and the corrected (3.6) (correction C5): the T-form, state ``[L, ρ, σ, T]``.
 
     ``L′ = ε{−[1 + c² + (1 − 3c²) cos²ρ] T/L + s² cos ρ}``,
     ``L ρ′ = ε[(1 − 3c²) sin ρ cos ρ T/L − s² sin ρ]``, ``σ′ = 0``,
     ``T′ = ε{−¼[2(1 + c²) + (1 − 3c²) sin²ρ]⟨z²⟩ + (1 − 3c²)(1 − 3cos²ρ) T²/L²
-    + 2 s² cos ρ T/L}``, with c = cos β, s = sin β and ⟨z²⟩ of (3.6) (spec §8).
+    + 2 s² cos ρ T/L}``, with c = cos β, s = sin β and ⟨z²⟩ of (3.6) (§8).
 
     Singular at L = 0 (use :func:`averaged_rhs_vector` there).
 
@@ -383,7 +384,7 @@ def averaged_rhs_k2(
 
 
 def averaged_rhs_vector(t: float, y: FloatArray, p: Params) -> FloatArray:
-    """The regular vector form of the averaged system, spec §10, state ``[L_ξ, r]``.
+    """The regular vector form of the averaged system, §10, state ``[L_ξ, r]``.
 
     ``dL_ξ/dτ = ε (r D L_ξ + sin²β ξ3)`` with ``r = 2T/L²``, and
     ``dr/dτ = (ε A / 2)(r² − ⟨z²⟩/L²)`` (the identity after (3.6)); ⟨z²⟩/L² depends on r only.
@@ -460,13 +461,13 @@ SEPARATRIX_STEP = 1e-10
 """Relative step in r = 2T/L² taken across the separatrix when the averaged run restarts there.
 
 On the separatrix r = 1/I2 the averaged r′ vanishes with infinite slope: r ≡ 1/I2 is a spurious
-solution (spec §10, "k² ≡ 1"), and the physical one leaves it in finite time. The restart moves
+solution (§10, "k² ≡ 1"), and the physical one leaves it in finite time. The restart moves
 to the side r decreases toward; the time this skips is ~ SEPARATRIX_STEP·ln(1/SEPARATRIX_STEP)
 of the slow scale, far below the integration tolerance."""
 
 
 def _step_over_separatrix(t: float, y: FloatArray) -> FloatArray:
-    # r decreases along every averaged solution (d(2T/L²)/dτ ≤ 0, spec §10): step to r < 1/I2.
+    # r decreases along every averaged solution (d(2T/L²)/dτ ≤ 0, §10): step to r < 1/I2.
     out = np.array(y, dtype=float)
     out[3] *= 1.0 - SEPARATRIX_STEP
     return out
@@ -525,7 +526,7 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
         equation=(
             "(3.5)-(3.7) by quadrature (tumble.averaging)"
             if numeric
-            else "(3.5)-(3.7), vector form of spec §10"
+            else "(3.5)-(3.7), vector form of §10"
         ),
         slow=("L1", "L2", "L3", "r"),
         rhs=averaged_rhs_numeric if numeric else averaged_rhs_vector,
@@ -581,7 +582,7 @@ def linear_matrix(p: Params) -> FloatArray:
 def characteristic_coefficients(p: Params) -> FloatArray:
     """Coefficients a0 … a5 of the characteristic polynomial (2.5), highest power first.
 
-    Exact for every ε (spec §6); ``a0 = I1 I2 I3``.
+    Exact for every ε (§6); ``a0 = I1 I2 I3``.
 
     Parameters
     ----------
@@ -649,7 +650,7 @@ def _approx_note(p: Params) -> str:
 def stationary(p: Params, phase: float = 0.0) -> StationaryMotion[Params]:
     """The stationary co-rotation (2.1) about body x3 and its linearization chart (2.2).
 
-    The co-rotations form a family Γ = R3(φ), z = ξ3 (spec §5): the body's phase φ relative to
+    The co-rotations form a family Γ = R3(φ), z = ξ3 (§5): the body's phase φ relative to
     the field is free. The paper linearizes at φ = 0 (Γ = E), where (2.5) and (2.6) hold; at
     other phases the field lies in another plane of the body and the decay rates differ (the
     family is reported by :attr:`StationaryMotion.family`).
@@ -699,7 +700,7 @@ def stationary(p: Params, phase: float = 0.0) -> StationaryMotion[Params]:
 
 
 # ---------------------------------------------------------------------------------------------
-# Validity, frequencies and predicted limits, spec §§11–13.
+# Validity, frequencies and predicted limits, §§11–13.
 
 
 def _frequencies(p: Params, cols: dict[str, FloatArray]) -> dict[str, FloatArray]:
@@ -713,7 +714,7 @@ def _frequencies(p: Params, cols: dict[str, FloatArray]) -> dict[str, FloatArray
 
 
 def diagnostics(p: Params, st: State, cols: dict[str, FloatArray]) -> dict[str, FloatArray]:
-    """Fast frequencies along an averaged solution, spec §8 and §15.
+    """Fast frequencies along an averaged solution, §8 and §15.
 
     Parameters
     ----------
@@ -743,7 +744,7 @@ def _resonances() -> list[tuple[int, int, int]]:
 
 
 def validity(p: Params, st: State, slow: SlowPath, tau_end: float) -> list[ValidityIssue]:
-    """Regions of spec §12 that an averaged trajectory enters, with the first τ of each.
+    """Regions of §12 that an averaged trajectory enters, with the first τ of each.
 
     Parameters
     ----------
@@ -773,7 +774,7 @@ def validity(p: Params, st: State, slow: SlowPath, tau_end: float) -> list[Valid
                 0.0,
                 f"ε/min I = {small:.3g} is not small (> {VALIDITY_RATIO:g}): the averaged "
                 "equations do not apply; only the full model and the linear stability results "
-                "are exact (spec/martynenko.md §12)",
+                "are exact (docs/theory/rotating-field.md §12)",
             )
         )
     if tau_end <= 0.0:
@@ -806,7 +807,7 @@ def _momentum_issue(slow: SlowPath, grid: FloatArray, L_small: float) -> Validit
         f"from τ = {tau_l:.6g} L < {L_small:.3g}: the fast frequencies are no longer "
         "fast against the slow drift, averaging is locally invalid; the vector form "
         "carries L through 0, but k² after such a passage is not predicted "
-        "(spec/martynenko.md §12)",
+        "(docs/theory/rotating-field.md §12)",
     )
 
 
@@ -828,7 +829,7 @@ def _frequency_issues(
             f"from τ ≈ {tau_c:.6g} the body nearly co-rotates with the field (|ν2 − ν1 − 1| "
             "≤ ε/min I): the phase relative to the field is slow, independent averaging "
             "fails, and (3.7) over-predicts the final nutation decay of a triaxial body; "
-            "the true rate is 2 Re λ2,3 of (2.6) (spec/martynenko.md §12)",
+            "the true rate is 2 Re λ2,3 of (2.6) (docs/theory/rotating-field.md §12)",
         )
     return _resonance_issue(p, grid, nu, moving), co_rotation
 
@@ -856,7 +857,7 @@ def _resonance_issue(
         return None
     tau_r, linger, (m, n1, n2) = first
     # Lingering over a tenth of the slow scale 1/(ε/min I) or more: the resonant terms act
-    # as long as the averaged ones, O(1) effect (spec §12).
+    # as long as the averaged ones, O(1) effect (§12).
     effect = (
         "it lingers there long enough to put averaged k² and T off by O(1)"
         if linger >= VALIDITY_RATIO / small
@@ -869,7 +870,7 @@ def _resonance_issue(
         f"at τ ≈ {tau_r:.6g} the averaged motion meets the resonance {m} = {n1}·ν1 "
         f"{sign} {abs(n2)}·ν2 (field harmonic vs polhode ν1 and "
         f"precession ν2) and stays within √(ε/min I) of it for Δτ ≈ {linger:.3g}: "
-        f"{effect}; L and ρ stay O(ε)-accurate (spec/martynenko.md §12)",
+        f"{effect}; L and ρ stay O(ε)-accurate (docs/theory/rotating-field.md §12)",
         label=f"resonance {m}·ω = {n1}·ν1 {sign} {abs(n2)}·ν2",
     )
 
@@ -882,7 +883,7 @@ def final_nutation_decay_rate(p: Params, phase: float = 0.0) -> float:
     labels). At φ = 0 this is (2.6); the co-rotations Γ = R3(φ) form a family (§5) and the
     phase a body settles at decides its final rate. The mean over φ is the linearization of
     (3.7) at k → 0, ρ = 0, −ε (1 + c²)(a + b)/2: averaging over the field phase is exact for
-    this rate only on average (spec §12 compares with φ = 0 alone). Derived here by first-order
+    this rate only on average (§12 compares with φ = 0 alone). Derived here by first-order
     perturbation of the linearization at Γ = R3(φ); tests check it against the exact roots.
 
     Parameters
@@ -903,7 +904,7 @@ def final_nutation_decay_rate(p: Params, phase: float = 0.0) -> float:
 
 
 def predicted_limits(p: Params, st: State) -> dict[str, Any]:
-    """End state of the averaged system, spec §11, and the final nutation decay rates, §12.
+    """End state of the averaged system, §11, and the final nutation decay rates, §12.
 
     For β ≠ 0: ρ → 0, k² → 0, L → I_max (co-rotation about the largest axis), T → I_max/2.
     For β = 0: L_ξ3 is conserved, ρ → 0 or π by the initial hemisphere, L → |L_ξ3(0)|.

@@ -111,7 +111,7 @@ def ellippi_inc(n: ArrayLike, phi: ArrayLike, m: ArrayLike) -> FloatArray:
     """Incomplete elliptic integral of the third kind Π(n; φ | m), for any real φ.
 
     Used for the precession angle ψ(τ) of the Euler–Poinsot motion, §8 of
-    spec/martynenko.md (eq. (3.1)); convention in the module docstring.
+    (3.1) of the rotating-field paper; convention in the module docstring.
 
     Parameters
     ----------

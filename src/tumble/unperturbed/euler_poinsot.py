@@ -1,7 +1,7 @@
 """Euler–Poinsot motion: the torque-free rigid body in Jacobi elliptic functions, eq. (3.1).
 
-§8 of spec/martynenko.md (Yu. G. Martynenko 1979, seed 002; the spec supersedes the seed
-where they differ, errata #7 of its §14 for regime x1). Time is the paper's τ and z the body
+§8 of docs/theory/rotating-field.md (Yu. G. Martynenko 1979, seed 002; the spec supersedes the seed
+where they differ, correction C7 of its §14 for regime x1). Time is the paper's τ and z the body
 angular velocity, in any consistent units: every rate below is in rad per unit of τ.
 
 Conventions
@@ -15,7 +15,7 @@ Conventions
   when |d2| ≤ :data:`SEPARATRIX_RTOL`·L²; ``"symmetric"`` when I1 = I2 or I2 = I3 and
   ``"sphere"`` when I1 = I3 (equal to :data:`DEGENERATE_RTOL`); ``"rest"`` when L = 0.
 * k2 is the modulus squared of the current regime (x3 formula of §8, or the 1↔3-swapped
-  one, errata #7), so 0 ≤ k2 ≤ 1; k2 = 1 on the separatrix and 0 for symmetric bodies.
+  one, correction C7), so 0 ≤ k2 ≤ 1; k2 = 1 on the separatrix and 0 for symmetric bodies.
 * Separatrix band. Labels and summary numbers take their separatrix values there
   (k2 = 1, period = inf, ν1 = 0, ν2 = L/I2), but the averages and frequencies of the
   module functions use the actual k'² = 1 − k² (they are continuous, with a logarithmic
@@ -172,7 +172,7 @@ def _side_modulus(
     side: str, I1: float, I2: float, I3: float, d1: float, d2: float, d3: float
 ) -> tuple[float, float]:
     """(m, mc = 1 − m) of regime ``side`` ("x3": d2 ≥ 0, "x1": d2 ≤ 0), each from its own
-    formula so that mc keeps its digits near the separatrix (§8 and errata #7). mc below
+    formula so that mc keeps its digits near the separatrix (§8 and correction C7). mc below
     _MC_FLOOR counts as 0 (K = R_F(0, mc, 1) overflows for subnormal mc)."""
     if side == "x3":
         den = (I3 - I2) * d1
@@ -227,7 +227,7 @@ def _characteristic(side: str, I1: float, I2: float, I3: float) -> float:
 
 
 def _u_rate(side: str, I1: float, I2: float, I3: float, d1: float, d3: float) -> float:
-    """ν of (3.1): sqrt(d1 (I3 − I2)/(I1 I2 I3)), or with 1 ↔ 3 swapped (errata #7)."""
+    """ν of (3.1): sqrt(d1 (I3 − I2)/(I1 I2 I3)), or with 1 ↔ 3 swapped (correction C7)."""
     if side == "x3":
         return math.sqrt(d1 * (I3 - I2) / (I1 * I2 * I3)) if I2 != I3 else 0.0
     return math.sqrt(d3 * (I2 - I1) / (I1 * I2 * I3)) if I2 != I1 else 0.0
@@ -243,7 +243,8 @@ def _mean_precession(side: str, I1: float, I2: float, I3: float, L: float, mc: f
 
 
 def regime(inertia_sorted: ArrayLike, L: float, T: float) -> Regime:
-    """Regime of the Euler–Poinsot motion with given L and T, §8 and §16 of spec/martynenko.md.
+    """Regime of the Euler–Poinsot motion with given L and T (docs/theory/rotating-field.md §8,
+    §16).
 
     Parameters
     ----------
@@ -270,7 +271,7 @@ def regime(inertia_sorted: ArrayLike, L: float, T: float) -> Regime:
 
 
 def modulus_squared(I1: float, I2: float, I3: float, L: float, T: float) -> tuple[float, Regime]:
-    """Modulus squared k² of (3.1) for the current regime, and the regime, §8 and errata #7.
+    """Modulus squared k² of (3.1) for the current regime, and the regime, §8 and correction C7.
 
     Regime x3 (L² > 2T·I2): k² = (I2 − I1)(2T·I3 − L²) / ((I3 − I2)(L² − 2T·I1)); regime x1:
     the same with indices 1 and 3 exchanged, k̃² = (I3 − I2)(L² − 2T·I1) /
@@ -851,7 +852,8 @@ def _checked_state(
 
 @dataclass(frozen=True, eq=False)
 class EulerPoinsot:
-    """Torque-free motion of a rigid body, (3.1) of spec/martynenko.md §8, in closed form.
+    """Torque-free motion of a rigid body, (3.1), in closed form (docs/theory/rotating-field.md
+    §8).
 
     Build it with :meth:`from_state`. All angles in rad, rates in rad/τ.
 
@@ -963,7 +965,7 @@ class EulerPoinsot:
             warnings.warn(
                 f"the motion is on the separatrix L² = 2T·I2 (|L² − 2T·I2| ≤ "
                 f"{SEPARATRIX_RTOL:g}·L²): it is asymptotic to the rotation about the middle "
-                "axis and its period is infinite (ν1 = 0: averaging is invalid, spec §12)",
+                "axis and its period is infinite (ν1 = 0: averaging is invalid, §12)",
                 TumbleWarning,
                 stacklevel=2,
             )

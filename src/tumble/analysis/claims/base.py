@@ -42,7 +42,7 @@ VERDICTS = (CONFIRMED, QUALIFIED, REFUTED)
 
 PAPERS = {
     "resisting_medium": "A. V. Medvedev (1987); docs/theory/resisting-medium.md",
-    "rotating_field": "Yu. G. Martynenko (1979), seed 002; spec/martynenko.md",
+    "rotating_field": "Yu. G. Martynenko (1979); docs/theory/rotating-field.md",
     "nonlinear_moment": "V. M. Serov (1991), seed 003; spec/serov.md",
 }
 

@@ -2,15 +2,17 @@
 
 One function per claim, :func:`rf_1` … :func:`rf_18`, in the order of the paper. Each runs its
 check with tumble's public API and returns a :class:`~tumble.analysis.claims.base.Claim`: the
-paper's statement with its equation numbers, the spec sections that qualify it, one measured
-figure against a threshold justified in a comment, the verdict computed from it, and the
-figure as a :class:`~tumble.analysis.claims.base.FigureSpec`. Time is the paper's τ = ωt,
-angles are radians, rates are z = Ω/ω. Parameters are the spec's §15 test cases, tumble's
-example scenarios or the spec's own counterexamples; none is tuned toward an expected number.
+paper's statement with its equation numbers, the sections of the theory page that qualify
+it, one measured figure against a threshold justified in a comment, the verdict computed from
+it, and the figure as a :class:`~tumble.analysis.claims.base.FigureSpec`. Time is the paper's
+τ = ωt, angles are radians, rates are z = Ω/ω. Parameters are the test cases of §15, tumble's
+example scenarios or the theory page's own counterexamples; none is tuned toward an expected
+number.
 
 References
 ----------
-Yu. G. Martynenko (1979), seed 002; spec/martynenko.md supersedes the seed where they differ.
+Yu. G. Martynenko (1979); sections (§) and corrections (C1–C7) are those of
+docs/theory/rotating-field.md.
 """
 
 from __future__ import annotations
@@ -82,7 +84,7 @@ def _params(inertia: Sequence[float], beta: float, eps: float) -> rf.Params:
 
 
 def _rf_transient() -> tuple[rf.Params, rf.State]:
-    """The example of spec §12 / examples/rf_transient_x1.toml: from regime x1 through the
+    """The example of §12 / examples/rf_transient_x1.toml: from regime x1 through the
     separatrix into x3 (ε = 0.01, β = π/2, body (1, 2, 2.5))."""
     p = _params((1.0, 2.0, 2.5), math.pi / 2, 0.01)
     return p, rf.state_from_elements(p, 1.5, 0.6, 0.0, 0.5, "x1")
@@ -102,10 +104,10 @@ def _rf_transient_runs() -> tuple[np.ndarray, dict[str, np.ndarray], dict[str, n
     RF,
     "eddy-current torque (1.2)/(1.3)",
     "(1.2) M_ξ = k_f H_ξ × (H_ξ × Ω_ξ + Ḣ_ξ); (1.3) M_ξ = M0 Bᵀĥĥ(BΩ_ξ − ωξ3), M0 = k_f H².",
-    "martynenko.md §3; errata 1, 2",
+    "docs/theory/rotating-field.md §3; corrections C1, 2",
 )
 def rf_1() -> Measurement:
-    """Eddy-current torque (1.2)/(1.3) (spec §3, errata 1, 2).
+    """Eddy-current torque (1.2)/(1.3) (§3, corrections C1, 2).
 
     Returns
     -------
@@ -123,7 +125,7 @@ def rf_1() -> Measurement:
         torque = EddyCurrentTorque(M0=1.0, omega=omega, beta=beta)  # k_f = H = 1
         H = torque.field_direction(t)
         H_dot = omega * np.cross(XI3, H)  # (1.1): dH/dt = ω ξ3 × H
-        paper = np.cross(H, np.cross(H, w) + H_dot)  # (1.2) with the dot restored (erratum 1)
+        paper = np.cross(H, np.cross(H, w) + H_dot)  # (1.2) with the dot restored (correction C1)
         errs.append(
             np.linalg.norm(paper - torque.inertial(t, w)) / max(1.0, float(np.linalg.norm(w)))
         )
@@ -156,7 +158,7 @@ def rf_1() -> Measurement:
         ),
     )
     # Criterion: two algebraic forms of one vector, round-off of a few operations (1e-13),
-    # while the erratum's reading differs by O(|Ω|).
+    # while the printed reading differs by O(|Ω|).
     holds = (
         worst <= 1e-13
         and max(corot) <= 1e-13
@@ -170,7 +172,7 @@ def rf_1() -> Measurement:
         1e-13,
         "value ≤ 1e-13, torque 0 at co-rotation, Ω·M ≤ 0 in a static field, dL3/dt = k_fH²ω "
         "sin²β from rest",
-        "erratum 1: the second term is dH/dt (the OCR shows H*); erratum 2: M0 = k_f H²",
+        "correction C1: the second term is dH/dt (the OCR shows H*); correction C2: M0 = k_f H²",
         max_torque_at_corotation=max(corot),
         ocr_reading_torque_at_corotation_over_omega=max(ocr_corot),
         max_power_static_field=max(power),
@@ -185,10 +187,10 @@ def rf_1() -> Measurement:
     "equations of motion (1.4), (1.5)",
     "(1.5): Iz′ + z × Iz = εΓᵀĥĥ(Γz − ξ3), Γ′ = Γz⁺ − ξ3⁺Γ⁺, the rotating-frame form of "
     "(1.4) with τ = ωt, z = Ω/ω, ε = M0/ω.",
-    "martynenko.md §4; erratum 3; §15",
+    "docs/theory/rotating-field.md §4; correction C3; §15",
 )
 def rf_2() -> Measurement:
-    """(1.5) with the corrected Γ′ = Γẑ − ξ̂3Γ against the inertial form (1.4) (erratum 3).
+    """(1.5) with the corrected Γ′ = Γẑ − ξ̂3Γ against the inertial form (1.4) (correction C3).
 
     Returns
     -------
@@ -228,7 +230,7 @@ def rf_2() -> Measurement:
         "1 (z, L, T), rad (angles)",
         "max |Δ| of L, ρ, σ, T, z between the rotating-frame form (1.5) and the inertial form "
         "(1.4) with quaternions, τ ≤ 1/ε",
-        "erratum 3: Γ′ = Γẑ − ξ̂3Γ (the OCR prints ξ̂3Γ⁺); only this reading agrees with (1.4)",
+        "correction C3: Γ′ = Γẑ − ξ̂3Γ (the OCR prints ξ̂3Γ⁺); only this reading agrees with (1.4)",
         per_variable={n: max_abs(d) for n, d in diffs.items()},
     )
     return Measurement(holds, True, m, panels)
@@ -240,10 +242,10 @@ def rf_2() -> Measurement:
     "linearization (2.4), characteristic polynomial (2.5)",
     "(2.4) the linearized equations about z = ξ3, Γ = E; (2.5) a0λ⁵ + … + a5 = 0 with the "
     "printed a0 … a5.",
-    "martynenko.md §5, §6; §15",
+    "docs/theory/rotating-field.md §5, §6; §15",
 )
 def rf_3() -> Measurement:
-    """Linearization (2.4) and characteristic polynomial (2.5) as printed (spec §5–§6).
+    """Linearization (2.4) and characteristic polynomial (2.5) as printed (§5–§6).
 
     Returns
     -------
@@ -297,10 +299,10 @@ def rf_3() -> Measurement:
     "first-order roots (2.6)",
     "(2.6): λ1 = −ε sin²β/I3, λ2,3 = ±iω0 − (ε/2)[(I3−I2)/(I2I3) + (I3−I1)/(I1I3) cos²β], "
     "λ4,5 = ±i − ε(1 + cos²β)/(2I3), ω0² = (I3−I2)(I3−I1)/(I1I2).",
-    "martynenko.md §6",
+    "docs/theory/rotating-field.md §6",
 )
 def rf_4() -> Measurement:
-    """First-order roots (2.6): error O(ε²) for simple roots (spec §6).
+    """First-order roots (2.6): error O(ε²) for simple roots (§6).
 
     Returns
     -------
@@ -369,7 +371,7 @@ def rf_4() -> Measurement:
     "largest axis: asymptotically stable",
     "§2: rotation about the axis of the largest moment of inertia (I3 > I1, I2) is "
     "asymptotically stable in the first approximation (for real bodies).",
-    "martynenko.md §7 table row 1, 'for real bodies'",
+    "docs/theory/rotating-field.md §7 table row 1, 'for real bodies'",
 )
 def rf_5() -> Measurement:
     """Largest axis: asymptotically stable in the first approximation (§7 table, row 1).
@@ -390,7 +392,7 @@ def rf_5() -> Measurement:
     map_max = float(np.max(lead[largest]))
     map_ok = bool(np.all(code[largest] == 0))  # 0: "asymptotically stable"
     # A random sweep over bodies with I3 largest, β ∈ (0, π/2), ε ∈ [1e-3, 10] (§7, "for real
-    # bodies": the Routh–Hurwitz sweep of the spec).
+    # bodies": the Routh–Hurwitz sweep of §7).
     rng = np.random.default_rng(5)
     sweep_max, sweep_bad, n = -math.inf, 0, 0
     while n < 150:
@@ -414,8 +416,8 @@ def rf_5() -> Measurement:
         -CRITICAL_TOL,
         "every such point classified asymptotically stable (max Re λ < −1e-10)",
         "asymptotic stability in the first approximation; exceptions are the critical cases "
-        "(thin plate I3 = I1 + I2 at β = π/2, β = 0, I3 equal to another moment); the spec's "
-        "sweep also covers 'non-physical' I3 > I1 + I2, which tumble's Params reject",
+        "(thin plate I3 = I1 + I2 at β = π/2, β = 0, I3 equal to another moment); the sweep "
+        "of §7 also covers 'non-physical' I3 > I1 + I2, which tumble's Params reject",
         sweep_points=n,
         sweep_not_stable=int(sweep_bad),
         map_points_largest=int(np.count_nonzero(largest)),
@@ -448,7 +450,7 @@ def _rf_axis_roots_panel(inertia: tuple[float, float, float], eps: float) -> Pan
     RF,
     "middle axis: unstable",
     "§2: rotation about the middle axis is unstable (ω0² < 0: ±iω0 becomes a real pair).",
-    "martynenko.md §6, §7 table row 2",
+    "docs/theory/rotating-field.md §6, §7 table row 2",
 )
 def rf_6() -> Measurement:
     """Middle axis: unstable, a real root ≈ |ω0| (§7 table, row 2).
@@ -516,7 +518,7 @@ def rf_6() -> Measurement:
     "smallest axis: unstable (footnote 1)",
     "§2 and footnote 1: rotation about the smallest axis is unstable (Re λ2,3 > 0), "
     "refuting an earlier claim that it is asymptotically stable.",
-    "martynenko.md §7 table row 3",
+    "docs/theory/rotating-field.md §7 table row 3",
 )
 def rf_7() -> Measurement:
     """Smallest axis: unstable, slow oscillatory growth (§7 row 3; footnote 1).
@@ -559,7 +561,7 @@ def rf_7() -> Measurement:
     "thin plate at β = π/2: critical case",
     "Footnote 2: a thin plate (I3 = I1 + I2) in a field rotating in a plane (β = π/2) is a "
     "critical case of the stability analysis.",
-    "martynenko.md §6, §7 'critical cases'",
+    "docs/theory/rotating-field.md §6, §7 'critical cases'",
 )
 def rf_8() -> Measurement:
     """Thin plate I3 = I1 + I2 in a planar field: a critical case (footnote 2).
@@ -622,14 +624,14 @@ def rf_8() -> Measurement:
 @claim(
     "rf-9",
     RF,
-    "thin plate: critical mode decays nonlinearly (spec)",
+    "thin plate: critical mode decays nonlinearly (§7)",
     "Not in the paper (footnote 2 only names the critical case). Spec §7: in the nonlinear "
     "model this mode is observed to decay, at a rate proportional to the square of the "
     "amplitude, i.e. amplitude ~ τ^(−1/2).",
-    "martynenko.md §7 'critical cases' (spec observation)",
+    "docs/theory/rotating-field.md §7 'critical cases' (an observation)",
 )
 def rf_9() -> Measurement:
-    """The spec's observation: the critical thin-plate mode decays at a rate ∝ amplitude².
+    """The observation of §7: the critical thin-plate mode decays at a rate ∝ amplitude².
 
     Returns
     -------
@@ -649,7 +651,7 @@ def rf_9() -> Measurement:
         abs(z.real) for z in analyze(rf.MODEL, p, family=False).roots if abs(z.real) > 1e-9
     )
     panels = _rf_9_panels(tb, A, rate, ok, n_lin)
-    # The spec's statement, read for the linear amplitude A: rate ∝ A² (A ~ τ^(−1/2)); read
+    # The statement of §7, read for the linear amplitude A: rate ∝ A² (A ~ τ^(−1/2)); read
     # for a quadratic measure (A², e.g. k² or the energy of the mode): rate ∝ (A²)², i.e.
     # rate_A ∝ A⁴. ±0.5 on the exponent separates the two readings.
     linear_reading = abs(n_lin - 2.0) <= 0.5
@@ -663,7 +665,7 @@ def rf_9() -> Measurement:
         "deviation |(x, γ1, γ2)|, A: 0.26 → 0.10 over τ ≤ 6000), thin plate (1, 2, 3), β = π/2, "
         "ε = 0.05",
         2.0,
-        "spec's reading n = 2 ± 0.5 (A ~ τ^(−1/2)); holds also if n/2 = 2 ± 0.5 (A a quadratic "
+        "the reading of §7, n = 2 ± 0.5 (A ~ τ^(−1/2)); holds also if n/2 = 2 ± 0.5 (A a quadratic "
         "measure); the decay must be slower than every linear rate",
         "observed, not proven; "
         + (
@@ -728,7 +730,7 @@ def _rf_9_panels(
         Panel(
             series=(
                 Series(tb, A, "envelope of |(x, γ1, γ2)|"),
-                Series(tb, A[5] * (tb / tb[5]) ** -0.5, "τ^(−1/2) (spec)", "dotted"),
+                Series(tb, A[5] * (tb / tb[5]) ** -0.5, "τ^(−1/2) (§7)", "dotted"),
                 Series(tb, A[5] * (tb / tb[5]) ** -0.25, "τ^(−1/4)", "dotted"),
             ),
             xlabel="τ",
@@ -739,7 +741,7 @@ def _rf_9_panels(
         Panel(
             series=(
                 Series(A[ok], rate[ok], f"fit: rate ∝ A^{n_lin:.2f}", "markers"),
-                Series(a_ref, r_mid * (a_ref / a_mid) ** 2, "∝ A² (spec)", "dotted"),
+                Series(a_ref, r_mid * (a_ref / a_mid) ** 2, "∝ A² (§7)", "dotted"),
                 Series(a_ref, r_mid * (a_ref / a_mid) ** 4, "∝ A⁴", "dotted"),
             ),
             xlabel="A (0.1 … 0.26)",
@@ -756,10 +758,10 @@ def _rf_9_panels(
     "Euler–Poinsot motion (3.1)",
     "(3.1): z1 = Lk√((I3−I2)/(I1I0)) cn u, z2 = Lk√((I3−I1)/(I2I0)) sn u, z3 = "
     "L√((I2−I1)/(I3I0)) dn u; for the other regime swap the indices 1 and 3.",
-    "martynenko.md §8; erratum 7",
+    "docs/theory/rotating-field.md §8; correction C7",
 )
 def rf_10() -> Measurement:
-    """Euler–Poinsot motion (3.1) in both regimes (spec §8, erratum 7).
+    """Euler–Poinsot motion (3.1) in both regimes (§8, correction C7).
 
     Returns
     -------
@@ -821,7 +823,7 @@ def rf_10() -> Measurement:
         "1 (relative to |z0|)",
         "max |z(3.1) − z integrated| and attitude (quaternion) difference over 10 periods, "
         "regimes x3 and x1",
-        "erratum 7: in regime x1 (indices 1 ↔ 3 swapped) each square root is of the product of "
+        "correction C7: in regime x1 (indices 1 ↔ 3 swapped) each square root is of the product of "
         "two negative factors (e.g. ν = √((L² − 2TI3)(I1 − I2)/(I1I2I3)))",
         per_case=per,
         regimes=regimes,
@@ -835,10 +837,10 @@ def rf_10() -> Measurement:
     "period average ⟨z²⟩ (3.6)",
     "(3.6): ⟨z²⟩ = (L²/I0){(I3−I2)k²/I1 + (I2−I1)(I1+I2−I3)/(I1I2) + (I2−I1)(I3−I2)(I3−I1)"
     "/(I1I2I3) · E(k)/K(k)}.",
-    "martynenko.md §8",
+    "docs/theory/rotating-field.md §8",
 )
 def rf_11() -> Measurement:
-    """Period average ⟨z²⟩ of (3.6) (spec §8).
+    """Period average ⟨z²⟩ of (3.6) (§8).
 
     Returns
     -------
@@ -901,10 +903,10 @@ def rf_11() -> Measurement:
     "averaged equations (3.5)–(3.7)",
     "(3.5) L′, Lρ′, σ′ = 0; (3.6) T′ = ε{−¼[2(1+cos²β) + (1−3cos²β)sin²ρ]⟨z²⟩ + "
     "(1−3cos²β)(1−3sin²ρ)T²/L² + 2 sin²β cosρ T/L}; (3.7) dk²/dτ = ε(I3−I1)/(4I1I3)·A·F(k²).",
-    "martynenko.md §10; erratum 5",
+    "docs/theory/rotating-field.md §10; correction C5",
 )
 def rf_12() -> Measurement:
-    """Averaged equations (3.5), (3.6) corrected, (3.7) (spec §10, erratum 5).
+    """Averaged equations (3.5), (3.6) corrected, (3.7) (§10, correction C5).
 
     Returns
     -------
@@ -922,7 +924,7 @@ def rf_12() -> Measurement:
             errs_engine.append(e_engine)
             errs_tform.append(e_tform)
             errs_k2.append(e_k2)
-    # Erratum 5 at the stationary rotation ρ = 0, k = 0, L = I3, T = I3/2 (β = 1).
+    # Correction C5 at the stationary rotation ρ = 0, k = 0, L = I3, T = I3/2 (β = 1).
     p = _params(RF_BODY, 1.0, 0.01)
     corrected = float(rf.averaged_rhs(0.0, np.array([I3, 0.0, 0.0, 0.5 * I3]), p)[3])
     # The printed middle term (1 − 3c²)(1 − 3 sin²ρ) T²/L² differs from the corrected one by
@@ -961,7 +963,8 @@ def rf_12() -> Measurement:
         "field phase| over 15 random states (3 values of β), and T-form vs vector form",
         1e-9,
         "value ≤ 1e-9, (3.7) = chain rule to 1e-6, corrected T′ = 0 at the stationary rotation",
-        "erratum 5: (3.6)'s middle term is (1 − 3cos²β)(1 − 3cos²ρ)T²/L² (seed: 1 − 3 sin²ρ); "
+        "correction C5: (3.6)'s middle term is (1 − 3cos²β)(1 − 3cos²ρ)T²/L² (printed: "
+        "1 − 3 sin²ρ); "
         "the printed form gives T′ = −¾ε(3cos²β − 1) ≠ 0 at the stationary rotation; the "
         "averaging needs non-resonance (§12)",
         k2_form_vs_chain_rule=max(errs_k2),
@@ -1019,7 +1022,7 @@ def _averaged_forms_at(p: rf.Params, y: FloatArray) -> tuple[float, float, float
     "k² decreases monotonically 1 → 0; end about the largest axis",
     "§3: by (3.7) k² decreases monotonically from 1 to 0: the body tends to the unique stable "
     "motion, rotation about the axis of the largest moment of inertia.",
-    "martynenko.md §10 (monotonicity proof), §11 items 4–5",
+    "docs/theory/rotating-field.md §10 (monotonicity proof), §11 items 4–5",
 )
 def rf_13() -> Measurement:
     """k² decreases monotonically from 1 to 0; the body ends about its largest axis (§11.4).
@@ -1044,7 +1047,7 @@ def rf_13() -> Measurement:
         and abs(avg["L"][-1] / RF_BODY[2] - 1.0) < 1e-3
         and avg["rho"][-1] < 1e-3
     )
-    # The x1 transient: k̃² first rises to the separatrix, then k² falls (spec §10, §11.4).
+    # The x1 transient: k̃² first rises to the separatrix, then k² falls (§10, §11.4).
     tt, full, tavg = _rf_transient_runs()
     peak = float(np.max(tavg["k2"]))
     full_up = float(np.max(np.diff(full["k2"][tt > tt[np.argmax(tavg["k2"])] + 20.0])))
@@ -1118,7 +1121,7 @@ def _modulus_rates() -> FloatArray:
     "σ = const (L in a fixed vertical plane)",
     "§3, from (3.5): σ′ = 0 — the angular momentum stays in the vertical plane through ξ3 "
     "and its initial position.",
-    "martynenko.md §11 item 1",
+    "docs/theory/rotating-field.md §11 item 1",
 )
 def rf_14() -> Measurement:
     """σ = const: L stays in a fixed vertical plane (§11.1).
@@ -1170,7 +1173,7 @@ def rf_14() -> Measurement:
     RF,
     "ρ → 0 (L aligns with ξ3)",
     "§3: (3.5) implies ρ → 0 — the angular momentum turns to the axis of the field's rotation.",
-    "martynenko.md §11 item 2",
+    "docs/theory/rotating-field.md §11 item 2",
 )
 def rf_15() -> Measurement:
     """(3.5) implies ρ → 0 — true for β ≠ 0 but not monotone (§11.2).
@@ -1233,7 +1236,7 @@ def rf_15() -> Measurement:
     "(3.7) decouples at ρ = 0 and cos²β = 1/3",
     "§3: at ρ = 0 (and for cos²β = 1/3) (3.7) is the equation of a body with a cavity "
     "filled with viscous fluid and of a heavy body in a weakly resisting medium.",
-    "martynenko.md §11 item 3",
+    "docs/theory/rotating-field.md §11 item 3",
 )
 def rf_16() -> Measurement:
     """At ρ = 0 and at cos²β = 1/3 (3.7) decouples: A is constant (§11.3).
@@ -1286,7 +1289,7 @@ def rf_16() -> Measurement:
     "final nutation decay at the (3.7) rate",
     "§3: near the stationary rotation (ρ = 0, k → 0) k² decays by (3.7), "
     "dk²/dτ ≈ −ε(I3−I1)(1 + cos²β)(3 + κ)k²/(4I1I3).",
-    "martynenko.md §11 item 5, §12 'co-rotation is itself resonant'",
+    "docs/theory/rotating-field.md §11 item 5, §12 'co-rotation is itself resonant'",
 )
 def rf_17() -> Measurement:
     """The final nutation decay near co-rotation: (3.7) vs (2.6) vs the settling phase (§12).
@@ -1335,7 +1338,7 @@ def rf_17() -> Measurement:
         "settling phases (β = 1, ε = 0.02)",
         0.05,
         "the paper's rate holds if value ≤ 0.05",
-        "spec §12: (3.7) over-predicts the final nutation damping of a triaxial body; the true "
+        "§12: (3.7) over-predicts the final nutation damping of a triaxial body; the true "
         "rate is 2 Re λ2,3 of (2.6)",
         spec_consistent=dev26 <= 0.05,
         deviation_from_2_6=dev26,
@@ -1399,10 +1402,10 @@ def _end_linearization(p: rf.Params) -> dict[str, float]:
     "averaged model is first-order accurate",
     "§3: for ε ≪ 1 the averaged equations (3.5)–(3.7) describe the evolution of the slow "
     "variables L, ρ, σ, T (k²).",
-    "martynenko.md §10 assumptions, §12",
+    "docs/theory/rotating-field.md §10 assumptions, §12",
 )
 def rf_18() -> Measurement:
-    """Averaged vs full: O(ε) in non-resonant transients (spec §12).
+    """Averaged vs full: O(ε) in non-resonant transients (§12).
 
     Returns
     -------

@@ -40,7 +40,7 @@ GAMMA_TOL = 1e-9
 
 @dataclass(frozen=True, eq=False)
 class Params:
-    """Nondimensional parameters of (1.5), spec/martynenko.md §4.
+    """Nondimensional parameters of (1.5), docs/theory/rotating-field.md §4.
 
     Parameters
     ----------
@@ -107,7 +107,7 @@ class Params:
 
     @property
     def small_parameter(self) -> float:
-        """ε / min I_i: the true small parameter of the averaging (spec §4) [1]."""
+        """ε / min I_i: the true small parameter of the averaging (§4) [1]."""
         return self.eps / float(np.min(self.inertia))
 
     def derived(self) -> dict[str, float]:
@@ -138,7 +138,7 @@ def _as_rotation(name: str, gamma: ArrayLike) -> FloatArray:
 
 @dataclass(frozen=True, eq=False)
 class State:
-    """A full state at τ = 0, spec §16.
+    """A full state at τ = 0, §16.
 
     Parameters
     ----------
@@ -179,7 +179,7 @@ def _rate_from_elements(
                 L * math.sqrt((I2 - I1) / (I3 * I0)) * dn,
             ]
         )
-    # Regime x1: indices 1 and 3 swapped; every ratio below is of two negatives (erratum 7).
+    # Regime x1: indices 1 and 3 swapped; every ratio below is of two negatives (correction C7).
     I0 = I1 * (I2 - I3) + I3 * (I1 - I2) * k2
     return np.array(
         [
@@ -201,7 +201,7 @@ def state_from_elements(
     u0: float = 0.0,
     psi0: float = 0.0,
 ) -> State:
-    """A full state with prescribed slow elements, spec §9.
+    """A full state with prescribed slow elements, §9.
 
     z is (3.1) at phase ``u0``; Γ(0) = C(σ, ρ) Rz(ψ0) Rx(θ) Rz(φ) P, where C(σ, ρ) takes ζ3 to
     the direction of L (§9), (ψ0, θ, φ) are the classical Euler angles of the body relative to
@@ -251,7 +251,7 @@ def state_from_elements(
 
 
 # ---------------------------------------------------------------------------------------------
-# Physical units, spec §4.
+# Physical units, §4.
 
 
 @dataclass(frozen=True, eq=False)
@@ -289,7 +289,7 @@ class PhysicalParams:
 
 @dataclass(frozen=True)
 class Scaling:
-    """τ = ω t, z = Ω/ω, moments over I_ref = max I_i, ε = k_f H²/(ω I_ref) (spec §4)."""
+    """τ = ω t, z = Ω/ω, moments over I_ref = max I_i, ε = k_f H²/(ω I_ref) (§4)."""
 
     omega: float  # [rad/s]
     I_ref: float  # [kg·m²]
@@ -325,7 +325,7 @@ class Scaling:
 def normalize_physical(
     phys: PhysicalParams, Omega0: ArrayLike, gamma0: ArrayLike
 ) -> tuple[Params, State, Scaling]:
-    """Nondimensional parameters and initial state of a physical scenario (spec §4).
+    """Nondimensional parameters and initial state of a physical scenario (§4).
 
     Parameters
     ----------

@@ -1,4 +1,4 @@
-"""Cost of one evaluation of the averaged right-hand sides built by the general engine (issue 5).
+"""Cost of one evaluation of the averaged right-hand sides built by the general engine.
 
     .venv/bin/python benchmarks/averaging_cost.py [--points 60] [--repeat 7] [--seed 5] [--json]
 
@@ -9,10 +9,10 @@ calls it during an averaged run, at the default tolerance AVERAGE_RTOL = 1e-12:
 * spinner (the resisting medium): ``resisting_medium.averaged_rhs_numeric`` with the moment (1.2)
   as ``Params.torque``: the constant body moment a, the linear drag b, the quadratic drag s,
   and all three (full random a, b, s in [−1, 1]);
-* nutation (spec/serov.md): ``nonlinear_moment.averaged_rhs`` (energy form) with
+* nutation (the nonlinear moment): ``nonlinear_moment.averaged_rhs`` (energy form) with
   ``engine_perturbation(p)``, the damping d, ν of §9 as a body torque and the pressure law
   Q(τ) = exp τ as prescribed a(τ), b(τ);
-* triaxial (spec/martynenko.md): ``rotating_field.averaged_rhs_numeric`` (the eddy-current
+* triaxial (the rotating field): ``rotating_field.averaged_rhs_numeric`` (the eddy-current
   torque and the field's rotation), and ``triaxial_average_vector`` as
   ``models/torqued_body.py`` calls it for a gravity-gradient torque (forcing period the
   orbital one) and for a moment fixed in inertial space (no forcing); k² ≤ 0.9999.
@@ -24,7 +24,7 @@ median and the largest over the states. The exit status is 1 if a median misses 
 
 Measured with the defaults (60 points, best of 7) on 2 shared cores, three runs each; a row's
 figures move by up to ±30 % with the load of other processes. "Before" is the engine at the
-commit that introduced this benchmark's settings (issue 5), timed by this same script:
+commit that introduced this benchmark's settings, timed by this same script:
 
     setting   torque                        median ms   max ms  target  met  before: median, max
     spinner   constant a                         0.26     0.30     1.0  yes  0.54–0.81, 0.87
@@ -62,7 +62,7 @@ from tumble.torques import ConstantInertialTorque, GravityGradientTorque
 from tumble.unperturbed import energy_from_modulus
 from tumble.unperturbed.symmetric_body import NutationOrbit
 
-TARGET_MS = {"spinner": 1.0, "nutation": 1.0, "triaxial": 5.0}  # issue 5
+TARGET_MS = {"spinner": 1.0, "nutation": 1.0, "triaxial": 5.0}
 K2_MAX = 0.9999  # the issue's triaxial range; nearer the separatrix the polhode needs more nodes
 
 

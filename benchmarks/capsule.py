@@ -1,5 +1,6 @@
-"""Capsule benchmark (issue 4): envelope discrepancy and cost of the averaged equations against
-the full attitude motion along a ballistic entry, spec/serov.md §10 claims (ii) and (iii).
+"""Capsule benchmark: envelope discrepancy and cost of the averaged equations against
+the full attitude motion along a ballistic entry, docs/theory/nonlinear-moment.md §10 claims (ii)
+and (iii).
 
     .venv/bin/python benchmarks/capsule.py [--json] [--figure docs/figures/capsule_envelope.png]
 

@@ -1,4 +1,4 @@
-"""Performance benchmark (issue 6): ``tumble bench`` with its figures written for the README.
+"""Performance benchmark: ``tumble bench`` with its figures written for the README.
 
     .venv/bin/python benchmarks/performance.py [-o benchmarks/performance.json]
     .venv/bin/python benchmarks/performance.py --from benchmarks/performance.json

@@ -1,4 +1,4 @@
-"""Sweep throughput (issue 7): points per second of the example sweeps on a local cluster.
+"""Sweep throughput: points per second of the example sweeps on a local cluster.
 
 For each sweep in ``examples/sweeps/`` this runs ``sweep`` on a LocalCluster of N single-
 threaded workers (N = 1 and N = the cores), and the same points one after the other in this

@@ -23,7 +23,8 @@ tau = np.linspace(0.0, 1.0, 201)
 Q = p.pressure.value(tau)
 table = ",\n".join(f"    [{t:.6f}, {q:.9g}]" for t, q in zip(tau, Q, strict=True))
 c = run.capsule
-text = f"""# tumble scenario: attitude of an uncontrolled entry capsule (spec/serov.md §9–§10),
+text = f"""# tumble scenario: attitude of an uncontrolled entry capsule
+# (docs/theory/nonlinear-moment.md §9–§10),
 # written by examples/capsule_descent.py from tumble.analysis.capsule.capsule_attitude().
 # Time t in seconds from the start of the attitude window (descent time {run.t_start:.3f} s,
 # where the capsule's T·|q'|/q has fallen to 0.3) to h = 10 km ({run.t_end:.3f} s).

@@ -78,7 +78,7 @@ def test_kframe_matches_spec_section_2():
     )
     assert np.allclose(Xi[:, 0], d, atol=1e-9)  # central difference error O(h²)
     assert np.allclose(np.linalg.det(Xi), 1.0, atol=ROUNDOFF)
-    # Body axis x3 and K in each other's frames, spec §2.
+    # Body axis x3 and K in each other's frames, theory §2.
     psi, theta, phi = 0.4, 1.1, -0.8
     C = rot.euler313_to_matrix(psi, theta, phi)
     st, ct = math.sin(theta), math.cos(theta)

@@ -83,7 +83,8 @@ class RigidBody:
 
 
 def proper_sorting(inertia: ArrayLike) -> FloatArray:
-    """Signed permutation Q (det +1) with Q diag(I) Qᵀ sorted ascending, spec §8 and §16.
+    """Signed permutation Q (det +1) with Q diag(I) Qᵀ sorted ascending
+    (docs/theory/rotating-field.md §8, §16).
 
     ``v_sorted = Q v_user``; a transposition gets one axis reversed to stay proper.
 

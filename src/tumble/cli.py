@@ -304,7 +304,8 @@ def stability_cmd(
     beta_deg: Annotated[bool, typer.Option("--beta-deg", help="β is in degrees")] = False,
     as_json: Annotated[bool, typer.Option("--json", help="print one JSON object")] = False,
 ) -> None:
-    """Stability of the co-rotation about x3 in a rotating field, (2.5)/(2.6) and spec §16."""
+    """Stability of the co-rotation about x3 in a rotating field, (2.5)/(2.6)
+    (docs/theory/rotating-field.md §16)."""
     import numpy as np
 
     from tumble.analysis.stability import analyze, match_roots
@@ -381,7 +382,8 @@ def stability_map_cmd(
         Path | None, typer.Option("--netcdf", help="also write the map as netCDF")
     ] = None,
 ) -> None:
-    """Map the stability of the co-rotation about x3 over a parameter grid (spec §§5–7)."""
+    """Map the stability of the co-rotation about x3 over a parameter grid
+    (docs/theory/rotating-field.md §§5–7)."""
     from rich.progress import Progress
 
     from tumble.analysis.stability_maps import rotating_field_map
@@ -831,7 +833,7 @@ def reproduce_cmd(
     """Check every claim of the papers: report.html (figures embedded), claims.json, figures/.
 
     Each claim gets a verdict computed from its measured figure: confirmed, confirmed with
-    qualification (as the specification corrects or restricts it), or refuted. Exits 1 if a
+    qualification (as tumble's theory pages correct or restrict it), or refuted. Exits 1 if a
     check could not run (the report says which and why).
     """
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn

@@ -55,7 +55,7 @@ other 32 qualified. A change of verdict must be a deliberate one, seen in this t
 def test_verdict_from_holds_and_qualified():
     assert verdict(True, False) == CONFIRMED
     assert verdict(True, True) == QUALIFIED
-    # A claim that does not hold is refuted whatever the spec qualifies.
+    # A claim that does not hold is refuted whatever the theory page qualifies.
     assert verdict(False, False) == REFUTED
     assert verdict(False, True) == REFUTED
     assert VERDICTS == (CONFIRMED, QUALIFIED, REFUTED)
@@ -250,7 +250,7 @@ def test_every_claim_keeps_the_interface(all_claims):
             assert c.id == name.replace("_", "-")
             assert c.paper == paper
             assert c.verdict in VERDICTS
-            assert c.title and c.statement and c.spec_ref
+            assert c.title and c.statement and c.theory_ref
             assert MEASURED_KEYS <= set(c.measured), (c.id, sorted(c.measured))
             assert isinstance(c.measured["value"], float | int), c.id
             json.dumps(c.to_dict(), allow_nan=False)

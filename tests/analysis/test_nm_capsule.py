@@ -1,4 +1,5 @@
-"""The entry capsule of spec/serov.md §9–§10 (issue 4): envelope discrepancy and cost."""
+"""The entry capsule of docs/theory/nonlinear-moment.md §9–§10: envelope discrepancy and
+cost."""
 
 from __future__ import annotations
 
@@ -32,7 +33,7 @@ def test_pressure_profile_reproduces_the_descent(capsule_runs):
 def test_capsule_envelope_meets_the_papers_figure(capsule_runs):
     exact, corrected = capsule_runs["exact"], capsule_runs["corrected"]
     assert exact.envelope["n_max"] > 100  # ~136 nutation periods in the window
-    # Spec §10 (iii): ≤ 4 % with the paper's initialisation at a descent ε of 0.3 …
+    # Theory §10 (iii): ≤ 4 % with the paper's initialisation at a descent ε of 0.3 …
     assert exact.envelope["max_relative"] < 0.04
     # … and the corrected initial state of §7 removes the O(ε) start error (issue: aim 1 %).
     assert corrected.envelope["max_relative"] < 0.01
@@ -42,7 +43,7 @@ def test_capsule_envelope_meets_the_papers_figure(capsule_runs):
 def test_capsule_averaged_run_is_an_order_of_magnitude_cheaper(capsule_runs):
     run = capsule_runs["exact"]
     full, avg = run.trajectories["full"], run.trajectories["averaged"]
-    # Spec §10 (ii) in right-hand-side evaluations (wall time is the benchmark's): each of
+    # Theory §10 (ii) in right-hand-side evaluations (wall time is the benchmark's): each of
     # ~136 nutation periods costs the full run hundreds of evaluations.
     assert full.nfev > 10 * avg.nfev
 
@@ -70,7 +71,7 @@ def test_capsule_study_scaling():
         exact = np.array([r["discrepancy_exact"] for r in rows])
         corrected = np.array([r["discrepancy_corrected"] for r in rows])
         slope_exact = np.polyfit(np.log(eps), np.log(exact), 1)[0]
-        # The paper's start leaves an O(ε) envelope error (spec §7, §10).
+        # The paper's start leaves an O(ε) envelope error (§7, §10).
         assert abs(slope_exact - 1.0) < 0.25, exact
         if corrected_slope is not None:
             # Without the standard atmosphere's kinks in dq/dt the corrected start is O(ε²).

@@ -1,4 +1,4 @@
-"""`tumble verify` on the paper models: orders, verdicts, failures (issue 5, item 4)."""
+"""`tumble verify` on the paper models: orders, verdicts, failures."""
 
 import numpy as np
 import pytest
@@ -64,16 +64,16 @@ def test_verify_measures_both_orders_of_the_resisting_medium():
 
 
 def test_resisting_medium_example_is_first_order():
-    """examples/a3_positive.toml stays in its hemisphere: k and ϑ first order (issue 2)."""
+    """examples/a3_positive.toml stays in its hemisphere: k and ϑ first order."""
     result = verify(load_scenario(EXAMPLES / "a3_positive.toml").request)
     assert result.status == "first-order", result.verdict
     for v in ("k", "theta"):
-        # The band of issue 2's error studies (±0.25 about 1).
+        # The band of the first-order error studies (±0.25 about 1).
         assert abs(result.orders[v] - 1.0) < 0.25, (v, result.errors[v])
 
 
 def test_crossing_pi_half_is_degraded_near_it():
-    """Spec §10.2: with a1, a2 ≠ 0 the averaged model is only O(√ε) after ϑ = π/2; verify
+    """Theory §10.2: with a1, a2 ≠ 0 the averaged model is only O(√ε) after ϑ = π/2; verify
     must say "degraded … near ϑ = π/2". The horizon is 1 slow unit past the crossing, where
     the √ε jump dominates (measured slope ≈ 0.5 in test_rm_accuracy over six phases)."""
     p = rm.Params(eps=0.02, kappa=0.5, a=[0.2, 0.1, 0.3], b=np.diag([0.1, 0.1, 0.1]))
@@ -98,8 +98,8 @@ def test_separatrix_crossing_makes_the_verdict_invalid():
 
 
 def test_nonlinear_moment_verifies_the_envelope():
-    """The NM model's slow errors are the envelope at the full extrema (spec §10): first
-    order from the paper's start (issue 4 measured slope 0.99)."""
+    """The NM model's slow errors are the envelope at the full extrema (theory §10): first
+    order from the paper's start (measured slope 0.99)."""
     result = verify(load_scenario(EXAMPLES / "nm_damped_exp.toml").request)
     assert {"theta_max", "theta_min", "R", "G"} <= set(result.variables)
     assert result.status == "first-order", result.verdict
@@ -108,7 +108,7 @@ def test_nonlinear_moment_verifies_the_envelope():
 
 def test_unperturbed_scenario_verifies_its_closed_form():
     """ε = 0 has no averaging: verify checks the closed form (1.9)–(1.13) against the full
-    integration instead (issue 4 measured ≤ 1.4e-11 rad at rtol 1e-13; the example runs at
+    integration instead (measured ≤ 1.4e-11 rad at rtol 1e-13; the example runs at
     the default rtol 1e-10)."""
     result = verify(load_scenario(EXAMPLES / "nm_unperturbed.toml").request)
     assert result.status == "exact", result.verdict

@@ -1,4 +1,4 @@
-"""The performance benchmark (issue 6): its JSON contract, its helpers, and (slow, with
+"""The performance benchmark: its JSON contract, its helpers, and (slow, with
 heyoka.py from the bench extra) the heyoka transcription and the issue's targets."""
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""tumble reproduce (issue 7): the report, claims.json, the CLI; and, as a slow study, every
+"""tumble reproduce: the report, claims.json, the CLI; and, as a slow study, every
 claim of the three papers with the report opened in headless Chromium."""
 
 import json
@@ -38,7 +38,7 @@ def _fake(cid, holds):
             "what": "error",
             "threshold": 1e-9,
             "criterion": "≤ threshold",
-            "details": {"spec_consistent": holds},
+            "details": {"theory_consistent": holds},
         }
         return Claim(cid, "rotating_field", f"title {cid}", "statement", "§1",
                      verdict(holds, False), measured, fig)  # fmt: skip
@@ -76,7 +76,7 @@ def test_reproduce_writes_a_self_contained_report(fake_claims, tmp_path):
     assert page.count('<img class="figure"') == 2 == page.count('src="data:image/png;base64,')
     assert "a deliberately broken check" in page
     # rf-2's measurement contradicts its spec too: the page says so outside the details.
-    assert page.count("contradicts the specification's own statement") == 1
+    assert page.count("contradicts the theory page's own statement") == 1
 
 
 def test_cli_reproduce_table_and_exit_codes(fake_claims, tmp_path):

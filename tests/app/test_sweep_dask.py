@@ -1,4 +1,4 @@
-"""Sweeps on a real Dask cluster on loopback (issue 7): a scheduler and two worker processes
+"""Sweeps on a real Dask cluster on loopback: a scheduler and two worker processes
 started here. A sweep completes; a worker killed mid-sweep changes no result; a sweep killed
 and started again gives the Dataset of an uninterrupted run and recomputes nothing finished.
 """

@@ -1,4 +1,4 @@
-"""Cost of the averaged right-hand sides of the general engine (issue 5): the figures of
+"""Cost of the averaged right-hand sides of the general engine: the figures of
 benchmarks/averaging_cost.py against the issue's targets (≤ 1 ms spinner and nutation,
 ≤ 5 ms triaxial, per evaluation)."""
 

@@ -1,5 +1,5 @@
-"""The averaging engine in the nonlinear-moment setting (issue 5): a torque in body axes,
-averaged over ψ and φ and Volosov-averaged over the nutation, against spec/serov.md (2.2)."""
+"""The averaging engine in the nonlinear-moment setting: a torque in body axes, averaged over ψ
+and φ and Volosov-averaged over the nutation, against the paper's (2.2)."""
 
 from __future__ import annotations
 
@@ -48,7 +48,7 @@ def test_damping_torque_through_the_engine_equals_the_closed_form(body, momenta,
     p = nm.Params(mu=mu, a=a, b=b, eps=0.01, d=d, nu=nu, pressure=nm.Pressure("exp"))
 
     def damping_torque(t, q, omega):
-        # Spec §9 per unit A and ε, one state at a time: −d(p, q, 0) − ν(0, 0, R), R = μr.
+        # Theory §9 per unit A and ε, one state at a time: −d(p, q, 0) − ν(0, 0, R), R = μr.
         return np.array([-d * omega[0], -d * omega[1], -nu * mu * omega[2]])
 
     pert = torque_perturbation(
@@ -83,7 +83,7 @@ def test_engine_with_a_batched_torque_on_a_fixed_orbit():
 
 
 def test_torque_of_the_body_rate_is_averaged_over_phi_only():
-    # The damping of spec §9 as the built-in LinearDrag(diag(d, d, νμ)), plus a constant body
+    # The damping of §9 as the built-in LinearDrag(diag(d, d, νμ)), plus a constant body
     # moment (zero mean over φ for its p, q components): functions of the body rate known
     # from their types, averaged over φ alone. Against the closed form, and against the same
     # torque called one state at a time on the full ψ, φ torus (the generic path).

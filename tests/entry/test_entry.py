@@ -1,7 +1,7 @@
 """Entry capsule: standard atmosphere, modified-Newtonian aerodynamics, ballistic descent.
 
-Application of spec/serov.md §9–§10: the restoring moment (1.5) of a segmental-conical
-capsule and the dynamic pressure that scales it along a descent.
+Application of docs/theory/nonlinear-moment.md §9–§10: the restoring moment (1.5) of a
+segmental-conical capsule and the dynamic pressure that scales it along a descent.
 """
 
 import math
@@ -232,7 +232,7 @@ def test_mach_only_scales_cp_max():
 def test_capsule_trims():
     trims = trim_angles(SOYUZ_CLASS)
     # The double well of (1.5) with b < 0: stable heat shield first, unstable trim between,
-    # stable backward trim at α = π (spec §10: segmental-conical capsule).
+    # stable backward trim at α = π (§10: segmental-conical capsule).
     assert [t.stable for t in trims] == [True, False, True]
     assert trims[0].alpha == 0.0 and trims[-1].alpha == math.pi
     # Statically stable at α = 0: dCm/dα < 0, the docstring's -0.134.

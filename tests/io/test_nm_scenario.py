@@ -1,4 +1,4 @@
-"""Nonlinear-moment scenario contract (issue 4): keys, output files and columns, bad input."""
+"""Nonlinear-moment scenario contract: keys, output files and columns, bad input."""
 
 from __future__ import annotations
 
@@ -78,7 +78,7 @@ def test_unperturbed_run_writes_the_contract_outputs(tmp_path):
         attitude = ATTITUDE if method == "full" else []
         assert header == ["t", "theta", "psi", "phi", "theta_dot", *attitude]
         assert np.array_equal(data[:, 0], np.linspace(0.0, 30.0, 61))
-        # ψ, φ continuous from their initial values (spec §14).
+        # ψ, φ continuous from their initial values (theory §14).
         assert data[0, 2:4] == pytest.approx([0.2, -0.1], abs=1e-12)
     _, full = read_csv(out / "full.csv")
     _, closed = read_csv(out / "closed_form.csv")

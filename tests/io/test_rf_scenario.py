@@ -1,4 +1,4 @@
-"""Rotating-field scenario contract (issue 3): keys, outputs, physical units, bad input."""
+"""Rotating-field scenario contract: keys, outputs, physical units, bad input."""
 
 from __future__ import annotations
 

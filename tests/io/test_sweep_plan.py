@@ -1,4 +1,4 @@
-"""Sweep files, points and records without a cluster (issue 7): keys, grids, draws, failed
+"""Sweep files, points and records without a cluster: keys, grids, draws, failed
 points, the Dataset, and that a sweep point is exactly the run ``tumble run`` makes."""
 
 import math
@@ -159,7 +159,7 @@ def test_a_sweep_point_is_the_run_tumble_run_makes(tmp_path):
 
 
 def test_failed_points_are_recorded_with_their_reason(tmp_path):
-    # κ = 0 has no averaged method (spec §11): those points fail, the others run.
+    # κ = 0 has no averaged method (theory §11): those points fail, the others run.
     sweep = load_sweep(
         _write_sweep(tmp_path, '[[axis]]\nkey = "parameters.kappa"\nvalues = [0.5, 0.0, 2.0]\n')
     )

@@ -1,4 +1,4 @@
-"""`[run] averaging = "numeric"` (issue 5): each model's averaged method through the general
+"""`[run] averaging = "numeric"`: each model's averaged method through the general
 engine gives the same trajectory and the same files as its closed-form right-hand side."""
 
 from __future__ import annotations

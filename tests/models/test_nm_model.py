@@ -1,4 +1,5 @@
-"""Nonlinear-moment model (issue 4, spec/serov.md): full forms, Volosov averaging, accuracy."""
+"""Nonlinear-moment model (docs/theory/nonlinear-moment.md): full forms, Volosov averaging,
+accuracy."""
 
 from __future__ import annotations
 
@@ -163,14 +164,14 @@ def _slope(err):
 def test_envelope_error_is_first_order_with_the_exact_start():
     p0, s0 = CASES["double_well"]  # mid-swing start: θ'(0) = 0.3
     err = np.array([_envelope_error(p0, s0, e, "exact") for e in EPS])
-    # Spec §7: O(ε) on τ = O(1). ±0.25 absorbs the O(ε²) part at ε = 0.1.
+    # Theory §7: O(ε) on τ = O(1). ±0.25 absorbs the O(ε²) part at ε = 0.1.
     assert abs(_slope(err) - 1.0) < 0.25, err
 
 
 def test_envelope_error_is_second_order_with_the_corrected_start():
     p0, s0 = CASES["double_well"]
     err = np.array([_envelope_error(p0, s0, e, "corrected") for e in EPS])
-    # Spec §7: the corrected initial state leaves O(ε²) (observed, not guaranteed by the
+    # Theory §7: the corrected initial state leaves O(ε²) (observed, not guaranteed by the
     # first-order theory); ±0.35 for the O(ε³) part at ε = 0.1.
     assert abs(_slope(err) - 2.0) < 0.35, err
 
@@ -204,7 +205,7 @@ def test_dissipation_shrinks_the_envelope_from_both_sides():
             100.0,
         )
         x = sol(np.linspace(0.0, 100.0, 51))[:, 0]
-        # Spec §7: with dissipation θmax decreases (F > 0 there) and θmin increases (F < 0).
+        # Theory §7: with dissipation θmax decreases (F > 0 there) and θmin increases (F < 0).
         assert np.all(np.diff(x) < 0.0) if form == "theta_max" else np.all(np.diff(x) > 0.0)
 
 
@@ -253,14 +254,14 @@ def test_roll_damping_decays_R_exponentially_in_both_models():
     p0, s0 = CASES["b_positive"]
     p = _perturbed(p0, 0.02)
     t = np.linspace(0.0, 50.0, 11)
-    exact = s0.R * np.exp(-p.eps * p.nu * t)  # Φ_R = −νR, spec §9
+    exact = s0.R * np.exp(-p.eps * p.nu * t)  # Φ_R = −νR, §9
     for method, tol in (("full", 1e-9), ("averaged", 1e-9)):  # rtol 1e-10 integrations
         cols = simulate(nm.MODEL, p, s0, t, method).columns
         assert np.max(np.abs(cols["R"] - exact)) < tol, method
 
 
 def test_growing_pressure_shrinks_the_amplitude():
-    # The capsule's conclusion (spec §10): with no damping, a growing restoring moment alone
+    # The capsule's conclusion (§10): with no damping, a growing restoring moment alone
     # shrinks the nutation (adiabatic invariance); the full extrema show it too.
     p0, s0 = CASES["double_well"]
     p = _perturbed(p0, 0.02, d=0.0, nu=0.0, pressure=nm.Pressure("exp"))
@@ -294,7 +295,7 @@ def test_averaging_refuses_to_cross_a_separatrix():
 
 
 def test_averaged_rhs_is_continuous_where_the_roots_turn_complex():
-    # Spec §9: along a run the outer roots may pass from a complex pair (case 2) to real ones
+    # Theory §9: along a run the outer roots may pass from a complex pair (case 2) to real ones
     # (case 1); the right-hand side must not jump there. Locate the switch in E by bisection.
     p0, _ = CASES["double_well"]
     p = _perturbed(p0, 0.01, pressure=nm.Pressure("exp"))

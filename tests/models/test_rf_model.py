@@ -49,7 +49,7 @@ def test_torque_matrix_form_equals_cross_product_form(beta, omega, t, seed):
 
 
 def test_torque_vanishes_at_co_rotation_and_spins_up_a_body_at_rest():
-    """Spec §3: zero torque at Ω_ξ = ω ξ3; dL_ξ3/dt = k_f H² ω sin²β > 0 from rest."""
+    """Theory §3: zero torque at Ω_ξ = ω ξ3; dL_ξ3/dt = k_f H² ω sin²β > 0 from rest."""
     rng = np.random.default_rng(3)
     torque = EddyCurrentTorque(0.5, 1.3, 0.8)
     q = quat_normalize(rng.normal(size=4))
@@ -86,7 +86,7 @@ def test_static_field_damps_any_rotation():
 
 
 def test_rotating_field_drags_a_body_at_rest_into_co_rotation():
-    """Spec §3, §11: a body at rest is spun up toward co-rotation about its largest axis."""
+    """Theory §3, §11: a body at rest is spun up toward co-rotation about its largest axis."""
     p = rf.Params(BODY, math.pi / 3, 0.25)
     st0 = rf.State([0.0, 0.0, 0.0], random_rotation(np.random.default_rng(8)))
     sol = integrate(lambda t, y: rf.full_rhs(t, y, p), rf.full_from_slow(p, st0), 400.0)

@@ -378,7 +378,7 @@ def test_thin_plate_planar_field_mode_does_not_decay_exponentially():
 def test_thin_plate_planar_field_nonlinear_decay_law():
     """Study: how the critical mode of the thin plate at β = π/2 decays in the full model.
 
-    Spec §7 reports a decay rate ∝ amplitude² (amplitude ~ τ^(−1/2)), observed, not proven.
+    Theory §7 reports a decay rate ∝ amplitude² (amplitude ~ τ^(−1/2)), observed, not proven.
     Here the local rate −d ln A/dτ is fitted against A as a power law over A ≈ 0.3 → 0.1.
     """
     p = rf.Params((1.0, 2.0, 3.0), math.pi / 2, 0.05)

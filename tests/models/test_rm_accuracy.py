@@ -48,7 +48,7 @@ def test_averaging_error_is_first_order(name):
 
 
 def test_averaging_across_pi_half_is_only_sqrt_eps_accurate():
-    """Spec §10.2/§13.7: with a1, a2 ≠ 0, the post-passage error scales as √ε, not ε.
+    """Theory §10.2/§13.7: with a1, a2 ≠ 0, the post-passage error scales as √ε, not ε.
 
     The jump at the passage oscillates with the phase of φ there, so the error at each ε is
     the maximum over six initial phases φ0.
@@ -115,7 +115,7 @@ def test_no_crossing_warning_when_averaging_is_exact():
 
 
 def test_k_to_zero_is_warned():
-    """Spec §10.5: a3 = 0, k → 0: the body stops spinning fast; warn with the first τ."""
+    """Theory §10.5: a3 = 0, k → 0: the body stops spinning fast; warn with the first τ."""
     p = medium(0.4, 0.3, 0.0, 0.0, eps=0.05)
     st = state(1.0, 1.0)
     with pytest.warns(TumbleWarning, match="no longer spins fast"):
@@ -150,7 +150,7 @@ LIMIT_CASES = [
 
 @pytest.mark.parametrize("name,p,st", LIMIT_CASES, ids=[c[0] for c in LIMIT_CASES])
 def test_predicted_limits_against_long_averaged_runs(name, p, st):
-    """Spec §9 table: the predicted limits are where the averaged system ends up."""
+    """Theory §9 table: the predicted limits are where the averaged system ends up."""
     lim = rm.predicted_limits(p, st)
     tau = np.array([0.0, 4e3 / p.eps])  # slow time 4000: every exponential has settled
     end = simulate(M, p, st, tau, "averaged", rtol=1e-11, atol=1e-14).columns
@@ -178,7 +178,7 @@ FULL_LIMIT_CASES = [
     "name,p,st,tau_end", FULL_LIMIT_CASES, ids=[c[0] for c in FULL_LIMIT_CASES]
 )
 def test_paper_conclusions_hold_for_the_full_model(name, p, st, tau_end):
-    """Spec §9 items 1–4 and §13.8 from long runs of the full model (ε = 0.05)."""
+    """Theory §9 items 1–4 and §13.8 from long runs of the full model (ε = 0.05)."""
     lim = rm.predicted_limits(p, st)
     full = simulate(M, p, st, np.linspace(0.0, tau_end, 401), "full", rtol=1e-9, atol=1e-11).columns
     # The full model ends within O(ε) of the averaged limit (steady tilt §10.4, or the
@@ -189,7 +189,7 @@ def test_paper_conclusions_hold_for_the_full_model(name, p, st, tau_end):
 
 
 def test_steady_tilt_of_the_full_model():
-    """Spec §10.4: with a1, a2 ≠ 0 the full model's final axis is tilted by
+    """Theory §10.4: with a1, a2 ≠ 0 the full model's final axis is tilted by
     ε(1+κ)|m⊥|/(|κ| k∞²) instead of ϑ = 0."""
     p, st, tau_end = FULL_LIMIT_CASES[0][1:]
     full = simulate(M, p, st, np.linspace(0.0, tau_end, 201), "full", rtol=1e-10).columns
@@ -200,7 +200,7 @@ def test_steady_tilt_of_the_full_model():
 
 
 def test_resonances_of_precession_and_spin_are_reported():
-    """Spec §10.5: k = n|Ω_φ| where |cos ϑ| = (1+κ)/(n|κ|); with a φ-dependent moment the
+    """Theory §10.5: k = n|Ω_φ| where |cos ϑ| = (1+κ)/(n|κ|); with a φ-dependent moment the
     first crossing along the averaged run is reported with its τ (n ≤ 4)."""
     p = rm.Params(eps=0.01, kappa=0.8, a=[0.05, 0.0, 0.3], b=np.diag([0.2, 0.1, 0.1]))
     st = rm.State(1.0, 0.5, 0.0, 0.0, 1.2, 0.0)  # ϑ → 0 through |cos ϑ| = 0.5625, 0.75

@@ -59,7 +59,7 @@ CASES = [
 
 @pytest.mark.parametrize("name,p,st,horizon,crosses", CASES, ids=[c[0] for c in CASES])
 def test_closed_form_matches_integrated_averaged_system(name, p, st, horizon, crosses):
-    """Spec §13.5: every branch of the closed form against integration of (2.2), to 1e-8."""
+    """Theory §13.5: every branch of the closed form against integration of (2.2), to 1e-8."""
     if name == "W0 at equilibrium":
         W_plus = (-p.beta + math.sqrt(p.beta**2 + 4 * p.delta * 0.3)) / (2 * p.delta)
         st = state(W_plus, 0.0)
@@ -153,7 +153,7 @@ def test_tan_theta_a3_zero_lower_2_10(p, st):
 
 @pytest.mark.parametrize("theta0", [0.5, 2.5])
 def test_quadratic_only_law_both_hemispheres(theta0):
-    """Spec §8.7 and correction E8: tan ϑ → δ/γ (upper) or −δ/γ (lower); k → 0 like 1/(ετ)."""
+    """Theory §8.7 and correction E8: tan ϑ → δ/γ (upper) or −δ/γ (lower); k → 0 like 1/(ετ)."""
     p = medium(gamma=0.3, delta=0.2)
     st = state(1.0, theta0)
     tau = np.linspace(0.0, 1e6, 201)
@@ -171,7 +171,7 @@ def test_quadratic_only_law_both_hemispheres(theta0):
 
 
 def test_crossing_times_match_the_table_of_the_theory_page():
-    """Spec §8.4: τ1 from the table against the closed form's root of W."""
+    """Theory §8.4: τ1 from the table against the closed form's root of W."""
     rows = []
     p = medium(0.1, 0.6, 0.1, 0.1, a3=-0.05)  # W0 > 0, a3 < 0, (2.5) branch
     de, be, a3, e = p.delta, p.beta, -0.05, p.eps
@@ -225,14 +225,15 @@ def test_crossing_times_match_the_table_of_the_theory_page():
 
 
 def test_negative_damping_blow_up_is_reported():
-    """Spec §11: negative coefficients are valid solutions of (2.3) but may diverge: raise."""
+    """Theory §11: negative coefficients are valid solutions of (2.3) but may diverge: raise."""
     p = medium(alpha=0.0, gamma=-0.2, beta=0.1, delta=0.1)
     with pytest.raises(IntegrationError, match="diverges at τ"):
         rm.closed_form(p, state(1.0, 1.0), np.linspace(0, 1e4, 10))
 
 
 def test_k_through_zero_is_reported():
-    """Spec §11: V0 = 0 and W changes sign: averaged k passes 0, ϑ jumps; a warning, not silence."""
+    """Theory §11: V0 = 0 and W changes sign: averaged k passes 0, ϑ jumps; a warning, not
+    silence."""
     p = medium(0.1, 0.2, 0.1, 0.1, a3=0.3)
     st = state(1.0, math.pi)
     tau = np.linspace(0.0, 1000.0, 201)

@@ -23,7 +23,7 @@ START = rm.State(k=1.0, rho=1.2, sigma=0.3, psi=0.2, theta=1.0, phi=0.1)
 
 
 def test_invariants_at_zero_eps():
-    """Spec §13.1: |K|, energy, ρ, σ, ϑ constant; ψ, φ advance at the rates of (2.1)."""
+    """Theory §13.1: |K|, energy, ρ, σ, ϑ constant; ψ, φ advance at the rates of (2.1)."""
     p = GENERAL.with_eps(0.0)
     tau = np.linspace(0.0, 500.0, 501)
     rtol = 1e-11
@@ -94,7 +94,7 @@ def _numerical_average(p, k, rho, theta, n_phi=4096, n_psi=8):
 @settings(max_examples=6)
 @given(vectors(), matrices(), matrices(0.5), kappa, st.floats(0.5, 2.0), rho_regular, theta_regular)
 def test_averaged_rhs_equals_numerical_average(a, b, s, kap, k, rho, theta):
-    """Spec §13.3: off-diagonal entries, a1, a2 drop out; γ = 4(s11+s22)/(3π) (E6)."""
+    """Theory §13.3: off-diagonal entries, a1, a2 drop out; γ = 4(s11+s22)/(3π) (E6)."""
     p = rm.Params(eps=0.01, kappa=kap, a=a, b=b, s=s)
     avg = _numerical_average(p, k, rho, theta, n_phi=1024, n_psi=4)
     expected = rm.averaged_rhs(0.0, np.array([k, theta]), p)
@@ -107,7 +107,7 @@ def test_averaged_rhs_equals_numerical_average(a, b, s, kap, k, rho, theta):
 
 @given(vectors(), matrices(), matrices(), kappa, st.floats(0.01, 3.0), st.floats(0.0, math.pi))
 def test_averaged_rhs_chain_rule_to_wv_form(a, b, s, kap, k, theta):
-    """Spec §13.4: (2.2) written for W = k cos ϑ, V = k sin ϑ is (2.3), to round-off."""
+    """Theory §13.4: (2.2) written for W = k cos ϑ, V = k sin ϑ is (2.3), to round-off."""
     p = rm.Params(eps=0.03, kappa=kap, a=a, b=b, s=s)
     dk, dth = rm.averaged_rhs(0.0, np.array([k, theta]), p)
     dW = dk * math.cos(theta) - k * math.sin(theta) * dth
@@ -118,7 +118,7 @@ def test_averaged_rhs_chain_rule_to_wv_form(a, b, s, kap, k, theta):
 
 
 def test_exact_case_full_equals_averaged_across_pi_half():
-    """Spec §10.1/§13.7: a1 = a2 = 0, b11 = b22, b12 = −b21, other off-diagonals 0, S = s33 only:
+    """Theory §10.1/§13.7: a1 = a2 = 0, b11 = b22, b12 = −b21, other off-diagonals 0, S = s33 only:
     the k, ϑ equations of the full model do not depend on φ and coincide with (2.2), even
     through ϑ = π/2."""
     p = rm.Params(
@@ -140,7 +140,7 @@ def test_exact_case_full_equals_averaged_across_pi_half():
 
 
 def test_scale_invariance():
-    """Spec §13.9: ε → cε with a, b, s → (a, b, s)/c changes nothing."""
+    """Theory §13.9: ε → cε with a, b, s → (a, b, s)/c changes nothing."""
     c = 4.0
     p2 = rm.Params(
         eps=GENERAL.eps * c, kappa=GENERAL.kappa, a=GENERAL.a / c, b=GENERAL.b / c, s=GENERAL.s / c

@@ -11,7 +11,7 @@ from tumble.models import resisting_medium as rm
 @pytest.mark.slow
 @pytest.mark.parametrize("name", list(HEMISPHERE_CASES))
 def test_first_order_over_five_halvings(name, capsys):
-    """Spec §13.6 with ε from 0.04 down to 0.00125: the fitted order stays ≈ 1."""
+    """Theory §13.6 with ε from 0.04 down to 0.00125: the fitted order stays ≈ 1."""
     p, st = HEMISPHERE_CASES[name]
     eps = [0.04, 0.02, 0.01, 0.005, 0.0025, 0.00125]
     study = averaging_error_study(rm.MODEL, p, st, eps, variables=("k", "theta", "rho", "sigma"))

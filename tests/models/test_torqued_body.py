@@ -1,4 +1,4 @@
-"""torqued_body: the new torques of issue 5 through the averaging engine.
+"""torqued_body: the built-in and user torques through the averaging engine.
 
 Conservation at ε = 0, the engine against classical closed forms (a moment fixed in inertial
 space; the orbit-averaged gravity gradient on a body spinning about a principal axis; the

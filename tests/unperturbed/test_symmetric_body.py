@@ -1,5 +1,6 @@
 """Symmetric body under M0(θ) = A(a sinθ + b sin2θ): the closed forms (1.9)–(1.13) and the
-averages of §8 of spec/serov.md, against direct integration of (1.1) and against quadrature."""
+averages of §8 of docs/theory/nonlinear-moment.md, against direct integration of (1.1) and against
+quadrature."""
 
 import contextlib
 import functools
@@ -183,7 +184,7 @@ def reference(name):
     return orbit, sol
 
 
-def test_euler_angle_convention_matches_spec_section_1():
+def test_euler_angle_convention_matches_section_1_of_the_theory_page():
     """e_z in body axes is the third row of Rz(ψ) Rx(θ) Rz(φ): (sinθ sinφ, sinθ cosφ, cosθ)."""
     psi, theta, phi = 0.4, 1.1, -2.3
     ez = euler313_to_matrix(psi, theta, phi)[2]
@@ -231,7 +232,7 @@ def quad_period(orbit):
 
 @pytest.mark.parametrize("name", [n for n in CASES if n != "steady precession"])
 def test_turning_points_and_period_match_integration_and_quadrature(name):
-    """θmin, θmax of §3 and T = 2K/β or 4K/β (errata 5, 6) against the integrated extrema."""
+    """θmin, θmax of §3 and T = 2K/β or 4K/β (corrections S5, S6) against the integrated extrema."""
     orbit, sol = reference(name)
     te = sol.t_events[0]
     ye = sol.y_events[0]

@@ -1,4 +1,5 @@
-"""The entry-capsule application of the nonlinear-moment paper (spec/serov.md §9–§10).
+"""The entry-capsule application of the nonlinear-moment paper (docs/theory/nonlinear-moment.md
+§9–§10).
 
 A ballistic descent (:mod:`tumble.entry`) gives the dynamic pressure q(t); the capsule's
 modified-Newtonian moment, fitted as Cm ≈ c1 sinα + c2 sin2α, gives
@@ -206,7 +207,7 @@ def capsule_attitude(
     rtol: float = 1e-10,
     averaged_rtol: float = 1e-6,
 ) -> CapsuleAttitude:
-    """Attitude of an uncontrolled capsule during its descent: full vs averaged, spec §10.
+    """Attitude of an uncontrolled capsule during its descent: full vs averaged, §10.
 
     The attitude run starts when the descent's small parameter T·|q'|/q first falls to
     ``eps_start`` (earlier, q changes too much within a nutation period for any averaging), at
@@ -241,7 +242,7 @@ def capsule_attitude(
         Factor applied to A and C (changes the nutation period by √factor, and so the
         descent's ε, without changing the trajectory) [1].
     averaged_init : {"exact", "corrected"}
-        Initialisation of the averaged run (spec §7).
+        Initialisation of the averaged run (§7).
     methods : tuple of str
         ``"full"`` and/or ``"averaged"``.
     samples : int
@@ -367,7 +368,7 @@ def capsule_study(
     repeat: int = 3,
     **kwargs: Any,
 ) -> list[dict[str, Any]]:
-    """Envelope discrepancy and cost ratio against the descent's ε, spec §10 (ii)–(iii).
+    """Envelope discrepancy and cost ratio against the descent's ε, §10 (ii)–(iii).
 
     The window is fixed by the unscaled capsule (its T·|q'|/q falls to ``eps_start``); the
     inertias are then scaled by each factor, which multiplies the nutation period, and so the

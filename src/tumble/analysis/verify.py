@@ -1,13 +1,13 @@
 """Accuracy with every run: averaged against full at ε, ε/2, ε/4 over one slow horizon.
 
-First-order averaging promises |full − averaged| = O(ε) on slow times εt = O(1) (spec
-/medvedev.md §10, spec/martynenko.md §10, spec/serov.md §10). :func:`verify` measures it: the
-scenario runs again with ε halved and quartered, over the same slow horizon ε·t_end (so the
-fast time grows as 1/ε), the error of each slow variable is its maximum over the run, and the
-order is the least-squares slope of log error against log ε. The verdict reads the orders
-together with the model's validity checks (the regions where the papers' conclusions fail:
-ϑ = π/2, resonances, separatrices), e.g. "first-order accurate", "degraded: slope 0.5 near
-ϑ = π/2 (τ ≈ 53.2)" or "invalid: the averaged run stops at the separatrix (t ≈ 210)".
+First-order averaging promises |full − averaged| = O(ε) on slow times εt = O(1) (the theory
+pages docs/theory/resisting-medium.md §10, rotating-field.md §12, nonlinear-moment.md §7).
+:func:`verify` measures it: the scenario runs again with ε halved and quartered, over the same slow
+horizon ε·t_end (so the fast time grows as 1/ε), the error of each slow variable is its maximum
+over the run, and the order is the least-squares slope of log error against log ε. The verdict
+reads the orders together with the model's validity checks (the regions where the papers'
+conclusions fail: ϑ = π/2, resonances, separatrices), e.g. "first-order accurate", "degraded: slope
+0.5 near ϑ = π/2 (τ ≈ 53.2)" or "invalid: the averaged run stops at the separatrix (t ≈ 210)".
 
 For a scenario of averaging order 2 the orders of both are fitted, per slow variable, and
 "second-order accurate" needs a slope of at least 1.75. The parameters scale

@@ -3,9 +3,10 @@
 * :mod:`~tumble.averaging.quadrature`: adaptive periodic trapezoidal means over fast phases.
 * :mod:`~tumble.averaging.spinner`: the fast symmetric spinner of the resisting-medium paper
   (slow k, ρ, σ, ϑ; averaged over ψ and φ).
-* :mod:`~tumble.averaging.triaxial`: the triaxial body of spec/martynenko.md (slow L_ξ, T;
+* :mod:`~tumble.averaging.triaxial`: the triaxial body of the rotating-field paper (slow L_ξ, T;
   averaged over the polhode, the precession about L and a periodic forcing).
-* :mod:`~tumble.averaging.nutation`: Volosov averaging over the nutation of spec/serov.md.
+* :mod:`~tumble.averaging.nutation`: Volosov averaging over the nutation of the nonlinear-moment
+  paper.
 * :mod:`~tumble.averaging.generator`: the first-order generator w₁ of the near-identity
   transformation on a torus grid (FFT), with its small divisors reported.
 """

@@ -1,8 +1,8 @@
-"""Volosov averaging over the nutation of a symmetric body (spec/serov.md §6–§8), for any
-perturbation of (2.1) and for any small torque.
+"""Volosov averaging over the nutation of a symmetric body (docs/theory/nonlinear-moment.md §6–§8),
+for any perturbation of (2.1) and for any small torque.
 
 A perturbation is given either directly as Φθ(θ, θ', z), Φz(θ, z) (:class:`Perturbation`) or
-as a body-axes torque (:func:`torque_perturbation`), converted through (1.3a) and spec §6 and
+as a body-axes torque (:func:`torque_perturbation`), converted through (1.3a) and §6 and
 averaged over the spin φ and the precession ψ (independent fast phases, the non-resonant
 case). :func:`numeric_averages` then averages over the nutation period of the frozen orbit.
 """
@@ -88,7 +88,8 @@ class Perturbation:
 
 
 def potential_gradient(u: FloatArray, z: FloatArray) -> FloatArray:
-    """W^z = ∂W/∂z = (W_R, W_G, W_a, W_b) of (2.3), spec/serov.md §9, shape (4, n).
+    """W^z = ∂W/∂z = (W_R, W_G, W_a, W_b) of (2.3), docs/theory/nonlinear-moment.md §9, shape (4,
+    n).
 
     Parameters
     ----------
@@ -272,7 +273,7 @@ def torque_perturbation(
     name: str = "torque",
     vectorized: bool = True,
 ) -> Perturbation:
-    """Φθ, Φz of (2.1) for a small body-axes torque, spec/serov.md §6.
+    """Φθ, Φz of (2.1) for a small body-axes torque, docs/theory/nonlinear-moment.md §6.
 
     With δM the torque per unit A (``torque(t, q, omega)`` returns δM/A in body axes, q the
     body → inertial quaternion of the z–x–z angles ψ, θ, φ, omega the body rate):

@@ -1,9 +1,9 @@
 """Uncontrolled entry capsules: atmosphere, Newtonian aerodynamics and ballistic descent.
 
-The application of spec/serov.md §9–§10: a segmental-conical capsule whose restoring moment
-M0(θ) = A(a sinθ + b sin2θ) (1.5) is fitted from modified-Newtonian aerodynamics, with a and b
-following the dynamic pressure q(t) of a ballistic descent through the standard atmosphere.
-Plain numerics (numpy, scipy, ambiance); from tumble it imports only its errors and type
+The application of docs/theory/nonlinear-moment.md §9–§10: a segmental-conical capsule whose
+restoring moment M0(θ) = A(a sinθ + b sin2θ) (1.5) is fitted from modified-Newtonian aerodynamics,
+with a and b following the dynamic pressure q(t) of a ballistic descent through the standard
+atmosphere. Plain numerics (numpy, scipy, ambiance); from tumble it imports only its errors and type
 aliases.
 
 Typical use::

@@ -1,11 +1,11 @@
 """Segmental-conical entry capsule: geometry, mass properties and modified-Newtonian
 aerodynamics at any total angle of attack, and the fit of its pitching moment to the
-two-term moment M0(θ) = A(a sinθ + b sin2θ), eq. (1.5) of spec/serov.md.
+two-term moment M0(θ) = A(a sinθ + b sin2θ), eq. (1.5) of the nonlinear-moment paper.
 
 Body axes: x along the symmetry axis from the heat-shield apex towards the back [m], r the
 distance from the axis. The total angle of attack α ∈ [0, π] is the angle between the
 vehicle's velocity and the forward axis (-x): α = 0 flies heat shield first, α = π back first.
-This α is the paper's θ (spec §1: e_z the velocity direction, θ the total angle of attack).
+This α is the paper's θ (§1: e_z the velocity direction, θ the total angle of attack).
 
 Pressure: modified Newtonian theory (Lees 1955), Cp = Cp_max sin²δ on the surface that faces
 the flow and Cp = 0 in its shadow, δ the local inclination of the surface to the free stream.
@@ -30,7 +30,7 @@ J. D. Anderson, *Hypersonic and High-Temperature Gas Dynamics*, ch. 3 (Newtonian
 sphere and disk limits).
 Ames Research Staff, *Equations, Tables, and Charts for Compressible Flow*, NACA Report 1135
 (1953) (normal shock, Rayleigh pitot formula).
-V. M. Serov (1991), seed 003; spec/serov.md §1, §9, §10.
+V. M. Serov (1991); docs/theory/nonlinear-moment.md §1, §9, §10.
 """
 
 from __future__ import annotations
@@ -146,7 +146,8 @@ class Capsule:
 
     References
     ----------
-    Spec/serov.md §1 (A equatorial, C axial), §10 (segmental-conical capsule).
+    V. M. Serov (1991); docs/theory/nonlinear-moment.md §1 (A equatorial, C axial), §10
+    (segmental-conical capsule).
     """
 
     D: float
@@ -569,7 +570,7 @@ class MomentFit:
 
     References
     ----------
-    Spec/serov.md eq. (1.5).
+    V. M. Serov (1991), eq. (1.5).
     """
 
     c1: float
@@ -611,8 +612,8 @@ def fit_moment(capsule: Capsule, mach: float = math.inf, *, n_alpha: int = 181) 
 
     References
     ----------
-    Spec/serov.md eq. (1.5) and §10 (the paper's claim that (1.5) represents the moment of a
-    segmental-conical capsule).
+    V. M. Serov (1991), eq. (1.5); docs/theory/nonlinear-moment.md §10 (the paper's claim that
+    (1.5) represents the moment of a segmental-conical capsule).
     """
     if n_alpha < 3:
         raise ParameterError(f"n_alpha = {n_alpha} is outside the allowed range [3, inf)")
@@ -647,7 +648,8 @@ class Trim:
 
     References
     ----------
-    Static stability of a trim, dCm/dα < 0; spec/serov.md (1.5)–(1.6) (wells of W(θ)).
+    Static stability of a trim, dCm/dα < 0; docs/theory/nonlinear-moment.md (1.5)–(1.6) (wells of
+    W(θ)).
     """
 
     alpha: float
@@ -727,7 +729,8 @@ def restoring_coefficients(
 
     References
     ----------
-    Spec/serov.md (1.5) and §9 (a = a0 Q, b = b0 Q with Q the dynamic-pressure profile).
+    V. M. Serov (1991), eq. (1.5); docs/theory/nonlinear-moment.md §9 (a = a0 Q, b = b0 Q with Q
+    the dynamic-pressure profile).
     """
     qa = np.asarray(q, dtype=float)
     if not np.all(np.isfinite(qa)) or np.any(qa < 0.0):

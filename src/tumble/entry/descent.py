@@ -12,7 +12,7 @@ and x the downrange distance along the Earth's surface [m]:
 with g = μ/(R_E + h)², R_E = 6371 km, μ = 3.986004418e14 m³/s² (the planar equations of
 e.g. Vinh, Busemann & Culp, *Hypersonic and Planetary Entry Flight Mechanics* (1980), with
 zero lift, no Earth rotation). The dynamic pressure q = ρV²/2 is what scales the capsule's
-restoring moment: a = q S D c1 / A, b = q S D c2 / A (spec/serov.md §9, Q(τ) ∝ q).
+restoring moment: a = q S D c1 / A, b = q S D c2 / A (docs/theory/nonlinear-moment.md §9, Q(τ) ∝ q).
 
 The standard atmosphere's density has a slope discontinuity at each ICAO layer boundary; the
 integration stops exactly on each one (event, then the last step redone to land on it) and

@@ -142,17 +142,17 @@ def _claim_section(r: ClaimRun) -> str:
     c, m = r.claim, r.claim.measured
     rows = [
         ("Claim", e(c.statement)),
-        ("Spec", e(c.spec_ref)),
+        ("Theory", e(c.theory_ref)),
         ("Measured", f"{e(str(m.get('what', '')))} = <b>{e(_value(m))}</b>"),
         ("Criterion", f"{e(str(m.get('criterion', '')))} (threshold {e(str(m.get('threshold')))})"),
     ]
     if m.get("qualification"):
         rows.append(("Qualification", e(str(m["qualification"]))))
-    if isinstance(m.get("details"), Mapping) and m["details"].get("spec_consistent") is False:
+    if isinstance(m.get("details"), Mapping) and m["details"].get("theory_consistent") is False:
         rows.append(
             (
-                "Against the spec",
-                "<b>the measurement also contradicts the specification's own statement "
+                "Against the theory",
+                "<b>the measurement also contradicts the theory page's own statement "
                 "here</b> (figures under details)",
             )
         )
@@ -194,10 +194,11 @@ def report_html(runs: Sequence[ClaimRun], papers: Sequence[str], wall_time: floa
         f'<p class="meta">tumble {e(__version__)} · {e(stamp)} · '
         f"{e(platform.python_implementation())} {e(platform.python_version())} · "
         f"{wall_time:.0f} s · {len(runs)} claims: {e(summary)}</p>",
-        "<p>Each claim is stated as the paper makes it, with the section of its "
-        "specification that states or corrects it. Its verdict is computed from the measured "
-        "figure against the criterion shown: <i>confirmed</i> (holds as the paper states it), "
-        "<i>confirmed with qualification</i> (holds in the form the specification gives it), "
+        "<p>Each claim is stated as the paper makes it, with the section of tumble's theory "
+        "page (docs/theory/) that states or corrects it. Its verdict is computed from the "
+        "measured figure against the criterion shown: <i>confirmed</i> (holds as the paper "
+        "states it), <i>confirmed with qualification</i> (holds in the form the theory page "
+        "gives it), "
         "<i>refuted</i> (the measurement contradicts the paper).</p>",
     ]
     for paper in papers:

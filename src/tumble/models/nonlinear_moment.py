@@ -2,11 +2,12 @@
 exact unperturbed motion, and Volosov's averaged equations for the nutation envelope.
 
 V. M. Serov, *Rotational motion of a dynamically symmetric rigid body under the action of a
-nonlinear moment* (1991), seed ``003_95a5fc288cdb1f88.txt``; ``spec/serov.md`` supersedes the
-seed where they differ (its §12: A is the equatorial moment, β, τ0, γ0, χ±, λ±, L± and the
-coefficient of L±). Equation numbers below are the paper's.
+nonlinear moment* (1991). Equation numbers are the paper's; section numbers (§) are those of
+``docs/theory/nonlinear-moment.md``, which states where tumble departs from the printed paper and
+why (corrections S1–S16 of its §12: A is the equatorial moment; β, τ0, γ0, χ±, λ±, L± and the
+coefficient of L±).
 
-Variables (spec §1): time t in the unit of the coefficients (a, b [1/t²], R, G [1/t]),
+Variables (§1): time t in the unit of the coefficients (a, b [1/t²], R, G [1/t]),
 μ = C/A, classical z–x–z Euler angles ψ, θ, φ of the body relative to the fixed axis e_z (for
 an entry vehicle the velocity direction, θ the total angle of attack), R = μr and G = K·e_z/A
 the reduced angular momenta. The perturbation of §9 (the entry capsule) has slow time τ = εt:
@@ -14,7 +15,7 @@ a = a0·Q(τ), b = b0·Q(τ) with the dynamic-pressure profile Q, pitch damping 
 damping εν.
 
 The averaged method integrates (2.2)–(2.3) for the slow variables: the energy H (form
-``"energy"``, the better-conditioned one of spec §7) or the turning point θext (form
+``"energy"``, the better-conditioned one of §7) or the turning point θext (form
 ``"theta_max"``/``"theta_min"``, the paper's (2.2)), together with z = (R, G, a, b). The
 averages come from the closed forms of §8 (⟨u⟩, ⟨u²⟩ by K, E, Π) for the built-in
 perturbation, and from adaptive quadrature over the nutation period for any perturbation
@@ -112,7 +113,7 @@ __all__ = [
 ]
 
 NEAR_SEPARATRIX = 1e-3
-"""1 − k² below which an averaged run is warned that it nears a separatrix (spec §11)."""
+"""1 − k² below which an averaged run is warned that it nears a separatrix (§11)."""
 
 EPS_PERIOD_LIMIT = 0.5
 """ε·T (slow time per nutation period) above which ε is not small enough for averaging."""
@@ -166,7 +167,7 @@ def _rate_and_attitude(
 
 
 def full_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
-    """Euler's equations (1.1) with quaternion kinematics under the moment of spec §9.
+    """Euler's equations (1.1) with quaternion kinematics under the moment of §9.
 
     The moment (1.4)–(1.5) is written without Euler angles: with e_z in body axes,
     M0·e_n = A(a + 2b cosθ)(e_z × e3), since e_z × e3 = sinθ·e_n. Damping adds
@@ -210,7 +211,7 @@ def slow_from_full(p: Params, t: FloatArray, Y: FloatArray) -> dict[str, FloatAr
     """Output columns from quaternion states: θ, ψ, φ (z–x–z), θ', R, G, a, b.
 
     θ = atan2(|e_z × e3|, e_z·e3) keeps full accuracy near 0 and π; θ' = ω·(e_z × e3)/sinθ
-    (from (1.2)); R = μr; G = (p, q, μr)·e_z (spec §1).
+    (from (1.2)); R = μr; G = (p, q, μr)·e_z (§1).
 
     Parameters
     ----------
@@ -268,11 +269,11 @@ def invariants(p: Params, Y: FloatArray) -> dict[str, FloatArray]:
 
 
 # ---------------------------------------------------------------------------------------------
-# The perturbation (2.1) in general, and the built-in one of spec §9.
+# The perturbation (2.1) in general, and the built-in one of §9.
 
 
 def builtin_perturbation(p: Params) -> Perturbation:
-    """Φθ, Φz of the descending capsule, spec §9: pitch and roll damping, pressure Q(τ).
+    """Φθ, Φz of the descending capsule, §9: pitch and roll damping, pressure Q(τ).
 
     Φθ = −dθ', Φ_R = −νR, Φ_G = −d(G − Ru) − νRu, Φ_a = a0 Q'(τ), Φ_b = b0 Q'(τ).
 
@@ -297,7 +298,7 @@ def builtin_perturbation(p: Params) -> Perturbation:
             [-p.nu * R * one, -p.d * (G - R * u) - p.nu * R * u, float(da) * one, float(db) * one]
         )
 
-    return Perturbation(phi_theta, phi_z, name="spec §9 (pitch/roll damping, pressure)")
+    return Perturbation(phi_theta, phi_z, name="§9 (pitch/roll damping, pressure)")
 
 
 def reduced_rhs(t: float, y: FloatArray, p: Params, perturbation: Perturbation) -> FloatArray:
@@ -365,7 +366,7 @@ def _builtin_reduced_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
 
 
 def _builtin_averages(orbit: NutationOrbit, p: Params, tau: float) -> tuple[float, FloatArray]:
-    """The averages of spec §9 in closed form: ⟨u⟩, ⟨u²⟩ by K, E, Π (§8)."""
+    """The averages of §9 in closed form: ⟨u⟩, ⟨u²⟩ by K, E, Π (§8)."""
     R, G, a, b, E = orbit.R, orbit.G, orbit.a, orbit.b, orbit.E
     m1, m2 = orbit.mean_u_power(1), orbit.mean_u_power(2)
     da, db = (float(v) for v in p.ab_rate(tau))
@@ -413,7 +414,7 @@ def _orbit_or_raise(build: Callable[[], NutationOrbit], t: float) -> NutationOrb
     except ParameterError as exc:
         raise IntegrationError(
             f"averaged equations (2.2) at t = {t:.6g}: {exc} — averaging breaks down there "
-            "(spec §11); do not average across a separatrix"
+            "(§11); do not average across a separatrix"
         ) from None
 
 
@@ -426,7 +427,7 @@ def averaged_rhs(
     u_hint: float = 0.0,
     perturbation: Perturbation | None = None,
 ) -> FloatArray:
-    """Volosov's averaged equations (2.2)–(2.3) of spec §7.
+    """Volosov's averaged equations (2.2)–(2.3) of §7.
 
     ``form = "energy"``: y = [H, R, G, a, b], H' = ε(⟨Φθθ'⟩ + ⟨Φz·W^z⟩), z' = ε⟨Φz⟩ (the
     better-conditioned form; the well is the allowed interval nearest ``u_hint``).
@@ -443,7 +444,7 @@ def averaged_rhs(
     u_hint : float
         cos θ inside the tracked well (energy form).
     perturbation : Perturbation, optional
-        Default: the built-in one of spec §9, averaged in closed form (§8); any other is
+        Default: the built-in one of §9, averaged in closed form (§8); any other is
         averaged numerically (:func:`numeric_averages`).
 
     Returns
@@ -489,7 +490,7 @@ def averaged_initial(
     perturbation: Perturbation | None = None,
     start: Literal["exact", "corrected"] = "exact",
 ) -> tuple[float, FloatArray, NutationOrbit]:
-    """The averaged initial state H̄(0), z̄(0) of spec §7 and §14 (``[run] averaged_init``).
+    """The averaged initial state H̄(0), z̄(0) of §7 and §14 (``[run] averaged_init``).
 
     ``start = "exact"``: H̄ = H(0), z̄ = z(0) (the paper's). ``"corrected"``: the first-order
     mean state H̄ = H(0) − ε u₁_H, z̄ = z(0) − ε u₁_z, u₁ the generator of the general
@@ -535,7 +536,7 @@ def averaged_initial(
 
 
 def damping_torque(p: Params) -> LinearDrag:
-    """The damping of spec §9 as a body-axes torque per unit A and ε: −d(p, q, 0) − ν(0, 0, R).
+    """The damping of §9 as a body-axes torque per unit A and ε: −d(p, q, 0) − ν(0, 0, R).
 
     With R = μr this is the linear drag −diag(d, d, νμ) ω, so the engine recognises a torque
     of the body rate only and averages it over φ alone.
@@ -553,13 +554,13 @@ def damping_torque(p: Params) -> LinearDrag:
 
 
 def engine_perturbation(p: Params) -> Perturbation:
-    """The perturbation of spec §9 for the general engine: its damping as a torque, its
+    """The perturbation of §9 for the general engine: its damping as a torque, its
     pressure as the prescribed laws of a and b (``averaging = "numeric"``)."""
     return torque_perturbation(
         damping_torque(p),
         p.mu,
         ab_rate=lambda tau: (float(p.ab_rate(tau)[0]), float(p.ab_rate(tau)[1])),
-        name="spec §9 damping through the engine",
+        name="§9 damping through the engine",
     )
 
 
@@ -716,7 +717,7 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
 
     def below_barriers(t: float, y: FloatArray) -> float:
         # > 0 while H is below every barrier of W, < 0 while above one: a sign change is a
-        # separatrix crossing (spec §11), which one step could otherwise jump over unseen.
+        # separatrix crossing (§11), which one step could otherwise jump over unseen.
         if compiled:  # the same sign, without the roots of the quintic
             return float(evaluate_separatrix_distance(np.asarray(y, dtype=float)))
         barriers = barrier_energies(*(float(v) for v in y[1:]))
@@ -726,7 +727,7 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
         raise IntegrationError(
             f"averaged equations (2.2): the motion reaches a separatrix at t = {t:.6g} (the "
             "energy crosses the barrier between two wells of W); averaging is not valid across "
-            "it (spec §11): run the full model there"
+            "it (§11): run the full model there"
         )
 
     def kernel(p: Params) -> Kernel | None:
@@ -745,7 +746,7 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
     )
     return AveragedForm(
         name=form,
-        equation="(2.2)-(2.3)" + (", energy form of spec §7" if form == "energy" else ""),
+        equation="(2.2)-(2.3)" + (", energy form of §7" if form == "energy" else ""),
         slow=("H" if form == "energy" else form, "R", "G", "a", "b"),
         rhs=rhs,
         initial_state=initial_state,
@@ -821,7 +822,7 @@ def closed_form(p: Params, st: State, t: FloatArray) -> dict[str, FloatArray]:
 def extrema(traj: Sampled, p: Params) -> list[tuple[str, int, float, float, float, float]]:
     """Every local maximum and minimum of θ(t) of a full trajectory for 0 < t < t_end.
 
-    A start at a turning point is not counted (spec §14). A compiled run located the zeros of
+    A start at a turning point is not counted (§14). A compiled run located the zeros of
     θ' as it integrated (:data:`tumble.kernels.EVENT_THETA_DOT`); otherwise they are
     bracketed on the integrator's steps (subdivided four times, so no swing is missed) and
     refined on the dense output.
@@ -884,12 +885,12 @@ def envelope_discrepancy(
 
 
 def validity(p: Params, st: State, slow: SlowPath, t_end: float) -> list[ValidityIssue]:
-    """Where an averaged trajectory loses accuracy (spec §10, §11), with the first time.
+    """Where an averaged trajectory loses accuracy (§10, §11), with the first time.
 
     ``near_separatrix``: 1 − k² < ``NEAR_SEPARATRIX`` (the period grows like ln(1/(1 − k²))
     and averaging degrades before it fails at ``SEPARATRIX_TOL``). ``eps_not_small``: the slow
     time per nutation period ε·T exceeds ``EPS_PERIOD_LIMIT``. Both are the tool's judgement of
-    the spec's "≪".
+    the "≪" of §6–§7.
 
     Parameters
     ----------
@@ -918,13 +919,13 @@ def validity(p: Params, st: State, slow: SlowPath, t_end: float) -> list[Validit
             "near_separatrix",
             lambda t: NEAR_SEPARATRIX - (1.0 - cols(t)["k2"]),
             f"the nutation nears a separatrix (1 − k² < {NEAR_SEPARATRIX:g}): the period "
-            "grows without bound and averaging loses accuracy (spec §11)",
+            "grows without bound and averaging loses accuracy (§11)",
         ),
         (
             "eps_not_small",
             lambda t: p.eps * cols(t)["period"] - EPS_PERIOD_LIMIT,
             f"ε·T > {EPS_PERIOD_LIMIT:g}: the slow variables change noticeably within one "
-            "nutation period, so averaging is not accurate (envelope error O(ε·T), spec §10)",
+            "nutation period, so averaging is not accurate (envelope error O(ε·T), §10)",
         ),
     )
     for name, cond, message in checks:
@@ -935,7 +936,7 @@ def validity(p: Params, st: State, slow: SlowPath, t_end: float) -> list[Validit
 
 
 def limits(p: Params, st: State) -> dict[str, Json]:
-    """The unperturbed orbit's constants (spec §14): root case, roots, k², E, θmin, θmax, T,
+    """The unperturbed orbit's constants (§14): root case, roots, k², E, θmin, θmax, T,
     mean precession and spin rates. For a perturbed run they describe the initial orbit.
 
     Parameters
@@ -1009,7 +1010,7 @@ def slow_errors(
     """Averaging error of each slow variable, for ``tumble verify``.
 
     θmax and θmin: |θ̄ext(t_k) − θ_k| at the full solution's maxima and minima (the envelope
-    (2.2) is what the averaged method predicts, spec §10); R and G: |full − averaged| at the
+    (2.2) is what the averaged method predicts, §10); R and G: |full − averaged| at the
     sample times.
 
     Parameters
@@ -1043,10 +1044,16 @@ _THETA = Column("theta", "nutation angle θ", "rad", "(1.9)")
 _PSI = Column("psi", "precession angle ψ", "rad", "(1.13)", angle=True, unwrap=True)
 _PHI = Column("phi", "proper rotation angle φ", "rad", "(1.13)", angle=True, unwrap=True)
 _THETA_DOT = Column("theta_dot", "nutation rate θ'", "rad/t", "(1.2)")
-_R = Column("R", "reduced axial momentum R = Cr/A", "1/t", "§1")
-_G = Column("G", "reduced momentum about e_z, G = K·e_z/A", "1/t", "§1")
-_A = Column("a", "sinθ coefficient a(τ) of M0/A", "1/t^2", "(1.5), §9")
-_B = Column("b", "sin2θ coefficient b(τ) of M0/A", "1/t^2", "(1.5), §9")
+_R = Column("R", "reduced axial momentum R = Cr/A", "1/t", "docs/theory/nonlinear-moment.md §1")
+_G = Column(
+    "G", "reduced momentum about e_z, G = K·e_z/A", "1/t", "docs/theory/nonlinear-moment.md §1"
+)
+_A = Column(
+    "a", "sinθ coefficient a(τ) of M0/A", "1/t^2", "(1.5), docs/theory/nonlinear-moment.md §9"
+)
+_B = Column(
+    "b", "sin2θ coefficient b(τ) of M0/A", "1/t^2", "(1.5), docs/theory/nonlinear-moment.md §9"
+)
 _UNPERTURBED = (_THETA, _PSI, _PHI, _THETA_DOT)
 _PERTURBED_FULL = (_THETA, _PSI, _PHI, _R, _G, _A, _B)
 _AVERAGED = (
@@ -1061,13 +1068,24 @@ _AVERAGED_MEAN = (
     Column("H_mean", "mean energy H̄ (averaging of order 2)", "1/t^2", "(1.6)"),
     *(Column(f"{c.name}_mean", f"mean {c.long_name} (averaging of order 2)", c.units,
              c.equation) for c in (_R, _G, _A, _B)),
-    Column("w_mean", "mean nutation phase w̄ from θmax (averaging of order 2)", "rad", "§4"),
+    Column("w_mean", "mean nutation phase w̄ from θmax (averaging of order 2)", "rad",
+           "docs/theory/nonlinear-moment.md §4"),
 )  # fmt: skip
 _DIAGNOSTICS = (
-    Column("k2", "modulus squared k² of the nutation", "1", "§4"),
-    Column("period", "nutation period T", "t", "§4"),
-    Column("root_case", "root case (1: four real roots, 2: a complex pair)", "1", "§3"),
-    Column("E", "energy H of (1.6) along the averaged solution", "1/t^2", "(1.6), §7"),
+    Column("k2", "modulus squared k² of the nutation", "1", "docs/theory/nonlinear-moment.md §4"),
+    Column("period", "nutation period T", "t", "docs/theory/nonlinear-moment.md §4"),
+    Column(
+        "root_case",
+        "root case (1: four real roots, 2: a complex pair)",
+        "1",
+        "docs/theory/nonlinear-moment.md §3",
+    ),
+    Column(
+        "E",
+        "energy H of (1.6) along the averaged solution",
+        "1/t^2",
+        "(1.6), docs/theory/nonlinear-moment.md §7",
+    ),
 )
 
 

@@ -964,8 +964,8 @@ _COLUMNS_FULL = (
     *attitude_columns("τ"),  # ω1, ω2, ω3 = z1, z2, z3, as in every model
 )
 _DIAGNOSTICS = (
-    Column("nu1", "polhode frequency ν1 = 2πν/4K", "1", "§8"),
-    Column("nu2", "mean precession rate ν2 about L", "1", "§8"),
+    Column("nu1", "polhode frequency ν1 = 2πν/4K", "1", "docs/theory/rotating-field.md §8"),
+    Column("nu2", "mean precession rate ν2 about L", "1", "docs/theory/rotating-field.md §8"),
 )
 
 

@@ -379,14 +379,26 @@ def _resonance_issue(
 
 
 _COLUMNS_SLOW = (
-    Column("L1", "inertial angular momentum L_ξ1", "1", "§10"),
-    Column("L2", "inertial angular momentum L_ξ2", "1", "§10"),
-    Column("L3", "inertial angular momentum L_ξ3", "1", "§10"),
-    Column("L", "angular momentum |L|", "1", "§10"),
-    Column("rho", "polar angle ρ of L from ξ3", "rad", "§10"),
-    Column("sigma", "inertial azimuth σ of L", "rad", "§10", angle=True, unwrap=True),
-    Column("T", "kinetic energy T", "1", "§10"),
-    Column("k2", "Euler–Poinsot modulus k² of the current regime", "1", "§8"),
+    Column("L1", "inertial angular momentum L_ξ1", "1", "docs/theory/rotating-field.md §10"),
+    Column("L2", "inertial angular momentum L_ξ2", "1", "docs/theory/rotating-field.md §10"),
+    Column("L3", "inertial angular momentum L_ξ3", "1", "docs/theory/rotating-field.md §10"),
+    Column("L", "angular momentum |L|", "1", "docs/theory/rotating-field.md §10"),
+    Column("rho", "polar angle ρ of L from ξ3", "rad", "docs/theory/rotating-field.md §10"),
+    Column(
+        "sigma",
+        "inertial azimuth σ of L",
+        "rad",
+        "docs/theory/rotating-field.md §10",
+        angle=True,
+        unwrap=True,
+    ),
+    Column("T", "kinetic energy T", "1", "docs/theory/rotating-field.md §10"),
+    Column(
+        "k2",
+        "Euler–Poinsot modulus k² of the current regime",
+        "1",
+        "docs/theory/rotating-field.md §8",
+    ),
 )
 _COLUMNS_MEAN = tuple(
     Column(f"{c.name}_mean", f"mean {c.long_name} (averaging of order 2)", c.units, c.equation)

@@ -25,7 +25,11 @@ def _label(da: xr.DataArray) -> str:
     units = da.attrs.get("units", "")
     eq = da.attrs.get("equation", "")
     name = da.attrs.get("long_name", da.name)
-    text = f"{name} [{units}]" + (f"  {eq}" if eq and eq != "(1.3)" else "")
+    # A dimensionless quantity has no unit to show; the paper's equation number, where the
+    # column has one, follows the name (a reference to a theory page does not).
+    text = name if units in ("", "1") else f"{name} [{units}]"
+    if eq.startswith("(") and eq != "(1.3)":
+        text += f"  {eq.split(';')[0].split(', docs/')[0]}"
     return textwrap.fill(text, 32)  # long names on two lines, so stacked panels do not collide
 
 

@@ -3,9 +3,11 @@
 * :mod:`~tumble.unperturbed.elliptic`: Legendre elliptic integrals of the third kind for any
   amplitude (Carlson's forms).
 * :mod:`~tumble.unperturbed.euler_poinsot`: the torque-free rigid body (3.1) of
-  spec/martynenko.md §8, its averages and fast frequencies.
+  the rotating-field paper (docs/theory/rotating-field.md §8), its averages and fast
+  frequencies.
 * :mod:`~tumble.unperturbed.symmetric_body`: the symmetric body under the moment
-  A(a·sinθ + b·sin2θ), (1.9)–(1.13) of spec/serov.md, and its period averages (§8).
+  A(a·sinθ + b·sin2θ), (1.9)–(1.13) of the nonlinear-moment paper, and its period averages
+  (docs/theory/nonlinear-moment.md §8).
 """
 
 from tumble.unperturbed.elliptic import ellippi, ellippi_inc

@@ -1,7 +1,7 @@
 """Euler–Poinsot motion: the torque-free rigid body in Jacobi elliptic functions, eq. (3.1).
 
-§8 of docs/theory/rotating-field.md (Yu. G. Martynenko 1979, seed 002; the spec supersedes the seed
-where they differ, correction C7 of its §14 for regime x1). Time is the paper's τ and z the body
+Yu. G. Martynenko (1979); docs/theory/rotating-field.md §8, with its correction C7 (§14) for
+regime x1. Time is the paper's τ and z the body
 angular velocity, in any consistent units: every rate below is in rad per unit of τ.
 
 Conventions

@@ -1,18 +1,18 @@
-"""The papers' claims, each run and checked as its spec states and qualifies it.
+"""The papers' claims, each run and checked as tumble's theory pages state and qualify it.
 
 One function per claim (``rm_1`` … in :mod:`~tumble.analysis.claims.resisting_medium`,
 ``rf_1`` … in :mod:`~tumble.analysis.claims.rotating_field`, ``nm_1`` … in
 :mod:`~tumble.analysis.claims.nonlinear_moment`) returns a :class:`Claim`: the paper's
-statement with its equation numbers, the spec sections that qualify it, one measured figure
+statement with its equation numbers, the theory sections that qualify it, one measured figure
 against a justified threshold, the verdict computed from it, and its figure as a
 :class:`FigureSpec` (drawn by :func:`tumble.plot.claim_figure`). Importing this package runs
 nothing; call the functions of :data:`CLAIMS`.
 
 References
 ----------
-spec/medvedev.md (``resisting_medium``, seed 000), spec/martynenko.md (``rotating_field``,
-seed 002), spec/serov.md (``nonlinear_moment``, seed 003); each spec supersedes its seed
-where they differ.
+A. V. Medvedev (1987), Yu. G. Martynenko (1979) and V. M. Serov (1991); the theory pages
+docs/theory/resisting-medium.md, rotating-field.md and nonlinear-moment.md state where tumble
+departs from each printed paper and why.
 """
 
 from __future__ import annotations

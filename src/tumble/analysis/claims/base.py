@@ -43,7 +43,7 @@ VERDICTS = (CONFIRMED, QUALIFIED, REFUTED)
 PAPERS = {
     "resisting_medium": "A. V. Medvedev (1987); docs/theory/resisting-medium.md",
     "rotating_field": "Yu. G. Martynenko (1979); docs/theory/rotating-field.md",
-    "nonlinear_moment": "V. M. Serov (1991), seed 003; spec/serov.md",
+    "nonlinear_moment": "V. M. Serov (1991); docs/theory/nonlinear-moment.md",
 }
 
 Style = Literal["line", "dashed", "dotted", "markers", "line+markers", "bar"]
@@ -122,8 +122,8 @@ class Claim:
         Short title.
     statement : str
         The claim as the paper makes it, with its equation or section numbers.
-    spec_ref : str
-        The spec sections and errata that state or qualify it.
+    theory_ref : str
+        The sections and corrections of the theory page that state or qualify it.
     verdict : str
         One of :data:`VERDICTS`, computed from ``measured``.
     measured : dict
@@ -137,7 +137,7 @@ class Claim:
     paper: str
     title: str
     statement: str
-    spec_ref: str
+    theory_ref: str
     verdict: str
     measured: dict[str, Any]
     figure: FigureSpec
@@ -150,7 +150,7 @@ class Claim:
                 "paper": self.paper,
                 "title": self.title,
                 "statement": self.statement,
-                "spec_ref": self.spec_ref,
+                "theory_ref": self.theory_ref,
                 "verdict": self.verdict,
                 "measured": self.measured,
             }
@@ -159,9 +159,9 @@ class Claim:
 
 @dataclass(frozen=True)
 class Measurement:
-    """What a claim's check measured: whether the (spec-qualified) claim holds, whether the
-    spec qualifies the paper's statement, the ``measured`` record and the figure's panels
-    (side by side unless ``ncols`` says otherwise)."""
+    """What a claim's check measured: whether the claim holds (as the theory page qualifies
+    it), whether the theory page qualifies the paper's statement, the ``measured`` record and the
+    figure's panels (side by side unless ``ncols`` says otherwise)."""
 
     holds: bool | np.bool_
     qualified: bool | np.bool_
@@ -175,7 +175,7 @@ REGISTRY: dict[str, list[Callable[[], Claim]]] = {}
 
 
 def claim(
-    cid: str, paper: str, title: str, statement: str, spec_ref: str
+    cid: str, paper: str, title: str, statement: str, theory_ref: str
 ) -> Callable[[Callable[[], Measurement]], Callable[[], Claim]]:
     """Declare a claim: its id, paper, title, the paper's statement and the references that
     state or qualify it, ahead of the check that measures it.
@@ -195,7 +195,7 @@ def claim(
                 title=f"{cid}: {title}",
             )
             found = verdict(bool(got.holds), bool(got.qualified))
-            return Claim(cid, paper, title, statement, spec_ref, found, got.measured, figure)
+            return Claim(cid, paper, title, statement, theory_ref, found, got.measured, figure)
 
         REGISTRY.setdefault(paper, []).append(run)
         return run
@@ -204,8 +204,8 @@ def claim(
 
 
 def verdict(holds: bool, qualified: bool) -> str:
-    """The verdict from a measurement: whether the (spec-qualified) claim holds, and whether
-    the spec qualifies the paper's statement."""
+    """The verdict from a measurement: whether the claim holds (as the theory page qualifies
+    it), and whether the theory page qualifies the paper's statement."""
     if not holds:
         return REFUTED
     return QUALIFIED if qualified else CONFIRMED

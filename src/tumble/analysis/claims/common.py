@@ -270,7 +270,7 @@ def measured(
     criterion : str
         The rule that turns value and threshold into the verdict.
     qualification : str, optional
-        The spec's qualification of the paper's statement ("" if none).
+        The theory page's qualification of the paper's statement ("" if none).
     **details
         Further measurements (per case, per variable …), stored under ``details``.
 

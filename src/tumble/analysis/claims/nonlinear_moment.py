@@ -2,16 +2,17 @@
 
 One function per claim, :func:`nm_1` … :func:`nm_11`, in the order of the paper. Each runs its
 check with tumble's public API and returns a :class:`~tumble.analysis.claims.base.Claim`: the
-paper's statement with its equation numbers, the spec sections that qualify it, one measured
-figure against a threshold justified in a comment, the verdict computed from it, and the
+paper's statement with its equation numbers, the sections of the theory page that qualify it, one
+measured figure against a threshold justified in a comment, the verdict computed from it, and the
 figure as a :class:`~tumble.analysis.claims.base.FigureSpec`. Time is the paper's t (slow time
-τ = εt), angles are radians (degrees only in figures). Parameters are the spec's §13 test
+τ = εt), angles are radians (degrees only in figures). Parameters are the §13 test
 cases, tumble's example scenarios and its illustrative Soyuz-class capsule; none is tuned
 toward an expected number.
 
 References
 ----------
-V. M. Serov (1991), seed 003; spec/serov.md supersedes the seed where they differ.
+V. M. Serov (1991); sections (§) and corrections (S1–S16) are those of
+docs/theory/nonlinear-moment.md.
 """
 
 from __future__ import annotations
@@ -79,11 +80,11 @@ NM_CASES = {
         nm.State(2.6, 0.0, 0.0, 0.0, 0.4, 0.6),
     ),
 }
-"""Spec §13: both root cases, a and b of both signs, a double well, b = 0 with a > 0 (the
+"""Theory §13: both root cases, a and b of both signs, a double well, b = 0 with a > 0 (the
 alternative anchoring of §4.3), mid-swing starts (θ′0 ≠ 0, which exercises γ0 and its sign)."""
 
 NM_PERTURBATION = {"d": 0.5, "nu": 0.2, "pressure": nm.Pressure("exp")}
-"""The perturbation of spec §9 with pitch and roll damping and Q = e^τ (examples/nm_damped_exp)."""
+"""The perturbation of §9 with pitch and roll damping and Q = e^τ (examples/nm_damped_exp)."""
 
 NM_EPS = [0.1, 0.05, 0.02, 0.01, 0.005]
 
@@ -124,7 +125,7 @@ def _nm_unperturbed_runs(
     "integrals R, G, E of the unperturbed motion",
     "(1.1)–(1.6): with M0 along the line of nodes R = Cr/A and G are constant and "
     "E = θ′²/2 + W(θ) is an energy integral.",
-    "serov.md §1, §2; errata 1, 2; §13",
+    "docs/theory/nonlinear-moment.md §1, §2; corrections S1, S2; §13",
 )
 def nm_1() -> Measurement:
     """R, G and the energy E are integrals of the unperturbed motion (1.3a), (1.6) (E1, E2).
@@ -152,7 +153,7 @@ def nm_1() -> Measurement:
             t = np.linspace(0.0, t_end, 1001)
             inv = nm.invariants(p, sol(t))
             drift = {k: max_abs(v - v[0]) / max(1.0, abs(float(v[0]))) for k, v in inv.items()}
-            # The energy from the state must equal the orbit's E of (1.6) (erratum 2: G with
+            # The energy from the state must equal the orbit's E of (1.6) (correction S2: G with
             # cos φ).
             drift["E_vs_1.6"] = abs(float(inv["E"][0]) - orbit.E) / max(1.0, abs(orbit.E))
             drift["G_vs_state"] = abs(float(inv["G"][0]) - st.G) / max(1.0, abs(st.G))
@@ -181,8 +182,8 @@ def nm_1() -> Measurement:
         "1 (relative to max(1, |value|))",
         "max drift of R, G, E of the full model over ten nutation periods, and E, G of the "
         "initial state against (1.6) and the definition of G, five orbits",
-        "erratum 1: A is the equatorial and C the axial moment (the prose swaps them); erratum "
-        "2: G = (p sinφ + q cosφ) sinθ + μr cosθ (seed: q sinφ)",
+        "correction S1: A is the equatorial and C the axial moment (the prose swaps them); "
+        "correction S2: G = (p sinφ + q cosφ) sinθ + μr cosθ (printed: q sinφ)",
         per_case=per,
     )
     return Measurement(holds, True, m, panels)
@@ -194,10 +195,10 @@ def nm_1() -> Measurement:
     "nutation θ(t) in closed form (1.9)–(1.10)",
     "(1.9) cosθ = L + M/(1 + N sin²(δγ)), γ = am(βt + τ0, k), with L, M, N, k, β of case 1 "
     "(four real roots) and case 2 (a complex pair); (1.10) τ0 and γ0.",
-    "serov.md §3, §4; errata 3, 4, 5, 6, 11; §13",
+    "docs/theory/nonlinear-moment.md §3, §4; corrections S3, S4, S5, S6, S11; §13",
 )
 def nm_2() -> Measurement:
-    """Nutation in closed form (1.9)–(1.10) (errata 3–6, 11).
+    """Nutation in closed form (1.9)–(1.10) (corrections S3–S6, 11).
 
     Returns
     -------
@@ -219,7 +220,7 @@ def nm_2() -> Measurement:
         return {c: v["error"] for c, v in per.items()}, nfev, (per, runs)
 
     # Criterion: (1.9) is exact, so θ agrees to integration accuracy (the difference falls
-    # with the tolerance); a wrong τ0 exponent, γ0 sign or β (errata 3–6) gives O(1) errors
+    # with the tolerance); a wrong τ0 exponent, γ0 sign or β (corrections S3–S6) gives O(1) errors
     # (or a wrong period), which do not.
     conv, (per, runs) = converged(difference, UNPERTURBED)
     series = [
@@ -241,8 +242,8 @@ def nm_2() -> Measurement:
         "rad",
         "max |θ(1.9) − θ integrated| (and θ′ relative) over ten periods, five orbits (both root "
         "cases, double well, b = 0 with a > 0)",
-        "errata 3–6: τ0 = F(γ0, k) (exponent −1/2), γ0 = σ sign(θ′0)…, σ = +1 in case 2; "
-        "β = √(−(b/2)(u1−u3)(u2−u4)) (case 1), √(−2bη) (case 2); erratum 11 / §4.3: for b = 0 "
+        "corrections S3–S6: τ0 = F(γ0, k) (exponent −1/2), γ0 = σ sign(θ′0)…, σ = +1 in case 2; "
+        "β = √(−(b/2)(u1−u3)(u2−u4)) (case 1), √(−2bη) (case 2); correction S11 / §4.3: for b = 0 "
         "with a > 0 the alternative anchoring is needed",
         per_case=per,
     )
@@ -266,10 +267,10 @@ def _period_by_quadrature(orbit: NutationOrbit) -> float:
     NM,
     "nutation period and β of (1.10)",
     "§1: T = 2K(k)/β with β = [2b(u1−u3)(u2−u4)]^{1/2} (case 1) and β = (2bη)^{1/2} (case 2).",
-    "serov.md §4.1, §4.2; errata 5, 6",
+    "docs/theory/nonlinear-moment.md §4.1, §4.2; corrections S5, S6",
 )
 def nm_3() -> Measurement:
-    """Nutation period T = 2K/β (case 1), 4K/β (case 2) with the corrected β (errata 5, 6).
+    """Nutation period T = 2K/β (case 1), 4K/β (case 2) with the corrected β (corrections S5, S6).
 
     Returns
     -------
@@ -292,7 +293,7 @@ def nm_3() -> Measurement:
             and math.isfinite(orbit.roots[3].real)
         ):
             u1, u2, u3, u4 = (float(z.real) for z in orbit.roots)
-            # The seed's β = [2b(u1 − u3)(u2 − u4)]^{1/2}: negative radicand, modulus 2× too big.
+            # The paper's β = [2b(u1 − u3)(u2 − u4)]^{1/2}: negative radicand, modulus 2× too big.
             radicand = 2 * orbit.b * (u1 - u3) * (u2 - u4)
             row["seed_radicand"] = radicand
             # Period with |β_seed| over the true period: β/|β_seed|.
@@ -323,8 +324,8 @@ def nm_3() -> Measurement:
         "2∫_{u2}^{u1} du/√f(u) by quadrature, five orbits",
         1e-10,
         "value ≤ 1e-10",
-        "errata 5, 6: the printed β radicands are negative (case 1: 2b(u1−u3)(u2−u4), modulus "
-        "giving half the period; case 2: 2bη with b < 0)",
+        "corrections S5, S6: the printed β radicands are negative (case 1: 2b(u1−u3)(u2−u4), "
+        "modulus giving half the period; case 2: 2bη with b < 0)",
         per_case=rows,
     )
     return Measurement(holds, True, m, panels)
@@ -336,10 +337,10 @@ def nm_3() -> Measurement:
     "precession and spin (1.11)–(1.13)",
     "(1.13): ψ − ψ0 and φ − φ0 are the secular terms P_ψ t, P_φ t plus χ±Π(γ, w±, k) and, "
     "in case 2, w± L±(γ).",
-    "serov.md §5; errata 7, 8, 9, 10, 14",
+    "docs/theory/nonlinear-moment.md §5; corrections S7, S8, S9, S10, S14",
 )
 def nm_4() -> Measurement:
-    """Precession and spin (1.11)–(1.13) (errata 7–10).
+    """Precession and spin (1.11)–(1.13) (corrections S7–S10).
 
     Returns
     -------
@@ -394,9 +395,9 @@ def nm_4() -> Measurement:
         conv,
         "1 (relative to max(1, |phase|))",
         "max |ψ, φ of (1.13) − integrated| over ten periods, five orbits",
-        "errata 7–9: χ± of case 2 re-bracketed, λ± = (k² + w±)^{+1/2} and L±(γ) with sin²γ, "
-        "coefficients of L± are ϰ± = (G±R)(u1−u2)/[4β(1±u1)(1±u2)] (seed: w±); erratum 10: Π "
-        "has the plus-sign convention (n = −w)",
+        "corrections S7–S9: χ± of case 2 re-bracketed, λ± = (k² + w±)^{+1/2} and L±(γ) with "
+        "sin²γ, coefficients of L± are ϰ± = (G±R)(u1−u2)/[4β(1±u1)(1±u2)] (printed: w±); "
+        "correction S10: Π has the plus-sign convention (n = −w)",
         per_case=per,
         worst_mean_rate_mismatch_ten_periods=worst_rate,
     )
@@ -409,10 +410,10 @@ def nm_4() -> Measurement:
     "Volosov's averaged equations (2.2)–(2.3)",
     "(2.2): θ̇ext = ε[⟨Φθθ′⟩ + ⟨Φz·W^z⟩ − ⟨Φz⟩·W^z(θext)]/F(θext, z), ż = ε⟨Φz⟩, with the "
     "averages (2.3) over the unperturbed nutation.",
-    "serov.md §6, §7; erratum 13",
+    "docs/theory/nonlinear-moment.md §6, §7; correction S13",
 )
 def nm_5() -> Measurement:
-    """Volosov's averaged equations (2.2)–(2.3) (spec §7, erratum 13: no error).
+    """Volosov's averaged equations (2.2)–(2.3) (§7, correction S13: no error).
 
     Returns
     -------
@@ -492,10 +493,10 @@ def nm_5() -> Measurement:
     "averages by complete elliptic integrals (2.4)–(2.5)",
     "(2.4)–(2.5): for Φ rational in u with real poles the averages reduce to ∫cosⁱθ dt and "
     "∫dt/(1 ± cosθ) over a period, i.e. to complete elliptic integrals.",
-    "serov.md §8",
+    "docs/theory/nonlinear-moment.md §8",
 )
 def nm_6() -> Measurement:
-    """Reduction of the averages to complete elliptic integrals (2.4)–(2.5) (spec §8).
+    """Reduction of the averages to complete elliptic integrals (2.4)–(2.5) (§8).
 
     Returns
     -------
@@ -555,7 +556,7 @@ def _start(init: str) -> AveragingOptions:
 
 @cache_per_scale
 def _nm_envelope_errors(name: str, init: str, eps_values: tuple[float, ...]) -> np.ndarray:
-    """Max |θ̄ext(t_k) − θ_k| over the full solution's extrema, τ = εt ∈ [0, 1] (spec §13)."""
+    """Max |θ̄ext(t_k) − θ_k| over the full solution's extrema, τ = εt ∈ [0, 1] (§13)."""
     p0, st = NM_CASES[name]
     out = []
     for eps in eps_values:
@@ -634,10 +635,10 @@ def _nm_envelope_claim(init: str) -> tuple[float, np.ndarray, tuple[Panel, Panel
     "averaged envelope is first-order accurate",
     "§2: the averaged system (2.2) gives the evolution of the nutation envelope θmax, θmin "
     "(first-order Volosov averaging).",
-    "serov.md §7 'Initial state and accuracy', §13",
+    "docs/theory/nonlinear-moment.md §7 'Initial state and accuracy', §13",
 )
 def nm_7() -> Measurement:
-    """Averaged envelope vs full: O(ε) with the paper's initial state (spec §7, §13).
+    """Averaged envelope vs full: O(ε) with the paper's initial state (§7, §13).
 
     Returns
     -------
@@ -665,13 +666,13 @@ def nm_7() -> Measurement:
 @claim(
     "nm-8",
     NM,
-    "corrected start: envelope O(ε²) (spec)",
-    "Not in the paper. Spec §7: with a turning-point start or the corrected initial state "
+    "corrected start: envelope O(ε²) (§7)",
+    "Not in the paper. Theory §7: with a turning-point start or the corrected initial state "
     "H̄(0), z̄(0) the averaged θmin, θmax match the extrema to O(ε²).",
-    "serov.md §7 (spec observation), §13",
+    "docs/theory/nonlinear-moment.md §7 (an observation), §13",
 )
 def nm_8() -> Measurement:
-    """Corrected initial state: envelope error O(ε²) (spec §7, observed).
+    """Corrected initial state: envelope error O(ε²) (§7, observed).
 
     Returns
     -------
@@ -680,7 +681,7 @@ def nm_8() -> Measurement:
         state; holds at |order − 2| ≤ 0.35.
     """
     order, err, panels = _nm_envelope_claim("corrected")
-    # Spec §7: O(ε²) with the corrected start (observed numerically); ±0.35 absorbs the O(ε³)
+    # Theory §7: O(ε²) with the corrected start (observed numerically); ±0.35 absorbs the O(ε³)
     # part at ε = 0.1.
     holds = abs(order - 2.0) <= 0.35
     m = measured(
@@ -704,10 +705,10 @@ def nm_8() -> Measurement:
     "no restriction on the angle of attack",
     "§3 (i): unlike quasi-linear or quasi-static methods, the averaged equations need no "
     "restriction on the amplitude of the angle of attack.",
-    "serov.md §10 (i)",
+    "docs/theory/nonlinear-moment.md §10 (i)",
 )
 def nm_9() -> Measurement:
-    """Application (i): no restriction on the angle of attack (spec §10).
+    """Application (i): no restriction on the angle of attack (§10).
 
     Returns
     -------
@@ -772,7 +773,7 @@ def nm_9() -> Measurement:
 @cache_per_scale
 def _nm_capsule() -> tuple[Any, Any, float, float]:
     """The illustrative Soyuz-class capsule at its own descent ε = 0.3, and with the inertias
-    scaled by 1/4 (ε = 0.15), paper's initialisation (spec §10 (ii), (iii))."""
+    scaled by 1/4 (ε = 0.15), paper's initialisation (§10 (ii), (iii))."""
     base = quiet(capsule_attitude, averaged_init="exact", samples=401)
     small = quiet(
         capsule_attitude,
@@ -806,10 +807,10 @@ def _nm_capsule() -> tuple[Any, Any, float, float]:
     "averaged model an order of magnitude cheaper",
     "§3 (ii): the averaged equations reduce the computing cost by about an order of "
     "magnitude compared with the full equations.",
-    "serov.md §10 (ii)",
+    "docs/theory/nonlinear-moment.md §10 (ii)",
 )
 def nm_10() -> Measurement:
-    """Application (ii): the averaged model is an order of magnitude cheaper (spec §10).
+    """Application (ii): the averaged model is an order of magnitude cheaper (§10).
 
     Returns
     -------
@@ -863,7 +864,7 @@ def nm_10() -> Measurement:
             hlines=((10.0, "an order of magnitude"),),
         ),
     )
-    # Holds (as the spec qualifies it): the ratio grows as ε falls and reaches 10× at a
+    # Holds (as §10 qualifies it): the ratio grows as ε falls and reaches 10× at a
     # moderate ε (≤ 0.15 here).
     holds = ratios[1] >= 10.0 and ratios[1] > ratios[0]
     m = measured(
@@ -895,7 +896,7 @@ def nm_10() -> Measurement:
     "capsule: envelope within 4 % (the paper's figure)",
     "§3 (iii): for a segmental-conical capsule the envelope of θmax from the averaged "
     "equations differs from the full model by at most 4 %.",
-    "serov.md §9, §10 (iii)",
+    "docs/theory/nonlinear-moment.md §9, §10 (iii)",
 )
 def nm_11() -> Measurement:
     """Application (iii): the capsule's envelope of θmax within 4 % of the full model.
@@ -926,7 +927,7 @@ def nm_11() -> Measurement:
             },
         ),
     )
-    # The paper's figure: ≤ 4 %. Its capsule data are not given (spec §10 (iii)): the check is
+    # The paper's figure: ≤ 4 %. Its capsule data are not given (§10 (iii)): the check is
     # the 4 % bound for an illustrative capsule at a comparable ε, and the O(ε) trend.
     holds = d[0] <= 0.04
     m = measured(

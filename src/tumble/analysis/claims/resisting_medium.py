@@ -72,7 +72,7 @@ RM_GENERAL = rm.Params(
     b=np.array([[0.2, 0.01, 0.02], [0.0, 0.25, 0.0], [0.03, 0.0, 0.1]]),
     s=np.array([[0.1, 0.0, 0.01], [0.0, 0.12, 0.0], [0.0, 0.02, 0.05]]),
 )
-"""Spec §13.2/§13.6: full (non-diagonal) B and S, a1, a2 ≠ 0, oblate body."""
+"""Theory §13.2/§13.6: full (non-diagonal) B and S, a1, a2 ≠ 0, oblate body."""
 
 RM_START = rm.State(k=1.0, rho=1.2, sigma=0.3, psi=0.2, theta=1.0, phi=0.1)
 """ϑ and ρ away from 0 and π (§13.2), upper hemisphere, a3 > 0: no crossing of π/2 (§13.6)."""
@@ -87,7 +87,7 @@ RM_PROLATE = (
     ),
     rm.State(1.2, 2.0, -1.0, 1.0, 2.2, -0.5),
 )
-"""Spec §13.6: the other hemisphere and a prolate body (a3 < 0 keeps ϑ > π/2)."""
+"""Theory §13.6: the other hemisphere and a prolate body (a3 < 0 keeps ϑ > π/2)."""
 
 
 def _rm_medium(
@@ -488,7 +488,7 @@ RM_AXIAL_CASES = {
         "axial_upper_tan",
     ),
 }
-"""Spec §13.5: every branch of (2.5)–(2.8), the switches of §8.4, the double roots, δ = 0."""
+"""Theory §13.5: every branch of (2.5)–(2.8), the switches of §8.4, the double roots, δ = 0."""
 
 
 @claim(
@@ -1252,7 +1252,7 @@ def rm_16() -> Measurement:
         "within 5 %",
         "in the full model the final state is a steady rotation whose axis is tilted from K by "
         "O(ε) when a1, a2 or off-diagonal B, S entries are present: 'ϑ → 0' means ϑ → O(ε)",
-        spec_consistent=rel <= 0.05,
+        theory_consistent=rel <= 0.05,
         tilt_formula=tilt,
         relative_difference_from_tilt=rel,
     )

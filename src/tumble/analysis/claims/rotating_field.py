@@ -104,10 +104,10 @@ def _rf_transient_runs() -> tuple[np.ndarray, dict[str, np.ndarray], dict[str, n
     RF,
     "eddy-current torque (1.2)/(1.3)",
     "(1.2) M_ξ = k_f H_ξ × (H_ξ × Ω_ξ + Ḣ_ξ); (1.3) M_ξ = M0 Bᵀĥĥ(BΩ_ξ − ωξ3), M0 = k_f H².",
-    "docs/theory/rotating-field.md §3; corrections C1, 2",
+    "docs/theory/rotating-field.md §3; corrections C1, C2",
 )
 def rf_1() -> Measurement:
-    """Eddy-current torque (1.2)/(1.3) (§3, corrections C1, 2).
+    """Eddy-current torque (1.2)/(1.3) (§3, corrections C1, C2).
 
     Returns
     -------
@@ -625,7 +625,7 @@ def rf_8() -> Measurement:
     "rf-9",
     RF,
     "thin plate: critical mode decays nonlinearly (§7)",
-    "Not in the paper (footnote 2 only names the critical case). Spec §7: in the nonlinear "
+    "Not in the paper (footnote 2 only names the critical case). Theory §7: in the nonlinear "
     "model this mode is observed to decay, at a rate proportional to the square of the "
     "amplitude, i.e. amplitude ~ τ^(−1/2).",
     "docs/theory/rotating-field.md §7 'critical cases' (an observation)",
@@ -676,7 +676,7 @@ def rf_9() -> Measurement:
             if linear_reading
             else "contradicted for both readings"
         ),
-        spec_consistent=linear_reading,
+        theory_consistent=linear_reading,
         amplitude_power_law_in_tau=p_lin,
         local_exponent_larger_amplitudes=n_large_A,
         local_exponent_smaller_amplitudes=n_small_A,
@@ -1338,9 +1338,10 @@ def rf_17() -> Measurement:
         "settling phases (β = 1, ε = 0.02)",
         0.05,
         "the paper's rate holds if value ≤ 0.05",
-        "§12: (3.7) over-predicts the final nutation damping of a triaxial body; the true "
-        "rate is 2 Re λ2,3 of (2.6)",
-        spec_consistent=dev26 <= 0.05,
+        "§12: the final decay follows the phase φ at which the body settles, "
+        "2 Re λ2,3(φ) = rate(3.7) + (ε sin²β/2)(I2 − I1)/(I1 I2) cos 2φ: (2.6) is its slowest "
+        "value (φ = 0), (3.7) its mean over φ",
+        theory_consistent=devphi <= 0.05,
         deviation_from_2_6=dev26,
         deviation_from_phase_formula=devphi,
         rate_3_7=r37,

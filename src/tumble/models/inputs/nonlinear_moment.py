@@ -29,7 +29,7 @@ __all__ = ["DECLARED", "SCENARIO", "Params", "Pressure", "State", "orbit_of"]
 
 @dataclass(frozen=True)
 class Pressure:
-    """Dynamic-pressure profile Q(τ) of spec §9: constant, exponential Q = e^τ, a table, or
+    """Dynamic-pressure profile Q(τ) of §9: constant, exponential Q = e^τ, a table, or
     (from Python) any smooth function.
 
     Parameters
@@ -142,7 +142,7 @@ class Pressure:
 
 @dataclass(frozen=True)
 class Params:
-    """Parameters of (1.1)–(1.5) and of the perturbation of spec §9.
+    """Parameters of (1.1)–(1.5) and of the perturbation of §9.
 
     Parameters
     ----------
@@ -199,7 +199,7 @@ class Params:
         return self.a * q, self.b * q
 
     def ab_rate(self, tau: ArrayLike) -> tuple[FloatArray, FloatArray]:
-        """da/dτ, db/dτ = (a, b)·Q'(τ)/Q(0) [1/t²] (Φ_a, Φ_b of spec §9)."""
+        """da/dτ, db/dτ = (a, b)·Q'(τ)/Q(0) [1/t²] (Φ_a, Φ_b of §9)."""
         q = self.pressure.rate(np.asarray(tau, dtype=float)) / self.Q0
         return self.a * q, self.b * q
 
@@ -220,7 +220,7 @@ class Params:
 
 @dataclass(frozen=True)
 class State:
-    """A state at t = 0, spec §14: Euler angles, nutation rate and reduced momenta.
+    """A state at t = 0, §14: Euler angles, nutation rate and reduced momenta.
 
     Parameters
     ----------

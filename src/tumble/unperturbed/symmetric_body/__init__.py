@@ -17,10 +17,10 @@ mean
 with σ = sin²γ (case 1, δ = 1) or σ = sin²(γ/2) (case 2, δ = ½, ν = ξ of §4.2). This is (1.9)
 with L = P, M = A_* − P, N = ν − 1, rewritten so that nothing is infinite when P is (b = 0,
 §4.3) or when ξ = 1 (§4.2): a huge or infinite pole root only makes ν → 1. Case 1 uses the
-seed's anchoring (A_* = u2, θmax at γ = 0, σ = −1 in (1.10)) for the motion and, for each pole
+paper's anchoring (A_* = u2, θmax at γ = 0, σ = −1 in (1.10)) for the motion and, for each pole
 ρ = ±1 of (1.12), the anchoring whose anchor is the turning point farther from ρ (the
-alternative anchoring of §4.3 is the seed's at βt + τ0 + K). Case 2 anchors at u1 (θmin,
-σ = +1, errata 4).
+alternative anchoring of §4.3 is the paper's at βt + τ0 + K). Case 2 anchors at u1 (θmin,
+σ = +1, corrections S4).
 
 Partial fractions are taken about the anchor instead of about L (§5):
 
@@ -29,8 +29,8 @@ Partial fractions are taken about the anchor instead of about L (§5):
 and ∫ σ/(1 + wσ) dγ/Δ = S(γ, w) = (1/3) sin³γ R_J(cos²γ, Δ², 1, 1 + w sin²γ), i.e.
 (F − Π(γ, w, k))/w without the 0/0 at w = 0. No 1/(1 ± L) appears, so a pole root P close to
 ±1 (§11) needs no special treatment and the term (G ∓ R)/(1 ∓ u) stays finite for G → ±R.
-In case 2 the same algebra gives (1.13) with the corrected χ±, ϰ±, λ± and L±(γ) of errata
-7–9 in a form that is finite at ξ = 1 and at 1 ± L = 0.
+In case 2 the same algebra gives (1.13) with the corrected χ±, ϰ±, λ± and L±(γ) of corrections
+S7–S9 in a form that is finite at ξ = 1 and at 1 ± L = 0.
 
 Roots and conditioning
 ----------------------

@@ -79,7 +79,7 @@ class _Outer(NamedTuple):
     m: float
     mc: float
     beta2: float
-    nu_max: float  # case 1: the seed's anchoring (A = u2, P = u3); case 2: ξ
+    nu_max: float  # case 1: the paper's anchoring (A = u2, P = u3); case 2: ξ
     nu_min: float  # case 1: the alternative anchoring (A = u1, P = u4)
 
 
@@ -301,7 +301,7 @@ def _charts_and_phase(
     d1, d2 = p1.d, p2.d
     if out.root_case == 1:
         nu_max = out.nu_max
-        # σ0 = sin²γ0 of (1.10) in the seed's anchoring (σ = −1: γ = 0 is θmax)
+        # σ0 = sin²γ0 of (1.10) in the paper's anchoring (σ = −1: γ = 0 is θmax)
         den = -d2 + nu_max * d1
         sig0 = -d2 / den if den > 0.0 else 0.0
         sigc0 = nu_max * d1 / den if den > 0.0 else 1.0

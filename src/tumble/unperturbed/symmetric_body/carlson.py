@@ -49,7 +49,7 @@ def _s_integral(
 
 
 def _lam_integral(sin_g: FloatArray, dn: FloatArray, lam: float) -> FloatArray:
-    """Λ(γ) = λ⁻¹ arctan(λ sinγ/Δ) = −L(γ) of (1.13) (errata 8); sinγ/Δ when λ = 0."""
+    """Λ(γ) = λ⁻¹ arctan(λ sinγ/Δ) = −L(γ) of (1.13) (corrections S8); sinγ/Δ when λ = 0."""
     y = sin_g / dn
     if lam == 0.0:
         return np.asarray(y, dtype=float)

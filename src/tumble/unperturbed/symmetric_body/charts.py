@@ -81,7 +81,7 @@ class _Jac:
 
 
 def _make_pole(orbit: NutationOrbit, rho: float) -> _Pole:
-    """Coefficients of ∫dt/(u − ρ) (module notes; (1.13) with errata 7–9 in case 2)."""
+    """Coefficients of ∫dt/(u − ρ) (module notes; (1.13) with corrections S7–S9 in case 2)."""
     mc, m = orbit.mc, orbit.k2
     p1, p2 = orbit._p1, orbit._p2
     if orbit.root_case == 1:

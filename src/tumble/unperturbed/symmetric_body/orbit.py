@@ -61,7 +61,7 @@ class NutationOrbit:
     k2, mc : float
         Parameter m = k² and 1 − k² [1], each from its own cancellation-free formula.
     beta : float
-        β of §4 (errata 5, 6) [1/time].
+        β of §4 (corrections S5, S6) [1/time].
     period : float
         Nutation period T = 2K/β (case 1) or 4K/β (case 2) [time]; for a steady precession the
         limit of small oscillations about it.

@@ -666,7 +666,7 @@ def _label(r_small: float, r_big: float, d1: float, d2: float) -> tuple[float, f
 def _case1_modulus(
     d1: float, d2: float, u3: float, u4: float, big3: bool, big4: bool, qq: float, c4: float
 ) -> tuple[float, float, float]:
-    """k², 1 − k², β² of §4.1 (errata 5) with A = u2, B = u1, P = u3, Q = u4.
+    """k², 1 − k², β² of §4.1 (corrections S5) with A = u2, B = u1, P = u3, Q = u4.
 
     k² = (B − A)(P − Q)/((B − P)(A − Q)), 1 − k² = (B − Q)(A − P)/((B − P)(A − Q)),
     β² = −(b/2)(B − P)(A − Q); the big root X enters through c4·X = qq (finite at b = 0).
@@ -697,7 +697,7 @@ def _nu(A: float, B: float, P: float, big: bool, qq: float, c4: float) -> float:
 def _case2_modulus(
     d1: float, d2: float, c: float, d: float, c4: float
 ) -> tuple[float, float, float, float]:
-    """k², 1 − k², β² = −2bη and ξ of §4.2 (errata 6), without cancellation.
+    """k², 1 − k², β² = −2bη and ξ of §4.2 (corrections S6), without cancellation.
 
     With x_i = u_i − c, ρ_i = sqrt(x_i² + d²): e_i∓ = ρ_i ∓ x_i ≥ 0, each either a sum or
     d²/(the sum), and k² = (u1 − u2)²(e1− + e2−)(e1+ + e2+)/(4η(ρ1 + ρ2)²),

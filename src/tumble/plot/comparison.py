@@ -8,6 +8,8 @@ from typing import TYPE_CHECKING, Any
 
 import xarray as xr
 
+from tumble.plot.labels import with_units
+
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
@@ -27,7 +29,7 @@ def _label(da: xr.DataArray) -> str:
     name = da.attrs.get("long_name", da.name)
     # A dimensionless quantity has no unit to show; the paper's equation number, where the
     # column has one, follows the name (a reference to a theory page does not).
-    text = name if units in ("", "1") else f"{name} [{units}]"
+    text = with_units(name, units)
     if eq.startswith("(") and eq != "(1.3)":
         text += f"  {eq.split(';')[0].split(', docs/')[0]}"
     return textwrap.fill(text, 32)  # long names on two lines, so stacked panels do not collide
@@ -81,9 +83,8 @@ def plot_methods(
             ax.plot(ds["tau"].values, ds[variable].values, **style)
     mark_warnings(ax, marks)
     if some is not None:
-        ax.set_xlabel(
-            f"{some['tau'].attrs.get('long_name', 'τ')} [{some['tau'].attrs.get('units', '')}]"
-        )
+        tau = some["tau"].attrs
+        ax.set_xlabel(with_units(tau.get("long_name", "τ"), tau.get("units", "")))
         ax.set_ylabel(_label(some[variable]))
     ax.grid(True, alpha=0.3)
     return ax
@@ -131,10 +132,9 @@ def plot_comparison(
             da = diagnostics[name]
             ax.plot(diagnostics["tau"].values, da.values, lw=1.2, label=da.attrs["long_name"])
         first = next(iter(diagnostics.data_vars.values()))
-        ax.set_ylabel(f"averaged run [{first.attrs['units']}]")
-        ax.set_xlabel(
-            f"{diagnostics['tau'].attrs['long_name']} [{diagnostics['tau'].attrs['units']}]"
-        )
+        ax.set_ylabel(with_units("averaged run", first.attrs["units"]))
+        tau = diagnostics["tau"].attrs
+        ax.set_xlabel(with_units(tau["long_name"], tau["units"]))
         ax.legend(loc="best", fontsize=8)
         ax.grid(True, alpha=0.3)
     for ax in axs[:-1]:

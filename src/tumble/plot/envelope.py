@@ -10,6 +10,7 @@ import numpy as np
 import xarray as xr
 
 from tumble.plot.comparison import mark_warnings
+from tumble.plot.labels import with_units
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -61,7 +62,7 @@ def plot_envelope(
     fig: Any = ax.figure
     time_attrs = _draw_theta(ax, datasets, extrema)
     mark_warnings(ax, marks)
-    ax.set_xlabel(f"time {time_attrs.get('name', 't')} [{time_attrs.get('units', '')}]")
+    ax.set_xlabel(with_units(f"time {time_attrs.get('name', 't')}", time_attrs.get("units", "")))
     ax.set_ylabel("nutation angle θ [deg]")
     ax.grid(True, alpha=0.3)
     handles, labels = ax.get_legend_handles_labels()

@@ -13,6 +13,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import xarray as xr
 
+from tumble.plot.labels import with_units
+
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
@@ -35,7 +37,7 @@ _OUTSIDE_COLOUR = "#d9d9d9"
 def _label(da: xr.DataArray) -> str:
     name = da.attrs.get("long_name", da.name)
     units = da.attrs.get("units", "")
-    return f"{name} [{units}]" if units else str(name)
+    return with_units(name, units)
 
 
 def _is_log(da: xr.DataArray) -> bool:

@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import xarray as xr
 
+from tumble.plot.labels import with_units
 from tumble.plot.stability import _edges, _is_log, _label
 
 if TYPE_CHECKING:
@@ -96,7 +97,7 @@ def plot_sweep_variable(
     if note and f"({note})" not in title:  # some long names already name their method
         title += f" ({note})"
     units = str(da.attrs.get("units", ""))
-    short = f"{name} [{units}]" if units else name  # the axis label; the title says the rest
+    short = with_units(name, units)  # the axis label; the title says the rest
     for extra in grid[2:]:
         da, failed = da.isel({extra: 0}), failed.isel({extra: 0})
         title += f", {extra} = {float(ds[extra].values[0]):.4g}"

@@ -19,6 +19,7 @@ from typing import Annotated, Any, Literal
 
 import typer
 from rich.console import Console
+from rich.markup import escape
 from rich.table import Table
 
 from tumble.errors import TumbleError, TumbleWarning
@@ -142,10 +143,11 @@ def run_cmd(
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", TumbleWarning)
         sc = _guarded(lambda: _load(scenario, allow_module))
-        from tumble.app.runner import run
+        from tumble.app.runner import in_si, run
 
         out_dir = out_dir or Path("out") / scenario.stem
         result = _guarded(lambda: run(sc, out_dir, overwrite=overwrite))
+    from tumble.plot.labels import with_units
     from tumble.plot.settings import figure_settings
 
     _print_warnings(caught)
@@ -153,9 +155,14 @@ def run_cmd(
     model = result.request.model
     shown = figure_settings(model.name).variables
     table = Table(title=f"{model.name} — {scenario}", title_justify="left")
-    for col in ("method", "form", "integrator", "wall time [s]", *(f"final {v}" for v in shown)):
-        table.add_column(col)
-    for m, ds in result.datasets.items():
+    # A scenario given in SI is shown in SI (the files hold both).
+    datasets = in_si(result).datasets
+    first = next(iter(datasets.values()))
+    finals = [with_units(f"final {v}", first[v].attrs.get("units", "")) if v in first
+              else f"final {v}" for v in shown]  # fmt: skip
+    for col in ("method", "form", "integrator", "wall time [s]", *finals):
+        table.add_column(escape(col))  # "[s]" is a unit, not rich markup
+    for m, ds in datasets.items():
         table.add_row(
             m,
             ds.attrs["form"],
@@ -164,13 +171,22 @@ def run_cmd(
             *(f"{ds[v].values[-1]:.6g}" if v in ds else "—" for v in shown),
         )
     out.print(table)
+    scaling = result.request.scaling
+
+    def value(name: str, x: float, fmt: str) -> str:
+        # In SI, with its unit, for a scenario given in SI.
+        conv = scaling.si(name) if scaling is not None else None
+        return f"{x:{fmt}}" if conv is None else f"{x * conv[0]:{fmt}} {conv[1]}"
+
     for pair, diffs in result.differences.items():
-        text = ", ".join(f"{k} {v:.2e}" for k, v in diffs.items())
+        text = ", ".join(f"{k} {value(k, v, '.2e')}" for k, v in diffs.items())
         out.print(f"max |difference| {pair}: {text}", highlight=False)
     lim = result.limits
     if lim:
         text = ", ".join(
-            f"{v} → {'undefined' if lim[v] is None else f'{lim[v]:.6g}'}" for v in shown if v in lim
+            f"{v} → {'undefined' if lim[v] is None else value(v, lim[v], '.6g')}"
+            for v in shown
+            if v in lim
         )
         note = lim.get("statement") or lim.get("end_state")
         out.print(f"predicted limits: {text}" + (f" ({note})" if note else ""), highlight=False)

@@ -8,6 +8,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
+import numpy as np
 import xarray as xr
 
 from tumble._typing import FloatArray
@@ -16,8 +17,9 @@ from tumble.errors import TumbleWarning
 from tumble.integrate import DEFAULT_ATOL, DEFAULT_RTOL, MAX_STEPS, Trajectory, simulate
 from tumble.models import AnyModel
 from tumble.models.base import AveragingOptions, Column, Json, Report, ValidityIssue
+from tumble.models.schema import Scaling
 
-__all__ = ["RunRequest", "RunResult", "run", "to_dataset"]
+__all__ = ["RunRequest", "RunResult", "run", "si_dataset", "si_time", "to_dataset"]
 
 
 @dataclass(frozen=True)
@@ -117,6 +119,37 @@ def _columns_dataset(
     symbol = {"tau": "τ"}.get(time_name, time_name)
     time_attrs = {"units": time_units, "long_name": f"time {symbol}", "name": time_name}
     return xr.Dataset(data_vars, coords={"tau": ("tau", tau, time_attrs)})
+
+
+DAY = 86400.0
+"""Seconds in a day: a physical run longer than two days is shown in days."""
+
+
+def si_time(scaling: Scaling, tau: FloatArray, t_end: float) -> tuple[FloatArray, str]:
+    """Model times ``tau`` as physical times, in seconds, or in days for a run whose end
+    ``t_end`` (model time) lies beyond two days; and that unit ("s" or "d")."""
+    end = float(np.asarray(scaling.time_from_tau(np.array([t_end])))[0])
+    t = np.asarray(scaling.time_from_tau(np.asarray(tau, dtype=float)), dtype=float)
+    return (t / DAY, "d") if end > 2.0 * DAY else (t, "s")
+
+
+def si_dataset(ds: xr.Dataset, scaling: Scaling) -> xr.Dataset:
+    """A run's Dataset in SI for figures and tables (:meth:`Scaling.si`): the time in seconds
+    or days, each convertible column in its SI unit under its own name, the others (angles,
+    k², q) unchanged. The files keep the normalised columns with the SI ones beside them."""
+    tau = ds["tau"].values
+    t, unit = si_time(scaling, tau, float(tau[-1]))
+    data = {}
+    for name, da in ds.data_vars.items():
+        conv = scaling.si(str(name))
+        if conv is None:
+            data[name] = xr.DataArray(da.values, dims=("tau",), attrs=da.attrs)
+        else:
+            factor, si_unit, _ = conv
+            data[name] = xr.DataArray(da.values * factor, dims=("tau",),
+                                      attrs={**da.attrs, "units": si_unit})  # fmt: skip
+    coord = ("tau", t, {"units": unit, "long_name": "time t", "name": "t"})
+    return xr.Dataset(data, coords={"tau": coord}, attrs=ds.attrs)
 
 
 def to_dataset(model: AnyModel, traj: Trajectory, p: Any) -> xr.Dataset:

@@ -22,6 +22,7 @@ import numpy as np
 from tumble.analysis import RunResult, VerifyResult
 from tumble.analysis import run as run_request
 from tumble.analysis import verify as verify_request
+from tumble.analysis.run import si_dataset, si_time
 from tumble.io.fileset import OutputSet, output_set
 from tumble.io.output import render_outputs, verify_outputs
 from tumble.io.scenario import Scenario, load_scenario
@@ -55,8 +56,9 @@ def _settings(result: RunResult) -> FigureSettings:
 
 
 def _figure_png(result: RunResult, title: str) -> bytes:
-
+    """The run's figure; a physical scenario's in SI (time in seconds or days)."""
     settings = _settings(result)
+    result = in_si(result)
     if settings.kind == "envelope":
         _header, rows = result.report.tables.get("full_extrema", ((), []))
         fig = plot_envelope(
@@ -75,6 +77,24 @@ def _figure_png(result: RunResult, title: str) -> bytes:
             title=title,
         )
     return _png(fig)
+
+
+def in_si(result: RunResult) -> RunResult:
+    """The run's datasets, diagnostics and warning times in SI where its scenario was given in
+    SI (:func:`tumble.analysis.run.si_dataset`), for its figure and its printed table; the
+    files keep the normalised columns beside the SI ones."""
+    scaling = result.request.scaling
+    if scaling is None:
+        return result
+    t_end = float(result.request.tau[-1])
+    marks = [{**m, "tau": float(si_time(scaling, np.array([m["tau"]]), t_end)[0][0])}
+             for m in result.issues]  # fmt: skip
+    return replace(
+        result,
+        datasets={m: si_dataset(ds, scaling) for m, ds in result.datasets.items()},
+        diagnostics={m: si_dataset(ds, scaling) for m, ds in result.diagnostics.items()},
+        issues=marks,
+    )
 
 
 def _png(fig: Any) -> bytes:

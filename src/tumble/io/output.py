@@ -19,6 +19,7 @@ from tumble._version import __version__
 from tumble.analysis import RunResult, VerifyResult
 from tumble.analysis.claims.base import plain  # numpy → JSON values, shared with the claims
 from tumble.io.fileset import atomic_write
+from tumble.models.schema import si_columns
 
 __all__ = [
     "atomic_write",
@@ -144,7 +145,7 @@ def render_outputs(
         files[f"{method}.nc"] = bytes(ds.to_netcdf(engine="scipy"))
         if scaling is not None:
             cols = {str(v): ds[v].values for v in ds.data_vars}
-            si = scaling.si_columns(cols, ds["tau"].values)
+            si = si_columns(scaling, cols, ds["tau"].values)
             files[f"{method}_si.csv"] = csv_text(ds, si).encode()
     for method, ds in result.diagnostics.items():
         files[f"{method}_diagnostics.csv"] = csv_text(ds).encode()

@@ -828,8 +828,9 @@ def _frequency_issues(
             tau_c,
             f"from τ ≈ {tau_c:.6g} the body nearly co-rotates with the field (|ν2 − ν1 − 1| "
             "≤ ε/min I): the phase relative to the field is slow, independent averaging "
-            "fails, and (3.7) over-predicts the final nutation decay of a triaxial body; "
-            "the true rate is 2 Re λ2,3 of (2.6) (docs/theory/rotating-field.md §12)",
+            "fails, and the final nutation decay of a triaxial body depends on the phase at "
+            "which it settles, between the rate of (2.6) and 1.8 times it; (3.7) gives its mean "
+            "over that phase (docs/theory/rotating-field.md §12)",
         )
     return _resonance_issue(p, grid, nu, moving), co_rotation
 

@@ -26,6 +26,7 @@ __all__ = [
     "ScenarioSchema",
     "Section",
     "Variant",
+    "si_columns",
 ]
 
 P = TypeVar("P")
@@ -123,9 +124,18 @@ class Inputs(Protocol):
 
 
 class Scaling(Protocol):
-    """Physical units of a scenario: times in seconds to the model's time, and a summary."""
+    """Physical units of a scenario: times in seconds to the model's time and back, each
+    output column's factor and SI unit, and a summary."""
 
     def tau_from_time(self, t_s: FloatArray) -> FloatArray: ...
+
+    def time_from_tau(self, tau: FloatArray) -> FloatArray: ...
+
+    def si(self, name: str) -> tuple[float, str, str] | None:
+        """(factor, SI unit, SI column name) of the output column ``name``: its SI value is
+        factor × the normalised one; None for a column that is the same in both (an angle,
+        k², a quaternion)."""
+        ...
 
     def summary(self) -> Mapping[str, Json]: ...
 
@@ -171,3 +181,19 @@ class ScenarioSchema(Generic[P, S]):
     def variant(self, physical: bool) -> Variant[P, S] | None:
         """The variant for a file with (or without) a ``[physical]`` table."""
         return next((v for v in self.variants if v.physical == physical), None)
+
+
+def si_columns(
+    scaling: Scaling, cols: Mapping[str, FloatArray], tau: FloatArray
+) -> dict[str, FloatArray]:
+    """A run's columns in SI (:meth:`Scaling.si`): the time ``t_s`` [s], each convertible
+    column under its SI name, the others (angles, k², q) as they are."""
+    out = {"t_s": scaling.time_from_tau(tau)}
+    for name, values in cols.items():
+        conv = scaling.si(name)
+        if conv is None:
+            out[name] = values
+        else:
+            factor, _unit, si_name = conv
+            out[si_name] = factor * values
+    return out

@@ -213,11 +213,13 @@ class Scaling:
         """t = T0 τ [s]."""
         return np.asarray(tau, dtype=float) * self.T0
 
-    def si_columns(self, cols: dict[str, FloatArray], tau: FloatArray) -> dict[str, FloatArray]:
-        """Columns in SI: t [s], K [N·m·s]; angles unchanged."""
-        out = {"t_s": self.time_from_tau(tau), "K_Nms": self.K0 * cols["k"]}
-        out.update({name: v for name, v in cols.items() if name != "k"})
-        return out
+    def si(self, name: str) -> tuple[float, str, str] | None:
+        """(factor, SI unit, SI name) of an output column: k → K [N m s], ω [rad/s]."""
+        if name == "k":
+            return self.K0, "N m s", "K_Nms"
+        if name in ("omega1", "omega2", "omega3"):
+            return 1.0 / self.T0, "rad/s", f"{name}_rad_s"
+        return None
 
     def summary(self) -> dict[str, float]:
         """The scales, for summary.json."""

@@ -307,19 +307,18 @@ class Scaling:
         """The scales, for summary.json."""
         return {"omega_rad_s": self.omega, "I_ref_kgm2": self.I_ref, "eps": self.eps}
 
-    def si_columns(self, cols: dict[str, FloatArray], tau: FloatArray) -> dict[str, FloatArray]:
-        """Columns in SI: t [s], L [kg·m²/s], T [J], Ω [rad/s]; angles and k² unchanged."""
-        out = {"t_s": self.time_from_tau(tau)}
-        for name, values in cols.items():
-            if name == "L":
-                out["L_kgm2_s"] = self.I_ref * self.omega * values
-            elif name == "T":
-                out["T_J"] = self.I_ref * self.omega**2 * values
-            elif name in ("z1", "z2", "z3"):
-                out[f"Omega{name[1]}_rad_s"] = self.omega * values
-            else:
-                out[name] = values
-        return out
+    def si(self, name: str) -> tuple[float, str, str] | None:
+        """(factor, SI unit, SI name) of an output column: L [kg m²/s], T [J], the body rate
+        Ω = ωz and the frequencies ν [rad/s]."""
+        if name == "L":
+            return self.I_ref * self.omega, "kg m²/s", "L_kgm2_s"
+        if name == "T":
+            return self.I_ref * self.omega**2, "J", "T_J"
+        if name in ("z1", "z2", "z3"):
+            return self.omega, "rad/s", f"Omega{name[1]}_rad_s"
+        if name in ("omega1", "omega2", "omega3", "nu1", "nu2"):
+            return self.omega, "rad/s", f"{name}_rad_s"
+        return None
 
 
 def normalize_physical(

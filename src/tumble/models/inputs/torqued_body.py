@@ -483,20 +483,15 @@ class Scaling:
         """The scales, for summary.json."""
         return {"T0_s": self.T0, "I0_kgm2": self.I0, "eps": self.eps}
 
-    def si_columns(self, cols: dict[str, FloatArray], tau: FloatArray) -> dict[str, FloatArray]:
-        """Columns in SI: t [s], L [kg·m²/s], T [J], ω [rad/s]; angles, q and k² unchanged."""
-        momentum, energy = self.I0 / self.T0, self.I0 / self.T0**2
-        out = {"t_s": self.time_from_tau(tau)}
-        for name, values in cols.items():
-            if name in ("L1", "L2", "L3", "L"):
-                out[f"{name}_kgm2_s"] = momentum * values
-            elif name == "T":
-                out["T_J"] = energy * values
-            elif name in ("omega1", "omega2", "omega3"):
-                out[f"{name}_rad_s"] = values / self.T0
-            else:
-                out[name] = values
-        return out
+    def si(self, name: str) -> tuple[float, str, str] | None:
+        """(factor, SI unit, SI name) of an output column: L [kg m²/s], T [J], ω [rad/s]."""
+        if name in ("L1", "L2", "L3", "L"):
+            return self.I0 / self.T0, "kg m²/s", f"{name}_kgm2_s"
+        if name == "T":
+            return self.I0 / self.T0**2, "J", "T_J"
+        if name in ("omega1", "omega2", "omega3"):
+            return 1.0 / self.T0, "rad/s", f"{name}_rad_s"
+        return None
 
 
 _PHYSICAL = Section(

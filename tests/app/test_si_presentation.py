@@ -14,6 +14,10 @@ from tumble.app.runner import in_si
 from tumble.cli import app
 from tumble.io import load_scenario
 
+# These scenarios enter regions the models warn about (resonances, co-rotation); the
+# warnings are the runs' business, not these tests'.
+pytestmark = pytest.mark.filterwarnings("ignore::tumble.errors.TumbleWarning")
+
 
 def _run(name: str):
     sc = load_scenario(EXAMPLES / f"{name}.toml")

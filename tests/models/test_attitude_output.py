@@ -117,6 +117,7 @@ def test_torqued_body_and_the_rotation_object():
         averaged.attitude()
 
 
+@pytest.mark.filterwarnings("ignore::tumble.errors.TumbleWarning")  # the example's resonance
 def test_a_runs_netcdf_holds_the_attitude_with_units(tmp_path):
     tumble.run(EXAMPLES / "a3_positive.toml", tmp_path / "a3")
     ds = xr.open_dataset(io.BytesIO((tmp_path / "a3" / "full.nc").read_bytes()), engine="scipy")

@@ -10,6 +10,7 @@ Usable from a notebook::
 
 from __future__ import annotations
 
+import json
 import time
 import traceback
 import warnings
@@ -21,7 +22,7 @@ from tumble.analysis.claims import CLAIMS
 from tumble.analysis.claims.base import PAPERS, Claim
 from tumble.errors import ParameterError, TumbleWarning
 from tumble.io.fileset import output_set
-from tumble.io.report import ClaimRun, claims_json, report_html
+from tumble.io.report import ClaimRun, claims_json, claims_markdown, report_html
 from tumble.plot.claims import claim_png
 
 __all__ = ["PAPER_NAMES", "ReproduceResult", "check_claim", "reproduce"]
@@ -117,5 +118,6 @@ def reproduce(
         wall = time.perf_counter() - start
         files = {f"figures/{r.id}.png": r.png for r in runs if r.png}
         files["claims.json"] = claims_json(runs, chosen, wall).encode()
+        files["claims.md"] = claims_markdown(json.loads(files["claims.json"])).encode()
         files["report.html"] = report_html(runs, chosen, wall).encode()
         return ReproduceResult(runs, out.commit(files), wall)

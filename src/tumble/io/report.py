@@ -21,7 +21,7 @@ from typing import Any
 from tumble._version import __version__
 from tumble.analysis.claims.base import PAPERS, VERDICTS, Claim, plain
 
-__all__ = ["ClaimRun", "claims_json", "report_html"]
+__all__ = ["ClaimRun", "claims_json", "claims_markdown", "report_html"]
 
 _COLOURS = {
     "confirmed": "#1a7f37",
@@ -118,6 +118,42 @@ def claims_json(runs: Sequence[ClaimRun], papers: Sequence[str], wall_time: floa
     return json.dumps(plain(doc), indent=1, ensure_ascii=False) + "\n"
 
 
+def claims_markdown(doc: Mapping[str, Any]) -> str:
+    """``claims.md``: the claims table of a run, from its ``claims.json`` document — each
+    claim, its verdict, the measured figure and the theory sections that qualify it, paper by
+    paper (the documentation's claims page is one full run's)."""
+
+    def cell(text: Any) -> str:
+        return " ".join(str(text).split()).replace("|", "\\|")
+
+    counts = ", ".join(f"{n} {v}" for v, n in doc["counts"].items() if n)
+    lines = [
+        "# The papers' claims, checked",
+        "",
+        f"Every claim of the three papers, as `tumble reproduce all` checked it (tumble "
+        f"{doc['tumble_version']}, {len(doc['claims'])} claims: {counts}; "
+        f'{doc["wall_time_s"]:.0f} s). *qualified* is "confirmed with qualification": the '
+        "claim holds in the form the theory page gives it. Each figure is measured against "
+        "the criterion in `claims.json`; the report (`report.html`) draws every check.",
+    ]
+    for paper, citation in doc["papers"].items():
+        lines += ["", f"## {citation}", ""]
+        lines += ["| id | claim | verdict | measured | theory |", "|---|---|---|---|---|"]
+        for c in doc["claims"]:
+            if c.get("paper") != paper:
+                continue
+            verdict = c["verdict"].replace("confirmed with qualification", "qualified")
+            if verdict == "refuted":
+                verdict = "**refuted**"
+            m = c.get("measured", {})
+            lines.append(
+                f"| {c['id']} | {cell(c.get('title', ''))} | {verdict} | "
+                f"{cell(_value(m)) if m else cell(c.get('error', ''))} | "
+                f"{cell(c.get('theory_ref', ''))} |"
+            )
+    return "\n".join(lines) + "\n"
+
+
 def _badge(verdict: str) -> str:
     colour = _COLOURS.get(verdict, "#6e7781")
     return f'<span class="badge" style="background:{colour}">{html.escape(verdict)}</span>'
@@ -127,6 +163,8 @@ def _value(measured: Mapping[str, Any]) -> str:
     value = measured.get("value")
     text = f"{value:.3g}" if isinstance(value, float) else str(value)
     units = str(measured.get("units", ""))
+    # A dimensionless figure shows no unit ("1"), only what it is relative to, if anything.
+    units = "" if units == "1" else units[2:] if units.startswith("1 (") else units
     return f"{text} {units}".strip()
 
 

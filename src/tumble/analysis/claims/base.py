@@ -20,6 +20,7 @@ from tumble._typing import FloatArray
 
 __all__ = [
     "CONFIRMED",
+    "DECLARED",
     "PAPERS",
     "QUALIFIED",
     "REFUTED",
@@ -173,6 +174,9 @@ class Measurement:
 REGISTRY: dict[str, list[Callable[[], Claim]]] = {}
 """Every claim, by paper, in the order the modules define them (:func:`claim` fills it)."""
 
+DECLARED: dict[str, tuple[str, str, str]] = {}
+"""Every claim's (paper, title, theory references) by id, known without running it."""
+
 
 def claim(
     cid: str, paper: str, title: str, statement: str, theory_ref: str
@@ -198,6 +202,7 @@ def claim(
             return Claim(cid, paper, title, statement, theory_ref, found, got.measured, figure)
 
         REGISTRY.setdefault(paper, []).append(run)
+        DECLARED[cid] = (paper, title, theory_ref)
         return run
 
     return register

@@ -1,4 +1,4 @@
-"""Performance benchmark: ``tumble bench`` with its figures written for the README.
+"""Performance benchmark: ``tumble bench`` with its figures written for the documentation.
 
     .venv/bin/python benchmarks/performance.py [-o benchmarks/performance.json]
     .venv/bin/python benchmarks/performance.py --from benchmarks/performance.json
@@ -6,9 +6,9 @@
 Runs :func:`tumble.app.bench.run_benchmark` with the issue's settings (1e5 time units at rtol
 1e-10, best of 5; heyoka.py from ``pip install -e .[bench]``; about 25 minutes on 2 cores,
 of which scipy's Python right-hand sides take 20),
-writes the JSON of ``tumble bench --json`` and prints the README's "Performance" tables as
-Markdown. ``--from`` prints the tables of an earlier run. The exit status is 1 if a target is
-missed (the README says which are, and why).
+writes the JSON of ``tumble bench --json`` and prints the tables of docs/performance-tables.md
+(included by the performance page) as Markdown. ``--from`` prints the tables of an earlier run.
+The exit status is 1 if a target is missed (the performance page says which are, and why).
 """
 
 from __future__ import annotations

@@ -1,0 +1,26 @@
+"""The performance page's tables are the committed benchmark run's: docs/performance-tables.md
+is ``benchmarks/performance.py --from benchmarks/performance.json``, so a new run's JSON and
+its tables cannot drift apart."""
+
+from __future__ import annotations
+
+import importlib.util
+import json
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def test_the_tables_are_the_committed_runs():
+    spec = importlib.util.spec_from_file_location(
+        "performance", ROOT / "benchmarks" / "performance.py"
+    )
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    run = json.loads((ROOT / "benchmarks" / "performance.json").read_text(encoding="utf-8"))
+    page = (ROOT / "docs" / "performance-tables.md").read_text(encoding="utf-8")
+    assert page.rstrip("\n") == module.markdown(run).rstrip("\n"), (
+        "docs/performance-tables.md is stale: python benchmarks/performance.py --from "
+        "benchmarks/performance.json > docs/performance-tables.md"
+    )

@@ -66,7 +66,7 @@ docs: $(DOCS_STAMP)
 	$(BIN)/sphinx-build -W --keep-going -q -b html docs out/docs
 
 clean:
-	rm -rf out build dist docs/generated .pytest_cache .hypothesis .mypy_cache .ruff_cache .import_linter_cache
+	rm -rf out build dist docs/reference/generated .pytest_cache .hypothesis .mypy_cache .ruff_cache .import_linter_cache
 	find . -path ./$(VENV) -prune -o \( -name __pycache__ -o -name '*.egg-info' \) -type d -prune \
 		-exec rm -rf {} +
 

@@ -21,7 +21,7 @@ extensions = [
 
 source_suffix = {".md": "markdown", ".rst": "restructuredtext"}
 root_doc = "index"
-exclude_patterns = ["_build", "generated/.*", "performance-tables.md"]  # included by performance.md
+exclude_patterns = ["_build", "performance-tables.md"]  # included by performance.md
 
 # Markdown: $…$ maths, ::: fences, anchors for the ## and ### headings (links within a page).
 myst_enable_extensions = ["dollarmath", "colon_fence", "deflist"]

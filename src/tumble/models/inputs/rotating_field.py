@@ -205,14 +205,14 @@ def state_from_elements(
 
     z is (3.1) at phase ``u0``; Γ(0) = C(σ, ρ) Rz(ψ0) Rx(θ) Rz(φ) P, where C(σ, ρ) takes ζ3 to
     the direction of L (§9), (ψ0, θ, φ) are the classical Euler angles of the body relative to
-    the ζ frame (body components of L/|L| = (sin θ sin φ, sin θ cos φ, cos θ) in the axes P
+    the ζ frame (body components of ``L/|L|`` = (sin θ sin φ, sin θ cos φ, cos θ) in the axes P
     that make the polhode's polar axis the third), and ψ0 is the precession phase.
 
     Parameters
     ----------
     p : Params
     L : float
-        Angular momentum |Iz| > 0 [inertia unit].
+        Angular momentum ``|Iz|`` > 0 [inertia unit].
     rho, sigma : float
         Polar angle of L from ξ3, in [0, π], and its inertial azimuth [rad].
     k2 : float

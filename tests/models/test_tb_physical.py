@@ -4,10 +4,12 @@ writes its columns in SI beside the normalised ones."""
 
 from __future__ import annotations
 
+import io
 import math
 
 import numpy as np
 import pytest
+import xarray as xr
 from files import EXAMPLES, read_csv, write
 from typer.testing import CliRunner
 
@@ -81,6 +83,12 @@ def test_a_physical_run_writes_si_columns(tmp_path):
     assert first["T_J"] == pytest.approx(0.0114, rel=1e-12)
     assert first["omega3_rad_s"] == pytest.approx(0.03, rel=1e-12)
     assert rows[-1][header.index("t_s")] == pytest.approx(86400.0, rel=1e-12)
+    # The NetCDF holds both: the normalised columns and the SI ones with their units.
+    nc = tmp_path / "leo" / "full.nc"
+    ds = xr.open_dataset(io.BytesIO(nc.read_bytes()), engine="scipy")
+    assert ds["T_J"].attrs["units"] == "J" and ds["t_s"].attrs["units"] == "s"
+    assert float(ds["T_J"].values[0]) == pytest.approx(0.0114, rel=1e-12)
+    assert "T" in ds and ds["T"].attrs["units"] == "1"  # the normalised energy beside it
 
 
 @pytest.mark.parametrize(

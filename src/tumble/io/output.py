@@ -128,6 +128,20 @@ def summary(
     return plain(out)
 
 
+def _with_si(ds: xr.Dataset, scaling: Any, si: dict[str, Any]) -> xr.Dataset:
+    """``ds`` with the SI columns of a physical run beside the normalised ones: ``t_s`` [s]
+    and each converted column under its SI name, with its unit (:meth:`Scaling.si`)."""
+    extra = {"t_s": xr.DataArray(si["t_s"], dims=("tau",),
+                                 attrs={"units": "s", "long_name": "time t"})}  # fmt: skip
+    for name in ds.data_vars:
+        conv = scaling.si(str(name))
+        if conv is not None:
+            _, unit, si_name = conv
+            attrs = {**ds[name].attrs, "units": unit}
+            extra[si_name] = xr.DataArray(si[si_name], dims=("tau",), attrs=attrs)
+    return ds.assign(extra)
+
+
 def render_outputs(
     result: RunResult,
     inputs: dict[str, Any],
@@ -140,13 +154,15 @@ def render_outputs(
     scaling = result.request.scaling
     for method, ds in result.datasets.items():
         files[f"{method}.csv"] = csv_text(ds).encode()
-        # The same columns with their units, long names and equations as attributes (NetCDF 3,
-        # which needs no library beyond scipy).
-        files[f"{method}.nc"] = bytes(ds.to_netcdf(engine="scipy"))
+        nc = ds
         if scaling is not None:
             cols = {str(v): ds[v].values for v in ds.data_vars}
             si = si_columns(scaling, cols, ds["tau"].values)
             files[f"{method}_si.csv"] = csv_text(ds, si).encode()
+            nc = _with_si(ds, scaling, si)
+        # The same columns with their units, long names and equations as attributes (NetCDF 3,
+        # which needs no library beyond scipy); a physical run's SI columns beside them.
+        files[f"{method}.nc"] = bytes(nc.to_netcdf(engine="scipy"))
     for method, ds in result.diagnostics.items():
         files[f"{method}_diagnostics.csv"] = csv_text(ds).encode()
     for name, (header, rows) in result.report.tables.items():

@@ -64,7 +64,7 @@ def test_euler313_at_gimbal_lock(psi, theta, phi):
     assert abs(np.angle(np.exp(1j * (combo[0] - combo[1])))) < 1e-12
 
 
-def test_kframe_matches_spec_section_2():
+def test_kframe_matches_section_2_of_the_theory_page():
     rho, sigma = 0.7, -2.1
     Xi = rot.kframe_matrix(rho, sigma)
     e_K = np.array(

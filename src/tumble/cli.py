@@ -738,7 +738,7 @@ def sweep_cmd(
     from tumble.io.sweep import load_sweep
 
     # Validated before Dask, xarray and the integrators load: a bad key answers at once.
-    spec = _guarded(lambda: load_sweep(sweep_file, allow_modules=allow_module or ()))
+    sweep_plan = _guarded(lambda: load_sweep(sweep_file, allow_modules=allow_module or ()))
     # At Ctrl-C the local cluster's processes are ended, not shut down: multiprocessing's
     # resource tracker (a child) would then warn about their semaphores on this terminal.
     os.environ.setdefault("PYTHONWARNINGS", "ignore::UserWarning:multiprocessing.resource_tracker")
@@ -750,7 +750,7 @@ def sweep_cmd(
     with _sweep_progress() as progress:
         result = _guarded(
             lambda: sweep(
-                spec,
+                sweep_plan,
                 out_dir,
                 scheduler=scheduler,
                 workers=workers,

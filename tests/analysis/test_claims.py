@@ -93,10 +93,10 @@ def test_series_converts_to_float_and_checks_shapes():
 
 
 # ---------------------------------------------------------------------------------------------
-# The figure: claim_figure on hand-made specs.
+# The figure: claim_figure on hand-made layouts.
 
 
-def _every_style_spec() -> FigureSpec:
+def _every_style_layout() -> FigureSpec:
     x = np.linspace(1.0, 10.0, 12)
     styles = ("line", "dashed", "dotted", "markers", "line+markers")
     lines = Panel(
@@ -122,7 +122,7 @@ def _every_style_spec() -> FigureSpec:
 
 
 def test_claim_figure_draws_every_style_scale_and_reference_line():
-    fig = claim_figure(_every_style_spec())
+    fig = claim_figure(_every_style_layout())
     assert fig.get_suptitle() == "every style"
     subs = fig.subfigs
     assert len(subs) == 4  # 3 panels in rows of 2: one empty cell
@@ -150,19 +150,19 @@ def test_claim_figure_draws_every_style_scale_and_reference_line():
 
 def test_claim_png_is_a_png_and_delegated_panels_draw():
     ds = inertia_map(beta=math.pi / 4, eps=0.05, n=5)
-    spec = FigureSpec(
+    layout = FigureSpec(
         panels=(
             Panel(kind="stability_map", data={"ds": ds}, title="map"),
             Panel(series=(Series([0.0, 1.0], [1.0, 2.0], "a"),)),
         ),
         ncols=1,
     )
-    fig = claim_figure(spec)
+    fig = claim_figure(layout)
     maps = fig.subfigs[0]
     # classification, max Re λ and its colour bar
     assert len(maps.axes) == 3
     assert maps.get_suptitle() == "map"
-    png = claim_png(spec)
+    png = claim_png(layout)
     assert png.startswith(PNG_MAGIC)
     with pytest.raises(ValueError, match="panels"):
         claim_figure(FigureSpec(panels=()))

@@ -75,7 +75,7 @@ def test_reproduce_writes_a_self_contained_report(fake_claims, tmp_path):
     assert not re.search(r'(src|href)="(?!data:|#)', page)
     assert page.count('<img class="figure"') == 2 == page.count('src="data:image/png;base64,')
     assert "a deliberately broken check" in page
-    # rf-2's measurement contradicts its spec too: the page says so outside the details.
+    # rf-2's measurement contradicts its layout too: the page says so outside the details.
     assert page.count("contradicts the theory page's own statement") == 1
 
 

@@ -14,11 +14,11 @@ BENCHMARK = ROOT / "benchmarks" / "averaging_cost.py"
 
 
 def load_benchmark():
-    spec = importlib.util.spec_from_file_location("averaging_cost", BENCHMARK)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module  # dataclasses look their module up by name
-    spec.loader.exec_module(module)
+    found = importlib.util.spec_from_file_location("averaging_cost", BENCHMARK)
+    assert found is not None and found.loader is not None
+    module = importlib.util.module_from_spec(found)
+    sys.modules[found.name] = module  # dataclasses look their module up by name
+    found.loader.exec_module(module)
     return module
 
 

@@ -12,12 +12,12 @@ ROOT = Path(__file__).resolve().parents[2]
 
 
 def test_the_tables_are_the_committed_runs():
-    spec = importlib.util.spec_from_file_location(
+    found = importlib.util.spec_from_file_location(
         "performance", ROOT / "benchmarks" / "performance.py"
     )
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
+    assert found is not None and found.loader is not None
+    module = importlib.util.module_from_spec(found)
+    found.loader.exec_module(module)
     run = json.loads((ROOT / "benchmarks" / "performance.json").read_text(encoding="utf-8"))
     page = (ROOT / "docs" / "performance-tables.md").read_text(encoding="utf-8")
     assert page.rstrip("\n") == module.markdown(run).rstrip("\n"), (

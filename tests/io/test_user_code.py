@@ -12,7 +12,7 @@ from tumble.errors import ScenarioError, TumbleError
 from tumble.io import load_scenario
 
 SCENARIO = """model = "torqued_body"
-torque = "{spec}"
+torque = "{reference}"
 [parameters]
 inertia = [1.0, 1.6, 2.0]
 eps = {eps}
@@ -32,12 +32,12 @@ def constant(t, q, omega, params):
 """
 
 
-def _folder(root, name, value, spec="user_torques:constant", eps="0.01"):
+def _folder(root, name, value, reference="user_torques:constant", eps="0.01"):
     folder = root / name
     folder.mkdir()
     (folder / "user_torques.py").write_text(TORQUE.format(value=value))
     path = folder / "scenario.toml"
-    path.write_text(SCENARIO.format(spec=spec, eps=eps))
+    path.write_text(SCENARIO.format(reference=reference, eps=eps))
     return path
 
 
@@ -72,7 +72,7 @@ def test_nothing_is_loaded_for_a_refused_scenario(tmp_path):
 
 
 def test_an_installed_module_runs_only_when_allowed(tmp_path):
-    path = _folder(tmp_path, "a", 1.0, spec="builtins:print")
+    path = _folder(tmp_path, "a", 1.0, reference="builtins:print")
     with pytest.raises(ScenarioError, match="only with --allow-module builtins"):
         load_scenario(path)
     # Allowed, it is imported and called at the initial state: print returns None, refused.
@@ -85,7 +85,7 @@ def test_a_path_relative_to_the_scenario_and_pickling(tmp_path):
     lib.mkdir()
     (lib / "torques.py").write_text(TORQUE.format(value=5.0))
     path = tmp_path / "scenario.toml"
-    path.write_text(SCENARIO.format(spec="lib/torques.py:constant", eps="0.1"))
+    path.write_text(SCENARIO.format(reference="lib/torques.py:constant", eps="0.1"))
     sc = load_scenario(path)
     assert _moment(sc) == 5.0
     # A Dask worker receives the function as its file and name, and loads the file itself.

@@ -19,10 +19,10 @@ PATH = EXAMPLES / "models" / "damped_top.py"
 
 @pytest.fixture(scope="module")
 def top():
-    spec = importlib.util.spec_from_file_location("damped_top", PATH)
-    module = importlib.util.module_from_spec(spec)
+    found = importlib.util.spec_from_file_location("damped_top", PATH)
+    module = importlib.util.module_from_spec(found)
     sys.modules["damped_top"] = module  # dataclasses resolve their module by name
-    spec.loader.exec_module(module)
+    found.loader.exec_module(module)
     register(module.MODEL)
     yield module
     MODELS.pop(module.MODEL.name)

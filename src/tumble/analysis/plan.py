@@ -74,7 +74,7 @@ class Axis:
         name: str,
         key: str,
         spacing: Spacing,
-        spec: Sequence[float],
+        given: Sequence[float],
         units: str = "",
         long_name: str = "",
     ) -> Axis:
@@ -84,17 +84,17 @@ class Axis:
         Raises
         ------
         ParameterError
-            Naming the axis when the specification is not one of those.
+            Naming the axis when the entry is not one of those.
         """
         where = f"axis {name!r} ({key}): {spacing}"
         if spacing == "values":
-            values = np.asarray(spec, dtype=float)
+            values = np.asarray(given, dtype=float)
             if values.ndim != 1 or values.size == 0 or not np.all(np.isfinite(values)):
                 raise ParameterError(f"{where} must be a non-empty list of finite numbers")
         else:
-            if len(spec) != 3:
-                raise ParameterError(f"{where} = {list(spec)!r}: expected [start, stop, num]")
-            start, stop, num = (float(v) for v in spec)
+            if len(given) != 3:
+                raise ParameterError(f"{where} = {list(given)!r}: expected [start, stop, num]")
+            start, stop, num = (float(v) for v in given)
             if not (math.isfinite(start) and math.isfinite(stop)):
                 raise ParameterError(f"{where}: start and stop must be finite numbers")
             if not (math.isfinite(num) and num == int(num) and 1 <= num <= MAX_POINTS):

@@ -287,15 +287,15 @@ def sweep(
     SweepResult
     """
     start = time.perf_counter()
-    spec = path if isinstance(path, Sweep) else load_sweep(path, allow_modules=allow_modules)
-    store = SweepStore(out_dir, spec)
+    sweep_plan = path if isinstance(path, Sweep) else load_sweep(path, allow_modules=allow_modules)
+    store = SweepStore(out_dir, sweep_plan)
     finished = store.finished()
     if retry_failed:
         finished = {c: recs for c, recs in finished.items() if all(r["status"] == 0 for r in recs)}
     records = store.records(finished)
     resumed = len(records)
-    total = spec.plan.size
-    todo = [c for c in range(spec.chunks) if c not in finished]
+    total = sweep_plan.plan.size
+    todo = [c for c in range(sweep_plan.chunks) if c not in finished]
     if progress is not None:
         progress(resumed, total)
     threads = 0
@@ -304,12 +304,14 @@ def sweep(
         if todo:
             with _client(scheduler, workers) as client:
                 threads = _threads(client)
-                _run_chunks(client, spec, store, todo, records, progress, last_write)
+                _run_chunks(client, sweep_plan, store, todo, records, progress, last_write)
     finally:
-        ds = _dataset(spec, records)
+        ds = _dataset(sweep_plan, records)
         files = [store.write_dataset(ds), store.dir / "sweep.json"]
     if plot:
-        files.append(_write_figure(spec, ds, store.dir / "sweep.png", Path(spec.path).name))
+        files.append(
+            _write_figure(sweep_plan, ds, store.dir / "sweep.png", Path(sweep_plan.path).name)
+        )
     return SweepResult(
         ds,
         files,
@@ -321,15 +323,15 @@ def sweep(
     )
 
 
-def _write_figure(spec: Sweep, ds: xr.Dataset, figure: Path, name: str) -> Path:
+def _write_figure(sweep_plan: Sweep, ds: xr.Dataset, figure: Path, name: str) -> Path:
     """The sweep's figure (heat maps, lines or histograms), written atomically."""
     from tumble.io.output import atomic_write
 
     png = sweep_png(
         ds,
-        variables=spec.plot_variables or None,
-        method=spec.plot_method,
-        slow=figure_settings(spec.model).variables,
+        variables=sweep_plan.plot_variables or None,
+        method=sweep_plan.plot_method,
+        slow=figure_settings(sweep_plan.model).variables,
         title=f"sweep {name}",
     )
     atomic_write(figure, png)

@@ -451,8 +451,8 @@ class _Inputs:
         except ValidationError as exc:
             raise ScenarioError(f"{where}.{_one_line(exc, schema)}") from None
 
-    def import_function(self, spec: str, where: str) -> Callable[..., Any]:
-        function = user_function(spec, self.base, where, self.allow_modules)
+    def import_function(self, reference: str, where: str) -> Callable[..., Any]:
+        function = user_function(reference, self.base, where, self.allow_modules)
         self.functions.append(function)
         return function
 

@@ -278,46 +278,46 @@ class Sweep:
         return range(c * self.chunk, min((c + 1) * self.chunk, self.plan.size))
 
 
-def _axis(i: int, spec: AxisSpec, base: dict[str, Any]) -> Axis:
-    given = [s for s in ("values", "linspace", "logspace") if getattr(spec, s) is not None]
+def _axis(i: int, table: AxisSpec, base: dict[str, Any]) -> Axis:
+    given = [s for s in ("values", "linspace", "logspace") if getattr(table, s) is not None]
     if len(given) != 1:
         raise ScenarioError(f"axis[{i}]: give exactly one of values, linspace or logspace")
-    path = parse_key(spec.key)
-    _container(base, path, spec.key)
+    path = parse_key(table.key)
+    _container(base, path, table.key)
     try:
         return Axis.spaced(
-            _name(spec.key, spec.name),
-            spec.key,
+            _name(table.key, table.name),
+            table.key,
             given[0],  # type: ignore[arg-type]
-            getattr(spec, given[0]),
-            spec.units if spec.units is not None else key_units(base, path),
-            spec.long_name or spec.key,
+            getattr(table, given[0]),
+            table.units if table.units is not None else key_units(base, path),
+            table.long_name or table.key,
         )
     except ParameterError as exc:
         raise ScenarioError(f"axis[{i}]: {exc}") from None
 
 
-def _draw(i: int, spec: DrawSpec, base: dict[str, Any]) -> Draw:
-    given = [s for s in ("uniform", "normal", "log_uniform") if getattr(spec, s) is not None]
+def _draw(i: int, table: DrawSpec, base: dict[str, Any]) -> Draw:
+    given = [s for s in ("uniform", "normal", "log_uniform") if getattr(table, s) is not None]
     if len(given) != 1:
         raise ScenarioError(
             f"monte_carlo.draw[{i}]: give exactly one of uniform, normal or log_uniform"
         )
-    pair = getattr(spec, given[0])
+    pair = getattr(table, given[0])
     if len(pair) != 2:
         raise ScenarioError(f"monte_carlo.draw[{i}].{given[0]} = {pair!r}: expected 2 numbers")
-    path = parse_key(spec.key)
-    _container(base, path, spec.key)
+    path = parse_key(table.key)
+    _container(base, path, table.key)
     dist: Literal["uniform", "normal", "log_uniform"] = given[0]  # type: ignore[assignment]
     try:
         return Draw(
-            _name(spec.key, spec.name),
-            spec.key,
+            _name(table.key, table.name),
+            table.key,
             dist,
             float(pair[0]),
             float(pair[1]),
-            spec.units if spec.units is not None else key_units(base, path),
-            spec.long_name or spec.key,
+            table.units if table.units is not None else key_units(base, path),
+            table.long_name or table.key,
         )
     except ParameterError as exc:
         raise ScenarioError(f"monte_carlo.draw[{i}]: {exc}") from None

@@ -42,15 +42,15 @@ def _module_from_file(path: Path, where: str) -> ModuleType:
     module = sys.modules.get(name)
     if module is not None:
         return module
-    spec = importlib.util.spec_from_file_location(name, path)
-    if spec is None or spec.loader is None:
+    found = importlib.util.spec_from_file_location(name, path)
+    if found is None or found.loader is None:
         raise ScenarioError(f"{where}: {path} is not a Python file")
-    module = importlib.util.module_from_spec(spec)
+    module = importlib.util.module_from_spec(found)
     sys.modules[name] = module
     # The file's own imports of its neighbours (``import helpers``) resolve in its folder.
     sys.path.insert(0, str(path.parent))
     try:
-        spec.loader.exec_module(module)
+        found.loader.exec_module(module)
     except BaseException as exc:
         del sys.modules[name]
         if not isinstance(exc, Exception):
@@ -68,7 +68,7 @@ class UserFunction:
 
     Parameters
     ----------
-    spec : str
+    reference : str
         As written in the scenario (for messages).
     function : str
         The function's name in its module.
@@ -82,15 +82,15 @@ class UserFunction:
 
     def __init__(
         self,
-        spec: str,
+        reference: str,
         function: str,
         *,
         path: Path | None = None,
         module: str | None = None,
         where: str = "torque",
     ) -> None:
-        self.spec, self.function, self.path, self.module, self.where = (
-            spec,
+        self.reference, self.function, self.path, self.module, self.where = (
+            reference,
             function,
             path,
             module,
@@ -107,7 +107,7 @@ class UserFunction:
         """Load the file (or import the allowed module) and return the function."""
         if self._loaded is not None:
             return self._loaded
-        where = f"{self.where} = {shorten(repr(self.spec))}"
+        where = f"{self.where} = {shorten(repr(self.reference))}"
         if self.path is not None:
             mod = _module_from_file(self.path, where)
         else:
@@ -134,26 +134,26 @@ class UserFunction:
         return self.load()
 
     def __reduce__(self) -> tuple[Any, ...]:
-        return (_rebuild, (self.spec, self.function, self.path, self.module, self.where))
+        return (_rebuild, (self.reference, self.function, self.path, self.module, self.where))
 
     def __repr__(self) -> str:
-        return f"UserFunction({self.spec!r} from {self.origin})"
+        return f"UserFunction({self.reference!r} from {self.origin})"
 
 
 def _rebuild(
-    spec: str, function: str, path: Path | None, module: str | None, where: str
+    reference: str, function: str, path: Path | None, module: str | None, where: str
 ) -> UserFunction:
-    return UserFunction(spec, function, path=path, module=module, where=where)
+    return UserFunction(reference, function, path=path, module=module, where=where)
 
 
 def user_function(
-    spec: str, base: Path, where: str, allow_modules: Iterable[str] = ()
+    reference: str, base: Path, where: str, allow_modules: Iterable[str] = ()
 ) -> UserFunction:
     """The function a scenario names, not yet loaded.
 
     Parameters
     ----------
-    spec : str
+    reference : str
         ``"name:function"`` (the file ``name.py`` in ``base``), ``"path/file.py:function"``
         (relative to ``base``), or ``"module:function"`` for a module in ``allow_modules``.
     base : Path
@@ -168,14 +168,14 @@ def user_function(
     ScenarioError
         Malformed, or naming neither a file beside the scenario nor an allowed module.
     """
-    target, sep, name = spec.rpartition(":")
-    shown = f"{where} = {shorten(repr(spec))}"
+    target, sep, name = reference.rpartition(":")
+    shown = f"{where} = {shorten(repr(reference))}"
     if not sep or not target or not name.isidentifier():
         raise ScenarioError(
             f'{shown}: expected "file:function" (a Python file beside the scenario)'
         )
     if target in set(allow_modules):
-        return UserFunction(spec, name, module=target, where=where)
+        return UserFunction(reference, name, module=target, where=where)
     relative = Path(target if target.endswith(".py") else target.replace(".", "/") + ".py")
     path = (base / relative).resolve()
     if not path.is_file():
@@ -184,4 +184,4 @@ def user_function(
             f"file beside the scenario; an installed module runs only with --allow-module "
             f"{shorten(target, 40)})"
         )
-    return UserFunction(spec, name, path=path, where=where)
+    return UserFunction(reference, name, path=path, where=where)

@@ -113,7 +113,7 @@ class Inputs(Protocol):
         a list of tables."""
         ...
 
-    def import_function(self, spec: str, where: str) -> Callable[..., Any]:
+    def import_function(self, reference: str, where: str) -> Callable[..., Any]:
         """The function named ``"file:function"``, loaded (once the scenario is valid) from the
         Python file beside the scenario (:mod:`tumble.io.user_code`)."""
         ...

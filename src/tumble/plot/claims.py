@@ -4,7 +4,7 @@ The claim functions of :mod:`tumble.analysis.claims` describe their figures as d
 series, reference lines, scales, ticks); this module turns such a description into a
 matplotlib figure. Nothing here computes physics.
 
-Each panel is drawn in its own sub-figure of a grid of ``spec.ncols`` columns. A panel of kind
+Each panel is drawn in its own sub-figure of a grid of ``layout.ncols`` columns. A panel of kind
 ``"envelope"`` is drawn by :func:`tumble.plot.plot_envelope` into the panel's axes, and one of
 kind ``"stability_map"`` by :func:`tumble.plot.plot_stability_map` into two axes side by side
 (the classification and max Re λ), both with ``panel.data`` as their keyword arguments; both
@@ -105,13 +105,13 @@ def _draw_panel(sub: SubFigure, panel: Panel) -> None:
         )
 
 
-def claim_figure(spec: FigureSpec) -> Figure:
+def claim_figure(layout: FigureSpec) -> Figure:
     """Draw the figure of a claim.
 
     Parameters
     ----------
-    spec : FigureSpec
-        Panels (in rows of ``spec.ncols``) and the figure title.
+    layout : FigureSpec
+        Panels (in rows of ``layout.ncols``) and the figure title.
 
     Returns
     -------
@@ -131,29 +131,29 @@ def claim_figure(spec: FigureSpec) -> Figure:
     """
     from matplotlib.figure import Figure
 
-    if not spec.panels:
-        raise ValueError("spec.panels is empty: a figure needs at least one panel")
-    ncols = max(1, min(spec.ncols, len(spec.panels)))
-    nrows = -(-len(spec.panels) // ncols)
+    if not layout.panels:
+        raise ValueError("layout.panels is empty: a figure needs at least one panel")
+    ncols = max(1, min(layout.ncols, len(layout.panels)))
+    nrows = -(-len(layout.panels) // ncols)
     # A stability map is two maps with a colour bar: give its column the room of two panels.
-    wide = any(p.kind == "stability_map" for p in spec.panels)
+    wide = any(p.kind == "stability_map" for p in layout.panels)
     width = 11.0 if wide else (7.0 if ncols == 1 else 5.0)
     height = 4.6 if ncols == 1 else 4.2
     fig = Figure(figsize=(width * ncols, height * nrows), layout="constrained")
     subs = fig.subfigures(nrows, ncols, squeeze=False).ravel()
-    for sub, panel in zip(subs, spec.panels, strict=False):
+    for sub, panel in zip(subs, layout.panels, strict=False):
         _draw_panel(sub, panel)
-    if spec.title:
-        fig.suptitle(spec.title, fontsize=10)
+    if layout.title:
+        fig.suptitle(layout.title, fontsize=10)
     return fig
 
 
-def claim_png(spec: FigureSpec) -> bytes:
+def claim_png(layout: FigureSpec) -> bytes:
     """The figure of :func:`claim_figure` as PNG bytes (110 dpi).
 
     Parameters
     ----------
-    spec : FigureSpec
+    layout : FigureSpec
         The figure to draw.
 
     Returns
@@ -162,5 +162,5 @@ def claim_png(spec: FigureSpec) -> bytes:
         The PNG file.
     """
     buf = io.BytesIO()
-    claim_figure(spec).savefig(buf, format="png", dpi=PNG_DPI)
+    claim_figure(layout).savefig(buf, format="png", dpi=PNG_DPI)
     return buf.getvalue()

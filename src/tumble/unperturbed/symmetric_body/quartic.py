@@ -370,8 +370,8 @@ def _fast_turning_points(
         else:
             return None
 
-        def search(spec: _Side, end: float, f_end: float, x0: float | None) -> float | None:
-            poly, f0, _ = spec
+        def search(side: _Side, end: float, f_end: float, x0: float | None) -> float | None:
+            poly, f0, _ = side
             start = _regula_falsi(0.0, f0, end, f_end) if x0 is None else x0
             return _bracket_root(poly, 0.0, end, start)
 

@@ -846,7 +846,8 @@ def reproduce_cmd(
     ),
     overwrite: Overwrite = False,
 ) -> None:
-    """Check every claim of the papers: report.html (figures embedded), claims.json, figures/.
+    """Check every claim of the papers: report.html (figures embedded), claims.json,
+    claims.md, figures/.
 
     Each claim gets a verdict computed from its measured figure: confirmed, confirmed with
     qualification (as tumble's theory pages correct or restrict it), or refuted. Exits 1 if a
@@ -855,6 +856,7 @@ def reproduce_cmd(
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn
 
     from tumble.app.reproduce import reproduce
+    from tumble.io.report import measured_text
 
     columns = (TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn())
     with Progress(*columns, console=err, transient=True, disable=not err.is_terminal) as bar:
@@ -874,14 +876,11 @@ def reproduce_cmd(
         if r.claim is None:
             table.add_row(r.id, r.error, "[red]error[/]", "")
             continue
-        m = r.claim.measured
-        value = m.get("value")
-        shown = f"{value:.3g}" if isinstance(value, float) else str(value)
         table.add_row(
             r.id,
-            r.claim.title,
+            escape(r.claim.title),
             f"[{colour.get(r.verdict, 'white')}]{r.verdict}[/]",
-            f"{shown} {m.get('units', '')}".strip(),
+            escape(measured_text(r.claim.measured)),
         )
     out.print(table)
     out.print(f"report: {Path(out_dir) / 'report.html'}", highlight=False, soft_wrap=True)

@@ -21,7 +21,7 @@ from typing import Any
 from tumble._version import __version__
 from tumble.analysis.claims.base import PAPERS, VERDICTS, Claim, plain
 
-__all__ = ["ClaimRun", "claims_json", "claims_markdown", "report_html"]
+__all__ = ["ClaimRun", "claims_json", "claims_markdown", "measured_text", "report_html"]
 
 _COLOURS = {
     "confirmed": "#1a7f37",
@@ -148,7 +148,7 @@ def claims_markdown(doc: Mapping[str, Any]) -> str:
             m = c.get("measured", {})
             lines.append(
                 f"| {c['id']} | {cell(c.get('title', ''))} | {verdict} | "
-                f"{cell(_value(m)) if m else cell(c.get('error', ''))} | "
+                f"{cell(measured_text(m)) if m else cell(c.get('error', ''))} | "
                 f"{cell(c.get('theory_ref', ''))} |"
             )
     return "\n".join(lines) + "\n"
@@ -159,7 +159,8 @@ def _badge(verdict: str) -> str:
     return f'<span class="badge" style="background:{colour}">{html.escape(verdict)}</span>'
 
 
-def _value(measured: Mapping[str, Any]) -> str:
+def measured_text(measured: Mapping[str, Any]) -> str:
+    """A claim's measured figure with its unit, as the report and the CLI print it."""
     value = measured.get("value")
     text = f"{value:.3g}" if isinstance(value, float) else str(value)
     units = str(measured.get("units", ""))
@@ -181,7 +182,7 @@ def _claim_section(r: ClaimRun) -> str:
     rows = [
         ("Claim", e(c.statement)),
         ("Theory", e(c.theory_ref)),
-        ("Measured", f"{e(str(m.get('what', '')))} = <b>{e(_value(m))}</b>"),
+        ("Measured", f"{e(str(m.get('what', '')))} = <b>{e(measured_text(m))}</b>"),
         ("Criterion", f"{e(str(m.get('criterion', '')))} (threshold {e(str(m.get('threshold')))})"),
     ]
     if m.get("qualification"):
@@ -247,7 +248,7 @@ def report_html(runs: Sequence[ClaimRun], papers: Sequence[str], wall_time: floa
             + "".join(
                 f'<tr><td><a href="#{e(r.id)}">{e(r.id)}</a></td>'
                 f"<td>{e(r.claim.title if r.claim else r.error)}</td><td>{_badge(r.verdict)}</td>"
-                f"<td>{e(_value(r.claim.measured)) if r.claim else ''}</td></tr>"
+                f"<td>{e(measured_text(r.claim.measured)) if r.claim else ''}</td></tr>"
                 for r in mine
             )
             + "</table>"

@@ -30,6 +30,7 @@ from tumble.averaging.second_order import (
     GRID_MAX,
     GRID_RTOL,
     SecondOrder,
+    generator_drift,
     grid_terms,
     resolved,
 )
@@ -540,16 +541,14 @@ class NutationSystem:
         def along(u: FloatArray) -> FloatArray:
             return np.einsum("cin,in->cn", d_f, u)
 
+        def rates_at(y: FloatArray) -> tuple[FloatArray, FloatArray]:
+            _, _, f_y, _, _, nu_y = self._on(tau, y, n)
+            return f_y, nu_y
+
         def drift(first: FloatArray) -> FloatArray:
             size = float(np.max(np.abs(first) / scale))
-            if size == 0.0:
-                return np.zeros((5, n))
-            h = _ORBIT_STEP / size
-            shifted = []
-            for sign in (1.0, -1.0):
-                _, _, f_y, _, _, nu_y = self._on(tau, x + sign * h * first, n)
-                shifted.append(zero_mean_antiderivative(f_y, nu_y))
-            return (shifted[0] - shifted[1]) / (2 * h)
+            h = _ORBIT_STEP / size if size > 0.0 else 0.0
+            return generator_drift(rates_at, x, first, h, f)
 
         return grid_terms(t, x, f, g, nu, d_nu, along, drift if generator_order == 2 else None)
 

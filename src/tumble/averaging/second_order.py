@@ -76,6 +76,7 @@ __all__ = [
     "MeanMap",
     "MeanSystem",
     "SecondOrder",
+    "generator_drift",
     "grid_terms",
     "resolved",
     "resonance_distance",
@@ -223,17 +224,8 @@ def torus_values(values: ArrayLike, phases: ArrayLike) -> FloatArray:
     d = len(shape)
     if at.shape[-1] != d:
         raise ParameterError(f"phases: {at.shape[-1]} phases given for a {d}-torus")
-    coef = np.fft.fftn(f, axes=tuple(range(1, d + 1))) / math.prod(shape)
-    waves = _waves(shape)
-    for axis, n in enumerate(shape):
-        if n % 2 == 0:
-            index = [slice(None)] * (d + 1)
-            index[axis + 1] = slice(n // 2, n // 2 + 1)
-            coef[tuple(index)] = 0.0
-    flat = coef.reshape(f.shape[0], -1)  # (c, N)
-    k = np.stack([np.broadcast_to(w, shape).reshape(-1) for w in waves], -1)  # (N, d)
-    phase = np.exp(1j * (at @ k.T))  # (n, N)
-    out = np.real(phase @ flat.T)  # (n, c)
+    coef = _coefficients(f)
+    out = _series(np.broadcast_to(coef, (at.shape[0], *coef.shape)), at)  # (n, c)
     return out[0] if single else out
 
 
@@ -350,18 +342,11 @@ def second_order(
         down = _evaluate(rates, t, x_grid - h * u, shape)[0]
         return (up - down) / (2.0 * h)
 
+    def rates_at(y: FloatArray) -> tuple[FloatArray, FloatArray]:
+        return _evaluate(rates, t, y, shape)[0], np.asarray(frequencies(y), dtype=float).ravel()
+
     def drift(first: FloatArray) -> FloatArray:
-        # (∂u₁/∂y) F₁: u₁ at y ± h F₁ on the same grid, by central differences.
-        h = _step(first, scale_)
-        if not h:
-            return np.zeros_like(f)
-        shifted = []
-        for sign in (1.0, -1.0):
-            y = x + sign * h * first
-            f_y = _evaluate(rates, t, y, shape)[0]
-            nu_y = np.asarray(frequencies(y), dtype=float).reshape(-1)
-            shifted.append(zero_mean_antiderivative(f_y, nu_y, divisor_rtol=divisor_rtol))
-        return (shifted[0] - shifted[1]) / (2.0 * h)
+        return generator_drift(rates_at, x, first, _step(first, scale_), f, divisor_rtol)
 
     return grid_terms(
         t,
@@ -562,6 +547,24 @@ def _nearest(table: dict[tuple[int, ...], float]) -> tuple[float, tuple[int, ...
         return math.inf, ()
     k = min(table, key=lambda h: abs(table[h]))
     return abs(table[k]), k
+
+
+def generator_drift(
+    rates_at: Callable[[FloatArray], tuple[FloatArray, FloatArray]],
+    x: FloatArray,
+    first: FloatArray,
+    h: float,
+    like: FloatArray,
+    divisor_rtol: float = DIVISOR_RTOL,
+) -> FloatArray:
+    """(∂u₁/∂y) F₁ on the grid, the drift of the first-order generator along the averaged
+    flow, by a central difference: u₁ at x ± h F₁ (``rates_at(y) -> (f, ν)`` on the same
+    grid); zeros of the shape of ``like`` for h = 0 (no drift)."""
+    if not h:
+        return np.zeros_like(like)
+    up, down = (zero_mean_antiderivative(*rates_at(x + sign * h * first), divisor_rtol=divisor_rtol)
+                for sign in (1.0, -1.0))  # fmt: skip
+    return np.asarray((up - down) / (2.0 * h))
 
 
 def _step(direction: FloatArray, scale: FloatArray) -> float:

@@ -35,7 +35,14 @@ import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
 from tumble.averaging.quadrature import AveragingError, BatchedTorque
-from tumble.averaging.second_order import GRID_MAX, GRID_RTOL, SecondOrder, grid_terms, resolved
+from tumble.averaging.second_order import (
+    GRID_MAX,
+    GRID_RTOL,
+    SecondOrder,
+    generator_drift,
+    grid_terms,
+    resolved,
+)
 from tumble.bodies import proper_sorting
 from tumble.rotations import matrix_to_quat, rot_x, rot_z
 from tumble.unperturbed.euler_poinsot import EulerPoinsot, fast_frequencies
@@ -280,18 +287,12 @@ class TriaxialSystem:
         def along(u: FloatArray) -> FloatArray:
             return np.einsum("ci...,i...->c...", d_f, u)
 
-        def drift(first: FloatArray) -> FloatArray:
-            from tumble.averaging.generator import zero_mean_antiderivative
+        def rates_at(y: FloatArray) -> tuple[FloatArray, FloatArray]:
+            return self._rates(y, shape)[0], self.frequencies(y)
 
+        def drift(first: FloatArray) -> FloatArray:
             size = float(np.max(np.abs(first) / np.abs(steps / _STEP)))
-            if size == 0.0:
-                return np.zeros_like(f)
-            h = _STEP / size
-            shifted = []
-            for s in (1.0, -1.0):
-                y = x + s * h * first
-                shifted.append(zero_mean_antiderivative(self._rates(y, shape)[0],
-                                                        self.frequencies(y)))  # fmt: skip
-            return (shifted[0] - shifted[1]) / (2.0 * h)
+            h = _STEP / size if size > 0.0 else 0.0
+            return generator_drift(rates_at, x, first, h, f)
 
         return grid_terms(t, x, f, g, nu, d_nu, along, drift if generator_order == 2 else None)

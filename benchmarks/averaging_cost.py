@@ -2,8 +2,8 @@
 
     .venv/bin/python benchmarks/averaging_cost.py [--points 60] [--repeat 7] [--seed 5] [--json]
 
-Issue 5: "one evaluation ≤ 1 ms for the symmetric (spinner) and nonlinear-moment (nutation)
-settings and ≤ 5 ms for the triaxial one". Each right-hand side is called the way its model
+Targets: one evaluation ≤ 1 ms for the symmetric (spinner) and nonlinear-moment (nutation)
+settings and ≤ 5 ms for the triaxial one. Each right-hand side is called the way its model
 calls it during an averaged run, at the default tolerance AVERAGE_RTOL = 1e-12:
 
 * spinner (the resisting medium): ``resisting_medium.averaged_rhs_numeric`` with the moment (1.2)
@@ -63,7 +63,7 @@ from tumble.unperturbed import energy_from_modulus
 from tumble.unperturbed.symmetric_body import NutationOrbit
 
 TARGET_MS = {"spinner": 1.0, "nutation": 1.0, "triaxial": 5.0}
-K2_MAX = 0.9999  # the issue's triaxial range; nearer the separatrix the polhode needs more nodes
+K2_MAX = 0.9999  # the required triaxial range; nearer the separatrix the polhode needs more nodes
 
 
 @dataclass(frozen=True)

@@ -40,7 +40,7 @@ def test_free_body_conserves_energy_and_momentum_over_1e4():
     drift_E = np.max(np.abs(E / E[0] - 1.0))
     drift_K = np.max(np.abs(np.linalg.norm(K, axis=1) / np.linalg.norm(K[0]) - 1.0))
     drift_dir = np.max(np.linalg.norm(K - K[0], axis=1)) / np.linalg.norm(K[0])
-    # Issue 2: 1e-9 relative over τ = 1e4 (≈ 1.6e3 turns, 7e4 steps). Asked rtol 1e-12 per
+    # 1e-9 relative over τ = 1e4 (≈ 1.6e3 turns, 7e4 steps). Asked rtol 1e-12 per
     # step; DOP853's global drift measured ≈ 7e-11 here (≈ 1e-8 at the default rtol 1e-10).
     assert drift_E < 1e-9
     assert drift_K < 1e-9

@@ -121,7 +121,7 @@ def test_unperturbed_scenario_verifies_its_closed_form():
     sorted(p.name for p in EXAMPLES.glob("*.toml")),
 )
 def test_verify_works_on_every_example(example):
-    """Issue 5: `tumble verify` gives a verdict on every example (the verdicts are listed in
+    """`tumble verify` gives a verdict on every example (the verdicts are listed in
     the README); none may crash."""
     from tumble.io import load_scenario as load
 

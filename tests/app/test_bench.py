@@ -1,5 +1,5 @@
 """The performance benchmark: its JSON contract, its helpers, and (slow, with
-heyoka.py from the bench extra) the heyoka transcription and the issue's targets."""
+heyoka.py from the bench extra) the heyoka transcription and the targets."""
 
 from __future__ import annotations
 
@@ -37,7 +37,7 @@ JSON_KEYS = (
 
 
 def test_bench_json_contract():
-    """``tumble bench --json`` prints the issue's keys with their error figures (a short
+    """``tumble bench --json`` prints its keys with their error figures (a short
     horizon: this checks the contract, not the machine)."""
     res = runner.invoke(
         app, ["bench", "--json", "--quick", "--horizon", "200", "--no-heyoka", "--no-compile"]
@@ -166,7 +166,7 @@ def test_heyoka_systems_equal_the_compiled_kernels():
 
 @pytest.mark.slow
 def test_bench_figures_over_1e4_time_units():
-    """The measured figures over a tenth of the issue's horizon (``make bench``; the full
+    """The measured figures over a tenth of the standard horizon (``make bench``; the full
     run is ``benchmarks/performance.py``): the targets met at 1e5 hold here too."""
     r = bench.run_benchmark(bench.BenchSettings(horizon=1e4, repeat=3, compile=False))
     for name, v in r["full_speedup_vs_scipy"].items():

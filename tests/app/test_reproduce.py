@@ -127,7 +127,7 @@ def test_reproduce_all_renders_every_figure_in_chromium(tmp_path):
     result = rep.reproduce(["all"], tmp_path)
     seconds = time.perf_counter() - start
     assert not result.errors, [r.error for r in result.errors]
-    # The budget for the README's main job on 2 cores, with a cold numba cache.
+    # The budget for the README's main job on 2 cores, with a cold numba cache.
     assert seconds < 600
     page = tmp_path / "report.html"
     figures = page.read_text().count('<img class="figure"')

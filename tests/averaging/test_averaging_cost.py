@@ -1,5 +1,5 @@
 """Cost of the averaged right-hand sides of the general engine: the figures of
-benchmarks/averaging_cost.py against the issue's targets (≤ 1 ms spinner and nutation,
+benchmarks/averaging_cost.py against their targets (≤ 1 ms spinner and nutation,
 ≤ 5 ms triaxial, per evaluation)."""
 
 from __future__ import annotations

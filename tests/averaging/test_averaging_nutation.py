@@ -60,7 +60,7 @@ def test_damping_torque_through_the_engine_equals_the_closed_form(body, momenta,
     g_engine, z_engine = numeric_averages(orbit, pert, 0.2)
     g_closed, z_closed = nm._builtin_averages(orbit, p, 0.2)
     scale = max(1.0, abs(g_closed), float(np.max(np.abs(z_closed))))
-    # Both to round-off (trapezoidal rules converged to 1e-12 relative): the 1e-10.
+    # Both to round-off (trapezoidal rules converged to 1e-12 relative): the required 1e-10.
     assert abs(g_engine - g_closed) < 1e-10 * scale
     assert np.max(np.abs(z_engine - z_closed)) < 1e-10 * scale
     # And the averaged right-hand side (2.2) built from them.
@@ -77,7 +77,7 @@ def test_engine_with_a_batched_torque_on_a_fixed_orbit():
     orbit = NutationOrbit.from_state(0.8, -1.0, -0.3, 0.4, 0.6, 1.0, 0.3)
     g_engine, z_engine = numeric_averages(orbit, nm.engine_perturbation(p), 0.3)
     g_closed, z_closed = nm._builtin_averages(orbit, p, 0.3)
-    # Round-off of both rules (converged to 1e-12): the 1e-10.
+    # Round-off of both rules (converged to 1e-12): the required 1e-10.
     assert abs(g_engine - g_closed) < 1e-10
     assert np.max(np.abs(z_engine - z_closed)) < 1e-10
 
@@ -93,7 +93,7 @@ def test_torque_of_the_body_rate_is_averaged_over_phi_only():
     g_closed, z_closed = nm._builtin_averages(orbit, p, 0.3)
     pert = torque_perturbation(drag, p.mu, ab_rate=lambda tau: tuple(map(float, p.ab_rate(tau))))
     g_fast, z_fast = numeric_averages(orbit, pert, 0.3)
-    # Round-off of both rules (converged to 1e-12): the 1e-10.
+    # Round-off of both rules (converged to 1e-12): the required 1e-10.
     assert abs(g_fast - g_closed) < 1e-10
     assert np.max(np.abs(z_fast - z_closed)) < 1e-10
     both = drag + ConstantBodyTorque([0.3, -0.2, 0.1])

@@ -33,7 +33,7 @@ from tumble.rotations import (
 )
 
 # The engine converges its quadrature to AVERAGE_RTOL = 1e-12 of the largest |m| on the torus;
-# the issue asks for agreement with the closed forms to 1e-10 of the scale of the rates.
+# the requirement is agreement with the closed forms to 1e-10 of the scale of the rates.
 AGREEMENT = 1e-10
 
 
@@ -80,7 +80,7 @@ MEDIUM_POINTS = (
 @settings(max_examples=60)
 @given(*MEDIUM_POINTS)
 def test_engine_equals_closed_form_2_2(a, b, s, kap, eps, k, rho, sigma, theta, t):
-    """Issue 5 item 2: random points of the model's domain, full random a, b, s."""
+    """Random points of the model's domain, full random a, b, s."""
     p = rm.Params(eps=eps, kappa=kap, a=a, b=b, s=s)
     engine = spinner_average(medium(p), kap, eps, k, rho, sigma, theta, t)
     # The quadrature is converged to 1e-12 of max|m|; measured worst ~1e-13 of the scale.
@@ -405,6 +405,6 @@ def test_benchmark_resisting_medium_evaluation():
     for law, values in times.items():
         print(f"{law:26s} median {1e3 * np.median(values):.2f} ms, max {1e3 * max(values):.2f} ms")
     # Measured here (2 shared cores): ~0.25 ms for both laws (1.4 and 0.6 ms before the rate
-    # path and the Romberg extrapolation); ~1 ms as a plain function. The issue's bound.
+    # path and the Romberg extrapolation); ~1 ms as a plain function. The bound.
     assert float(np.median(times["quadratic"])) <= 1e-3
     assert float(np.median(times["linear"])) <= 1e-3

@@ -36,7 +36,7 @@ pytestmark = pytest.mark.filterwarnings("error")
 
 TWO_PI = 2.0 * math.pi  # forcing period of the field in τ = ωt: it turns at unit rate (1.1)
 
-# The issue's requirement. The engine is asked for AVERAGE_RTOL = 1e-12 of its integrands'
+# The requirement. The engine is asked for AVERAGE_RTOL = 1e-12 of its integrands'
 # size (|Ω||M| can be ~10× the scale of rates_scale below); the closed forms are a few
 # operations on O(1) numbers. Measured worst over 3000 random states: 7e-12. It holds
 # wherever the state determines the rates to that accuracy, which needs 1 − k² ≫ 1e-8:

@@ -81,7 +81,7 @@ def test_degrees_keys(tmp_path):
 
 
 def test_physical_scenario_equals_its_normalized_twin(tmp_path):
-    """Issue 2: a physical-units scenario and its normalized twin give the same run."""
+    """A physical-units scenario and its normalized twin give the same run."""
     I1, I3 = 2.0e-3, 3.0e-3
     omega = [3.0, -4.0, 60.0]
     A = [1e-5, 0.0, 4e-4]

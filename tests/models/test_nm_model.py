@@ -45,7 +45,7 @@ def test_invariants_are_conserved_without_perturbation(name):
     inv = nm.invariants(p, sol(np.linspace(0.0, 10 * period, 501)))
     for key, values in inv.items():
         scale = max(1.0, float(np.max(np.abs(values))))
-        # rtol 1e-13 over ~10 periods (~1e3 steps): a drift of 1e-10 is the bound.
+        # rtol 1e-13 over ~10 periods (~1e3 steps): a drift of 1e-10 is the required bound.
         assert np.max(np.abs(values - values[0])) < 1e-10 * scale, key
 
 
@@ -70,7 +70,7 @@ def test_closed_form_matches_the_full_integration(name):
     full = simulate(nm.MODEL, p, s0, t, "full", rtol=1e-13, atol=1e-14)
     closed = simulate(nm.MODEL, p, s0, t, "closed_form")
     for key in ("theta", "psi", "phi", "theta_dot"):
-        # The 1e-8 rad over ten periods.
+        # The 1e-8 rad over ten periods.
         assert np.max(np.abs(full.columns[key] - closed.columns[key])) < 1e-8, key
 
 

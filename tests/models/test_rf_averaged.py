@@ -119,7 +119,7 @@ def test_averaging_error_is_first_order():
             errors[k].append(np.max(np.abs(full.columns[k] - avg.columns[k])))
     slopes = {k: fitted_order(eps, np.array(v)) for k, v in errors.items()}
     # Measured 0.89–0.95: the O(ε²) remainder and the resonance passage at 2ν1 = 1 (√ε jump of
-    # a small Fourier coefficient) bend the fit below 1; ±0.25 is the band.
+    # a small Fourier coefficient) bend the fit below 1; ±0.25 is the required band.
     for k, s in slopes.items():
         assert abs(s - 1.0) < 0.25, (k, s, errors[k])
 

@@ -34,13 +34,13 @@ HEMISPHERE_CASES = {
 
 @pytest.mark.parametrize("name", list(HEMISPHERE_CASES))
 def test_averaging_error_is_first_order(name):
-    """Issue 2 / §10.1: max |Δk|, |Δϑ| over τ ∈ [0, 2/ε] shrink as O(ε)."""
+    """§10.1: max |Δk|, |Δϑ| over τ ∈ [0, 2/ε] shrink as O(ε)."""
     p, st = HEMISPHERE_CASES[name]
     tau_end = 2.0 / min(EPS)
     assert rm.crossing_time(st.W, p) > tau_end  # stays in its hemisphere
     study = averaging_error_study(M, p, st, EPS, slow_time=2.0, variables=("k", "theta"))
     for var in ("k", "theta"):
-        # Theory: error = O(ε) uniformly on ετ ≤ 2; ±0.25 (the issue's band) absorbs the
+        # Theory: error = O(ε) uniformly on ετ ≤ 2; ±0.25 (the required band) absorbs the
         # O(ε²) term and the phase of the O(ε) oscillation at the sampled maxima.
         assert abs(study.slopes[var] - 1.0) < 0.25, (var, study.errors[var])
         # The errors themselves are O(ε) with an O(1) constant (measured ≈ 0.4–0.8).
@@ -84,7 +84,7 @@ def test_averaging_across_pi_half_is_only_sqrt_eps_accurate():
 
 
 def test_run_warns_on_pi_half_crossing_and_records_it():
-    """Issue 2: an averaged/closed-form trajectory crossing π/2 is warned and recorded."""
+    """An averaged/closed-form trajectory crossing π/2 is warned and recorded."""
     p = rm.Params(eps=0.02, kappa=0.5, a=[0.2, 0.1, 0.3], b=np.diag([0.1, 0.1, 0.1]))
     st = rm.State(1.0, 1.0, 0.0, 0.0, 2.0, 0.0)
     tau1 = rm.crossing_time(st.W, p)

@@ -12,7 +12,7 @@ from tumble.models import resisting_medium as rm
 M = rm.MODEL
 KAPPA = 0.5
 # Integrated averaged system, asked 1e-12 relative per step: its global error over ~1e3 steps
-# stays ≲ 1e-10, so 1e-8 (the figure) is met with a margin of 100.
+# stays ≲ 1e-10, so 1e-8 (the required figure) is met with a margin of 100.
 TIGHT = {"rtol": 1e-12, "atol": 1e-14}
 
 

@@ -68,7 +68,7 @@ def test_full_from_slow_round_trip():
     ],
 )
 def test_two_full_forms_agree(p, st_):
-    """Issue 2: Euler + quaternions and the standard form (1.3) agree to 1e-7 over τ = 2/ε."""
+    """Euler + quaternions and the standard form (1.3) agree to 1e-7 over τ = 2/ε."""
     tau = np.linspace(0.0, 2.0 / p.eps, 201)
     a = simulate(M, p, st_, tau, "full", rtol=1e-11, atol=1e-13)
     b = simulate(M, p, st_, tau, "full", form="osculating", rtol=1e-11, atol=1e-13)

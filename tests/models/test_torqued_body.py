@@ -115,7 +115,7 @@ def _example_request(name, t_end):
     ],
 )
 def test_full_against_averaged_is_first_order(example, t_end):
-    """Issue 5: the averaged model of each new torque is O(ε)-accurate on εt = O(1).
+    """The averaged model of each new torque is O(ε)-accurate on εt = O(1).
 
     Orders are fitted from ε, ε/2, ε/4; the band [0.75, 1.25] is the one of the error
     studies of issues 2–4 (an O(ε²) term and the phase of the O(ε) oscillation at the

@@ -25,7 +25,7 @@ from tumble.unperturbed import (
     regime,
 )
 
-# Reference: DOP853 asked for rtol 1e-13, atol 1e-14 (the figures). Its measured
+# Reference: DOP853 asked for rtol 1e-13, atol 1e-14 (the required figures). Its measured
 # global error over ten periods is ≲ 1e-12 |z| away from the separatrix.
 TIGHT = {"method": "DOP853", "rtol": 1e-13, "atol": 1e-14}
 # Closed form vs that reference: 100× the reference's own error for ω, 1000× for A (the
@@ -245,7 +245,7 @@ def test_mean_square_rate_is_the_period_average(moments, k2, reg):
     Z = period_samples(ep) if k2 > 0 else np.array([z0])
     numeric = trapezoid_mean(np.sum(Z * Z, axis=-1))
     Is = sorted(moments)
-    # Both sides are sums of O(1) terms with round-off ~1e-15; 1e-10 is the figure.
+    # Both sides are sums of O(1) terms with round-off ~1e-15; 1e-10 is the required figure.
     assert mean_square_rate(*Is, ep.L, ep.T) == pytest.approx(numeric, rel=1e-10)
 
 
@@ -270,7 +270,7 @@ def test_mean_precession_rate(moments, k2, reg):
     c = 2 if reg == "x3" else 0
     Ic, zc = Is[c], Zs[:, c]
     psi_dot = ep.L * (2 * ep.T - Ic * zc**2) / (ep.L**2 - Ic**2 * zc**2)
-    # Same spectral accuracy as above; the 1e-10.
+    # Same spectral accuracy as above; the required 1e-10.
     assert ep.nu2 == pytest.approx(trapezoid_mean(psi_dot), rel=1e-10)
     tau = np.array([0.0, 0.37, 5.1])
     psi_a = ep.euler_angles(tau)[0]

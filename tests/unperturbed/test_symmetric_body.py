@@ -31,13 +31,13 @@ from tumble.unperturbed.symmetric_body import build as symmetric_build
 # ten nutation periods is ≲ 4e-10 rad for every case below (ψ, φ are read from the quaternion
 # through matrix_to_euler313, θ stays ≥ 0.4 rad away from 0 and π).
 TIGHT = {"method": "DOP853", "rtol": 1e-13, "atol": 1e-14}
-# Closed form vs that reference: the issue's figure, 25× the worst measured reference error.
+# Closed form vs that reference: the required figure, 25× the worst measured reference error.
 ANGLE_TOL = 1e-8
 # Invariants of the reference: R is exact (M_r = 0), G and E drift with the integration error
-# (≲ 1e-12 of their scale measured); 1e-10 of the scale is the issue's figure.
+# (≲ 1e-12 of their scale measured); 1e-10 of the scale is the required figure.
 INVARIANT_RTOL = 1e-10
 # Closed-form averages vs quadrature: each side is good to ≲ 1e-13 (the trapezoid in time is
-# converged to 1e-14, quad asked for 1e-13); 1e-12 is the issue's figure.
+# converged to 1e-14, quad asked for 1e-13); 1e-12 is the required figure.
 AVERAGE_RTOL = 1e-12
 N_PERIODS = 10
 PSI0, PHI0 = 0.3, -0.7
@@ -615,7 +615,7 @@ def test_random_states_build_or_raise_and_never_give_nan(mu, a, b, R, G, theta, 
         for x in (orbit.period, orbit.mean_psidot, orbit.mean_phidot, orbit.k2, orbit.mc)
     )
     # The state at t = 0 is reproduced to round-off of the phase τ0 (θ' has the steeper slope
-    # next to a turning point: 1e-10 is the issue's figure).
+    # next to a turning point: 1e-10 is the required figure).
     assert abs(orbit.cos_theta(0.0) - math.cos(theta)) <= 1e-12
     assert abs(orbit.theta_dot(0.0) - theta_dot) <= 1e-10
     assert orbit.psi(0.0) == pytest.approx(PSI0, abs=1e-15) and orbit.phi(0.0) == pytest.approx(

@@ -45,7 +45,7 @@ __all__ = [
 ]
 
 VERIFY_FACTORS = (1.0, 0.5, 0.25)
-"""ε of the three runs, as fractions of the scenario's ε (the issue's ε, ε/2, ε/4)."""
+"""ε of the three runs, as fractions of the scenario's ε (ε, ε/2, ε/4)."""
 
 FIRST_ORDER = 0.75
 """A fitted order at or above this is first order: the band ±0.25 of the error studies of

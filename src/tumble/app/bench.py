@@ -95,7 +95,7 @@ TARGETS: dict[str, float] = {
     "startup_s": 0.5,  # tumble --help, tumble models, an input error: the answer, at most
     "second_order_eval_ratio": 3.0,  # one evaluation of order 2 over one of order 1, at most
 }
-"""The issue's targets, printed beside the measurements."""
+"""The targets, printed beside the measurements."""
 
 PAPER_MODELS = ("resisting_medium", "rotating_field", "nonlinear_moment")
 FULL_MODELS = (*PAPER_MODELS, "torqued_body")
@@ -821,7 +821,7 @@ def run_benchmark(
     Parameters
     ----------
     settings : BenchSettings, optional
-        Horizon, tolerances, repeats and which studies run (default: the issue's).
+        Horizon, tolerances, repeats and which studies run (default: the standard ones).
     log : callable, optional
         Called with a short description of each step as it starts (a progress display).
 

@@ -78,6 +78,7 @@ __all__ = [
     "SecondOrder",
     "generator_drift",
     "grid_terms",
+    "nearest_resonance",
     "resolved",
     "resonance_distance",
     "resonance_table",
@@ -159,7 +160,7 @@ class SecondOrder:
     def resonance(self) -> tuple[float, tuple[int, ...]]:
         """The distance to the nearest resonance in units of its width, and its harmonic k
         (inf and () where no harmonic can resonate)."""
-        return _nearest(self.resonances)
+        return nearest_resonance(self.resonances)
 
     @property
     def grid(self) -> tuple[int, ...]:
@@ -538,11 +539,12 @@ def resonance_distance(
     harmonic : tuple of int
         The nearest resonance's k.
     """
-    return _nearest(resonance_table(f, nu, nu_jacobian, drift))
+    return nearest_resonance(resonance_table(f, nu, nu_jacobian, drift))
 
 
-def _nearest(table: dict[tuple[int, ...], float]) -> tuple[float, tuple[int, ...]]:
-    """The least |distance| of a :func:`resonance_table` and its harmonic (inf, () if empty)."""
+def nearest_resonance(table: dict[tuple[int, ...], float]) -> tuple[float, tuple[int, ...]]:
+    """The least |distance| of a :func:`resonance_table` and its harmonic (inf, () if
+    empty)."""
     if not table:
         return math.inf, ()
     k = min(table, key=lambda h: abs(table[h]))

@@ -24,7 +24,7 @@ import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
 from tumble.averaging.quadrature import AVERAGE_RTOL
-from tumble.averaging.second_order import RESONANCE_WIDTHS, MeanSystem
+from tumble.averaging.second_order import RESONANCE_WIDTHS, MeanSystem, nearest_resonance
 from tumble.averaging.spinner import (
     SPINNER_GRID,
     body_momentum,
@@ -472,11 +472,16 @@ def _resonance_band(p: Params, st: State, system: MeanSystem) -> Crossing:
     equations (Euler + quaternions)."""
     mapping = system.map()
 
+    last: list[Any] = [None, {}]  # the last state's table: band and signed ask for it in turn
+
     def signed(x: FloatArray) -> dict[tuple[int, ...], float]:
-        return system.resonances(0.0, x[:4])
+        key = np.asarray(x[:4], dtype=float).tobytes()
+        if last[0] != key:
+            last[:] = [key, system.resonances(0.0, x[:4])]
+        return dict(last[1])
 
     def distance(x: FloatArray) -> float:
-        return min((abs(d) for d in signed(x).values()), default=math.inf)
+        return nearest_resonance(signed(x))[0]
 
     def band(z: FloatArray) -> float:
         return distance(z) / RESONANCE_WIDTHS - 1.0

@@ -93,6 +93,14 @@ FIGURES: tuple[Figure, ...] = (
         "capsule.png",
     ),
     Figure(
+        "ob_envisat_spin.png",
+        "How fast will this object spin next year?",
+        "A large defunct satellite's spin period, rate and axis over a year, averaged.",
+        "tutorials/orbiting-body",
+        (f"{TUMBLE} run examples/ob_envisat_like.toml -o $OUT",),
+        "spin.png",
+    ),
+    Figure(
         "tb_bdot_evolution.png",
         "Your own torque: B-dot detumbling",
         "A user torque from a Python file, averaged numerically over the Euler–Poinsot motion.",

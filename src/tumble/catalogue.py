@@ -69,6 +69,12 @@ CATALOGUE: dict[str, Entry] = {
             "triaxial rigid body under any small torque, averaged by the general engine",
             None,  # the triaxial averaging of the rotating-field paper, for any torque
         ),
+        Entry(
+            "orbiting_body",
+            "satellite or debris in Earth orbit: eddy currents in the geomagnetic field and the "
+            "gravity gradient, SI units, over days to years",
+            None,  # the rotating-field paper's eddy torque, with an orbit and a real field
+        ),
     )
 }
 """Every shipped model, in the order ``tumble models`` lists them."""

@@ -631,11 +631,38 @@ def _startup_table(r: dict[str, Any]) -> Table | None:
     return t
 
 
+def _orbit_table(r: dict[str, Any]) -> Table | None:
+    """A year of an orbiting body, averaged against full, and its Monte Carlo."""
+    o = r.get("orbiting_body")
+    if not o:
+        return None
+    tg = r["targets"]
+    t = Table(title="Orbiting body: one year of a LEO object", title_justify="left")
+    for col in ("run", "rtol", "wall time [s]", "evaluations", "spin period vs full"):
+        t.add_column(col, justify="left" if col == "run" else "right")
+    for method in ("full", "averaged"):
+        for rtol, v in o[method].items():
+            t.add_row(method, rtol, f"{v['time_s']:.4g}", str(v["nfev"]),
+                      f"{v['period_error']:.2e}")  # fmt: skip
+    if "speedup" in o:
+        met = o["speedup"] >= tg["orbit_year_speedup"]
+        t.add_row(f"[bold]speed-up[/] (averaged at rtol {o['rtol']:g})",
+                  "", f"{o['speedup']:.0f}× (≥ {tg['orbit_year_speedup']:g}: {_yes(met)})",
+                  "", "")  # fmt: skip
+    mc = o.get("monte_carlo")
+    if mc:
+        met = mc["in_full_30_day_runs"] <= tg["orbit_monte_carlo_full_runs"]
+        t.add_row(f"{mc['samples']} averaged years (1 core)", "", f"{mc['time_s']:.4g}",
+                  f"= {mc['in_full_30_day_runs']:.3g} full 30-day runs "
+                  f"(≤ {tg['orbit_monte_carlo_full_runs']:g}: {_yes(met)})", "")  # fmt: skip
+    return t
+
+
 def _bench_tables(r: dict[str, Any]) -> list[Table]:
     """The benchmark's figures as tables, each target beside its figure."""
     tables = (_full_table(r), _heyoka_table(r), _averaged_table(r),
               _averaged_table(r, "engine_speedup"), _batch_table(r), _ensemble_table(r),
-              _compile_table(r), _startup_table(r))  # fmt: skip
+              _orbit_table(r), _compile_table(r), _startup_table(r))  # fmt: skip
     return [t for t in tables if t is not None]
 
 
@@ -649,7 +676,7 @@ def bench_cmd(
         bool,
         typer.Option(
             "--quick",
-            help="horizon 1e3, one repeat, no compile, start-up or engine study (a check)",
+            help="horizon 1e3, one repeat, no compile, start-up, engine or orbit study (a check)",
         ),
     ] = False,
     horizon: Annotated[
@@ -680,6 +707,7 @@ def bench_cmd(
             compile=compile_study and not quick,
             startup=not quick,
             engine=not quick,
+            orbit=not quick,
         )
         with Status("benchmark", console=err) as status:
             return run_benchmark(settings, log=lambda msg: status.update(msg))

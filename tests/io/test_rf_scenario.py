@@ -144,9 +144,10 @@ samples = 11
         # Same equations up to the scaling of the inputs: integration tolerance (rtol 1e-10).
         assert np.allclose(a, b, rtol=1e-8, atol=1e-9)
         h, si = read_csv(out_p / f"{m}_si.csv")
-        assert h[:2] == ["t_s", "L_kgm2_s"]
+        assert h[:3] == ["t_s", "t_days", "L_kgm2_s"]
         assert np.allclose(si[:, 0], np.linspace(0.0, 20.0, 11))
-        assert np.allclose(si[:, 1], I_ref * omega * a[:, 1], rtol=1e-15)
+        assert np.allclose(si[:, 1], si[:, 0] / 86400.0, rtol=1e-15)
+        assert np.allclose(si[:, 2], I_ref * omega * a[:, 1], rtol=1e-15)
 
 
 BAD = [

@@ -144,9 +144,10 @@ tau = {(np.linspace(0.0, 30.0, 61) / T0).tolist()}
         # far inside their tolerance.
         assert np.allclose(dp, dn, rtol=1e-9, atol=1e-9)
         h_si, d_si = read_csv(out_p / f"{method}_si.csv")
-        assert h_si[:2] == ["t_s", "K_Nms"]
+        assert h_si[:3] == ["t_s", "t_days", "K_Nms"]
         assert np.allclose(d_si[:, 0], np.linspace(0.0, 30.0, 61), rtol=1e-14)
-        assert np.allclose(d_si[:, 1], K0 * dp[:, 1], rtol=1e-14)
+        assert np.allclose(d_si[:, 1], d_si[:, 0] / 86400.0, rtol=1e-15)
+        assert np.allclose(d_si[:, 2], K0 * dp[:, 1], rtol=1e-14)
 
 
 def test_physical_attitude_by_quaternion():

@@ -26,6 +26,10 @@ Four studies, each with its error figures and its target beside it:
     Averaged runs per second of an ensemble of 1000 initial states of each paper model
     (:func:`tumble.integrate.simulate_batch` with ``method = "averaged"``) on 1 and all cores,
     and of one :func:`tumble.integrate.simulate` per point.
+``orbiting_body``
+    A year of a large defunct satellite in LEO, averaged against full, and 1000 averaged years
+    of it with uncertain conductor, inertia and spin against one full 30-day run
+    (:mod:`tumble.app.bench_orbit`).
 
 ``compile`` times the first call of each kernel kind from an empty disk cache, in a fresh
 process (numba's compile, once per installation), and the load from the cache.
@@ -94,6 +98,9 @@ TARGETS: dict[str, float] = {
     "compile_cached_s": 0.5,  # the same calls loading from the disk cache, at most
     "startup_s": 0.5,  # tumble --help, tumble models, an input error: the answer, at most
     "second_order_eval_ratio": 3.0,  # one evaluation of order 2 over one of order 1, at most
+    "orbit_year_speedup": 1000.0,  # an averaged year of a LEO object over the full one, at least
+    "orbit_monte_carlo_full_runs": 5.0,  # 1000 averaged years in full 30-day runs ("a handful")
+    "orbit_period_agreement": 0.01,  # the averaged year's spin period against the full one
 }
 """The targets, printed beside the measurements."""
 
@@ -150,6 +157,9 @@ class BenchSettings:
         Time ``tumble`` answering from a fresh process (help, models, input errors).
     engine : bool
         Time the general averaging engine against the full runs (:data:`ENGINE_CASES`).
+    orbit : bool
+        Time a year of an orbiting body and a Monte Carlo of them
+        (:mod:`tumble.app.bench_orbit`; about 2 minutes).
     """
 
     horizon: float = 1e5
@@ -162,6 +172,7 @@ class BenchSettings:
     compile: bool = True
     startup: bool = True
     engine: bool = True
+    orbit: bool = True
 
     def __post_init__(self) -> None:
         if not (self.horizon > 0.0 and math.isfinite(self.horizon)):
@@ -874,6 +885,10 @@ def run_benchmark(
     result["batch_throughput"] = _batch(s, say)
     result["averaged_batch_throughput"] = {name: _averaged_ensemble(name, s, say)
                                            for name in PAPER_MODELS}  # fmt: skip
+    if s.orbit:
+        from tumble.app.bench_orbit import orbiting_study
+
+        result["orbiting_body"] = orbiting_study(s.repeat, say)
     result["verdicts"] = verdicts(result)
     return result
 
@@ -952,6 +967,18 @@ def verdicts(result: dict[str, Any]) -> list[dict[str, Any]]:
             add(f"averaged ensemble {name}: efficiency on {most} cores",
                 ens["threads"][most]["efficiency"], TARGETS["averaged_batch_efficiency"],
                 True)  # fmt: skip
+    orbit = result.get("orbiting_body")
+    if orbit is not None:
+        chosen = orbit["rtol"]
+        error = orbit["averaged"][f"{chosen:g}"]["period_error"] if chosen else math.inf
+        add("orbiting body, a year: averaged spin period against the full one", error,
+            TARGETS["orbit_period_agreement"], False)  # fmt: skip
+        add("orbiting body, a year: averaged speed-up over the full run",
+            orbit.get("speedup", 0.0), TARGETS["orbit_year_speedup"], True)  # fmt: skip
+        mc = orbit.get("monte_carlo")
+        add("orbiting body: 1000 averaged years, in full 30-day runs",
+            mc["in_full_30_day_runs"] if mc else math.inf,
+            TARGETS["orbit_monte_carlo_full_runs"], False)  # fmt: skip
     for name, seconds in (result.get("startup_s") or {}).items():
         add(f"start-up: {name} [s]", seconds, TARGETS["startup_s"], False)
     if "compile" in result:

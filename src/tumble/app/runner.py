@@ -75,6 +75,7 @@ def _figure_png(result: RunResult, title: str) -> bytes:
             diagnostics=result.diagnostics.get("averaged"),
             marks=result.issues,
             title=title,
+            log=settings.log,
         )
     return _png(fig)
 

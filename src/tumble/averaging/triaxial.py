@@ -898,6 +898,8 @@ def nearest_resonance(
     for m, n1, n2 in itertools.product(harmonics, orders, orders):
         if (n1, n2) == (0, 0) or (m == 0 and (n1, n2) < (0, 0)):  # ±(n1, n2): one relation
             continue
+        if nu1 == 0.0 and n1 != 0:  # a sphere: no polhode phase to be commensurate
+            continue
         det = n1 * nu1 + n2 * nu2 - m * forcing
         if best is None or abs(det) < abs(best[0]):
             best = (det, m, n1, n2)

@@ -129,10 +129,14 @@ def summary(
 
 
 def _with_si(ds: xr.Dataset, scaling: Any, si: dict[str, Any]) -> xr.Dataset:
-    """``ds`` with the SI columns of a physical run beside the normalised ones: ``t_s`` [s]
-    and each converted column under its SI name, with its unit (:meth:`Scaling.si`)."""
-    extra = {"t_s": xr.DataArray(si["t_s"], dims=("tau",),
-                                 attrs={"units": "s", "long_name": "time t"})}  # fmt: skip
+    """``ds`` with the SI columns of a physical run beside the normalised ones: ``t_s`` [s],
+    ``t_days`` [d] and each converted column under its SI name, with its unit
+    (:meth:`Scaling.si`)."""
+    extra = {
+        "t_s": xr.DataArray(si["t_s"], dims=("tau",), attrs={"units": "s", "long_name": "time t"}),
+        "t_days": xr.DataArray(si["t_days"], dims=("tau",),
+                               attrs={"units": "d", "long_name": "time t in days"}),
+    }  # fmt: skip
     for name in ds.data_vars:
         conv = scaling.si(str(name))
         if conv is not None:

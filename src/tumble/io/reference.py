@@ -51,7 +51,10 @@ def _model(model: AnyModel) -> list[str]:
         out += ["", f"{model.paper}."]
     out.append("")
     for variant in model.scenario.variants:
-        which = "with `[physical]`" if variant.physical else "normalized"
+        if model.scenario.physical_only:
+            which = "in SI units"
+        else:
+            which = "with `[physical]`" if variant.physical else "normalized"
         out += [f"### {which}: {variant.doc}" if variant.doc else f"### {which}", ""]
         for section in variant.sections:
             out += _section(section)

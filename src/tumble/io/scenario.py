@@ -189,6 +189,7 @@ def section_model(section: Section) -> type[_Section]:
 
 
 _TIMES = {"tau": ("tau_end", "tau"), "t": ("t_end", "t")}
+_DAY = 86400.0  # [s]
 
 
 def run_keys(model: Declaration[Any, Any], variant: Variant[Any, Any]) -> tuple[Key, ...]:
@@ -202,6 +203,14 @@ def run_keys(model: Declaration[Any, Any], variant: Variant[Any, Any]) -> tuple[
     keys = [
         Key(end, "number", "a time > 0", units, None, doc="end of the run (with samples)"),
         Key(listed, "numbers", "ascending times ≥ 0", units, None, doc="or the sample times"),
+    ]
+    if variant.physical:
+        keys += [
+            Key("t_end_days", "number", "a time > 0", "days", None, doc="or the end in days"),
+            Key("t_days", "numbers", "ascending times ≥ 0", "days", None,
+                doc="or the sample times in days"),
+        ]  # fmt: skip
+    keys += [
         Key("samples", "integer", "an integer in [2, 1e7]", default=variant.samples,
             doc="equally spaced samples from 0 to the end"),
         Key("methods", "any", f"a non-empty list of {allowed}", default=None,
@@ -306,7 +315,14 @@ def schema_for(data: Mapping[str, Any]) -> type[BaseModel] | None:
     name = data.get("model")
     if not isinstance(name, str) or name not in names():
         return None
-    return _compiled(name, "physical" in data)
+    return _compiled(name, _physical(name, data))
+
+
+def _physical(name: str, data: Mapping[str, Any]) -> bool:
+    """Whether a scenario of model ``name`` is in physical units: it has a ``[physical]``
+    table, or the model has no other kind of scenario."""
+    model = declaration(name)
+    return "physical" in data or (model.scenario is not None and model.scenario.physical_only)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -385,10 +401,22 @@ def _validated(schema: type[BaseModel], data: Mapping[str, Any]) -> Any:
 # The run table.
 
 
-def _times(run: Any, end_key: str, list_key: str) -> np.ndarray:
+def _times(run: Any, end_key: str, list_key: str, days: bool = False) -> np.ndarray:
+    """The run's sample times in the units of ``end_key`` (seconds for a physical scenario,
+    which may give them in days instead: ``t_end_days``, ``t_days``)."""
+    if days and (run.t_end_days is not None or run.t_days is not None):
+        if getattr(run, end_key) is not None or getattr(run, list_key) is not None:
+            raise ScenarioError(
+                f"run: give the times in seconds ({end_key}, {list_key}) or in days "
+                "(t_end_days, t_days), not both"
+            )
+        return _DAY * _times(run, "t_end_days", "t_days")
     end, listed = getattr(run, end_key), getattr(run, list_key)
     if (end is None) == (listed is None):
-        raise ScenarioError(f"run: give exactly one of {end_key} (with samples) or {list_key}")
+        keys = f"{end_key} (with samples) or {list_key}"
+        if days:
+            keys = f"{end_key} or t_end_days (with samples), or {list_key} or t_days"
+        raise ScenarioError(f"run: give exactly one of {keys}")
     if listed is not None:
         return check_times(listed, field=f"run.{list_key}")
     if not (math.isfinite(end) and end > 0.0):
@@ -503,7 +531,7 @@ def parse_scenario(
     if not isinstance(name, str):
         raise ScenarioError(f"model = {name!r}: expected a string")
     model = declaration(name)  # unknown model → one line naming the allowed ones
-    physical = "physical" in data
+    physical = _physical(name, data)
     if physical and "parameters" in data:
         raise ScenarioError("give either [parameters] (normalized) or [physical] (SI), not both")
     schema = _compiled(name, physical)
@@ -519,7 +547,7 @@ def parse_scenario(
     end, listed = (
         ("t_end_s", "t_s") if variant.physical else _TIMES.get(model.time.name, ("t_end", "t"))
     )
-    times = _times(sc.run, end, listed)
+    times = _times(sc.run, end, listed, days=variant.physical)
     _tolerances(sc.run)  # the run's own keys first: nothing is loaded for a bad one
     if sc.run.methods is not None:
         _methods(sc.run, model.methods, model.methods)

@@ -33,9 +33,13 @@ __all__ = [
     "SEPARATRIX_RTOL",
     "TERM_BODY_CONSTANT",
     "TERM_EDDY_CURRENT",
+    "TERM_FIELD_MOMENTS",
     "TERM_GRAVITY_GRADIENT",
+    "TERM_GRAVITY_MOMENTS",
     "TERM_INERTIAL_CONSTANT",
     "TERM_LINEAR_DRAG",
+    "TERM_ORBIT_EDDY",
+    "TERM_ORBIT_GRAVITY",
     "TERM_PAYLOAD",
     "TERM_QUADRATIC_DRAG",
     "TERM_USER",
@@ -70,6 +74,10 @@ TERM_INERTIAL_CONSTANT = 4  # inertial moment (3)
 TERM_GRAVITY_GRADIENT = 5  # inertia (3), n, u0, rows e1, e2, normal (9)
 TERM_EDDY_CURRENT = 6  # M0, field rate ω, cone angle β
 TERM_USER = 7  # address of the compiled function, n, then its n parameters
+TERM_ORBIT_EDDY = 8  # orbit (10), field (5), magnetic tensor by rows (9): kernels/space.py
+TERM_ORBIT_GRAVITY = 9  # orbit (10), principal moments (3)
+TERM_FIELD_MOMENTS = 10  # magnetic tensor (9), ⟨B Bᵀ⟩ (9), δ of ⟨Ḃ Bᵀ⟩ = [δ]× (3), node rate
+TERM_GRAVITY_MOMENTS = 11  # principal moments (3), 3μ/(2a³(1−e²)^{3/2}), normal (3), node rate
 
 TERM_PAYLOAD: dict[int, int] = {
     TERM_BODY_CONSTANT: 3,
@@ -79,6 +87,10 @@ TERM_PAYLOAD: dict[int, int] = {
     TERM_GRAVITY_GRADIENT: 14,
     TERM_EDDY_CURRENT: 3,
     TERM_USER: 2,
+    TERM_ORBIT_EDDY: 24,
+    TERM_ORBIT_GRAVITY: 13,
+    TERM_FIELD_MOMENTS: 22,
+    TERM_GRAVITY_MOMENTS: 8,
 }
 """Length of each term code's payload (the stride of a torque program); a user term's
 parameters follow its fixed part, their number in it."""

@@ -19,14 +19,19 @@ from tumble._typing import FloatArray
 from tumble.kernels.codes import (
     TERM_BODY_CONSTANT,
     TERM_EDDY_CURRENT,
+    TERM_FIELD_MOMENTS,
     TERM_GRAVITY_GRADIENT,
+    TERM_GRAVITY_MOMENTS,
     TERM_INERTIAL_CONSTANT,
     TERM_LINEAR_DRAG,
+    TERM_ORBIT_EDDY,
+    TERM_ORBIT_GRAVITY,
     TERM_PAYLOAD,
     TERM_QUADRATIC_DRAG,
     TERM_USER,
 )
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
+from tumble.kernels.space import ORBIT_SIZE, field_at, orbit_at
 from tumble.kernels.user import call_user
 
 __all__ = [
@@ -120,6 +125,96 @@ def _eddy_current(
 
 
 @jit(INLINE)
+def _induced(
+    prog: FloatArray, v: int, x1: float, x2: float, x3: float, b1: float, b2: float, b3: float
+) -> Vec3:
+    """(M x) × b for the magnetic tensor M stored by rows at prog[v : v + 9]."""
+    m1, m2, m3 = _matrix_times(prog, v, x1, x2, x3)
+    return m2 * b3 - m3 * b2, m3 * b1 - m1 * b3, m1 * b2 - m2 * b1
+
+
+@jit(INLINE)
+def _orbit_eddy(
+    f: float, prog: FloatArray, v: int, t: float, w1: float, w2: float, w3: float, a: Mat3
+) -> Vec3:
+    """f·(M x) × B in body axes: the eddy-current moment of a conductor of magnetic tensor M
+    whose induced dipole is M x, x = −dB/dt seen in the body = ω × B − Aᵀ dB/dt (B and its
+    inertial rate from :func:`tumble.kernels.space.field_at`); payload [orbit, field, M]."""
+    bi, ci = field_at(prog, v, prog, v + ORBIT_SIZE, t)
+    b1, b2, b3 = _to_body(a, bi[0], bi[1], bi[2])
+    c1, c2, c3 = _to_body(a, ci[0], ci[1], ci[2])
+    x1, x2, x3 = w2 * b3 - w3 * b2 - c1, w3 * b1 - w1 * b3 - c2, w1 * b2 - w2 * b1 - c3
+    m1, m2, m3 = _induced(prog, v + ORBIT_SIZE + 5, x1, x2, x3, b1, b2, b3)
+    return f * m1, f * m2, f * m3
+
+
+@jit(INLINE)
+def _orbit_gravity(f: float, prog: FloatArray, v: int, t: float, a: Mat3) -> Vec3:
+    """f·3μ/r³ r̂ × (I r̂) in body axes at the orbit's position at time t; payload
+    [orbit, I1, I2, I3]."""
+    r, _ = orbit_at(prog, v, t)
+    size2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2]
+    r1, r2, r3 = _to_body(a, r[0], r[1], r[2])
+    g = 3.0 * prog[v + 9] * f / (size2 * size2 * math.sqrt(size2))  # 3μ/r³ over r²
+    i1, i2, i3 = prog[v + ORBIT_SIZE], prog[v + ORBIT_SIZE + 1], prog[v + ORBIT_SIZE + 2]
+    return g * (i3 - i2) * r2 * r3, g * (i1 - i3) * r3 * r1, g * (i2 - i1) * r1 * r2
+
+
+@jit(INLINE)
+def _field_moments(
+    f: float, prog: FloatArray, v: int, t: float, w1: float, w2: float, w3: float, a: Mat3
+) -> Vec3:
+    """The eddy-current moment f·(M x) × B averaged over the orbit and the Earth's rotation
+    (:mod:`tumble.space.moments`): with S = ⟨B Bᵀ⟩ and ⟨Ḃ Bᵀ⟩ = [δ]× (its mean is
+    antisymmetric) in body axes, C = [ω]× S − [δ]× and N = M C, the moment is
+    (N23 − N32, N31 − N13, N12 − N21). S and δ turn about ξ3 with the node, Ω̇ t; payload
+    [M (by rows), S (inertial, by rows), δ (inertial), Ω̇]."""
+    c, s = math.cos(prog[v + 21] * t), math.sin(prog[v + 21] * t)
+    # The columns of A' = Rz(Ω̇t)ᵀ A, so that Aᵀ Rz S Rzᵀ A = A'ᵀ S A'.
+    u0 = (c * a[0] + s * a[3], -s * a[0] + c * a[3], a[6])
+    u1 = (c * a[1] + s * a[4], -s * a[1] + c * a[4], a[7])
+    u2 = (c * a[2] + s * a[5], -s * a[2] + c * a[5], a[8])
+    p0 = _matrix_times(prog, v + 9, u0[0], u0[1], u0[2])
+    p1 = _matrix_times(prog, v + 9, u1[0], u1[1], u1[2])
+    p2 = _matrix_times(prog, v + 9, u2[0], u2[1], u2[2])
+    s00, s11, s22 = _dot(u0, p0), _dot(u1, p1), _dot(u2, p2)
+    s01, s02, s12 = _dot(u0, p1), _dot(u0, p2), _dot(u1, p2)
+    e = (prog[v + 18], prog[v + 19], prog[v + 20])
+    d0, d1, d2 = _dot(u0, e), _dot(u1, e), _dot(u2, e)
+    # C = [ω]× S − [δ]×, by rows.
+    c00, c01, c02 = w2 * s02 - w3 * s01, w2 * s12 - w3 * s11 + d2, w2 * s22 - w3 * s12 - d1
+    c10, c11, c12 = w3 * s00 - w1 * s02 - d2, w3 * s01 - w1 * s12, w3 * s02 - w1 * s22 + d0
+    c20, c21, c22 = w1 * s01 - w2 * s00 + d1, w1 * s11 - w2 * s01 - d0, w1 * s12 - w2 * s02
+    m = prog
+    n01 = m[v] * c01 + m[v + 1] * c11 + m[v + 2] * c21
+    n02 = m[v] * c02 + m[v + 1] * c12 + m[v + 2] * c22
+    n10 = m[v + 3] * c00 + m[v + 4] * c10 + m[v + 5] * c20
+    n12 = m[v + 3] * c02 + m[v + 4] * c12 + m[v + 5] * c22
+    n20 = m[v + 6] * c00 + m[v + 7] * c10 + m[v + 8] * c20
+    n21 = m[v + 6] * c01 + m[v + 7] * c11 + m[v + 8] * c21
+    return f * (n12 - n21), f * (n20 - n02), f * (n01 - n10)
+
+
+@jit(INLINE)
+def _dot(x: Vec3, y: Vec3) -> float:
+    return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]
+
+
+@jit(INLINE)
+def _gravity_moments(f: float, prog: FloatArray, v: int, t: float, a: Mat3) -> Vec3:
+    """The gravity gradient averaged over the orbit, −f·c ĥ × (I ĥ) in body axes with
+    c = 3μ/(2a³(1 − e²)^{3/2}) (⟨3μ r̂ r̂ᵀ/r³⟩ = c (1 − ĥ ĥᵀ)) and the orbit normal ĥ turned
+    about ξ3 by Ω̇ t; payload [I1, I2, I3, c, ĥ(0), Ω̇]."""
+    cn, sn = math.cos(prog[v + 7] * t), math.sin(prog[v + 7] * t)
+    h1 = cn * prog[v + 4] - sn * prog[v + 5]
+    h2 = sn * prog[v + 4] + cn * prog[v + 5]
+    b1, b2, b3 = _to_body(a, h1, h2, prog[v + 6])
+    i1, i2, i3 = prog[v], prog[v + 1], prog[v + 2]
+    g = -f * prog[v + 3]
+    return g * (i3 - i2) * b2 * b3, g * (i1 - i3) * b3 * b1, g * (i2 - i1) * b1 * b2
+
+
+@jit(INLINE)
 def _matrix_quaternion(a: Mat3) -> tuple[float, float, float, float]:
     """A unit quaternion (sign arbitrary) of the rotation matrix a (by rows), by the largest of
     its four squared components (Shepperd's method: no cancellation)."""
@@ -172,6 +267,14 @@ def _term(
         return _eddy_current(f, prog, v, t, w1, w2, w3, a)
     if code == TERM_USER:
         return _user(f, prog, v, t, w1, w2, w3, a)
+    if code == TERM_ORBIT_EDDY:
+        return _orbit_eddy(f, prog, v, t, w1, w2, w3, a)
+    if code == TERM_ORBIT_GRAVITY:
+        return _orbit_gravity(f, prog, v, t, a)
+    if code == TERM_FIELD_MOMENTS:
+        return _field_moments(f, prog, v, t, w1, w2, w3, a)
+    if code == TERM_GRAVITY_MOMENTS:
+        return _gravity_moments(f, prog, v, t, a)
     return math.nan, math.nan, math.nan
 
 

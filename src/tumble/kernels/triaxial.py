@@ -170,11 +170,13 @@ def _gravity_gradient_at(f: float, prog: FloatArray, v: int, a: Mat3, e: int) ->
 
 @jit(INLINE)
 def _mean_term(
-    code: int, f: float, prog: FloatArray, v: int, w1: float, w2: float, w3: float, a: Mat3
-) -> Vec3:
+    code: int, f: float, prog: FloatArray, v: int, t: float, w1: float, w2: float, w3: float,
+    a: Mat3,
+) -> Vec3:  # fmt: skip
     """Body moment of one term averaged over its forcing phase (module notes): the gravity
     gradient at ⟨r̂ r̂ᵀ⟩ = ½(e₁e₁ᵀ + e₂e₂ᵀ), the eddy current of a rotating field at
-    ⟨ĥ ĥᵀ⟩ = diag(½ sin²β, ½ sin²β, cos²β); a term without time dependence as it is."""
+    ⟨ĥ ĥᵀ⟩ = diag(½ sin²β, ½ sin²β, cos²β); any other term as it is at the time t (the
+    orbit-averaged terms of an orbiting body vary only slowly, with the node)."""
     if code == TERM_GRAVITY_GRADIENT:
         x1, x2, x3 = _gravity_gradient_at(f, prog, v, a, v + 5)
         y1, y2, y3 = _gravity_gradient_at(f, prog, v, a, v + 8)
@@ -187,17 +189,19 @@ def _mean_term(
         x3 = a[6] * w1 + a[7] * w2 + a[8] * w3 - rate
         g = f * M0
         return _to_body(a, -g * (1.0 - 0.5 * s2) * x1, -g * (1.0 - 0.5 * s2) * x2, -g * s2 * x3)
-    return _term(code, f, prog, v, 0.0, w1, w2, w3, a)
+    return _term(code, f, prog, v, t, w1, w2, w3, a)
 
 
 @jit(INLINE)
-def _mean_program(prog: FloatArray, start: int, w1: float, w2: float, w3: float, a: Mat3) -> Vec3:
+def _mean_program(
+    prog: FloatArray, start: int, t: float, w1: float, w2: float, w3: float, a: Mat3
+) -> Vec3:
     """Body moment of the program ``prog[start:]``, each term averaged over its phase."""
     m1 = m2 = m3 = 0.0
     i = start + 1
     for _ in range(int(prog[start])):
         code = int(prog[i])
-        d1, d2, d3 = _mean_term(code, prog[i + 1], prog, i + 2, w1, w2, w3, a)
+        d1, d2, d3 = _mean_term(code, prog[i + 1], prog, i + 2, t, w1, w2, w3, a)
         m1 += d1
         m2 += d2
         m3 += d3
@@ -259,8 +263,9 @@ def _channels(
 
 @jit(KERNEL)
 def _node_sums(
-    p: FloatArray, z1: float, z2: float, z3: float, F: Mat3, rl1: float, rl2: float, rl3: float
-) -> tuple[float, float, float, float, float, float]:
+    p: FloatArray, t: float, z1: float, z2: float, z3: float, F: Mat3, rl1: float, rl2: float,
+    rl3: float,
+) -> tuple[float, float, float, float, float, float]:  # fmt: skip
     """Built-in terms (mode 1): the channels summed over the four precession nodes at the
     body rate z (user axes), with A = F Rz(χ) G and each term at its phase mean."""
     g0, g1, g2 = _body_frame(p, z1, z2, z3)
@@ -276,7 +281,7 @@ def _node_sums(
         else:
             h0, h1 = g1, (-g0[0], -g0[1], -g0[2])
         a = _attitude(F, h0, h1, g2)
-        m1, m2, m3 = _mean_program(p, PROGRAM_START, z1, z2, z3, a)
+        m1, m2, m3 = _mean_program(p, PROGRAM_START, t, z1, z2, z3, a)
         t1, t2, t3, t4, t5, t6 = _channels(a, z1, z2, z3, m1, m2, m3, rl1, rl2, rl3)
         s1 += t1
         s2 += t2
@@ -289,8 +294,9 @@ def _node_sums(
 
 @jit(KERNEL)
 def _polhode_sums(
-    p: FloatArray, nodes: int, offset: float, amp: Vec3, x3: bool, big_k: float, kc: float,
-    ratios: _Table, n_agm: int, a_agm: float, F: Mat3, rl1: float, rl2: float, rl3: float,
+    p: FloatArray, t: float, nodes: int, offset: float, amp: Vec3, x3: bool, big_k: float,
+    kc: float, ratios: _Table, n_agm: int, a_agm: float, F: Mat3, rl1: float, rl2: float,
+    rl3: float,
 ) -> tuple[float, float, float, float, float, float]:  # fmt: skip
     """:func:`_node_sums` summed over the polhode nodes u = (j + offset)·4K/nodes, j < nodes:
     one Jacobi evaluation serves the four nodes a quarter period apart."""
@@ -300,7 +306,7 @@ def _polhode_sums(
         sn0, cn0, dn0 = _quarter((j + offset) * step, big_k, kc, ratios, n_agm, a_agm)
         for q in range(4):
             z1, z2, z3 = _user_rates(p, amp, x3, *_shifted(q, sn0, cn0, dn0, kc))
-            t1, t2, t3, t4, t5, t6 = _node_sums(p, z1, z2, z3, F, rl1, rl2, rl3)
+            t1, t2, t3, t4, t5, t6 = _node_sums(p, t, z1, z2, z3, F, rl1, rl2, rl3)
             s1 += t1
             s2 += t2
             s3 += t3
@@ -312,20 +318,20 @@ def _polhode_sums(
 
 @jit(KERNEL)
 def _exact_mean(
-    p: FloatArray, rtol: float, amp: Vec3, x3: bool, big_k: float, kc: float, ratios: _Table,
-    n_agm: int, a_agm: float, F: Mat3, rl1: float, rl2: float, rl3: float,
+    p: FloatArray, t: float, rtol: float, amp: Vec3, x3: bool, big_k: float, kc: float,
+    ratios: _Table, n_agm: int, a_agm: float, F: Mat3, rl1: float, rl2: float, rl3: float,
 ) -> tuple[bool, float, float, float, float]:  # fmt: skip
     """(converged, ⟨A M⟩ (3), ⟨(Ω − r L_ξ)·M⟩) of built-in terms (mode 1): the polhode refined
     with the engine's test, the precession and the forcing phase exact (module notes)."""
     nodes = _N_START
-    m = _scaled(_polhode_sums(p, nodes, 0.0, amp, x3, big_k, kc, ratios, n_agm, a_agm, F, rl1,
+    m = _scaled(_polhode_sums(p, t, nodes, 0.0, amp, x3, big_k, kc, ratios, n_agm, a_agm, F, rl1,
                               rl2, rl3), 1.0 / (4 * nodes))  # fmt: skip
     previous = math.inf
     while True:
         if 2 * nodes > _N_MAX:
             return False, math.nan, math.nan, math.nan, math.nan
         fresh = _polhode_sums(
-            p, nodes, 0.5, amp, x3, big_k, kc, ratios, n_agm, a_agm, F, rl1, rl2, rl3
+            p, t, nodes, 0.5, amp, x3, big_k, kc, ratios, n_agm, a_agm, F, rl1, rl2, rl3
         )
         m, previous, done = _doubled(m, fresh, 0.5 / (4 * nodes), previous, rtol)
         nodes *= 2
@@ -528,7 +534,7 @@ def triaxial_averaged(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -
     F = _frame(y[0] / L, y[1] / L, y[2] / L)
     rl1, rl2, rl3 = r * y[0], r * y[1], r * y[2]
     if p[MODE] == 1.0:
-        ok, m1, m2, m3, m4 = _exact_mean(p, rtol, amp, x3, big_k, kc, ratios, n_agm, a_agm, F,
+        ok, m1, m2, m3, m4 = _exact_mean(p, t, rtol, amp, x3, big_k, kc, ratios, n_agm, a_agm, F,
                                          rl1, rl2, rl3)  # fmt: skip
     else:
         ok, m1, m2, m3, m4 = _general_mean(p, t, rtol, amp, x3, big_k, kc, ratios, n_agm,

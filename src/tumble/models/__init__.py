@@ -21,6 +21,7 @@ __all__ = [
     "get_model",
     "names",
     "nonlinear_moment",
+    "orbiting_body",
     "register",
     "resisting_medium",
     "rotating_field",
@@ -96,7 +97,13 @@ def declaration(name: str) -> Declaration[Any, Any]:
 
 
 if TYPE_CHECKING:
-    from tumble.models import nonlinear_moment, resisting_medium, rotating_field, torqued_body
+    from tumble.models import (
+        nonlinear_moment,
+        orbiting_body,
+        resisting_medium,
+        rotating_field,
+        torqued_body,
+    )
 
     MODELS: dict[str, AnyModel]
     """Every registered model, by the name a scenario's ``model`` key uses."""

@@ -159,8 +159,9 @@ class Variant(Generic[P, S]):
     """One way to write a scenario of the model: its tables besides ``model`` and ``run``, and
     how their values become the model's inputs.
 
-    A variant with ``physical = True`` is chosen when the file has a ``[physical]`` table;
-    its ``[run]`` times are in seconds (``t_end_s``, ``t_s``).
+    A variant with ``physical = True`` is chosen when the file has a ``[physical]`` table (or
+    when the model has no other); its ``[run]`` times are in seconds (``t_end_s``, ``t_s``) or
+    days (``t_end_days``, ``t_days``).
     """
 
     sections: tuple[Section, ...]
@@ -178,6 +179,11 @@ class ScenarioSchema(Generic[P, S]):
     variants: tuple[Variant[P, S], ...]
     run: tuple[Key, ...] = ()
 
+    @property
+    def physical_only(self) -> bool:
+        """Whether every scenario of the model is in physical units."""
+        return all(v.physical for v in self.variants)
+
     def variant(self, physical: bool) -> Variant[P, S] | None:
         """The variant for a file with (or without) a ``[physical]`` table."""
         return next((v for v in self.variants if v.physical == physical), None)
@@ -186,9 +192,11 @@ class ScenarioSchema(Generic[P, S]):
 def si_columns(
     scaling: Scaling, cols: Mapping[str, FloatArray], tau: FloatArray
 ) -> dict[str, FloatArray]:
-    """A run's columns in SI (:meth:`Scaling.si`): the time ``t_s`` [s], each convertible
+    """A run's columns in SI (:meth:`Scaling.si`): the time ``t_s`` [s] and ``t_days`` [d],
+    each convertible
     column under its SI name, the others (angles, k², q) as they are."""
-    out = {"t_s": scaling.time_from_tau(tau)}
+    t_s = scaling.time_from_tau(tau)
+    out = {"t_s": t_s, "t_days": t_s / 86400.0}
     for name, values in cols.items():
         conv = scaling.si(name)
         if conv is None:

@@ -182,7 +182,8 @@ def averaged_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
     if math.isnan(r):
         return np.full(4, math.nan)  # past a pure rotation: the solver rejects the step
     state = np.array([y[0], y[1], y[2], r])
-    rates = triaxial_average_vector(p.torque, p.inertia, state, t, forcing_period=p.forcing_period)
+    torque, period = p.averaging
+    rates = triaxial_average_vector(torque, p.inertia, state, t, forcing_period=period)
     return p.eps * rates
 
 
@@ -208,8 +209,9 @@ def _mean_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[
     (:class:`tumble.averaging.triaxial_second.TriaxialSystem`), from the mean state of the
     given one (``options.initial = "osculating"``) or from it; the columns are those of the
     osculating variables rebuilt at each time asked for, the mean ones beside them."""
-    return triaxial_mean_form(p.torque, p.inertia, p.eps, st.omega, quat_to_matrix(st.q),
-                              p.forcing_period, options,
+    torque, period = p.averaging
+    return triaxial_mean_form(torque, p.inertia, p.eps, st.omega, quat_to_matrix(st.q),
+                              period, options,
                               lambda L_xi, T: _momentum_columns(L_xi, T, p),
                               "Euler's equations")  # fmt: skip
 
@@ -248,7 +250,8 @@ def averaged_kernel(p: Params) -> Kernel | None:
     """:func:`averaged_rhs` compiled when the torque is a sum of built-in terms
     (:func:`tumble.averaging.triaxial_kernel`); None for a user torque or a body with two
     equal moments (the Python engine)."""
-    return triaxial_kernel(p.torque, p.inertia, p.forcing_period, factor=p.eps)
+    torque, period = p.averaging
+    return triaxial_kernel(torque, p.inertia, period, factor=p.eps)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -316,6 +319,8 @@ class _Scales:
         nu = np.array([fast_frequencies(I1, I2, I3, Li, Ti) for Li, Ti in zip(L, T, strict=True)])
         forcing = 0.0 if p.forcing_period is None else 2.0 * math.pi / p.forcing_period
         slowest = np.minimum(nu[:, 0], np.abs(nu[:, 1]))
+        if I1 == I3:  # a sphere: the rotation about L is its only phase (ν1 = 0)
+            slowest = np.abs(nu[:, 1])
         if forcing > 0.0:
             slowest = np.minimum(slowest, forcing)
         away = cols["k2"] < 1.0 - 1e-3  # the separatrix band is reported as such

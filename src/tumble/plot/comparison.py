@@ -97,6 +97,7 @@ def plot_comparison(
     diagnostics: xr.Dataset | None = None,
     marks: Sequence[Mapping[str, Any]] = (),
     title: str = "",
+    log: Sequence[str] = (),
 ) -> Figure:
     """One panel per variable against τ for every method, warnings marked.
 
@@ -113,6 +114,8 @@ def plot_comparison(
         Warnings with ``tau`` and ``condition``.
     title : str
         Figure title.
+    log : sequence of str
+        Variables drawn on a logarithmic axis (a spin period over years).
     """
     import matplotlib
 
@@ -126,6 +129,8 @@ def plot_comparison(
     axs = list(axes[:, 0])
     for ax, var in zip(axs, variables, strict=False):
         plot_methods(datasets, var, marks=marks, ax=ax)
+        if var in log:
+            ax.set_yscale("log")
     if diagnostics is not None:
         ax = axs[-1]
         for name in diagnostics.data_vars:

@@ -23,11 +23,14 @@ class FigureSettings:
     variables : tuple of str
         The columns drawn, one panel each (also the final values ``tumble run`` prints); empty:
         the averaged method's columns.
+    log : tuple of str
+        The variables drawn on a logarithmic axis.
     """
 
     file: str = "comparison.png"
     kind: Literal["comparison", "envelope"] = "comparison"
     variables: tuple[str, ...] = ()
+    log: tuple[str, ...] = ()
 
 
 FIGURES: dict[str, FigureSettings] = {
@@ -37,6 +40,9 @@ FIGURES: dict[str, FigureSettings] = {
         "envelope.png", "envelope", ("theta", "theta_max", "theta_min", "R", "G")
     ),
     "torqued_body": FigureSettings("evolution.png", "comparison", ("L", "rho", "sigma", "T")),
+    "orbiting_body": FigureSettings(
+        "spin.png", "comparison", ("period", "rate_deg_s", "orbit_angle"), log=("period",)
+    ),
 }
 """The registered models' figures, by model name."""
 

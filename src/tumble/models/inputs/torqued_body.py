@@ -22,6 +22,7 @@ from tumble.kernels import Kernel
 from tumble.models.base import Column, Declaration, frozen_array
 from tumble.models.schema import Built, Inputs, Key, ScenarioSchema, Section, Variant
 from tumble.rotations import euler313_to_matrix, matrix_to_quat, quat_normalize
+from tumble.space.orbit import EARTH_MU, EARTH_RADIUS
 from tumble.torques import (
     ConstantBodyTorque,
     ConstantInertialTorque,
@@ -193,6 +194,12 @@ class Params:
         gravity gradient); None when the torque does not depend on time on the fast scale.
     label : str
         What the torque is, for messages and ``summary.json``.
+    mean_torque : Torque, optional
+        The torque already averaged over its explicit fast time dependence (an orbiting
+        body's orbit and the Earth's rotation: :mod:`tumble.space.torques`), which the
+        averaged equations then average over the free rotation alone; ``forcing_period``
+        still names the forcing for the checks of validity (resonances, fast phases). None:
+        the engine averages ``torque`` over its forcing period itself.
     """
 
     inertia: FloatArray
@@ -200,6 +207,7 @@ class Params:
     torque: Torque
     forcing_period: float | None = None
     label: str = "torque"
+    mean_torque: Torque | None = None
     sorted_inertia: tuple[float, float, float] = field(init=False, repr=False)
     scaled: Torque = field(init=False, repr=False)
     attitude_dependent: bool = field(init=False, repr=False)
@@ -231,6 +239,14 @@ class Params:
         state = dict(self.__dict__)
         state.pop("kernel", None)
         return state
+
+    @property
+    def averaging(self) -> tuple[Torque, float | None]:
+        """The torque the averaged equations average over the free rotation, and the period
+        of its explicit time dependence they average over too (None: none)."""
+        if self.mean_torque is not None:
+            return self.mean_torque, None
+        return self.torque, self.forcing_period
 
     def with_eps(self, eps: float) -> Params:
         """The same body and torque at another ε (for error studies)."""
@@ -445,11 +461,6 @@ def _params_and_state(
 
 # ---------------------------------------------------------------------------------------------
 # Physical units.
-
-EARTH_MU = 3.986004418e14
-"""The Earth's gravitational parameter GM [m³/s²] (WGS 84)."""
-EARTH_RADIUS = 6378137.0
-"""The Earth's equatorial radius [m] (WGS 84): a circular orbit's altitude is above it."""
 
 
 def orbital_rate(altitude_km: float) -> float:

@@ -1,0 +1,170 @@
+"""A rigid body in Earth orbit under the eddy-current torque of the geomagnetic field and the
+gravity gradient, in physical units: the spin evolution of satellites and debris.
+
+The equations are those of the torqued body (:mod:`tumble.models.torqued_body`): Euler's
+equations with quaternion kinematics in principal axes, I dω/dt = −ω × Iω + M(t, q, ω), with
+the torques of :mod:`tumble.space.torques` evaluated along the orbit inside the compiled
+right-hand side. The averaged equations average the same torques over the orbit and the
+Earth's rotation in closed form (the field moments ⟨B Bᵀ⟩, ⟨Ḃ Bᵀ⟩ and ⟨r̂ r̂ᵀ/r³⟩ of
+:mod:`tumble.space.moments`), then over the Euler–Poinsot motion with the general engine
+(Martynenko (1979), §3, for any torque): one evaluation of their right-hand side is one
+quadrature over the free rotation, whatever the orbit, and a year of evolution takes a few
+hundred steps.
+
+Time is the model's t = τ in units of T0 = 1/|ω(0)| (``t`` column); the SI columns give it in
+seconds and days. Besides the torqued body's columns (L_ξ, |L|, ρ, σ, T, k²) every run writes the
+rate 2T/L (the spin rate of a body in pure spin), the spin period 2π L/(2T), and the angle
+between L and the orbit normal; a full run also writes the attitude and body rates in the body
+axes the scenario gave, and the spin axis ω/|ω| in them.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import replace
+from typing import Any, cast
+
+import numpy as np
+
+from tumble._typing import FloatArray
+from tumble.catalogue import CATALOGUE
+from tumble.models import torqued_body as tb
+from tumble.models.base import (
+    Averaged,
+    AveragedForm,
+    AveragingOptions,
+    Column,
+    Full,
+    FullForm,
+    Model,
+    Report,
+    Sampled,
+    Unperturbed,
+    Validity,
+    attitude_columns,
+    attitude_values,
+    fixed_columns,
+)
+from tumble.models.inputs.orbiting_body import DAY, DECLARED, Params, State
+from tumble.rotations import matrix_to_quat, quat_normalize, quat_to_matrix
+
+__all__ = ["MODEL", "Params", "State", "efolding_time"]
+
+_THEORY = "docs/theory/orbiting-body.md"
+
+
+def _orbit_columns(
+    p: Params, t: FloatArray, cols: Mapping[str, FloatArray]
+) -> dict[str, FloatArray]:
+    """The rate 2T/L, the spin period and the angle between L and the orbit normal."""
+    L, T = cols["L"], cols["T"]
+    rate = 2.0 * T / L
+    L_xi = np.stack([cols["L1"], cols["L2"], cols["L3"]], axis=1)
+    assert p.orbit is not None  # built with one
+    normals = np.array([p.orbit.normal(float(s)) for s in np.asarray(t) * p.T0])
+    cosine = np.einsum("ni,ni->n", L_xi, normals) / L
+    return {
+        "rate": rate,
+        "rate_deg_s": np.degrees(rate / p.T0),
+        "period": 2.0 * math.pi / rate,
+        "orbit_angle": np.arccos(np.clip(cosine, -1.0, 1.0)),
+    }
+
+
+def _full_columns(p: Params, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
+    cols = tb.FULL.to_columns(p, t, Y)
+    # Attitude and rates in the scenario's body axes: A_user = A_principal Rᵀ, ω_user = R ω.
+    A = quat_to_matrix(quat_normalize(Y[:, 3:])) @ p.axes.T
+    q = np.array([matrix_to_quat(a) for a in A])
+    w = Y[:, :3] @ p.axes.T
+    size = np.linalg.norm(w, axis=1, keepdims=True)
+    axis = w / np.where(size > 0.0, size, 1.0)
+    spin = {f"spin_axis{i + 1}": axis[:, i] for i in range(3)}
+    return {**cols, **attitude_values(q, w), **_orbit_columns(p, t, cols), **spin}
+
+
+def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:
+    assert tb.MODEL.averaged is not None  # the torqued body has averaged equations
+    form = cast("AveragedForm[Any, State]", tb.MODEL.averaged.form(p, st, options))
+    inner = form.to_columns
+
+    def to_columns(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
+        cols = inner(p, st, t, Y)
+        return {**cols, **_orbit_columns(p, t, cols)}
+
+    return replace(
+        form,
+        equation="Euler–Poinsot averaging of the orbit-averaged eddy-current and gravity-"
+        "gradient torques",
+        to_columns=to_columns,
+    )
+
+
+def efolding_time(t: FloatArray, rate: FloatArray) -> float:
+    """The e-folding time of the rate [units of t]: −1/slope of a least-squares line through
+    ln(rate) against t; inf when the rate does not decay."""
+    slope = float(np.polyfit(np.asarray(t, float), np.log(np.asarray(rate, float)), 1)[0])
+    return math.inf if slope >= 0.0 else -1.0 / slope
+
+
+def _report(p: Params, st: State, trajectories: Mapping[str, Sampled]) -> Report:
+    summary: dict[str, object] = {"torque": p.label, "epoch": p.epoch, "T0_s": p.T0}
+    assert p.orbit is not None
+    summary["orbit_period_s"] = p.orbit.period
+    for method, run in trajectories.items():
+        cols = run.columns
+        if "rate" not in cols or run.tau.size < 2:
+            continue
+        days = efolding_time(run.tau * p.T0 / DAY, cols["rate"])
+        summary[f"{method}_efolding_days"] = days
+        summary[f"{method}_final_period_s"] = float(cols["period"][-1] * p.T0)
+    return Report(summary=summary)  # type: ignore[arg-type]
+
+
+_ORBIT_COLUMNS = (
+    Column("rate", "rotation rate 2T/L", "rad/t", f"{_THEORY} §6"),
+    Column("rate_deg_s", "rotation rate 2T/L in degrees per second", "deg/s", f"{_THEORY} §6"),
+    Column("period", "spin period 2πL/(2T)", "t", f"{_THEORY} §6"),
+    Column("orbit_angle", "angle between L and the orbit normal", "rad", f"{_THEORY} §6"),
+)
+_SPIN_AXIS = tuple(
+    Column(f"spin_axis{i}", f"spin axis ω/|ω|, body axis x{i} component", "", f"{_THEORY} §6")
+    for i in (1, 2, 3)
+)
+
+FULL: FullForm[Params, State] = replace(
+    cast("FullForm[Any, State]", tb.FULL), to_columns=_full_columns
+)
+
+_ENTRY = CATALOGUE["orbiting_body"]
+
+MODEL: Model[Params, State] = Model(
+    name=_ENTRY.name,
+    description=_ENTRY.description,
+    paper=_ENTRY.paper,
+    time=DECLARED.time,
+    full=Full(
+        forms={"quaternion": FULL},
+        default="quaternion",
+        columns=fixed_columns(
+            (*tb._COLUMNS_SLOW, *_ORBIT_COLUMNS, *attitude_columns("t"), *_SPIN_AXIS)
+        ),
+    ),
+    check=DECLARED.check,
+    methods=DECLARED.methods,
+    averaged=Averaged(
+        form=_averaged_form,
+        columns=fixed_columns((*tb._COLUMNS_SLOW, *_ORBIT_COLUMNS)),
+        compare=("L1", "L2", "L3", "T"),
+        orders=DECLARED.orders,
+    ),
+    unperturbed=Unperturbed(
+        "the free body (3.1)",
+        tb.MODEL.unperturbed.motion,  # type: ignore[union-attr]
+        tb.MODEL.unperturbed.rhs,  # type: ignore[union-attr]
+    ),
+    validity=Validity(check=tb.validity),
+    report=_report,
+    scenario=DECLARED.scenario,
+)

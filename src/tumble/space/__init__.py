@@ -1,0 +1,61 @@
+"""A body in Earth orbit: orbits with J2 drift, the geomagnetic dipole, the magnetic tensors of
+conducting shapes, and the eddy-current and gravity-gradient torques along the orbit and
+averaged over it.
+
+Numerics in SI units; the orbit and the field are evaluated in compiled code
+(:mod:`tumble.kernels.space`). From tumble it imports the torques' base, the kernels and its
+errors.
+"""
+
+from tumble.space.conductors import (
+    flat_plate,
+    solid_sphere,
+    thin_cylindrical_shell,
+    thin_spherical_shell,
+    torsion_constant_rectangle,
+)
+from tumble.space.geomagnetic import (
+    EARTH_ROTATION,
+    IGRF13_DIPOLE,
+    REFERENCE_RADIUS,
+    Dipole,
+    greenwich_sidereal_angle,
+)
+from tumble.space.moments import field_moments, gravity_factor
+from tumble.space.orbit import (
+    EARTH_J2,
+    EARTH_MU,
+    EARTH_RADIUS,
+    Orbit,
+    sun_synchronous_inclination,
+)
+from tumble.space.torques import (
+    FieldMomentsTorque,
+    GravityMomentsTorque,
+    OrbitEddyTorque,
+    OrbitGravityTorque,
+)
+
+__all__ = [
+    "EARTH_J2",
+    "EARTH_MU",
+    "EARTH_RADIUS",
+    "EARTH_ROTATION",
+    "IGRF13_DIPOLE",
+    "REFERENCE_RADIUS",
+    "Dipole",
+    "FieldMomentsTorque",
+    "GravityMomentsTorque",
+    "Orbit",
+    "OrbitEddyTorque",
+    "OrbitGravityTorque",
+    "field_moments",
+    "flat_plate",
+    "gravity_factor",
+    "greenwich_sidereal_angle",
+    "solid_sphere",
+    "sun_synchronous_inclination",
+    "thin_cylindrical_shell",
+    "thin_spherical_shell",
+    "torsion_constant_rectangle",
+]

@@ -1,0 +1,138 @@
+"""The geomagnetic field as a tilted dipole turning with the Earth.
+
+The degree-1 part of the geomagnetic potential, V = a³ (g·r)/r³ with the Gauss vector
+g = (g11, h11, g10) in Earth-fixed axes and the reference radius a = 6371.2 km, gives the
+field B = −∇V = a³ [3 (g·r) r − r² g]/r⁵. Earth-fixed axes turn about the inertial ξ3 axis by
+the Greenwich mean sidereal angle θ(t) = θ0 + ω_E t (precession, nutation and polar motion are
+left out: their effect on the field seen by a body is far below the dipole's own error). The
+field and its rate along an orbit are evaluated in compiled code (:mod:`tumble.kernels.space`).
+
+Coefficients: IGRF-13 (Alken et al., "International Geomagnetic Reference Field: the
+thirteenth generation", *Earth, Planets and Space* 73, 49 (2021)), the 2020.0 main field and
+its 2020–2025 secular variation, evaluated at the epoch.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from datetime import UTC, datetime
+
+import numpy as np
+
+from tumble._typing import ArrayLike, FloatArray
+from tumble.errors import ParameterError, check_range
+from tumble.space.orbit import Orbit
+
+__all__ = [
+    "EARTH_ROTATION",
+    "IGRF13_DIPOLE",
+    "REFERENCE_RADIUS",
+    "Dipole",
+    "greenwich_sidereal_angle",
+]
+
+REFERENCE_RADIUS = 6371.2e3
+"""The geomagnetic reference radius a of the IGRF [m]."""
+EARTH_ROTATION = 360.98564736629 * math.pi / 180.0 / 86400.0
+"""The Earth's sidereal rotation rate [rad/s], that of :func:`greenwich_sidereal_angle`."""
+
+IGRF13_DIPOLE = {
+    "epoch": 2020.0,
+    "g10": -29404.8,
+    "g11": -1450.9,
+    "h11": 4652.5,
+    "g10_rate": 5.7,
+    "g11_rate": 7.4,
+    "h11_rate": -25.9,
+}
+"""IGRF-13 degree-1 coefficients at 2020.0 [nT] and their secular variation [nT/yr]."""
+
+_J2000 = datetime(2000, 1, 1, 12, 0, 0, tzinfo=UTC)
+
+
+def _utc(epoch: datetime) -> datetime:
+    return epoch.replace(tzinfo=UTC) if epoch.tzinfo is None else epoch.astimezone(UTC)
+
+
+def greenwich_sidereal_angle(epoch: datetime) -> float:
+    """Greenwich mean sidereal angle [rad] at ``epoch`` (UTC taken for UT1; naive times are
+    UTC): θ = 280.46061837° + 360.98564736629° d + 0.000387933° T² − T³/38710000°, d the days
+    from J2000.0 and T = d/36525 (Meeus, *Astronomical Algorithms*, eq. 12.4)."""
+    d = (_utc(epoch) - _J2000).total_seconds() / 86400.0
+    T = d / 36525.0
+    deg = 280.46061837 + 360.98564736629 * d + 0.000387933 * T * T - T**3 / 38710000.0
+    return math.radians(deg % 360.0)
+
+
+def _decimal_year(epoch: datetime) -> float:
+    e = _utc(epoch)
+    start = datetime(e.year, 1, 1, tzinfo=UTC)
+    length = (datetime(e.year + 1, 1, 1, tzinfo=UTC) - start).total_seconds()
+    return e.year + (e - start).total_seconds() / length
+
+
+@dataclass(frozen=True)
+class Dipole:
+    """A tilted geomagnetic dipole turning with the Earth.
+
+    Parameters
+    ----------
+    g10, g11, h11 : float
+        Degree-1 Gauss coefficients [nT] (IGRF sign convention: g10 < 0 for today's field).
+    theta0 : float
+        The Earth's rotation angle (Greenwich sidereal) at t = 0 [rad].
+    rotation : float
+        The Earth's rotation rate [rad/s]; 0 freezes the field in inertial space.
+    """
+
+    g10: float
+    g11: float = 0.0
+    h11: float = 0.0
+    theta0: float = 0.0
+    rotation: float = EARTH_ROTATION
+
+    def __post_init__(self) -> None:
+        for name in ("g10", "g11", "h11", "theta0", "rotation"):
+            check_range(f"field.{name}", getattr(self, name))
+        if self.strength == 0.0:
+            raise ParameterError("field: g10, g11, h11 are all 0 (no field)")
+
+    @classmethod
+    def igrf(cls, epoch: datetime) -> Dipole:
+        """The IGRF-13 dipole at ``epoch`` (its 2020–2025 secular variation carried on beyond
+        2025: the dipole changes by ~0.1 % a year), with θ0 the sidereal angle of the epoch."""
+        years = _decimal_year(epoch) - IGRF13_DIPOLE["epoch"]
+        c = {
+            k: IGRF13_DIPOLE[k] + years * IGRF13_DIPOLE[f"{k}_rate"] for k in ("g10", "g11", "h11")
+        }
+        return cls(c["g10"], c["g11"], c["h11"], greenwich_sidereal_angle(epoch))
+
+    @property
+    def strength(self) -> float:
+        """√(g10² + g11² + h11²) [nT]: the field at the reference radius on the dipole's
+        equator."""
+        return math.sqrt(self.g10**2 + self.g11**2 + self.h11**2)
+
+    @property
+    def tilt(self) -> float:
+        """Angle between the dipole axis and the Earth's rotation axis [rad]."""
+        return math.acos(abs(self.g10) / self.strength)
+
+    def payload(self, time_unit: float = 1.0) -> FloatArray:
+        """The compiled code's field payload (:mod:`tumble.kernels.space`): a³ g [T m³], θ0
+        and ω_E times ``time_unit`` [s]."""
+        scale = 1e-9 * REFERENCE_RADIUS**3
+        return np.array(
+            [scale * self.g11, scale * self.h11, scale * self.g10, self.theta0,
+             self.rotation * time_unit],
+        )  # fmt: skip
+
+    def along(self, orbit: Orbit, t: ArrayLike) -> tuple[FloatArray, FloatArray]:
+        """B [T] and dB/dt [T/s] in inertial axes at the body's place at times t [s], each of
+        shape (n, 3)."""
+        from tumble.kernels.space import fields_along  # compiled: loaded on first use
+
+        times = np.atleast_1d(np.asarray(t, dtype=float))
+        out = fields_along(orbit.payload(), self.payload(), times)
+        return out[:, :3], out[:, 3:]

@@ -1,0 +1,156 @@
+"""Earth orbits for the torques on an orbiting body: Keplerian elements with the secular drift
+of the node, the perigee and the mean anomaly under J2.
+
+The motion itself is evaluated in compiled code (:mod:`tumble.kernels.space`); this module holds
+the elements, their checks, the secular rates and the payload handed to that code. SI units:
+metres, seconds, radians. Time t = 0 is the epoch of the elements.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from tumble._typing import ArrayLike, FloatArray
+from tumble.errors import ParameterError, check_range
+
+__all__ = [
+    "EARTH_J2",
+    "EARTH_MU",
+    "EARTH_RADIUS",
+    "Orbit",
+    "sun_synchronous_inclination",
+]
+
+EARTH_MU = 3.986004418e14
+"""The Earth's gravitational parameter GM [m³/s²] (WGS 84)."""
+EARTH_RADIUS = 6378137.0
+"""The Earth's equatorial radius [m] (WGS 84): a circular orbit's altitude is above it."""
+EARTH_J2 = 1.08262668e-3
+"""The Earth's second zonal harmonic J2 (EGM2008), for the secular drift of the elements."""
+
+_SUN_RATE = 2.0 * math.pi / (365.2421897 * 86400.0)
+"""The mean motion of the Sun about the Earth [rad/s]: the node rate of a sun-synchronous
+orbit."""
+
+
+@dataclass(frozen=True)
+class Orbit:
+    """A Keplerian orbit about the Earth at the epoch t = 0, with secular J2 drift.
+
+    Parameters
+    ----------
+    a : float
+        Semi-major axis [m], with perigee a(1 − e) above the Earth's equatorial radius.
+    e : float
+        Eccentricity, 0 ≤ e < 1.
+    i : float
+        Inclination [rad], in [0, π].
+    raan : float
+        Right ascension of the ascending node at the epoch [rad].
+    argp : float
+        Argument of perigee at the epoch [rad] (of a circular orbit: the origin of u below).
+    mean_anomaly : float
+        Mean anomaly at the epoch [rad] (of a circular orbit: the argument of latitude u0
+        less ``argp``).
+    j2 : bool
+        Whether the node, the perigee and the mean anomaly drift under J2 (the secular rates of
+        first order in J2, e.g. Vallado, *Fundamentals of Astrodynamics and Applications*,
+        §9.6); False: a fixed Keplerian ellipse.
+    mu : float
+        Gravitational parameter [m³/s²].
+    """
+
+    a: float
+    e: float = 0.0
+    i: float = 0.0
+    raan: float = 0.0
+    argp: float = 0.0
+    mean_anomaly: float = 0.0
+    j2: bool = True
+    mu: float = EARTH_MU
+
+    def __post_init__(self) -> None:
+        check_range("orbit.e", self.e, low=0.0, high=1.0, low_open=False)
+        check_range("orbit.i [rad]", self.i, low=0.0, high=math.pi, low_open=False, high_open=False)
+        check_range("orbit.a [m]", self.a, low=0.0)
+        for name in ("raan", "argp", "mean_anomaly"):
+            check_range(f"orbit.{name} [rad]", getattr(self, name))
+        perigee = self.a * (1.0 - self.e)
+        if perigee <= EARTH_RADIUS:
+            raise ParameterError(
+                f"orbit: perigee altitude {(perigee - EARTH_RADIUS) / 1e3:.6g} km is below the "
+                "Earth's surface (allowed: > 0 km)"
+            )
+
+    @classmethod
+    def circular(
+        cls, altitude_km: float, i: float = 0.0, raan: float = 0.0, u0: float = 0.0,
+        j2: bool = True,
+    ) -> Orbit:  # fmt: skip
+        """A circular orbit ``altitude_km`` above the equatorial radius, with the body at the
+        argument of latitude ``u0`` [rad] at the epoch."""
+        check_range("orbit.altitude [km]", altitude_km, low=0.0)
+        return cls(EARTH_RADIUS + 1e3 * altitude_km, 0.0, i, raan, 0.0, u0, j2)
+
+    @property
+    def mean_motion(self) -> float:
+        """Keplerian mean motion n = √(μ/a³) [rad/s]."""
+        return math.sqrt(self.mu / self.a**3)
+
+    @property
+    def period(self) -> float:
+        """Keplerian period 2π/n [s]."""
+        return 2.0 * math.pi / self.mean_motion
+
+    def secular_rates(self) -> tuple[float, float, float]:
+        """(dΩ/dt, dω/dt, dM/dt) [rad/s]: first order in J2 with p = a(1 − e²),
+        dΩ/dt = −(3/2) n J2 (R/p)² cos i, dω/dt = (3/4) n J2 (R/p)² (5 cos² i − 1),
+        dM/dt = n [1 + (3/4) J2 (R/p)² √(1 − e²) (3 cos² i − 1)]; (0, 0, n) without J2."""
+        n = self.mean_motion
+        if not self.j2:
+            return 0.0, 0.0, n
+        eta2 = 1.0 - self.e**2
+        k = EARTH_J2 * (EARTH_RADIUS / (self.a * eta2)) ** 2
+        c = math.cos(self.i)
+        return (
+            -1.5 * n * k * c,
+            0.75 * n * k * (5.0 * c * c - 1.0),
+            n * (1.0 + 0.75 * k * math.sqrt(eta2) * (3.0 * c * c - 1.0)),
+        )
+
+    def payload(self, time_unit: float = 1.0) -> FloatArray:
+        """The compiled code's orbit payload (:mod:`tumble.kernels.space`) for times counted
+        in units of ``time_unit`` seconds: rates times it, μ times its square."""
+        raan_rate, argp_rate, mean_rate = self.secular_rates()
+        return np.array(
+            [self.a, self.e, self.i, self.raan, self.argp, self.mean_anomaly,
+             mean_rate * time_unit, raan_rate * time_unit, argp_rate * time_unit,
+             self.mu * time_unit**2],
+        )  # fmt: skip
+
+    def states(self, t: ArrayLike) -> FloatArray:
+        """Position [m] and velocity [m/s] in inertial axes at times t [s], shape (n, 6)."""
+        from tumble.kernels.space import orbit_states  # compiled: loaded on first use
+
+        times = np.atleast_1d(np.asarray(t, dtype=float))
+        return orbit_states(self.payload(), times)  # type: ignore[no-any-return]
+
+    def normal(self, t: float = 0.0) -> FloatArray:
+        """Unit orbit normal ĥ = (sin Ω sin i, −cos Ω sin i, cos i) at time t [s]."""
+        raan = self.raan + self.secular_rates()[0] * t
+        si = math.sin(self.i)
+        return np.array([math.sin(raan) * si, -math.cos(raan) * si, math.cos(self.i)])
+
+
+def sun_synchronous_inclination(altitude_km: float) -> float:
+    """The inclination [rad] at which a circular orbit's node turns with the mean Sun,
+    dΩ/dt = 360° per tropical year, under J2."""
+    a = EARTH_RADIUS + 1e3 * altitude_km
+    n = math.sqrt(EARTH_MU / a**3)
+    c = -_SUN_RATE / (1.5 * n * EARTH_J2 * (EARTH_RADIUS / a) ** 2)
+    if not -1.0 <= c <= 1.0:
+        raise ParameterError(f"no sun-synchronous circular orbit at {altitude_km:g} km")
+    return math.acos(c)

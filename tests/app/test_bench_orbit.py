@@ -1,0 +1,15 @@
+"""The orbiting body's benchmark runs the example it names."""
+
+from __future__ import annotations
+
+import tomllib
+
+from files import EXAMPLES
+
+from tumble.app.bench_orbit import YEAR_CASE
+
+
+def test_the_benchmark_case_is_the_example():
+    with open(EXAMPLES / "ob_envisat_like.toml", "rb") as f:
+        example = tomllib.load(f)
+    assert example == YEAR_CASE

@@ -188,3 +188,20 @@ def test_bad_input_gets_one_clear_line(tmp_path, old, new, needle):
     assert result.exit_code == 2, result.output
     lines = [line for line in result.output.strip().splitlines() if line.strip()]
     assert len(lines) == 1 and needle in lines[0], result.output
+
+
+def test_a_scenario_from_a_two_line_element_set(tmp_path):
+    # The orbit and the epoch come from the TLE; giving an element beside it is refused.
+    pytest.importorskip("sgp4.api")
+    tle = ['1 00005U 58002B   00179.78495062  .00000023  00000-0  28098-4 0  4753',
+           '2 00005  34.2682 348.7242 1859667 331.7664  19.3264 10.82419157413667']  # fmt: skip
+    text = ENVISAT.read_text(encoding="utf-8")
+    text = text.replace('altitude = 766.0\nsun_synchronous = true\nepoch = "2013-09-25T00:00:00Z"',
+                        f"tle = {tle!r}".replace("'", '"'))  # fmt: skip
+    assert "tle =" in text
+    request = parse_scenario(tomllib.loads(text), str(ENVISAT)).request
+    assert request.params.epoch.startswith("2000-06-27T18:50:19")
+    assert math.degrees(request.params.orbit.i) == pytest.approx(34.2682, abs=1e-9)
+    bad = write(tmp_path, text.replace("tle =", "altitude = 700.0\ntle ="))
+    result = CliRunner().invoke(app, ["run", str(bad), "-o", str(tmp_path / "out")])
+    assert result.exit_code == 2 and "orbit.tle gives the elements" in result.output

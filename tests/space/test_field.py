@@ -141,3 +141,36 @@ def test_bad_orbits_are_refused_in_one_line(kwargs, field):
     with pytest.raises(ParameterError, match=field) as info:
         Orbit(**kwargs)
     assert "\n" not in str(info.value)
+
+
+VANGUARD = (
+    "1 00005U 58002B   00179.78495062  .00000023  00000-0  28098-4 0  4753",
+    "2 00005  34.2682 348.7242 1859667 331.7664  19.3264 10.82419157413667",
+)  # Vanguard 1: the test element set of Vallado's SGP4 (Revisiting Spacetrack Report #3)
+
+
+def test_an_orbit_from_a_two_line_element_set():
+    sgp4 = pytest.importorskip("sgp4.api")  # the test extra installs it
+    orbit, epoch = Orbit.from_tle(*VANGUARD)
+    assert epoch == datetime(2000, 6, 27, 18, 50, 19, 733568, tzinfo=UTC)
+    assert math.degrees(orbit.i) == pytest.approx(34.2682, abs=1e-9)
+    assert orbit.e == 0.1859667
+    assert math.degrees(orbit.raan) == pytest.approx(348.7242, abs=1e-9)
+    # Against SGP4 itself at the epoch and a day later: tumble's mean elements with secular J2
+    # leave out SGP4's short-period J2 terms, ~J2 (R/a)² a ≈ 5 km, and more at this e = 0.19
+    # perigee (measured 8.1 km and 1.9 km): within 20 km of 7,000–8,000 km.
+    sat = sgp4.Satrec.twoline2rv(*VANGUARD)
+    mine = orbit.states([0.0, 86400.0])[:, :3] / 1e3
+    for k, day in enumerate((0.0, 1.0)):
+        _, r, _ = sat.sgp4(sat.jdsatepoch, sat.jdsatepochF + day)
+        assert np.linalg.norm(mine[k] - np.array(r)) < 20.0
+
+
+def test_a_malformed_element_set_is_refused_in_one_line():
+    pytest.importorskip("sgp4.api")
+    with pytest.raises(ParameterError, match=r"orbit\.tle line 1") as info:
+        Orbit.from_tle("1 00005U nonsense", VANGUARD[1])
+    assert "\n" not in str(info.value)
+    # One digit changed (34.2682° → 35.2682°): the checksum catches it.
+    with pytest.raises(ParameterError, match=r"orbit\.tle line 2: checksum"):
+        Orbit.from_tle(VANGUARD[0], VANGUARD[1].replace(" 34.2682", " 35.2682"))

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from datetime import UTC, datetime
 
 import numpy as np
 
@@ -95,6 +96,43 @@ class Orbit:
         check_range("orbit.altitude [km]", altitude_km, low=0.0)
         return cls(EARTH_RADIUS + 1e3 * altitude_km, 0.0, i, raan, 0.0, u0, j2)
 
+    @classmethod
+    def from_tle(cls, line1: str, line2: str, j2: bool = True) -> tuple[Orbit, datetime]:
+        """The mean elements of a two-line element set and its epoch (UTC), through the
+        ``sgp4`` package (Vallado's SGP4; ``pip install 'tumble[space]'``).
+
+        The elements are SGP4's mean (Brouwer) elements in its TEME frame, the semi-major
+        axis from the un-Kozai'd mean motion; tumble then drifts them with its own secular J2
+        rates (no drag: over years a low orbit's decay changes the field the body sees). The
+        position at the epoch differs from SGP4's osculating one by the short-period J2 terms,
+        ~J2 (R/a)² a ≈ 10 km in low orbit.
+
+        Raises
+        ------
+        ParameterError
+            A malformed element set, one SGP4 refuses, or no ``sgp4`` package.
+        """
+        try:
+            from sgp4.api import Satrec
+            from sgp4.conveniences import sat_epoch_datetime
+        except ImportError:
+            raise ParameterError(
+                "orbit.tle needs the sgp4 package: pip install 'tumble[space]'"
+            ) from None
+        lines = (line1.rstrip(), line2.rstrip())
+        for k, line in enumerate(lines, start=1):
+            _check_tle_line(k, line)
+        try:
+            sat = Satrec.twoline2rv(*lines)
+        except (ValueError, IndexError) as exc:
+            raise ParameterError(f"orbit.tle is not a two-line element set: {exc}") from None
+        if sat.error != 0:
+            raise ParameterError(f"orbit.tle: SGP4 refuses the element set (error {sat.error})")
+        a = float(sat.a) * float(sat.radiusearthkm) * 1e3
+        orbit = cls(a, float(sat.ecco), float(sat.inclo), float(sat.nodeo), float(sat.argpo),
+                    float(sat.mo), j2)  # fmt: skip
+        return orbit, sat_epoch_datetime(sat).astimezone(UTC)
+
     @property
     def mean_motion(self) -> float:
         """Keplerian mean motion n = √(μ/a³) [rad/s]."""
@@ -143,6 +181,21 @@ class Orbit:
         raan = self.raan + self.secular_rates()[0] * t
         si = math.sin(self.i)
         return np.array([math.sin(raan) * si, -math.cos(raan) * si, math.cos(self.i)])
+
+
+def _check_tle_line(k: int, line: str) -> None:
+    """Line k of a two-line element set: 69 characters, starting with its number, with the
+    modulo-10 checksum of its digits (a minus sign counting 1) in the last column."""
+    if len(line) != 69 or not line.startswith(f"{k} "):
+        raise ParameterError(
+            f"orbit.tle line {k} is not a line {k} of a two-line element set (69 characters "
+            f"starting with '{k} ', got {len(line)})"
+        )
+    total = sum(int(c) for c in line[:68] if c.isdigit()) + line[:68].count("-")
+    if not line[68].isdigit() or total % 10 != int(line[68]):
+        raise ParameterError(
+            f"orbit.tle line {k}: checksum {line[68]!r} does not match ({total % 10})"
+        )
 
 
 def sun_synchronous_inclination(altitude_km: float) -> float:

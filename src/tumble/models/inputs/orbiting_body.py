@@ -164,7 +164,7 @@ _ORBIT = Section(
     (
         Key("altitude", "number", "a circular orbit's altitude > 0", "km", None),
         Key("semi_major_axis", "number", "a semi-major axis > the Earth's radius", "km", None),
-        Key("eccentricity", "number", "a number in [0, 1)", "", 0.0),
+        Key("eccentricity", "number", "a number in [0, 1)", "", None, doc="default 0"),
         Key("inclination", "number", "in [0, π]", "rad", None, angle=True),
         Key(
             "sun_synchronous",
@@ -173,15 +173,31 @@ _ORBIT = Section(
             default=False,
             doc="the inclination of a sun-synchronous orbit (instead of inclination)",
         ),
-        Key("raan", "number", "right ascension of the ascending node", "rad", 0.0, angle=True),
-        Key("argp", "number", "argument of perigee", "rad", 0.0, angle=True),
+        Key(
+            "raan",
+            "number",
+            "right ascension of the ascending node",
+            "rad",
+            None,
+            angle=True,
+            doc="default 0",
+        ),
+        Key("argp", "number", "argument of perigee", "rad", None, angle=True, doc="default 0"),
         Key(
             "mean_anomaly",
             "number",
             "mean anomaly at the epoch (circular: argument of latitude)",
             "rad",
-            0.0,
+            None,
             angle=True,
+            doc="default 0",
+        ),
+        Key(
+            "tle",
+            "any",
+            "two lines of a two-line element set",
+            default=None,
+            doc="the orbit and its epoch from a TLE (SGP4's mean elements; needs sgp4)",
         ),
         Key(
             "j2",
@@ -194,8 +210,9 @@ _ORBIT = Section(
             "epoch",
             "text",
             'an ISO 8601 UTC time, e.g. "2025-01-01T00:00:00Z"',
-            default="2025-01-01T00:00:00Z",
-            doc="t = 0: the field's epoch and Earth angle",
+            default=None,
+            doc="t = 0: the field's epoch and Earth angle (default: the TLE's, or "
+            "2025-01-01T00:00:00Z)",
         ),
     ),
     doc="the orbit: circular by altitude or Keplerian elements at the epoch",
@@ -261,30 +278,51 @@ def _epoch(text: str) -> datetime:
     return when.replace(tzinfo=UTC) if when.tzinfo is None else when.astimezone(UTC)
 
 
-def _orbit(o: Mapping[str, Any]) -> Orbit:
+DEFAULT_EPOCH = "2025-01-01T00:00:00Z"
+
+
+def _orbit(o: Mapping[str, Any]) -> tuple[Orbit, datetime]:
+    """The orbit and the epoch of the [orbit] table."""
+    if o["tle"] is not None:
+        return _from_tle(o)
     given = [k for k in ("altitude", "semi_major_axis") if o[k] is not None]
     if len(given) != 1:
-        raise ScenarioError("orbit: give altitude [km] (circular) or semi_major_axis [km]")
+        raise ScenarioError("orbit: give altitude [km] (circular), semi_major_axis [km], or tle")
     if o["inclination"] is not None and o["sun_synchronous"]:
         raise ScenarioError("orbit: give inclination or sun_synchronous = true, not both")
+    e = 0.0 if o["eccentricity"] is None else o["eccentricity"]
+    check_range("orbit.eccentricity", e, low=0.0, high=1.0, low_open=False)
     if given == ["altitude"]:
         check_range("orbit.altitude [km]", o["altitude"], low=0.0)
         a = EARTH_RADIUS + 1e3 * o["altitude"]
+        if e != 0.0:
+            raise ScenarioError("orbit: altitude gives a circular orbit; with eccentricity give "
+                                "semi_major_axis")  # fmt: skip
     else:
-        a = 1e3 * o["semi_major_axis"]
         check_range("orbit.semi_major_axis [km]", o["semi_major_axis"], low=EARTH_RADIUS / 1e3)
-    e = o["eccentricity"]
-    check_range("orbit.eccentricity", e, low=0.0, high=1.0, low_open=False)
-    if given == ["altitude"] and e != 0.0:
-        raise ScenarioError("orbit: altitude gives a circular orbit; with eccentricity give "
-                            "semi_major_axis")  # fmt: skip
+        a = 1e3 * o["semi_major_axis"]
     if o["sun_synchronous"]:
         if e != 0.0:
             raise ScenarioError("orbit.sun_synchronous: only for a circular orbit (altitude)")
         inclination = sun_synchronous_inclination((a - EARTH_RADIUS) / 1e3)
     else:
         inclination = 0.0 if o["inclination"] is None else o["inclination"]
-    return Orbit(a, e, inclination, o["raan"], o["argp"], o["mean_anomaly"], o["j2"])
+    raan, argp, mean = (0.0 if o[k] is None else o[k] for k in ("raan", "argp", "mean_anomaly"))
+    epoch = _epoch(DEFAULT_EPOCH if o["epoch"] is None else o["epoch"])
+    return Orbit(a, e, inclination, raan, argp, mean, o["j2"]), epoch
+
+
+def _from_tle(o: Mapping[str, Any]) -> tuple[Orbit, datetime]:
+    """The orbit and epoch of ``orbit.tle``, alone: its elements and epoch are the TLE's."""
+    others = [k for k in ("altitude", "semi_major_axis", "eccentricity", "inclination", "raan",
+                          "argp", "mean_anomaly", "epoch") if o[k] is not None]  # fmt: skip
+    if others or o["sun_synchronous"]:
+        extra = ", ".join(others or ["sun_synchronous"])
+        raise ScenarioError(f"orbit.tle gives the elements and the epoch: drop {extra}")
+    lines = o["tle"]
+    if not (isinstance(lines, list) and len(lines) == 2 and all(isinstance(x, str) for x in lines)):
+        raise ScenarioError("orbit.tle must be a list of the two lines of the element set")
+    return Orbit.from_tle(lines[0], lines[1], o["j2"])
 
 
 def _dipole(f: Mapping[str, Any] | None, epoch: datetime) -> Dipole | None:
@@ -387,8 +425,7 @@ def _build(inputs: Inputs) -> Built[Params, State]:
     if body["mass"] is not None:
         check_range("body.mass [kg]", body["mass"], low=0.0)
     moments, R = principal_axes(body["inertia"])
-    epoch = _epoch(orbit_keys["epoch"])
-    orbit = _orbit(orbit_keys)
+    orbit, epoch = _orbit(orbit_keys)
     dipole = _dipole(inputs["field"], epoch)
     M = _magnetic_tensor(body, inputs["conductor"])
     w = _omega(ini)

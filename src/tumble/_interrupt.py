@@ -8,7 +8,9 @@ the main thread has not taken the interrupt within :data:`GRACE` seconds, the wa
 registered emergency clean-ups (an output set's temporary directory) and exits 130 with the
 usual line. Otherwise the interrupt unwinds the work as a KeyboardInterrupt, with its own
 clean-up, as before — except inside numba's compiler, which would catch the exception and
-report another error (or none): there the watcher ends the process too.
+report another error (or none): there the watcher ends the process too. An interrupt that
+lands where Python ignores exceptions (a garbage-collector callback of Dask's) is delivered
+again once that context has returned.
 """
 
 from __future__ import annotations
@@ -21,10 +23,13 @@ import threading
 from collections.abc import Callable, Iterator
 from types import FrameType
 
-__all__ = ["GRACE", "emergency_cleanup", "interrupted", "watch"]
+__all__ = ["GRACE", "REDELIVER", "emergency_cleanup", "interrupted", "watch"]
 
 GRACE = 0.3
 """Seconds the main thread has to take an interrupt before the watcher ends the process."""
+
+REDELIVER = 0.01
+"""Seconds after which an interrupt lost in a context that ignores exceptions is sent again."""
 
 _TAKEN = threading.Event()
 _CLEANUPS: list[Callable[[], None]] = []
@@ -73,6 +78,22 @@ def _on_sigint(signum: int, frame: FrameType | None) -> None:
     raise KeyboardInterrupt
 
 
+def _unraisable(args: object) -> None:
+    """An interrupt raised where Python ignores exceptions (a garbage-collector callback, a
+    finaliser) is lost, and the work would run on: deliver it again, to be taken once that
+    context has returned. Any other ignored exception goes to the previous hook."""
+    if getattr(args, "exc_type", None) is KeyboardInterrupt:
+        # Sent again from another thread a moment later: raised here, in the hook, it would be
+        # handled and ignored at once, inside the same context.
+        _TAKEN.clear()
+        threading.Timer(REDELIVER, os.kill, (os.getpid(), signal.SIGINT)).start()
+        return
+    _PREVIOUS_HOOK[0](args)  # type: ignore[arg-type]
+
+
+_PREVIOUS_HOOK = [sys.unraisablehook]
+
+
 def _watcher(fd: int) -> None:
     while True:
         try:
@@ -93,4 +114,6 @@ def watch() -> None:
     os.set_blocking(write, False)
     signal.set_wakeup_fd(write, warn_on_full_buffer=False)
     signal.signal(signal.SIGINT, _on_sigint)
+    _PREVIOUS_HOOK[0] = sys.unraisablehook
+    sys.unraisablehook = _unraisable
     threading.Thread(target=_watcher, args=(read,), name="tumble-sigint", daemon=True).start()

@@ -101,6 +101,14 @@ FIGURES: tuple[Figure, ...] = (
         "spin.png",
     ),
     Figure(
+        "ob_envisat_monte_carlo.png",
+        "A year ahead, with uncertainty",
+        "200 averaged years of the same satellite: the spin period's median and bands.",
+        "tutorials/orbiting-body",
+        (f"{TUMBLE} sweep examples/sweeps/ob_envisat_monte_carlo.toml -o $OUT",),
+        "sweep.png",
+    ),
+    Figure(
         "tb_bdot_evolution.png",
         "Your own torque: B-dot detumbling",
         "A user torque from a Python file, averaged numerically over the Euler–Poinsot motion.",

@@ -3,17 +3,19 @@ points, the Dataset, and that a sweep point is exactly the run ``tumble run`` ma
 
 import math
 import tomllib
+import warnings
 
 import numpy as np
 import pytest
 import xarray as xr
+from files import EXAMPLES
 from hypothesis import given
 from hypothesis import strategies as st
 
 from tumble.analysis import run
 from tumble.analysis.sweep import Axis, Draw, Keep, SweepPlan, records_to_dataset
 from tumble.app.sweep import compute_chunk
-from tumble.errors import ParameterError, ScenarioError
+from tumble.errors import ParameterError, ScenarioError, TumbleWarning
 from tumble.io.scenario import parse_scenario, template
 from tumble.io.sweep import SweepStore, load_sweep, parse_key, point_scenario, set_key
 from tumble.plot.sweep import sweep_png
@@ -243,3 +245,56 @@ def test_keep_verify_and_stability_figures(tmp_path):
     assert set(ds["verify_status"].values) <= {"first-order", "degraded", "invalid"}
     assert np.isfinite(ds["verify_error_L"]).all() and np.isfinite(ds["max_real"]).all()
     assert ds["max_real"].attrs["units"] == "1/τ"
+
+
+def test_kept_series_are_the_runs_columns_and_draw_percentile_bands(tmp_path):
+    # [keep] series: each method's column at every sample time, the same numbers a run writes
+    # (same integrator: equal to the bit), with a sample dimension the figure draws as bands.
+    sweep = load_sweep(
+        _write_sweep(
+            tmp_path,
+            '[monte_carlo]\nsamples = 3\nseed = 4\n[[monte_carlo.draw]]\nkey = "initial.theta"\n'
+            'uniform = [0.6, 0.9]\n[keep]\nseries = ["k", "theta"]\n',
+        )
+    )
+    points = [sweep.plan.assignments(i) for i in range(3)]
+    recs = compute_chunk(sweep.base, sweep.source, points, sweep.keep)
+    ds = records_to_dataset(sweep.plan, dict(enumerate(recs)), model="resisting_medium",
+                            time_name="tau", columns=sweep.columns)  # fmt: skip
+    assert ds["series_k"].dims == ("sample", "method", "time")
+    assert ds["series_theta"].attrs["units"] == "rad"
+    for i, p in enumerate(points):
+        with warnings.catch_warnings():  # the run's validity warnings: the record keeps them
+            warnings.simplefilter("ignore", TumbleWarning)
+            ref = run(parse_scenario(point_scenario(sweep.base, p), sweep.source).request)
+        for method, dsm in ref.datasets.items():
+            got = ds["series_k"].isel(sample=i).sel({"method": method}).values
+            np.testing.assert_array_equal(got, dsm["k"].values)
+    np.testing.assert_array_equal(ds["time"].values, ref.datasets["averaged"]["tau"].values)
+    assert sweep_png(ds)[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_a_series_the_model_does_not_write_is_refused(tmp_path):
+    with pytest.raises(ScenarioError, match=r"keep\.series: 'period' is not a variable"):
+        load_sweep(_write_sweep(tmp_path, '[[axis]]\nkey = "parameters.eps"\nvalues = [0.01]\n'
+                                '[keep]\nseries = ["period"]\n'))  # fmt: skip
+
+
+def test_a_physical_sweep_keeps_si_values(tmp_path):
+    # Points of an SI scenario have their own time scale T0 = 1/|ω(0)|: the final values and
+    # series are kept in SI (the spin period in s, against time in s), comparable across them.
+    base = (EXAMPLES / "ob_envisat_like.toml").read_text(encoding="utf-8")
+    base = base.replace("t_end_days = 365.0", "t_end_days = 1.0").replace(
+        "samples = 366", "samples = 5"
+    )
+    sweep = load_sweep(_write_sweep(
+        tmp_path, '[[axis]]\nkey = "initial.spin_period"\nvalues = [100.0, 150.0]\n'
+        '[keep]\nseries = ["period"]\n', base=base))  # fmt: skip
+    points = [sweep.plan.assignments(i) for i in range(2)]
+    recs = compute_chunk(sweep.base, sweep.source, points, sweep.keep)
+    ds = records_to_dataset(sweep.plan, dict(enumerate(recs)), model="orbiting_body",
+                            time_name="t", columns=sweep.columns)  # fmt: skip
+    assert ds["final_period"].attrs["units"] == "s" and ds["time"].attrs["units"] == "s"
+    start = ds["series_period"].sel({"method": "averaged"}).isel(time=0).values
+    np.testing.assert_allclose(start, [100.0, 150.0], rtol=1e-12)
+    np.testing.assert_allclose(ds["time"].values, np.linspace(0.0, 86400.0, 5), rtol=1e-12)

@@ -174,6 +174,9 @@ class Keep:
     verify : bool
         The figures of ``tumble verify`` (status, order and error at ε per slow variable);
         costs six more integrations per point.
+    series : tuple of str
+        Slow variables kept at every sample time of each method (in SI for a physical
+        scenario, against its time in seconds): a Monte Carlo's percentile bands.
     """
 
     final: bool = True
@@ -181,6 +184,7 @@ class Keep:
     limits: bool = True
     stability: bool = False
     verify: bool = False
+    series: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)

@@ -56,11 +56,43 @@ __all__ = [
 ]
 
 
-def _final_values(result: Any, slow: Sequence[str]) -> dict[str, dict[str, float]]:
+def _si_factor(request: RunRequest, name: str) -> float:
+    """The factor taking column ``name`` to SI in a physical scenario (1 otherwise): a sweep
+    keeps physical values, whose points may each have their own time scale T0."""
+    conv = None if request.scaling is None else request.scaling.si(name)
+    return 1.0 if conv is None else float(conv[0])
+
+
+def _final_values(
+    request: RunRequest, result: Any, slow: Sequence[str]
+) -> dict[str, dict[str, float]]:
     return {
-        m: {v: float(ds[v].values[-1]) for v in slow if v in ds}
+        m: {v: _si_factor(request, v) * float(ds[v].values[-1]) for v in slow if v in ds}
         for m, ds in result.datasets.items()
     }
+
+
+def _series(request: RunRequest, result: Any, names: Sequence[str]) -> Record:
+    """The kept variables at every sample time, per method: ``series`` (method → variable →
+    values), ``series_time`` and ``series_units`` (variable → unit). A physical scenario's in
+    SI against seconds, so that points of different time scales T0 share their times."""
+    scaling = request.scaling
+    times = request.tau if scaling is None else scaling.time_from_tau(request.tau)
+    series: dict[str, dict[str, list[float]]] = {}
+    units: dict[str, str] = {}
+    for method, ds in result.datasets.items():
+        kept = {}
+        for name in names:
+            if name not in ds:
+                continue
+            values = np.asarray(ds[name].values, dtype=float)
+            conv = None if scaling is None else scaling.si(name)
+            units[name] = str(ds[name].attrs.get("units", "")) if conv is None else conv[1]
+            kept[name] = (values if conv is None else conv[0] * values).tolist()
+        series[method] = kept
+    time_units = request.model.time.units if scaling is None else "s"
+    return {"series": series, "series_time": np.asarray(times, dtype=float).tolist(),
+            "series_units": {**units, "time": time_units}}  # fmt: skip
 
 
 def _slow_variables(request: RunRequest) -> tuple[str, ...]:
@@ -87,13 +119,16 @@ def _limits(limits: Mapping[str, Any]) -> dict[str, Any]:
 
 def column_attrs(request: RunRequest) -> dict[str, dict[str, str]]:
     """Units, long names and equations of the columns of a run's methods (the attrs of the
-    sweep's variables, taken once from the base scenario rather than from every point)."""
-    model, p = request.model, request.params
+    sweep's variables, taken once from the base scenario rather than from every point); in SI
+    for a physical scenario, whose points keep SI values."""
+    model, p, scaling = request.model, request.params, request.scaling
     meta: dict[str, dict[str, str]] = {}
     for method in request.methods:
         for c in model.columns(p, method):
+            conv = None if scaling is None else scaling.si(c.name)
+            units = c.units if conv is None else conv[1]  # a physical scenario's are in SI
             meta.setdefault(
-                c.name, {"units": c.units, "long_name": c.long_name, "equation": c.equation}
+                c.name, {"units": units, "long_name": c.long_name, "equation": c.equation}
             )
     return meta
 
@@ -142,9 +177,14 @@ def run_point(
             record["first_issue_time"] = float(result.issues[0]["tau"])
         record["nfev"] = {m: int(t.nfev) for m, t in result.trajectories.items()}
         if keep.final:
-            record["final"] = _final_values(result, _slow_variables(request))
+            record["final"] = _final_values(request, result, _slow_variables(request))
+        if keep.series:
+            record.update(_series(request, result, keep.series))
         if keep.differences:
-            record["differences"] = {k: dict(v) for k, v in result.differences.items()}
+            record["differences"] = {
+                k: {name: _si_factor(request, name) * d for name, d in v.items()}
+                for k, v in result.differences.items()
+            }
         if keep.limits:
             record["limits"] = _limits(result.limits)
         if keep.stability:
@@ -280,7 +320,8 @@ def records_to_dataset(
     parts = _Parts(plan, records, columns or {}, time_name)
     data: dict[str, Any] = {}
     extra_coords: dict[str, Any] = {}
-    for build in (parts.status, parts.methods, parts.limits, parts.stability, parts.verify):
+    for build in (parts.status, parts.methods, parts.series, parts.limits, parts.stability,
+                  parts.verify):  # fmt: skip
         more, coords = build()
         data.update(more)
         extra_coords.update(coords)
@@ -385,6 +426,31 @@ class _Parts:
                 self.var_attrs(v, "max |difference| between two methods, "),
             )
         return data, coords
+
+    def series(self) -> Variables:
+        """The kept variables against time, per method: dims (*grid, sample, method, time)."""
+        first = next((r for r in self.records.values() if "series_time" in r), None)
+        if first is None:
+            return {}, {}
+        times = np.asarray(first["series_time"], dtype=float)
+        units = first["series_units"]
+        methods = _union(self.records, "nfev")  # the method coordinate of :meth:`methods`
+        data: dict[str, Any] = {}
+        for v in _union2(self.records, "series"):
+            out = np.full((self.plan.size, len(methods), times.size), np.nan)
+            for i, rec in self.records.items():
+                for k, m in enumerate(methods):
+                    values = _lookup(rec, ("series", m, v))
+                    if values is not None and len(values) == times.size:
+                        out[i, k] = values
+            attrs = {**self.var_attrs(v, ""), "units": units.get(v, "")}
+            data[f"series_{v}"] = (
+                (*self.plan.dims, "method", "time"),
+                out.reshape(*self.plan.shape, len(methods), times.size),
+                attrs,
+            )
+        time_attrs = _attrs(units.get("time", ""), "time of the kept series")
+        return data, {"time": ("time", times, time_attrs)}
 
     def limits(self) -> Variables:
         data: dict[str, Any] = {}

@@ -18,6 +18,7 @@ A sweep file names a base scenario and the keys to vary::
     [keep]                             # what is kept of every run
     final = true
     verify = false
+    series = ["period"]                # slow variables at every sample time (percentile bands)
 
 The output directory holds ``sweep.nc`` (the Dataset, rewritten atomically as results come
 in), ``sweep.json`` (the manifest: the sweep's hash, its points and chunks) and
@@ -45,10 +46,11 @@ from tumble.errors import ParameterError, ScenarioError, shorten
 from tumble.io.fileset import atomic_write
 from tumble.io.scenario import _one_line, key_units, parse_scenario
 from tumble.io.toml import read_file, read_toml
-from tumble.models import AnyModel
 
 if TYPE_CHECKING:
     import xarray as xr
+
+    from tumble.analysis import RunRequest
 
 __all__ = [
     "Sweep",
@@ -101,6 +103,9 @@ class KeepSpec(_Section):
         None, description="true or false (default: true where the model has a stationary motion)"
     )
     verify: bool = Field(False, description="true or false")
+    series: list[str] = Field(
+        default_factory=list, description="names of slow variables kept at every sample time"
+    )
 
 
 class RunSpec(_Section):
@@ -353,7 +358,7 @@ def parse_sweep(
     from tumble.analysis.sweep import column_attrs  # the model is loaded: the base is valid
 
     model = sc.request.model
-    keep = _keep(sf, model)
+    keep = _keep(sf, sc.request)
     if sf.sweep.chunk is not None and sf.sweep.chunk < 1:
         raise ScenarioError(f"sweep.chunk = {sf.sweep.chunk} must be ≥ 1")
     chunk = sf.sweep.chunk or _default_chunk(plan.size)
@@ -363,7 +368,14 @@ def parse_sweep(
         "draws": [[d.key, d.distribution, d.a, d.b] for d in plan.draws],
         "samples": plan.samples,
         "seed": plan.seed,
-        "keep": [keep.final, keep.differences, keep.limits, keep.stability, keep.verify],
+        "keep": [
+            keep.final,
+            keep.differences,
+            keep.limits,
+            keep.stability,
+            keep.verify,
+            *keep.series,
+        ],
         "chunk": chunk,
         "batch": sf.sweep.batch,
     }
@@ -420,20 +432,31 @@ def _plan(sf: SweepFile, base: dict[str, Any]) -> SweepPlan:
         raise ScenarioError(str(exc)) from None
 
 
-def _keep(sf: SweepFile, model: AnyModel) -> Keep:
-    """What each point keeps; stability only for a model with a stationary motion."""
+def _keep(sf: SweepFile, request: RunRequest) -> Keep:
+    """What each point keeps; stability only for a model with a stationary motion, series only
+    of columns the base scenario's methods write."""
+    model = request.model
     stability = sf.keep.stability
     if stability and model.stationary is None:
         raise ScenarioError(
             f"keep.stability = true: the model {model.name} declares no stationary motion "
             "(only rotating_field does)"
         )
+    slow = {c.name for m in request.methods for c in model.columns(request.params, m)}
+    for name in sf.keep.series:
+        if name not in slow:
+            raise ScenarioError(
+                f"keep.series: {name!r} is not a variable of {model.name} (allowed: "
+                + ", ".join(sorted(slow))
+                + ")"
+            )
     return Keep(
         final=sf.keep.final,
         differences=sf.keep.differences,
         limits=sf.keep.limits,
         stability=model.stationary is not None if stability is None else stability,
         verify=sf.keep.verify,
+        series=tuple(dict.fromkeys(sf.keep.series)),
     )
 
 

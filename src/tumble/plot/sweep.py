@@ -1,4 +1,5 @@
-"""Figures of a sweep: heat maps over two grid axes, lines over one, histograms of Monte Carlo.
+"""Figures of a sweep: heat maps over two grid axes, lines over one, histograms of Monte Carlo,
+percentile bands of kept series against time.
 
 Draws the Dataset of :func:`tumble.analysis.sweep.records_to_dataset`. Labels and units come
 from its ``attrs``; failed points are marked, never hidden.
@@ -33,10 +34,37 @@ def default_variables(ds: xr.Dataset, slow: Sequence[str] = ()) -> list[str]:
     finals = [f"final_{v}" for v in slow if f"final_{v}" in ds] or [
         str(v) for v in ds.data_vars if str(v).startswith("final_")
     ]
-    finals = finals[:4]
+    series = [str(v) for v in ds.data_vars if str(v).startswith("series_")][:2]
+    finals = finals[: 4 - len(series)]
     extra = [v for v in ("max_real",) if v in ds]
     orders = [str(v) for v in ds.data_vars if str(v).startswith("verify_order_")][:1]
-    return [*finals, *extra, *orders, "wall_time"][:MAX_PANELS]
+    return [*series, *finals, *extra, *orders, "wall_time"][:MAX_PANELS]
+
+
+BANDS = ((5.0, 95.0, 0.2), (25.0, 75.0, 0.4))
+"""Percentile bands of a kept series (low, high, opacity): 90 % and 50 % of the runs."""
+
+
+def _plot_series(da: xr.DataArray, ax: Axes, name: str) -> str:
+    """Median and percentile bands of a kept series over every point; the title."""
+    time = da["time"]
+    runs = da.transpose(..., "time").values.reshape(-1, time.size)
+    runs = runs[np.all(np.isfinite(runs), axis=1)]
+    t = np.asarray(time.values, dtype=float)
+    unit = str(time.attrs.get("units", ""))
+    if unit == "s" and t[-1] > 2 * 86400.0:
+        t, unit = t / 86400.0, "d"
+    if runs.size:
+        for low, high, alpha in BANDS:
+            lo, hi = np.percentile(runs, [low, high], axis=0)
+            ax.fill_between(t, lo, hi, color="tab:blue", alpha=alpha, lw=0,
+                            label=f"{low:g}–{high:g} %")  # fmt: skip
+        ax.plot(t, np.median(runs, axis=0), color="tab:blue", lw=1.5, label="median")
+        ax.legend(loc="best", fontsize="small")
+    ax.set_xlabel(with_units("time", unit))
+    ax.set_ylabel(with_units(name.removeprefix("series_"), str(da.attrs.get("units", ""))))
+    ax.grid(True, alpha=0.3)
+    return f"{da.attrs.get('long_name', name)}: median and bands of {runs.shape[0]} runs"
 
 
 def _select(da: xr.DataArray, method: str | None) -> tuple[xr.DataArray, str]:
@@ -98,6 +126,10 @@ def plot_sweep_variable(
         title += f" ({note})"
     units = str(da.attrs.get("units", ""))
     short = with_units(name, units)  # the axis label; the title says the rest
+    if "time" in da.dims:  # a kept series: bands over every point
+        title = _plot_series(da, ax, name) + (f" ({note})" if note else "")
+        ax.set_title(textwrap.fill(title, 60), fontsize="small")
+        return ax
     for extra in grid[2:]:
         da, failed = da.isel({extra: 0}), failed.isel({extra: 0})
         title += f", {extra} = {float(ds[extra].values[0]):.4g}"

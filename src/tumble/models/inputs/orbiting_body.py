@@ -24,7 +24,7 @@ from tumble.errors import ParameterError, ScenarioError, check_range
 from tumble.models.base import Column, Declaration
 from tumble.models.inputs import torqued_body as tb
 from tumble.models.schema import Built, Inputs, Key, ScenarioSchema, Section, Variant
-from tumble.rotations import euler313_to_matrix, matrix_to_quat, quat_to_matrix
+from tumble.rotations import matrix_to_quat, quat_to_matrix
 from tumble.space import (
     Dipole,
     Orbit,
@@ -404,14 +404,8 @@ def _omega(ini: Mapping[str, Any]) -> FloatArray:
 
 
 def _attitude(ini: Mapping[str, Any]) -> FloatArray:
-    angles = [n for n in ("psi", "theta", "phi") if ini[n] is not None]
-    if ini["quaternion"] is not None and angles:
-        raise ScenarioError("initial: give either quaternion or psi, theta, phi, not both")
-    if angles and len(angles) != 3:
-        raise ScenarioError("initial: give all of psi, theta, phi (3-1-3 Euler angles)")
-    if angles:
-        return matrix_to_quat(euler313_to_matrix(ini["psi"], ini["theta"], ini["phi"]))
-    q = np.array(ini["quaternion"] if ini["quaternion"] is not None else [1.0, 0, 0, 0], float)
+    """The initial attitude, normalised (:func:`torqued_body.initial_attitude`)."""
+    q = np.asarray(tb.initial_attitude(ini), dtype=float)
     if not np.any(q):
         raise ParameterError("initial.quaternion = [0, 0, 0, 0] is not a rotation")
     return q / np.linalg.norm(q)

@@ -47,6 +47,7 @@ __all__ = [
     "Params",
     "Scaling",
     "State",
+    "initial_attitude",
     "orbital_rate",
     "torque_from_terms",
 ]
@@ -438,21 +439,25 @@ def _build(inputs: Inputs) -> Built[Params, State]:
     return Built(p, st)
 
 
-def _params_and_state(
-    inertia: FloatArray, eps: float, terms: list[dict[str, Any]], ini: Mapping[str, Any]
-) -> tuple[Params, State]:
-    """Params and State of normalised inertia, ε, torque terms and [initial] values."""
-    torque, period, label = torque_from_terms(inertia, terms)
+def initial_attitude(ini: Mapping[str, Any]) -> FloatArray:
+    """The attitude quaternion (body → inertial) of an [initial] table: ``quaternion`` or the
+    3-1-3 Euler angles ``psi``, ``theta``, ``phi``, or the identity (normalised by State)."""
     angles = [n for n in ("psi", "theta", "phi") if ini[n] is not None]
     if ini["quaternion"] is not None and angles:
         raise ScenarioError("initial: give either quaternion or psi, theta, phi, not both")
     if angles and len(angles) != 3:
         raise ScenarioError("initial: give all of psi, theta, phi (3-1-3 Euler angles)")
     if angles:
-        q = matrix_to_quat(euler313_to_matrix(ini["psi"], ini["theta"], ini["phi"]))
-    else:
-        q = np.array(ini["quaternion"] if ini["quaternion"] is not None else [1.0, 0.0, 0.0, 0.0])
-    st = State(np.array(ini["omega"]), q)
+        return matrix_to_quat(euler313_to_matrix(ini["psi"], ini["theta"], ini["phi"]))
+    return np.array(ini["quaternion"] if ini["quaternion"] is not None else [1.0, 0.0, 0.0, 0.0])
+
+
+def _params_and_state(
+    inertia: FloatArray, eps: float, terms: list[dict[str, Any]], ini: Mapping[str, Any]
+) -> tuple[Params, State]:
+    """Params and State of normalised inertia, ε, torque terms and [initial] values."""
+    torque, period, label = torque_from_terms(inertia, terms)
+    st = State(np.array(ini["omega"]), initial_attitude(ini))
     p = Params(np.asarray(inertia, dtype=float), eps, torque, period, label)
     if p.torque.program is None:  # it holds Python: a user function
         _check_user_torque(p.torque, st)

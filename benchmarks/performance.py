@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import Any
 
 from tumble.app.bench import run_benchmark
+from tumble.app.bench_orbit import markdown as orbit_markdown
 from tumble.io.output import atomic_write
 
 
@@ -129,22 +130,8 @@ def markdown(r: dict[str, Any]) -> str:
                 f"{v['threads']['1']['runs_per_s']:.4g} | {row['runs_per_s']:.4g} ({most}) | "
                 f"{row['efficiency']:.2f} |"
             )
-    orbit = r.get("orbiting_body")
-    if orbit:
-        lines += ["", f"Orbiting body, one year ({orbit['case']}):", "",
-                  "| run | rtol | time [s] | evaluations | spin period vs full |",
-                  "|---|---:|---:|---:|---:|"]  # fmt: skip
-        for method in ("full", "averaged"):
-            for rtol, v in orbit[method].items():
-                lines.append(f"| {method} | {rtol} | {v['time_s']:.4g} | {v['nfev']} | "
-                             f"{v['period_error']:.2e} |")  # fmt: skip
-        if "speedup" in orbit:
-            lines += ["", f"Speed-up of the averaged year (rtol {orbit['rtol']:g}) over the "
-                      f"full one (≥ 1000×): {orbit['speedup']:.0f}×."]  # fmt: skip
-        mc = orbit.get("monte_carlo")
-        if mc:
-            lines.append(f"{mc['samples']} averaged years on one core: {mc['time_s']:.3g} s, "
-                         f"{mc['in_full_30_day_runs']:.3g} full 30-day runs (≤ 5).")  # fmt: skip
+    if r.get("orbiting_body"):
+        lines += ["", orbit_markdown(r["orbiting_body"])]
     if "compile" in r:
         c = r["compile"]
         first = ", ".join(f"{k} {v:.1f} s" for k, v in c["first_call_s"].items())

@@ -21,7 +21,8 @@ extensions = [
 
 source_suffix = {".md": "markdown", ".rst": "restructuredtext"}
 root_doc = "index"
-exclude_patterns = ["_build", "performance-tables.md"]  # included by performance.md
+# The tables included by performance.md are not pages of their own.
+exclude_patterns = ["_build", "performance-tables.md", "orbit-year-table.md"]
 
 # Markdown: $…$ maths, ::: fences, anchors for the ## and ### headings (links within a page).
 myst_enable_extensions = ["dollarmath", "colon_fence", "deflist"]

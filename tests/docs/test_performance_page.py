@@ -24,3 +24,14 @@ def test_the_tables_are_the_committed_runs():
         "docs/performance-tables.md is stale: python benchmarks/performance.py --from "
         "benchmarks/performance.json > docs/performance-tables.md"
     )
+
+
+def test_the_orbit_table_is_the_committed_runs():
+    from tumble.app.bench_orbit import markdown
+
+    run = json.loads((ROOT / "benchmarks" / "orbit_year.json").read_text(encoding="utf-8"))
+    page = (ROOT / "docs" / "orbit-year-table.md").read_text(encoding="utf-8")
+    assert page.rstrip("\n") == markdown(run).rstrip("\n"), (
+        "docs/orbit-year-table.md is stale: python benchmarks/orbit_year.py --from "
+        "benchmarks/orbit_year.json > docs/orbit-year-table.md"
+    )

@@ -31,7 +31,7 @@ from tumble.errors import TumbleError
 from tumble.integrate import simulate
 from tumble.io.scenario import parse_scenario
 
-__all__ = ["MC_SAMPLES", "YEAR_CASE", "orbiting_study"]
+__all__ = ["MC_SAMPLES", "YEAR_CASE", "markdown", "orbiting_study"]
 
 DAY = 86400.0
 MC_SAMPLES = 1000
@@ -160,3 +160,27 @@ def orbiting_study(repeat: int, log: Callable[[str], None]) -> dict[str, Any]:
         } if finals else {},
     }  # fmt: skip
     return out
+
+
+def markdown(orbit: dict[str, Any]) -> str:
+    """The study's figures as Markdown (the performance page's table)."""
+    lines = [f"Orbiting body, one year ({orbit['case']}):", "",
+             "| run | rtol | time [s] | evaluations | spin period vs full |",
+             "|---|---:|---:|---:|---:|"]  # fmt: skip
+    for method in ("full", "averaged"):
+        for rtol, v in orbit[method].items():
+            lines.append(f"| {method} | {rtol} | {v['time_s']:.4g} | {v['nfev']} | "
+                         f"{v['period_error']:.2e} |")  # fmt: skip
+    if "speedup" in orbit:
+        lines += ["", f"Speed-up of the averaged year (rtol {orbit['rtol']:g}) over the full "
+                  f"one at rtol 1e-10 (≥ 1000×): {orbit['speedup']:.0f}× "
+                  f"({orbit['speedup_vs_full_1e-8']:.0f}× over the full one at 1e-8)."]  # fmt: skip
+    mc = orbit.get("monte_carlo")
+    if mc:
+        bands = mc["final_period_percentiles_s"]
+        lines.append(f"{mc['samples']} averaged years on one core: {mc['time_s']:.3g} s, "
+                     f"{mc['in_full_30_day_runs']:.3g} full 30-day runs of "
+                     f"{mc['full_30_days_s']:.3g} s "
+                     f"(≤ 5); final spin period {bands['50']:.0f} s at the median, "
+                     f"{bands['5']:.0f}–{bands['95']:.0f} s for 90 % of the draws.")  # fmt: skip
+    return "\n".join(lines)

@@ -13,7 +13,7 @@ j = σ(E − ∇φ), where E = ½ x × r after the conservative part of the moti
 (ω × r) × B is removed, and the charge potential φ makes the current tangential at every
 surface and edge; the Joule power σ∫|E − ∇φ|² = xᵀ M x defines M. The derivations, for each
 shape, are on the documentation's page on the orbiting body; the sphere's are those of Smythe
-(*Static and Dynamic Electricity*, 1968, §11.07), and the comparisons of Ortiz Gómez and
+(*Static and Dynamic Electricity*, 3rd ed., 1968), and the comparisons of Ortiz Gómez and
 Walker ("Eddy currents applied to de-tumbling of space debris", *Acta Astronautica* 114 (2015)
 34–53) with finite-element results bound their accuracy for real shells.
 """
@@ -81,7 +81,7 @@ def thin_cylindrical_shell(
 def torsion_constant_rectangle(a: float, b: float, terms: int = 50) -> float:
     """Saint-Venant's torsion constant J of an a × b rectangle [m⁴]:
     J = a b³ [1/3 − (64/π⁵)(b/a) Σ_{n odd} tanh(nπa/(2b))/n⁵] for a ≥ b (Timoshenko and
-    Goodier, *Theory of Elasticity*, §109); 0.1406 a⁴ for a square."""
+    Goodier, *Theory of Elasticity*, torsion of rectangular bars); 0.1406 a⁴ for a square."""
     a, b = max(a, b), min(a, b)
     n = np.arange(1, 2 * terms, 2, dtype=float)
     series = float(np.sum(np.tanh(n * math.pi * a / (2.0 * b)) / n**5))

@@ -59,7 +59,7 @@ class Orbit:
     j2 : bool
         Whether the node, the perigee and the mean anomaly drift under J2 (the secular rates of
         first order in J2, e.g. Vallado, *Fundamentals of Astrodynamics and Applications*,
-        §9.6); False: a fixed Keplerian ellipse.
+        on the secular effects of J2); False: a fixed Keplerian ellipse.
     mu : float
         Gravitational parameter [m³/s²].
     """

@@ -15,6 +15,7 @@ from scipy.linalg import expm
 from typer.testing import CliRunner
 
 from tumble.cli import app
+from tumble.errors import ParameterError
 from tumble.integrate import simulate
 from tumble.io import parse_scenario
 from tumble.models import orbiting_body as ob
@@ -205,3 +206,13 @@ def test_a_scenario_from_a_two_line_element_set(tmp_path):
     bad = write(tmp_path, text.replace("tle =", "altitude = 700.0\ntle ="))
     result = CliRunner().invoke(app, ["run", str(bad), "-o", str(tmp_path / "out")])
     assert result.exit_code == 2 and "orbit.tle gives the elements" in result.output
+
+
+def test_an_orbit_term_is_not_averaged_as_if_it_had_one_forcing_phase():
+    # The engine averages over one forcing phase; the orbit's terms have two (the orbit and
+    # the Earth's turn) and must be averaged over the orbit first.
+    _, request = _envisat(1.0, 3, ["full"])
+    p = request.params
+    raw = tb.Params(p.inertia, 1.0, p.torque, p.forcing_period)
+    with pytest.raises(ParameterError, match="averaged over the orbit first"):
+        raw.averaging  # noqa: B018 (the property refuses)

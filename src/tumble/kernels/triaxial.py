@@ -13,7 +13,10 @@ module computes the same average in compiled code when the torque is a sum of bu
   gradient, the field direction ĥ(Ωt) of the eddy current. Every channel of the integrand is
   linear in r̂ r̂ᵀ, or in ĥ and ĥ ĥᵀ, so its mean over the phase is its value at the means
   ⟨r̂ r̂ᵀ⟩ = ½(e₁e₁ᵀ + e₂e₂ᵀ) and ⟨ĥ ĥᵀ⟩ = diag(½ sin²β, ½ sin²β, cos²β), ⟨ĥ⟩ = cos β ξ₃
-  (each term over its own period, which divides the forcing period).
+  (each term over its own period, which divides the forcing period). The orbit-averaged terms
+  of an orbiting body (:mod:`tumble.space.torques`) vary only with the slowly turning node:
+  they are evaluated at the time t; the orbit's own terms never reach the engine (the torqued
+  body's parameters refuse them).
 * **The precession angle on four nodes.** With the attitude ``A = F Rz(χ) G(τ)`` the channels
   are trigonometric polynomials of degree ≤ 3 in χ (the gravity gradient's ⟨A M⟩ is
   quadratic in A, its power ω·M cubic; the other terms are of lower degree), which the

@@ -369,3 +369,25 @@ def test_benchmark_eddy_current_evaluation():
             print(f"{regime} k2 = {k2:<7g} {1e3 * best:6.2f} ms")
     print(f"median {1e3 * float(np.median(times)):.2f} ms, max {1e3 * max(times):.2f} ms")
     assert float(np.median(times)) <= 5e-3
+
+
+@pytest.mark.parametrize("period", [None, TWO_PI, 0.37])
+def test_the_vectorised_resonance_search_is_the_single_one(period):
+    # The validity check searches a trajectory's samples at once: the same relation, detuning
+    # and relative distance as one search per state, a sphere's (ν1 = 0) included.
+    from tumble.averaging.triaxial import nearest_resonances
+    from tumble.unperturbed.euler_poinsot import fast_frequencies
+
+    rng = np.random.default_rng(5)
+    cases = [((1.0, 2.0, 3.0), 2.2, 1.1), ((1.5, 1.5, 1.5), 2.0, 4.0 / 3.0)]
+    for _ in range(40):
+        inertia = tuple(sorted(rng.uniform(1.0, 2.0, 3)))
+        L = float(rng.uniform(0.5, 3.0))
+        r = float(rng.uniform(1.0 / inertia[2], 1.0 / inertia[0]))
+        cases.append((inertia, L, 0.5 * r * L * L))
+    for inertia, L, T in cases:
+        one = nearest_resonance(inertia, L, T, period)
+        nu = fast_frequencies(*inertia, L, T)
+        (many,) = nearest_resonances(np.array([nu[0]]), np.array([nu[1]]), period)
+        assert (many.m, many.n1, many.n2) == (one.m, one.n1, one.n2)
+        assert many.detuning == one.detuning and many.relative == one.relative

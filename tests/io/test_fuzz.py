@@ -146,7 +146,7 @@ def test_a_chunk_of_hostile_sweep_points_fails_only_the_bad_ones(name, tmp_path)
     base["run"]["max_steps"] = FUZZ_STEPS
     base["run"]["samples"] = 101  # the points, not the length of their runs, are under test
     keys = list(_numeric_keys(base))
-    for end in ("t_end", "tau_end"):
+    for end in ("t_end", "tau_end", "t_end_s", "t_end_days"):
         if end in base["run"]:
             base["run"][end] /= 4.0
     rng = random.Random(f"sweep-fuzz-{name}")

@@ -16,6 +16,7 @@ from tumble.averaging.quadrature import AVERAGE_RTOL, AveragingError, torus_mean
 from tumble.averaging.spinner import spinner_average
 from tumble.averaging.triaxial import (
     nearest_resonance,
+    nearest_resonances,
     triaxial_average,
     triaxial_average_vector,
     triaxial_kernel,
@@ -26,6 +27,7 @@ __all__ = [
     "AveragingError",
     "SmallDivisorError",
     "nearest_resonance",
+    "nearest_resonances",
     "spinner_average",
     "torus_mean",
     "triaxial_average",

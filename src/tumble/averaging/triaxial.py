@@ -87,6 +87,7 @@ __all__ = [
     "MOMENTUM_FLOOR",
     "Resonance",
     "nearest_resonance",
+    "nearest_resonances",
     "triaxial_average",
     "triaxial_average_vector",
     "triaxial_kernel",
@@ -886,24 +887,48 @@ def nearest_resonance(
     if Is.shape != (3,):
         raise ParameterError(f"inertia must have 3 moments, got {Is.size}")
     nu1, nu2 = fast_frequencies(float(Is[0]), float(Is[1]), float(Is[2]), float(L), float(T))
+    found = nearest_resonances(np.array([nu1]), np.array([nu2]), forcing_period,
+                               max_harmonic=max_harmonic, max_order=max_order)  # fmt: skip
+    return found[0]
+
+
+def _relations(harmonics: int, max_order: int) -> FloatArray:
+    """The relations (m, n1, n2) searched, in a fixed order (the first of equally near ones
+    wins): 0 ≤ m < ``harmonics``, |n1|, |n2| ≤ ``max_order``, (n1, n2) ≠ (0, 0), and one of
+    ±(n1, n2) for m = 0."""
+    orders = range(-max_order, max_order + 1)
+    rows = [(m, n1, n2) for m, n1, n2 in itertools.product(range(harmonics), orders, orders)
+            if (n1, n2) != (0, 0) and not (m == 0 and (n1, n2) < (0, 0))]  # fmt: skip
+    return np.array(rows, dtype=float)
+
+
+def nearest_resonances(
+    nu1: FloatArray,
+    nu2: FloatArray,
+    forcing_period: float | None = None,
+    *,
+    max_harmonic: int = 2,
+    max_order: int = 2,
+) -> list[Resonance]:
+    """:func:`nearest_resonance` at many states at once, from their fast frequencies ν1, ν2
+    (arrays of one shape) [rad/τ]: one vectorised search, the same relation chosen."""
+    nu1, nu2 = np.asarray(nu1, dtype=float).ravel(), np.asarray(nu2, dtype=float).ravel()
     if forcing_period is None:
-        forcing, harmonics = 0.0, range(1)
-        ref = max(nu1, abs(nu2))
+        forcing, harmonics = 0.0, 1
+        ref = np.maximum(nu1, np.abs(nu2))
     else:
         check_range("forcing_period", forcing_period, low=0.0)
-        forcing, harmonics = 2.0 * math.pi / forcing_period, range(max_harmonic + 1)
-        ref = forcing
-    best: tuple[float, int, int, int] | None = None
-    orders = range(-max_order, max_order + 1)
-    for m, n1, n2 in itertools.product(harmonics, orders, orders):
-        if (n1, n2) == (0, 0) or (m == 0 and (n1, n2) < (0, 0)):  # ±(n1, n2): one relation
-            continue
-        if nu1 == 0.0 and n1 != 0:  # a sphere: no polhode phase to be commensurate
-            continue
-        det = n1 * nu1 + n2 * nu2 - m * forcing
-        if best is None or abs(det) < abs(best[0]):
-            best = (det, m, n1, n2)
-    assert best is not None
-    det, m, n1, n2 = best
-    relative = abs(det) / ref if ref > 0.0 else math.inf
-    return Resonance(nu1, nu2, forcing, m, n1, n2, det, relative)
+        forcing, harmonics = 2.0 * math.pi / forcing_period, max_harmonic + 1
+        ref = np.full(nu1.shape, forcing)
+    rel = _relations(harmonics, max_order)
+    det = rel[:, 1, None] * nu1 + rel[:, 2, None] * nu2 - rel[:, 0, None] * forcing
+    # A sphere (ν1 = 0) has no polhode phase to be commensurate: relations with n1 ≠ 0 drop.
+    det = np.where((nu1 == 0.0) & (rel[:, 1, None] != 0.0), np.inf, det)
+    best = np.argmin(np.abs(det), axis=0)
+    out = []
+    for k, j in enumerate(best):
+        d = float(det[j, k])
+        relative = abs(d) / ref[k] if ref[k] > 0.0 else math.inf
+        m, n1, n2 = (int(v) for v in rel[j])
+        out.append(Resonance(float(nu1[k]), float(nu2[k]), forcing, m, n1, n2, d, relative))
+    return out

@@ -30,7 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from tumble._typing import BoolArray, FloatArray
-from tumble.averaging import nearest_resonance, triaxial_average_vector, triaxial_kernel
+from tumble.averaging import nearest_resonances, triaxial_average_vector, triaxial_kernel
 from tumble.catalogue import CATALOGUE
 from tumble.dynamics import rigid_body_rhs
 from tumble.errors import ParameterError
@@ -296,7 +296,7 @@ def validity(p: Params, st: State, slow: SlowPath, tau_end: float) -> list[Valid
     found = [
         separatrix_issue(slow, grid, I2) if I1 < I2 < I3 else None,
         _not_fast_issue(grid, scales),
-        _resonance_issue(p, grid, cols, scales) if p.attitude_dependent else None,
+        _resonance_issue(p, grid, scales) if p.attitude_dependent else None,
     ]
     return sorted((i for i in found if i is not None), key=lambda i: i.tau)
 
@@ -311,6 +311,7 @@ class _Scales:
     slowest: FloatArray
     away: BoolArray
     forcing: float
+    nu: FloatArray  # (ν1, ν2) at each sample [rad/t]
 
     @classmethod
     def along(cls, p: Params, grid: FloatArray, cols: dict[str, FloatArray]) -> _Scales:
@@ -326,7 +327,7 @@ class _Scales:
         away = cols["k2"] < 1.0 - 1e-3  # the separatrix band is reported as such
         if I1 in (I2, I3):  # symmetric body: ν1 is the relative spin, no separatrix
             away[:] = True
-        return cls(_slow_rate(grid, cols), slowest, away, forcing)
+        return cls(_slow_rate(grid, cols), slowest, away, forcing, nu)
 
 
 def _not_fast_issue(grid: FloatArray, sc: _Scales) -> ValidityIssue | None:
@@ -343,19 +344,17 @@ def _not_fast_issue(grid: FloatArray, sc: _Scales) -> ValidityIssue | None:
     )
 
 
-def _resonance_issue(
-    p: Params, grid: FloatArray, cols: dict[str, FloatArray], sc: _Scales
-) -> ValidityIssue | None:
+def _resonance_issue(p: Params, grid: FloatArray, sc: _Scales) -> ValidityIssue | None:
     """The first resonance met or approached within √(slow rate/Ω_ref)."""
-    L, T = cols["L"], cols["T"]
     width = math.sqrt(float(np.max(sc.rate)) / max(float(np.max(sc.slowest)), 1e-300))
     first: tuple[float, tuple[int, int, int]] | None = None
     prev: tuple[tuple[int, int, int], float] | None = None
+    found = nearest_resonances(sc.nu[:, 0], sc.nu[:, 1], p.forcing_period)
     for i in range(grid.size):
         if not sc.away[i]:
             prev = None
             continue
-        res = nearest_resonance(p.inertia, float(L[i]), float(T[i]), p.forcing_period)
+        res = found[i]
         key = (res.m, res.n1, res.n2)
         crossed = prev is not None and prev[0] == key and prev[1] * res.detuning < 0.0
         if res.relative <= width or crossed:

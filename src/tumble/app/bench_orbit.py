@@ -21,6 +21,7 @@ Times are the best of ``repeat`` calls (the full year: one call; the ensemble: o
 from __future__ import annotations
 
 import copy
+import functools
 import time
 from collections.abc import Callable
 from typing import Any
@@ -69,13 +70,13 @@ def _request(data: dict[str, Any], days: float, samples: int) -> Any:
 
 
 def _timed(request: Any, method: str, rtol: float, repeat: int) -> tuple[float, Any]:
-    best, traj = float("inf"), None
-    for _ in range(repeat):
-        start = time.perf_counter()
-        traj = simulate(request.model, request.params, request.initial, request.tau, method,
-                        rtol=rtol, atol=request.atol)  # fmt: skip
-        best = min(best, time.perf_counter() - start)
-    return best, traj
+    """Best time of ``repeat`` runs of ``method`` (the benchmark's rule, :func:`bench._best`)
+    and the trajectory."""
+    from tumble.app.bench import _best
+
+    run = functools.partial(simulate, request.model, request.params, request.initial,
+                            request.tau, method, rtol=rtol, atol=request.atol)  # fmt: skip
+    return _best(run, repeat)
 
 
 def _sample(rng: np.random.Generator) -> dict[str, Any]:

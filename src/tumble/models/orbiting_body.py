@@ -62,7 +62,7 @@ def _orbit_columns(
     rate = 2.0 * T / L
     L_xi = np.stack([cols["L1"], cols["L2"], cols["L3"]], axis=1)
     assert p.orbit is not None  # built with one
-    normals = np.array([p.orbit.normal(float(s)) for s in np.asarray(t) * p.T0])
+    normals = p.orbit.normal(np.asarray(t, dtype=float) * p.T0)
     cosine = np.einsum("ni,ni->n", L_xi, normals) / L
     return {
         "rate": rate,

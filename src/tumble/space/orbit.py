@@ -176,11 +176,13 @@ class Orbit:
         times = np.atleast_1d(np.asarray(t, dtype=float))
         return orbit_states(self.payload(), times)  # type: ignore[no-any-return]
 
-    def normal(self, t: float = 0.0) -> FloatArray:
-        """Unit orbit normal ĥ = (sin Ω sin i, −cos Ω sin i, cos i) at time t [s]."""
-        raan = self.raan + self.secular_rates()[0] * t
+    def normal(self, t: ArrayLike = 0.0) -> FloatArray:
+        """Unit orbit normal ĥ = (sin Ω sin i, −cos Ω sin i, cos i) at times t [s], shape
+        (..., 3) for t of shape (...)."""
+        raan = self.raan + self.secular_rates()[0] * np.asarray(t, dtype=float)
         si = math.sin(self.i)
-        return np.array([math.sin(raan) * si, -math.cos(raan) * si, math.cos(self.i)])
+        cos_i = np.full_like(raan, math.cos(self.i))
+        return np.stack([np.sin(raan) * si, -np.cos(raan) * si, cos_i], axis=-1)
 
 
 def _check_tle_line(k: int, line: str) -> None:

@@ -10,6 +10,7 @@ kg·m²/time_unit², with the tensors and moments of inertia as given).
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -51,6 +52,16 @@ def _moments(name: str, value: object) -> FloatArray:
     return v
 
 
+@functools.lru_cache(maxsize=64)
+def _field_moments(orbit: Orbit, dipole: Dipole) -> tuple[FloatArray, FloatArray]:
+    """:func:`field_moments` at the epoch, once per orbit and field: the points of a sweep
+    that vary only the body share them."""
+    S, D = field_moments(orbit, dipole)
+    S.setflags(write=False)
+    D.setflags(write=False)
+    return S, D
+
+
 @dataclass(frozen=True, eq=False)
 class OrbitEddyTorque(Torque):
     """The eddy-current moment (M x) × B on a conductor of magnetic tensor M moving along
@@ -83,7 +94,7 @@ class OrbitEddyTorque(Torque):
 
     def averaged(self) -> FieldMomentsTorque:
         """The same moment averaged over the orbit and the Earth's rotation."""
-        S, D = field_moments(self.orbit, self.dipole)
+        S, D = _field_moments(self.orbit, self.dipole)
         node_rate = self.orbit.secular_rates()[0]
         return FieldMomentsTorque(self.tensor, S, D * self.time_unit, node_rate * self.time_unit)
 

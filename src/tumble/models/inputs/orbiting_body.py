@@ -89,8 +89,6 @@ class Scaling(tb.Scaling):
     def si(self, name: str) -> tuple[float, str, str] | None:
         if name == "rate":
             return 1.0 / self.T0, "rad/s", "rate_rad_s"
-        if name == "rate_deg_s":
-            return None
         if name == "period":
             return self.T0, "s", "period_s"
         return super().si(name)

@@ -84,7 +84,7 @@ def test_the_triaxial_engine_averages_it_compiled_as_the_python_engine_does():
     k_user = triaxial_kernel(user, INERTIA, period)
     k_built = triaxial_kernel(built, INERTIA, period)
     assert k_user is not None and k_user.params[MODE] == 0.0
-    assert k_built is not None and k_built.params[MODE] == 1.0
+    assert k_built is not None and k_built.params[MODE] == 2.0  # a closed form
     general = k_built.params.copy()
     general[MODE] = 0.0  # the built-in terms through the general product rule
     rng = np.random.default_rng(9)
@@ -95,9 +95,9 @@ def test_the_triaxial_engine_averages_it_compiled_as_the_python_engine_does():
             continue
         ref = triaxial_average_vector(built, INERTIA, y, 0.0, forcing_period=period)
         scale = float(np.max(np.abs(ref)))
-        # All four stop refining when two levels agree to 1e-12 of the torque's size: the
-        # user's function (general rule), the built-in term by the same rule and by the
-        # closed-form phase means, and the Python engine agree to 1e-10 of the largest rate.
+        # The three quadratures stop refining when two levels agree to 1e-12 of the torque's
+        # size: the user's function (general rule), the built-in term by the same rule and by
+        # its closed form, and the Python engine agree to 1e-10 of the largest rate.
         for params in (k_user.params, general, k_built.params):
             got = evaluate(k_user.kind, 0.0, y, params)
             assert np.max(np.abs(got - ref)) <= 1e-10 * scale, (y, got, ref)

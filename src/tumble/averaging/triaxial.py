@@ -59,9 +59,11 @@ from tumble.kernels import KIND_TRIAXIAL_AVERAGED, Kernel
 from tumble.kernels.codes import (
     DEGENERATE_RTOL,
     TERM_EDDY_CURRENT,
+    TERM_FIELD_MOMENTS,
     TERM_GRAVITY_GRADIENT,
     TERM_USER,
 )
+from tumble.kernels.triaxial_closed import CLOSED_FORM_TERMS
 from tumble.rotations import matrix_to_quat, quat_multiply
 from tumble.torques import (
     ConstantBodyTorque,
@@ -753,9 +755,12 @@ def triaxial_kernel(
     ``factor``; None where only the Python engine applies. Its separatrix r = 1/I2 is the
     compiled event ``EVENT_TRIAXIAL_SEPARATRIX``.
 
-    For built-in terms the compiled engine averages each time-dependent term over its own
-    phase in closed form and the precession on four nodes, which is exact for them, and
-    refines the polhode phase with the Python engine's test; a user's numba function
+    A program of constant moments, linear drag, the gravity gradient and the orbit-averaged
+    field and gravity moments is averaged in closed form (:mod:`tumble.kernels.
+    triaxial_closed`, exact to round-off). For other built-in terms the compiled engine
+    averages each time-dependent term over its own phase in closed form and the precession
+    on four nodes, which is exact for them, and refines the polhode phase with the Python
+    engine's test; a user's numba function
     (:mod:`tumble.kernels.user`) gets the Python engine's product rule on all phases.
 
     Parameters
@@ -809,9 +814,22 @@ def triaxial_kernel(
     omega_ref = 1.0 if forcing_period is None else 2.0 * math.pi / float(forcing_period)
     floor = MOMENTUM_FLOOR * I3 * omega_ref
     period = 0.0 if forcing_period is None else float(forcing_period)
-    head = [factor, rtol, floor, I1, I2, I3, *proper_sorting(I_user).ravel(), *I_user,
-            1.0 if exact else 0.0, period]  # fmt: skip
+    closed = exact and all(_closed_form(code, payload) for code, _, payload in terms)
+    mode = 2.0 if closed else (1.0 if exact else 0.0)
+    head = [factor, rtol, floor, I1, I2, I3, *proper_sorting(I_user).ravel(), *I_user, mode,
+            period]  # fmt: skip
     return Kernel(KIND_TRIAXIAL_AVERAGED, np.concatenate([head, program]))
+
+
+def _closed_form(code: int, payload: tuple[float, ...]) -> bool:
+    """Whether the term's average has the closed form of :mod:`tumble.kernels.
+    triaxial_closed`: its codes, the field moments' magnetic tensor and ⟨B Bᵀ⟩ symmetric."""
+    if code not in CLOSED_FORM_TERMS:
+        return False
+    if code != TERM_FIELD_MOMENTS:
+        return True
+    M, S = np.reshape(payload[:9], (3, 3)), np.reshape(payload[9:18], (3, 3))
+    return all(np.abs(X - X.T).max() <= 1e-14 * np.abs(X).max() for X in (M, S))
 
 
 # ---------------------------------------------------------------------------------------------

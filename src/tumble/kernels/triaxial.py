@@ -59,11 +59,13 @@ from tumble.kernels.codes import (
 )
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
 from tumble.kernels.torque import Mat3, Vec3, _program, _term, _to_body, next_term
+from tumble.kernels.triaxial_closed import closed_mean
 
 __all__ = ["MODE", "PERIOD", "PROGRAM_START", "jacobi_functions", "triaxial_averaged"]
 
 MODE = 18
-"""Index of the mode: 1 for built-in terms only (the reductions above), 0 for any program."""
+"""Index of the mode: 2 for terms with a closed-form average (:mod:`tumble.kernels.
+triaxial_closed`), 1 for other built-in terms (the reductions above), 0 for any program."""
 PERIOD = 19
 """Index of the forcing period [τ] (0: none, the time frozen at t)."""
 PROGRAM_START = 20
@@ -531,10 +533,14 @@ def triaxial_averaged(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -
         _nan(out)
         return
     mc = min(mc, 1.0)
+    F = _frame(y[0] / L, y[1] / L, y[2] / L)
+    if p[MODE] == 2.0:
+        m1, m2, m3, m4 = closed_mean(p, PROGRAM_START, t, L, r, x3, mc, amp, F)
+        _rates(out, eps, L, m1, m2, m3, m4)
+        return
     ratios, n_agm, a_agm = _agm(mc)
     big_k = 0.5 * math.pi / a_agm
     kc = math.sqrt(mc)
-    F = _frame(y[0] / L, y[1] / L, y[2] / L)
     rl1, rl2, rl3 = r * y[0], r * y[1], r * y[2]
     if p[MODE] == 1.0:
         ok, m1, m2, m3, m4 = _exact_mean(p, t, rtol, amp, x3, big_k, kc, ratios, n_agm, a_agm, F,
@@ -545,6 +551,13 @@ def triaxial_averaged(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -
     if not ok:
         _nan(out)
         return
+    _rates(out, eps, L, m1, m2, m3, m4)
+
+
+@jit(INLINE)
+def _rates(out: FloatArray, eps: float, L: float, m1: float, m2: float, m3: float, m4: float
+           ) -> None:  # fmt: skip
+    """The rates from the means ⟨A M⟩ (m1, m2, m3) and ⟨(Ω − r L_ξ)·A M⟩ (m4)."""
     out[0] = eps * m1
     out[1] = eps * m2
     out[2] = eps * m3

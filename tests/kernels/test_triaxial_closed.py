@@ -12,7 +12,7 @@ from scipy import special
 from tumble.averaging import triaxial_kernel
 from tumble.kernels.rhs import evaluate
 from tumble.kernels.triaxial import MODE
-from tumble.kernels.triaxial_closed import polhode_moments
+from tumble.kernels.triaxial_closed import polhode_moments, sn_means
 from tumble.space.torques import FieldMomentsTorque, GravityMomentsTorque
 from tumble.torques import (
     ConstantBodyTorque,
@@ -43,6 +43,22 @@ def _amplitudes(inertia: np.ndarray, L: float, r: float) -> tuple[bool, float, t
     amp = (L * math.sqrt(d1 / (i3 * (i3 - i1))), L * math.sqrt(d1 / (i2 * (i2 - i1))),
            L * math.sqrt(d3 / (i1 * (i3 - i1))))  # fmt: skip
     return False, mc, amp
+
+
+@pytest.mark.parametrize("mc", [1.0, 1.0 - 1e-12, 1.0 - 1e-6, 0.75, 0.5, 1e-3, 1e-9])
+def test_sn_means_equal_scipys_integrals(mc):
+    m = 1.0 - mc
+    K = float(special.elliprf(0.0, mc, 1.0))
+    # ⟨sn²⟩ = (K − E)/(mK) = R_D(0, mc, 1)/(3K) (DLMF 19.25.1), which holds at m → 0 too;
+    # ⟨sn⁴⟩ from the recurrence where it does not cancel, else from the series
+    # (∫₀ᴷ sn⁴ du)/K = (3/8 + 5m/32 + …)/(1 + m/4 + …) = 3/8 + m/16 + O(m²).
+    x1 = float(special.elliprd(0.0, mc, 1.0)) / (3.0 * K)
+    x2 = (2.0 * (1.0 + m) * x1 - 1.0) / (3.0 * m) if m > 0.1 else 3.0 / 8.0 + m / 16.0
+    got = sn_means(mc)
+    assert abs(got[0] - K) <= 1e-14 * K
+    assert abs(got[1] - x1) <= 1e-14
+    # Below m = 0.1 the reference is the series to first order: its remainder is O(m²).
+    assert abs(got[2] - x2) <= (1e-14 if m > 0.1 else m * m + 1e-15)
 
 
 # r across both regimes: near the pure rotations (m → 0, the series of ⟨sn⁴⟩), mid-way (the

@@ -3,7 +3,7 @@
 The general engine's triaxial setting (:mod:`tumble.kernels.triaxial`) averages the rates of
 ``[L_ξ, r = 2T/L²]`` over the polhode phase and the precession angle χ about L on a grid of
 nodes (at least 32 × 4 evaluations of the torque). For the terms below the average has a
-closed form, exact to round-off, at the cost of two elliptic integrals: mode 2 of that
+closed form, exact to round-off, at the cost of one arithmetic-geometric mean: mode 2 of that
 kernel (:func:`tumble.averaging.triaxial_kernel` chooses it when every term is one of them).
 
 **The precession angle.** Write the attitude A = F Rz(χ) G with F a frame whose third axis is
@@ -30,11 +30,11 @@ A body-fixed moment m gives ℓ·m along L̂ and ω·m; an inertial one, itself;
 **The polhode.** What remains are means over the polhode of polynomials of degree ≤ 4 in ℓ.
 With ℓ = (A_c cn u, A_s sn u, A_d dn u) in the sorted principal axes (axis order of the
 regime: dn along the axis the polhode encircles), the odd powers of sn and cn average to zero,
-and the rest are, with x = sn², ⟨x⟩ = (K − E)/(mK) = R_D(0, 1 − m, 1)/(3K), ⟨x²⟩ =
-(2(1 + m)⟨x⟩ − 1)/(3m) (the recurrence of ∫sn^{2n}; by the binomial series of
-(1 − m sin²φ)^{−1/2} below m = 0.1, where the recurrence cancels), ⟨dn⟩ = π/(2K) and
-⟨dn sn²⟩ = π/(4K) (dn du = dφ with φ = am u). The diagonal moments ⟨ℓᵢ²⟩, the products
-⟨ℓᵢ²ℓⱼ²⟩, ⟨ℓ_a⟩ and ⟨ℓ_a ℓᵢ²⟩ (a the encircled axis) are all the terms need.
+and the rest are, with x = sn², ⟨x⟩ = (K − E)/(mK), ⟨x²⟩ = (2(1 + m)⟨x⟩ − 1)/(3m) (the
+recurrence of ∫sn^{2n}), both from one arithmetic-geometric mean without cancellation
+(:func:`_sn_means`), ⟨dn⟩ = π/(2K) and ⟨dn sn²⟩ = π/(4K) (dn du = dφ with φ = am u).
+The diagonal moments ⟨ℓᵢ²⟩, the products ⟨ℓᵢ²ℓⱼ²⟩, ⟨ℓ_a⟩ and ⟨ℓ_a ℓᵢ²⟩ (a the encircled
+axis) are all the terms need.
 """
 
 from __future__ import annotations
@@ -50,11 +50,10 @@ from tumble.kernels.codes import (
     TERM_INERTIAL_CONSTANT,
     TERM_LINEAR_DRAG,
 )
-from tumble.kernels.elliptic import ellipk_mc, elliprd
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
 from tumble.kernels.torque import Mat3, Vec3, _dot, next_term
 
-__all__ = ["CLOSED_FORM_TERMS", "closed_mean", "polhode_moments"]
+__all__ = ["CLOSED_FORM_TERMS", "closed_mean", "polhode_moments", "sn_means"]
 
 CLOSED_FORM_TERMS = frozenset(
     {
@@ -69,33 +68,35 @@ CLOSED_FORM_TERMS = frozenset(
 """The terms whose Euler–Poinsot average :func:`closed_mean` gives (the magnetic tensor and
 ⟨B Bᵀ⟩ of a field-moments term symmetric, as the caller checks)."""
 
-_SERIES_BELOW = 0.1  # m below which ⟨sn⁴⟩ comes from its series (the recurrence loses ε/m)
-
 _Moments = tuple[Vec3, Vec3, Vec3, float, int]
 
 
 @jit(KERNEL)
 def _sn_means(mc: float) -> tuple[float, float, float]:
-    """(K, ⟨sn²⟩, ⟨sn⁴⟩) over a period at the parameter m = 1 − mc (module notes)."""
+    """(K, ⟨sn²⟩, ⟨sn⁴⟩) over a period at the parameter m = 1 − mc, from one arithmetic-
+    geometric mean (module notes): with c₀² = m, c_{n+1} = c_n²/(4a_{n+1}),
+    K = π/(2a_∞) and K − E = K Σ 2^{n−1} c_n² (DLMF 19.8.5–6), so ⟨sn²⟩ = (K − E)/(mK) =
+    ½ + m s and ⟨sn⁴⟩ = (2s + 2⟨sn²⟩)/3 with s = Σ_{n≥1} 2^{n−1} (c_n/m)²; the c_n/m are
+    formed without a difference, so that neither mean loses digits as m → 0 (a symmetric
+    body) nor m → 1."""
     m = 1.0 - mc
-    big_k = ellipk_mc(mc)
-    x1 = elliprd(0.0, mc, 1.0) / (3.0 * big_k)
-    if m >= _SERIES_BELOW:
-        return big_k, x1, (2.0 * (1.0 + m) * x1 - 1.0) / (3.0 * m)
-    # ∫₀^{π/2} sin^{2p}φ (1 − m sin²φ)^{−1/2} dφ = (π/2) Σₙ cₙ c_{n+p} mⁿ, cₙ = (2n)!/(4ⁿ n!²):
-    # K (p = 0) and ∫₀ᴷ sn⁴ (p = 2), both from the same cₙ.
-    c0, c1, c2 = 1.0, 0.5, 0.375
-    k_sum, j_sum, power, n = 0.0, 0.0, 1.0, 0
-    while True:
-        k_sum += c0 * c0 * power
-        term = c0 * c2 * power
-        j_sum += term
-        if term < 1e-17 * j_sum:
-            break
-        n += 1
-        power *= m
-        c0, c1, c2 = c1, c2, c2 * (2 * n + 3) / (2 * n + 4)
-    return big_k, x1, j_sum / k_sum
+    a, b = 1.0, math.sqrt(mc)
+    d = 0.5 / (1.0 + b)  # c₁/m: (1 − √mc)/2 = m/(2(1 + √mc))
+    a, b = 0.5 * (a + b), math.sqrt(a * b)
+    s, weight = d * d, 1.0
+    while m * d > 1e-17 * a:
+        d = m * d * d / (2.0 * (a + b))  # c_{n+1}/m = m (c_n/m)²/(4 a_{n+1})
+        a, b = 0.5 * (a + b), math.sqrt(a * b)
+        weight *= 2.0
+        s += weight * d * d
+    x1 = 0.5 + m * s
+    return 0.5 * math.pi / a, x1, (2.0 * s + 2.0 * x1) / 3.0
+
+
+@jit(ENTRY)
+def sn_means(mc: float) -> tuple[float, float, float]:
+    """:func:`_sn_means` from Python, for tests against scipy."""
+    return _sn_means(mc)
 
 
 @jit(KERNEL)

@@ -173,3 +173,35 @@ def test_a_dense_ensemble_equals_one_run_per_point_to_the_bit(name):
             assert np.array_equal(got.columns[key], values), key
         for key, values in single.slow(t).items():
             assert np.array_equal(got.slow(t)[key], values), key
+
+
+def test_points_with_their_own_time_units_run_together():
+    # A physical scenario's points each have their time unit (T0 = 1/|ω0|): the same half day
+    # is another τ for each, and the batch takes a row of sample times per point.
+    rng = np.random.default_rng(3)
+    reqs = []
+    for _ in range(4):
+        data = tomllib.loads(template("orbiting_body"))
+        spin = [float(v * rng.uniform(0.5, 2.0)) for v in data["initial"]["omega_deg_s"]]
+        data["initial"]["omega_deg_s"] = spin
+        reqs.append(parse_scenario(data, "<orbiting_body ensemble>").request)
+    taus = np.stack([r.tau for r in reqs])
+    assert not np.array_equal(taus[0], taus[1])
+    first = reqs[0]
+    params, initials = [r.params for r in reqs], [r.initial for r in reqs]
+    for method in ("averaged", "full"):
+        n = 4 if method == "averaged" else 2  # the full half day is the slow part
+        batch = simulate_batch(first.model, params[:n], initials[:n], taus[:n], method=method,
+                               rtol=first.rtol, atol=first.atol, threads=1)  # fmt: skip
+        for req, got in zip(reqs, batch, strict=False):
+            assert isinstance(got, Trajectory), got
+            assert np.array_equal(got.tau, req.tau)
+            single = simulate(req.model, req.params, req.initial, req.tau, method,
+                              rtol=req.rtol, atol=req.atol, integrator="numba")  # fmt: skip
+            if method == "averaged":
+                _same(got, single)
+            else:  # the same compiled integrator and samples: to the bit
+                for name, values in single.columns.items():
+                    assert np.array_equal(got.columns[name], values), name
+    with pytest.raises(ParameterError, match="3 rows of sample times for 4 points"):
+        simulate_batch(first.model, params, initials, taus[:3], method="averaged")

@@ -99,9 +99,10 @@ def _batchable(req: RunRequest, method: str) -> bool:
 
 def _batched(requests: Sequence[RunRequest | None]) -> list[dict[str, Trajectory]]:
     """The full and averaged trajectories of every batchable request, integrated together
-    per (model, method, times, tolerances, averaging); the others get no entry and are run
-    point by point. Averaged ensembles keep their dense output: a point's validity checks
-    evaluate it anywhere, as for a run of its own."""
+    per (model, method, number of samples, tolerances, averaging), each point at its own
+    sample times (a physical scenario's points each have their own time unit); the others
+    get no entry and are run point by point. Averaged ensembles keep their dense output: a
+    point's validity checks evaluate it anywhere, as for a run of its own."""
     out: list[dict[str, Trajectory]] = [{} for _ in requests]
     groups: dict[tuple[Any, ...], list[int]] = {}
     for i, req in enumerate(requests):
@@ -110,7 +111,7 @@ def _batched(requests: Sequence[RunRequest | None]) -> list[dict[str, Trajectory
         for method in ("full", "averaged"):
             if _batchable(req, method):
                 extra = req.averaging if method == "averaged" else None
-                key = (req.model.name, method, req.tau.tobytes(), req.rtol, req.atol,
+                key = (req.model.name, method, req.tau.size, req.rtol, req.atol,
                        req.max_steps, extra)  # fmt: skip
                 groups.setdefault(key, []).append(i)
     for key, members in groups.items():
@@ -122,7 +123,7 @@ def _batched(requests: Sequence[RunRequest | None]) -> list[dict[str, Trajectory
                 first.model,
                 [requests[i].params for i in members],  # type: ignore[union-attr]
                 [requests[i].initial for i in members],  # type: ignore[union-attr]
-                first.tau,
+                np.stack([requests[i].tau for i in members]),  # type: ignore[union-attr]
                 rtol=first.rtol,
                 atol=first.atol,
                 max_steps=first.max_steps,

@@ -46,6 +46,7 @@ class _Point(Generic[P, S]):
     """One point of a block: its form, kernel and breakpoints."""
 
     index: int
+    tau: FloatArray  # its sample times
     params: P
     initial: S
     form: AveragedForm[P, S]
@@ -53,7 +54,7 @@ class _Point(Generic[P, S]):
     y0: FloatArray
     stops: list[float]  # breakpoint times inside (0, t_end), ascending, then t_end
     surface: Breakpoint | None  # the one surface, with its compiled event
-    samples: FloatArray = field(default_factory=lambda: np.empty(0))  # (len(tau), dim)
+    samples: FloatArray = field(default_factory=lambda: np.empty(0))  # (tau.size, dim)
     nfev: int = 0
     pieces: list[dop853.Solution] = field(default_factory=list)  # with ``dense``
 
@@ -62,7 +63,7 @@ def averaged_batch(
     model: Model[P, S],
     params: Sequence[P],
     initials: Sequence[S],
-    tau: FloatArray,
+    taus: Sequence[FloatArray],
     *,
     rtol: float,
     atol: float,
@@ -71,14 +72,14 @@ def averaged_batch(
     max_steps: int = MAX_STEPS,
     dense: bool = False,
 ) -> list[Trajectory | TumbleError]:
-    """The averaged method of many points (see :func:`tumble.integrate.simulate_batch`)."""
+    """The averaged method of many points, each with its sample times ``taus[i]`` (all of one
+    length; see :func:`tumble.integrate.simulate_batch`)."""
     assert model.averaged is not None
     options = model.averaged.check(averaging)
     n_points = len(params)
     if len(initials) != n_points:
         raise ValueError(f"{n_points} parameter sets but {len(initials)} initial states")
     out: list[Trajectory | TumbleError | None] = [None] * n_points
-    t_end = float(tau[-1])
     # A form's kernel is a function of the parameters alone: points that share both the
     # function and the parameter object (an ensemble over initial states) share the kernel.
     # The key holds the function itself (alive while cached) and the id of a parameter set
@@ -87,7 +88,7 @@ def averaged_batch(
 
     def single(i: int) -> Trajectory | TumbleError:
         try:
-            return simulate(model, params[i], initials[i], tau, "averaged", rtol=rtol,
+            return simulate(model, params[i], initials[i], taus[i], "averaged", rtol=rtol,
                             atol=atol, averaging=averaging, max_steps=max_steps)  # fmt: skip
         except TumbleError as exc:
             return exc
@@ -96,6 +97,7 @@ def averaged_batch(
         """The point's compiled run, or None for the single path (no kernel, nothing to
         integrate); a TumbleError (an invalid point) goes to ``out``."""
         p, initial = params[i], initials[i]
+        t_end = float(taus[i][-1])
         try:
             model.check(p, "averaged")
             form = model.averaged.form(p, initial, options)  # type: ignore[union-attr]
@@ -113,7 +115,7 @@ def averaged_batch(
             out[i] = exc
             return None
         stops, surface = split_plan(form.breakpoints, y0, t_end)
-        return _Point(i, p, initial, form, kernel, y0, stops, surface)
+        return _Point(i, taus[i], p, initial, form, kernel, y0, stops, surface)
 
     def run_block(indices: Sequence[int]) -> None:
         points: list[_Point[P, S]] = []
@@ -129,7 +131,7 @@ def averaged_batch(
             groups.setdefault(key, []).append(pt)
         for group in groups.values():
             start = time.perf_counter()
-            _integrate_group(model.name, group, tau, rtol, atol, max_steps, dense, out)
+            _integrate_group(model.name, group, rtol, atol, max_steps, dense, out)
             wall = (time.perf_counter() - start) / len(group)
             for pt in group:
                 if out[pt.index] is not None:
@@ -137,11 +139,11 @@ def averaged_batch(
                 if dense:
                     what = f"{model.name} averaged equations {pt.form.equation}"
                     sol = joined_pieces(pt.pieces, what)
-                    out[pt.index] = _dense_trajectory(model, pt.params, pt.initial, tau,
+                    out[pt.index] = _dense_trajectory(model, pt.params, pt.initial, pt.tau,
                                                       "averaged", pt.form, sol,
                                                       time.perf_counter() - wall)  # fmt: skip
                 else:
-                    out[pt.index] = _trajectory(model, pt, tau, wall, single)
+                    out[pt.index] = _trajectory(model, pt, wall, single)
 
     blocks = [range(k, min(k + BLOCK_SIZE, n_points)) for k in range(0, n_points, BLOCK_SIZE)]
     workers = dop853.available_threads() if threads is None else max(1, int(threads))
@@ -159,7 +161,6 @@ def averaged_batch(
 def _integrate_group(
     name: str,
     group: Sequence[_Point[Any, Any]],
-    tau: FloatArray,
     rtol: float,
     atol: float,
     max_steps: int,
@@ -171,8 +172,10 @@ def _integrate_group(
     evaluation counts in their ``_Point``."""
     n = len(group)
     dim = group[0].y0.size
-    arrays = empty_block(n, dim, tau.size)
+    n_eval = group[0].tau.size
+    arrays = empty_block(n, dim, n_eval)
     P = np.stack([pt.kernel.params for pt in group])
+    t_eval = np.stack([pt.tau for pt in group])
     for r, pt in enumerate(group):
         arrays["Y"][r] = pt.y0
         arrays["events"][r] = pt.surface.event if pt.surface is not None else EVENT_NONE
@@ -188,7 +191,7 @@ def _integrate_group(
             arrays["T"][r] = group[r].stops[piece[r]]
         steps = min(allowance, max_steps)
         args = (active, P, arrays["T"], arrays["events"], arrays["first"], arrays["t0"],
-                arrays["ie"], float(rtol), float(atol), int(steps), bool(dense), tau,
+                arrays["ie"], float(rtol), float(atol), int(steps), bool(dense), t_eval,
                 arrays["Y"], arrays["F"], arrays["Y_eval"], arrays["status"],
                 arrays["nfev"])  # fmt: skip
         allowance *= 2
@@ -224,7 +227,7 @@ def _integrate_group(
                         raise IntegrationError(
                             f"{what}: run.max_steps = {max_steps} steps spent at t = {t:.6g}"
                         )
-                    refused = pace_message(t, float(tau[-1]), float(arrays["first"][r]),
+                    refused = pace_message(t, float(pt.tau[-1]), float(arrays["first"][r]),
                                         max_steps - int(spent[r]), max_steps)  # fmt: skip
                     if refused:
                         raise IntegrationError(f"{what}: {refused}")
@@ -242,20 +245,19 @@ def _integrate_group(
                 out[pt.index] = exc
         active = np.array(going, dtype=np.int64)
     for r, pt in enumerate(group):
-        pt.samples = arrays["Y_eval"][r].reshape(tau.size, dim)
+        pt.samples = arrays["Y_eval"][r].reshape(n_eval, dim)
         pt.nfev = int(arrays["nfev"][r])
 
 
 def _trajectory(
     model: Model[P, S],
     pt: _Point[P, S],
-    tau: FloatArray,
     wall: float,
     single: Callable[[int], Trajectory | TumbleError],
 ) -> Trajectory | TumbleError:
     """The Trajectory of a point of a block from its samples."""
     try:
-        cols = pt.form.to_columns(pt.params, pt.initial, tau, pt.samples)
+        cols = pt.form.to_columns(pt.params, pt.initial, pt.tau, pt.samples)
         _unwrap_columns(model, pt.params, "averaged", cols, pt.initial)
     except TumbleError as exc:
         return exc
@@ -272,7 +274,7 @@ def _trajectory(
         return rerun[0].slow(t)
 
     return Trajectory(
-        tau,
+        pt.tau,
         cols,
         "averaged",
         pt.form.name,

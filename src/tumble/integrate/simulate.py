@@ -597,8 +597,9 @@ def simulate_batch(
     model : Model
     params, initials : sequence
         Parameters and initial state of each point.
-    tau : array_like
-        Sample times shared by all points, ascending, ≥ 0 [model time unit].
+    tau : array_like, shape (n_samples,) or (n_points, n_samples)
+        Sample times, ascending, ≥ 0 [model time unit]: shared by all points, or a row per
+        point (points of a physical scenario, whose time units differ).
     rtol, atol : float
         Integration tolerances.
     form : str, optional
@@ -622,41 +623,53 @@ def simulate_batch(
         Per point, its Trajectory or the :class:`~tumble.errors.TumbleError` it met (a failed
         integration, a full form without a compiled kernel): a batch never stops for one point.
     """
-    tau = check_times(tau)
+    taus = batch_times(tau, len(params))
     if method == "averaged":
         from tumble.integrate.ensemble import averaged_batch  # builds on this module
 
         return averaged_batch(
-            model, params, initials, tau, rtol=rtol, atol=atol, averaging=averaging,
+            model, params, initials, taus, rtol=rtol, atol=atol, averaging=averaging,
             threads=threads, max_steps=max_steps, dense=dense,
         )  # fmt: skip
     if method != "full":
         raise ParameterError(f"simulate_batch: method {method!r} is not 'full' or 'averaged'")
-    t_end = float(tau[-1])
     full = model.full.form(form)
     out: list[Trajectory | TumbleError | None] = [None] * len(params)
     jobs: list[_Job] = []
     for i, (p, initial) in enumerate(zip(params, initials, strict=True)):
         try:
-            jobs.append((i, *_batch_job(model, full, p, initial, t_end)))
+            jobs.append((i, *_batch_job(model, full, p, initial, float(taus[i][-1]))))
         except TumbleError as exc:
             out[i] = exc
 
     def work(job: _Job) -> None:
         i, kernel, y0 = job
         start = time.perf_counter()
+        tau_i = taus[i]
         try:
-            if t_end == 0.0:  # nothing to integrate: simulate's own path
-                out[i] = simulate(model, params[i], initials[i], tau, "full", rtol=rtol,
+            if tau_i[-1] == 0.0:  # nothing to integrate: simulate's own path
+                out[i] = simulate(model, params[i], initials[i], tau_i, "full", rtol=rtol,
                                   atol=atol, form=form, integrator="numba")  # fmt: skip
                 return
-            run = _integration(kernel, y0, tau, rtol, atol)
-            out[i] = _consume(model, full, params[i], initials[i], tau, run, start, max_steps)
+            run = _integration(kernel, y0, tau_i, rtol, atol)
+            out[i] = _consume(model, full, params[i], initials[i], tau_i, run, start, max_steps)
         except TumbleError as exc:
             out[i] = exc
 
     _each(work, jobs, threads)
     return [o for o in out if o is not None]
+
+
+def batch_times(tau: ArrayLike, n_points: int) -> list[FloatArray]:
+    """Each point's sample times: ``tau`` shared (one row) or one row per point (the points of
+    a physical scenario, each with its own time unit), every row checked as ``run.tau``."""
+    t = np.asarray(tau, dtype=float)
+    if t.ndim == 2:
+        if t.shape[0] != n_points:
+            raise ParameterError(f"{t.shape[0]} rows of sample times for {n_points} points")
+        return [check_times(row) for row in t]
+    shared = check_times(t)
+    return [shared] * n_points
 
 
 def _each(work: Callable[[_Job], None], jobs: list[_Job], threads: int | None) -> None:

@@ -40,11 +40,11 @@ def advance_block(
     """Advance each run ``i`` of ``rows`` from ``t0[i]`` (state ``Y[i]``) towards ``T[i]``.
 
     Run i has parameters ``P[i]``, event code ``events[i]`` (terminal; 0: none), first step
-    ``first[i]`` (0: Hairer's estimate), and fills its samples ``Y_eval[i]`` (flat rows of
-    ``t_eval``) from index ``ie[i]``. On return ``t0[i]`` is the time reached, ``Y[i]`` the
-    state there, ``first[i]`` the step to try next, ``ie[i]`` the next sample, ``status[i]``
-    that of :mod:`tumble.integrate.dop853.core` (``RUNNING``: ``max_steps`` spent) and
-    ``nfev[i]`` grown by the evaluations of this piece. With ``dense`` every step and its
+    ``first[i]`` (0: Hairer's estimate), and fills its samples ``Y_eval[i]`` (flat rows, at
+    its times ``t_eval[i]``) from index ``ie[i]``. On return ``t0[i]`` is the time reached,
+    ``Y[i]`` the state there, ``first[i]`` the step to try next, ``ie[i]`` the next sample,
+    ``status[i]`` that of :mod:`tumble.integrate.dop853.core` (``RUNNING``: ``max_steps``
+    spent) and ``nfev[i]`` grown by the evaluations of this piece. With ``dense`` every step and its
     interpolant are kept as well, and returned as one ``_PIECE`` per run (else none).
     """
     pieces = List.empty_list(_PIECE)
@@ -53,7 +53,7 @@ def advance_block(
         ev = events[i]
         opts = Options(rtol, atol, first[i], dense, dense, ev, max_steps, ev != 0)
         prog = Progress(FRESH, t0[i], 0.0, 1.0, 0, 0, ie[i])
-        progress, chunk = advance(kind, P[i], T[i], opts, prog, Y[i], F[i], t_eval, Y_eval[i])
+        progress, chunk = advance(kind, P[i], T[i], opts, prog, Y[i], F[i], t_eval[i], Y_eval[i])
         status[i] = progress[0]
         t0[i] = progress[1]
         first[i] = progress[2]

@@ -39,6 +39,7 @@ __all__ = [
     "TERM_INERTIAL_CONSTANT",
     "TERM_LINEAR_DRAG",
     "TERM_ORBIT_EDDY",
+    "TERM_ORBIT_EDDY_HARMONIC",
     "TERM_ORBIT_GRAVITY",
     "TERM_PAYLOAD",
     "TERM_QUADRATIC_DRAG",
@@ -78,6 +79,8 @@ TERM_ORBIT_EDDY = 8  # orbit (10), field (5), magnetic tensor by rows (9): kerne
 TERM_ORBIT_GRAVITY = 9  # orbit (10), principal moments (3)
 TERM_FIELD_MOMENTS = 10  # magnetic tensor (9), ⟨B Bᵀ⟩ (9), δ of ⟨Ḃ Bᵀ⟩ = [δ]× (3), node rate
 TERM_GRAVITY_MOMENTS = 11  # principal moments (3), 3μ/(2a³(1−e²)^{3/2}), normal (3), node rate
+TERM_ORBIT_EDDY_HARMONIC = 12  # orbit (10), magnetic tensor (9), then a harmonic field (its own
+# length, kernels/space.py: harmonic_size)
 
 TERM_PAYLOAD: dict[int, int] = {
     TERM_BODY_CONSTANT: 3,
@@ -91,9 +94,11 @@ TERM_PAYLOAD: dict[int, int] = {
     TERM_ORBIT_GRAVITY: 13,
     TERM_FIELD_MOMENTS: 22,
     TERM_GRAVITY_MOMENTS: 8,
+    TERM_ORBIT_EDDY_HARMONIC: 19,
 }
 """Length of each term code's payload (the stride of a torque program); a user term's
-parameters follow its fixed part, their number in it."""
+parameters follow its fixed part, their number in it, and a harmonic field follows the orbit
+and tensor of its term, its length given by its degree."""
 
 RATE_ONLY_TERMS = frozenset({TERM_BODY_CONSTANT, TERM_LINEAR_DRAG, TERM_QUADRATIC_DRAG})
 """Terms that read neither the attitude nor the time."""

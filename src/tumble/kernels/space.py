@@ -21,6 +21,7 @@ Payloads (floats):
 
 from __future__ import annotations
 
+import cmath
 import math
 
 import numpy as np
@@ -35,6 +36,10 @@ __all__ = [
     "field_at",
     "field_samples",
     "fields_along",
+    "harmonic_along",
+    "harmonic_field",
+    "harmonic_samples",
+    "harmonic_size",
     "orbit_at",
     "orbit_state",
     "orbit_states",
@@ -189,4 +194,127 @@ def field_samples(
             b, bdot = dipole_field(field, 0, angles[j], r, vel)
             out[i, j, 0], out[i, j, 1], out[i, j, 2] = b
             out[i, j, 3], out[i, j, 4], out[i, j, 5] = bdot
+    return out
+
+
+# ---------------------------------------------------------------------------------------------
+# The field of a spherical-harmonic model (the IGRF) to any degree.
+
+
+@jit(INLINE)
+def harmonic_size(degree: int) -> int:
+    """The payload length of a harmonic field of ``degree``: N, θ0, ω_E, the reference radius,
+    then C_nm and S_nm for 1 ≤ n ≤ N, 0 ≤ m ≤ n."""
+    return 4 + 2 * ((degree + 1) * (degree + 2) // 2 - 1)
+
+
+@jit(INLINE)
+def _earth_fixed_field(field: FloatArray, v: int, x: complex, y: complex, z: complex
+                       ) -> tuple[complex, complex, complex]:  # fmt: skip
+    """B = −∇V in Earth-fixed axes at the point (x, y, z) in units of the reference radius,
+    V = a Σ (a/r)^{n+1} Σ (C_nm cos mλ + S_nm sin mλ) P_nm(cos θ) with the unnormalised
+    Legendre functions P_nm (no Condon–Shortley phase): the recursions of the solid harmonics
+    V_nm, W_nm and the gradient of each term in them (Montenbruck & Gill, *Satellite Orbits*,
+    §3.2.4–3.2.5, eqs. (3.29)–(3.33), with GM/R → a). Rational in x, y, z throughout, so that
+    complex arguments give the derivative along their imaginary part exactly (the complex
+    step)."""
+    degree = int(field[v])
+    k = (degree + 1) * (degree + 2) // 2 - 1
+    c0, s0 = v + 4, v + 4 + k  # C_nm at c0 + n(n+1)/2 + m − 1, S_nm likewise
+    rho2 = x * x + y * y + z * z
+    inv2 = 1.0 / rho2
+    xr, yr, zr = x * inv2, y * inv2, z * inv2
+    bx = by = bz = 0.0 * x
+    vmm, wmm = 1.0 / cmath.sqrt(rho2), 0.0 * x
+    for j in range(degree + 2):  # the order of the solid harmonics V_kj, W_kj
+        if j > 0:
+            vmm, wmm = (2 * j - 1) * (xr * vmm - yr * wmm), (2 * j - 1) * (xr * wmm + yr * vmm)
+        v1, w1 = vmm, wmm
+        v2 = w2 = 0.0 * x
+        for kk in range(j, degree + 2):  # the degree of V_kj
+            if kk == j:
+                vk, wk = vmm, wmm
+            else:
+                f1, f2 = (2 * kk - 1) / (kk - j), (kk + j - 1) / (kk - j)
+                vk, wk = f1 * zr * v1 - f2 * inv2 * v2, f1 * zr * w1 - f2 * inv2 * w2
+                v2, w2, v1, w1 = v1, w1, vk, wk
+            n = kk - 1  # the degree of the terms V_kj enters
+            if n < 1:
+                continue
+            if j <= n:  # ∂/∂z of the term (n, j)
+                c, s = field[c0 + n * (n + 1) // 2 + j - 1], field[s0 + n * (n + 1) // 2 + j - 1]
+                bz += (n - j + 1) * (c * vk + s * wk)
+            m = j - 1  # the term (n, j − 1) through V_{n+1, m+1}
+            if 0 <= m <= n:
+                c, s = field[c0 + n * (n + 1) // 2 + m - 1], field[s0 + n * (n + 1) // 2 + m - 1]
+                if m == 0:
+                    bx += c * vk
+                    by += c * wk
+                else:
+                    bx += 0.5 * (c * vk + s * wk)
+                    by += 0.5 * (c * wk - s * vk)
+            m = j + 1  # the term (n, j + 1) through V_{n+1, m−1}
+            if m <= n:
+                c, s = field[c0 + n * (n + 1) // 2 + m - 1], field[s0 + n * (n + 1) // 2 + m - 1]
+                f = 0.5 * (n - m + 2) * (n - m + 1)
+                bx -= f * (c * vk + s * wk)
+                by -= f * (s * vk - c * wk)
+    return bx, by, bz
+
+
+_STEP = 1e-20  # the complex step [s]: far below any scale of the field along the orbit
+
+
+@jit(INLINE)
+def harmonic_field(field: FloatArray, v: int, angle: float, r: Vec3, vel: Vec3
+                   ) -> tuple[Vec3, Vec3]:  # fmt: skip
+    """B and dB/dt (inertial axes) of a harmonic field at position r moving at ``vel``, the
+    Earth turned by ``angle`` about ξ3 and turning at ω_E: with r_e = Rz(−angle) r and v_e its
+    rate in Earth-fixed axes, dB/dt = Rz(angle) (ω_E ξ3 × B_e + (∇B_e) v_e), the directional
+    derivative by the complex step B_e(r_e + i h v_e) (no cancellation: exact to round-off)."""
+    c, s = math.cos(angle), math.sin(angle)
+    we, radius = field[v + 2], field[v + 3]
+    # Earth-fixed position and velocity (relative to the turning Earth), in reference radii.
+    x, y, z = (c * r[0] + s * r[1]) / radius, (-s * r[0] + c * r[1]) / radius, r[2] / radius
+    u1 = vel[0] + we * r[1]  # v − ω_E ξ3 × r
+    u2 = vel[1] - we * r[0]
+    ux, uy, uz = (c * u1 + s * u2) / radius, (-s * u1 + c * u2) / radius, vel[2] / radius
+    bx, by, bz = _earth_fixed_field(field, v, complex(x, _STEP * ux), complex(y, _STEP * uy),
+                                    complex(z, _STEP * uz))  # fmt: skip
+    e1, e2, e3 = bx.real, by.real, bz.real
+    d1 = bx.imag / _STEP - we * e2  # (∇B_e) v_e + ω_E ξ3 × B_e
+    d2 = by.imag / _STEP + we * e1
+    d3 = bz.imag / _STEP
+    return (
+        (c * e1 - s * e2, s * e1 + c * e2, e3),
+        (c * d1 - s * d2, s * d1 + c * d2, d3),
+    )
+
+
+@jit(ENTRY)
+def harmonic_samples(
+    orbit: FloatArray, field: FloatArray, means: FloatArray, angles: FloatArray, t: float
+) -> FloatArray:
+    """:func:`field_samples` for a harmonic field: shape (n, m, 6)."""
+    out = np.empty((means.size, angles.size, 6))
+    raan = orbit[3] + orbit[7] * t
+    argp = orbit[4] + orbit[8] * t
+    for i in range(means.size):
+        r, vel = orbit_state(orbit, 0, means[i], raan, argp)
+        for j in range(angles.size):
+            b, bdot = harmonic_field(field, 0, angles[j], r, vel)
+            out[i, j, 0], out[i, j, 1], out[i, j, 2] = b
+            out[i, j, 3], out[i, j, 4], out[i, j, 5] = bdot
+    return out
+
+
+@jit(ENTRY)
+def harmonic_along(orbit: FloatArray, field: FloatArray, t: FloatArray) -> FloatArray:
+    """:func:`fields_along` for a harmonic field: (n, 6)."""
+    out = np.empty((t.size, 6))
+    for k in range(t.size):
+        r, vel = orbit_at(orbit, 0, t[k])
+        b, bdot = harmonic_field(field, 0, field[1] + field[2] * t[k], r, vel)
+        out[k, 0], out[k, 1], out[k, 2] = b
+        out[k, 3], out[k, 4], out[k, 5] = bdot
     return out

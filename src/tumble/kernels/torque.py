@@ -25,13 +25,14 @@ from tumble.kernels.codes import (
     TERM_INERTIAL_CONSTANT,
     TERM_LINEAR_DRAG,
     TERM_ORBIT_EDDY,
+    TERM_ORBIT_EDDY_HARMONIC,
     TERM_ORBIT_GRAVITY,
     TERM_PAYLOAD,
     TERM_QUADRATIC_DRAG,
     TERM_USER,
 )
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
-from tumble.kernels.space import ORBIT_SIZE, field_at, orbit_at
+from tumble.kernels.space import ORBIT_SIZE, field_at, harmonic_field, harmonic_size, orbit_at
 from tumble.kernels.user import call_user
 
 __all__ = [
@@ -141,11 +142,33 @@ def _orbit_eddy(
     whose induced dipole is M x, x = −dB/dt seen in the body = ω × B − Aᵀ dB/dt (B and its
     inertial rate from :func:`tumble.kernels.space.field_at`); payload [orbit, field, M]."""
     bi, ci = field_at(prog, v, prog, v + ORBIT_SIZE, t)
+    return _eddy_moment(f, prog, v + ORBIT_SIZE + 5, bi, ci, w1, w2, w3, a)
+
+
+@jit(INLINE)
+def _eddy_moment(
+    f: float, prog: FloatArray, vm: int, bi: Vec3, ci: Vec3, w1: float, w2: float, w3: float,
+    a: Mat3,
+) -> Vec3:  # fmt: skip
+    """f·(M x) × b for the inertial field bi and its rate ci, x = ω × b − Aᵀ ci (body axes),
+    M by rows at prog[vm : vm + 9]."""
     b1, b2, b3 = _to_body(a, bi[0], bi[1], bi[2])
     c1, c2, c3 = _to_body(a, ci[0], ci[1], ci[2])
     x1, x2, x3 = w2 * b3 - w3 * b2 - c1, w3 * b1 - w1 * b3 - c2, w1 * b2 - w2 * b1 - c3
-    m1, m2, m3 = _induced(prog, v + ORBIT_SIZE + 5, x1, x2, x3, b1, b2, b3)
+    m1, m2, m3 = _induced(prog, vm, x1, x2, x3, b1, b2, b3)
     return f * m1, f * m2, f * m3
+
+
+@jit(INLINE)
+def _orbit_eddy_harmonic(
+    f: float, prog: FloatArray, v: int, t: float, w1: float, w2: float, w3: float, a: Mat3
+) -> Vec3:
+    """:func:`_orbit_eddy` in a harmonic field (the IGRF,
+    :func:`tumble.kernels.space.harmonic_field`); payload [orbit, M, field]."""
+    r, vel = orbit_at(prog, v, t)
+    vf = v + ORBIT_SIZE + 9
+    bi, ci = harmonic_field(prog, vf, prog[vf + 1] + prog[vf + 2] * t, r, vel)
+    return _eddy_moment(f, prog, v + ORBIT_SIZE, bi, ci, w1, w2, w3, a)
 
 
 @jit(INLINE)
@@ -275,6 +298,8 @@ def _term(
         return _field_moments(f, prog, v, t, w1, w2, w3, a)
     if code == TERM_GRAVITY_MOMENTS:
         return _gravity_moments(f, prog, v, t, a)
+    if code == TERM_ORBIT_EDDY_HARMONIC:
+        return _orbit_eddy_harmonic(f, prog, v, t, w1, w2, w3, a)
     return math.nan, math.nan, math.nan
 
 
@@ -292,6 +317,8 @@ def next_term(prog: FloatArray, i: int) -> int:
     end = i + 2 + _SIZES[code]
     if code == TERM_USER:
         end += int(prog[i + 3])
+    elif code == TERM_ORBIT_EDDY_HARMONIC:
+        end += harmonic_size(int(prog[end]))
     return end
 
 

@@ -1,4 +1,5 @@
-"""A body in Earth orbit: orbits with J2 drift, the geomagnetic dipole, the magnetic tensors of
+"""A body in Earth orbit: orbits with J2 drift, the geomagnetic field (a dipole or the IGRF), the
+magnetic tensors of
 conducting shapes, and the eddy-current and gravity-gradient torques along the orbit and
 averaged over it.
 
@@ -19,6 +20,7 @@ from tumble.space.geomagnetic import (
     IGRF13_DIPOLE,
     REFERENCE_RADIUS,
     Dipole,
+    Igrf,
     greenwich_sidereal_angle,
 )
 from tumble.space.moments import field_moments, gravity_factor
@@ -46,6 +48,7 @@ __all__ = [
     "Dipole",
     "FieldMomentsTorque",
     "GravityMomentsTorque",
+    "Igrf",
     "Orbit",
     "OrbitEddyTorque",
     "OrbitGravityTorque",

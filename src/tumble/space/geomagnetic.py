@@ -1,4 +1,4 @@
-"""The geomagnetic field as a tilted dipole turning with the Earth.
+"""The geomagnetic field turning with the Earth: a tilted dipole, or the IGRF to any degree.
 
 The degree-1 part of the geomagnetic potential, V = a³ (g·r)/r³ with the Gauss vector
 g = (g11, h11, g10) in Earth-fixed axes and the reference radius a = 6371.2 km, gives the
@@ -10,6 +10,11 @@ field and its rate along an orbit are evaluated in compiled code (:mod:`tumble.k
 Coefficients: IGRF-13 (Alken et al., "International Geomagnetic Reference Field: the
 thirteenth generation", *Earth, Planets and Space* 73, 49 (2021)), the 2020.0 main field and
 its 2020–2025 secular variation, evaluated at the epoch.
+
+:class:`Igrf` is the whole International Geomagnetic Reference Field to degree N ≤ 13, its
+coefficients those of the maintained package ``ppigrf`` (the IGRF-14 table, 1900–2030,
+interpolated linearly in time as the IGRF prescribes), held fixed at the epoch (the secular
+variation changes the field by ~0.1 % a year).
 """
 
 from __future__ import annotations
@@ -17,6 +22,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from datetime import UTC, datetime
+from typing import Any
 
 import numpy as np
 
@@ -29,6 +35,7 @@ __all__ = [
     "IGRF13_DIPOLE",
     "REFERENCE_RADIUS",
     "Dipole",
+    "Igrf",
     "greenwich_sidereal_angle",
 ]
 
@@ -135,4 +142,85 @@ class Dipole:
 
         times = np.atleast_1d(np.asarray(t, dtype=float))
         out = fields_along(orbit.payload(), self.payload(), times)
+        return out[:, :3], out[:, 3:]
+
+
+@dataclass(frozen=True)
+class Igrf:
+    """The IGRF to degree ``degree``, turning with the Earth.
+
+    Parameters
+    ----------
+    degree : int
+        Highest degree N, 1–13 (1: the IGRF's own tilted dipole).
+    g, h : tuple of float
+        Schmidt semi-normalised Gauss coefficients [nT], (n, m) in the order n = 1 … N,
+        m = 0 … n (h_n0 = 0).
+    theta0 : float
+        The Earth's rotation angle (Greenwich sidereal) at t = 0 [rad].
+    rotation : float
+        The Earth's rotation rate [rad/s]; 0 freezes the field in inertial space.
+    """
+
+    degree: int
+    g: tuple[float, ...]
+    h: tuple[float, ...]
+    theta0: float = 0.0
+    rotation: float = EARTH_ROTATION
+
+    def __post_init__(self) -> None:
+        if not (isinstance(self.degree, int) and 1 <= self.degree <= 13):
+            raise ParameterError(f"field.degree must be an integer in 1–13, got {self.degree!r}")
+        size = (self.degree + 1) * (self.degree + 2) // 2 - 1
+        if len(self.g) != size or len(self.h) != size:
+            raise ParameterError(f"field: degree {self.degree} needs {size} g and h coefficients")
+        for name in ("theta0", "rotation"):
+            check_range(f"field.{name}", getattr(self, name))
+
+    @classmethod
+    def at(cls, epoch: datetime, degree: int = 13, rotation: bool = True) -> Igrf:
+        """The IGRF at ``epoch`` (1900–2030) to ``degree``, θ0 the sidereal angle of the
+        epoch; ``rotation`` False freezes it in inertial space."""
+        from ppigrf.ppigrf import read_shc  # the space extra's dependency
+
+        g_table, h_table = read_shc()
+        # Linear in time between the table's epochs (as ppigrf's own field does).
+        dates = [_utc(d.to_pydatetime()) for d in g_table.index]
+        epochs = np.array([d.timestamp() for d in dates])
+        year = _utc(epoch).timestamp()
+        if not epochs[0] <= year <= epochs[-1]:
+            raise ParameterError(
+                f"orbit.epoch must be within {dates[0].year}–{dates[-1].year} for the IGRF, "
+                f"got {epoch.date()}"
+            )
+        keys = [(n, m) for n in range(1, degree + 1) for m in range(n + 1)]
+        cols = list(g_table.columns)
+
+        def at_epoch(table: Any) -> tuple[float, ...]:
+            values = table.to_numpy(dtype=float)
+            return tuple(float(np.interp(year, epochs, values[:, cols.index(k)])) for k in keys)
+
+        return cls(degree, at_epoch(g_table), at_epoch(h_table), greenwich_sidereal_angle(epoch),
+                   EARTH_ROTATION if rotation else 0.0)  # fmt: skip
+
+    def payload(self, time_unit: float = 1.0) -> FloatArray:
+        """The compiled code's field payload (:func:`tumble.kernels.space.harmonic_size`): N,
+        θ0, ω_E times ``time_unit`` [s], the reference radius [m], then C_nm and S_nm [T], the
+        coefficients times the Schmidt factors √(2 (n − m)!/(n + m)!) (m > 0) of the
+        unnormalised Legendre functions."""
+        factors = [1.0 if m == 0 else math.sqrt(2.0 * math.factorial(n - m) / math.factorial(n + m))
+                   for n in range(1, self.degree + 1) for m in range(n + 1)]  # fmt: skip
+        scale = 1e-9 * np.array(factors)
+        return np.concatenate([
+            [float(self.degree), self.theta0, self.rotation * time_unit, REFERENCE_RADIUS],
+            scale * np.array(self.g), scale * np.array(self.h),
+        ])  # fmt: skip
+
+    def along(self, orbit: Orbit, t: ArrayLike) -> tuple[FloatArray, FloatArray]:
+        """B [T] and dB/dt [T/s] in inertial axes at the body's place at times t [s], each of
+        shape (n, 3)."""
+        from tumble.kernels.space import harmonic_along  # compiled: loaded on first use
+
+        times = np.atleast_1d(np.asarray(t, dtype=float))
+        out = harmonic_along(orbit.payload(), self.payload(), times)
         return out[:, :3], out[:, 3:]

@@ -8,8 +8,9 @@ commensurability among them), each torque is therefore the same expression with 
 replaced by their means:
 
 * S = ⟨B Bᵀ⟩ [T²] and D = ⟨Ḃ Bᵀ⟩ [T²/s], by quadrature over both phases (the mean anomaly on
-  a uniform grid doubled to convergence; the Earth angle on 8 points, exact, since B is linear
-  in the turning dipole; a dipole that does not turn is taken at its angle);
+  a uniform grid doubled to convergence; the Earth angle on max(8, 2N + 2) points, exact: the
+  field of degree N holds harmonics up to N of the Earth angle, the products up to 2N; a
+  field that does not turn is taken at its angle);
 * ⟨3μ r̂ r̂ᵀ/r³⟩ = c (1 − ĥ ĥᵀ) with c = 3μ/(2a³(1 − e²)^{3/2}), exactly (r⁻¹ is linear in
   cos ν and r̂ r̂ᵀ holds harmonics 0 and 2 of ν only).
 
@@ -27,7 +28,7 @@ import numpy as np
 
 from tumble._typing import FloatArray
 from tumble.errors import IntegrationError
-from tumble.space.geomagnetic import Dipole
+from tumble.space.geomagnetic import Dipole, Igrf
 from tumble.space.orbit import Orbit
 
 __all__ = ["field_moments", "gravity_factor"]
@@ -38,7 +39,7 @@ _MAX_NODES = 2**16
 
 
 def field_moments(
-    orbit: Orbit, dipole: Dipole, t: float = 0.0, rtol: float = 1e-12
+    orbit: Orbit, field: Dipole | Igrf, t: float = 0.0, rtol: float = 1e-12
 ) -> tuple[FloatArray, FloatArray]:
     """S = ⟨B Bᵀ⟩ [T²] and D = ⟨Ḃ Bᵀ⟩ [T²/s], inertial axes, over the mean anomaly and the
     Earth's rotation angle, with the node and perigee of time t [s].
@@ -49,18 +50,21 @@ def field_moments(
         When the mean-anomaly grid reaches 2¹⁶ nodes without converging (an orbit of e close
         to 1).
     """
-    from tumble.kernels.space import field_samples  # compiled: loaded on first use
+    from tumble.kernels.space import field_samples, harmonic_samples  # compiled: on first use
 
-    if dipole.rotation != 0.0:  # a phase of its own, averaged
-        angles = 2.0 * math.pi * np.arange(_EARTH_NODES) / _EARTH_NODES
-    else:  # a dipole fixed in inertial space: at its angle
-        angles = np.array([dipole.theta0])
+    degree = field.degree if isinstance(field, Igrf) else 1
+    samples = field_samples if degree == 1 and isinstance(field, Dipole) else harmonic_samples
+    if field.rotation != 0.0:  # a phase of its own, averaged
+        nodes = max(_EARTH_NODES, 2 * degree + 2)
+        angles = 2.0 * math.pi * np.arange(nodes) / nodes
+    else:  # a field fixed in inertial space: at its angle
+        angles = np.array([field.theta0])
     n_angles = angles.size
-    orbit_payload, field_payload = orbit.payload(), dipole.payload()
+    orbit_payload, field_payload = orbit.payload(), field.payload()
 
     def sums(n: int, offset: float) -> tuple[FloatArray, FloatArray]:
         means = 2.0 * math.pi * (np.arange(n) + offset) / n
-        s = field_samples(orbit_payload, field_payload, means, angles, t).reshape(-1, 6)
+        s = samples(orbit_payload, field_payload, means, angles, t).reshape(-1, 6)
         b, bdot = s[:, :3], s[:, 3:]
         return b.T @ b, bdot.T @ b
 

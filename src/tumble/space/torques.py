@@ -21,9 +21,10 @@ from tumble.kernels.codes import (
     TERM_FIELD_MOMENTS,
     TERM_GRAVITY_MOMENTS,
     TERM_ORBIT_EDDY,
+    TERM_ORBIT_EDDY_HARMONIC,
     TERM_ORBIT_GRAVITY,
 )
-from tumble.space.geomagnetic import Dipole
+from tumble.space.geomagnetic import Dipole, Igrf
 from tumble.space.moments import field_moments, gravity_factor
 from tumble.space.orbit import Orbit
 from tumble.torques import CompiledTerm, Torque
@@ -53,10 +54,10 @@ def _moments(name: str, value: object) -> FloatArray:
 
 
 @functools.lru_cache(maxsize=64)
-def _field_moments(orbit: Orbit, dipole: Dipole) -> tuple[FloatArray, FloatArray]:
+def _field_moments(orbit: Orbit, field: Dipole | Igrf) -> tuple[FloatArray, FloatArray]:
     """:func:`field_moments` at the epoch, once per orbit and field: the points of a sweep
     that vary only the body share them."""
-    S, D = field_moments(orbit, dipole)
+    S, D = field_moments(orbit, field)
     S.setflags(write=False)
     D.setflags(write=False)
     return S, D
@@ -65,13 +66,13 @@ def _field_moments(orbit: Orbit, dipole: Dipole) -> tuple[FloatArray, FloatArray
 @dataclass(frozen=True, eq=False)
 class OrbitEddyTorque(Torque):
     """The eddy-current moment (M x) × B on a conductor of magnetic tensor M moving along
-    ``orbit`` in the field of ``dipole``, x = ω × B − Aᵀ dB/dt (body axes): minus the rate of
+    ``orbit`` in the geomagnetic ``field``, x = ω × B − Aᵀ dB/dt (body axes): minus the rate of
     change of the field seen in the body (:mod:`tumble.space.conductors`).
 
     Parameters
     ----------
     orbit : Orbit
-    dipole : Dipole
+    field : Dipole or Igrf
     tensor : array_like, shape (3, 3)
         Magnetic tensor in body axes [S·m⁴ times whatever scales the model's moment].
     time_unit : float
@@ -79,7 +80,7 @@ class OrbitEddyTorque(Torque):
     """
 
     orbit: Orbit
-    dipole: Dipole
+    field: Dipole | Igrf
     tensor: FloatArray
     time_unit: float = 1.0
 
@@ -88,13 +89,16 @@ class OrbitEddyTorque(Torque):
         check_range("time_unit", self.time_unit, low=0.0)
 
     def compiled_terms(self) -> tuple[CompiledTerm, ...]:
-        payload = (*self.orbit.payload(self.time_unit), *self.dipole.payload(self.time_unit),
-                   *self.tensor.ravel())  # fmt: skip
+        orbit, field = self.orbit.payload(self.time_unit), self.field.payload(self.time_unit)
+        if isinstance(self.field, Igrf):
+            payload = (*orbit, *self.tensor.ravel(), *field)
+            return ((TERM_ORBIT_EDDY_HARMONIC, 1.0, tuple(float(v) for v in payload)),)
+        payload = (*orbit, *field, *self.tensor.ravel())
         return ((TERM_ORBIT_EDDY, 1.0, tuple(float(v) for v in payload)),)
 
     def averaged(self) -> FieldMomentsTorque:
         """The same moment averaged over the orbit and the Earth's rotation."""
-        S, D = _field_moments(self.orbit, self.dipole)
+        S, D = _field_moments(self.orbit, self.field)
         node_rate = self.orbit.secular_rates()[0]
         return FieldMomentsTorque(self.tensor, S, D * self.time_unit, node_rate * self.time_unit)
 

@@ -27,6 +27,7 @@ from tumble.models.schema import Built, Inputs, Key, ScenarioSchema, Section, Va
 from tumble.rotations import matrix_to_quat, quat_to_matrix
 from tumble.space import (
     Dipole,
+    Igrf,
     Orbit,
     OrbitEddyTorque,
     OrbitGravityTorque,
@@ -101,7 +102,7 @@ class Params(tb.Params):
     axes (columns), the scales and the epoch."""
 
     orbit: Orbit | None = None
-    dipole: Dipole | None = None
+    magnetic_field: Dipole | Igrf | None = None
     axes: FloatArray = field(default_factory=lambda: np.eye(3))
     T0: float = 1.0  # [s]
     I0: float = 1.0  # [kg m²]
@@ -218,16 +219,24 @@ _ORBIT = Section(
 _FIELD = Section(
     "field",
     (
-        Key("model", "text", '"dipole" or "none"', default="dipole", choices=("dipole", "none")),
+        Key(
+            "model",
+            "text",
+            '"dipole", "igrf" or "none"',
+            default="dipole",
+            choices=("dipole", "igrf", "none"),
+            doc="igrf: the whole IGRF to `degree` (needs the space extra's ppigrf)",
+        ),
         Key("g10", "number", "Gauss coefficient", "nT", None, doc="default: IGRF-13 at epoch"),
         Key("g11", "number", "Gauss coefficient", "nT", None),
         Key("h11", "number", "Gauss coefficient", "nT", None),
+        Key("degree", "integer", "an integer in [1, 13]", "", 13, doc="the IGRF's highest degree"),
         Key(
             "rotating",
             "boolean",
             "true or false",
             default=True,
-            doc="the dipole turns with the Earth",
+            doc="the field turns with the Earth",
         ),
     ),
     required=False,
@@ -323,9 +332,22 @@ def _from_tle(o: Mapping[str, Any]) -> tuple[Orbit, datetime]:
     return Orbit.from_tle(lines[0], lines[1], o["j2"])
 
 
-def _dipole(f: Mapping[str, Any] | None, epoch: datetime) -> Dipole | None:
+def _field(f: Mapping[str, Any] | None, epoch: datetime) -> Dipole | Igrf | None:
     if f is not None and f["model"] == "none":
         return None
+    if f is not None and f["model"] == "igrf":
+        given = [k for k in ("g10", "g11", "h11") if f[k] is not None]
+        if given:
+            raise ScenarioError(f'field.{given[0]} is for model = "dipole"; the IGRF has its own')
+        degree = f["degree"]
+        if not (isinstance(degree, int) and 1 <= degree <= 13):
+            raise ScenarioError(f"field.degree must be an integer in 1–13, got {degree!r}")
+        try:
+            return Igrf.at(epoch, degree, f["rotating"])
+        except ImportError:
+            raise ScenarioError(
+                'field.model = "igrf" needs the package ppigrf: pip install "tumble[space]"'
+            ) from None
     reference = Dipole.igrf(epoch)
     if f is None:
         return reference
@@ -418,7 +440,7 @@ def _build(inputs: Inputs) -> Built[Params, State]:
         check_range("body.mass [kg]", body["mass"], low=0.0)
     moments, R = principal_axes(body["inertia"])
     orbit, epoch = _orbit(orbit_keys)
-    dipole = _dipole(inputs["field"], epoch)
+    field_model = _field(inputs["field"], epoch)
     M = _magnetic_tensor(body, inputs["conductor"])
     w = _omega(ini)
     T0, I0 = 1.0 / float(np.linalg.norm(w)), float(moments[-1])
@@ -429,9 +451,9 @@ def _build(inputs: Inputs) -> Built[Params, State]:
         if M is None:
             raise ScenarioError("torques.eddy_current: give body.magnetic_tensor or [conductor] "
                                 "(or eddy_current = false)")  # fmt: skip
-        if dipole is None:
+        if field_model is None:
             raise ScenarioError('torques.eddy_current needs a field: [field] model = "none"')
-        eddy = OrbitEddyTorque(orbit, dipole, R.T @ M @ R * (T0 / I0), T0)
+        eddy = OrbitEddyTorque(orbit, field_model, R.T @ M @ R * (T0 / I0), T0)
         full.append(eddy)
         mean.append(eddy.averaged())
         labels.append("eddy current")
@@ -458,7 +480,7 @@ def _build(inputs: Inputs) -> Built[Params, State]:
         " + ".join(labels),
         mean[0] if len(mean) == 1 else TorqueSum(tuple(mean)),
         orbit=orbit,
-        dipole=dipole,
+        magnetic_field=field_model,
         axes=R,
         T0=T0,
         I0=I0,

@@ -200,6 +200,99 @@ def _quadratic(F: Mat3, x: FloatArray, v: int, i: int, j: int) -> float:
     return total
 
 
+_Parts = tuple[float, float, float, float]
+"""A term's averaged moment in the L-frame (across L: two; along L) and its power ω·M."""
+
+
+@jit(INLINE)
+def _weighted(w: Vec3, x: Vec3, y: Vec3) -> float:
+    """Σᵢ wᵢ xᵢ yᵢ."""
+    return w[0] * x[0] * y[0] + w[1] * x[1] * y[1] + w[2] * x[2] * y[2]
+
+
+@jit(INLINE)
+def _constant_parts(p: FloatArray, v: int, L: float, r: float, inv: Vec3, first: float, a: int,
+                    F: Mat3, inertial: bool) -> _Parts:  # fmt: skip
+    """A body-fixed moment m: ⟨ℓ·m⟩ = ⟨ℓ_a⟩ m_a along L, ω·m; an inertial one: itself, with
+    ⟨Ω⟩ = L r L̂ in the power."""
+    if inertial:
+        x1 = _column_dot(F, 0, p[v], p[v + 1], p[v + 2])
+        x2 = _column_dot(F, 1, p[v], p[v + 1], p[v + 2])
+        along = _column_dot(F, 2, p[v], p[v + 1], p[v + 2])
+        return x1, x2, along, L * r * along
+    b = _sorted_vector(p, p[v], p[v + 1], p[v + 2])
+    return 0.0, 0.0, b[a] * first, L * b[a] * first * inv[a]
+
+
+@jit(INLINE)
+def _drag_parts(p: FloatArray, v: int, L: float, inv: Vec3, sq: Vec3) -> _Parts:
+    """A linear drag −Bω: −⟨ℓᵀBω⟩ along L, −⟨ωᵀBω⟩ (only B's diagonal survives)."""
+    d, _ = _sorted(p, p, v)
+    return 0.0, 0.0, -L * _weighted(d, sq, inv), -L * L * _weighted(d, sq, (
+        inv[0] * inv[0], inv[1] * inv[1], inv[2] * inv[2]))  # fmt: skip
+
+
+@jit(INLINE)
+def _gravity_parts(p: FloatArray, v: int, code: int, t: float, sq: Vec3, F: Mat3) -> _Parts:
+    """The gravity gradient −c ĥ × (I ĥ): b = (c/2)(3⟨ℓᵀIℓ⟩ − tr I) on the m = 1 input
+    ĥ₃(ĥ₁, ĥ₂) of ĥĥᵀ, nothing along L nor in the power. The circular orbit's term has
+    c = 3n²/2 (⟨r̂r̂ᵀ⟩ = ½(1 − ĥĥᵀ)) and a fixed normal; the orbit-averaged one turns its
+    normal with the node."""
+    if code == TERM_GRAVITY_GRADIENT:
+        c = 1.5 * p[v + 3] ** 2
+        h1, h2, h3 = p[v + 11], p[v + 12], p[v + 13]
+    else:
+        c = p[v + 3]
+        cn, sn = math.cos(p[v + 7] * t), math.sin(p[v + 7] * t)
+        h1, h2, h3 = cn * p[v + 4] - sn * p[v + 5], sn * p[v + 4] + cn * p[v + 5], p[v + 6]
+    # The diagonal of Q diag(I) Qᵀ, Σₖ Qᵢₖ² Iₖ (the payload's moments in user order).
+    moments = (
+        p[6] ** 2 * p[v] + p[7] ** 2 * p[v + 1] + p[8] ** 2 * p[v + 2],
+        p[9] ** 2 * p[v] + p[10] ** 2 * p[v + 1] + p[11] ** 2 * p[v + 2],
+        p[12] ** 2 * p[v] + p[13] ** 2 * p[v + 1] + p[14] ** 2 * p[v + 2],
+    )
+    b = 0.5 * c * (3.0 * _weighted(moments, sq, (1.0, 1.0, 1.0)) - (p[v] + p[v + 1] + p[v + 2]))
+    u1, u2, u3 = (_column_dot(F, 0, h1, h2, h3), _column_dot(F, 1, h1, h2, h3),
+                  _column_dot(F, 2, h1, h2, h3))  # fmt: skip
+    return -b * u3 * u2, b * u3 * u1, 0.0, 0.0  # b L̂ × u₃(u₁, u₂)
+
+
+@jit(INLINE)
+def _field_parts(
+    p: FloatArray, v: int, t: float, L: float, r: float, inv: Vec3, sq: Vec3, pairs: Vec3,
+    odd: Vec3, a: int, F: Mat3,
+) -> _Parts:  # fmt: skip
+    """The orbit-averaged eddy moment ε:(M C), C = [ω]× S − [δ]× (module notes), with S and δ
+    turned with the node."""
+    d, o = _sorted(p, p, v)
+    trace = d[0] + d[1] + d[2]
+    ones = (1.0, 1.0, 1.0)
+    inv2 = (inv[0] * inv[0], inv[1] * inv[1], inv[2] * inv[2])
+    # γᵢ = 1/I_{i+1} − 1/I_{i+2}: (I⁻¹ℓ × ℓ)ᵢ = γᵢ ℓ_{i+1} ℓ_{i+2}.
+    gam = (inv[1] - inv[2], inv[2] - inv[0], inv[0] - inv[1])
+    mq = _weighted(d, sq, ones)  # ⟨ℓᵀMℓ⟩
+    a_s = 0.5 * L * (trace * r - _weighted(d, sq, inv))  # ⟨ℓᵀMω⟩, ⟨ω·ℓ⟩ = L r
+    # b = (3/2)⟨ℓᵀM(ω × ℓ)⟩: only M's entry across the encircled axis survives.
+    pa, qa = (a + 1) % 3, (a + 2) % 3
+    b_s = 1.5 * L * o[a] * (gam[qa] * odd[pa] + gam[pa] * odd[qa])
+    cross = _weighted(d, (gam[0] ** 2, gam[1] ** 2, gam[2] ** 2), pairs)  # ⟨(ω×ℓ)ᵀM(ω×ℓ)⟩/L²
+    G = _turned(F, p[v + 21] * t)
+    s_perp = 0.5 * (_quadratic(G, p, v + 9, 0, 0) + _quadratic(G, p, v + 9, 1, 1))
+    s3 = _quadratic(G, p, v + 9, 2, 2)
+    s13, s23 = _quadratic(G, p, v + 9, 0, 2), _quadratic(G, p, v + 9, 1, 2)
+    e1 = _column_dot(G, 0, p[v + 18], p[v + 19], p[v + 20])
+    e2 = _column_dot(G, 1, p[v + 18], p[v + 19], p[v + 20])
+    e3 = _column_dot(G, 2, p[v + 18], p[v + 19], p[v + 20])
+    a_d = 0.5 * (trace + mq)
+    ww, w2 = _weighted(d, sq, inv2), _weighted(ones, sq, inv2)
+    return (
+        a_s * s13 - b_s * s23 + a_d * e1,
+        a_s * s23 + b_s * s13 + a_d * e2,
+        -2.0 * s_perp * a_s + e3 * (trace - mq),
+        L * L * (s_perp * (ww - trace * w2 + cross) - s3 * cross) + 2.0 * e3 * a_s,
+    )
+
+
 @jit(KERNEL)
 def closed_mean(
     p: FloatArray, start: int, t: float, L: float, r: float, x3: bool, mc: float, amp: Vec3,
@@ -210,89 +303,24 @@ def closed_mean(
     (module notes); F a frame (by rows) whose third column is L̂."""
     inv = (1.0 / p[3], 1.0 / p[4], 1.0 / p[5])
     sq, pairs, odd, first, a = _moments(p[3], p[4], p[5], L, x3, mc, amp)
-    # γᵢ = 1/I_{i+1} − 1/I_{i+2}: (I⁻¹ℓ × ℓ)ᵢ = γᵢ ℓ_{i+1} ℓ_{i+2}.
-    gam = (inv[1] - inv[2], inv[2] - inv[0], inv[0] - inv[1])
-    pa, qa = (a + 1) % 3, (a + 2) % 3  # the axes across the encircled one
     tx = ty = tz = power = 0.0
     i = start + 1
     for _ in range(int(p[start])):
-        code = int(p[i])
-        f = p[i + 1]
-        v = i + 2
-        if code == TERM_BODY_CONSTANT:
-            b = _sorted_vector(p, p[v], p[v + 1], p[v + 2])
-            tz += f * b[a] * first
-            power += f * L * b[a] * first * inv[a]
-        elif code == TERM_INERTIAL_CONSTANT:
-            x1 = _column_dot(F, 0, p[v], p[v + 1], p[v + 2])
-            x2 = _column_dot(F, 1, p[v], p[v + 1], p[v + 2])
-            x3_ = _column_dot(F, 2, p[v], p[v + 1], p[v + 2])
-            tx += f * x1
-            ty += f * x2
-            tz += f * x3_
-            power += f * L * r * x3_  # ⟨Ω⟩ = L r L̂
+        code, f, v = int(p[i]), p[i + 1], i + 2
+        if code == TERM_BODY_CONSTANT or code == TERM_INERTIAL_CONSTANT:
+            parts = _constant_parts(p, v, L, r, inv, first, a, F, code == TERM_INERTIAL_CONSTANT)
         elif code == TERM_LINEAR_DRAG:
-            d, _ = _sorted(p, p, v)
-            q1 = d[0] * sq[0] * inv[0] + d[1] * sq[1] * inv[1] + d[2] * sq[2] * inv[2]
-            q2 = (d[0] * sq[0] * inv[0] * inv[0] + d[1] * sq[1] * inv[1] * inv[1]
-                  + d[2] * sq[2] * inv[2] * inv[2])  # fmt: skip
-            tz -= f * L * q1
-            power -= f * L * L * q2
+            parts = _drag_parts(p, v, L, inv, sq)
         elif code == TERM_GRAVITY_GRADIENT or code == TERM_GRAVITY_MOMENTS:
-            if code == TERM_GRAVITY_GRADIENT:  # ⟨r̂r̂ᵀ⟩ = ½(1 − ĥĥᵀ) over the circle
-                c = 1.5 * p[v + 3] ** 2
-                h1, h2, h3 = p[v + 11], p[v + 12], p[v + 13]
-            else:
-                c = p[v + 3]
-                cn, sn = math.cos(p[v + 7] * t), math.sin(p[v + 7] * t)
-                h1 = cn * p[v + 4] - sn * p[v + 5]
-                h2 = sn * p[v + 4] + cn * p[v + 5]
-                h3 = p[v + 6]
-            # Q diag(I) Qᵀ: its diagonal is Σₖ Qᵢₖ² Iₖ (the payload's moments, user order).
-            moments = (
-                p[6] ** 2 * p[v] + p[7] ** 2 * p[v + 1] + p[8] ** 2 * p[v + 2],
-                p[9] ** 2 * p[v] + p[10] ** 2 * p[v + 1] + p[11] ** 2 * p[v + 2],
-                p[12] ** 2 * p[v] + p[13] ** 2 * p[v + 1] + p[14] ** 2 * p[v + 2],
-            )
-            trace = p[v] + p[v + 1] + p[v + 2]
-            b = 0.5 * c * (3.0 * (moments[0] * sq[0] + moments[1] * sq[1]
-                                  + moments[2] * sq[2]) - trace)  # fmt: skip
-            u1, u2, u3 = (_column_dot(F, 0, h1, h2, h3), _column_dot(F, 1, h1, h2, h3),
-                          _column_dot(F, 2, h1, h2, h3))  # fmt: skip
-            # The m = 1 input of ĥĥᵀ is u₃(u₁, u₂); b ẑ × of it.
-            tx -= f * b * u3 * u2
-            ty += f * b * u3 * u1
+            parts = _gravity_parts(p, v, code, t, sq, F)
         elif code == TERM_FIELD_MOMENTS:
-            d, o = _sorted(p, p, v)
-            trace = d[0] + d[1] + d[2]
-            mq = d[0] * sq[0] + d[1] * sq[1] + d[2] * sq[2]  # ⟨ℓᵀMℓ⟩
-            mw = d[0] * sq[0] * inv[0] + d[1] * sq[1] * inv[1] + d[2] * sq[2] * inv[2]
-            a_s = 0.5 * L * (trace * r - mw)  # ⟨ℓᵀMω⟩ = L mw, ⟨ω·ℓ⟩ = L r
-            # b = (3/2)⟨ℓᵀM(ω × ℓ)⟩: only M's entry across the encircled axis survives.
-            b_s = 1.5 * L * o[a] * (gam[qa] * odd[pa] + gam[pa] * odd[qa])
-            ww = (d[0] * sq[0] * inv[0] ** 2 + d[1] * sq[1] * inv[1] ** 2
-                  + d[2] * sq[2] * inv[2] ** 2)  # fmt: skip
-            w2 = sq[0] * inv[0] ** 2 + sq[1] * inv[1] ** 2 + sq[2] * inv[2] ** 2
-            cross = (
-                d[0] * gam[0] ** 2 * pairs[0]
-                + d[1] * gam[1] ** 2 * pairs[1]
-                + d[2] * gam[2] ** 2 * pairs[2]
-            )  # ⟨(I⁻¹ℓ × ℓ)ᵀ M (I⁻¹ℓ × ℓ)⟩
-            G = _turned(F, p[v + 21] * t)
-            s_perp = 0.5 * (_quadratic(G, p, v + 9, 0, 0) + _quadratic(G, p, v + 9, 1, 1))
-            s3 = _quadratic(G, p, v + 9, 2, 2)
-            s13, s23 = _quadratic(G, p, v + 9, 0, 2), _quadratic(G, p, v + 9, 1, 2)
-            e1 = _column_dot(G, 0, p[v + 18], p[v + 19], p[v + 20])
-            e2 = _column_dot(G, 1, p[v + 18], p[v + 19], p[v + 20])
-            e3 = _column_dot(G, 2, p[v + 18], p[v + 19], p[v + 20])
-            a_d = 0.5 * (trace + mq)
-            tz += f * (-2.0 * s_perp * a_s + e3 * (trace - mq))
-            tx += f * (a_s * s13 - b_s * s23 + a_d * e1)
-            ty += f * (a_s * s23 + b_s * s13 + a_d * e2)
-            power += f * (L * L * (s_perp * (ww - trace * w2 + cross) - s3 * cross)
-                          + 2.0 * e3 * a_s)  # fmt: skip
+            parts = _field_parts(p, v, t, L, r, inv, sq, pairs, odd, a, F)
         else:
             return math.nan, math.nan, math.nan, math.nan
+        tx += f * parts[0]
+        ty += f * parts[1]
+        tz += f * parts[2]
+        power += f * parts[3]
         i = next_term(p, i)
         if i < 0:
             break

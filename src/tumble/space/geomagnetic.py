@@ -19,10 +19,10 @@ variation changes the field by ~0.1 % a year).
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from datetime import UTC, datetime
-from typing import Any
 
 import numpy as np
 
@@ -145,6 +145,18 @@ class Dipole:
         return out[:, :3], out[:, 3:]
 
 
+@functools.lru_cache(maxsize=1)
+def _igrf_table() -> tuple[FloatArray, list[tuple[int, int]], FloatArray, FloatArray]:
+    """ppigrf's IGRF table, read once: its epochs (POSIX seconds), its (n, m) columns and the
+    g and h values [nT] (epochs × columns)."""
+    from ppigrf.ppigrf import read_shc  # the space extra's dependency
+
+    g_table, h_table = read_shc()
+    years = np.array([_utc(d.to_pydatetime()).timestamp() for d in g_table.index])
+    columns = [(int(n), int(m)) for n, m in g_table.columns]
+    return years, columns, g_table.to_numpy(dtype=float), h_table.to_numpy(dtype=float)
+
+
 @dataclass(frozen=True)
 class Igrf:
     """The IGRF to degree ``degree``, turning with the Earth.
@@ -181,26 +193,18 @@ class Igrf:
     def at(cls, epoch: datetime, degree: int = 13, rotation: bool = True) -> Igrf:
         """The IGRF at ``epoch`` (1900–2030) to ``degree``, θ0 the sidereal angle of the
         epoch; ``rotation`` False freezes it in inertial space."""
-        from ppigrf.ppigrf import read_shc  # the space extra's dependency
-
-        g_table, h_table = read_shc()
-        # Linear in time between the table's epochs (as ppigrf's own field does).
-        dates = [_utc(d.to_pydatetime()) for d in g_table.index]
-        epochs = np.array([d.timestamp() for d in dates])
-        year = _utc(epoch).timestamp()
-        if not epochs[0] <= year <= epochs[-1]:
+        years, columns, g_table, h_table = _igrf_table()
+        when = _utc(epoch).timestamp()
+        if not years[0] <= when <= years[-1]:
+            first, last = (datetime.fromtimestamp(y, UTC).year for y in (years[0], years[-1]))
             raise ParameterError(
-                f"orbit.epoch must be within {dates[0].year}–{dates[-1].year} for the IGRF, "
-                f"got {epoch.date()}"
+                f"orbit.epoch must be within {first}–{last} for the IGRF, got {epoch.date()}"
             )
-        keys = [(n, m) for n in range(1, degree + 1) for m in range(n + 1)]
-        cols = list(g_table.columns)
-
-        def at_epoch(table: Any) -> tuple[float, ...]:
-            values = table.to_numpy(dtype=float)
-            return tuple(float(np.interp(year, epochs, values[:, cols.index(k)])) for k in keys)
-
-        return cls(degree, at_epoch(g_table), at_epoch(h_table), greenwich_sidereal_angle(epoch),
+        index = [columns.index((n, m)) for n in range(1, degree + 1) for m in range(n + 1)]
+        # Linear in time between the table's epochs, as ppigrf's own field is.
+        g, h = (tuple(float(np.interp(when, years, table[:, k])) for k in index)
+                for table in (g_table, h_table))  # fmt: skip
+        return cls(degree, g, h, greenwich_sidereal_angle(epoch),
                    EARTH_ROTATION if rotation else 0.0)  # fmt: skip
 
     def payload(self, time_unit: float = 1.0) -> FloatArray:

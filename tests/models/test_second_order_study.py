@@ -28,8 +28,11 @@ def test_slopes_and_errors_over_the_issue_range():
         for v, row in case["variables"].items():
             if row["slope_order1"] is None:  # exact for the averaged equations (R)
                 continue
-            # Measured (rtol 1e-12): orders 1.00–1.05 and 1.94–2.06; the band ±0.25.
+            # Measured (rtol 1e-12): order 1 at 1.00–1.05 (±0.25: the uncorrected equations are
+            # first order, no better); order 2 at 1.94–2.06, and 2.2–2.5 for the rotating
+            # field's triaxial setting over ε = 3e-3 … 1e-4, whose ε³ terms still show at the
+            # larger ε (its errors fall faster than ε²): at least second order, −0.25.
             assert abs(row["slope_order1"] - 1.0) <= 0.25, (name, v, row)
-            assert abs(row["slope_order2"] - 2.0) <= 0.25, (name, v, row)
+            assert row["slope_order2"] >= 2.0 - 0.25, (name, v, row)
             # Absolute, so relative to max(1, |x|) at most this: 9.7e-6 (σ) at ε = 1e-3.
             assert row["errors_order2"][at] <= 1e-5, (name, v, row)

@@ -1,6 +1,7 @@
 """The orbit and the geomagnetic field, compiled: a body's position and velocity on a Keplerian
-orbit with the secular drift of its node and perigee, and the field of a tilted dipole that turns
-with the Earth, with its time derivative along the orbit.
+orbit with the secular drift of its node and perigee, and the field of a tilted dipole or of a
+spherical-harmonic model (the IGRF) that turns with the Earth, with its time derivative along
+the orbit.
 
 The one definition of this physics: the torque terms of an orbiting body
 (:mod:`tumble.kernels.torque`) evaluate it inside the integrator's right-hand side, and
@@ -16,7 +17,10 @@ Payloads (floats):
   Ω and ω, and the gravitational parameter;
 * field, :data:`FIELD_SIZE` = 5: R³g1, R³g2, R³g3, θ0, ω_E — the dipole's Gauss vector
   g = (g11, h11, g10) in Earth-fixed axes times the reference radius cubed, the Earth's
-  rotation angle at t = 0 (Greenwich sidereal time) and its rate.
+  rotation angle at t = 0 (Greenwich sidereal time) and its rate;
+* harmonic field, :func:`harmonic_size` (degree N): N, θ0, ω_E, the reference radius a, then
+  the coefficients C_nm and S_nm [T] of the unnormalised Legendre functions, n = 1 … N,
+  m = 0 … n.
 """
 
 from __future__ import annotations

@@ -31,8 +31,11 @@ Jacobi functions over one period 4K; those of the first quarter give the other t
 shifts u + K, u + 2K, u + 3K, and within the quarter the points beyond K/2 come from K − u
 (DLMF 22.4.iii), so that dn is only ever formed where it is at least √k′ (:func:`_quarter`).
 
-Any other program (mode 0: a user's numba function, :mod:`tumble.kernels.user`) is averaged as
-the Python engine averages it: the product rule on all three phases, each refined in turn
+A program whose every term is polynomial in the attitude (constant moments, linear drag, the
+gravity gradient, an orbiting body's orbit-averaged moments: mode 2) skips the quadrature: its
+average has a closed form (:mod:`tumble.kernels.triaxial_closed`). Any other program (mode 0:
+a user's numba function, :mod:`tumble.kernels.user`) is averaged as the Python engine
+averages it: the product rule on all three phases, each refined in turn
 from 16, 4 and 4 nodes with the same test, the moment at its explicit time.
 
 Parameters of ``KIND_TRIAXIAL_AVERAGED``: ``[ε, rtol, L_floor, I1, I2, I3 (ascending),

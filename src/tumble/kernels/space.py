@@ -31,7 +31,7 @@ import math
 import numpy as np
 
 from tumble._typing import FloatArray
-from tumble.kernels.jit import ENTRY, INLINE, jit
+from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
 
 __all__ = [
     "FIELD_SIZE",
@@ -212,7 +212,7 @@ def harmonic_size(degree: int) -> int:
     return 4 + 2 * ((degree + 1) * (degree + 2) // 2 - 1)
 
 
-@jit(INLINE)
+@jit(KERNEL)
 def _earth_fixed_field(field: FloatArray, v: int, x: complex, y: complex, z: complex
                        ) -> tuple[complex, complex, complex]:  # fmt: skip
     """B = −∇V in Earth-fixed axes at the point (x, y, z) in units of the reference radius,
@@ -269,7 +269,7 @@ def _earth_fixed_field(field: FloatArray, v: int, x: complex, y: complex, z: com
 _STEP = 1e-20  # the complex step [s]: far below any scale of the field along the orbit
 
 
-@jit(INLINE)
+@jit(KERNEL)
 def harmonic_field(field: FloatArray, v: int, angle: float, r: Vec3, vel: Vec3
                    ) -> tuple[Vec3, Vec3]:  # fmt: skip
     """B and dB/dt (inertial axes) of a harmonic field at position r moving at ``vel``, the

@@ -159,7 +159,7 @@ def _eddy_moment(
     return f * m1, f * m2, f * m3
 
 
-@jit(INLINE)
+@jit(KERNEL)
 def _orbit_eddy_harmonic(
     f: float, prog: FloatArray, v: int, t: float, w1: float, w2: float, w3: float, a: Mat3
 ) -> Vec3:

@@ -20,7 +20,6 @@ from pathlib import Path
 from typing import Any
 
 from tumble.app.bench import run_benchmark
-from tumble.app.bench_orbit import markdown as orbit_markdown
 from tumble.io.output import atomic_write
 
 
@@ -130,8 +129,8 @@ def markdown(r: dict[str, Any]) -> str:
                 f"{v['threads']['1']['runs_per_s']:.4g} | {row['runs_per_s']:.4g} ({most}) | "
                 f"{row['efficiency']:.2f} |"
             )
-    if r.get("orbiting_body"):
-        lines += ["", orbit_markdown(r["orbiting_body"])]
+    # The orbiting body's study has a table of its own (benchmarks/orbit_year.py), which the
+    # performance page includes beside these.
     if "compile" in r:
         c = r["compile"]
         first = ", ".join(f"{k} {v:.1f} s" for k, v in c["first_call_s"].items())

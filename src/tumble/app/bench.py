@@ -745,8 +745,15 @@ def _startup(log: Callable[[str], None]) -> dict[str, float]:
         }
         for name in CATALOGUE:
             bad = Path(tmp) / f"{name}.toml"
-            # Every shipped template has one line "eps = <value>"; ε < 0 is out of range.
-            bad.write_text(re.sub(r"(?m)^eps = \S+", "eps = -1.0", template(name), count=1))
+            # Every normalised template has one line "eps = <value>" (ε < 0 is out of range);
+            # a physical one has "conductivity = <value>" instead (< 0 is out of range).
+            text, count = re.subn(r"(?m)^eps = \S+", "eps = -1.0", template(name), count=1)
+            if count == 0:
+                text, count = re.subn(r"(?m)^conductivity = \S+", "conductivity = -1.0", text,
+                                      count=1)  # fmt: skip
+            if count != 1:  # a valid scenario would time a whole run, not an input error
+                raise RuntimeError(f"start-up: no out-of-range key to set in {name}'s template")
+            bad.write_text(text)
             cases[f"input error: {name} parameter out of range"] = ["run", str(bad)]
         sweep = Path(tmp) / "sweep.toml"
         sweep.write_text(

@@ -209,6 +209,7 @@ BAD = [
     ("spin_period = 124.7", "spin_period = 0.0", "initial.spin_period"),
     ("[initial]", '[field]\nmodel = "igrf"\ndegree = 14\n\n[initial]', "field.degree"),
     ("[initial]", '[field]\nmodel = "igrf"\ng10 = -3e4\n\n[initial]', "field.g10"),
+    ("[initial]", '[field]\nmodel = "dipole"\ndegree = 4\n\n[initial]', "field.degree"),
     ('epoch = "2013-09-25T00:00:00Z"', 'epoch = "1890-01-01T00:00:00Z"\n\n[field]\n'
      'model = "igrf"', "orbit.epoch"),
 ]  # fmt: skip

@@ -230,7 +230,7 @@ _FIELD = Section(
         Key("g10", "number", "Gauss coefficient", "nT", None, doc="default: IGRF-13 at epoch"),
         Key("g11", "number", "Gauss coefficient", "nT", None),
         Key("h11", "number", "Gauss coefficient", "nT", None),
-        Key("degree", "integer", "an integer in [1, 13]", "", 13, doc="the IGRF's highest degree"),
+        Key("degree", "integer", "an integer in [1, 13]", "", None, doc="IGRF only; default 13"),
         Key(
             "rotating",
             "boolean",
@@ -339,7 +339,7 @@ def _field(f: Mapping[str, Any] | None, epoch: datetime) -> Dipole | Igrf | None
         given = [k for k in ("g10", "g11", "h11") if f[k] is not None]
         if given:
             raise ScenarioError(f'field.{given[0]} is for model = "dipole"; the IGRF has its own')
-        degree = f["degree"]
+        degree = 13 if f["degree"] is None else f["degree"]
         if not (isinstance(degree, int) and 1 <= degree <= 13):
             raise ScenarioError(f"field.degree must be an integer in 1–13, got {degree!r}")
         try:
@@ -348,6 +348,8 @@ def _field(f: Mapping[str, Any] | None, epoch: datetime) -> Dipole | Igrf | None
             raise ScenarioError(
                 'field.model = "igrf" needs the package ppigrf: pip install "tumble[space]"'
             ) from None
+    if f is not None and f["degree"] is not None:
+        raise ScenarioError('field.degree is for model = "igrf"; the dipole is degree 1')
     reference = Dipole.igrf(epoch)
     if f is None:
         return reference

@@ -219,7 +219,7 @@ def _earth_fixed_field(field: FloatArray, v: int, x: complex, y: complex, z: com
     V = a Σ (a/r)^{n+1} Σ (C_nm cos mλ + S_nm sin mλ) P_nm(cos θ) with the unnormalised
     Legendre functions P_nm (no Condon–Shortley phase): the recursions of the solid harmonics
     V_nm, W_nm and the gradient of each term in them (Montenbruck & Gill, *Satellite Orbits*,
-    §3.2.4–3.2.5, eqs. (3.29)–(3.33), with GM/R → a). Rational in x, y, z throughout, so that
+    §3.2.4–3.2.5, with GM/R → a). Rational in x, y, z throughout, so that
     complex arguments give the derivative along their imaginary part exactly (the complex
     step)."""
     degree = int(field[v])

@@ -40,9 +40,7 @@ __all__ = [
     "field_at",
     "field_samples",
     "fields_along",
-    "harmonic_along",
     "harmonic_field",
-    "harmonic_samples",
     "harmonic_size",
     "orbit_at",
     "orbit_state",
@@ -172,12 +170,30 @@ def orbit_states(orbit: FloatArray, t: FloatArray) -> FloatArray:
     return out
 
 
+@jit(INLINE)
+def _any_field(field: FloatArray, angle: float, r: Vec3, vel: Vec3) -> tuple[Vec3, Vec3]:
+    """B and dB/dt of the dipole payload (:data:`FIELD_SIZE` long) or of a harmonic one."""
+    if field.size == FIELD_SIZE:
+        return dipole_field(field, 0, angle, r, vel)
+    return harmonic_field(field, 0, angle, r, vel)
+
+
+@jit(INLINE)
+def _earth_angle(field: FloatArray, t: float) -> float:
+    """The Earth's rotation angle at time t of either payload."""
+    if field.size == FIELD_SIZE:
+        return field[3] + field[4] * t
+    return field[1] + field[2] * t
+
+
 @jit(ENTRY)
 def fields_along(orbit: FloatArray, field: FloatArray, t: FloatArray) -> FloatArray:
-    """B and dB/dt at the body's place at the times t (n,) → (n, 6)."""
+    """B and dB/dt at the body's place at the times t (n,) → (n, 6), for a dipole or a
+    harmonic field."""
     out = np.empty((t.size, 6))
     for k in range(t.size):
-        b, bdot = field_at(orbit, 0, field, 0, t[k])
+        r, vel = orbit_at(orbit, 0, t[k])
+        b, bdot = _any_field(field, _earth_angle(field, t[k]), r, vel)
         out[k, 0], out[k, 1], out[k, 2] = b
         out[k, 3], out[k, 4], out[k, 5] = bdot
     return out
@@ -188,14 +204,15 @@ def field_samples(
     orbit: FloatArray, field: FloatArray, means: FloatArray, angles: FloatArray, t: float
 ) -> FloatArray:
     """B and dB/dt at every mean anomaly ``means`` (n,) for every Earth angle ``angles``
-    (m,), with node and perigee drifted to time t: shape (n, m, 6)."""
+    (m,), with node and perigee drifted to time t: shape (n, m, 6), for a dipole or a harmonic
+    field."""
     out = np.empty((means.size, angles.size, 6))
     raan = orbit[3] + orbit[7] * t
     argp = orbit[4] + orbit[8] * t
     for i in range(means.size):
         r, vel = orbit_state(orbit, 0, means[i], raan, argp)
         for j in range(angles.size):
-            b, bdot = dipole_field(field, 0, angles[j], r, vel)
+            b, bdot = _any_field(field, angles[j], r, vel)
             out[i, j, 0], out[i, j, 1], out[i, j, 2] = b
             out[i, j, 3], out[i, j, 4], out[i, j, 5] = bdot
     return out
@@ -293,32 +310,3 @@ def harmonic_field(field: FloatArray, v: int, angle: float, r: Vec3, vel: Vec3
         (c * e1 - s * e2, s * e1 + c * e2, e3),
         (c * d1 - s * d2, s * d1 + c * d2, d3),
     )
-
-
-@jit(ENTRY)
-def harmonic_samples(
-    orbit: FloatArray, field: FloatArray, means: FloatArray, angles: FloatArray, t: float
-) -> FloatArray:
-    """:func:`field_samples` for a harmonic field: shape (n, m, 6)."""
-    out = np.empty((means.size, angles.size, 6))
-    raan = orbit[3] + orbit[7] * t
-    argp = orbit[4] + orbit[8] * t
-    for i in range(means.size):
-        r, vel = orbit_state(orbit, 0, means[i], raan, argp)
-        for j in range(angles.size):
-            b, bdot = harmonic_field(field, 0, angles[j], r, vel)
-            out[i, j, 0], out[i, j, 1], out[i, j, 2] = b
-            out[i, j, 3], out[i, j, 4], out[i, j, 5] = bdot
-    return out
-
-
-@jit(ENTRY)
-def harmonic_along(orbit: FloatArray, field: FloatArray, t: FloatArray) -> FloatArray:
-    """:func:`fields_along` for a harmonic field: (n, 6)."""
-    out = np.empty((t.size, 6))
-    for k in range(t.size):
-        r, vel = orbit_at(orbit, 0, t[k])
-        b, bdot = harmonic_field(field, 0, field[1] + field[2] * t[k], r, vel)
-        out[k, 0], out[k, 1], out[k, 2] = b
-        out[k, 3], out[k, 4], out[k, 5] = bdot
-    return out

@@ -79,6 +79,15 @@ def _decimal_year(epoch: datetime) -> float:
     return e.year + (e - start).total_seconds() / length
 
 
+def _along(orbit: Orbit, payload: FloatArray, t: ArrayLike) -> tuple[FloatArray, FloatArray]:
+    """B [T] and dB/dt [T/s] of a field payload at the body's place at times t [s]."""
+    from tumble.kernels.space import fields_along  # compiled: loaded on first use
+
+    times = np.atleast_1d(np.asarray(t, dtype=float))
+    out = fields_along(orbit.payload(), payload, times)
+    return out[:, :3], out[:, 3:]
+
+
 @dataclass(frozen=True)
 class Dipole:
     """A tilted geomagnetic dipole turning with the Earth.
@@ -138,11 +147,7 @@ class Dipole:
     def along(self, orbit: Orbit, t: ArrayLike) -> tuple[FloatArray, FloatArray]:
         """B [T] and dB/dt [T/s] in inertial axes at the body's place at times t [s], each of
         shape (n, 3)."""
-        from tumble.kernels.space import fields_along  # compiled: loaded on first use
-
-        times = np.atleast_1d(np.asarray(t, dtype=float))
-        out = fields_along(orbit.payload(), self.payload(), times)
-        return out[:, :3], out[:, 3:]
+        return _along(orbit, self.payload(), t)
 
 
 @functools.lru_cache(maxsize=1)
@@ -223,8 +228,4 @@ class Igrf:
     def along(self, orbit: Orbit, t: ArrayLike) -> tuple[FloatArray, FloatArray]:
         """B [T] and dB/dt [T/s] in inertial axes at the body's place at times t [s], each of
         shape (n, 3)."""
-        from tumble.kernels.space import harmonic_along  # compiled: loaded on first use
-
-        times = np.atleast_1d(np.asarray(t, dtype=float))
-        out = harmonic_along(orbit.payload(), self.payload(), times)
-        return out[:, :3], out[:, 3:]
+        return _along(orbit, self.payload(), t)

@@ -50,10 +50,9 @@ def field_moments(
         When the mean-anomaly grid reaches 2¹⁶ nodes without converging (an orbit of e close
         to 1).
     """
-    from tumble.kernels.space import field_samples, harmonic_samples  # compiled: on first use
+    from tumble.kernels.space import field_samples  # compiled: loaded on first use
 
     degree = field.degree if isinstance(field, Igrf) else 1
-    samples = field_samples if degree == 1 and isinstance(field, Dipole) else harmonic_samples
     if field.rotation != 0.0:  # a phase of its own, averaged
         nodes = max(_EARTH_NODES, 2 * degree + 2)
         angles = 2.0 * math.pi * np.arange(nodes) / nodes
@@ -64,7 +63,7 @@ def field_moments(
 
     def sums(n: int, offset: float) -> tuple[FloatArray, FloatArray]:
         means = 2.0 * math.pi * (np.arange(n) + offset) / n
-        s = samples(orbit_payload, field_payload, means, angles, t).reshape(-1, 6)
+        s = field_samples(orbit_payload, field_payload, means, angles, t).reshape(-1, 6)
         b, bdot = s[:, :3], s[:, 3:]
         return b.T @ b, bdot.T @ b
 

@@ -13,7 +13,7 @@ __all__ = ["main"]
 
 def main() -> None:
     """Entry point of the ``tumble`` console script."""
-    from tumble._interrupt import interrupted, watch
+    from tumble._interrupt import from_interrupt, interrupted, watch
 
     watch()
     try:
@@ -27,6 +27,10 @@ def main() -> None:
             interrupted()
         if exc.code == 2:  # bad input, refused before any work: nothing to tear down
             _exit_at_once(2)
+        raise
+    except Exception as exc:
+        if from_interrupt(exc):  # wrapped by Python or a library while the modules load
+            interrupted()
         raise
 
 

@@ -23,7 +23,7 @@ import threading
 from collections.abc import Callable, Iterator
 from types import FrameType
 
-__all__ = ["GRACE", "REDELIVER", "emergency_cleanup", "interrupted", "watch"]
+__all__ = ["GRACE", "REDELIVER", "emergency_cleanup", "from_interrupt", "interrupted", "watch"]
 
 GRACE = 0.3
 """Seconds the main thread has to take an interrupt before the watcher ends the process."""
@@ -43,6 +43,24 @@ def interrupted(message: str = "interrupted") -> None:
         sys.stdout.flush()
     os.write(2, (message + "\n").encode())
     os._exit(130)
+
+
+def from_interrupt(exc: BaseException) -> bool:
+    """Whether ``exc`` is, or was raised while handling, a KeyboardInterrupt.
+
+    Python wraps some exceptions in another one: an interrupt that lands while a class is
+    created (in ``__set_name__``, which pydantic's models call for every field while a module
+    loads) comes out as a RuntimeError "Error calling __set_name__" on Python 3.11, with the
+    interrupt as its cause. Such an error is the interrupt, not an internal error.
+    """
+    seen: set[int] = set()
+    link: BaseException | None = exc
+    while link is not None and id(link) not in seen:
+        if isinstance(link, KeyboardInterrupt):
+            return True
+        seen.add(id(link))
+        link = link.__cause__ or link.__context__
+    return False
 
 
 @contextlib.contextmanager

@@ -71,6 +71,10 @@ def _guarded(work: Callable[[], Any], interrupted: str = "interrupted") -> Any:
         err.print(f"[red]error:[/red] {_shortened(str(exc))}", highlight=False, soft_wrap=True)
         raise typer.Exit(exc.exit_code) from None
     except Exception as exc:
+        from tumble._interrupt import from_interrupt
+
+        if from_interrupt(exc):  # an interrupt that a library wrapped in its own error
+            _interrupted(interrupted)
         if os.environ.get("TUMBLE_DEBUG"):
             raise
         err.print(

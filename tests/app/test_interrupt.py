@@ -112,3 +112,49 @@ def test_an_interrupt_inside_a_gc_callback_is_not_lost():
     proc = subprocess.run([sys.executable, "-c", LOST_IN_GC], capture_output=True, text=True,
                           timeout=60)  # fmt: skip
     assert proc.stdout.strip() == "taken", (proc.stdout, proc.stderr)
+
+
+WRAPPED = """
+import sys
+from tumble.cli import _guarded
+
+class Field:
+    def __set_name__(self, owner, name):
+        raise KeyboardInterrupt  # as if Ctrl-C landed while pydantic built a model
+
+def load():
+    class Model:
+        x = Field()
+
+_guarded(load)
+print("not interrupted")
+"""
+
+
+def test_an_interrupt_wrapped_in_another_error_is_an_interrupt():
+    # Python 3.11 reports an exception raised in __set_name__ as a RuntimeError with the
+    # interrupt as its cause; a Ctrl-C while a pydantic model's module loaded read as an
+    # "internal error" with exit code 1.
+    proc = subprocess.run([sys.executable, "-c", WRAPPED], capture_output=True, text=True,
+                          timeout=60)  # fmt: skip
+    assert (proc.returncode, proc.stderr.strip(), proc.stdout) == (130, "interrupted", "")
+
+
+def test_from_interrupt_follows_causes_and_contexts():
+    from tumble._interrupt import from_interrupt
+
+    try:
+        try:
+            raise KeyboardInterrupt
+        except KeyboardInterrupt:
+            raise ValueError("while unwinding") from None  # suppressed, but still the context
+    except ValueError as exc:
+        wrapped = exc
+    assert from_interrupt(RuntimeError("wrapper").with_traceback(None)) is False
+    outer = RuntimeError("outer")
+    outer.__cause__ = wrapped
+    assert from_interrupt(outer) and from_interrupt(wrapped)
+    looped = RuntimeError("a")  # a cycle in the chain ends the walk
+    looped.__context__ = RuntimeError("b")
+    looped.__context__.__context__ = looped
+    assert from_interrupt(looped) is False

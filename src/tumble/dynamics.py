@@ -12,7 +12,7 @@ import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
 from tumble.bodies import RigidBody
-from tumble.kernels import KIND_RIGID_BODY, Kernel
+from tumble.kernels import KIND_ORBITING_BODY, KIND_RIGID_BODY, Kernel
 from tumble.kernels.rhs import euler_quaternion
 from tumble.rotations import quat_normalize, quat_to_matrix
 from tumble.torques import Torque
@@ -70,7 +70,8 @@ def rigid_body_kernel(inertia: ArrayLike, torque: Torque | None) -> Kernel | Non
     program = _NO_TORQUE if torque is None else torque.program
     if program is None:
         return None
-    return Kernel(KIND_RIGID_BODY, np.concatenate([np.asarray(inertia, dtype=float), program]))
+    kind = KIND_ORBITING_BODY if torque is not None and torque.along_orbit else KIND_RIGID_BODY
+    return Kernel(kind, np.concatenate([np.asarray(inertia, dtype=float), program]))
 
 
 def rigid_body_state(omega: FloatArray, q: FloatArray) -> FloatArray:

@@ -33,6 +33,7 @@ import numpy as np
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import ParameterError, check_range
 from tumble.kernels.codes import (
+    ORBIT_TERMS,
     RATE_ONLY_TERMS,
     TERM_BODY_CONSTANT,
     TERM_EDDY_CURRENT,
@@ -139,6 +140,12 @@ class Torque:
         read neither the attitude nor the time)."""
         terms = self.compiled_terms()
         return terms is not None and all(code in RATE_ONLY_TERMS for code, _, _ in terms)
+
+    @cached_property
+    def along_orbit(self) -> bool:
+        """Whether a compiled term is evaluated along an orbit (Kepler's equation, the
+        geomagnetic field): such a program runs on the orbiting body's right-hand side."""
+        return any(code in ORBIT_TERMS for code, _, _ in self.compiled_terms() or ())
 
     def __add__(self, other: Torque) -> Torque:
         if not isinstance(other, Torque):

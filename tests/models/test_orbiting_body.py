@@ -251,3 +251,20 @@ def test_an_orbit_term_is_not_averaged_as_if_it_had_one_forcing_phase():
     raw = tb.Params(p.inertia, 1.0, p.torque, p.forcing_period)
     with pytest.raises(ParameterError, match="averaged over the orbit first"):
         raw.averaging  # noqa: B018 (the property refuses)
+
+
+def test_only_the_orbiting_bodys_right_hand_side_has_the_orbit_terms():
+    # Kepler's equation and the field are compiled into one kind of right-hand side, so that
+    # the rigid body's (every other model's full run) compiles without them; a program with an
+    # orbit term given to the rigid body's anyway fails loudly (a NaN moment), never ignored.
+    from tumble.integrate import dop853
+    from tumble.kernels import KIND_ORBITING_BODY, KIND_RIGID_BODY, Kernel
+
+    _, request = _envisat(1.0, 3, ["full"])
+    kernel = request.params.kernel
+    assert kernel.kind == KIND_ORBITING_BODY
+    y0 = np.concatenate([request.initial.omega, request.initial.q])
+    good = dop853.solve(kernel, y0, 1.0, rtol=1e-8, atol=1e-10, record=False, dense=False)
+    misplaced = Kernel(KIND_RIGID_BODY, kernel.params)
+    bad = dop853.solve(misplaced, y0, 1.0, rtol=1e-8, atol=1e-10, record=False, dense=False)
+    assert (good.status, bad.status) == (0, -3)  # -3: the right-hand side is NaN at the start

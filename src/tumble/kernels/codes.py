@@ -22,12 +22,14 @@ __all__ = [
     "KIND_NONLINEAR_MOMENT",
     "KIND_NUTATION_AVERAGED",
     "KIND_NUTATION_ENGINE",
+    "KIND_ORBITING_BODY",
     "KIND_RIGID_BODY",
     "KIND_ROTATING_FIELD",
     "KIND_SPINNER_AVERAGED",
     "KIND_TRIAXIAL_AVERAGED",
     "MC_FLOOR",
     "NUTATION_SEPARATRIX_TOL",
+    "ORBIT_TERMS",
     "RATE_ONLY_TERMS",
     "REACHED_MARGIN",
     "SEPARATRIX_RTOL",
@@ -55,6 +57,9 @@ KIND_NUTATION_AVERAGED = 6
 KIND_SPINNER_AVERAGED = 7
 KIND_NUTATION_ENGINE = 8
 KIND_TRIAXIAL_AVERAGED = 9
+KIND_ORBITING_BODY = 10
+"""Euler's equations under a program with terms along an orbit (:data:`ORBIT_TERMS`): the
+rigid body's, with Kepler's equation and the geomagnetic field compiled in only here."""
 
 EVENT_NONE = 0
 EVENT_THETA_DOT = 1
@@ -81,6 +86,9 @@ TERM_FIELD_MOMENTS = 10  # magnetic tensor (9), ⟨B Bᵀ⟩ (9), δ of ⟨Ḃ B
 TERM_GRAVITY_MOMENTS = 11  # principal moments (3), 3μ/(2a³(1−e²)^{3/2}), normal (3), node rate
 TERM_ORBIT_EDDY_HARMONIC = 12  # orbit (10), magnetic tensor (9), then a harmonic field (its own
 # length, kernels/space.py: harmonic_size)
+
+ORBIT_TERMS = frozenset({TERM_ORBIT_EDDY, TERM_ORBIT_GRAVITY, TERM_ORBIT_EDDY_HARMONIC})
+"""The terms evaluated along an orbit at each time: only :data:`KIND_ORBITING_BODY` has them."""
 
 TERM_PAYLOAD: dict[int, int] = {
     TERM_BODY_CONSTANT: 3,

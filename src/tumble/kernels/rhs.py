@@ -11,6 +11,10 @@ Kinds
     body, the resisting-medium moment (1.2) of Medvedev (1987), the eddy-current moment (1.3)
     of Martynenko (1979), and the torques of the averaging engine). State ``[ω, q]``,
     parameters ``[I1, I2, I3, torque program]``.
+``KIND_ORBITING_BODY``
+    The same under a program with terms along an orbit (the eddy current in the geomagnetic
+    field, the gravity gradient of an elliptic orbit): compiled apart, so that only this kind
+    compiles Kepler's equation and the field's synthesis.
 ``KIND_ROTATING_FIELD``
     The rotating-field form (1.5) of Martynenko (1979), state ``[z, Γ by rows]``.
 ``KIND_NONLINEAR_MOMENT``
@@ -59,6 +63,7 @@ from tumble.kernels.codes import (
     KIND_NONLINEAR_MOMENT,
     KIND_NUTATION_AVERAGED,
     KIND_NUTATION_ENGINE,
+    KIND_ORBITING_BODY,
     KIND_RIGID_BODY,
     KIND_ROTATING_FIELD,
     KIND_SPINNER_AVERAGED,
@@ -76,7 +81,7 @@ from tumble.kernels.nutation import (
     separatrix_distance,
 )
 from tumble.kernels.spinner import spinner_averaged
-from tumble.kernels.torque import quaternion_rates, torque_moment
+from tumble.kernels.torque import orbit_torque_moment, quaternion_rates, torque_moment
 from tumble.kernels.triaxial import triaxial_averaged
 
 __all__ = [
@@ -113,11 +118,19 @@ def _rigid_body(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> None
     _euler(y, p[0], p[1], p[2], out[0], out[1], out[2], out)
 
 
+@jit(INLINE)
+def _orbiting_body(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> None:
+    """:func:`_rigid_body` for a program with terms along an orbit."""
+    orbit_torque_moment(p, 3, t, y, out)
+    _euler(y, p[0], p[1], p[2], out[0], out[1], out[2], out)
+
+
 @jit(ENTRY)
 def rigid_body(t: float, y: FloatArray, p: FloatArray) -> FloatArray:
-    """dy/dt of Euler's equations under a torque program, from Python: the integrator's code."""
+    """dy/dt of Euler's equations under any torque program (the terms along an orbit
+    included), from Python: the integrator's code."""
     out = np.empty_like(y)
-    _rigid_body(t, y, p, out)
+    _orbiting_body(t, y, p, out)
     return out
 
 
@@ -297,6 +310,8 @@ def _any_kind(kind: int, t: float, y: FloatArray, p: FloatArray, out: FloatArray
     integration fails)."""
     if kind == KIND_RIGID_BODY:
         _rigid_body(t, y, p, out)
+    elif kind == KIND_ORBITING_BODY:
+        _orbiting_body(t, y, p, out)
     elif kind == KIND_ROTATING_FIELD:
         _rotating_field(y, p, out)
     elif kind == KIND_NONLINEAR_MOMENT:
@@ -341,6 +356,7 @@ def _with_time(kernel: Callable[..., None]) -> Callable[..., None]:
 
 _BY_KIND: dict[int, Callable[..., None]] = {
     KIND_RIGID_BODY: _rigid_body,
+    KIND_ORBITING_BODY: _orbiting_body,
     KIND_ROTATING_FIELD: _with_time(_rotating_field),
     KIND_NONLINEAR_MOMENT: _nonlinear_moment,
     KIND_MEDIUM_AVERAGED: _with_time(_medium_averaged),

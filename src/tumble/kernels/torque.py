@@ -4,7 +4,8 @@ A :class:`tumble.torques.Torque` whose terms are all built in flattens into a *p
 ``[number of terms, (code, factor, payload...)...]`` (:attr:`tumble.torques.Torque.program`),
 with the codes and payloads below. Each term returns its body moment for the body rate ω and
 the body → inertial matrix ``a`` (formed once for all terms). The integrator's right-hand
-sides call :func:`torque_moment` at one state; Python calls the same terms through
+sides call :func:`torque_moment` at one state (:func:`orbit_torque_moment` where the program
+has terms along an orbit); Python calls the same terms through
 :func:`moments` (batches of states) and :func:`inertial_moments` (an averaging grid: every
 attitude at every time).
 """
@@ -12,6 +13,8 @@ attitude at every time).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import cast
 
 import numpy as np
 
@@ -40,6 +43,7 @@ __all__ = [
     "inertial_moments",
     "moments",
     "next_term",
+    "orbit_torque_moment",
     "quaternion_rates",
     "torque_moment",
 ]
@@ -272,7 +276,10 @@ def _term(
     a: Mat3,
 ) -> Vec3:  # fmt: skip
     """Body moment of one term times its factor f; NaN for an unknown code, which cannot come
-    from a Torque's program: the caller then fails loudly instead of ignoring the term."""
+    from a Torque's program: the caller then fails loudly instead of ignoring the term.
+
+    The terms along an orbit (Kepler's equation, the field's synthesis) are
+    :func:`_orbit_term`'s: only the orbiting body's right-hand side compiles them."""
     if code == TERM_BODY_CONSTANT:
         return f * prog[v], f * prog[v + 1], f * prog[v + 2]
     if code == TERM_LINEAR_DRAG:
@@ -290,17 +297,26 @@ def _term(
         return _eddy_current(f, prog, v, t, w1, w2, w3, a)
     if code == TERM_USER:
         return _user(f, prog, v, t, w1, w2, w3, a)
-    if code == TERM_ORBIT_EDDY:
-        return _orbit_eddy(f, prog, v, t, w1, w2, w3, a)
-    if code == TERM_ORBIT_GRAVITY:
-        return _orbit_gravity(f, prog, v, t, a)
     if code == TERM_FIELD_MOMENTS:
         return _field_moments(f, prog, v, t, w1, w2, w3, a)
     if code == TERM_GRAVITY_MOMENTS:
         return _gravity_moments(f, prog, v, t, a)
+    return math.nan, math.nan, math.nan
+
+
+@jit(INLINE)
+def _orbit_term(
+    code: int, f: float, prog: FloatArray, v: int, t: float, w1: float, w2: float, w3: float,
+    a: Mat3,
+) -> Vec3:  # fmt: skip
+    """:func:`_term`, and the terms along an orbit (:data:`~tumble.kernels.codes.ORBIT_TERMS`)."""
+    if code == TERM_ORBIT_EDDY:
+        return _orbit_eddy(f, prog, v, t, w1, w2, w3, a)
+    if code == TERM_ORBIT_GRAVITY:
+        return _orbit_gravity(f, prog, v, t, a)
     if code == TERM_ORBIT_EDDY_HARMONIC:
         return _orbit_eddy_harmonic(f, prog, v, t, w1, w2, w3, a)
-    return math.nan, math.nan, math.nan
+    return _term(code, f, prog, v, t, w1, w2, w3, a)
 
 
 # The program's stride by term code, as a tuple numba freezes into the compiled code.
@@ -322,33 +338,56 @@ def next_term(prog: FloatArray, i: int) -> int:
     return end
 
 
-@jit(INLINE)
-def _program(
-    prog: FloatArray, start: int, t: float, w1: float, w2: float, w3: float, a: Mat3
-) -> Vec3:
-    """Body moment of the program ``prog[start:]`` at body rate ω and attitude matrix a."""
-    m1 = m2 = m3 = 0.0
-    i = start + 1
-    for _ in range(int(prog[start])):
-        code = int(prog[i])
-        d1, d2, d3 = _term(code, prog[i + 1], prog, i + 2, t, w1, w2, w3, a)
-        m1 += d1
-        m2 += d2
-        m3 += d3
-        i = next_term(prog, i)
-        if i < 0:
-            break
-    return m1, m2, m3
+def _program_of(term: Callable[..., Vec3]) -> Callable[..., Vec3]:
+    """The body moment of a program whose terms ``term`` evaluates."""
+
+    @jit(INLINE)
+    def program(
+        prog: FloatArray, start: int, t: float, w1: float, w2: float, w3: float, a: Mat3
+    ) -> Vec3:
+        m1 = m2 = m3 = 0.0
+        i = start + 1
+        for _ in range(int(prog[start])):
+            code = int(prog[i])
+            d1, d2, d3 = term(code, prog[i + 1], prog, i + 2, t, w1, w2, w3, a)
+            m1 += d1
+            m2 += d2
+            m3 += d3
+            i = next_term(prog, i)
+            if i < 0:
+                break
+        return m1, m2, m3
+
+    return cast(Callable[..., Vec3], program)
+
+
+_program = _program_of(_term)
+"""Body moment of the program ``prog[start:]`` at body rate ω and attitude matrix a (no term
+along an orbit: those are NaN)."""
+_orbit_program = _program_of(_orbit_term)
+"""The same for any program, the terms along an orbit included."""
 
 
 @jit(KERNEL)
 def torque_moment(prog: FloatArray, start: int, t: float, y: FloatArray, out: FloatArray) -> None:
     """Body moment of the torque program ``prog[start:]`` at state ``y = [ω, q]`` into
-    out[0:3]."""
+    out[0:3]; a term along an orbit gives NaN (:func:`orbit_torque_moment` has them)."""
+    m1 = m2 = m3 = 0.0
     if prog[start] > 0:
         m1, m2, m3 = _program(prog, start, t, y[0], y[1], y[2], attitude_matrix(y))
-    else:
-        m1 = m2 = m3 = 0.0
+    out[0], out[1], out[2] = m1, m2, m3
+
+
+@jit(KERNEL)
+def orbit_torque_moment(
+    prog: FloatArray, start: int, t: float, y: FloatArray, out: FloatArray
+) -> None:
+    """:func:`torque_moment` for any program, the terms along an orbit included: compiled
+    apart, so that the other right-hand sides do not compile Kepler's equation and the
+    geomagnetic field."""
+    m1 = m2 = m3 = 0.0
+    if prog[start] > 0:
+        m1, m2, m3 = _orbit_program(prog, start, t, y[0], y[1], y[2], attitude_matrix(y))
     out[0], out[1], out[2] = m1, m2, m3
 
 
@@ -363,7 +402,9 @@ def moments(prog: FloatArray, t: FloatArray, q: FloatArray, w: FloatArray) -> Fl
         kq = k if q.shape[0] > 1 else 0
         kw = k if w.shape[0] > 1 else 0
         a = _quaternion_matrix(q[kq, 0], q[kq, 1], q[kq, 2], q[kq, 3])
-        out[k, 0], out[k, 1], out[k, 2] = _program(prog, 0, t[kt], w[kw, 0], w[kw, 1], w[kw, 2], a)
+        out[k, 0], out[k, 1], out[k, 2] = _orbit_program(
+            prog, 0, t[kt], w[kw, 0], w[kw, 1], w[kw, 2], a
+        )
     return out
 
 
@@ -379,7 +420,7 @@ def inertial_moments(prog: FloatArray, t: FloatArray, A: FloatArray, w: FloatArr
             A[k, 2, 0], A[k, 2, 1], A[k, 2, 2],
         )  # fmt: skip
         for j in range(t.size):
-            m1, m2, m3 = _program(prog, 0, t[j], w[k, 0], w[k, 1], w[k, 2], a)
+            m1, m2, m3 = _orbit_program(prog, 0, t[j], w[k, 0], w[k, 1], w[k, 2], a)
             out[k, j, 0] = a[0] * m1 + a[1] * m2 + a[2] * m3
             out[k, j, 1] = a[3] * m1 + a[4] * m2 + a[5] * m3
             out[k, j, 2] = a[6] * m1 + a[7] * m2 + a[8] * m3

@@ -19,7 +19,6 @@ from tumble._typing import FloatArray
 from tumble.bodies import RigidBody
 from tumble.errors import ParameterError, ScenarioError, check_range, shorten
 from tumble.kernels import Kernel
-from tumble.kernels.codes import TERM_ORBIT_EDDY, TERM_ORBIT_EDDY_HARMONIC, TERM_ORBIT_GRAVITY
 from tumble.models.base import Column, Declaration, frozen_array
 from tumble.models.schema import Built, Inputs, Key, ScenarioSchema, Section, Variant
 from tumble.rotations import euler313_to_matrix, matrix_to_quat, quat_normalize
@@ -248,9 +247,7 @@ class Params:
         of its explicit time dependence they average over too (None: none)."""
         if self.mean_torque is not None:
             return self.mean_torque, None
-        terms = self.torque.compiled_terms() or ()
-        orbit_terms = (TERM_ORBIT_EDDY, TERM_ORBIT_EDDY_HARMONIC, TERM_ORBIT_GRAVITY)
-        if any(code in orbit_terms for code, _, _ in terms):
+        if self.torque.along_orbit:
             # Two incommensurate fast phases (the orbit, the Earth's turn): the engine's one
             # forcing phase cannot average them, and a frozen time would not be an average.
             raise ParameterError(

@@ -198,3 +198,19 @@ def test_an_engine_case_runs_the_general_engine():
     form = req.model.averaged.form(req.params, req.initial, req.model.averaged.check(options))
     assert form.name == "numeric" and form.kernel is not None
     assert form.kernel(req.params).kind == KIND_SPINNER_AVERAGED
+
+
+def test_without_quadratic_drag_steps_over_a_user_terms_own_length():
+    # A user term's payload is [address, n, n parameters]: the walk takes its length from it
+    # (a fixed stride would have read a parameter as the next term's code). Not evaluated: the
+    # address is a placeholder.
+    from tumble.kernels.codes import TERM_BODY_CONSTANT, TERM_QUADRATIC_DRAG, TERM_USER
+
+    user = [TERM_USER, 1.0, 0.0, 3.0, 7.0, 8.0, 9.0]
+    drag = [TERM_QUADRATIC_DRAG, 1.0, *np.eye(3).ravel()]
+    body = [TERM_BODY_CONSTANT, 2.0, 0.1, 0.2, 0.3]
+    kernel = kernels.Kernel(kernels.KIND_RIGID_BODY, np.array([1.0, 2.0, 3.0, 3, *user, *drag,
+                                                               *body]))  # fmt: skip
+    smooth = heyoka_peer.without_quadratic_drag(kernel)
+    assert smooth is not None
+    np.testing.assert_array_equal(smooth.params, [1.0, 2.0, 3.0, 2, *user, *body])

@@ -12,7 +12,7 @@ from __future__ import annotations
 import itertools
 import math
 import time
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -26,9 +26,9 @@ from tumble.kernels.codes import (
     TERM_GRAVITY_GRADIENT,
     TERM_INERTIAL_CONSTANT,
     TERM_LINEAR_DRAG,
-    TERM_PAYLOAD,
     TERM_QUADRATIC_DRAG,
 )
+from tumble.kernels.torque import next_term
 
 __all__ = ["at_equal_error", "available", "heyoka_system", "propagate", "without_quadratic_drag"]
 
@@ -258,7 +258,7 @@ def without_quadratic_drag(kernel: Kernel) -> Kernel | None:
     p = kernel.params
     kept, i, dropped = [], 4, False
     for _ in range(int(p[3])):
-        end = i + 2 + TERM_PAYLOAD[int(p[i])]
+        end = int(cast(Any, next_term).py_func(p, i))  # a user term's payload has its length
         if int(p[i]) == TERM_QUADRATIC_DRAG:
             dropped = True
         else:

@@ -14,10 +14,11 @@ engine evaluates all quadrature nodes at once. A torque of the body rate alone
 Torques add (``t1 + t2``) and scale by numbers (``eps * t``), so the moment (1.2) of
 Medvedev (1987) is ``eps * (ConstantBodyTorque(a) + LinearDrag(b) + QuadraticDrag(s))``.
 
-The physics of the built-in torques is written once, compiled, in
-:mod:`tumble.kernels.torque`: a built-in torque, or a sum or multiple of them, flattens into a
-*program* (:attr:`Torque.program`) that the same compiled code evaluates whether the
-integrator or Python calls it. The classes here validate the parameters and pack them.
+The physics of the built-in torques is written once, compiled, in the registered terms of
+:mod:`tumble.kernels.terms` (one module each): a built-in torque, or a sum or multiple of them,
+flattens into a *program* (:attr:`Torque.program`) that the same compiled code evaluates whether
+the integrator or Python calls it. The classes here validate the parameters and pack them by the
+terms' declared layouts.
 """
 
 from __future__ import annotations
@@ -32,17 +33,7 @@ import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import ParameterError, check_range
-from tumble.kernels.codes import (
-    ORBIT_TERMS,
-    RATE_ONLY_TERMS,
-    TERM_BODY_CONSTANT,
-    TERM_EDDY_CURRENT,
-    TERM_GRAVITY_GRADIENT,
-    TERM_INERTIAL_CONSTANT,
-    TERM_LINEAR_DRAG,
-    TERM_QUADRATIC_DRAG,
-    TERM_USER,
-)
+from tumble.kernels.terms import CompiledTerm, compiled_term, flatten, term_of
 
 __all__ = [
     "CallableTorque",
@@ -61,10 +52,6 @@ __all__ = [
     "inertial_moments_on_grid",
     "split_compiled",
 ]
-
-
-CompiledTerm = tuple[int, float, tuple[float, ...]]
-"""One term of a compiled torque: (code, factor, payload)."""
 
 
 def _vector(name: str, value: ArrayLike) -> FloatArray:
@@ -87,7 +74,7 @@ class Torque:
     """Base class: a moment in body axes as a function of (t, q, ω).
 
     A built-in torque declares its terms (:meth:`compiled_terms`) and is evaluated by the
-    compiled code of :mod:`tumble.kernels.torque`. A subclass written in Python overrides
+    compiled terms of :mod:`tumble.kernels.terms`. A subclass written in Python overrides
     ``__call__``; it is then not compiled (unless it also overrides :meth:`compiled_terms`),
     and the integrators and the averaging engines call it from Python.
     """
@@ -121,31 +108,26 @@ class Torque:
         """The torque as the flat program the compiled code evaluates, or None if one of its
         terms is a Python function.
 
-        Layout: ``[number of terms, (code, factor, payload...)...]``, with the codes and
-        payloads of :mod:`tumble.kernels.torque`.
+        Layout: ``[number of terms, (code, factor, size, payload...)...]``, with the codes and
+        payloads of :mod:`tumble.kernels.terms`.
         """
         terms = self.compiled_terms()
         if terms is None:
             return None
-        flat: list[float] = [float(len(terms))]
-        for code, factor, payload in terms:
-            flat += [float(code), float(factor), *(float(v) for v in payload)]
-        program = np.array(flat)
-        program.setflags(write=False)
-        return program
+        return flatten(terms)
 
     @cached_property
     def rate_only(self) -> bool:
         """Whether the moment is known to depend on the body rate alone (compiled terms that
         read neither the attitude nor the time)."""
         terms = self.compiled_terms()
-        return terms is not None and all(code in RATE_ONLY_TERMS for code, _, _ in terms)
+        return terms is not None and all(term_of(code).rate_only for code, _, _ in terms)
 
     @cached_property
     def along_orbit(self) -> bool:
         """Whether a compiled term is evaluated along an orbit (Kepler's equation, the
         geomagnetic field): such a program runs on the orbiting body's right-hand side."""
-        return any(code in ORBIT_TERMS for code, _, _ in self.compiled_terms() or ())
+        return any(term_of(code).along_orbit for code, _, _ in self.compiled_terms() or ())
 
     def __add__(self, other: Torque) -> Torque:
         if not isinstance(other, Torque):
@@ -249,7 +231,7 @@ class ConstantBodyTorque(Torque):
         object.__setattr__(self, "moment", _vector("moment", self.moment))
 
     def compiled_terms(self) -> tuple[CompiledTerm, ...]:
-        return ((TERM_BODY_CONSTANT, 1.0, tuple(self.moment.tolist())),)
+        return (compiled_term("body_constant", {"moment": self.moment}),)
 
 
 @dataclass(frozen=True, eq=False)
@@ -268,7 +250,7 @@ class LinearDrag(Torque):
         object.__setattr__(self, "B", _matrix("B", self.B))
 
     def compiled_terms(self) -> tuple[CompiledTerm, ...]:
-        return ((TERM_LINEAR_DRAG, 1.0, tuple(self.B.ravel().tolist())),)
+        return (compiled_term("linear_drag", {"B": self.B}),)
 
 
 @dataclass(frozen=True, eq=False)
@@ -288,7 +270,7 @@ class QuadraticDrag(Torque):
         object.__setattr__(self, "S", _matrix("S", self.S))
 
     def compiled_terms(self) -> tuple[CompiledTerm, ...]:
-        return ((TERM_QUADRATIC_DRAG, 1.0, tuple(self.S.ravel().tolist())),)
+        return (compiled_term("quadratic_drag", {"S": self.S}),)
 
 
 @dataclass(frozen=True, eq=False)
@@ -397,7 +379,8 @@ class UserTorque(Torque):
                 f"the moment, got shape {np.shape(trial)}"
             )
         address = compiled_user_torque(function).address
-        return ((TERM_USER, 1.0, (float(address), float(len(values)), *values)),)
+        head = {"address": float(address), "n": float(len(values))}
+        return (compiled_term("user", head, tail=values),)
 
 
 @dataclass(frozen=True, eq=False)
@@ -442,7 +425,8 @@ class EddyCurrentTorque(Torque):
         return _evaluate(self.program, False, t, _IDENTITY, omega_inertial)
 
     def compiled_terms(self) -> tuple[CompiledTerm, ...]:
-        return ((TERM_EDDY_CURRENT, 1.0, (self.M0, self.omega, self.beta)),)
+        values = {"M0": self.M0, "rate": self.omega, "beta": self.beta}
+        return (compiled_term("eddy_current", values),)
 
 
 @dataclass(frozen=True, eq=False)
@@ -464,7 +448,7 @@ class ConstantInertialTorque(Torque):
         object.__setattr__(self, "moment", _vector("moment", self.moment))
 
     def compiled_terms(self) -> tuple[CompiledTerm, ...]:
-        return ((TERM_INERTIAL_CONSTANT, 1.0, tuple(self.moment.tolist())),)
+        return (compiled_term("inertial_constant", {"moment": self.moment}),)
 
 
 @dataclass(frozen=True, eq=False)
@@ -536,5 +520,5 @@ class GravityGradientTorque(Torque):
         return np.cos(u)[..., None] * e1 + np.sin(u)[..., None] * e2
 
     def compiled_terms(self) -> tuple[CompiledTerm, ...]:
-        payload = (*self.inertia.tolist(), self.n, self.u0, *self.basis.ravel().tolist())
-        return ((TERM_GRAVITY_GRADIENT, 1.0, payload),)
+        values = {"inertia": self.inertia, "n": self.n, "u0": self.u0, "basis": self.basis}
+        return (compiled_term("gravity_gradient", values),)

@@ -201,16 +201,17 @@ def test_an_engine_case_runs_the_general_engine():
 
 
 def test_without_quadratic_drag_steps_over_a_user_terms_own_length():
-    # A user term's payload is [address, n, n parameters]: the walk takes its length from it
-    # (a fixed stride would have read a parameter as the next term's code). Not evaluated: the
-    # address is a placeholder.
-    from tumble.kernels.codes import TERM_BODY_CONSTANT, TERM_QUADRATIC_DRAG, TERM_USER
+    # A user term's payload is [address, n, n parameters]: the walk takes its length from the
+    # term's header (a fixed stride would have read a parameter as the next term's code). Not
+    # evaluated: the address is a placeholder.
+    from tumble.kernels import terms
 
-    user = [TERM_USER, 1.0, 0.0, 3.0, 7.0, 8.0, 9.0]
-    drag = [TERM_QUADRATIC_DRAG, 1.0, *np.eye(3).ravel()]
-    body = [TERM_BODY_CONSTANT, 2.0, 0.1, 0.2, 0.3]
-    kernel = kernels.Kernel(kernels.KIND_RIGID_BODY, np.array([1.0, 2.0, 3.0, 3, *user, *drag,
-                                                               *body]))  # fmt: skip
+    user = terms.compiled_term("user", {"address": 0.0, "n": 3.0}, tail=[7.0, 8.0, 9.0])
+    drag = terms.compiled_term("quadratic_drag", {"S": np.eye(3)})
+    body = terms.compiled_term("body_constant", {"moment": [0.1, 0.2, 0.3]}, factor=2.0)
+    program = terms.flatten([user, drag, body])
+    kernel = kernels.Kernel(kernels.KIND_RIGID_BODY, np.concatenate([[1.0, 2.0, 3.0], program]))
     smooth = heyoka_peer.without_quadratic_drag(kernel)
     assert smooth is not None
-    np.testing.assert_array_equal(smooth.params, [1.0, 2.0, 3.0, 2, *user, *body])
+    expected = np.concatenate([[1.0, 2.0, 3.0], terms.flatten([user, body])])
+    np.testing.assert_array_equal(smooth.params, expected)

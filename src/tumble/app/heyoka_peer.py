@@ -12,23 +12,14 @@ from __future__ import annotations
 import itertools
 import math
 import time
-from typing import Any, cast
+from typing import Any
 
 import numpy as np
 
 from tumble import kernels
 from tumble._typing import FloatArray
 from tumble.errors import IntegrationError, ParameterError
-from tumble.kernels import Kernel
-from tumble.kernels.codes import (
-    TERM_BODY_CONSTANT,
-    TERM_EDDY_CURRENT,
-    TERM_GRAVITY_GRADIENT,
-    TERM_INERTIAL_CONSTANT,
-    TERM_LINEAR_DRAG,
-    TERM_QUADRATIC_DRAG,
-)
-from tumble.kernels.torque import next_term
+from tumble.kernels import Kernel, terms
 
 __all__ = ["at_equal_error", "available", "heyoka_system", "propagate", "without_quadratic_drag"]
 
@@ -152,67 +143,45 @@ def heyoka_system(kernel: Kernel) -> System | None:
     return None
 
 
+class _Frame:
+    """The attitude of the quaternion q (heyoka expressions, normalised here) as maps of
+    3-lists between inertial and body components."""
+
+    def __init__(self, hy: Any, q: list[Any]) -> None:
+        norm = hy.sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3])
+        q0, q1, q2, q3 = (c / norm for c in q)
+        self.A = [
+            [1.0 - 2.0 * (q2 * q2 + q3 * q3), 2.0 * (q1 * q2 - q0 * q3), 2.0 * (q1 * q3 + q0 * q2)],
+            [2.0 * (q1 * q2 + q0 * q3), 1.0 - 2.0 * (q1 * q1 + q3 * q3), 2.0 * (q2 * q3 - q0 * q1)],
+            [2.0 * (q1 * q3 - q0 * q2), 2.0 * (q2 * q3 + q0 * q1), 1.0 - 2.0 * (q1 * q1 + q2 * q2)],
+        ]
+
+    def to_body(self, x: list[Any]) -> list[Any]:
+        A = self.A
+        return [A[0][c] * x[0] + A[1][c] * x[1] + A[2][c] * x[2] for c in range(3)]
+
+    def to_inertial(self, x: list[Any]) -> list[Any]:
+        A = self.A
+        return [A[r][0] * x[0] + A[r][1] * x[1] + A[r][2] * x[2] for r in range(3)]
+
+
 def _torque(
     hy: Any, prog: list[float], start: int, t: Any, w: list[Any], q: list[Any]
 ) -> list[Any] | None:
-    """The torque program of :attr:`tumble.torques.Torque.program` as heyoka expressions;
-    None if a term is not analytic (the quadratic drag)."""
+    """The torque program of :attr:`tumble.torques.Torque.program` as heyoka expressions, each
+    term by its own transcription (``Term.peer``); None if a term has no Taylor form (the
+    quadratic drag)."""
     m: list[Any] = [0.0, 0.0, 0.0]
-    n_terms = int(prog[start])
-    if n_terms == 0:
+    program = np.asarray(prog, dtype=float)
+    if int(program[start]) == 0:
         return m
-    norm = hy.sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3])
-    q0, q1, q2, q3 = (c / norm for c in q)
-    A = [
-        [1.0 - 2.0 * (q2 * q2 + q3 * q3), 2.0 * (q1 * q2 - q0 * q3), 2.0 * (q1 * q3 + q0 * q2)],
-        [2.0 * (q1 * q2 + q0 * q3), 1.0 - 2.0 * (q1 * q1 + q3 * q3), 2.0 * (q2 * q3 - q0 * q1)],
-        [2.0 * (q1 * q3 - q0 * q2), 2.0 * (q2 * q3 + q0 * q1), 1.0 - 2.0 * (q1 * q1 + q2 * q2)],
-    ]
-
-    def to_body(x: list[Any]) -> list[Any]:
-        return [A[0][c] * x[0] + A[1][c] * x[1] + A[2][c] * x[2] for c in range(3)]
-
-    def matvec(v: int, x: list[Any]) -> list[Any]:
-        return [
-            prog[v + 3 * r] * x[0] + prog[v + 3 * r + 1] * x[1] + prog[v + 3 * r + 2] * x[2]
-            for r in range(3)
-        ]
-
-    i = start + 1
-    for _ in range(n_terms):
-        code, f, v = int(prog[i]), prog[i + 1], i + 2
-        if code == TERM_BODY_CONSTANT:
-            add, i = [f * prog[v + k] for k in range(3)], v + 3
-        elif code == TERM_LINEAR_DRAG:
-            add, i = [-f * c for c in matvec(v, w)], v + 9
-        elif code == TERM_QUADRATIC_DRAG:
-            return None  # w|w| is not analytic at w = 0: no Taylor form
-        elif code == TERM_INERTIAL_CONSTANT:
-            add, i = [f * c for c in to_body([prog[v + k] for k in range(3)])], v + 3
-        elif code == TERM_GRAVITY_GRADIENT:
-            i1, i2, i3, n, u0 = prog[v : v + 5]
-            cu, su = hy.cos(n * t + u0), hy.sin(n * t + u0)
-            r = to_body([cu * prog[v + 5 + k] + su * prog[v + 8 + k] for k in range(3)])
-            g = 3.0 * n * n * f
-            add = [
-                g * (i3 - i2) * r[1] * r[2],
-                g * (i1 - i3) * r[2] * r[0],
-                g * (i2 - i1) * r[0] * r[1],
-            ]
-            i = v + 14
-        elif code == TERM_EDDY_CURRENT:
-            m0, rate, beta = prog[v : v + 3]
-            h = [
-                math.sin(beta) * hy.cos(rate * t),
-                math.sin(beta) * hy.sin(rate * t),
-                math.cos(beta),
-            ]
-            x = [A[k][0] * w[0] + A[k][1] * w[1] + A[k][2] * w[2] for k in range(3)]
-            x[2] = x[2] - rate
-            hw = h[0] * x[0] + h[1] * x[1] + h[2] * x[2]
-            add, i = [f * m0 * c for c in to_body([h[k] * hw - x[k] for k in range(3)])], v + 3
-        else:
-            raise ParameterError(f"torque program: unknown term code {code}")
+    frame = _Frame(hy, q)
+    for term, f, payload in terms.walk(program, start):
+        if term.peer is None:
+            raise ParameterError(f"the heyoka peer has no transcription of the term {term.name!r}")
+        add = term.peer(term.values(payload), f, t, w, frame, hy)
+        if add is None:
+            return None
         m = [m[k] + add[k] for k in range(3)]
     return m
 
@@ -256,14 +225,11 @@ def without_quadratic_drag(kernel: Kernel) -> Kernel | None:
     if kernel.kind != kernels.KIND_RIGID_BODY:
         return None
     p = kernel.params
-    kept, i, dropped = [], 4, False
-    for _ in range(int(p[3])):
-        end = int(cast(Any, next_term).py_func(p, i))  # a user term's payload has its length
-        if int(p[i]) == TERM_QUADRATIC_DRAG:
-            dropped = True
-        else:
-            kept.append(p[i:end])
-        i = end
-    if not dropped:
+    kept = [
+        (terms.code(term.name), f, tuple(payload))
+        for term, f, payload in terms.walk(p, 3)
+        if term.name != "quadratic_drag"
+    ]
+    if len(kept) == int(p[3]):
         return None
-    return Kernel(kernel.kind, np.concatenate([p[:3], [float(len(kept))], *kept]))
+    return Kernel(kernel.kind, np.concatenate([p[:3], terms.flatten(kept)]))

@@ -56,14 +56,9 @@ from tumble.averaging.quadrature import AVERAGE_RTOL, AveragingError, BatchedTor
 from tumble.bodies import proper_sorting
 from tumble.errors import ParameterError, TumbleWarning, check_finite, check_range
 from tumble.kernels import KIND_TRIAXIAL_AVERAGED, Kernel
-from tumble.kernels.codes import (
-    DEGENERATE_RTOL,
-    TERM_EDDY_CURRENT,
-    TERM_FIELD_MOMENTS,
-    TERM_GRAVITY_GRADIENT,
-    TERM_USER,
-)
-from tumble.kernels.triaxial_closed import CLOSED_FORM_TERMS
+from tumble.kernels.codes import DEGENERATE_RTOL
+from tumble.kernels.params import TRIAXIAL_AVERAGED
+from tumble.kernels.terms import term_of
 from tumble.rotations import matrix_to_quat, quat_multiply
 from tumble.torques import (
     ConstantBodyTorque,
@@ -793,17 +788,13 @@ def triaxial_kernel(
     I1, I2, I3 = sorted(I_user.tolist())
     if min(I2 - I1, I3 - I2) <= DEGENERATE_RTOL * I3:
         return None
-    exact = True  # built-in terms only: the kernel's reductions apply
+    exact = True  # terms averaged at t or over their own phase: the kernel's reductions apply
     for code, _, payload in terms:
-        if code == TERM_USER:
+        term = term_of(code)
+        if term.quadrature_only:
             exact = False  # a user's numba function: the general product rule
             continue
-        if code == TERM_GRAVITY_GRADIENT:
-            rate = float(payload[3])  # the orbital rate n
-        elif code == TERM_EDDY_CURRENT:
-            rate = float(payload[1])  # the field's rate
-        else:
-            continue
+        rate = 0.0 if term.forcing_rate is None else term.forcing_rate(term.values(payload))
         if rate == 0.0:
             continue
         if forcing_period is None:
@@ -812,24 +803,20 @@ def triaxial_kernel(
         if round(cycles) < 1 or abs(cycles - round(cycles)) > _PERIOD_RTOL * cycles:
             return None
     omega_ref = 1.0 if forcing_period is None else 2.0 * math.pi / float(forcing_period)
-    floor = MOMENTUM_FLOOR * I3 * omega_ref
-    period = 0.0 if forcing_period is None else float(forcing_period)
-    closed = exact and all(_closed_form(code, payload) for code, _, payload in terms)
-    mode = 2.0 if closed else (1.0 if exact else 0.0)
-    head = [factor, rtol, floor, I1, I2, I3, *proper_sorting(I_user).ravel(), *I_user, mode,
-            period]  # fmt: skip
+    closed = exact and all(term_of(code).has_closed_form(payload) for code, _, payload in terms)
+    head = TRIAXIAL_AVERAGED.pack(
+        {
+            "eps": factor,
+            "rtol": rtol,
+            "floor": MOMENTUM_FLOOR * I3 * omega_ref,
+            "inertia": (I1, I2, I3),
+            "sorting": proper_sorting(I_user),
+            "user_inertia": I_user,
+            "mode": 2.0 if closed else (1.0 if exact else 0.0),
+            "period": 0.0 if forcing_period is None else float(forcing_period),
+        }
+    )
     return Kernel(KIND_TRIAXIAL_AVERAGED, np.concatenate([head, program]))
-
-
-def _closed_form(code: int, payload: tuple[float, ...]) -> bool:
-    """Whether the term's average has the closed form of :mod:`tumble.kernels.
-    triaxial_closed`: its codes, the field moments' magnetic tensor and ⟨B Bᵀ⟩ symmetric."""
-    if code not in CLOSED_FORM_TERMS:
-        return False
-    if code != TERM_FIELD_MOMENTS:
-        return True
-    M, S = np.reshape(payload[:9], (3, 3)), np.reshape(payload[9:18], (3, 3))
-    return all(np.abs(X - X.T).max() <= 1e-14 * np.abs(X).max() for X in (M, S))
 
 
 # ---------------------------------------------------------------------------------------------

@@ -1,12 +1,12 @@
 """Compiled right-hand sides: what the compiled integrator integrates.
 
 A :class:`Kernel` names a right-hand side of :mod:`tumble.kernels.rhs` by its kind and packs
-its parameters into one float array; the integrator of :mod:`tumble.integrate.dop853` runs
-it. The built-in torques are defined here too, once (:mod:`tumble.kernels.torque`): the
-classes of :mod:`tumble.torques` evaluate them from Python, the right-hand sides from
-compiled code. This package reads nothing of tumble but the errors, the types and one
-threshold of the rotations (where 3-1-3 angles are singular), so that every other part may build
-on it.
+its parameters into one float array, laid out as the kind declares (:mod:`tumble.kernels.kinds`,
+:mod:`tumble.kernels.params`); the integrator of :mod:`tumble.integrate.dop853` runs it. The
+torque terms are declared here too, one module each (:mod:`tumble.kernels.terms`): the classes
+of :mod:`tumble.torques` evaluate them from Python, the right-hand sides from compiled code.
+This package reads nothing of tumble but the errors, the types and one threshold of the
+rotations (where 3-1-3 angles are singular), so that every other part may build on it.
 """
 
 from __future__ import annotations
@@ -36,6 +36,7 @@ from tumble.kernels.codes import (
     KIND_SPINNER_AVERAGED,
     KIND_TRIAXIAL_AVERAGED,
 )
+from tumble.kernels.kinds import KINDS
 
 __all__ = [
     "EVENT_EQUATOR",
@@ -88,6 +89,17 @@ class Kernel:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "params", np.ascontiguousarray(self.params, dtype=np.float64))
+        declared = KINDS.get(int(self.kind))
+        if declared is None:
+            raise ParameterError(f"no right-hand side of kind {self.kind}")
+        size, n = declared.params.size, self.params.size
+        if n < size or (declared.params.tail is None and n != size):
+            raise ParameterError(
+                f"{declared.params.name}: {n} parameters, the layout declares {size}"
+                + (" and a tail" if declared.params.tail else "")
+            )
+        if not declared.allows(int(self.event)):
+            raise ParameterError(f"event {self.event} cannot watch {declared.name}")
 
     def check_end(self, t_end: float) -> None:
         """ParameterError if the run needs times beyond ``t_max``."""

@@ -1,10 +1,11 @@
-"""The integer codes compiled code dispatches on (right-hand sides, events, torque terms), and
-the thresholds it shares with Python (the Euler–Poinsot regimes of
-:mod:`tumble.unperturbed.euler_poinsot`, which the compiled averaged equations reproduce).
+"""The integer codes compiled code dispatches on (right-hand sides, events), and the thresholds
+it shares with Python (the Euler–Poinsot regimes of :mod:`tumble.unperturbed.euler_poinsot`,
+which the compiled averaged equations reproduce). The torque terms' codes are the registry's
+(:mod:`tumble.kernels.terms`).
 
-Plain constants, apart from the compiled code that reads them, so that the classes which
-pack a kernel's parameters (:mod:`tumble.torques`, the models' parameters) load without
-numba; the compiled modules and the Python ones import them from here, once.
+Plain constants, apart from the compiled code that reads them, so that the classes which pack a
+kernel's parameters (the models' parameters) load without numba; the compiled modules and the
+Python ones import them from here, once.
 """
 
 from __future__ import annotations
@@ -29,23 +30,8 @@ __all__ = [
     "KIND_TRIAXIAL_AVERAGED",
     "MC_FLOOR",
     "NUTATION_SEPARATRIX_TOL",
-    "ORBIT_TERMS",
-    "RATE_ONLY_TERMS",
     "REACHED_MARGIN",
     "SEPARATRIX_RTOL",
-    "TERM_BODY_CONSTANT",
-    "TERM_EDDY_CURRENT",
-    "TERM_FIELD_MOMENTS",
-    "TERM_GRAVITY_GRADIENT",
-    "TERM_GRAVITY_MOMENTS",
-    "TERM_INERTIAL_CONSTANT",
-    "TERM_LINEAR_DRAG",
-    "TERM_ORBIT_EDDY",
-    "TERM_ORBIT_EDDY_HARMONIC",
-    "TERM_ORBIT_GRAVITY",
-    "TERM_PAYLOAD",
-    "TERM_QUADRATIC_DRAG",
-    "TERM_USER",
 ]
 
 KIND_RIGID_BODY = 1
@@ -58,7 +44,7 @@ KIND_SPINNER_AVERAGED = 7
 KIND_NUTATION_ENGINE = 8
 KIND_TRIAXIAL_AVERAGED = 9
 KIND_ORBITING_BODY = 10
-"""Euler's equations under a program with terms along an orbit (:data:`ORBIT_TERMS`): the
+"""Euler's equations under a program with terms along an orbit (``Term.along_orbit``): the
 rigid body's, with Kepler's equation and the geomagnetic field compiled in only here."""
 
 EVENT_NONE = 0
@@ -72,44 +58,6 @@ EVENT_EQUATOR = 4
 """cos ϑ of a spinner's averaged state [k, ρ, σ, ϑ]: the equator, where its rates kink."""
 EVENT_TRIAXIAL_SEPARATRIX = 5
 """r − 1/I2 of the triaxial engine's state [L_ξ, r]: the separatrix."""
-
-TERM_BODY_CONSTANT = 1  # body moment (3)
-TERM_LINEAR_DRAG = 2  # B by rows (9)
-TERM_QUADRATIC_DRAG = 3  # S by rows (9)
-TERM_INERTIAL_CONSTANT = 4  # inertial moment (3)
-TERM_GRAVITY_GRADIENT = 5  # inertia (3), n, u0, rows e1, e2, normal (9)
-TERM_EDDY_CURRENT = 6  # M0, field rate ω, cone angle β
-TERM_USER = 7  # address of the compiled function, n, then its n parameters
-TERM_ORBIT_EDDY = 8  # orbit (10), field (5), magnetic tensor by rows (9): kernels/space.py
-TERM_ORBIT_GRAVITY = 9  # orbit (10), principal moments (3)
-TERM_FIELD_MOMENTS = 10  # magnetic tensor (9), ⟨B Bᵀ⟩ (9), δ of ⟨Ḃ Bᵀ⟩ = [δ]× (3), node rate
-TERM_GRAVITY_MOMENTS = 11  # principal moments (3), 3μ/(2a³(1−e²)^{3/2}), normal (3), node rate
-TERM_ORBIT_EDDY_HARMONIC = 12  # orbit (10), magnetic tensor (9), then a harmonic field (its own
-# length, kernels/space.py: harmonic_size)
-
-ORBIT_TERMS = frozenset({TERM_ORBIT_EDDY, TERM_ORBIT_GRAVITY, TERM_ORBIT_EDDY_HARMONIC})
-"""The terms evaluated along an orbit at each time: only :data:`KIND_ORBITING_BODY` has them."""
-
-TERM_PAYLOAD: dict[int, int] = {
-    TERM_BODY_CONSTANT: 3,
-    TERM_LINEAR_DRAG: 9,
-    TERM_QUADRATIC_DRAG: 9,
-    TERM_INERTIAL_CONSTANT: 3,
-    TERM_GRAVITY_GRADIENT: 14,
-    TERM_EDDY_CURRENT: 3,
-    TERM_USER: 2,
-    TERM_ORBIT_EDDY: 24,
-    TERM_ORBIT_GRAVITY: 13,
-    TERM_FIELD_MOMENTS: 22,
-    TERM_GRAVITY_MOMENTS: 8,
-    TERM_ORBIT_EDDY_HARMONIC: 19,
-}
-"""Length of each term code's payload (the stride of a torque program); a user term's
-parameters follow its fixed part, their number in it, and a harmonic field follows the orbit
-and tensor of its term, its length given by its degree."""
-
-RATE_ONLY_TERMS = frozenset({TERM_BODY_CONSTANT, TERM_LINEAR_DRAG, TERM_QUADRATIC_DRAG})
-"""Terms that read neither the attitude nor the time."""
 
 SEPARATRIX_RTOL = 1e-12
 """A state is on the separatrix when |L² − 2T·I2| ≤ SEPARATRIX_RTOL·L². L² − 2T·I2 from a

@@ -30,7 +30,8 @@ from tumble._typing import FloatArray
 from tumble.kernels.codes import NUTATION_SEPARATRIX_TOL
 from tumble.kernels.elliptic import ellipk_mc, elliprd, elliprj
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
-from tumble.kernels.torque import _program
+from tumble.kernels.params import NONLINEAR_MOMENT, NUTATION_ENGINE
+from tumble.kernels.torque import fixed_program
 
 __all__ = [
     "evaluate_separatrix_distance",
@@ -50,6 +51,10 @@ _QUAD_RTOL = 1e-15  # trapezoid fallback: successive doublings agree to this (ro
 _QUAD_MAX = 1 << 16  # … within this many nodes, else the averages are refused (NaN)
 _MAXITER = 200  # Newton–bisection steps of a root (bisection alone needs ≤ ~1100 from [−1, 1])
 
+_NM, _NE = NONLINEAR_MOMENT.at, NUTATION_ENGINE.at
+_NE_PROGRAM = NUTATION_ENGINE.size
+_TABLE = NONLINEAR_MOMENT.size  # the pressure table's knots τ_1..n, then its values Q_1..n
+
 # The fields of a well's result (a tuple, in this order).
 _OK, _U1, _U2, _M1, _M2, _K2, _MC, _K, _BETA, _CASE = range(10)
 
@@ -58,39 +63,40 @@ _OK, _U1, _U2, _M1, _M2, _K2, _MC, _K, _BETA, _CASE = range(10)
 def pressure(p: FloatArray, tau: float) -> float:
     """Q(τ)/Q(0) of the nonlinear-moment parameters: constant, exponential, or a table
     (piecewise linear between its knots; the run was checked to stay inside)."""
-    kind = int(p[6])
+    kind = int(p[_NM.pressure])
     if kind == 0:
         return 1.0
     if kind == 1:
-        return math.exp(tau) / p[7]
+        return math.exp(tau) / p[_NM.q0]
     lo, hi = _segment(p, tau)
-    n = int(p[8])
-    x0, x1 = p[9 + lo], p[9 + hi]
-    v0, v1 = p[9 + n + lo], p[9 + n + hi]
-    return (v0 + (v1 - v0) * (tau - x0) / (x1 - x0)) / p[7]
+    n = int(p[_NM.knots])
+    x0, x1 = p[_TABLE + lo], p[_TABLE + hi]
+    v0, v1 = p[_TABLE + n + lo], p[_TABLE + n + hi]
+    return (v0 + (v1 - v0) * (tau - x0) / (x1 - x0)) / p[_NM.q0]
 
 
 @jit(KERNEL)
 def pressure_rate(p: FloatArray, tau: float) -> float:
     """dQ/dτ / Q(0): for a table the slope of the segment τ lies in (right-continuous, as
     :meth:`tumble.models.inputs.nonlinear_moment.Pressure.rate`)."""
-    kind = int(p[6])
+    kind = int(p[_NM.pressure])
     if kind == 0:
         return 0.0
     if kind == 1:
-        return math.exp(tau) / p[7]
+        return math.exp(tau) / p[_NM.q0]
     lo, hi = _segment(p, tau)
-    n = int(p[8])
-    return (p[9 + n + hi] - p[9 + n + lo]) / (p[9 + hi] - p[9 + lo]) / p[7]
+    n = int(p[_NM.knots])
+    rise = p[_TABLE + n + hi] - p[_TABLE + n + lo]
+    return rise / (p[_TABLE + hi] - p[_TABLE + lo]) / p[_NM.q0]
 
 
 @jit(KERNEL)
 def _segment(p: FloatArray, tau: float) -> tuple[int, int]:
     """Knots (lo, hi = lo + 1) of the table segment holding τ, the right one at a knot."""
-    lo, hi = 0, int(p[8]) - 1
+    lo, hi = 0, int(p[_NM.knots]) - 1
     while hi - lo > 1:
         mid = (lo + hi) // 2
-        if p[9 + mid] <= tau:
+        if p[_TABLE + mid] <= tau:
             lo = mid
         else:
             hi = mid
@@ -456,7 +462,7 @@ def nutation_averaged(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -
     form: H′ = ε(−2d(H − a⟨u⟩ − b⟨u²⟩) + a′⟨u⟩ + b′⟨u²⟩), R′ = −ενR,
     G′ = −ε(d(G − R⟨u⟩) + νR⟨u⟩), a′ = εa0 Q′/Q(0), b′ = εb0 Q′/Q(0); NaN where the averages
     do not exist (no motion, a separatrix), so that the step is rejected."""
-    eps, d, nu = p[3], p[4], p[5]
+    eps, d, nu = p[_NM.eps], p[_NM.d], p[_NM.nu]
     H, R, G, a, b = y[0], y[1], y[2], y[3], y[4]
     w = well_averages(R, G, a, b, H, p[p.size - 1])
     if w[_OK] == 0.0:
@@ -465,7 +471,7 @@ def nutation_averaged(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -
         return
     m1, m2 = w[_M1], w[_M2]
     rate = pressure_rate(p, eps * t)
-    da, db = p[1] * rate, p[2] * rate
+    da, db = p[_NM.a] * rate, p[_NM.b] * rate
     out[0] = eps * (-2.0 * d * (H - a * m1 - b * m2) + da * m1 + db * m2)
     out[1] = -eps * nu * R
     out[2] = -eps * (d * (G - R * m1) + nu * R * m1)
@@ -499,7 +505,9 @@ def _spin_mean(
         for j in range(n):
             phi = (j + offset) * step
             cf, sf = math.cos(phi), math.sin(phi)
-            m1, m2, m3 = _program(p, start, tau, ps * sf + thd * cf, ps * cf - thd * sf, r, eye)
+            m1, m2, m3 = fixed_program(
+                p, start, tau, ps * sf + thd * cf, ps * cf - thd * sf, r, eye
+            )
             a0 += m1 * cf - m2 * sf
             a1 += m3
             a2 += (m1 * sf + m2 * cf) * s + m3 * c
@@ -603,9 +611,9 @@ def nutation_engine(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> 
     setting: H′ = ε⟨Φθθ' + Φz·W^z⟩, z′ = ε⟨Φz⟩, Φ_a, Φ_b the pressure's law. Parameters: the
     full kernel's, then [u_hint, rtol, torque program]; NaN where the averages do not exist or
     do not converge, so that the step is rejected."""
-    eps = p[3]
-    base = 9 + 2 * int(p[8])
-    u_hint, rtol = p[base], p[base + 1]
+    eps = p[_NM.eps]
+    base = _TABLE + 2 * int(p[_NM.knots])
+    u_hint, rtol = p[base + _NE.u_hint], p[base + _NE.rtol]
     H, R, G, a, b = y[0], y[1], y[2], y[3], y[4]
     w = well_averages(R, G, a, b, H, u_hint, False)
     ok = w[_OK] == 1.0
@@ -617,9 +625,9 @@ def nutation_engine(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> 
         q0 = -2.0 * b - R * R - 2.0 * H + s * q1 - c4 * pr
         tau = eps * t
         rate = pressure_rate(p, tau)
-        da, db = p[1] * rate, p[2] * rate
-        ok, g, pR, pG = _engine_averages(p, base + 2, tau, rtol, p[0], R, G, da, db, u1, u2,
-                                         c4, q1, q0)  # fmt: skip
+        da, db = p[_NM.a] * rate, p[_NM.b] * rate
+        ok, g, pR, pG = _engine_averages(p, base + _NE_PROGRAM, tau, rtol, p[_NM.mu], R, G, da,
+                                         db, u1, u2, c4, q1, q0)  # fmt: skip
     if not ok:
         for j in range(5):
             out[j] = math.nan

@@ -73,15 +73,25 @@ from tumble.kernels.codes import (
     SEPARATRIX_RTOL,
 )
 from tumble.kernels.elliptic import elliprd, elliprf
+from tumble.kernels.frames import quaternion_rates
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, OVERLOAD, jit
+from tumble.kernels.layout import mat_vec, vec3
 from tumble.kernels.nutation import (
     nutation_averaged,
     nutation_engine,
     pressure,
     separatrix_distance,
 )
+from tumble.kernels.params import (
+    FIELD_AVERAGED,
+    MEDIUM_AVERAGED,
+    NONLINEAR_MOMENT,
+    RIGID_BODY,
+    ROTATING_FIELD,
+    TRIAXIAL_AVERAGED,
+)
 from tumble.kernels.spinner import spinner_averaged
-from tumble.kernels.torque import orbit_torque_moment, quaternion_rates, torque_moment
+from tumble.kernels.torque import orbit_torque_moment, torque_moment
 from tumble.kernels.triaxial import triaxial_averaged
 
 __all__ = [
@@ -95,6 +105,13 @@ __all__ = [
     "rotating_field",
     "symmetric_body",
 ]
+
+
+_RB, _RF, _NM = RIGID_BODY.at, ROTATING_FIELD.at, NONLINEAR_MOMENT.at
+_MA, _FA = MEDIUM_AVERAGED.at, FIELD_AVERAGED.at
+_RB_PROGRAM = RIGID_BODY.size
+_FA_I2 = FIELD_AVERAGED.at.inertia + 1
+_TA_I2 = TRIAXIAL_AVERAGED.at.inertia + 1
 
 
 @jit(INLINE)
@@ -114,15 +131,17 @@ def _euler(
 def _rigid_body(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> None:
     """Euler's equations with quaternions under the torque program; p = [I1, I2, I3,
     torque program]."""
-    torque_moment(p, 3, t, y, out)
-    _euler(y, p[0], p[1], p[2], out[0], out[1], out[2], out)
+    torque_moment(p, _RB_PROGRAM, t, y, out)
+    i1, i2, i3 = vec3(p, _RB.inertia)
+    _euler(y, i1, i2, i3, out[0], out[1], out[2], out)
 
 
 @jit(INLINE)
 def _orbiting_body(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> None:
     """:func:`_rigid_body` for a program with terms along an orbit."""
-    orbit_torque_moment(p, 3, t, y, out)
-    _euler(y, p[0], p[1], p[2], out[0], out[1], out[2], out)
+    orbit_torque_moment(p, _RB_PROGRAM, t, y, out)
+    i1, i2, i3 = vec3(p, _RB.inertia)
+    _euler(y, i1, i2, i3, out[0], out[1], out[2], out)
 
 
 @jit(ENTRY)
@@ -147,15 +166,14 @@ def euler_quaternion(y: FloatArray, inertia: FloatArray, moment: FloatArray) -> 
 def _rotating_field(y: FloatArray, p: FloatArray, out: FloatArray) -> None:
     """Martynenko (1979) eq. (1.5), with the sign of its field term corrected:
     I z′ = I z × z + ε Γᵀ ĥĥ (Γ z − ξ3), Γ′ = Γ ẑ − ξ̂3 Γ; p = [I1, I2, I3, ε, ĥĥ by rows]."""
-    i1, i2, i3, eps = p[0], p[1], p[2], p[3]
+    i1, i2, i3 = vec3(p, _RF.inertia)
+    eps = p[_RF.eps]
     z1, z2, z3 = y[0], y[1], y[2]
     g = y[3:12]
     r1 = g[0] * z1 + g[1] * z2 + g[2] * z3
     r2 = g[3] * z1 + g[4] * z2 + g[5] * z3
     r3 = g[6] * z1 + g[7] * z2 + g[8] * z3 - 1.0
-    e1 = p[4] * r1 + p[5] * r2 + p[6] * r3
-    e2 = p[7] * r1 + p[8] * r2 + p[9] * r3
-    e3 = p[10] * r1 + p[11] * r2 + p[12] * r3
+    e1, e2, e3 = mat_vec(p, _RF.hh, r1, r2, r3)
     out[0] = ((i2 - i3) * z2 * z3 + eps * (g[0] * e1 + g[3] * e2 + g[6] * e3)) / i1
     out[1] = ((i3 - i1) * z3 * z1 + eps * (g[1] * e1 + g[4] * e2 + g[7] * e3)) / i2
     out[2] = ((i1 - i2) * z1 * z2 + eps * (g[2] * e1 + g[5] * e2 + g[8] * e3)) / i3
@@ -205,9 +223,10 @@ def _symmetric_body(
 def _nonlinear_moment(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> None:
     """(1.1) with a, b scaled by the pressure Q(εt)/Q(0); p = [μ, a0, b0, ε, d, ν, pressure
     kind, Q(0), table size n, τ_1..n, Q_1..n]."""
-    eps = p[3]
+    eps = p[_NM.eps]
     q = pressure(p, eps * t)
-    _symmetric_body(y, p[0], p[1] * q, p[2] * q, eps * p[4], eps * p[5], out)
+    mu, a, b = p[_NM.mu], p[_NM.a] * q, p[_NM.b] * q
+    _symmetric_body(y, mu, a, b, eps * p[_NM.d], eps * p[_NM.nu], out)
 
 
 @jit(ENTRY)
@@ -224,8 +243,9 @@ def symmetric_body(
 def _medium_averaged(y: FloatArray, p: FloatArray, out: FloatArray) -> None:
     """Averaged equations of Medvedev (1987) in τ: (2.2) for y = [k, ϑ] (the a3 term of the
     ϑ-equation as a3 sin ϑ / k, regular at ϑ = π/2), or (2.3) for y = [W, V]."""
-    eps, a3, al, be, ga, de = p[0], p[1], p[2], p[3], p[4], p[5]
-    if p[6] == 0.0:
+    eps, a3, al = p[_MA.eps], p[_MA.a3], p[_MA.alpha]
+    be, ga, de = p[_MA.beta], p[_MA.gamma], p[_MA.delta]
+    if p[_MA.form] == 0.0:
         k, theta = y[0], y[1]
         c, s = math.cos(theta), math.sin(theta)
         ac, as_ = abs(c), abs(s)
@@ -284,7 +304,8 @@ def _field_averaged(y: FloatArray, p: FloatArray, out: FloatArray) -> None:
     dL_ξ/dτ = ε(r D L_ξ + sin²β ξ3), dr/dτ = (εA/2)(r² − ⟨z²⟩/L²), D = −diag(a, a, sin²β),
     a = (1 + cos²β)/2, A = 2(1 + cos²β) + (1 − 3cos²β) sin²ρ; NaN beyond a pure rotation
     (r outside [1/I3, 1/I1] by more than the margin), so that the step is rejected."""
-    eps, s2, c2, i1, i2, i3 = p[0], p[1], p[2], p[3], p[4], p[5]
+    eps, s2, c2 = p[_FA.eps], p[_FA.s2], p[_FA.c2]
+    i1, i2, i3 = vec3(p, _FA.inertia)
     lo, hi = 1.0 / i3, 1.0 / i1
     margin = REACHED_MARGIN * hi
     r = y[3]
@@ -396,13 +417,13 @@ def event(kind: int, t: float, y: FloatArray, p: FloatArray) -> float:
         ey = 2.0 * (q2 * q3 + q0 * q1) / n2
         return y[0] * ey - y[1] * ex
     if kind == EVENT_FIELD_SEPARATRIX:
-        return y[3] - 1.0 / p[4]  # r − 1/I2, p = [ε, s², c², I1, I2, I3]
+        return y[3] - 1.0 / p[_FA_I2]  # r − 1/I2 of the field's averaged vector form
     if kind == EVENT_NUTATION_SEPARATRIX:
         return separatrix_distance(y)
     if kind == EVENT_EQUATOR:
         return math.cos(y[3])  # a spinner's averaged state [k, ρ, σ, ϑ]
     if kind == EVENT_TRIAXIAL_SEPARATRIX:
-        return y[3] - 1.0 / p[4]  # r − 1/I2, p = [ε, rtol, floor, I1, I2, I3, …]
+        return y[3] - 1.0 / p[_TA_I2]  # r − 1/I2 of the triaxial engine
     return 1.0
 
 

@@ -32,9 +32,13 @@ import numpy as np
 
 from tumble._typing import FloatArray
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
+from tumble.kernels.layout import Field, Layout
 
 __all__ = [
+    "DIPOLE",
     "FIELD_SIZE",
+    "HARMONIC",
+    "ORBIT",
     "ORBIT_SIZE",
     "dipole_field",
     "field_at",
@@ -47,8 +51,46 @@ __all__ = [
     "orbit_states",
 ]
 
-ORBIT_SIZE = 10
-FIELD_SIZE = 5
+ORBIT = Layout(
+    "orbit",
+    (
+        Field("a", 1, "m", "semi-major axis", 0.0),
+        Field("e", 1, "1", "eccentricity", 0.0, 1.0),
+        Field("i", 1, "rad", "inclination", 0.0, math.pi),
+        Field("raan", 1, "rad", "right ascension of the ascending node at t = 0"),
+        Field("argp", 1, "rad", "argument of perigee at t = 0"),
+        Field("mean", 1, "rad", "mean anomaly at t = 0"),
+        Field("mean_rate", 1, "rad/time", "mean motion, with its J2 correction"),
+        Field("raan_rate", 1, "rad/time", "secular rate of the node"),
+        Field("argp_rate", 1, "rad/time", "secular rate of the perigee"),
+        Field("mu", 1, "m³/time²", "gravitational parameter", 0.0),
+    ),
+)
+"""An orbit's payload (module notes)."""
+DIPOLE = Layout(
+    "dipole field",
+    (
+        Field("gauss", 3, "T·m³", "R³ (g11, h11, g10), Earth-fixed axes"),
+        Field("theta0", 1, "rad", "the Earth's rotation angle at t = 0"),
+        Field("earth_rate", 1, "rad/time", "the Earth's rotation rate"),
+    ),
+)
+"""A tilted dipole's payload (module notes)."""
+HARMONIC = Layout(
+    "harmonic field",
+    (
+        Field("degree", 1, "1", "degree N", 1.0),
+        Field("theta0", 1, "rad", "the Earth's rotation angle at t = 0"),
+        Field("earth_rate", 1, "rad/time", "the Earth's rotation rate"),
+        Field("radius", 1, "m", "reference radius", 0.0),
+    ),
+    tail="coefficients",
+)
+"""A harmonic field's payload: the head, then C_nm and S_nm (module notes)."""
+ORBIT_SIZE = ORBIT.size
+FIELD_SIZE = DIPOLE.size
+_O, _D, _H = ORBIT.at, DIPOLE.at, HARMONIC.at
+_HARMONIC_HEAD = HARMONIC.size
 
 Vec3 = tuple[float, float, float]
 
@@ -78,12 +120,12 @@ def orbit_state(
     ``orbit[v:]`` with node ``raan`` and perigee ``argp`` [rad]. The velocity is the time
     derivative of the drifting ellipse: the motion along it at the rate dM/dt, plus the turn of
     the node about ξ3 (dΩ/dt ξ3 × r) and of the perigee about the normal (dω/dt ĥ × r)."""
-    a, e, inc = orbit[v], orbit[v + 1], orbit[v + 2]
+    a, e, inc = orbit[v + _O.a], orbit[v + _O.e], orbit[v + _O.i]
     big = _eccentric_anomaly(mean, e)
     ce, se = math.cos(big), math.sin(big)
     eta = math.sqrt(1.0 - e * e)
     x, y = a * (ce - e), a * eta * se
-    edot = orbit[v + 6] / (1.0 - e * ce)
+    edot = orbit[v + _O.mean_rate] / (1.0 - e * ce)
     vx, vy = -a * se * edot, a * eta * ce * edot
     cO, sO = math.cos(raan), math.sin(raan)
     cw, sw = math.cos(argp), math.sin(argp)
@@ -93,7 +135,7 @@ def orbit_state(
     q1, q2, q3 = -cO * sw - sO * cw * ci, -sO * sw + cO * cw * ci, cw * si
     r1, r2, r3 = x * p1 + y * q1, x * p2 + y * q2, x * p3 + y * q3
     # dω/dt ĥ × r with ĥ × P = Q, ĥ × Q = −P; dΩ/dt ξ3 × r.
-    wd, od = orbit[v + 8], orbit[v + 7]
+    wd, od = orbit[v + _O.argp_rate], orbit[v + _O.raan_rate]
     return (
         (r1, r2, r3),
         (
@@ -107,9 +149,9 @@ def orbit_state(
 @jit(INLINE)
 def orbit_at(orbit: FloatArray, v: int, t: float) -> tuple[Vec3, Vec3]:
     """Position and velocity at time t: the elements drifted secularly from t = 0."""
-    mean = orbit[v + 5] + orbit[v + 6] * t
-    raan = orbit[v + 3] + orbit[v + 7] * t
-    argp = orbit[v + 4] + orbit[v + 8] * t
+    mean = orbit[v + _O.mean] + orbit[v + _O.mean_rate] * t
+    raan = orbit[v + _O.raan] + orbit[v + _O.raan_rate] * t
+    argp = orbit[v + _O.argp] + orbit[v + _O.argp_rate] * t
     return orbit_state(orbit, v, mean, raan, argp)
 
 
@@ -123,10 +165,10 @@ def dipole_field(field: FloatArray, v: int, angle: float, r: Vec3, vel: Vec3) ->
     and the Earth's rotation of g (dg/dt = ω_E ξ3 × g).
     """
     c, s = math.cos(angle), math.sin(angle)
-    g1 = c * field[v] - s * field[v + 1]
-    g2 = s * field[v] + c * field[v + 1]
-    g3 = field[v + 2]
-    we = field[v + 4]
+    gx, gy, g3 = field[v + _D.gauss], field[v + _D.gauss + 1], field[v + _D.gauss + 2]
+    g1 = c * gx - s * gy
+    g2 = s * gx + c * gy
+    we = field[v + _D.earth_rate]
     d1, d2 = -we * g2, we * g1  # dg/dt
     x, y, z = r
     u, w, h = vel
@@ -156,7 +198,7 @@ def dipole_field(field: FloatArray, v: int, angle: float, r: Vec3, vel: Vec3) ->
 def field_at(orbit: FloatArray, vo: int, field: FloatArray, vf: int, t: float) -> tuple[Vec3, Vec3]:
     """B and dB/dt (inertial axes) at the body's place at time t."""
     r, vel = orbit_at(orbit, vo, t)
-    return dipole_field(field, vf, field[vf + 3] + field[vf + 4] * t, r, vel)
+    return dipole_field(field, vf, field[vf + _D.theta0] + field[vf + _D.earth_rate] * t, r, vel)
 
 
 @jit(ENTRY)
@@ -182,8 +224,8 @@ def _any_field(field: FloatArray, angle: float, r: Vec3, vel: Vec3) -> tuple[Vec
 def _earth_angle(field: FloatArray, t: float) -> float:
     """The Earth's rotation angle at time t of either payload."""
     if field.size == FIELD_SIZE:
-        return field[3] + field[4] * t
-    return field[1] + field[2] * t
+        return field[_D.theta0] + field[_D.earth_rate] * t
+    return field[_H.theta0] + field[_H.earth_rate] * t
 
 
 @jit(ENTRY)
@@ -207,8 +249,8 @@ def field_samples(
     (m,), with node and perigee drifted to time t: shape (n, m, 6), for a dipole or a harmonic
     field."""
     out = np.empty((means.size, angles.size, 6))
-    raan = orbit[3] + orbit[7] * t
-    argp = orbit[4] + orbit[8] * t
+    raan = orbit[_O.raan] + orbit[_O.raan_rate] * t
+    argp = orbit[_O.argp] + orbit[_O.argp_rate] * t
     for i in range(means.size):
         r, vel = orbit_state(orbit, 0, means[i], raan, argp)
         for j in range(angles.size):
@@ -226,7 +268,7 @@ def field_samples(
 def harmonic_size(degree: int) -> int:
     """The payload length of a harmonic field of ``degree``: N, θ0, ω_E, the reference radius,
     then C_nm and S_nm for 1 ≤ n ≤ N, 0 ≤ m ≤ n."""
-    return 4 + 2 * ((degree + 1) * (degree + 2) // 2 - 1)
+    return _HARMONIC_HEAD + 2 * ((degree + 1) * (degree + 2) // 2 - 1)
 
 
 @jit(KERNEL)
@@ -239,9 +281,12 @@ def _earth_fixed_field(field: FloatArray, v: int, x: complex, y: complex, z: com
     §3.2.4–3.2.5, with GM/R → a). Rational in x, y, z throughout, so that
     complex arguments give the derivative along their imaginary part exactly (the complex
     step)."""
-    degree = int(field[v])
+    degree = int(field[v + _H.degree])
     k = (degree + 1) * (degree + 2) // 2 - 1
-    c0, s0 = v + 4, v + 4 + k  # C_nm at c0 + n(n+1)/2 + m − 1, S_nm likewise
+    c0, s0 = (
+        v + _HARMONIC_HEAD,
+        v + _HARMONIC_HEAD + k,
+    )  # C_nm at c0 + n(n+1)/2 + m − 1, S_nm likewise
     rho2 = x * x + y * y + z * z
     inv2 = 1.0 / rho2
     xr, yr, zr = x * inv2, y * inv2, z * inv2
@@ -294,7 +339,7 @@ def harmonic_field(field: FloatArray, v: int, angle: float, r: Vec3, vel: Vec3
     rate in Earth-fixed axes, dB/dt = Rz(angle) (ω_E ξ3 × B_e + (∇B_e) v_e), the directional
     derivative by the complex step B_e(r_e + i h v_e) (no cancellation: exact to round-off)."""
     c, s = math.cos(angle), math.sin(angle)
-    we, radius = field[v + 2], field[v + 3]
+    we, radius = field[v + _H.earth_rate], field[v + _H.radius]
     # Earth-fixed position and velocity (relative to the turning Earth), in reference radii.
     x, y, z = (c * r[0] + s * r[1]) / radius, (-s * r[0] + c * r[1]) / radius, r[2] / radius
     u1 = vel[0] + we * r[1]  # v − ω_E ξ3 × r

@@ -29,39 +29,32 @@ from __future__ import annotations
 import math
 
 from tumble._typing import FloatArray
-from tumble.kernels.codes import (
-    TERM_BODY_CONSTANT,
-    TERM_LINEAR_DRAG,
-    TERM_QUADRATIC_DRAG,
-)
 from tumble.kernels.jit import INLINE, KERNEL, jit
-from tumble.kernels.torque import next_term
+from tumble.kernels.params import SPINNER_AVERAGED
+from tumble.kernels.terms import HEAD_SIZE, HEADER, next_term, spinner_of
 from tumble.rotations import SINGULAR_SIN
 
 __all__ = ["spinner_averaged"]
 
-_PROGRAM = 2  # index of the torque program in the parameters
-_CUBE_MEAN = 4.0 / (3.0 * math.pi)  # ⟨|sin φ|³⟩ over a turn
+_PROGRAM = SPINNER_AVERAGED.size  # index of the torque program in the parameters
+_KAPPA = SPINNER_AVERAGED.at.kappa
+_HEAD = HEADER.at
 
 
 @jit(KERNEL)
 def _phi_means(p: FloatArray, a: float, c: float) -> tuple[bool, float, float]:
-    """(known, ⟨X⟩, ⟨M3⟩) of the program at w = (a sin φ, a cos φ, c) over φ (module notes);
-    known is False for a term that is not a moment of the body rate."""
+    """(known, ⟨X⟩, ⟨M3⟩) of the program at w = (a sin φ, a cos φ, c) over φ (module notes),
+    each term's means from its declaration (:data:`tumble.kernels.terms.spinner_of`); known is
+    False for a term without them (not a moment of the body rate)."""
     x, m3 = 0.0, 0.0
     i = _PROGRAM + 1
     for _ in range(int(p[_PROGRAM])):
-        code, f, v = int(p[i]), p[i + 1], i + 2
-        if code == TERM_BODY_CONSTANT:
-            m3 += f * p[v + 2]
-        elif code == TERM_LINEAR_DRAG:  # B by rows at p[v : v + 9]
-            x -= f * a * 0.5 * (p[v] + p[v + 4])
-            m3 -= f * p[v + 8] * c
-        elif code == TERM_QUADRATIC_DRAG:  # S by rows
-            x -= f * a * abs(a) * _CUBE_MEAN * (p[v] + p[v + 4])
-            m3 -= f * p[v + 8] * c * abs(c)
-        else:
+        f = p[i + _HEAD.factor]
+        dx, dm = spinner_of(int(p[i + _HEAD.code]), p, i + HEAD_SIZE, a, c)
+        if math.isnan(dx):
             return False, math.nan, math.nan
+        x += f * dx
+        m3 += f * dm
         i = next_term(p, i)
     return True, x, m3
 
@@ -72,7 +65,7 @@ def spinner_averaged(t: float, y: FloatArray, p: FloatArray, out: FloatArray) ->
     y = [k, ρ, σ, ϑ] under a moment of the body rate only (the factor ε in the program);
     NaN outside the engine's domain (k ≤ 0, sin ρ or sin ϑ below SINGULAR_SIN), so that the
     step is rejected."""
-    kappa = p[0]
+    kappa = p[_KAPPA]
     k, rho, theta = y[0], y[1], y[3]
     st = math.sin(theta)
     ok = k > 0.0 and abs(math.sin(rho)) >= SINGULAR_SIN and abs(st) >= SINGULAR_SIN

@@ -53,26 +53,25 @@ import numpy as np
 from numba.cpython.unsafe.tuple import tuple_setitem as _tuple_setitem
 
 from tumble._typing import FloatArray
-from tumble.kernels.codes import (
-    MC_FLOOR,
-    REACHED_MARGIN,
-    SEPARATRIX_RTOL,
-    TERM_EDDY_CURRENT,
-    TERM_GRAVITY_GRADIENT,
-)
+from tumble.kernels.codes import MC_FLOOR, REACHED_MARGIN, SEPARATRIX_RTOL
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
-from tumble.kernels.torque import Mat3, Vec3, _program, _term, _to_body, next_term
+from tumble.kernels.layout import Mat3, Vec3, mat3, vec3
+from tumble.kernels.params import TRIAXIAL_AVERAGED
+from tumble.kernels.terms import phase_mean_of
+from tumble.kernels.torque import fixed_program, program_of
 from tumble.kernels.triaxial_closed import closed_mean
 
 __all__ = ["MODE", "PERIOD", "PROGRAM_START", "jacobi_functions", "triaxial_averaged"]
 
-MODE = 18
+_AT = TRIAXIAL_AVERAGED.at
+MODE = _AT.mode
 """Index of the mode: 2 for terms with a closed-form average (:mod:`tumble.kernels.
 triaxial_closed`), 1 for other built-in terms (the reductions above), 0 for any program."""
-PERIOD = 19
+PERIOD = _AT.period
 """Index of the forcing period [τ] (0: none, the time frozen at t)."""
-PROGRAM_START = 20
+PROGRAM_START = TRIAXIAL_AVERAGED.size
 """Index of the torque program in the parameters."""
+_Q = _AT.sorting
 
 _N_START = 16  # first polhode grid (a multiple of 4: the quarter shifts map nodes to nodes)
 _N_MAX = 2**14  # the Python engine's limits: polhode, precession and forcing, the whole grid
@@ -166,57 +165,12 @@ def _shifted(q: int, s: float, c: float, d: float, kc: float) -> tuple[float, fl
 # ---------------------------------------------------------------------------------------------
 # The torque, averaged over its forcing phase.
 
-
-@jit(INLINE)
-def _gravity_gradient_at(f: float, prog: FloatArray, v: int, a: Mat3, e: int) -> Vec3:
-    """f·3n² r × (I r) for the inertial unit vector prog[e : e + 3] as r, in body axes."""
-    r1, r2, r3 = _to_body(a, prog[e], prog[e + 1], prog[e + 2])
-    g = 3.0 * prog[v + 3] ** 2 * f
-    i1, i2, i3 = prog[v], prog[v + 1], prog[v + 2]
-    return g * (i3 - i2) * r2 * r3, g * (i1 - i3) * r3 * r1, g * (i2 - i1) * r1 * r2
-
-
-@jit(INLINE)
-def _mean_term(
-    code: int, f: float, prog: FloatArray, v: int, t: float, w1: float, w2: float, w3: float,
-    a: Mat3,
-) -> Vec3:  # fmt: skip
-    """Body moment of one term averaged over its forcing phase (module notes): the gravity
-    gradient at ⟨r̂ r̂ᵀ⟩ = ½(e₁e₁ᵀ + e₂e₂ᵀ), the eddy current of a rotating field at
-    ⟨ĥ ĥᵀ⟩ = diag(½ sin²β, ½ sin²β, cos²β); any other term as it is at the time t (the
-    orbit-averaged terms of an orbiting body vary only slowly, with the node)."""
-    if code == TERM_GRAVITY_GRADIENT:
-        x1, x2, x3 = _gravity_gradient_at(f, prog, v, a, v + 5)
-        y1, y2, y3 = _gravity_gradient_at(f, prog, v, a, v + 8)
-        return 0.5 * (x1 + y1), 0.5 * (x2 + y2), 0.5 * (x3 + y3)
-    if code == TERM_EDDY_CURRENT and prog[v + 1] != 0.0:
-        M0, rate, beta = prog[v], prog[v + 1], prog[v + 2]
-        s2 = math.sin(beta) ** 2  # 1 − ⟨ĥĥᵀ⟩ = diag(1 − ½ s², 1 − ½ s², s²)
-        x1 = a[0] * w1 + a[1] * w2 + a[2] * w3
-        x2 = a[3] * w1 + a[4] * w2 + a[5] * w3
-        x3 = a[6] * w1 + a[7] * w2 + a[8] * w3 - rate
-        g = f * M0
-        return _to_body(a, -g * (1.0 - 0.5 * s2) * x1, -g * (1.0 - 0.5 * s2) * x2, -g * s2 * x3)
-    return _term(code, f, prog, v, t, w1, w2, w3, a)
-
-
-@jit(INLINE)
-def _mean_program(
-    prog: FloatArray, start: int, t: float, w1: float, w2: float, w3: float, a: Mat3
-) -> Vec3:
-    """Body moment of the program ``prog[start:]``, each term averaged over its phase."""
-    m1 = m2 = m3 = 0.0
-    i = start + 1
-    for _ in range(int(prog[start])):
-        code = int(prog[i])
-        d1, d2, d3 = _mean_term(code, prog[i + 1], prog, i + 2, t, w1, w2, w3, a)
-        m1 += d1
-        m2 += d2
-        m3 += d3
-        i = next_term(prog, i)
-        if i < 0:
-            break
-    return m1, m2, m3
+_mean_program = program_of(phase_mean_of)
+"""Body moment of the program ``prog[start:]``, each term averaged over its forcing phase
+(:data:`tumble.kernels.terms.phase_mean_of`): the gravity gradient at ⟨r̂ r̂ᵀ⟩ = ½(e₁e₁ᵀ +
+e₂e₂ᵀ), the eddy current of a rotating field at ⟨ĥ ĥᵀ⟩ = diag(½ sin²β, ½ sin²β, cos²β); any
+other term as it is at the time t (the orbit-averaged terms of an orbiting body vary only
+slowly, with the node)."""
 
 
 # ---------------------------------------------------------------------------------------------
@@ -227,7 +181,8 @@ def _mean_program(
 def _body_frame(p: FloatArray, z1: float, z2: float, z3: float) -> tuple[Vec3, Vec3, Vec3]:
     """The rows of G = Rx(θ) Rz(φ), the rotation taking the body direction of L = I z to the
     third axis (:func:`tumble.averaging.triaxial._polhode_attitudes`)."""
-    j1, j2, j3 = p[15] * z1, p[16] * z2, p[17] * z3
+    u1, u2, u3 = vec3(p, _AT.user_inertia)
+    j1, j2, j3 = u1 * z1, u2 * z2, u3 * z3
     size = math.sqrt(j1 * j1 + j2 * j2 + j3 * j3)
     l1, l2, l3 = j1 / size, j2 / size, j3 / size
     st = math.sqrt(l1 * l1 + l2 * l2)
@@ -367,10 +322,11 @@ def _user_rates(p: FloatArray, amp: Vec3, x3: bool, sn: float, cn: float, dn: fl
         w1, w2, w3 = amp[0] * cn, amp[1] * sn, amp[2] * dn
     else:
         w1, w2, w3 = amp[2] * dn, amp[1] * sn, amp[0] * cn
+    q = mat3(p, _Q)  # Qᵀ w
     return (
-        p[6] * w1 + p[9] * w2 + p[12] * w3,
-        p[7] * w1 + p[10] * w2 + p[13] * w3,
-        p[8] * w1 + p[11] * w2 + p[14] * w3,
+        q[0] * w1 + q[3] * w2 + q[6] * w3,
+        q[1] * w1 + q[4] * w2 + q[7] * w3,
+        q[2] * w1 + q[5] * w2 + q[8] * w3,
     )
 
 
@@ -398,7 +354,7 @@ def _grid_sums(
             a = _attitude(F, h0, h1, g2)
             for j2 in range(n2):
                 tt = t + (j2 + o2) * period / n2 if period > 0.0 else t
-                m1, m2, m3 = _program(p, PROGRAM_START, tt, z1, z2, z3, a)
+                m1, m2, m3 = fixed_program(p, PROGRAM_START, tt, z1, z2, z3, a)
                 t1, t2, t3, t4, t5, t6 = _channels(a, z1, z2, z3, m1, m2, m3, rl1, rl2, rl3)
                 s1 += t1
                 s2 += t2
@@ -504,8 +460,8 @@ def triaxial_averaged(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -
     Python engine refuses the state (r beyond a pure rotation by more than the margin,
     L at or below the floor, the separatrix band) or where the quadrature does not converge,
     so that the step is rejected."""
-    eps, rtol, floor = p[0], p[1], p[2]
-    i1, i2, i3 = p[3], p[4], p[5]
+    eps, rtol, floor = p[_AT.eps], p[_AT.rtol], p[_AT.floor]
+    i1, i2, i3 = vec3(p, _AT.inertia)
     lo, hi = 1.0 / i3, 1.0 / i1
     r = y[3]
     if not lo - REACHED_MARGIN * hi <= r <= hi + REACHED_MARGIN * hi:

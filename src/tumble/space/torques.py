@@ -2,7 +2,7 @@
 geomagnetic field and the gravity gradient along a Keplerian orbit, and their averages over the
 orbit and the Earth's rotation.
 
-All four evaluate in compiled code (:mod:`tumble.kernels.torque`, :mod:`tumble.kernels.space`)
+All four evaluate in compiled code (:mod:`tumble.kernels.terms`, :mod:`tumble.kernels.space`)
 in the units of their payloads: ``time_unit`` [s] is the model's unit of time, so that a model
 in normalised time T0 gets the orbit's rates times T0 (its moment then in units of
 kg·m²/time_unit², with the tensors and moments of inertia as given).
@@ -17,13 +17,7 @@ import numpy as np
 
 from tumble._typing import FloatArray
 from tumble.errors import ParameterError, check_range
-from tumble.kernels.codes import (
-    TERM_FIELD_MOMENTS,
-    TERM_GRAVITY_MOMENTS,
-    TERM_ORBIT_EDDY,
-    TERM_ORBIT_EDDY_HARMONIC,
-    TERM_ORBIT_GRAVITY,
-)
+from tumble.kernels.terms import compiled_term
 from tumble.space.geomagnetic import Dipole, Igrf
 from tumble.space.moments import field_moments, gravity_factor
 from tumble.space.orbit import Orbit
@@ -91,10 +85,10 @@ class OrbitEddyTorque(Torque):
     def compiled_terms(self) -> tuple[CompiledTerm, ...]:
         orbit, field = self.orbit.payload(self.time_unit), self.field.payload(self.time_unit)
         if isinstance(self.field, Igrf):
-            payload = (*orbit, *self.tensor.ravel(), *field)
-            return ((TERM_ORBIT_EDDY_HARMONIC, 1.0, tuple(float(v) for v in payload)),)
-        payload = (*orbit, *field, *self.tensor.ravel())
-        return ((TERM_ORBIT_EDDY, 1.0, tuple(float(v) for v in payload)),)
+            values = {"orbit": orbit, "tensor": self.tensor}
+            return (compiled_term("orbit_eddy_harmonic", values, tail=field),)
+        values = {"orbit": orbit, "field": field, "tensor": self.tensor}
+        return (compiled_term("orbit_eddy", values),)
 
     def averaged(self) -> FieldMomentsTorque:
         """The same moment averaged over the orbit and the Earth's rotation."""
@@ -125,8 +119,8 @@ class OrbitGravityTorque(Torque):
         check_range("time_unit", self.time_unit, low=0.0)
 
     def compiled_terms(self) -> tuple[CompiledTerm, ...]:
-        payload = (*self.orbit.payload(self.time_unit), *self.inertia)
-        return ((TERM_ORBIT_GRAVITY, 1.0, tuple(float(v) for v in payload)),)
+        values = {"orbit": self.orbit.payload(self.time_unit), "inertia": self.inertia}
+        return (compiled_term("orbit_gravity", values),)
 
     def averaged(self) -> GravityMomentsTorque:
         """The same moment averaged over the orbit."""
@@ -169,8 +163,8 @@ class FieldMomentsTorque(Torque):
         # d(B Bᵀ)/dt/2, zero): [δ]× with δ from its antisymmetric part.
         D = self.D
         delta = 0.5 * np.array([D[2, 1] - D[1, 2], D[0, 2] - D[2, 0], D[1, 0] - D[0, 1]])
-        payload = (*self.tensor.ravel(), *self.S.ravel(), *delta, self.node_rate)
-        return ((TERM_FIELD_MOMENTS, 1.0, tuple(float(v) for v in payload)),)
+        values = {"tensor": self.tensor, "S": self.S, "delta": delta, "node_rate": self.node_rate}
+        return (compiled_term("field_moments", values),)
 
 
 @dataclass(frozen=True, eq=False)
@@ -207,5 +201,5 @@ class GravityMomentsTorque(Torque):
         check_range("node_rate", self.node_rate)
 
     def compiled_terms(self) -> tuple[CompiledTerm, ...]:
-        payload = (*self.inertia, self.c, *self.normal, self.node_rate)
-        return ((TERM_GRAVITY_MOMENTS, 1.0, tuple(float(v) for v in payload)),)
+        values = {"inertia": self.inertia, "c": self.c, "normal": self.normal}
+        return (compiled_term("gravity_moments", {**values, "node_rate": self.node_rate}),)

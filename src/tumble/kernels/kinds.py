@@ -1,0 +1,124 @@
+"""The right-hand-side kinds, declared: each kind's state, its parameters' layout and the event
+functions that may watch it.
+
+:class:`tumble.kernels.Kernel` checks every kernel against these declarations when it is built:
+a parameter array of another length than the kind's layout (with its tail), or an event the
+kind does not declare, is refused, so that no event reads a slot of another kind's layout.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from tumble.kernels.codes import (
+    EVENT_EQUATOR,
+    EVENT_FIELD_SEPARATRIX,
+    EVENT_NONE,
+    EVENT_NUTATION_SEPARATRIX,
+    EVENT_THETA_DOT,
+    EVENT_TRIAXIAL_SEPARATRIX,
+    KIND_FIELD_AVERAGED,
+    KIND_MEDIUM_AVERAGED,
+    KIND_NONLINEAR_MOMENT,
+    KIND_NUTATION_AVERAGED,
+    KIND_NUTATION_ENGINE,
+    KIND_ORBITING_BODY,
+    KIND_RIGID_BODY,
+    KIND_ROTATING_FIELD,
+    KIND_SPINNER_AVERAGED,
+    KIND_TRIAXIAL_AVERAGED,
+)
+from tumble.kernels.layout import Layout
+from tumble.kernels.params import (
+    FIELD_AVERAGED,
+    MEDIUM_AVERAGED,
+    NONLINEAR_MOMENT,
+    RIGID_BODY,
+    ROTATING_FIELD,
+    SPINNER_AVERAGED,
+    TRIAXIAL_AVERAGED,
+)
+
+__all__ = ["KINDS", "Kind"]
+
+
+@dataclass(frozen=True)
+class Kind:
+    """A right-hand side's declaration.
+
+    Attributes
+    ----------
+    name : str
+        What it integrates.
+    state : tuple of str
+        Its state variables, in order (a tuple of one entry per variable; a state of variable
+        length, such as [W, V] or [k, ϑ], lists the longer).
+    params : Layout
+        Its parameters.
+    events : frozenset of int
+        The ``EVENT_*`` functions that may watch it (``EVENT_NONE`` always may).
+    """
+
+    name: str
+    state: tuple[str, ...]
+    params: Layout
+    events: frozenset[int] = frozenset()
+
+    def allows(self, event: int) -> bool:
+        """Whether ``event`` may watch this kind."""
+        return event == EVENT_NONE or event in self.events
+
+
+_BODY = ("w1", "w2", "w3", "q0", "q1", "q2", "q3")
+_SLOW = ("L1", "L2", "L3", "r")
+_ENERGY = ("H", "R", "G", "a", "b")
+
+KINDS: dict[int, Kind] = {
+    KIND_RIGID_BODY: Kind("Euler's equations under a torque program", _BODY, RIGID_BODY),
+    KIND_ORBITING_BODY: Kind("Euler's equations under terms along an orbit", _BODY, RIGID_BODY),
+    KIND_ROTATING_FIELD: Kind(
+        "the rotating field's form (1.5)",
+        ("z1", "z2", "z3", *(f"g{r}{c}" for r in range(1, 4) for c in range(1, 4))),
+        ROTATING_FIELD,
+    ),
+    KIND_NONLINEAR_MOMENT: Kind(
+        "the nonlinear moment's Euler equations (1.1)",
+        _BODY,
+        NONLINEAR_MOMENT,
+        frozenset({EVENT_THETA_DOT}),
+    ),
+    KIND_MEDIUM_AVERAGED: Kind(
+        "the averaged equations (2.2)/(2.3)", ("k", "theta"), MEDIUM_AVERAGED
+    ),
+    KIND_FIELD_AVERAGED: Kind(
+        "the rotating field's averaged vector form",
+        _SLOW,
+        FIELD_AVERAGED,
+        frozenset({EVENT_FIELD_SEPARATRIX}),
+    ),
+    KIND_NUTATION_AVERAGED: Kind(
+        "Volosov's averaged equations in the energy form",
+        _ENERGY,
+        NONLINEAR_MOMENT,
+        frozenset({EVENT_NUTATION_SEPARATRIX}),
+    ),
+    KIND_NUTATION_ENGINE: Kind(
+        "the engine's nutation setting",
+        _ENERGY,
+        NONLINEAR_MOMENT,
+        frozenset({EVENT_NUTATION_SEPARATRIX}),
+    ),
+    KIND_SPINNER_AVERAGED: Kind(
+        "the engine's spinner setting",
+        ("k", "rho", "sigma", "theta"),
+        SPINNER_AVERAGED,
+        frozenset({EVENT_EQUATOR}),
+    ),
+    KIND_TRIAXIAL_AVERAGED: Kind(
+        "the engine's triaxial setting",
+        _SLOW,
+        TRIAXIAL_AVERAGED,
+        frozenset({EVENT_TRIAXIAL_SEPARATRIX}),
+    ),
+}
+"""Every kind the compiled right-hand side (:func:`tumble.kernels.rhs.rhs`) knows."""

@@ -1,0 +1,167 @@
+"""What a torque term declares, and the compiled dispatch generated from the declarations.
+
+A term is one module of :mod:`tumble.kernels.terms` that builds one :class:`Term`: its name,
+its parameters as a :class:`~tumble.kernels.layout.Layout`, what the moment reads, its
+compiled moment and the averages it offers. The registry (:mod:`tumble.kernels.terms`) numbers
+the terms and generates from them:
+
+* the codes and the program's packing (:func:`tumble.kernels.terms.compiled_term`);
+* the compiled dispatch on a term's code (:func:`chain`) for the moment, the moment averaged
+  over the term's forcing phase, the closed-form Euler–Poinsot average and the spinner's
+  average over the spin angle; a term without an average is NaN there, so that the engine
+  that asked fails loudly (and chooses another mode from the declarations beforehand);
+* the Python readers (:meth:`Term.values`).
+
+The compiled signatures, for a payload starting at ``prog[v]`` and the term's factor f:
+
+* ``moment(f, prog, v, t, w1, w2, w3, a) -> (M1, M2, M3)``: the body moment at time t, body
+  rate ω and body → inertial matrix a (:data:`~tumble.kernels.layout.Mat3`);
+* ``phase_mean``: the same signature, the moment averaged over the term's own forcing phase
+  (:mod:`tumble.kernels.triaxial`);
+* ``closed(p, v, t, ctx) -> (T⊥1, T⊥2, T∥, power)``: the Euler–Poinsot average in the L-frame
+  (:mod:`tumble.kernels.triaxial_closed`, where ``ctx`` is formed), without the factor;
+* ``spinner(p, v, a, c) -> (⟨X⟩, ⟨M3⟩)``: the means over the spin angle φ of a moment of the
+  body rate w = (a sin φ, a cos φ, c) (:mod:`tumble.kernels.spinner`), without the factor.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import Any, Literal
+
+from tumble._typing import FloatArray
+from tumble.kernels.jit import INLINE, jit
+from tumble.kernels.layout import Layout
+
+__all__ = ["READS", "Term", "chain"]
+
+Reads = Literal["rate", "attitude", "time", "orbit", "field"]
+READS: frozenset[str] = frozenset({"rate", "attitude", "time", "orbit", "field"})
+"""What a moment may depend on: the body rate, the attitude, the time, a position along an
+orbit (Kepler's equation), the geomagnetic field there."""
+
+
+@dataclass(frozen=True)
+class Term:
+    """A torque term's declaration.
+
+    Attributes
+    ----------
+    name : str
+        Its name (a Python identifier), unique in the registry.
+    doc : str
+        One line: the moment, with its source.
+    layout : Layout
+        Its parameters (the payload after the program's header).
+    reads : frozenset of str
+        What the moment depends on (:data:`READS`).
+    moment : compiled function
+        The body moment (module notes).
+    phase_mean, closed, spinner : compiled function or None
+        The averages it offers (module notes); None: the engines average it by quadrature.
+    forcing_rate : callable or None
+        From the unpacked values, the rate [rad/time] of the term's forcing phase (its explicit
+        periodic time dependence), or None for none.
+    closed_if : callable or None
+        From the unpacked values, whether the closed form holds for them (e.g. symmetric
+        tensors); None: always, when ``closed`` is given.
+    quadrature_only : bool
+        Whether its average needs the general product rule on every phase (an arbitrary
+        function of the time and the attitude, such as a user's), rather than its value at the
+        time t or its ``phase_mean`` (a slowly varying term, or one with a forcing phase).
+    peer : callable or None
+        The independent transcription for the heyoka comparison:
+        ``peer(values, f, t, w, frame, hy) -> [M1, M2, M3]`` on heyoka expressions (``w`` the
+        body rate, ``frame`` the attitude with ``to_body`` and ``to_inertial`` maps of
+        3-lists, ``hy`` the heyoka module), or None where no Taylor form exists; a term
+        without it is refused by the peer.
+    """
+
+    name: str
+    doc: str
+    layout: Layout
+    reads: frozenset[str]
+    moment: Callable[..., Any]
+    phase_mean: Callable[..., Any] | None = None
+    closed: Callable[..., Any] | None = None
+    spinner: Callable[..., Any] | None = None
+    forcing_rate: Callable[[dict[str, Any]], float] | None = None
+    closed_if: Callable[[dict[str, Any]], bool] | None = None
+    quadrature_only: bool = False
+    peer: Callable[..., Any] | None = None
+
+    def __post_init__(self) -> None:
+        if not self.name.isidentifier():
+            raise ValueError(f"term name {self.name!r} is not an identifier")
+        unknown = set(self.reads) - READS
+        if unknown:
+            raise ValueError(f"term {self.name!r} reads {sorted(unknown)}: not in {sorted(READS)}")
+
+    @property
+    def rate_only(self) -> bool:
+        """Whether the moment reads nothing but the body rate."""
+        return self.reads <= {"rate"}
+
+    @property
+    def along_orbit(self) -> bool:
+        """Whether the moment is evaluated along an orbit (the orbiting body's kind only)."""
+        return "orbit" in self.reads
+
+    def values(self, payload: Sequence[float] | FloatArray) -> dict[str, Any]:
+        """The named parameters of a packed payload."""
+        return self.layout.unpack(payload)
+
+    def has_closed_form(self, payload: Sequence[float] | FloatArray) -> bool:
+        """Whether :attr:`closed` gives this term's average for these parameters."""
+        if self.closed is None:
+            return False
+        return self.closed_if is None or self.closed_if(self.values(payload))
+
+
+def _nan3(*args: Any) -> tuple[float, float, float]:
+    return math.nan, math.nan, math.nan
+
+
+def _nan2(*args: Any) -> tuple[float, float]:
+    return math.nan, math.nan
+
+
+def _nan4(*args: Any) -> tuple[float, float, float, float]:
+    return math.nan, math.nan, math.nan, math.nan
+
+
+NAN = {2: jit(INLINE)(_nan2), 3: jit(INLINE)(_nan3), 4: jit(INLINE)(_nan4)}
+"""Compiled fallbacks returning NaN tuples of 2, 3 and 4: the value of a code a dispatch does not
+know (the caller fails loudly instead of ignoring the term)."""
+
+
+def _link(code: int, function: Callable[..., Any], rest: Callable[..., Any]) -> Callable[..., Any]:
+    @jit(INLINE)
+    def dispatch(which: int, *args: Any) -> Any:
+        if which == code:
+            return function(*args)
+        return rest(which, *args)
+
+    return dispatch  # type: ignore[no-any-return]
+
+
+def _last(fallback: Callable[..., Any]) -> Callable[..., Any]:
+    @jit(INLINE)
+    def dispatch(which: int, *args: Any) -> Any:
+        return fallback(*args)
+
+    return dispatch  # type: ignore[no-any-return]
+
+
+def chain(
+    entries: Sequence[tuple[int, Callable[..., Any]]], fallback: Callable[..., Any]
+) -> Callable[..., Any]:
+    """A compiled ``dispatch(code, *args)`` calling the function of ``code`` among ``entries``
+    (code, compiled function), or ``fallback`` for any other code: an ``if`` chain that LLVM
+    inlines whole, as if written by hand, generated from the registry."""
+    dispatch = _last(fallback)
+    for code, function in reversed(entries):
+        dispatch = _link(code, function, dispatch)
+    return dispatch

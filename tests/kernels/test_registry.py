@@ -1,0 +1,126 @@
+"""The declared layouts, the registry of torque terms and the declared kinds: what is generated
+from the declarations (offsets, packing, codes, the program's walk) and what they refuse."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from tumble import kernels
+from tumble.errors import ParameterError
+from tumble.kernels import terms
+from tumble.kernels.kinds import KINDS
+from tumble.kernels.layout import Field, Layout
+from tumble.torques import ConstantBodyTorque, GravityGradientTorque, LinearDrag
+
+SRC = Path(kernels.__file__).parent
+
+
+def test_offsets_follow_the_declared_order_and_sizes():
+    layout = Layout("demo", (Field("a"), Field("v", 3), Field("m", 9), Field("b")), tail="rest")
+    assert tuple(layout.at) == (0, 1, 4, 13)
+    assert layout.size == 14
+    packed = layout.pack({"a": 1.0, "v": [2, 3, 4], "m": np.eye(3), "b": 5.0}, tail=[6.0, 7.0])
+    assert len(packed) == 16
+    back = layout.unpack(packed)
+    assert back["a"] == 1.0 and back["b"] == 5.0
+    np.testing.assert_array_equal(back["v"], [2, 3, 4])
+    np.testing.assert_array_equal(back["m"], np.eye(3))
+    np.testing.assert_array_equal(back["rest"], [6.0, 7.0])
+
+
+@pytest.mark.parametrize(
+    ("values", "message"),
+    [
+        ({"x": 1.0}, r"demo\.y is missing"),
+        ({"x": 1.0, "y": [1, 2, 3], "z": 0.0}, r"unknown field"),
+        ({"x": 1.0, "y": [1, 2]}, r"demo\.y must have 3 component"),
+        ({"x": np.nan, "y": [1, 2, 3]}, r"demo\.x must be finite"),
+        ({"x": -1.0, "y": [1, 2, 3]}, r"demo\.x = \[-1\.0\] is outside \[0, 2\] \[s\]"),
+    ],
+)
+def test_packing_names_the_field_it_refuses(values, message):
+    layout = Layout("demo", (Field("x", 1, "s", low=0.0, high=2.0), Field("y", 3)))
+    with pytest.raises(ParameterError, match=message):
+        layout.pack(values)
+
+
+def test_a_layout_without_a_tail_refuses_one():
+    with pytest.raises(ParameterError, match="no variable-length tail"):
+        Layout("demo", (Field("x"),)).pack({"x": 1.0}, tail=[1.0])
+
+
+def test_codes_are_the_registration_order_and_names_are_unique():
+    assert [terms.code(t.name) for t in terms.TERMS] == list(range(1, len(terms.TERMS) + 1))
+    assert len({t.name for t in terms.TERMS}) == len(terms.TERMS)
+    with pytest.raises(ParameterError, match="no torque term 'nothing'"):
+        terms.code("nothing")
+    with pytest.raises(ParameterError, match="unknown term code 99"):
+        terms.term_of(99)
+
+
+def test_every_term_declares_a_compiled_moment_and_what_it_reads():
+    for term in terms.TERMS:
+        assert term.moment is not None, term.name
+        assert term.reads <= {"rate", "attitude", "time", "orbit", "field"}, term.name
+        # a term evaluated along an orbit reads the time, since the orbit moves
+        assert not term.along_orbit or "time" in term.reads, term.name
+
+
+def test_a_program_walks_by_each_terms_own_size():
+    # The user term's payload has a tail of its own length; the walk must not read a parameter
+    # as the next term's code (the header carries each payload's size).
+    user = terms.compiled_term("user", {"address": 0.0, "n": 2.0}, tail=[8.0, 9.0])
+    body = terms.compiled_term("body_constant", {"moment": [1.0, 2.0, 3.0]}, factor=0.5)
+    program = terms.flatten([user, body])
+    walked = terms.walk(program)
+    assert [t.name for t, _, _ in walked] == ["user", "body_constant"]
+    assert walked[1][1] == 0.5
+    np.testing.assert_array_equal(walked[0][2], [0.0, 2.0, 8.0, 9.0])
+    i = 1
+    for _ in range(2):
+        i = int(terms.next_term.py_func(program, i))
+    assert i == program.size
+
+
+def test_torques_pack_by_the_declared_layout():
+    gg = GravityGradientTorque([1.0, 2.0, 3.0], 0.5, [0.0, 0.0, 1.0], 0.25)
+    (which, factor, payload) = gg.compiled_terms()[0]
+    values = terms.term_of(which).values(payload)
+    assert terms.term_of(which).name == "gravity_gradient" and factor == 1.0
+    np.testing.assert_array_equal(values["inertia"], [1.0, 2.0, 3.0])
+    assert values["n"] == 0.5 and values["u0"] == 0.25
+    np.testing.assert_array_equal(values["basis"], gg.basis)
+    torque = 2.0 * (ConstantBodyTorque([1.0, 0.0, 0.0]) + LinearDrag(np.eye(3)))
+    assert torque.rate_only and not torque.along_orbit
+    assert not gg.rate_only
+
+
+def test_a_kernel_is_checked_against_its_kinds_declaration():
+    with pytest.raises(ParameterError, match="rotating field: 3 parameters, the layout declares 13"):
+        kernels.Kernel(kernels.KIND_ROTATING_FIELD, np.ones(3))
+    with pytest.raises(ParameterError, match="cannot watch"):
+        kernels.Kernel(
+            kernels.KIND_FIELD_AVERAGED, np.ones(6), event=kernels.EVENT_TRIAXIAL_SEPARATRIX
+        )
+    with pytest.raises(ParameterError, match="no right-hand side of kind 77"):
+        kernels.Kernel(77, np.ones(3))
+    # every kind the right-hand side dispatches on is declared
+    assert set(KINDS) == {getattr(kernels, n) for n in kernels.__all__ if n.startswith("KIND_")}
+
+
+def test_kernels_read_no_slot_by_a_literal_position():
+    # Compiled code reads its parameters by the declared names (Layout.at); a literal offset
+    # such as ``p[4]`` or ``prog[v + 3]`` is allowed only in the generic readers of layout.py.
+    pattern = re.compile(r"\b(p|prog|params|program|payload)\[(\w+ ?[+-] ?)?[0-9]+\]")
+    found = []
+    for path in sorted(SRC.rglob("*.py")):
+        if path.name == "layout.py":
+            continue
+        for number, line in enumerate(path.read_text().splitlines(), 1):
+            if pattern.search(line):
+                found.append(f"{path.relative_to(SRC)}:{number}: {line.strip()}")
+    assert not found, "\n".join(found)

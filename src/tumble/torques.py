@@ -38,6 +38,7 @@ from tumble.kernels.terms import CompiledTerm, compiled_term, flatten, term_of
 __all__ = [
     "CallableTorque",
     "CompiledTerm",
+    "CompiledTorque",
     "ConstantBodyTorque",
     "ConstantInertialTorque",
     "EddyCurrentTorque",
@@ -213,6 +214,27 @@ class ZeroTorque(Torque):
 
     def compiled_terms(self) -> tuple[CompiledTerm, ...]:
         return ()
+
+
+@dataclass(frozen=True, eq=False)
+class CompiledTorque(Torque):
+    """A sum of registered terms given as they are packed (:func:`tumble.kernels.terms.
+    compiled_term`): the torque of a term that has no class of its own, such as one a module
+    of :mod:`tumble.kernels.terms` switches on from a scenario.
+
+    Parameters
+    ----------
+    terms : tuple of (code, factor, payload)
+        The terms.
+    label : str
+        What the torque is, for messages.
+    """
+
+    terms: tuple[CompiledTerm, ...]
+    label: str = "compiled torque"
+
+    def compiled_terms(self) -> tuple[CompiledTerm, ...]:
+        return tuple(self.terms)
 
 
 @dataclass(frozen=True, eq=False)

@@ -5,15 +5,18 @@ from __future__ import annotations
 
 import re
 from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
 from tumble import kernels
+from tumble.app.heyoka_peer import _Frame
 from tumble.errors import ParameterError
 from tumble.kernels import terms
 from tumble.kernels.kinds import KINDS
 from tumble.kernels.layout import Field, Layout
+from tumble.kernels.torque import moments
 from tumble.torques import ConstantBodyTorque, GravityGradientTorque, LinearDrag
 
 SRC = Path(kernels.__file__).parent
@@ -100,7 +103,9 @@ def test_torques_pack_by_the_declared_layout():
 
 
 def test_a_kernel_is_checked_against_its_kinds_declaration():
-    with pytest.raises(ParameterError, match="rotating field: 3 parameters, the layout declares 13"):
+    with pytest.raises(
+        ParameterError, match="rotating field: 3 parameters, the layout declares 13"
+    ):
         kernels.Kernel(kernels.KIND_ROTATING_FIELD, np.ones(3))
     with pytest.raises(ParameterError, match="cannot watch"):
         kernels.Kernel(
@@ -124,3 +129,39 @@ def test_kernels_read_no_slot_by_a_literal_position():
             if pattern.search(line):
                 found.append(f"{path.relative_to(SRC)}:{number}: {line.strip()}")
     assert not found, "\n".join(found)
+
+
+# heyoka's functions on floats: a term's transcription for the heyoka peer evaluated
+# numerically, to hold it to the compiled moment without heyoka installed.
+NUMBERS = SimpleNamespace(sin=np.sin, cos=np.cos, sqrt=np.sqrt, exp=np.exp)
+
+
+def _values(layout: Layout, rng: np.random.Generator) -> dict[str, np.ndarray]:
+    """Random values of every field of a layout, inside each field's declared range."""
+    out = {}
+    for f in layout.fields:
+        x = rng.normal(size=f.size)
+        lo, hi = max(f.low, -2.0), min(f.high, 2.0)
+        out[f.name] = (lo + (hi - lo) * (np.tanh(x) + 1.0) / 2.0).reshape(
+            (3, 3) if f.size == 9 else (3,) if f.size == 3 else ()
+        )
+    return out
+
+
+@pytest.mark.parametrize(
+    "term", [t for t in terms.TERMS if t.peer is not None], ids=lambda t: t.name
+)
+def test_every_peer_transcription_is_the_compiled_moment(term):
+    rng = np.random.default_rng(11)
+    for _ in range(5):
+        values = _values(term.layout, rng)
+        code, factor, payload = terms.compiled_term(term.name, values, factor=0.7)
+        t, q, w = rng.uniform(0.0, 5.0), rng.normal(size=4), rng.normal(size=3)
+        frame = _Frame(NUMBERS, list(q))
+        got = term.peer(term.values(payload), factor, t, list(w), frame, NUMBERS)
+        if got is None:  # no Taylor form (the quadratic drag)
+            continue
+        program = terms.flatten([(code, factor, payload)])
+        want = moments(program, np.array([t]), q[None, :], w[None, :])[0]
+        # Two transcriptions of the same formula in double precision: round-off apart.
+        np.testing.assert_allclose(np.asarray(got, dtype=float), want, rtol=1e-12, atol=1e-12)

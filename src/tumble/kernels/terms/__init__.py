@@ -1,7 +1,8 @@
 """The registry of torque terms: every term the compiled code evaluates, one module each.
 
-A term module declares one :class:`~tumble.kernels.terms.base.Term` (its parameters, what it
-reads, its compiled moment and averages); registering it is one line in :data:`TERMS`. From
+A term module declares its :class:`~tumble.kernels.terms.base.Term` objects in ``TERMS`` (their
+parameters, what they read, their compiled moments and averages) and, if a scenario may switch
+them on, its ``ORBIT_KEYS``; registering it is one line in :data:`MODULES`. From
 the registry follow the codes, the program's packing (:func:`compiled_term`, :func:`flatten`)
 and the compiled dispatch every kernel uses (:data:`moment_of` and the others below).
 
@@ -36,15 +37,19 @@ from tumble.kernels.terms import (
     quadratic_drag,
     user,
 )
-from tumble.kernels.terms.base import NAN, Term, chain
+from tumble.kernels.terms.base import NAN, OrbitContext, OrbitKey, Term, chain
 
 __all__ = [
     "BY_CODE",
     "CODES",
     "HEADER",
     "HEAD_SIZE",
+    "MODULES",
+    "ORBIT_KEYS",
     "TERMS",
     "CompiledTerm",
+    "OrbitContext",
+    "OrbitKey",
     "Term",
     "closed_of",
     "code",
@@ -59,21 +64,29 @@ __all__ = [
     "walk",
 ]
 
-TERMS: tuple[Term, ...] = (
-    body_constant.TERM,
-    linear_drag.TERM,
-    quadratic_drag.TERM,
-    inertial_constant.TERM,
-    gravity_gradient.TERM,
-    eddy_current.TERM,
-    user.TERM,
-    orbit_eddy.TERM,
-    orbit_gravity.TERM,
-    field_moments.TERM,
-    gravity_moments.TERM,
-    orbit_eddy_harmonic.TERM,
+MODULES = (
+    body_constant,
+    linear_drag,
+    quadratic_drag,
+    inertial_constant,
+    gravity_gradient,
+    eddy_current,
+    user,
+    orbit_eddy,
+    orbit_gravity,
+    field_moments,
+    gravity_moments,
+    orbit_eddy_harmonic,
 )
-"""The registered terms. A term's code is its place here plus one: append, never reorder."""
+"""The registered term modules, each declaring ``TERMS`` (and optionally ``ORBIT_KEYS``):
+registering a new one is one line here. Append, never reorder: a program stores codes."""
+
+TERMS: tuple[Term, ...] = tuple(term for module in MODULES for term in module.TERMS)
+"""The registered terms. A term's code is its place here plus one."""
+ORBIT_KEYS: tuple[OrbitKey, ...] = tuple(
+    key for module in MODULES for key in getattr(module, "ORBIT_KEYS", ())
+)
+"""The keys of the orbiting body's ``[torques]`` section that registered modules declare."""
 
 CODES: dict[str, int] = {term.name: k + 1 for k, term in enumerate(TERMS)}
 BY_CODE: dict[int, Term] = {k + 1: term for k, term in enumerate(TERMS)}

@@ -35,7 +35,7 @@ from tumble._typing import FloatArray
 from tumble.kernels.jit import INLINE, jit
 from tumble.kernels.layout import Layout
 
-__all__ = ["READS", "Term", "chain"]
+__all__ = ["READS", "OrbitContext", "OrbitKey", "Term", "chain"]
 
 Reads = Literal["rate", "attitude", "time", "orbit", "field"]
 READS: frozenset[str] = frozenset({"rate", "attitude", "time", "orbit", "field"})
@@ -118,6 +118,68 @@ class Term:
         if self.closed is None:
             return False
         return self.closed_if is None or self.closed_if(self.values(payload))
+
+
+@dataclass(frozen=True)
+class OrbitContext:
+    """What a term switched on from the orbiting body's scenario is built from: the model's
+    normalised units and the orbit and field as the compiled code reads them.
+
+    Attributes
+    ----------
+    orbit : ndarray
+        The orbit's payload (:data:`tumble.kernels.space.ORBIT`), rates per unit of model time.
+    field : ndarray or None
+        The field's payload (a dipole, :data:`~tumble.kernels.space.DIPOLE`, or a harmonic
+        field, :data:`~tumble.kernels.space.HARMONIC`), rates per unit of model time; None
+        without a field.
+    axes : ndarray, shape (3, 3)
+        R: the principal axes (columns) in the user's body axes; a user vector v is R.T @ v in
+        the principal axes the model integrates in.
+    T0 : float
+        The model's unit of time [s].
+    I0 : float
+        The model's unit of inertia [kg·m²]; a moment in N·m is M T0²/I0 in model units.
+    """
+
+    orbit: FloatArray
+    field: FloatArray | None
+    axes: FloatArray
+    T0: float
+    I0: float
+
+
+@dataclass(frozen=True)
+class OrbitKey:
+    """A key of the orbiting body's ``[torques]`` section that switches on a registered term.
+
+    Attributes
+    ----------
+    name : str
+        The key.
+    kind : str
+        Its value's type in the scenario schema (e.g. ``"vector3"``).
+    meaning : str
+        What a valid value is, as the key reference prints it.
+    unit : str
+        The value's unit (SI; tumble converts).
+    default : object
+        The value that leaves the term off.
+    doc : str
+        One line for the key reference.
+    build : callable
+        ``build(value, context)`` → ``(label, full, averaged)`` or None (the term is off):
+        the compiled terms (:data:`tumble.kernels.terms.CompiledTerm` lists) of the full
+        equations and of the orbit-averaged ones, in the model's units.
+    """
+
+    name: str
+    kind: str
+    meaning: str
+    unit: str
+    default: Any
+    doc: str
+    build: Callable[[Any, OrbitContext], Any]
 
 
 def _nan3(*args: Any) -> tuple[float, float, float]:

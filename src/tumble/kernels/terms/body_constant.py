@@ -51,3 +51,5 @@ TERM = Term(
     spinner=spinner,
     peer=peer,
 )
+
+TERMS = (TERM,)

@@ -76,3 +76,5 @@ TERM = Term(
     forcing_rate=lambda values: float(values["rate"]),
     peer=peer,
 )
+
+TERMS = (TERM,)

@@ -121,3 +121,5 @@ TERM = Term(
     closed=closed,
     closed_if=_symmetric,
 )
+
+TERMS = (TERM,)

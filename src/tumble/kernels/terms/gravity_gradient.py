@@ -103,3 +103,5 @@ TERM = Term(
     forcing_rate=lambda values: float(values["n"]),
     peer=peer,
 )
+
+TERMS = (TERM,)

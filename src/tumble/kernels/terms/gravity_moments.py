@@ -60,3 +60,5 @@ TERM = Term(
     moment=moment,
     closed=closed,
 )
+
+TERMS = (TERM,)

@@ -46,3 +46,5 @@ TERM = Term(
     closed=closed,
     peer=peer,
 )
+
+TERMS = (TERM,)

@@ -56,3 +56,5 @@ TERM = Term(
     spinner=spinner,
     peer=peer,
 )
+
+TERMS = (TERM,)

@@ -51,3 +51,5 @@ TERM = Term(
     reads=frozenset({"rate", "attitude", "time", "orbit", "field"}),
     moment=moment,
 )
+
+TERMS = (TERM,)

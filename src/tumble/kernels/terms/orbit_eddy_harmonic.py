@@ -41,3 +41,5 @@ TERM = Term(
     reads=frozenset({"rate", "attitude", "time", "orbit", "field"}),
     moment=moment,
 )
+
+TERMS = (TERM,)

@@ -43,3 +43,5 @@ TERM = Term(
     reads=frozenset({"attitude", "time", "orbit"}),
     moment=moment,
 )
+
+TERMS = (TERM,)

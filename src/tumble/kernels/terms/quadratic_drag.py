@@ -47,3 +47,5 @@ TERM = Term(
     spinner=spinner,
     peer=peer,
 )
+
+TERMS = (TERM,)

@@ -41,3 +41,5 @@ TERM = Term(
     moment=moment,
     quadrature_only=True,
 )
+
+TERMS = (TERM,)

@@ -14,16 +14,17 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from datetime import UTC, datetime
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
 from tumble._typing import FloatArray
 from tumble.bodies import RigidBody
 from tumble.errors import ParameterError, ScenarioError, check_range
+from tumble.kernels import terms
 from tumble.models.base import Column, Declaration
 from tumble.models.inputs import torqued_body as tb
-from tumble.models.schema import Built, Inputs, Key, ScenarioSchema, Section, Variant
+from tumble.models.schema import Built, Inputs, Key, KeyKind, ScenarioSchema, Section, Variant
 from tumble.rotations import matrix_to_quat, quat_to_matrix
 from tumble.space import (
     Dipole,
@@ -38,7 +39,7 @@ from tumble.space import (
     thin_spherical_shell,
 )
 from tumble.space.orbit import EARTH_RADIUS
-from tumble.torques import ConstantBodyTorque, Torque, TorqueSum
+from tumble.torques import CompiledTorque, ConstantBodyTorque, Torque, TorqueSum
 
 __all__ = ["DECLARED", "SHAPES", "Params", "Scaling", "State", "principal_axes"]
 
@@ -248,6 +249,10 @@ _TORQUES = Section(
         Key("eddy_current", "boolean", "true or false", default=True),
         Key("gravity_gradient", "boolean", "true or false", default=True),
         Key("residual_moment", "vector3", "3 numbers (body axes)", "N m", [0.0, 0.0, 0.0]),
+        *(
+            Key(k.name, cast(KeyKind, k.kind), k.meaning, k.unit, k.default, doc=k.doc)
+            for k in terms.ORBIT_KEYS
+        ),
     ),
     required=False,
     doc="which torques act (default: eddy current and gravity gradient)",
@@ -435,8 +440,7 @@ def _attitude(ini: Mapping[str, Any]) -> FloatArray:
 
 def _build(inputs: Inputs) -> Built[Params, State]:
     body, orbit_keys, ini = inputs["body"], inputs["orbit"], inputs["initial"]
-    torques = inputs["torques"] or {"eddy_current": True, "gravity_gradient": True,
-                                    "residual_moment": [0.0, 0.0, 0.0]}  # fmt: skip
+    torques = inputs["torques"] or {key.name: key.default for key in _TORQUES.keys}
     assert body is not None and orbit_keys is not None and ini is not None  # required
     if body["mass"] is not None:
         check_range("body.mass [kg]", body["mass"], low=0.0)
@@ -470,6 +474,16 @@ def _build(inputs: Inputs) -> Built[Params, State]:
         full.append(moment)
         mean.append(moment)
         labels.append("residual moment")
+    context = terms.OrbitContext(
+        orbit.payload(T0), None if field_model is None else field_model.payload(T0), R, T0, I0
+    )
+    for key in terms.ORBIT_KEYS:
+        built = key.build(torques[key.name], context)
+        if built is not None:
+            label, with_orbit, averaged = built
+            full.append(CompiledTorque(tuple(with_orbit), label))
+            mean.append(CompiledTorque(tuple(averaged), label))
+            labels.append(label)
     if not full:
         raise ScenarioError("torques: every torque is off (nothing drives the evolution)")
     q_user = _attitude(ini)

@@ -1,0 +1,94 @@
+"""The nonlinear moment's cases shared by its claims: the orbits of theory §13, the
+perturbation of §9 and the perturbed full runs (V. M. Serov 1991;
+docs/theory/nonlinear-moment.md)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from tumble.analysis.claims.base import Panel, Series
+from tumble.analysis.claims.common import (
+    Tolerances,
+    cache_per_scale,
+    quiet,
+    tolerances,
+)
+from tumble.integrate import simulate
+from tumble.models import nonlinear_moment as nm
+
+NM = "nonlinear_moment"
+
+NM_CASES = {
+    "double well b < 0 (case 1)": (
+        nm.Params(mu=0.8, a=-1.0, b=-0.3),
+        nm.State(1.0, 0.3, 0.2, -0.1, 0.4, 0.6),
+    ),
+    "b > 0 (case 1)": (nm.Params(mu=1.3, a=-2.0, b=0.4), nm.State(0.7, -0.5, 0.0, 0.3, 1.1, -0.4)),
+    "overturning a > 0 (case 2)": (
+        nm.Params(mu=0.5, a=0.8, b=-1.5),
+        nm.State(2.0, 0.2, 0.0, 0.0, -0.3, 0.2),
+    ),
+    "heavy top b = 0, a > 0": (
+        nm.Params(mu=0.6, a=1.0, b=0.0),
+        nm.State(1.0, 0.2, 0.0, 0.0, 2.0, 1.5),
+    ),
+    "large swing (case 2)": (
+        nm.Params(mu=0.8, a=-1.0, b=-0.3),
+        nm.State(2.6, 0.0, 0.0, 0.0, 0.4, 0.6),
+    ),
+}
+"""Theory §13: both root cases, a and b of both signs, a double well, b = 0 with a > 0 (the
+alternative anchoring of §4.3), mid-swing starts (θ′0 ≠ 0, which exercises γ0 and its sign)."""
+
+NM_PERTURBATION = {"d": 0.5, "nu": 0.2, "pressure": nm.Pressure("exp")}
+"""The perturbation of §9 with pitch and roll damping and Q = e^τ (examples/nm_damped_exp)."""
+
+NM_EPS = [0.1, 0.05, 0.02, 0.01, 0.005]
+
+
+def _nm_perturbed(p: nm.Params, eps: float, **kw: Any) -> nm.Params:
+    args: dict[str, Any] = {"mu": p.mu, "a": p.a, "b": p.b, "eps": eps, **NM_PERTURBATION}
+    args.update(kw)
+    return nm.Params(**args)
+
+
+UNPERTURBED: Tolerances = {"rtol": 1e-13, "atol": 1e-14}
+"""Tolerances of the unperturbed full runs that the closed forms are checked against."""
+
+SWING: Tolerances = {"rtol": 1e-11, "atol": 1e-13}
+"""Tolerances of the perturbed runs whose averaging error the claims measure (far below it)."""
+
+
+@cache_per_scale
+def _nm_full(name: str, eps: float) -> Any:
+    p0, st = NM_CASES[name]
+    p = _nm_perturbed(p0, eps)
+    tau = np.linspace(0.0, 1.0 / eps, 201)
+    # Dense: the figure draws θ(t) between the samples (every swing).
+    return quiet(
+        simulate,
+        nm.MODEL,
+        p,
+        st,
+        tau,
+        "full",
+        **tolerances(SWING),
+        dense=True,
+    )
+
+
+def _nm_swing_panel(full: Any, avg: Any, title: str) -> Panel:
+    """θ(t) of a full run [deg] with the averaged θmax, θmin of the same run."""
+    dense = np.linspace(0.0, float(full.tau[-1]), 4001)  # the dense output resolves each swing
+    return Panel(
+        series=(
+            Series(dense, np.degrees(full.slow(dense)["theta"]), "full θ"),
+            Series(avg.tau, np.degrees(avg.columns["theta_max"]), "averaged θmax"),
+            Series(avg.tau, np.degrees(avg.columns["theta_min"]), "averaged θmin"),
+        ),
+        xlabel="t",
+        ylabel="θ [deg]",
+        title=title,
+    )

@@ -12,7 +12,7 @@ from __future__ import annotations
 import contextlib
 import functools
 import warnings
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterable, Iterator, Mapping
 from contextvars import ContextVar
 from dataclasses import dataclass
 from typing import Any, TypedDict, TypeVar, cast
@@ -20,7 +20,7 @@ from typing import Any, TypedDict, TypeVar, cast
 import numpy as np
 
 from tumble._typing import FloatArray
-from tumble.analysis.claims.base import plain
+from tumble.analysis.claims.base import Measurement, Panel, Series, plain
 from tumble.errors import TumbleWarning
 
 __all__ = [
@@ -29,11 +29,16 @@ __all__ = [
     "Convergence",
     "Difference",
     "Tolerances",
+    "budget_panel",
+    "by_convergence",
     "cache_per_scale",
     "converged",
+    "eps_panel",
+    "floored",
     "max_abs",
     "measured",
     "measured_by",
+    "measured_order",
     "quiet",
     "tolerance_scale",
     "tolerances",
@@ -207,6 +212,41 @@ def measured_by(
     )
 
 
+def by_convergence(
+    conv: Convergence,
+    panels: Iterable[Panel],
+    units: str,
+    what: str,
+    qualification: str = "",
+    *,
+    also: str = "",
+    condition: bool = True,
+    **details: Any,
+) -> Measurement:
+    """The :class:`~tumble.analysis.claims.base.Measurement` of a claim decided by ``conv``.
+
+    Parameters
+    ----------
+    conv : Convergence
+        The comparison that decides the claim.
+    panels : iterable of Panel
+        The figure's panels.
+    units, what, qualification, also, **details
+        As for :func:`measured_by`.
+    condition : bool, optional
+        A further condition of the claim (the one ``also`` states): the claim holds if ``conv``
+        does and this holds.
+
+    Returns
+    -------
+    Measurement
+        Holds if ``conv.holds`` and ``condition``; qualified if the theory page's
+        ``qualification`` is given.
+    """
+    m = measured_by(conv, units, what, qualification, also=also, **details)
+    return Measurement(conv.holds and condition, bool(qualification), m, tuple(panels))
+
+
 def converged(
     difference: Callable[[Tolerances], tuple[Difference, int, T]],
     base: Tolerances = TIGHT,
@@ -244,6 +284,35 @@ FIRST_ORDER = 0.75
 """A fitted order of the averaging error at or above this is first order: the ±0.25 band that
 tumble's own error studies use (three to five values of ε; the O(ε²) remainder and the phase of
 the O(ε) oscillation at the sampled maxima scatter the slope by up to ±0.2)."""
+
+
+def measured_order(
+    order: float,
+    what: str,
+    qualification: str = "",
+    *,
+    criterion: str = "order ≥ 0.75",
+    **details: Any,
+) -> dict[str, Any]:
+    """The :func:`measured` record of a claim that holds to first order: the fitted order of an
+    error against ε [1], judged against :data:`FIRST_ORDER`.
+
+    Parameters
+    ----------
+    order : float
+        The fitted order [1].
+    what : str
+        What was fitted, with the values of ε and the runs.
+    qualification : str, optional
+        The theory page's qualification of the paper's statement.
+    criterion : str, optional
+        The rule of the verdict, where the claim adds a condition to the order's.
+    **details
+        Further measurements, stored under ``details``.
+    """
+    return measured(
+        order, "1 (fitted order)", what, FIRST_ORDER, criterion, qualification, **details
+    )
 
 
 def measured(
@@ -312,3 +381,31 @@ def wrap(x: Any) -> FloatArray:
     """Angle difference wrapped to (−π, π] [rad]: angles are compared modulo 2π
     (docs/theory/resisting-medium.md §14)."""
     return np.asarray(np.angle(np.exp(1j * np.asarray(x, dtype=float))), dtype=float)
+
+
+def floored(x: Any, curves: Mapping[str, Any], floor: float = 1e-17) -> tuple[Series, ...]:
+    """One :class:`~tumble.analysis.claims.base.Series` per named curve over ``x``, floored at
+    ``floor`` so that exact zeros can be drawn on a logarithmic axis."""
+    return tuple(Series(x, np.maximum(y, floor), name) for name, y in curves.items())
+
+
+def budget_panel(
+    series: Iterable[Series], conv: Convergence, xlabel: str, ylabel: str, title: str = ""
+) -> Panel:
+    """Differences on a logarithmic axis, with the round-off budget of ``conv`` as a reference
+    line (the figure of a claim decided by :func:`converged`)."""
+    return Panel(
+        series=tuple(series),
+        xlabel=xlabel,
+        ylabel=ylabel,
+        title=title,
+        yscale="log",
+        hlines=((conv.budget, "round-off budget"),),
+    )
+
+
+def eps_panel(series: Iterable[Series], ylabel: str, title: str = "") -> Panel:
+    """Errors against ε on logarithmic axes (the figure of a fitted order)."""
+    return Panel(
+        series=tuple(series), xlabel="ε", ylabel=ylabel, title=title, xscale="log", yscale="log"
+    )

@@ -12,10 +12,11 @@ from tumble.analysis.claims.base import Measurement, Panel, Series, claim
 from tumble.analysis.claims.common import (
     Difference,
     Tolerances,
+    budget_panel,
+    by_convergence,
     converged,
     max_abs,
     measured,
-    measured_by,
 )
 from tumble.analysis.claims.nonlinear_moment.cases import NM, NM_CASES, UNPERTURBED
 from tumble.integrate import integrate, simulate
@@ -88,18 +89,13 @@ def nm_1() -> Measurement:
     # wrong G or E of (1.6) is an O(1) mismatch that does not).
     conv, (per, series) = converged(difference, UNPERTURBED)
     panels = (
-        Panel(
-            series=tuple(series),
-            xlabel="t / T",
-            ylabel="|E(t) − E(0)|",
-            title="unperturbed, quaternion form of (1.1)",
-            yscale="log",
-            hlines=((conv.budget, "round-off budget"),),
+        budget_panel(
+            series, conv, "t / T", "|E(t) − E(0)|", "unperturbed, quaternion form of (1.1)"
         ),
     )
-    holds = conv.holds
-    m = measured_by(
+    return by_convergence(
         conv,
+        panels,
         "1 (relative to max(1, |value|))",
         "max drift of R, G, E of the full model over ten nutation periods, and E, G of the "
         "initial state against (1.6) and the definition of G, five orbits",
@@ -107,7 +103,6 @@ def nm_1() -> Measurement:
         "correction S2: G = (p sinφ + q cosφ) sinθ + μr cosθ (printed: q sinφ)",
         per_case=per,
     )
-    return Measurement(holds, True, m, panels)
 
 
 @claim(
@@ -148,18 +143,10 @@ def nm_2() -> Measurement:
         Series(t / orbit.period, np.maximum(np.abs(full["theta"] - closed["theta"]), 1e-18), name)
         for name, (t, full, closed, orbit) in runs.items()
     ]
-    panels = (
-        Panel(
-            series=tuple(series),
-            xlabel="t / T",
-            ylabel="|θ(1.9) − θ integrated| [rad]",
-            yscale="log",
-            hlines=((conv.budget, "round-off budget"),),
-        ),
-    )
-    holds = conv.holds
-    m = measured_by(
+    panels = (budget_panel(series, conv, "t / T", "|θ(1.9) − θ integrated| [rad]"),)
+    return by_convergence(
         conv,
+        panels,
         "rad",
         "max |θ(1.9) − θ integrated| (and θ′ relative) over ten periods, five orbits (both root "
         "cases, double well, b = 0 with a > 0)",
@@ -168,7 +155,6 @@ def nm_2() -> Measurement:
         "with a > 0 the alternative anchoring is needed",
         per_case=per,
     )
-    return Measurement(holds, True, m, panels)
 
 
 def _period_by_quadrature(orbit: NutationOrbit) -> float:
@@ -311,9 +297,9 @@ def nm_4() -> Measurement:
             yscale="log",
         ),
     )
-    holds = conv.holds
-    m = measured_by(
+    return by_convergence(
         conv,
+        panels,
         "1 (relative to max(1, |phase|))",
         "max |ψ, φ of (1.13) − integrated| over ten periods, five orbits",
         "corrections S7–S9: χ± of case 2 re-bracketed, λ± = (k² + w±)^{+1/2} and L±(γ) with "
@@ -322,4 +308,3 @@ def nm_4() -> Measurement:
         per_case=per,
         worst_mean_rate_mismatch_ten_periods=worst_rate,
     )
-    return Measurement(holds, True, m, panels)

@@ -4,15 +4,14 @@ the branch cases of the closed forms (A. V. Medvedev 1987; docs/theory/resisting
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Mapping
 from typing import Any
 
 import numpy as np
 
-from tumble.analysis.claims.common import (
-    Tolerances,
-    quiet,
-    tolerances,
-)
+from tumble._typing import FloatArray
+from tumble.analysis.claims.base import Series
+from tumble.analysis.claims.common import Difference, Tolerances, max_abs, quiet, tolerances
 from tumble.integrate import simulate
 from tumble.models import resisting_medium as rm
 
@@ -70,6 +69,68 @@ def _rm_averaged(p: rm.Params, st: rm.State, tau: np.ndarray, tol: Tolerances | 
     """Averaged system (2.2) integrated tightly (the reference for the closed forms): the
     trajectory (``columns``, ``nfev``), at ``tol`` or the reference tolerances."""
     return quiet(simulate, rm.MODEL, p, st, tau, "averaged", **(tol or tolerances()))
+
+
+Prediction = Callable[
+    [rm.Params, rm.State, FloatArray, Mapping[str, FloatArray]], tuple[FloatArray, FloatArray]
+]
+"""``predict(p, st, tau, averaged columns)``: a closed form of (2.2) along ``tau`` and the same
+quantity from the integrated (2.2)."""
+
+AveragedCase = tuple[rm.Params, rm.State, str, Prediction]
+"""A closed form checked against (2.2): params, initial state, the label of its curve, and its
+:data:`Prediction`."""
+
+
+def against_averaged(
+    cases: Mapping[str, AveragedCase], slow_time: float
+) -> Callable[[Tolerances], tuple[Difference, int, tuple[dict[str, float], list[Series]]]]:
+    """The ``difference`` of :func:`~tumble.analysis.claims.common.converged` for closed forms
+    of the averaged system (2.2), case by case.
+
+    Parameters
+    ----------
+    cases : mapping
+        Case name → :data:`AveragedCase`.
+    slow_time : float
+        The horizon ετ of each run [1], sampled at 401 points.
+
+    Returns
+    -------
+    callable
+        ``difference(tolerances)``: max |closed form − (2.2) integrated| per case, the
+        right-hand-side evaluations, and (that per-case record, the figure's series: each closed
+        form as a line against ετ, every 20th sample of its integration as markers).
+    """
+
+    def difference(
+        tol: Tolerances,
+    ) -> tuple[Difference, int, tuple[dict[str, float], list[Series]]]:
+        series: list[Series] = []
+        per, nfev = {}, 0
+        for name, (p, st, label, predict) in cases.items():
+            tau = np.linspace(0.0, slow_time / p.eps, 401)
+            run = _rm_averaged(p, st, tau, tol)
+            avg, nfev = run.columns, nfev + run.nfev
+            closed, integrated = predict(p, st, tau, avg)
+            per[name] = max_abs(closed - integrated)
+            series.append(Series(p.eps * tau, closed, label))
+            series.append(Series(p.eps * tau[::20], integrated[::20], style="markers"))
+        return per, nfev, (per, series)
+
+    return difference
+
+
+def theta_of_tan(formula: Callable[..., FloatArray], shift: float) -> Prediction:
+    """The :data:`Prediction` of ϑ [rad] by a closed form of tan ϑ, ``formula(tau, k0, ϑ0, p)``:
+    ``shift`` + arctan, ``shift`` = π in the lower hemisphere (§8.6: π + arctan of (2.10))."""
+
+    def predict(
+        p: rm.Params, st: rm.State, tau: FloatArray, avg: Mapping[str, FloatArray]
+    ) -> tuple[FloatArray, FloatArray]:
+        return shift + np.arctan(formula(tau, st.k, st.theta, p)), avg["theta"]
+
+    return predict
 
 
 def _rm_random_states(n: int, seed: int) -> list[tuple[rm.Params, float, float, float]]:

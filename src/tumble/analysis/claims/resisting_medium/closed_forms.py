@@ -4,24 +4,29 @@ integration."""
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
 
+from tumble._typing import FloatArray
 from tumble.analysis.claims.base import Measurement, Panel, Series, claim
 from tumble.analysis.claims.common import (
     Difference,
     Tolerances,
+    by_convergence,
     converged,
     max_abs,
-    measured_by,
 )
 from tumble.analysis.claims.resisting_medium.cases import (
     RM,
     RM_AXIAL_CASES,
+    AveragedCase,
     _rm_averaged,
     _rm_medium,
     _rm_state,
+    against_averaged,
+    theta_of_tan,
 )
 from tumble.models import resisting_medium as rm
 
@@ -47,22 +52,9 @@ def rm_5() -> Measurement:
         "α = 0 (limit)": (_rm_medium(0.0, 0.3, 0.2, 0.1, a3=0.2), _rm_state(1.0, 1.3)),
         "γ = 0": (_rm_medium(0.3, 0.2, 0.0, 0.1, a3=-0.2), _rm_state(1.2, 2.2)),
     }
-
-    def difference(
-        tol: Tolerances,
-    ) -> tuple[Difference, int, tuple[dict[str, float], list[Series]]]:
-        series: list[Series] = []
-        per, nfev = {}, 0
-        for name, (p, st) in cases.items():
-            tau = np.linspace(0.0, 10.0 / p.eps, 401)
-            run = _rm_averaged(p, st, tau, tol)
-            avg, nfev = run.columns, nfev + run.nfev
-            V_int = avg["k"] * np.sin(avg["theta"])
-            V_cf = rm.equatorial_momentum(tau, st.V, p)
-            per[name] = max_abs(V_cf - V_int)
-            series.append(Series(p.eps * tau, V_cf, f"(2.4) {name}"))
-            series.append(Series(p.eps * tau[::20], V_int[::20], style="markers"))
-        return per, nfev, (per, series)
+    difference = against_averaged(
+        {name: (p, st, f"(2.4) {name}", _equatorial) for name, (p, st) in cases.items()}, 10.0
+    )
 
     # Criterion: (2.4) is exact for (2.2), so V agrees to integration accuracy of (2.2).
     conv, (per, series) = converged(difference)
@@ -74,14 +66,20 @@ def rm_5() -> Measurement:
             title="lines (2.4), dots: (2.2) integrated",
         ),
     )
-    holds = conv.holds
-    m = measured_by(
+    return by_convergence(
         conv,
+        panels,
         "1",
         f"max |V(2.4) − V of (2.2) integrated (rtol {conv.rtol:.0e})| over ετ ≤ 10, three media",
         per_case=per,
     )
-    return Measurement(holds, False, m, panels)
+
+
+def _equatorial(
+    p: rm.Params, st: rm.State, tau: FloatArray, avg: Mapping[str, FloatArray]
+) -> tuple[FloatArray, FloatArray]:
+    """V = k sin ϑ [1] by (2.4) and along the integrated (2.2)."""
+    return rm.equatorial_momentum(tau, st.V, p), avg["k"] * np.sin(avg["theta"])
 
 
 def _printed_2_5_at_zero(W0: float, p: rm.Params) -> float:
@@ -160,20 +158,20 @@ def rm_6() -> Measurement:
     worst_printed = max(printed.values())
     # The printed formulas equal the well-conditioned closed form inside their windows: two
     # closed forms, no integration tolerance enters (1e-8: far below an O(1) wrong exponent).
-    holds = conv.holds and worst_printed <= 1e-8
-    m = measured_by(
+    return by_convergence(
         conv,
+        panels,
         "1 (k), rad (ϑ)",
         "max |closed form − (2.2) integrated| of k and ϑ over 10 branch cases (ετ ≤ 10, "
         "through the ϑ = π/2 switch)",
         "E3: the denominator of (2.5) is [1 − c1 e^{−2εδν1τ}]⁻¹/(2δ) (printed: exponent −1/2δ); "
         "each formula holds only while W keeps its sign, the branch switches at τ1 (§8.4)",
         also="; printed (2.5)–(2.8) = closed form to 1e-8 before τ1",
+        condition=worst_printed <= 1e-8,
         per_case=per,
         printed_formula_vs_closed_form=printed,
         printed_2_5_W0_error=e3,
     )
-    return Measurement(holds, True, m, panels)
 
 
 @claim(
@@ -193,35 +191,21 @@ def rm_7() -> Measurement:
         Measured: max |ϑ of (2.9)/(2.10) − ϑ of (2.2) integrated| [rad]; holds if it falls
         with the tolerance.
     """
-    cases = {
+    cases: dict[str, AveragedCase] = {
         "(2.9) upper": (
             _rm_medium(0.2, 0.3, 0.1, 0.2),
             _rm_state(1.0, 0.7),
-            rm.tan_theta_a3_zero_upper,
-            0.0,
+            "(2.9) upper",
+            theta_of_tan(rm.tan_theta_a3_zero_upper, 0.0),
         ),
         "(2.10) lower": (
             _rm_medium(0.3, 0.2, 0.1, 0.2),
             _rm_state(1.0, 2.3),
-            rm.tan_theta_a3_zero_lower,
-            math.pi,
+            "(2.10) lower",
+            theta_of_tan(rm.tan_theta_a3_zero_lower, math.pi),
         ),
     }
-
-    def difference(
-        tol: Tolerances,
-    ) -> tuple[Difference, int, tuple[dict[str, float], list[Series]]]:
-        series: list[Series] = []
-        per, nfev = {}, 0
-        for name, (p, st, formula, shift) in cases.items():
-            tau = np.linspace(0.0, 10.0 / p.eps, 401)
-            run = _rm_averaged(p, st, tau, tol)
-            avg, nfev = run.columns, nfev + run.nfev
-            th = shift + np.arctan(formula(tau, st.k, st.theta, p))  # §8.6: π + arctan (2.10)
-            per[name] = max_abs(th - avg["theta"])
-            series.append(Series(p.eps * tau, th, name))
-            series.append(Series(p.eps * tau[::20], avg["theta"][::20], style="markers"))
-        return per, nfev, (per, series)
+    difference = against_averaged(cases, 10.0)
 
     # Criterion: (2.9)/(2.10) are exact for (2.2): ϑ to its integration accuracy.
     conv, (per, series) = converged(difference)
@@ -233,13 +217,12 @@ def rm_7() -> Measurement:
             title="lines: (2.9)/(2.10); dots: (2.2) integrated",
         ),
     )
-    holds = conv.holds
-    m = measured_by(
+    return by_convergence(
         conv,
+        panels,
         "rad",
         "max |ϑ from (2.9)/(2.10) − ϑ of (2.2) integrated| over ετ ≤ 10",
         "E7: (2.9) is (2.4)/(2.5) and (2.10) is (2.4)/(2.7) at a3 = 0 (the paper's 'inequality' "
         "is the condition of (2.7)); they are 0/0 for α = 0 or β = 0 (use W, V)",
         per_case=per,
     )
-    return Measurement(holds, True, m, panels)

@@ -12,10 +12,12 @@ from tumble.analysis.claims.base import Measurement, Panel, Series, claim
 from tumble.analysis.claims.common import (
     Difference,
     Tolerances,
+    budget_panel,
+    by_convergence,
     converged,
+    floored,
     max_abs,
     measured,
-    measured_by,
     wrap,
 )
 from tumble.analysis.claims.resisting_medium.cases import (
@@ -68,17 +70,17 @@ def rm_1() -> Measurement:
     }
     fast = {n: max_abs(wrap(euler[n] - osc[n])) for n in ("psi", "phi")}
     panels = (
-        Panel(
-            series=tuple(Series(tau, np.maximum(d, 1e-17), name) for name, d in diffs.items()),
-            xlabel="τ",
-            ylabel="|Euler+quaternions − (1.3)|",
-            title="two full forms, GENERAL medium",
-            yscale="log",
-            hlines=((conv.budget, "round-off budget"),),
+        budget_panel(
+            floored(tau, diffs),
+            conv,
+            "τ",
+            "|Euler+quaternions − (1.3)|",
+            "two full forms, GENERAL medium",
         ),
     )
-    m = measured_by(
+    return by_convergence(
         conv,
+        panels,
         "1 (k), rad (angles)",
         "max |Δ| of k, ϑ, ρ, σ between Euler+quaternions and the standard form (1.3), τ ≤ 2/ε",
         "E1: the first equation is K dρ/dt = M1 (printed: K dφ/dt); E2: ρ, σ are the polar angle "
@@ -86,8 +88,6 @@ def rm_1() -> Measurement:
         max_diff_psi_phi_mod_2pi=fast,
         eps=p.eps,
     )
-    holds = conv.holds
-    return Measurement(holds, True, m, panels)
 
 
 @claim(
@@ -128,24 +128,18 @@ def rm_2() -> Measurement:
     conv, dev = converged(difference)  # §13.1: constant to integration accuracy
     rel = {n: max_abs(d) for n, d in dev.items()}
     panels = (
-        Panel(
-            series=tuple(Series(tau, np.maximum(d, 1e-17), name) for name, d in dev.items()),
-            xlabel="τ",
-            ylabel="deviation from (2.1) (ψ, φ relative to phase)",
-            title="ε = 0",
-            yscale="log",
-            hlines=((conv.budget, "round-off budget"),),
+        budget_panel(
+            floored(tau, dev), conv, "τ", "deviation from (2.1) (ψ, φ relative to phase)", "ε = 0"
         ),
     )
-    holds = conv.holds
-    m = measured_by(
+    return by_convergence(
         conv,
+        panels,
         "1",
         "max deviation of k, ϑ, ρ, σ from constants and of ψ, φ from kτ and −kκcosϑ τ/(1+κ) "
         "(relative to the accumulated phase), ε = 0, τ ≤ 500",
         per_variable=rel,
     )
-    return Measurement(holds, False, m, panels)
 
 
 @claim(

@@ -11,21 +11,21 @@ from scipy.optimize import brentq
 
 from tumble.analysis.claims.base import Measurement, Panel, Series, claim
 from tumble.analysis.claims.common import (
-    Difference,
-    Tolerances,
+    by_convergence,
     converged,
-    max_abs,
     measured,
-    measured_by,
     quiet,
     tolerances,
 )
 from tumble.analysis.claims.resisting_medium.cases import (
     RM,
     RM_AXIAL_CASES,
+    AveragedCase,
     _rm_averaged,
     _rm_medium,
     _rm_state,
+    against_averaged,
+    theta_of_tan,
 )
 from tumble.integrate import simulate
 from tumble.models import resisting_medium as rm
@@ -279,22 +279,16 @@ def rm_11() -> Measurement:
         with the tolerance.
     """
     p = _rm_medium(gamma=0.3, delta=0.2)
-
-    def difference(
-        tol: Tolerances,
-    ) -> tuple[Difference, int, tuple[dict[str, float], list[Series]]]:
-        series: list[Series] = []
-        per, nfev = {}, 0
-        for theta0, shift in ((0.5, 0.0), (2.5, math.pi)):
-            st = _rm_state(1.0, theta0)
-            tau = np.linspace(0.0, 20.0 / p.eps, 401)
-            run = _rm_averaged(p, st, tau, tol)
-            avg, nfev = run.columns, nfev + run.nfev
-            th = shift + np.arctan(rm.tan_theta_quadratic(tau, st.k, st.theta, p))
-            per[f"theta0 = {theta0}"] = max_abs(th - avg["theta"])
-            series.append(Series(p.eps * tau, th, f"§8.7, ϑ0 = {theta0}"))
-            series.append(Series(p.eps * tau[::20], avg["theta"][::20], style="markers"))
-        return per, nfev, (per, series)
+    cases: dict[str, AveragedCase] = {
+        f"theta0 = {theta0}": (
+            p,
+            _rm_state(1.0, theta0),
+            f"§8.7, ϑ0 = {theta0}",
+            theta_of_tan(rm.tan_theta_quadratic, shift),
+        )
+        for theta0, shift in ((0.5, 0.0), (2.5, math.pi))
+    }
+    difference = against_averaged(cases, 20.0)
 
     # Criterion: the §8.7 law is exact for (2.2): ϑ to its integration accuracy.
     conv, (per, series) = converged(difference)
@@ -308,16 +302,15 @@ def rm_11() -> Measurement:
             hlines=tuple((lim, "") for lim in limits),
         ),
     )
-    holds = conv.holds
-    m = measured_by(
+    return by_convergence(
         conv,
+        panels,
         "rad",
         "max |ϑ of the §8.7 law − ϑ of (2.2) integrated| over ετ ≤ 20, ϑ0 = 0.5 and 2.5",
         "the paper gives the upper hemisphere only; in general |cos ϑ0| appears, and the "
         "lower-hemisphere solution is ϑ = π + arctan(…)",
         per_case=per,
     )
-    return Measurement(holds, True, m, panels)
 
 
 @claim(

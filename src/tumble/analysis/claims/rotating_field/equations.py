@@ -12,10 +12,12 @@ from tumble.analysis.claims.base import Measurement, Panel, Series, claim
 from tumble.analysis.claims.common import (
     Difference,
     Tolerances,
+    budget_panel,
+    by_convergence,
     converged,
+    floored,
     max_abs,
     measured,
-    measured_by,
     wrap,
 )
 from tumble.analysis.claims.rotating_field.cases import RF, RF_BODY, XI3, _params
@@ -141,25 +143,19 @@ def rf_2() -> Measurement:
     # tolerance); the OCR's Γ′ leaves an O(1) difference.
     conv, diffs = converged(difference)
     panels = (
-        Panel(
-            series=tuple(Series(tau, np.maximum(d, 1e-17), name) for name, d in diffs.items()),
-            xlabel="τ",
-            ylabel="|(1.5) − (1.4)|",
-            title="body (1, 1.6, 2.2), β = 1, ε = 0.01",
-            yscale="log",
-            hlines=((conv.budget, "round-off budget"),),
+        budget_panel(
+            floored(tau, diffs), conv, "τ", "|(1.5) − (1.4)|", "body (1, 1.6, 2.2), β = 1, ε = 0.01"
         ),
     )
-    holds = conv.holds
-    m = measured_by(
+    return by_convergence(
         conv,
+        panels,
         "1 (z, L, T), rad (angles)",
         "max |Δ| of L, ρ, σ, T, z between the rotating-frame form (1.5) and the inertial form "
         "(1.4) with quaternions, τ ≤ 1/ε",
         "correction C3: Γ′ = Γẑ − ξ̂3Γ (the OCR prints ξ̂3Γ⁺); only this reading agrees with (1.4)",
         per_variable={n: max_abs(d) for n, d in diffs.items()},
     )
-    return Measurement(holds, True, m, panels)
 
 
 @claim(

@@ -14,8 +14,10 @@ from tumble.analysis.claims.base import Measurement, Panel, Series, claim
 from tumble.analysis.claims.common import (
     FIRST_ORDER,
     cache_per_scale,
+    eps_panel,
     max_abs,
     measured,
+    measured_order,
     tolerances,
 )
 from tumble.analysis.claims.resisting_medium.cases import (
@@ -29,6 +31,9 @@ from tumble.analysis.claims.resisting_medium.cases import (
 from tumble.integrate import simulate
 from tumble.models import resisting_medium as rm
 
+RM_STUDY_CASES = {"oblate upper (GENERAL)": (RM_GENERAL, RM_START), "prolate lower": RM_PROLATE}
+"""The two media of the averaged-vs-full error study of §13.6."""
+
 
 @cache_per_scale
 def _rm_accuracy_study() -> dict[str, Any]:
@@ -36,14 +41,32 @@ def _rm_accuracy_study() -> dict[str, Any]:
     (0.02 … 0.00125), so that the fitted order is not decided by the phase of one resonance
     passage (§10.5) at one ε."""
     eps = [0.02, 0.01, 0.005, 0.0025, 0.00125]
-    cases = {"oblate upper (GENERAL)": (RM_GENERAL, RM_START), "prolate lower": RM_PROLATE}
     out = {}
-    for name, (p, st) in cases.items():
+    for name, (p, st) in RM_STUDY_CASES.items():
         assert rm.crossing_time(st.W, p) > 2.0 / min(eps)  # stays in its hemisphere (§10.1)
         out[name] = averaging_error_study(
             rm.MODEL, p, st, eps, slow_time=2.0, variables=("k", "theta", "rho", "sigma")
         )
     return out
+
+
+def _study_orders(
+    variables: tuple[str, ...], label: str, guide: float, ylabel: str
+) -> tuple[dict[str, float], Panel]:
+    """The fitted orders [1] of the §13.6 study for ``variables``, keyed "<case>: <variable>",
+    and their figure: each error against ε (``label`` formatted with the case ``name`` and the
+    variable ``v``) and the slope-1 line ``guide`` × ε."""
+    series: list[Series] = []
+    slopes = {}
+    for name, s in _rm_accuracy_study().items():
+        for v in variables:
+            slopes[f"{name}: {v}"] = s.slopes[v]
+            series.append(
+                Series(np.asarray(s.eps), s.errors[v], label.format(name=name, v=v), "line+markers")
+            )
+    e = np.array([0.00125, 0.02])
+    series.append(Series(e, guide * e, "slope 1", "dotted"))
+    return slopes, eps_panel(series, ylabel)
 
 
 @claim(
@@ -63,39 +86,24 @@ def rm_13() -> Measurement:
         Measured: the slowest fitted order [1] of the full model's ρ, σ excursions against ε; holds
         at ≥ 0.75.
     """
-    studies = _rm_accuracy_study()
-    series: list[Series] = []
-    slopes, ratio = {}, {}
-    for name, s in studies.items():
-        for v in ("rho", "sigma"):
-            slopes[f"{name}: {v}"] = s.slopes[v]
-            ratio[f"{name}: {v}"] = (s.errors[v] / s.eps).tolist()
-            series.append(
-                Series(np.asarray(s.eps), s.errors[v], f"{name}: max|{v} − {v}0|", "line+markers")
-            )
-    e = np.array([0.00125, 0.02])
-    series.append(Series(e, 0.5 * e, "slope 1", "dotted"))
-    panels = (
-        Panel(
-            series=tuple(series),
-            xlabel="ε",
-            ylabel="max excursion over ετ ≤ 2 [rad]",
-            xscale="log",
-            yscale="log",
-        ),
+    slopes, panel = _study_orders(
+        ("rho", "sigma"), "{name}: max|{v} − {v}0|", 0.5, "max excursion over ετ ≤ 2 [rad]"
     )
+    ratio = {
+        f"{name}: {v}": (s.errors[v] / s.eps).tolist()
+        for name, s in _rm_accuracy_study().items()
+        for v in ("rho", "sigma")
+    }
     worst = min(slopes.values())
     # Constant to first order = the full excursions are O(ε): fitted order ≥ 0.75.
     holds = worst >= FIRST_ORDER
-    m = measured(
+    m = measured_order(
         worst,
-        "1 (fitted order)",
         "slowest fitted order of max|ρ − ρ0|, max|σ − σ0| of the full model against ε "
         "(0.02 … 0.00125, halved four times) over ετ ≤ 2",
-        FIRST_ORDER,
-        "order ≥ 0.75 (O(ε) excursions)",
         "constant only to first order: the full model has O(ε) excursions of ρ, σ over "
         "τ ~ 1/ε (and a tilt of the steady axis, §10.4)",
+        criterion="order ≥ 0.75 (O(ε) excursions)",
         slopes=slopes,
         excursion_over_eps=ratio,
         resonances_passed={
@@ -104,13 +112,10 @@ def rm_13() -> Measurement:
                 for i in rm.validity(p, st, functools.partial(rm.closed_form, p, st), 2.0 / p.eps)
                 if i.condition == "resonance"
             ]
-            for name, (p, st) in {
-                "oblate upper (GENERAL)": (RM_GENERAL, RM_START),
-                "prolate lower": RM_PROLATE,
-            }.items()
+            for name, (p, st) in RM_STUDY_CASES.items()
         },
     )
-    return Measurement(holds, True, m, panels)
+    return Measurement(holds, True, m, (panel,))
 
 
 @claim(
@@ -131,38 +136,21 @@ def rm_14() -> Measurement:
         at ≥ 0.75.
     """
     studies = _rm_accuracy_study()
-    series: list[Series] = []
-    slopes = {}
-    for name, s in studies.items():
-        for v in ("k", "theta"):
-            slopes[f"{name}: {v}"] = s.slopes[v]
-            series.append(Series(np.asarray(s.eps), s.errors[v], f"{name}: {v}", "line+markers"))
-    e = np.array([0.00125, 0.02])
-    series.append(Series(e, e, "slope 1", "dotted"))
-    panels = (
-        Panel(
-            series=tuple(series),
-            xlabel="ε",
-            ylabel="max |full − closed form| over ετ ≤ 2",
-            xscale="log",
-            yscale="log",
-        ),
+    slopes, panel = _study_orders(
+        ("k", "theta"), "{name}: {v}", 1.0, "max |full − closed form| over ετ ≤ 2"
     )
     worst = min(slopes.values())
     holds = worst >= FIRST_ORDER
-    m = measured(
+    m = measured_order(
         worst,
-        "1 (fitted order)",
         "slowest fitted order of max|Δk|, max|Δϑ| (full − closed form) against ε = 0.02 … "
         "0.00125 (halved four times) over ετ ≤ 2, two media with full B, S",
-        FIRST_ORDER,
-        "order ≥ 0.75",
         "O(ε) only for trajectories that stay in one hemisphere with |κ cos ϑ| bounded away "
         "from 0 (κ ≠ 0); through ϑ = π/2 see rm-15",
         slopes=slopes,
         errors={n: {v: s.errors[v].tolist() for v in ("k", "theta")} for n, s in studies.items()},
     )
-    return Measurement(holds, True, m, panels)
+    return Measurement(holds, True, m, (panel,))
 
 
 @claim(
@@ -204,31 +192,22 @@ def rm_15() -> Measurement:
     order = fitted_order(eps_values, errors)
     bound = math.hypot(0.2, 0.1) * np.sqrt(2 * math.pi * np.array(eps_values) * 1.5 / (0.5 * 0.3))
     e = np.array(eps_values)
-    panels = (
-        Panel(
-            series=(
-                Series(e, errors, f"post-passage error (order {order:.2f})", "line+markers"),
-                Series(e, bound, "stationary-phase bound |a⊥|√(2πε(1+κ)/(|κ|a3))", "dashed"),
-                Series(e, errors[0] * e / eps_values[0], "slope 1", "dotted"),
-            ),
-            xlabel="ε",
-            ylabel="max |full − closed form| after τ1 + 0.5/ε",
-            xscale="log",
-            yscale="log",
-        ),
+    series = (
+        Series(e, errors, f"post-passage error (order {order:.2f})", "line+markers"),
+        Series(e, bound, "stationary-phase bound |a⊥|√(2πε(1+κ)/(|κ|a3))", "dashed"),
+        Series(e, errors[0] * e / eps_values[0], "slope 1", "dotted"),
     )
+    panels = (eps_panel(series, "max |full − closed form| after τ1 + 0.5/ε"),)
     # The paper treats φ as fast everywhere, i.e. (2.2) first-order accurate through the
     # passage: that holds only if the fitted order stays ≥ 0.75 (cf. rm-14).
     holds = order >= FIRST_ORDER
-    m = measured(
+    m = measured_order(
         order,
-        "1 (fitted order)",
         "fitted order of the post-passage error max|Δk|, |Δϑ| (worst of 6 phases φ0) against "
         "ε = 0.02 … 0.0025, a1, a2 ≠ 0, crossing ϑ = π/2",
-        FIRST_ORDER,
-        "the claim holds if order ≥ 0.75",
         "E10: Ω_φ = −kκ cosϑ/(1+κ) vanishes at ϑ = π/2 (and for κ = 0): after a passage the "
         "averaged model is only O(√ε) accurate; exact only for a φ-independent moment",
+        criterion="the claim holds if order ≥ 0.75",
         errors=errors.tolist(),
         eps=eps_values,
         error_over_sqrt_eps=(errors / np.sqrt(eps_values)).tolist(),

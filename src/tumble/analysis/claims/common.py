@@ -15,7 +15,7 @@ import warnings
 from collections.abc import Callable, Iterable, Iterator, Mapping
 from contextvars import ContextVar
 from dataclasses import dataclass
-from typing import Any, TypedDict, TypeVar, cast
+from typing import Any, Literal, TypedDict, TypeVar, cast
 
 import numpy as np
 
@@ -31,6 +31,7 @@ __all__ = [
     "Tolerances",
     "budget_panel",
     "by_convergence",
+    "by_order",
     "cache_per_scale",
     "converged",
     "eps_panel",
@@ -40,8 +41,10 @@ __all__ = [
     "measured_by",
     "measured_order",
     "quiet",
+    "threshold_panel",
     "tolerance_scale",
     "tolerances",
+    "within",
     "wrap",
 ]
 
@@ -315,6 +318,40 @@ def measured_order(
     )
 
 
+def by_order(
+    order: float,
+    panels: Iterable[Panel],
+    what: str,
+    qualification: str = "",
+    *,
+    criterion: str = "order ≥ 0.75",
+    condition: bool = True,
+    **details: Any,
+) -> Measurement:
+    """The :class:`~tumble.analysis.claims.base.Measurement` of a claim that holds to first
+    order: its error's fitted order against ε is at least :data:`FIRST_ORDER`.
+
+    Parameters
+    ----------
+    order : float
+        The fitted order [1].
+    panels : iterable of Panel
+        The figure's panels.
+    what, qualification, criterion, **details
+        As for :func:`measured_order`.
+    condition : bool, optional
+        A further condition of the claim (the one ``criterion`` states).
+
+    Returns
+    -------
+    Measurement
+        Holds if ``order`` ≥ :data:`FIRST_ORDER` and ``condition``; qualified if the theory
+        page's ``qualification`` is given.
+    """
+    m = measured_order(order, what, qualification, criterion=criterion, **details)
+    return Measurement(order >= FIRST_ORDER and condition, bool(qualification), m, tuple(panels))
+
+
 def measured(
     value: float,
     units: str,
@@ -364,6 +401,40 @@ def measured(
     return result
 
 
+def within(
+    value: float,
+    threshold: float,
+    panels: Iterable[Panel],
+    units: str,
+    what: str,
+    qualification: str = "",
+    **details: Any,
+) -> Measurement:
+    """The :class:`~tumble.analysis.claims.base.Measurement` of a claim that holds if the
+    measured figure is at most a threshold.
+
+    Parameters
+    ----------
+    value : float
+        The measured figure [``units``].
+    threshold : float
+        Its bound [``units``], justified where the claim calls this.
+    panels : iterable of Panel
+        The figure's panels.
+    units, what, qualification, **details
+        As for :func:`measured`.
+
+    Returns
+    -------
+    Measurement
+        Holds if ``value`` ≤ ``threshold`` (criterion "value ≤ <threshold>"); qualified if the
+        theory page's ``qualification`` is given.
+    """
+    bound = f"{threshold:g}".replace("e-0", "e-")  # 1e-09 written 1e-9
+    m = measured(value, units, what, threshold, f"value ≤ {bound}", qualification, **details)
+    return Measurement(value <= threshold, bool(qualification), m, tuple(panels))
+
+
 def quiet(fn: Callable[..., Any], *args: Any, **kwargs: Any) -> Any:
     """Call ``fn`` with tumble's validity warnings silenced: the claims record the conditions
     they need explicitly (e.g. ``rm.validity``), and the runner's output stays readable."""
@@ -394,13 +465,33 @@ def budget_panel(
 ) -> Panel:
     """Differences on a logarithmic axis, with the round-off budget of ``conv`` as a reference
     line (the figure of a claim decided by :func:`converged`)."""
+    return threshold_panel(
+        series, conv.budget, xlabel, ylabel, label="round-off budget", title=title
+    )
+
+
+def threshold_panel(
+    series: Iterable[Series],
+    threshold: float,
+    xlabel: str = "",
+    ylabel: str = "",
+    *,
+    label: str = "",
+    xscale: Literal["linear", "log"] = "linear",
+    xticks: tuple[tuple[float, str], ...] | None = None,
+    title: str = "",
+) -> Panel:
+    """Differences on a logarithmic axis with the claim's threshold [their units] as a reference
+    line (labelled ``label``)."""
     return Panel(
         series=tuple(series),
         xlabel=xlabel,
         ylabel=ylabel,
         title=title,
+        xscale=xscale,
         yscale="log",
-        hlines=((conv.budget, "round-off budget"),),
+        hlines=((threshold, label),),
+        xticks=xticks,
     )
 
 

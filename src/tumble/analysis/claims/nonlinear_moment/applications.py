@@ -12,19 +12,21 @@ from tumble.analysis import fitted_order, to_dataset
 from tumble.analysis.capsule import capsule_attitude
 from tumble.analysis.claims.base import Measurement, Panel, Series, claim
 from tumble.analysis.claims.common import (
-    FIRST_ORDER,
+    by_order,
     cache_per_scale,
+    eps_panel,
     measured,
     quiet,
     tolerances,
+    within,
 )
 from tumble.analysis.claims.nonlinear_moment.cases import (
     NM,
     NM_CASES,
-    SWING,
-    _nm_full,
-    _nm_perturbed,
-    _nm_swing_panel,
+    full_run,
+    perturbed,
+    swing,
+    swing_panel,
 )
 from tumble.integrate import simulate
 from tumble.models import nonlinear_moment as nm
@@ -47,58 +49,45 @@ def nm_9() -> Measurement:
         Measured: the fitted order [1] of the envelope error of a swing beyond 120°; holds at ≥
         0.75.
     """
-    p0, st = NM_CASES["large swing (case 2)"]
-    orbit = nm.orbit_of(p0, st)
+    orbit = nm.orbit_of(*NM_CASES["large swing (case 2)"])
     eps_values = [0.04, 0.02, 0.01]
     err, rel = [], []
     for eps in eps_values:
-        p = _nm_perturbed(p0, eps)
-        t = np.linspace(0.0, 1.0 / eps, 201)
-        # Dense: the last one's figure draws θ(t) between the samples.
-        full = quiet(
-            simulate,
-            nm.MODEL,
-            p,
-            st,
-            t,
-            "full",
-            **tolerances(SWING),
-            dense=True,
-        )
-        avg = quiet(simulate, nm.MODEL, p, st, t, "averaged", **tolerances(SWING))
-        env = nm.envelope_discrepancy(nm.extrema(full, p), avg)
+        # The last run's figure draws θ(t) between the samples (full_run is dense).
+        full, avg, env = swing("large swing (case 2)", eps)
         err.append(max(env["max_abs_theta_max"], env["max_abs_theta_min"]))
         rel.append(env["max_relative"])
     order = fitted_order(eps_values, err)
     panels = (
-        _nm_swing_panel(
+        swing_panel(
             full,
             avg,
             f"swing {math.degrees(orbit.theta_min):.0f}°–"
             f"{math.degrees(orbit.theta_max):.0f}°, ε = {eps_values[-1]}",
         ),
-        Panel(
-            series=(
-                Series(np.array(eps_values), np.array(err), f"order {order:.2f}", "line+markers"),
-            ),
-            xlabel="ε",
-            ylabel="max envelope error [rad]",
-            xscale="log",
-            yscale="log",
+        eps_panel(
+            (Series(np.array(eps_values), np.array(err), f"order {order:.2f}", "line+markers"),),
+            "max envelope error [rad]",
         ),
     )
-    holds = order >= FIRST_ORDER and orbit.theta_max > math.radians(120.0)
-    m = measured(
+    return by_order(
         order,
-        "1 (fitted order)",
+        panels,
         f"fitted order of the envelope error for a swing from {math.degrees(orbit.theta_min):.0f}° "
         f"to {math.degrees(orbit.theta_max):.0f}° (ε = 0.04, 0.02, 0.01, paper's start)",
-        FIRST_ORDER,
-        "order ≥ 0.75 with θmax > 120°",
+        condition=orbit.theta_max > math.radians(120.0),
+        criterion="order ≥ 0.75 with θmax > 120°",
         errors=err,
         max_relative=rel,
     )
-    return Measurement(holds, False, m, panels)
+
+
+def _timed_averaged(p: nm.Params, st: nm.State, t: Any) -> Any:
+    """An averaged run whose wall time is compared with the full run's: at the capsule's own
+    tolerances (rtol 1e-6, as :func:`~tumble.analysis.capsule.capsule_attitude` runs it)."""
+    return quiet(
+        simulate, nm.MODEL, p, st, t, "averaged", **tolerances({"rtol": 1e-6, "atol": 1e-12})
+    )
 
 
 @cache_per_scale
@@ -119,15 +108,7 @@ def _nm_capsule() -> tuple[Any, Any, float, float]:
         # Best of two averaged runs: the averaged run is short, so one busy moment on this
         # shared machine could decide the ratio (the full run is timed once, as tumble does).
         avg = run.trajectories["averaged"]
-        again = quiet(
-            simulate,
-            nm.MODEL,
-            run.params,
-            run.initial,
-            avg.tau,
-            "averaged",
-            **tolerances({"rtol": 1e-6, "atol": 1e-12}),
-        )
+        again = _timed_averaged(run.params, run.initial, avg.tau)
         walls.append(min(avg.wall_time, again.wall_time))
     return base, small, walls[0], walls[1]
 
@@ -159,17 +140,9 @@ def nm_10() -> Measurement:
     trend = fitted_order(eps, ratios)  # ∝ 1/ε: order ≈ −1
     # The same comparison with tumble's compiled full integrator (nm-7's runs, ε = 0.005).
     name = "double well b < 0 (case 1)"
-    full_c = _nm_full(name, 0.005)
-    p = _nm_perturbed(NM_CASES[name][0], 0.005)
-    avg_c = quiet(
-        simulate,
-        nm.MODEL,
-        p,
-        NM_CASES[name][1],
-        full_c.tau,
-        "averaged",
-        **tolerances({"rtol": 1e-6, "atol": 1e-12}),
-    )
+    full_c = full_run(name, 0.005)
+    p = perturbed(NM_CASES[name][0], 0.005)
+    avg_c = _timed_averaged(p, NM_CASES[name][1], full_c.tau)
     e = np.array(eps)
     panels = (
         Panel(
@@ -260,14 +233,13 @@ def nm_11() -> Measurement:
     )
     # The paper's figure: ≤ 4 %. Its capsule data are not given (§10 (iii)): the check is
     # the 4 % bound for an illustrative capsule at a comparable ε, and the O(ε) trend.
-    holds = d[0] <= 0.04
-    m = measured(
+    return within(
         d[0],
+        0.04,
+        panels,
         "1",
         "max |θ̄max(t_k) − θmax,k|/θmax,k over the full run's maxima, Soyuz-class capsule, "
         "descent ε = 0.3, paper's initialisation",
-        0.04,
-        "value ≤ 0.04",
         "the figure is not reproducible (its capsule data are not given); the discrepancy of "
         "the first-order scheme is O(ε), so a few percent at ε ~ 0.1 is what one expects, and "
         "far less with a turning-point or corrected start",
@@ -275,4 +247,3 @@ def nm_11() -> Measurement:
         fitted_order_vs_eps=order,
         maxima=base.envelope["n_max"],
     )
-    return Measurement(holds, True, m, panels)

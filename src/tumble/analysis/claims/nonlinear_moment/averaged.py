@@ -9,11 +9,9 @@ from typing import Any, Literal
 import numpy as np
 from scipy.integrate import quad
 
-from tumble.analysis.claims.base import Measurement, Panel, Series, claim
-from tumble.analysis.claims.common import (
-    measured,
-)
-from tumble.analysis.claims.nonlinear_moment.cases import NM, NM_CASES, _nm_perturbed
+from tumble.analysis.claims.base import Measurement, Series, claim
+from tumble.analysis.claims.common import threshold_panel, within
+from tumble.analysis.claims.nonlinear_moment.cases import NM, NM_CASES, case_ticks, perturbed
 from tumble.models import nonlinear_moment as nm
 from tumble.unperturbed import NutationOrbit, potential_slope
 
@@ -38,7 +36,7 @@ def nm_5() -> Measurement:
     per = {}
     for name in ("double well b < 0 (case 1)", "b > 0 (case 1)", "overturning a > 0 (case 2)"):
         p0, st = NM_CASES[name]
-        p = _nm_perturbed(p0, 0.01)
+        p = perturbed(p0, 0.01)
         o = nm.orbit_of(p0, st)
         z = np.array([o.R, o.G, o.a, o.b])
         pert = nm.builtin_perturbation(p)
@@ -70,8 +68,8 @@ def nm_5() -> Measurement:
     worst = max(max(v for k, v in r.items() if k != "brute_force") for r in per.values())
     names = list(per)
     panels = (
-        Panel(
-            series=tuple(
+        threshold_panel(
+            (
                 Series(
                     np.arange(len(names), dtype=float) + 0.1 * i,
                     np.array([max(per[n][key], 1e-18) for n in names]),
@@ -80,25 +78,22 @@ def nm_5() -> Measurement:
                 )
                 for i, key in enumerate(("numerator", "theta_max", "theta_min"))
             ),
+            1e-10,
             ylabel="relative difference",
-            yscale="log",
-            hlines=((1e-10, ""),),
-            xticks=tuple((float(i), n.split(" (")[0]) for i, n in enumerate(names)),
+            xticks=case_ticks(names),
         ),
     )
     # Criterion: quad at epsrel 1e-12 over one period of the closed-form motion: 1e-10.
-    holds = worst <= 1e-10
-    m = measured(
+    return within(
         worst,
+        1e-10,
+        panels,
         "1",
         "max relative difference between the numerator of (2.2) (closed forms of §8) and a "
         "brute-force time average (quad) over one period; and θmax′, θmin′ of (2.2) against "
         "the energy form H′ = ε⟨…⟩, dH = F dθext + W^z·dz",
-        1e-10,
-        "value ≤ 1e-10",
         per_case=per,
     )
-    return Measurement(holds, False, m, panels)
 
 
 @claim(
@@ -134,8 +129,8 @@ def nm_6() -> Measurement:
     worst = max(max(r.values()) for r in per.values())
     keys = ["<u>", "<u^2>", "<u^3>", "<1/(1+u)>", "<1/(1-u)>"]
     panels = (
-        Panel(
-            series=tuple(
+        threshold_panel(
+            (
                 Series(
                     np.arange(len(keys), dtype=float),
                     np.array([max(r[k], 1e-18) for k in keys]),
@@ -144,20 +139,18 @@ def nm_6() -> Measurement:
                 )
                 for name, r in per.items()
             ),
+            1e-10,
             ylabel="|closed form (K, E, Π) − trapezoid in t| ",
-            yscale="log",
-            hlines=((1e-10, ""),),
             xticks=tuple((float(i), k) for i, k in enumerate(keys)),
         ),
     )
-    holds = worst <= 1e-10  # the periodic trapezoid rule converges geometrically (§8)
-    m = measured(
+    # The periodic trapezoid rule converges geometrically (§8).
+    return within(
         worst,
+        1e-10,
+        panels,
         "1 (relative to max(1, |value|))",
         "max difference between ⟨u⟩, ⟨u²⟩, ⟨u³⟩, ⟨1/(1±u)⟩ by K, E, Π (§8) and the periodic "
         "trapezoid rule in time, four orbits",
-        1e-10,
-        "value ≤ 1e-10",
         per_case=per,
     )
-    return Measurement(holds, False, m, panels)

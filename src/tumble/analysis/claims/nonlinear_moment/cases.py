@@ -4,17 +4,13 @@ docs/theory/nonlinear-moment.md)."""
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from typing import Any
 
 import numpy as np
 
 from tumble.analysis.claims.base import Panel, Series
-from tumble.analysis.claims.common import (
-    Tolerances,
-    cache_per_scale,
-    quiet,
-    tolerances,
-)
+from tumble.analysis.claims.common import Tolerances, cache_per_scale, quiet, tolerances
 from tumble.integrate import simulate
 from tumble.models import nonlinear_moment as nm
 
@@ -48,10 +44,16 @@ NM_PERTURBATION = {"d": 0.5, "nu": 0.2, "pressure": nm.Pressure("exp")}
 NM_EPS = [0.1, 0.05, 0.02, 0.01, 0.005]
 
 
-def _nm_perturbed(p: nm.Params, eps: float, **kw: Any) -> nm.Params:
+def perturbed(p: nm.Params, eps: float, **kw: Any) -> nm.Params:
     args: dict[str, Any] = {"mu": p.mu, "a": p.a, "b": p.b, "eps": eps, **NM_PERTURBATION}
     args.update(kw)
     return nm.Params(**args)
+
+
+def case_ticks(names: Iterable[str]) -> tuple[tuple[float, str], ...]:
+    """The x ticks of a figure of one bar or marker per orbit of :data:`NM_CASES`: each name
+    without its parenthesis ("(case 1)"), at 0, 1, …"""
+    return tuple((float(i), n.split(" (")[0]) for i, n in enumerate(names))
 
 
 UNPERTURBED: Tolerances = {"rtol": 1e-13, "atol": 1e-14}
@@ -62,9 +64,11 @@ SWING: Tolerances = {"rtol": 1e-11, "atol": 1e-13}
 
 
 @cache_per_scale
-def _nm_full(name: str, eps: float) -> Any:
+def full_run(name: str, eps: float) -> Any:
+    """The full run of the orbit ``name`` of :data:`NM_CASES` under the perturbation of §9 at
+    ``eps`` [1], over εt ≤ 1 (201 samples, dense), at the tolerances :data:`SWING`."""
     p0, st = NM_CASES[name]
-    p = _nm_perturbed(p0, eps)
+    p = perturbed(p0, eps)
     tau = np.linspace(0.0, 1.0 / eps, 201)
     # Dense: the figure draws θ(t) between the samples (every swing).
     return quiet(
@@ -79,7 +83,19 @@ def _nm_full(name: str, eps: float) -> Any:
     )
 
 
-def _nm_swing_panel(full: Any, avg: Any, title: str) -> Panel:
+def swing(name: str, eps: float, **options: Any) -> tuple[Any, Any, dict[str, Any]]:
+    """The full run of the orbit ``name`` at ``eps`` [1] (:func:`full_run`), the averaged run
+    over the same samples (tolerances :data:`SWING`; ``options`` for
+    :func:`~tumble.integrate.simulate`, e.g. its ``averaging``), and the discrepancy of the
+    averaged θmax, θmin [rad] from the full run's extrema."""
+    p0, st = NM_CASES[name]
+    p = perturbed(p0, eps)
+    full = full_run(name, eps)
+    avg = quiet(simulate, nm.MODEL, p, st, full.tau, "averaged", **tolerances(SWING), **options)
+    return full, avg, nm.envelope_discrepancy(nm.extrema(full, p), avg)
+
+
+def swing_panel(full: Any, avg: Any, title: str) -> Panel:
     """θ(t) of a full run [deg] with the averaged θmax, θmin of the same run."""
     dense = np.linspace(0.0, float(full.tau[-1]), 4001)  # the dense output resolves each swing
     return Panel(

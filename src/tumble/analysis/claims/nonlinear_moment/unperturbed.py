@@ -16,9 +16,10 @@ from tumble.analysis.claims.common import (
     by_convergence,
     converged,
     max_abs,
-    measured,
+    threshold_panel,
+    within,
 )
-from tumble.analysis.claims.nonlinear_moment.cases import NM, NM_CASES, UNPERTURBED
+from tumble.analysis.claims.nonlinear_moment.cases import NM, NM_CASES, UNPERTURBED, case_ticks
 from tumble.integrate import integrate, simulate
 from tumble.models import nonlinear_moment as nm
 from tumble.unperturbed import NutationOrbit, quartic_coefficients
@@ -209,33 +210,31 @@ def nm_3() -> Measurement:
     worst = max(r["rel"] for r in rows.values())
     names = list(rows)
     panels = (
-        Panel(
-            series=(
+        threshold_panel(
+            (
                 Series(
                     np.arange(len(names), dtype=float),
                     np.array([max(rows[n]["rel"], 1e-17) for n in names]),
                     style="bar",
                 ),
             ),
+            1e-10,
             ylabel="|T(2K/β or 4K/β) / 2∫du/√f − 1|",
-            yscale="log",
-            hlines=((1e-10, ""),),
-            xticks=tuple((float(i), n.split(" (")[0]) for i, n in enumerate(names)),
+            xticks=case_ticks(names),
         ),
     )
-    holds = worst <= 1e-10  # Gauss–Legendre on a smooth integrand: round-off
-    m = measured(
+    # Gauss–Legendre on a smooth integrand: round-off.
+    return within(
         worst,
+        1e-10,
+        panels,
         "1",
         "max relative difference between the period 2K/β (case 1) or 4K/β (case 2) and "
         "2∫_{u2}^{u1} du/√f(u) by quadrature, five orbits",
-        1e-10,
-        "value ≤ 1e-10",
         "corrections S5, S6: the printed β radicands are negative (case 1: 2b(u1−u3)(u2−u4), "
         "modulus giving half the period; case 2: 2bη with b < 0)",
         per_case=rows,
     )
-    return Measurement(holds, True, m, panels)
 
 
 @claim(

@@ -13,6 +13,7 @@ from tumble.analysis import averaging_error_study, fitted_order
 from tumble.analysis.claims.base import Measurement, Panel, Series, claim
 from tumble.analysis.claims.common import (
     FIRST_ORDER,
+    by_order,
     cache_per_scale,
     eps_panel,
     max_abs,
@@ -25,8 +26,8 @@ from tumble.analysis.claims.resisting_medium.cases import (
     RM_GENERAL,
     RM_PROLATE,
     RM_START,
-    _rm_medium,
-    _rm_state,
+    medium,
+    state,
 )
 from tumble.integrate import simulate
 from tumble.models import resisting_medium as rm
@@ -96,9 +97,9 @@ def rm_13() -> Measurement:
     }
     worst = min(slopes.values())
     # Constant to first order = the full excursions are O(ε): fitted order ≥ 0.75.
-    holds = worst >= FIRST_ORDER
-    m = measured_order(
+    return by_order(
         worst,
+        (panel,),
         "slowest fitted order of max|ρ − ρ0|, max|σ − σ0| of the full model against ε "
         "(0.02 … 0.00125, halved four times) over ετ ≤ 2",
         "constant only to first order: the full model has O(ε) excursions of ρ, σ over "
@@ -115,7 +116,6 @@ def rm_13() -> Measurement:
             for name, (p, st) in RM_STUDY_CASES.items()
         },
     )
-    return Measurement(holds, True, m, (panel,))
 
 
 @claim(
@@ -140,9 +140,9 @@ def rm_14() -> Measurement:
         ("k", "theta"), "{name}: {v}", 1.0, "max |full − closed form| over ετ ≤ 2"
     )
     worst = min(slopes.values())
-    holds = worst >= FIRST_ORDER
-    m = measured_order(
+    return by_order(
         worst,
+        (panel,),
         "slowest fitted order of max|Δk|, max|Δϑ| (full − closed form) against ε = 0.02 … "
         "0.00125 (halved four times) over ετ ≤ 2, two media with full B, S",
         "O(ε) only for trajectories that stay in one hemisphere with |κ cos ϑ| bounded away "
@@ -150,7 +150,6 @@ def rm_14() -> Measurement:
         slopes=slopes,
         errors={n: {v: s.errors[v].tolist() for v in ("k", "theta")} for n, s in studies.items()},
     )
-    return Measurement(holds, True, m, (panel,))
 
 
 @claim(
@@ -232,8 +231,8 @@ def rm_16() -> Measurement:
         Measured: ϑ of the full model at τ = 600 [rad]; holds at ≤ 3ε, qualified if it stays above
         1e-6 rad.
     """
-    p = _rm_medium(0.3, 0.3, 0.1, 0.2, a3=0.4, eps=0.05, a12=(0.05, 0.03))
-    st = _rm_state(1.0, 2.4)
+    p = medium(0.3, 0.3, 0.1, 0.2, a3=0.4, eps=0.05, a12=(0.05, 0.03))
+    st = state(1.0, 2.4)
     tau = np.linspace(0.0, 600.0, 601)
     full = simulate(
         rm.MODEL, p, st, tau, "full", **tolerances({"rtol": 1e-10, "atol": 1e-12})

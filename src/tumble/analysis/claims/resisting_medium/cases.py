@@ -4,14 +4,13 @@ the branch cases of the closed forms (A. V. Medvedev 1987; docs/theory/resisting
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping
+from collections.abc import Iterable
 from typing import Any
 
 import numpy as np
 
-from tumble._typing import FloatArray
-from tumble.analysis.claims.base import Series
-from tumble.analysis.claims.common import Difference, Tolerances, max_abs, quiet, tolerances
+from tumble.analysis.claims.base import Panel, Series
+from tumble.analysis.claims.common import Tolerances, quiet, tolerances
 from tumble.integrate import simulate
 from tumble.models import resisting_medium as rm
 
@@ -44,7 +43,7 @@ RM_PROLATE = (
 """Theory §13.6: the other hemisphere and a prolate body (a3 < 0 keeps ϑ > π/2)."""
 
 
-def _rm_medium(
+def medium(
     alpha: float = 0.0,
     beta: float = 0.0,
     gamma: float = 0.0,
@@ -61,79 +60,30 @@ def _rm_medium(
     return rm.Params(eps=eps, kappa=RM_KAPPA, a=np.array([*a12, a3]), b=b, s=s)
 
 
-def _rm_state(k: float, theta: float, phi: float = 0.0) -> rm.State:
+def state(k: float, theta: float, phi: float = 0.0) -> rm.State:
     return rm.State(k=k, rho=1.0, sigma=0.2, psi=0.0, theta=theta, phi=phi)
 
 
-def _rm_averaged(p: rm.Params, st: rm.State, tau: np.ndarray, tol: Tolerances | None = None) -> Any:
+def averaged_run(p: rm.Params, st: rm.State, tau: np.ndarray, tol: Tolerances | None = None) -> Any:
     """Averaged system (2.2) integrated tightly (the reference for the closed forms): the
     trajectory (``columns``, ``nfev``), at ``tol`` or the reference tolerances."""
     return quiet(simulate, rm.MODEL, p, st, tau, "averaged", **(tol or tolerances()))
 
 
-Prediction = Callable[
-    [rm.Params, rm.State, FloatArray, Mapping[str, FloatArray]], tuple[FloatArray, FloatArray]
-]
-"""``predict(p, st, tau, averaged columns)``: a closed form of (2.2) along ``tau`` and the same
-quantity from the integrated (2.2)."""
-
-AveragedCase = tuple[rm.Params, rm.State, str, Prediction]
-"""A closed form checked against (2.2): params, initial state, the label of its curve, and its
-:data:`Prediction`."""
-
-
-def against_averaged(
-    cases: Mapping[str, AveragedCase], slow_time: float
-) -> Callable[[Tolerances], tuple[Difference, int, tuple[dict[str, float], list[Series]]]]:
-    """The ``difference`` of :func:`~tumble.analysis.claims.common.converged` for closed forms
-    of the averaged system (2.2), case by case.
-
-    Parameters
-    ----------
-    cases : mapping
-        Case name → :data:`AveragedCase`.
-    slow_time : float
-        The horizon ετ of each run [1], sampled at 401 points.
-
-    Returns
-    -------
-    callable
-        ``difference(tolerances)``: max |closed form − (2.2) integrated| per case, the
-        right-hand-side evaluations, and (that per-case record, the figure's series: each closed
-        form as a line against ετ, every 20th sample of its integration as markers).
-    """
-
-    def difference(
-        tol: Tolerances,
-    ) -> tuple[Difference, int, tuple[dict[str, float], list[Series]]]:
-        series: list[Series] = []
-        per, nfev = {}, 0
-        for name, (p, st, label, predict) in cases.items():
-            tau = np.linspace(0.0, slow_time / p.eps, 401)
-            run = _rm_averaged(p, st, tau, tol)
-            avg, nfev = run.columns, nfev + run.nfev
-            closed, integrated = predict(p, st, tau, avg)
-            per[name] = max_abs(closed - integrated)
-            series.append(Series(p.eps * tau, closed, label))
-            series.append(Series(p.eps * tau[::20], integrated[::20], style="markers"))
-        return per, nfev, (per, series)
-
-    return difference
+def slow_panel(
+    series: Iterable[Series],
+    ylabel: str,
+    title: str = "",
+    hlines: tuple[tuple[float, str], ...] = (),
+    vlines: tuple[tuple[float, str], ...] = (),
+) -> Panel:
+    """Curves against the slow time ετ [1], with reference lines ((value, label) pairs)."""
+    return Panel(
+        series=tuple(series), xlabel="ετ", ylabel=ylabel, title=title, hlines=hlines, vlines=vlines
+    )
 
 
-def theta_of_tan(formula: Callable[..., FloatArray], shift: float) -> Prediction:
-    """The :data:`Prediction` of ϑ [rad] by a closed form of tan ϑ, ``formula(tau, k0, ϑ0, p)``:
-    ``shift`` + arctan, ``shift`` = π in the lower hemisphere (§8.6: π + arctan of (2.10))."""
-
-    def predict(
-        p: rm.Params, st: rm.State, tau: FloatArray, avg: Mapping[str, FloatArray]
-    ) -> tuple[FloatArray, FloatArray]:
-        return shift + np.arctan(formula(tau, st.k, st.theta, p)), avg["theta"]
-
-    return predict
-
-
-def _rm_random_states(n: int, seed: int) -> list[tuple[rm.Params, float, float, float]]:
+def random_states(n: int, seed: int) -> list[tuple[rm.Params, float, float, float]]:
     """Random media (full B, S, a1, a2 ≠ 0) and states for the pointwise checks of §13.3–4."""
     rng = np.random.default_rng(seed)
     out = []
@@ -151,56 +101,20 @@ def _rm_random_states(n: int, seed: int) -> list[tuple[rm.Params, float, float, 
 
 
 RM_AXIAL_CASES = {
-    # name: (params, initial state, slow-time horizon, printed formula checked before τ1)
-    "(2.5) a3 > 0, upper": (
-        _rm_medium(0.2, 0.3, 0.1, 0.2, a3=0.4),
-        _rm_state(1.0, 1.0),
-        10.0,
-        "axial_upper_exp",
-    ),
-    "(2.6) → (2.7)": (
-        _rm_medium(0.1, 0.2, 0.1, 0.3, a3=-0.5),
-        _rm_state(1.0, 0.8),
-        10.0,
-        "axial_upper_tan",
-    ),
-    "(2.7) a3 > 0 → (2.5)": (
-        _rm_medium(0.1, 0.5, 0.1, 0.1, a3=0.2),
-        _rm_state(1.5, 2.5),
-        10.0,
-        "axial_lower_exp",
-    ),
-    "(2.8) → (2.5)": (
-        _rm_medium(0.2, 0.1, 0.1, 0.2, a3=0.6),
-        _rm_state(1.0, 2.6),
-        10.0,
-        "axial_lower_tan",
-    ),
-    "(2.5) small a3 < 0 → (2.7)": (
-        _rm_medium(0.1, 0.6, 0.1, 0.1, a3=-0.05),
-        _rm_state(1.0, 1.2),
-        10.0,
-        "axial_upper_exp",
-    ),
-    "upper double root": (
-        _rm_medium(0.1, 0.2, 0.1, 0.1, a3=-0.1),
-        _rm_state(1.0, 1.0),
-        10.0,
-        "axial_upper_double_root",
-    ),
-    "lower double root": (
-        _rm_medium(0.1, 0.2, 0.1, 0.1, a3=0.1),
-        _rm_state(1.0, 2.0),
-        10.0,
-        "axial_lower_double_root",
-    ),
-    "δ = 0": (_rm_medium(0.2, 0.3, 0.1, 0.0, a3=-0.2), _rm_state(1.0, 1.0), 10.0, None),
-    "β = δ = 0": (_rm_medium(0.2, 0.0, 0.1, 0.0, a3=0.2), _rm_state(1.0, 2.0), 10.0, None),
-    "β = 0, δ > 0": (
-        _rm_medium(0.2, 0.0, 0.1, 0.2, a3=-0.3),
-        _rm_state(1.0, 0.9),
-        10.0,
-        "axial_upper_tan",
-    ),
+    name: (medium(*abgd, a3=a3), state(*start), 10.0, printed)
+    for name, abgd, a3, start, printed in (
+        # name, (α, β, γ, δ), a3, (k0, ϑ0), the printed formula checked before τ1 (None: no
+        # printed formula); every case over the slow-time horizon ετ ≤ 10
+        ("(2.5) a3 > 0, upper", (0.2, 0.3, 0.1, 0.2), 0.4, (1.0, 1.0), "axial_upper_exp"),
+        ("(2.6) → (2.7)", (0.1, 0.2, 0.1, 0.3), -0.5, (1.0, 0.8), "axial_upper_tan"),
+        ("(2.7) a3 > 0 → (2.5)", (0.1, 0.5, 0.1, 0.1), 0.2, (1.5, 2.5), "axial_lower_exp"),
+        ("(2.8) → (2.5)", (0.2, 0.1, 0.1, 0.2), 0.6, (1.0, 2.6), "axial_lower_tan"),
+        ("(2.5) small a3 < 0 → (2.7)", (0.1, 0.6, 0.1, 0.1), -0.05, (1.0, 1.2), "axial_upper_exp"),
+        ("upper double root", (0.1, 0.2, 0.1, 0.1), -0.1, (1.0, 1.0), "axial_upper_double_root"),
+        ("lower double root", (0.1, 0.2, 0.1, 0.1), 0.1, (1.0, 2.0), "axial_lower_double_root"),
+        ("δ = 0", (0.2, 0.3, 0.1, 0.0), -0.2, (1.0, 1.0), None),
+        ("β = δ = 0", (0.2, 0.0, 0.1, 0.0), 0.2, (1.0, 2.0), None),
+        ("β = 0, δ > 0", (0.2, 0.0, 0.1, 0.2), -0.3, (1.0, 0.9), "axial_upper_tan"),
+    )
 }
 """Theory §13.5: every branch of (2.5)–(2.8), the switches of §8.4, the double roots, δ = 0."""

@@ -4,31 +4,84 @@ integration."""
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from typing import Any
 
 import numpy as np
 
 from tumble._typing import FloatArray
-from tumble.analysis.claims.base import Measurement, Panel, Series, claim
-from tumble.analysis.claims.common import (
-    Difference,
-    Tolerances,
-    by_convergence,
-    converged,
-    max_abs,
-)
+from tumble.analysis.claims.base import Measurement, Series, claim
+from tumble.analysis.claims.common import Difference, Tolerances, by_convergence, converged, max_abs
 from tumble.analysis.claims.resisting_medium.cases import (
     RM,
     RM_AXIAL_CASES,
-    AveragedCase,
-    _rm_averaged,
-    _rm_medium,
-    _rm_state,
-    against_averaged,
-    theta_of_tan,
+    averaged_run,
+    medium,
+    slow_panel,
+    state,
 )
 from tumble.models import resisting_medium as rm
+
+Prediction = Callable[
+    [rm.Params, rm.State, FloatArray, Mapping[str, FloatArray]], tuple[FloatArray, FloatArray]
+]
+"""``predict(p, st, tau, averaged columns)``: a closed form of (2.2) along ``tau`` and the same
+quantity from the integrated (2.2)."""
+
+AveragedCase = tuple[rm.Params, rm.State, str, Prediction]
+"""A closed form checked against (2.2): params, initial state, the label of its curve, and its
+:data:`Prediction`."""
+
+
+def against_averaged(
+    cases: Mapping[str, AveragedCase], slow_time: float
+) -> Callable[[Tolerances], tuple[Difference, int, tuple[dict[str, float], list[Series]]]]:
+    """The ``difference`` of :func:`~tumble.analysis.claims.common.converged` for closed forms
+    of the averaged system (2.2), case by case.
+
+    Parameters
+    ----------
+    cases : mapping
+        Case name → :data:`AveragedCase`.
+    slow_time : float
+        The horizon ετ of each run [1], sampled at 401 points.
+
+    Returns
+    -------
+    callable
+        ``difference(tolerances)``: max |closed form − (2.2) integrated| per case, the
+        right-hand-side evaluations, and (that per-case record, the figure's series: each closed
+        form as a line against ετ, every 20th sample of its integration as markers).
+    """
+
+    def difference(
+        tol: Tolerances,
+    ) -> tuple[Difference, int, tuple[dict[str, float], list[Series]]]:
+        series: list[Series] = []
+        per, nfev = {}, 0
+        for name, (p, st, label, predict) in cases.items():
+            tau = np.linspace(0.0, slow_time / p.eps, 401)
+            run = averaged_run(p, st, tau, tol)
+            avg, nfev = run.columns, nfev + run.nfev
+            closed, integrated = predict(p, st, tau, avg)
+            per[name] = max_abs(closed - integrated)
+            series.append(Series(p.eps * tau, closed, label))
+            series.append(Series(p.eps * tau[::20], integrated[::20], style="markers"))
+        return per, nfev, (per, series)
+
+    return difference
+
+
+def theta_of_tan(formula: Callable[..., FloatArray], shift: float) -> Prediction:
+    """The :data:`Prediction` of ϑ [rad] by a closed form of tan ϑ, ``formula(tau, k0, ϑ0, p)``:
+    ``shift`` + arctan, ``shift`` = π in the lower hemisphere (§8.6: π + arctan of (2.10))."""
+
+    def predict(
+        p: rm.Params, st: rm.State, tau: FloatArray, avg: Mapping[str, FloatArray]
+    ) -> tuple[FloatArray, FloatArray]:
+        return shift + np.arctan(formula(tau, st.k, st.theta, p)), avg["theta"]
+
+    return predict
 
 
 @claim(
@@ -48,9 +101,9 @@ def rm_5() -> Measurement:
         with the tolerance.
     """
     cases = {
-        "α, γ > 0": (_rm_medium(0.2, 0.3, 0.1, 0.2, a3=0.4), _rm_state(1.0, 1.0)),
-        "α = 0 (limit)": (_rm_medium(0.0, 0.3, 0.2, 0.1, a3=0.2), _rm_state(1.0, 1.3)),
-        "γ = 0": (_rm_medium(0.3, 0.2, 0.0, 0.1, a3=-0.2), _rm_state(1.2, 2.2)),
+        "α, γ > 0": (medium(0.2, 0.3, 0.1, 0.2, a3=0.4), state(1.0, 1.0)),
+        "α = 0 (limit)": (medium(0.0, 0.3, 0.2, 0.1, a3=0.2), state(1.0, 1.3)),
+        "γ = 0": (medium(0.3, 0.2, 0.0, 0.1, a3=-0.2), state(1.2, 2.2)),
     }
     difference = against_averaged(
         {name: (p, st, f"(2.4) {name}", _equatorial) for name, (p, st) in cases.items()}, 10.0
@@ -59,11 +112,10 @@ def rm_5() -> Measurement:
     # Criterion: (2.4) is exact for (2.2), so V agrees to integration accuracy of (2.2).
     conv, (per, series) = converged(difference)
     panels = (
-        Panel(
-            series=tuple(series),
-            xlabel="ετ",
-            ylabel="V = k sin ϑ",
-            title="lines (2.4), dots: (2.2) integrated",
+        slow_panel(
+            series,
+            "V = k sin ϑ",
+            "lines (2.4), dots: (2.2) integrated",
         ),
     )
     return by_convergence(
@@ -116,7 +168,7 @@ def rm_6() -> Measurement:
         per, nfev, avgs = {}, 0, []
         for name, (p, st, horizon, _) in RM_AXIAL_CASES.items():
             tau = np.linspace(0.0, horizon / p.eps, 401)
-            run = _rm_averaged(p, st, tau, tol)
+            run = averaged_run(p, st, tau, tol)
             avg, nfev = run.columns, nfev + run.nfev
             cf = rm.closed_form(p, st, tau)
             per[name] = max(max_abs(cf["k"] - avg["k"]), max_abs(cf["theta"] - avg["theta"]))
@@ -144,11 +196,10 @@ def rm_6() -> Measurement:
         if math.isfinite(tau1) and tau1 <= tau[-1]:
             crossings.append((p.eps * tau1, ""))
     panels = (
-        Panel(
-            series=tuple(series),
-            xlabel="ετ",
-            ylabel="W = k cos ϑ",
-            title="closed forms (lines), (2.2) integrated (dots), τ1 (vertical)",
+        slow_panel(
+            series,
+            "W = k cos ϑ",
+            "closed forms (lines), (2.2) integrated (dots), τ1 (vertical)",
             hlines=((0.0, ""),),
             vlines=tuple(crossings),
         ),
@@ -193,14 +244,14 @@ def rm_7() -> Measurement:
     """
     cases: dict[str, AveragedCase] = {
         "(2.9) upper": (
-            _rm_medium(0.2, 0.3, 0.1, 0.2),
-            _rm_state(1.0, 0.7),
+            medium(0.2, 0.3, 0.1, 0.2),
+            state(1.0, 0.7),
             "(2.9) upper",
             theta_of_tan(rm.tan_theta_a3_zero_upper, 0.0),
         ),
         "(2.10) lower": (
-            _rm_medium(0.3, 0.2, 0.1, 0.2),
-            _rm_state(1.0, 2.3),
+            medium(0.3, 0.2, 0.1, 0.2),
+            state(1.0, 2.3),
             "(2.10) lower",
             theta_of_tan(rm.tan_theta_a3_zero_lower, math.pi),
         ),
@@ -210,11 +261,10 @@ def rm_7() -> Measurement:
     # Criterion: (2.9)/(2.10) are exact for (2.2): ϑ to its integration accuracy.
     conv, (per, series) = converged(difference)
     panels = (
-        Panel(
-            series=tuple(series),
-            xlabel="ετ",
-            ylabel="ϑ [rad]",
-            title="lines: (2.9)/(2.10); dots: (2.2) integrated",
+        slow_panel(
+            series,
+            "ϑ [rad]",
+            "lines: (2.9)/(2.10); dots: (2.2) integrated",
         ),
     )
     return by_convergence(

@@ -17,15 +17,11 @@ from tumble.analysis.claims.common import (
     converged,
     floored,
     max_abs,
-    measured,
+    threshold_panel,
+    within,
     wrap,
 )
-from tumble.analysis.claims.resisting_medium.cases import (
-    RM,
-    RM_GENERAL,
-    RM_START,
-    _rm_random_states,
-)
+from tumble.analysis.claims.resisting_medium.cases import RM, RM_GENERAL, RM_START, random_states
 from tumble.integrate import simulate
 from tumble.models import resisting_medium as rm
 
@@ -160,7 +156,7 @@ def rm_3() -> Measurement:
         + |s|k) [1]; holds at ≤ 1e-9.
     """
     rows = []
-    for p, k, rho, theta in _rm_random_states(16, seed=3):
+    for p, k, rho, theta in random_states(16, seed=3):
         closed = rm.averaged_rhs(0.0, np.array([k, theta]), p)
         numeric = rm.averaged_rhs_numeric(0.0, np.array([k, rho, 0.3, theta]), p)
         scale = p.eps * (
@@ -193,18 +189,16 @@ def rm_3() -> Measurement:
     )
     # Criterion: tumble's quadrature engine is converged to 1e-12; 1e-9 of the rate scale
     # leaves a margin of 1e3, while a wrong γ factor or a surviving off-diagonal entry is O(1).
-    holds = worst <= 1e-9
-    m = measured(
+    return within(
         worst,
+        1e-9,
+        panels,
         "1 (relative to ε(|a|/k + |b| + |s|k))",
         "max |(2.2) − quadrature average of the (1.3) right-hand side| over 16 random states "
         "with full B, S and a1, a2 ≠ 0 (including ⟨dρ/dτ⟩, ⟨dσ/dτ⟩ = 0)",
-        1e-9,
-        "value ≤ 1e-9",
         "E6: γ = 4(s11+s22)/(3π) (the paper's '4/3 π⁻¹' is ambiguous); the off-diagonal entries "
         "and a1, a2 drop out only while φ rotates (κ ≠ 0, ϑ ≠ π/2, §10)",
     )
-    return Measurement(holds, True, m, panels)
 
 
 @claim(
@@ -224,7 +218,7 @@ def rm_4() -> Measurement:
     """
     errs, thetas = [], []
     rng = np.random.default_rng(4)
-    for p, k, _rho, _theta in _rm_random_states(40, seed=4):
+    for p, k, _rho, _theta in random_states(40, seed=4):
         theta = float(rng.uniform(0.0, math.pi))
         dk, dth = rm.averaged_rhs(0.0, np.array([k, theta]), p)
         dW = dk * math.cos(theta) - k * math.sin(theta) * dth  # chain rule
@@ -235,22 +229,20 @@ def rm_4() -> Measurement:
         thetas.append(theta)
     worst = float(np.max(errs))
     panels = (
-        Panel(
-            series=(Series(np.array(thetas), np.maximum(errs, 1e-18), style="markers"),),
-            xlabel="ϑ [rad]",
-            ylabel="|chain rule of (2.2) − (2.3)| / rate scale",
-            yscale="log",
-            hlines=((1e-13, "threshold"),),
+        threshold_panel(
+            (Series(np.array(thetas), np.maximum(errs, 1e-18), style="markers"),),
+            1e-13,
+            "ϑ [rad]",
+            "|chain rule of (2.2) − (2.3)| / rate scale",
+            label="threshold",
         ),
     )
     # Criterion: round-off of a handful of operations on O(1) terms (a few ulp ≈ 1e-15); 1e-13
     # leaves 100×, while a sign error in ∓δW² (hemisphere) is O(1).
-    holds = worst <= 1e-13
-    m = measured(
+    return within(
         worst,
+        1e-13,
+        panels,
         "1 (relative to the rate scale)",
         "max |(2.2) transformed to W, V − (2.3)| over 40 random states, ϑ ∈ [0, π]",
-        1e-13,
-        "value ≤ 1e-13",
     )
-    return Measurement(holds, False, m, panels)

@@ -10,20 +10,17 @@ import numpy as np
 from scipy.optimize import brentq
 
 from tumble.analysis.claims.base import Measurement, Panel, Series, claim
-from tumble.analysis.claims.common import (
-    by_convergence,
-    converged,
-    measured,
-    quiet,
-    tolerances,
-)
+from tumble.analysis.claims.common import by_convergence, converged, measured, tolerances
 from tumble.analysis.claims.resisting_medium.cases import (
     RM,
     RM_AXIAL_CASES,
+    averaged_run,
+    medium,
+    slow_panel,
+    state,
+)
+from tumble.analysis.claims.resisting_medium.closed_forms import (
     AveragedCase,
-    _rm_averaged,
-    _rm_medium,
-    _rm_state,
     against_averaged,
     theta_of_tan,
 )
@@ -49,10 +46,10 @@ def rm_8() -> Measurement:
         1e-3); the claim holds if both limits are reached to 1e-6 rad.
     """
     limit_cases = {
-        "a3 > 0 from below → 0": (_rm_medium(0.3, 0.3, 0.1, 0.2, a3=0.4), _rm_state(1.0, 2.4), 0.0),
+        "a3 > 0 from below → 0": (medium(0.3, 0.3, 0.1, 0.2, a3=0.4), state(1.0, 2.4), 0.0),
         "a3 < 0 from above → π": (
-            _rm_medium(0.3, 0.3, 0.1, 0.2, a3=-0.4),
-            _rm_state(1.0, 1.0),
+            medium(0.3, 0.3, 0.1, 0.2, a3=-0.4),
+            state(1.0, 1.0),
             math.pi,
         ),
     }
@@ -60,7 +57,7 @@ def rm_8() -> Measurement:
     for name, (p, st, target) in limit_cases.items():
         # Slow time 200 ≫ 1/min(α, √(β²+4δ|a3|)): every exponential of (2.3) has settled.
         tau = np.array([0.0, 200.0 / p.eps])
-        th_end = float(_rm_averaged(p, st, tau).columns["theta"][-1])
+        th_end = float(averaged_run(p, st, tau).columns["theta"][-1])
         ends[name] = {
             "theta_end": th_end,
             "predicted": rm.predicted_limits(p, st)["theta"],
@@ -70,21 +67,20 @@ def rm_8() -> Measurement:
     # The counterexample of §9 to monotonicity: β ≫ α and W0 above W+ = a3/β (δ = 0). The
     # moment is φ-independent (a1 = a2 = 0, b11 = b22, S = 0), so the full model's k, ϑ follow
     # (2.2) exactly (§10.1) and show the same rise.
-    p, st = _rm_medium(alpha=0.05, beta=1.0, a3=0.2), _rm_state(1.0, 0.5)
+    p, st = medium(alpha=0.05, beta=1.0, a3=0.2), state(1.0, 0.5)
     tau = np.linspace(0.0, 80.0 / p.eps, 801)
     cf = rm.closed_form(p, st, tau)
     full = simulate(rm.MODEL, p, st, tau[tau <= 5.0 / p.eps], "full", **tolerances()).columns
     rise = float(np.max(cf["theta"]) - st.theta)
     rise_full = float(np.max(full["theta"]) - st.theta)
     panels = (
-        Panel(
-            series=(
+        slow_panel(
+            (
                 Series(p.eps * tau, cf["theta"], "closed form (2.4)/(2.5)"),
                 Series(p.eps * tau[: full["theta"].size], full["theta"], "full model", "dashed"),
             ),
-            xlabel="ετ",
-            ylabel="ϑ [rad]",
-            title="a3 > 0, α = 0.05 ≪ β = 1, W0 > W+: ϑ first rises",
+            "ϑ [rad]",
+            "a3 > 0, α = 0.05 ≪ β = 1, W0 > W+: ϑ first rises",
             hlines=((st.theta, ""),),
         ),
     )
@@ -130,7 +126,7 @@ def rm_9() -> Measurement:
     mu2 = math.sqrt(a3 / de - h * h)
     W_plus = (-be + math.sqrt(be * be + 4 * de * a3)) / (2 * de)  # E5: (2δν1 − β)/(2δ)
     tau = np.linspace(0.0, 80.0 / p.eps, 1601)  # slow time 80: every exponential settled
-    avg = quiet(simulate, rm.MODEL, p, st, tau, "averaged", **tolerances())
+    avg = averaged_run(p, st, tau)
     W = avg.columns["k"] * np.cos(avg.columns["theta"])
     i = int(np.flatnonzero(W > 0.0)[0])
     tau1_int = brentq(
@@ -149,13 +145,12 @@ def rm_9() -> Measurement:
     W28 = rm.axial_lower_tan(t28, st.W, p)
     below = W28 <= 4.0
     panels = (
-        Panel(
-            series=(
+        slow_panel(
+            (
                 Series(p.eps * tau[shown], W[shown], "(2.2) integrated: W = k cos ϑ"),
                 Series(p.eps * t28[below], W28[below], "(2.8) beyond its window", "dashed"),
             ),
-            xlabel="ετ",
-            ylabel="W",
+            "W",
             hlines=((W_plus, "W+ (E5)"), (paper_limit, "printed limit (β+δμ2π)/(2δ) (E4)")),
             vlines=((p.eps * tau1, ""),),
         ),
@@ -202,16 +197,16 @@ def rm_10() -> Measurement:
     """
     cases = {
         "β > α → π/2": (
-            _rm_medium(0.1, 0.4, 0.05, 0.05, eps=0.05),
-            _rm_state(1.0, 0.8),
+            medium(0.1, 0.4, 0.05, 0.05, eps=0.05),
+            state(1.0, 0.8),
             math.pi / 2,
         ),
         "β < α, lower → π": (
-            _rm_medium(0.4, 0.1, 0.05, 0.05, eps=0.05),
-            _rm_state(1.0, 2.2),
+            medium(0.4, 0.1, 0.05, 0.05, eps=0.05),
+            state(1.0, 2.2),
             math.pi,
         ),
-        "β < α, upper → 0": (_rm_medium(0.4, 0.1, 0.05, 0.05, eps=0.05), _rm_state(1.0, 0.8), 0.0),
+        "β < α, upper → 0": (medium(0.4, 0.1, 0.05, 0.05, eps=0.05), state(1.0, 0.8), 0.0),
     }
     series: list[Series] = []
     spin_lines: list[tuple[float, str]] = []
@@ -278,11 +273,11 @@ def rm_11() -> Measurement:
         Measured: max |ϑ of the §8.7 law − ϑ of (2.2) integrated| [rad]; holds if it falls
         with the tolerance.
     """
-    p = _rm_medium(gamma=0.3, delta=0.2)
+    p = medium(gamma=0.3, delta=0.2)
     cases: dict[str, AveragedCase] = {
         f"theta0 = {theta0}": (
             p,
-            _rm_state(1.0, theta0),
+            state(1.0, theta0),
             f"§8.7, ϑ0 = {theta0}",
             theta_of_tan(rm.tan_theta_quadratic, shift),
         )
@@ -294,11 +289,10 @@ def rm_11() -> Measurement:
     conv, (per, series) = converged(difference)
     limits = (math.atan(p.delta / p.gamma), math.pi - math.atan(p.delta / p.gamma))
     panels = (
-        Panel(
-            series=tuple(series),
-            xlabel="ετ",
-            ylabel="ϑ [rad]",
-            title="quadratic-only medium (dotted: ±δ/γ limits)",
+        slow_panel(
+            series,
+            "ϑ [rad]",
+            "quadratic-only medium (dotted: ±δ/γ limits)",
             hlines=tuple((lim, "") for lim in limits),
         ),
     )
@@ -330,13 +324,13 @@ def rm_12() -> Measurement:
         Measured: |ϑ_full(τ = 2e4) − arctan(δ/γ)| [rad] from the lower hemisphere; the claim holds
         if both hemispheres end within 0.05 rad of arctan(δ/γ).
     """
-    p = _rm_medium(gamma=0.3, delta=0.2, eps=0.05)
+    p = medium(gamma=0.3, delta=0.2, eps=0.05)
     target = math.atan(p.delta / p.gamma)
     tau = np.linspace(0.0, 2e4, 801)  # slow time 1000: algebraic approach ∝ 1/(ετ)
     series: list[Series] = []
     ends = {}
     for theta0 in (0.4, math.pi - 0.4):
-        st = _rm_state(1.0, theta0)
+        st = state(1.0, theta0)
         full = simulate(
             rm.MODEL, p, st, tau, "full", **tolerances({"rtol": 1e-9, "atol": 1e-11})
         ).columns

@@ -18,8 +18,10 @@ from tumble.analysis.claims.common import (
     converged,
     max_abs,
     measured,
+    threshold_panel,
+    within,
 )
-from tumble.analysis.claims.rotating_field.cases import RF, RF_BODY, _params
+from tumble.analysis.claims.rotating_field.cases import RF, RF_BODY, params
 from tumble.dynamics import rigid_body_kernel, rigid_body_rhs
 from tumble.integrate import integrate
 from tumble.models import rotating_field as rf
@@ -124,7 +126,7 @@ def rf_11() -> Measurement:
     Claim
         Measured: max |⟨z²⟩ of (3.6) / numerical period mean − 1| [1]; holds at ≤ 1e-10.
     """
-    p = _params(RF_BODY, 1.0, 0.01)
+    p = params(RF_BODY, 1.0, 0.01)
     I1, I2, I3 = p.sorted_inertia
     rows = []
     cases: tuple[tuple[Literal["x3", "x1"], tuple[float, ...]], ...] = (
@@ -153,25 +155,24 @@ def rf_11() -> Measurement:
             )
         )
     panels = (
-        Panel(
-            series=tuple(series),
-            xlabel="k²",
-            ylabel="|⟨z²⟩(3.6) / numerical period mean − 1|",
-            yscale="log",
-            hlines=((1e-10, "threshold"),),
+        threshold_panel(
+            tuple(series),
+            1e-10,
+            "k²",
+            "|⟨z²⟩(3.6) / numerical period mean − 1|",
+            label="threshold",
         ),
     )
-    holds = worst <= 1e-10  # trapezoid of a smooth periodic function: round-off after 1024 nodes
-    m = measured(
+    # Trapezoid of a smooth periodic function: round-off after 1024 nodes.
+    return within(
         worst,
+        1e-10,
+        panels,
         "1",
         "max relative difference between ⟨z²⟩ of (3.6) and the mean of |z(τ)|² over one period "
         "of (3.1), regimes x3 (k² up to 0.999) and x1",
-        1e-10,
-        "value ≤ 1e-10",
         per_case=[{"regime": r[0], "k2": r[1], "rel": r[2]} for r in rows],
     )
-    return Measurement(holds, False, m, panels)
 
 
 @claim(
@@ -195,22 +196,22 @@ def rf_12() -> Measurement:
     I3 = RF_BODY[2]
     errs_engine, errs_tform, errs_k2 = [], [], []
     for beta in (0.4, 1.0, math.pi / 2):
-        p = _params(RF_BODY, beta, 0.01)
+        p = params(RF_BODY, beta, 0.01)
         for _ in range(5):
             e_engine, e_tform, e_k2 = _averaged_forms_at(p, _random_slow_state(rng))
             errs_engine.append(e_engine)
             errs_tform.append(e_tform)
             errs_k2.append(e_k2)
     # Correction C5 at the stationary rotation ρ = 0, k = 0, L = I3, T = I3/2 (β = 1).
-    p = _params(RF_BODY, 1.0, 0.01)
+    p = params(RF_BODY, 1.0, 0.01)
     corrected = float(rf.averaged_rhs(0.0, np.array([I3, 0.0, 0.0, 0.5 * I3]), p)[3])
     # The printed middle term (1 − 3c²)(1 − 3 sin²ρ) T²/L² differs from the corrected one by
     # (1 − 3c²)·3(cos²ρ − sin²ρ)·T²/L² = (1 − 3c²)·3/4 at ρ = 0, T/L = 1/2.
     printed = corrected + p.eps * (1.0 - 3.0 * p.c2) * 0.75
     worst = max(max(errs_engine), max(errs_tform))
     panels = (
-        Panel(
-            series=tuple(
+        threshold_panel(
+            (
                 Series(np.arange(len(e), dtype=float), np.maximum(e, 1e-18), name, "markers")
                 for name, e in (
                     ("vector form vs quadrature engine", errs_engine),
@@ -218,10 +219,9 @@ def rf_12() -> Measurement:
                     ("(3.7) vs chain rule", errs_k2),
                 )
             ),
-            xlabel="random state",
-            ylabel="relative difference",
-            yscale="log",
-            hlines=((1e-9, ""),),
+            1e-9,
+            "random state",
+            "relative difference",
         ),
     )
     # Criteria: the engine averages the torque numerically to 1e-12 (1e-9 leaves 1e3); the

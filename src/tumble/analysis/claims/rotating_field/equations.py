@@ -15,12 +15,15 @@ from tumble.analysis.claims.common import (
     budget_panel,
     by_convergence,
     converged,
+    eps_panel,
     floored,
     max_abs,
     measured,
+    threshold_panel,
+    within,
     wrap,
 )
-from tumble.analysis.claims.rotating_field.cases import RF, RF_BODY, XI3, _params
+from tumble.analysis.claims.rotating_field.cases import RF, RF_BODY, XI3, params
 from tumble.analysis.stability import analyze, match_roots, polynomial_roots
 from tumble.integrate import simulate
 from tumble.models import rotating_field as rf
@@ -68,14 +71,11 @@ def rf_1() -> Measurement:
     worst = float(np.max(errs))
     betas = np.linspace(0.0, math.pi, 91)
     panels = (
-        Panel(
-            series=(
-                Series(np.arange(len(errs), dtype=float), np.maximum(errs, 1e-18), style="markers"),
-            ),
-            xlabel="sample",
-            ylabel="|(1.2) − tumble's −k_fH²[(Ω−ωξ3)]⊥H| / |Ω|",
-            yscale="log",
-            hlines=((1e-13, ""),),
+        threshold_panel(
+            (Series(np.arange(len(errs), dtype=float), np.maximum(errs, 1e-18), style="markers"),),
+            1e-13,
+            "sample",
+            "|(1.2) − tumble's −k_fH²[(Ω−ωξ3)]⊥H| / |Ω|",
         ),
         Panel(
             series=(
@@ -127,7 +127,7 @@ def rf_2() -> Measurement:
         inertial form (1.4) over τ ≤ 1/ε; holds if it is integration error (it falls with the
         tolerance).
     """
-    p = _params(RF_BODY, 1.0, 0.01)
+    p = params(RF_BODY, 1.0, 0.01)
     st = rf.state_from_elements(p, 1.8, 0.8, 0.3, 0.5, "x3")
     tau = np.linspace(0.0, 1.0 / p.eps, 1001)
 
@@ -182,7 +182,7 @@ def rf_3() -> Measurement:
     for inertia in bodies:
         for beta in betas:
             for eps in epss:
-                rep = analyze(rf.MODEL, _params(inertia, beta, eps), family=False)
+                rep = analyze(rf.MODEL, params(inertia, beta, eps), family=False)
                 c, cj = np.asarray(rep.coefficients), np.asarray(rep.coefficients_jacobian)
                 err = float(np.max(np.abs(c - cj)) / np.max(np.abs(c)))
                 worst = max(worst, err)
@@ -191,28 +191,26 @@ def rf_3() -> Measurement:
     # The ε of each point is jittered by ±10 % so that the 30 points of one ε stay apart.
     jitter = np.exp(np.random.default_rng(0).uniform(-0.1, 0.1, len(r)))
     panels = (
-        Panel(
-            series=(Series(r[:, 0] * jitter, np.maximum(r[:, 1], 1e-18), style="markers"),),
-            xlabel="ε",
-            ylabel="max |a_k(2.5) − a_k(Jacobian of (1.5))| / max|a_k|",
+        threshold_panel(
+            (Series(r[:, 0] * jitter, np.maximum(r[:, 1], 1e-18), style="markers"),),
+            1e-12,
+            "ε",
+            "max |a_k(2.5) − a_k(Jacobian of (1.5))| / max|a_k|",
+            label="threshold",
             xscale="log",
-            yscale="log",
-            hlines=((1e-12, "threshold"),),
         ),
     )
     # Criterion: the complex-step Jacobian of (1.5) is exact to round-off and the principal
     # minors are summed exactly (fsum): 1e-12 relative, while a wrong term is O(ε) or O(1).
-    holds = worst <= 1e-12
-    m = measured(
+    return within(
         worst,
+        1e-12,
+        panels,
         "1 (relative to max|a_k|)",
         "max difference between (2.5)'s printed a0…a5 and the characteristic polynomial of the "
         "automatic Jacobian of (1.5) at Γ = E, z = ξ3; 5 bodies × 6 β × 4 ε (10⁻³ … 10)",
-        1e-12,
-        "value ≤ 1e-12",
         n_cases=len(rows),
     )
-    return Measurement(holds, False, m, panels)
 
 
 @claim(
@@ -243,7 +241,7 @@ def rf_4() -> Measurement:
     for name, (inertia, beta) in cases.items():
         err = []
         for e in eps:
-            p = _params(inertia, beta, float(e))
+            p = params(inertia, beta, float(e))
             exact = polynomial_roots(rf.characteristic_coefficients(p))
             approx = rf.approximate_roots(p)
             err.append(float(np.max(np.abs(exact - approx[match_roots(exact, approx)]))))
@@ -252,18 +250,10 @@ def rf_4() -> Measurement:
             Series(eps, np.array(err), f"{name}: slope {slopes[name]:.3f}", "line+markers")
         )
     series.append(Series(eps, 1.0 * eps**2, "slope 2", "dotted"))
-    panels = (
-        Panel(
-            series=tuple(series),
-            xlabel="ε",
-            ylabel="max |exact root − (2.6)|",
-            xscale="log",
-            yscale="log",
-        ),
-    )
+    panels = (eps_panel(series, "max |exact root − (2.6)|"),)
     # Thin plate at β = π/2 (§6 validity): (2.6) predicts Re λ4,5 = −ε/(2I3) < 0, the exact
     # pair ±i has zero real part.
-    pt = _params((1.0, 2.0, 3.0), math.pi / 2, 0.05)
+    pt = params((1.0, 2.0, 3.0), math.pi / 2, 0.05)
     exact_t = polynomial_roots(rf.characteristic_coefficients(pt))
     approx_t = rf.approximate_roots(pt)
     near_i = exact_t[np.argmin(np.abs(exact_t - 1j))]

@@ -11,19 +11,14 @@ from tumble._typing import FloatArray
 from tumble.analysis import averaging_error_study, fitted_order
 from tumble.analysis.claims.base import Measurement, Panel, Series, claim
 from tumble.analysis.claims.common import (
-    FIRST_ORDER,
+    by_order,
+    eps_panel,
     max_abs,
     measured,
     quiet,
     wrap,
 )
-from tumble.analysis.claims.rotating_field.cases import (
-    RF,
-    RF_BODY,
-    XI3,
-    _params,
-    _rf_transient_runs,
-)
+from tumble.analysis.claims.rotating_field.cases import RF, RF_BODY, XI3, params, transient_runs
 from tumble.integrate import integrate, simulate
 from tumble.models import rotating_field as rf
 
@@ -49,7 +44,7 @@ def rf_13() -> Measurement:
     max_x3 = float(np.max(rates[:, 0]))
     min_x1 = float(np.min(rates[:, 1]))
     # The long averaged run (§11.5): k² → 0, ρ → 0, L → I3.
-    p = _params(RF_BODY, 1.0, 0.02)
+    p = params(RF_BODY, 1.0, 0.02)
     st = rf.state_from_elements(p, 1.8, 0.8, 0.3, 0.9, "x3")
     tau = np.linspace(0.0, 3000.0, 301)
     avg = quiet(simulate, rf.MODEL, p, st, tau, "averaged").columns
@@ -60,7 +55,7 @@ def rf_13() -> Measurement:
         and avg["rho"][-1] < 1e-3
     )
     # The x1 transient: k̃² first rises to the separatrix, then k² falls (§10, §11.4).
-    tt, full, tavg = _rf_transient_runs()
+    tt, full, tavg = transient_runs()
     peak = float(np.max(tavg["k2"]))
     full_up = float(np.max(np.diff(full["k2"][tt > tt[np.argmax(tavg["k2"])] + 20.0])))
     panels = (
@@ -114,7 +109,7 @@ def _modulus_rates() -> FloatArray:
     3 of β."""
     rows = []
     for beta in (0.3, 1.0, math.pi / 2):
-        p = _params(RF_BODY, beta, 0.01)
+        p = params(RF_BODY, beta, 0.01)
         for k2 in np.linspace(0.001, 0.999, 50):
             for rho in (0.0, 1.0, math.pi / 2, 3.0):
                 s2 = math.sin(rho) ** 2
@@ -148,7 +143,7 @@ def rf_14() -> Measurement:
     exc, avg_dev = [], 0.0
     series = []
     for e in eps:
-        p = _params(RF_BODY, 1.0, e)
+        p = params(RF_BODY, 1.0, e)
         st = rf.state_from_elements(p, 1.8, 0.8, 0.3, 0.5, "x3")
         tau = np.linspace(0.0, 1.0 / e, 601)
         full = simulate(rf.MODEL, p, st, tau, "full").columns
@@ -166,18 +161,16 @@ def rf_14() -> Measurement:
         ),
     )
     # Averaged σ′ = 0 exactly (integration tolerance, 1e-9); full excursions O(ε) (order ≥ 0.75).
-    holds = avg_dev <= 1e-9 and order >= FIRST_ORDER
-    m = measured(
+    return by_order(
         order,
-        "1 (fitted order)",
+        panels,
         "fitted order of max|σ_full − σ0| against ε = 0.02, 0.01, 0.005 over τ ≤ 1/ε",
-        FIRST_ORDER,
-        "order ≥ 0.75 and averaged σ constant to 1e-9",
         "true to first order: the full σ oscillates by O(ε)",
+        condition=avg_dev <= 1e-9,
+        criterion="order ≥ 0.75 and averaged σ constant to 1e-9",
         excursions=exc,
         averaged_sigma_deviation=avg_dev,
     )
-    return Measurement(holds, True, m, panels)
 
 
 @claim(
@@ -196,7 +189,7 @@ def rf_15() -> Measurement:
         Measured: the rise of ρ [rad] over τ ≤ 60 in the full model (qualification if > 1e-2); the
         claim holds if the averaged ρ(τ = 8000) < 1e-3 rad.
     """
-    p = _params(RF_BODY, math.pi / 2, 0.02)
+    p = params(RF_BODY, math.pi / 2, 0.02)
     st = rf.state_from_elements(p, 3.0 * RF_BODY[2], 0.3, 0.0, 0.1, "x3")  # z3 ≈ 3: T/L ≈ 1.5
     tau = np.linspace(0.0, 60.0, 121)
     full = simulate(rf.MODEL, p, st, tau, "full").columns
@@ -206,7 +199,7 @@ def rf_15() -> Measurement:
     long_tau = np.linspace(0.0, 8000.0, 161)
     long = quiet(simulate, rf.MODEL, p, st, long_tau, "averaged").columns
     # β = 0: both ρ = 0 and ρ = π attract; from ρ0 > π/2 the averaged ρ goes to π.
-    p0 = _params(RF_BODY, 0.0, 0.02)
+    p0 = params(RF_BODY, 0.0, 0.02)
     st0 = rf.state_from_elements(p0, 1.8, 2.2, 0.0, 0.4, "x3")
     beta0 = quiet(simulate, rf.MODEL, p0, st0, np.linspace(0.0, 1500.0, 31), "averaged").columns
     panels = (
@@ -264,7 +257,7 @@ def rf_16() -> Measurement:
     variation, contrast = 0.0, 0.0
     series = []
     for beta in (beta_c, 1.0):
-        p = _params(RF_BODY, beta, 0.01)
+        p = params(RF_BODY, beta, 0.01)
         for k2 in (0.1, 0.5, 0.9):
             r = np.array([rf.modulus_rate(p, k2, float(s), "x3") for s in s2])
             v = float(np.max(np.abs(r / r[0] - 1.0)))
@@ -312,7 +305,7 @@ def rf_17() -> Measurement:
         Measured: max |fitted k² decay rate of the full model / linearized (3.7) rate − 1| [1];
         holds at ≤ 0.05.
     """
-    p = _params(RF_BODY, 1.0, 0.02)
+    p = params(RF_BODY, 1.0, 0.02)
     lim = rf.predicted_limits(p, rf.State(XI3, np.eye(3)))
     r37, r26 = lim["nutation_decay_rate_averaged"], lim["nutation_decay_rate_phase0"]
     series = []
@@ -426,7 +419,7 @@ def rf_18() -> Measurement:
         Measured: the slowest fitted order [1] of max |full − averaged| of L, ρ, T, k² against ε;
         holds at ≥ 0.75.
     """
-    p = _params(RF_BODY, 1.0, 0.01)
+    p = params(RF_BODY, 1.0, 0.01)
     st = rf.state_from_elements(p, 1.8, 0.8, 0.3, 0.5, "x3")
     eps = [0.02, 0.01, 0.005]
     study = quiet(
@@ -442,36 +435,26 @@ def rf_18() -> Measurement:
     )
     worst = min(study.slopes.values())
     # The separatrix crossing of the x1 transient (ε = 0.01): O(ε), theory allows ε|ln ε|.
-    _, full, tavg = _rf_transient_runs()
+    _, full, tavg = transient_runs()
     sep = {
         "L": max_abs(full["L"] - tavg["L"]),
         "k2": max_abs(full["k2"] - tavg["k2"]),
         "eps_abs_ln_eps": 0.01 * abs(math.log(0.01)),
     }
     study_eps = np.asarray(study.eps)
-    panels = (
-        Panel(
-            series=(
-                *(
-                    Series(study_eps, e, f"{v}: order {study.slopes[v]:.2f}", "line+markers")
-                    for v, e in study.errors.items()
-                ),
-                Series(study_eps, study_eps * 2, "slope 1", "dotted"),
-            ),
-            xlabel="ε",
-            ylabel="max |full − averaged| over ετ ≤ 3",
-            xscale="log",
-            yscale="log",
+    series = (
+        *(
+            Series(study_eps, e, f"{v}: order {study.slopes[v]:.2f}", "line+markers")
+            for v, e in study.errors.items()
         ),
+        Series(study_eps, study_eps * 2, "slope 1", "dotted"),
     )
-    holds = worst >= FIRST_ORDER
-    m = measured(
+    panels = (eps_panel(series, "max |full − averaged| over ετ ≤ 3"),)
+    return by_order(
         worst,
-        "1 (fitted order)",
+        panels,
         "slowest fitted order of max|Δ| of L, ρ, T, k² (full − averaged) against ε = 0.02, 0.01, "
         "0.005 over ετ ≤ 3 (body (1, 1.6, 2.2), β = 1, regime x3)",
-        FIRST_ORDER,
-        "order ≥ 0.75",
         "O(ε) only in non-resonant transients: resonances m = n1ν1 + n2ν2 (k², T off by O(√ε) "
         "or O(1)), the thin plate, L → 0 and the co-rotation stage are excluded; a separatrix "
         "crossing stays first order in practice (theory: ε|ln ε|)",
@@ -479,4 +462,3 @@ def rf_18() -> Measurement:
         errors={v: e.tolist() for v, e in study.errors.items()},
         separatrix_crossing_eps_0_01=sep,
     )
-    return Measurement(holds, True, m, panels)

@@ -9,11 +9,8 @@ import numpy as np
 
 from tumble._typing import BoolArray, FloatArray
 from tumble.analysis.claims.base import Measurement, Panel, Series, claim
-from tumble.analysis.claims.common import (
-    measured,
-    tolerances,
-)
-from tumble.analysis.claims.rotating_field.cases import RF, XI3, _params
+from tumble.analysis.claims.common import measured, tolerances
+from tumble.analysis.claims.rotating_field.cases import RF, XI3, params
 from tumble.analysis.stability import CRITICAL_TOL, analyze, polynomial_roots
 from tumble.analysis.stability_maps import inertia_map
 from tumble.integrate import integrate, simulate
@@ -57,7 +54,7 @@ def rf_5() -> Measurement:
             continue  # not a body, or x3 not the largest axis
         beta = float(rng.uniform(0.01, math.pi / 2 - 0.01))
         eps = float(10.0 ** rng.uniform(-3.0, 1.0))
-        rep = analyze(rf.MODEL, _params((I1, I2, 1.0), beta, eps), family=False)
+        rep = analyze(rf.MODEL, params((I1, I2, 1.0), beta, eps), family=False)
         sweep_max = max(sweep_max, float(rep.max_real))
         sweep_bad += rep.classification != "asymptotically stable"
         n += 1
@@ -90,7 +87,7 @@ def _rf_axis_roots_panel(inertia: tuple[float, float, float], eps: float) -> Pan
         ("x3 middle", (s, large, mid)),
         ("x3 smallest", (mid, large, s)),
     ):
-        r = polynomial_roots(rf.characteristic_coefficients(_params(order, math.pi / 4, eps)))
+        r = polynomial_roots(rf.characteristic_coefficients(params(order, math.pi / 4, eps)))
         series.append(Series(r.real, r.imag, label, "markers"))
     return Panel(
         series=tuple(series),
@@ -116,12 +113,12 @@ def rf_6() -> Measurement:
     Claim
         Measured: |nonlinear growth rate of (1.5) / exact real root − 1| [1]; holds at ≤ 1e-2.
     """
-    p = _params((1.0, 2.0, 1.5), 1.0, 1e-3)
+    p = params((1.0, 2.0, 1.5), 1.0, 1e-3)
     rep = analyze(rf.MODEL, p, family=False)
     w0 = math.sqrt(-p.derived()["omega0_squared"])
     root_rel = abs(rep.roots[0].real / w0 - 1.0)
     # Nonlinear check (§7, last paragraph): (1.5) from a generic small perturbation.
-    pn = _params((1.0, 2.0, 1.5), math.pi / 3, 0.05)
+    pn = params((1.0, 2.0, 1.5), math.pi / 3, 0.05)
     lead = analyze(rf.MODEL, pn, family=False).roots[0]
     st = rf.State(XI3 + 1e-7 * np.array([0.3, -0.5, 0.2]), euler313_to_matrix(0.2, 4e-8, -0.2))
     tau = np.linspace(0.0, 60.0, 3001)
@@ -186,7 +183,7 @@ def rf_7() -> Measurement:
     """
     eps, beta = 1e-2, math.pi / 4
     I1, I2, I3 = 2.0, 2.5, 1.5
-    rep = analyze(rf.MODEL, _params((I1, I2, I3), beta, eps), family=False)
+    rep = analyze(rf.MODEL, params((I1, I2, I3), beta, eps), family=False)
     c2 = math.cos(beta) ** 2
     growth = 0.5 * eps * ((I2 - I3) / (I2 * I3) + (I1 - I3) / (I1 * I3) * c2)  # §7 table
     rel = abs(rep.max_real / growth - 1.0)
@@ -232,18 +229,18 @@ def rf_8() -> Measurement:
     worst, labels = 0.0, {}
     for inertia in bodies:
         for eps in (1e-4, 1e-2, 0.05, 1.0, 10.0):
-            p = _params(inertia, math.pi / 2, eps)
+            p = params(inertia, math.pi / 2, eps)
             c = rf.characteristic_coefficients(p)
             for lam in (1j, -1j):
                 worst = max(worst, float(abs(np.polyval(c, lam))) / float(np.sum(np.abs(c))))
             labels[f"{inertia}, ε = {eps}"] = analyze(rf.MODEL, p, family=False).classification
     conical = {
-        beta: analyze(rf.MODEL, _params((1.0, 2.0, 3.0), beta, 0.05), family=False).classification
+        beta: analyze(rf.MODEL, params((1.0, 2.0, 3.0), beta, 0.05), family=False).classification
         for beta in (0.3, math.pi / 4, 1.2)
     }
     betas = np.linspace(0.05, math.pi / 2, 60)
     lead = [
-        analyze(rf.MODEL, _params((1.0, 2.0, 3.0), float(b), 0.05), family=False).max_real
+        analyze(rf.MODEL, params((1.0, 2.0, 3.0), float(b), 0.05), family=False).max_real
         for b in betas
     ]
     panels = (
@@ -295,7 +292,7 @@ def rf_9() -> Measurement:
         Measured: the exponent n [1] of the decay rate ∝ Aⁿ of the critical thin-plate mode; holds
         at n = 2 ± 0.5 or n/2 = 2 ± 0.5.
     """
-    p = _params((1.0, 2.0, 3.0), math.pi / 2, 0.05)
+    p = params((1.0, 2.0, 3.0), math.pi / 2, 0.05)
     tb, A, rate = _thin_plate_decay(p)
     ok = rate > 0.0
     n_lin = float(np.polyfit(np.log(A[ok]), np.log(rate[ok]), 1)[0])

@@ -103,6 +103,24 @@ def rm_8() -> Measurement:
     return Measurement(limits_ok, qualified, m, panels)
 
 
+def _printed_2_8(W0: float, p: rm.Params) -> dict[str, float]:
+    """The paper's (2.8) from W0 [1] (lower hemisphere, a3/δ > (β/2δ)²), correction E4: the limit
+    (β + δμ2π)/(2δ) it prints [1], the τ at which its tangent's argument reaches π/2 [τ], and
+    (2.8) just before that pole [1]."""
+    a3, be, de = float(p.a[2]), p.beta, p.delta
+    h = be / (2 * de)
+    mu2 = math.sqrt(a3 / de - h * h)
+    # E4: (2.8) has no limit; its tangent argument reaches π/2 at a finite τ.
+    tau_pole = (math.pi / 2 - math.atan((2 * de * W0 - be) / (2 * de * mu2))) / (p.eps * de * mu2)
+    return {
+        "printed_limit_of_2_8": (be + de * mu2 * math.pi) / (2 * de),
+        "tau_pole_of_2_8": tau_pole,
+        "W_2_8_just_before_pole": float(
+            rm.axial_lower_tan(np.array([tau_pole * (1 - 1e-9)]), W0, p)[0]
+        ),
+    }
+
+
 @claim(
     "rm-9",
     RM,
@@ -122,8 +140,6 @@ def rm_9() -> Measurement:
     """
     p, st = RM_AXIAL_CASES["(2.8) → (2.5)"][:2]
     a3, be, de = float(p.a[2]), p.beta, p.delta
-    h = be / (2 * de)
-    mu2 = math.sqrt(a3 / de - h * h)
     W_plus = (-be + math.sqrt(be * be + 4 * de * a3)) / (2 * de)  # E5: (2δν1 − β)/(2δ)
     tau = np.linspace(0.0, 80.0 / p.eps, 1601)  # slow time 80: every exponential settled
     avg = averaged_run(p, st, tau)
@@ -133,10 +149,8 @@ def rm_9() -> Measurement:
         lambda t: float(np.cos(avg.slow(np.array([t]))["theta"][0])), tau[i - 1], tau[i], xtol=1e-10
     )
     tau1 = rm.crossing_time(st.W, p)
-    # E4: (2.8) has no limit; its tangent argument reaches π/2 at a finite τ.
-    tau_pole = (math.pi / 2 - math.atan((2 * de * st.W - be) / (2 * de * mu2))) / (p.eps * de * mu2)
-    W28_near_pole = float(rm.axial_lower_tan(np.array([tau_pole * (1 - 1e-9)]), st.W, p)[0])
-    paper_limit = (be + de * mu2 * math.pi) / (2 * de)
+    printed = _printed_2_8(st.W, p)
+    tau_pole, paper_limit = printed["tau_pole_of_2_8"], printed["printed_limit_of_2_8"]
     err_W = abs(float(W[-1]) - W_plus)
     # The window ετ ≤ 10, W ≤ 4 of the figure is cut from the data: (2.8) reaches 8e8 at its
     # pole.
@@ -171,9 +185,7 @@ def rm_9() -> Measurement:
         tau1_integrated=tau1_int,
         theta_end=theta_end,
         W_plus=W_plus,
-        printed_limit_of_2_8=paper_limit,
-        tau_pole_of_2_8=tau_pole,
-        W_2_8_just_before_pole=W28_near_pole,
+        **printed,
     )
     return Measurement(holds, True, m, panels)
 

@@ -330,7 +330,6 @@ def rf_17() -> Measurement:
             yscale="log",
         ),
     )
-    lin = _end_linearization(p)
     dev37 = max(abs(r["rate"] / r37 - 1.0) for r in rows)
     dev26 = max(abs(r["rate"] / r26 - 1.0) for r in rows)
     devphi = max(abs(r["rate"] / r["phase_formula"] - 1.0) for r in rows)
@@ -352,7 +351,7 @@ def rf_17() -> Measurement:
         rate_3_7=r37,
         rate_2_6=r26,
         runs=rows,
-        averaged_linearization_at_end=lin,
+        averaged_linearization_at_end=_end_linearization(p),
     )
     return Measurement(holds, False, m, panels)
 

@@ -36,10 +36,10 @@ __all__ = [
     "converged",
     "eps_panel",
     "floored",
+    "judged",
     "max_abs",
     "measured",
     "measured_by",
-    "measured_order",
     "quiet",
     "threshold_panel",
     "tolerance_scale",
@@ -289,35 +289,6 @@ tumble's own error studies use (three to five values of ε; the O(ε²) remainde
 the O(ε) oscillation at the sampled maxima scatter the slope by up to ±0.2)."""
 
 
-def measured_order(
-    order: float,
-    what: str,
-    qualification: str = "",
-    *,
-    criterion: str = "order ≥ 0.75",
-    **details: Any,
-) -> dict[str, Any]:
-    """The :func:`measured` record of a claim that holds to first order: the fitted order of an
-    error against ε [1], judged against :data:`FIRST_ORDER`.
-
-    Parameters
-    ----------
-    order : float
-        The fitted order [1].
-    what : str
-        What was fitted, with the values of ε and the runs.
-    qualification : str, optional
-        The theory page's qualification of the paper's statement.
-    criterion : str, optional
-        The rule of the verdict, where the claim adds a condition to the order's.
-    **details
-        Further measurements, stored under ``details``.
-    """
-    return measured(
-        order, "1 (fitted order)", what, FIRST_ORDER, criterion, qualification, **details
-    )
-
-
 def by_order(
     order: float,
     panels: Iterable[Panel],
@@ -326,6 +297,7 @@ def by_order(
     *,
     criterion: str = "order ≥ 0.75",
     condition: bool = True,
+    qualified: bool | None = None,
     **details: Any,
 ) -> Measurement:
     """The :class:`~tumble.analysis.claims.base.Measurement` of a claim that holds to first
@@ -337,19 +309,57 @@ def by_order(
         The fitted order [1].
     panels : iterable of Panel
         The figure's panels.
-    what, qualification, criterion, **details
-        As for :func:`measured_order`.
+    what : str
+        What was fitted, with the values of ε and the runs.
+    qualification : str, optional
+        The theory page's qualification of the paper's statement.
+    criterion : str, optional
+        The rule of the verdict, where the claim adds a condition to the order's.
     condition : bool, optional
-        A further condition of the claim (the one ``criterion`` states).
+        That further condition (the one ``criterion`` states).
+    qualified : bool, optional
+        Whether the theory page qualifies the paper's statement; by default, whether a
+        ``qualification`` is given.
+    **details
+        Further measurements, stored under ``details``.
 
     Returns
     -------
     Measurement
-        Holds if ``order`` ≥ :data:`FIRST_ORDER` and ``condition``; qualified if the theory
-        page's ``qualification`` is given.
+        Holds if ``order`` ≥ :data:`FIRST_ORDER` and ``condition``.
     """
-    m = measured_order(order, what, qualification, criterion=criterion, **details)
-    return Measurement(order >= FIRST_ORDER and condition, bool(qualification), m, tuple(panels))
+    return judged(
+        order >= FIRST_ORDER and condition,
+        panels,
+        order,
+        "1 (fitted order)",
+        what,
+        FIRST_ORDER,
+        criterion,
+        qualification,
+        qualified=bool(qualification) if qualified is None else qualified,
+        **details,
+    )
+
+
+def judged(
+    holds: bool | np.bool_,
+    panels: Iterable[Panel],
+    value: float,
+    units: str,
+    what: str,
+    threshold: float | str,
+    criterion: str,
+    qualification: str = "",
+    *,
+    qualified: bool,
+    **details: Any,
+) -> Measurement:
+    """The :class:`~tumble.analysis.claims.base.Measurement` of a claim judged by its own
+    criterion: whether it ``holds`` and whether the theory page ``qualified`` it, its figure's
+    ``panels``, and its :func:`measured` record (the other arguments, as there)."""
+    m = measured(value, units, what, threshold, criterion, qualification, **details)
+    return Measurement(holds, qualified, m, tuple(panels))
 
 
 def measured(
@@ -431,8 +441,18 @@ def within(
         theory page's ``qualification`` is given.
     """
     bound = f"{threshold:g}".replace("e-0", "e-")  # 1e-09 written 1e-9
-    m = measured(value, units, what, threshold, f"value ≤ {bound}", qualification, **details)
-    return Measurement(value <= threshold, bool(qualification), m, tuple(panels))
+    return judged(
+        value <= threshold,
+        panels,
+        value,
+        units,
+        what,
+        threshold,
+        f"value ≤ {bound}",
+        qualification,
+        qualified=bool(qualification),
+        **details,
+    )
 
 
 def quiet(fn: Callable[..., Any], *args: Any, **kwargs: Any) -> Any:

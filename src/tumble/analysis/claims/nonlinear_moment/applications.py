@@ -15,7 +15,7 @@ from tumble.analysis.claims.common import (
     by_order,
     cache_per_scale,
     eps_panel,
-    measured,
+    judged,
     quiet,
     tolerances,
     within,
@@ -171,7 +171,9 @@ def nm_10() -> Measurement:
     # Holds (as §10 qualifies it): the ratio grows as ε falls and reaches 10× at a
     # moderate ε (≤ 0.15 here).
     holds = ratios[1] >= 10.0 and ratios[1] > ratios[0]
-    m = measured(
+    return judged(
+        holds,
+        panels,
         ratios[1],
         "1",
         "wall-time ratio full/averaged for the capsule with inertias × 1/4 (descent ε = 0.15), "
@@ -181,6 +183,7 @@ def nm_10() -> Measurement:
         "the ratio grows roughly like 1/ε (nutation periods per unit slow time): an order of "
         "magnitude is reached at moderate ε (1e-2 … 1e-1), and depends on the relative cost of "
         "one averaged right-hand side",
+        qualified=True,
         ratio_at_eps_0_3=ratios[0],
         eps=eps,
         nfev_ratios=nfev,
@@ -191,7 +194,6 @@ def nm_10() -> Measurement:
             "ratio": full_c.wall_time / avg_c.wall_time,
         },
     )
-    return Measurement(holds, True, m, panels)
 
 
 @claim(

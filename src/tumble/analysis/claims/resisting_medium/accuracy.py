@@ -12,13 +12,11 @@ import numpy as np
 from tumble.analysis import averaging_error_study, fitted_order
 from tumble.analysis.claims.base import Measurement, Panel, Series, claim
 from tumble.analysis.claims.common import (
-    FIRST_ORDER,
     by_order,
     cache_per_scale,
     eps_panel,
+    judged,
     max_abs,
-    measured,
-    measured_order,
     tolerances,
 )
 from tumble.analysis.claims.resisting_medium.cases import (
@@ -199,20 +197,21 @@ def rm_15() -> Measurement:
     panels = (eps_panel(series, "max |full − closed form| after τ1 + 0.5/ε"),)
     # The paper treats φ as fast everywhere, i.e. (2.2) first-order accurate through the
     # passage: that holds only if the fitted order stays ≥ 0.75 (cf. rm-14).
-    holds = order >= FIRST_ORDER
-    m = measured_order(
+    return by_order(
         order,
+        panels,
         "fitted order of the post-passage error max|Δk|, |Δϑ| (worst of 6 phases φ0) against "
         "ε = 0.02 … 0.0025, a1, a2 ≠ 0, crossing ϑ = π/2",
         "E10: Ω_φ = −kκ cosϑ/(1+κ) vanishes at ϑ = π/2 (and for κ = 0): after a passage the "
         "averaged model is only O(√ε) accurate; exact only for a φ-independent moment",
         criterion="the claim holds if order ≥ 0.75",
+        # Judged as printed: the verdict is confirmed or refuted, never qualified.
+        qualified=False,
         errors=errors.tolist(),
         eps=eps_values,
         error_over_sqrt_eps=(errors / np.sqrt(eps_values)).tolist(),
         stationary_phase_bound=bound.tolist(),
     )
-    return Measurement(holds, False, m, panels)
 
 
 @claim(
@@ -257,7 +256,9 @@ def rm_16() -> Measurement:
     # is the §10.4 value (first order: within 5 % = O(ε) relative at ε = 0.05) checks §10.4.
     holds = theta_end <= 3 * p.eps
     qualified = theta_end > 1e-6
-    m = measured(
+    return judged(
+        holds,
+        panels,
         theta_end,
         "rad",
         "ϑ of the full model at τ = 600 (a3 > 0, a1 = 0.05, a2 = 0.03, ε = 0.05)",
@@ -266,8 +267,8 @@ def rm_16() -> Measurement:
         "within 5 %",
         "in the full model the final state is a steady rotation whose axis is tilted from K by "
         "O(ε) when a1, a2 or off-diagonal B, S entries are present: 'ϑ → 0' means ϑ → O(ε)",
+        qualified=qualified,
         theory_consistent=rel <= 0.05,
         tilt_formula=tilt,
         relative_difference_from_tilt=rel,
     )
-    return Measurement(holds, qualified, m, panels)

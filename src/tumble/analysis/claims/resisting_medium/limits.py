@@ -10,7 +10,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from tumble.analysis.claims.base import Measurement, Panel, Series, claim
-from tumble.analysis.claims.common import by_convergence, converged, measured, tolerances
+from tumble.analysis.claims.common import by_convergence, converged, judged, tolerances
 from tumble.analysis.claims.resisting_medium.cases import (
     RM,
     RM_AXIAL_CASES,
@@ -87,7 +87,9 @@ def rm_8() -> Measurement:
     # Limits: exponential approach complete, 1e-6 rad allows the integration error. The
     # qualification is measured: a rise above 1e-3 rad is far above integration error.
     qualified = rise > 1e-3 and rise_full > 1e-3
-    m = measured(
+    return judged(
+        limits_ok,
+        panels,
         rise,
         "rad",
         "max ϑ(τ) − ϑ0 along (2.2) for a3 > 0 (β ≫ α, W0 > W+): the non-monotone rise; limits "
@@ -97,10 +99,10 @@ def rm_8() -> Measurement:
         "model (monotonicity fails: qualification)",
         "E9: only the limits hold (α + γ > 0): ϑ need not be monotone — with β ≫ α and W0 above "
         "W+ it first grows, then decays to 0 (likewise toward π for a3 < 0)",
+        qualified=qualified,
         limits=ends,
         rise_full_model=rise_full,
     )
-    return Measurement(limits_ok, qualified, m, panels)
 
 
 def _printed_2_8(W0: float, p: rm.Params) -> dict[str, float]:
@@ -173,7 +175,9 @@ def rm_9() -> Measurement:
     # Criterion: W reaches W+ and ϑ reaches 0 (exponential approach complete at slow time 80,
     # 1e-6 allows integration error); τ1 of §8.4 equals the integrated crossing (1e-6 relative).
     holds = err_W <= 1e-6 and theta_end <= 1e-6 and abs(tau1_int - tau1) <= 1e-6 * tau1
-    m = measured(
+    return judged(
+        holds,
+        panels,
         err_W,
         "1",
         "|W(ετ = 80) − W+| along (2.2) integrated through the crossing of ϑ = π/2",
@@ -181,13 +185,13 @@ def rm_9() -> Measurement:
         "|W − W+| ≤ 1e-6, ϑ_end ≤ 1e-6 rad, τ1 of §8.4 equal to the integrated crossing",
         "E4: (2.8) does not tend to (β + δμ2π)/(2δ): it is valid only while W < 0, and its "
         "tangent diverges at a finite τ; W crosses 0 at τ1 and then follows (2.5) to W+ (E5)",
+        qualified=True,
         tau1_closed_form=tau1,
         tau1_integrated=tau1_int,
         theta_end=theta_end,
         W_plus=W_plus,
         **printed,
     )
-    return Measurement(holds, True, m, panels)
 
 
 @claim(
@@ -255,7 +259,9 @@ def rm_10() -> Measurement:
     )
     # Criterion: the full model ends within O(ε) of the averaged limit; 0.05 rad = ε here.
     holds = worst <= 0.05
-    m = measured(
+    return judged(
+        holds,
+        panels,
         worst,
         "rad",
         "max |ϑ_full(τ = 600) − limit| over the three a3 = 0 cases (ε = 0.05)",
@@ -264,9 +270,9 @@ def rm_10() -> Measurement:
         "the limits are statements about the averaged system: k → 0, so the spin stops being "
         "fast (k ≲ ε|b|) and the averaged model loses validity (tumble's spin_not_fast τ in "
         "details); add the case β = α (tan ϑ∞ = tan ϑ0 (β + δ|W0|)/(α + γV0))",
+        qualified=True,
         cases=res,
     )
-    return Measurement(holds, True, m, panels)
 
 
 @claim(
@@ -367,15 +373,17 @@ def rm_12() -> Measurement:
     # The paper's claim holds only if both hemispheres end at arctan(δ/γ) (within O(ε) = 0.05,
     # the full model's distance from the averaged limit, cf. rm-10).
     holds = dist <= 0.05 and abs(ends[0.4] - target) <= 0.05
-    m = measured(
+    return judged(
+        holds,
+        panels,
         dist,
         "rad",
         "|ϑ_full(τ = 2e4) − arctan(δ/γ)| from the lower hemisphere (ϑ0 = π − 0.4), ε = 0.05",
         0.05,
         "the claim (one position) holds if both hemispheres end within 0.05 rad of arctan(δ/γ)",
         "E8: two limiting positions, arctan(δ/γ) and π − arctan(δ/γ), symmetric about π/2",
+        qualified=False,
         theta_end_upper=ends[0.4],
         theta_end_lower=lower_end,
         distance_lower_from_pi_minus=abs(lower_end - (math.pi - target)),
     )
-    return Measurement(holds, False, m, panels)

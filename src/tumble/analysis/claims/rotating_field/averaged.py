@@ -16,8 +16,8 @@ from tumble.analysis.claims.common import (
     Tolerances,
     by_convergence,
     converged,
+    judged,
     max_abs,
-    measured,
     threshold_panel,
     within,
 )
@@ -233,7 +233,9 @@ def rf_12() -> Measurement:
         and abs(corrected) <= 1e-15
         and abs(printed) > 1e-3 * p.eps
     )
-    m = measured(
+    return judged(
+        holds,
+        panels,
         worst,
         "1 (relative to ε(1 + L))",
         "max |(3.5)–(3.6) − quadrature average of the eddy torque over polhode, precession and "
@@ -244,11 +246,11 @@ def rf_12() -> Measurement:
         "1 − 3 sin²ρ); "
         "the printed form gives T′ = −¾ε(3cos²β − 1) ≠ 0 at the stationary rotation; the "
         "averaging needs non-resonance (§12)",
+        qualified=True,
         k2_form_vs_chain_rule=max(errs_k2),
         corrected_T_prime_at_stationary=corrected,
         printed_T_prime_at_stationary=printed,
     )
-    return Measurement(holds, True, m, panels)
 
 
 def _random_slow_state(rng: np.random.Generator) -> FloatArray:

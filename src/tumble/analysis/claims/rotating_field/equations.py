@@ -17,8 +17,8 @@ from tumble.analysis.claims.common import (
     converged,
     eps_panel,
     floored,
+    judged,
     max_abs,
-    measured,
     threshold_panel,
     within,
     wrap,
@@ -93,7 +93,9 @@ def rf_1() -> Measurement:
         and max(power) <= 1e-13
         and abs(float(np.median(spinup)) - 1.0) <= 1e-12
     )
-    m = measured(
+    return judged(
+        holds,
+        panels,
         worst,
         "1 (relative to max(1, |Ω|))",
         "max |k_f H×(H×Ω + Ḣ) − M0 Bᵀĥĥ(BΩ − ωξ3)| over 200 random fields, rates and times",
@@ -101,12 +103,12 @@ def rf_1() -> Measurement:
         "value ≤ 1e-13, torque 0 at co-rotation, Ω·M ≤ 0 in a static field, dL3/dt = k_fH²ω "
         "sin²β from rest",
         "correction C1: the second term is dH/dt (the OCR shows H*); correction C2: M0 = k_f H²",
+        qualified=True,
         max_torque_at_corotation=max(corot),
         ocr_reading_torque_at_corotation_over_omega=max(ocr_corot),
         max_power_static_field=max(power),
         spinup_over_omega_sin2beta_median=float(np.median(spinup)),
     )
-    return Measurement(holds, True, m, panels)
 
 
 @claim(
@@ -261,7 +263,9 @@ def rf_4() -> Measurement:
     # First-order perturbation of simple roots: error O(ε²); ±0.1 absorbs the O(ε³) term at
     # ε = 1e-2.
     holds = all(abs(s - 2.0) <= 0.1 for s in slopes.values())
-    m = measured(
+    return judged(
+        holds,
+        panels,
         worst,
         "1 (fitted order)",
         "fitted order of max|exact root − (2.6)| against ε ∈ [1e-3, 1e-2] (the slope farthest "
@@ -270,8 +274,8 @@ def rf_4() -> Measurement:
         "|order − 2| ≤ 0.1",
         "valid only where the unperturbed roots are simple (ω0² ≠ 0, 1; ε/I ≪ |1 − ω0|): for "
         "the thin plate I3 = I1 + I2 at β = π/2 (2.6) gives Re λ4,5 < 0 for an exact root ±i",
+        qualified=True,
         slopes=slopes,
         thin_plate_exact_root_near_i=[near_i.real, near_i.imag],
         thin_plate_approx_re_lambda45=float(approx_t[3].real),
     )
-    return Measurement(holds, True, m, panels)

@@ -13,8 +13,8 @@ from tumble.analysis.claims.base import Measurement, Panel, Series, claim
 from tumble.analysis.claims.common import (
     by_order,
     eps_panel,
+    judged,
     max_abs,
-    measured,
     quiet,
     wrap,
 )
@@ -82,7 +82,9 @@ def rf_13() -> Measurement:
     # Qualification, measured: the full k² is monotone only on average, and from regime x1
     # the modulus first rises to the separatrix.
     qualified = full_up > 0.0 and peak > 0.999
-    m = measured(
+    return judged(
+        holds,
+        panels,
         max_x3,
         "1/τ",
         "largest dk²/dτ of (3.7) in regime x3 over k² ∈ (0, 1), 4 values of ρ, 3 of β "
@@ -92,6 +94,7 @@ def rf_13() -> Measurement:
         "proven for the averaged equation; in the full model k² decreases only on average "
         "(O(ε) oscillation); from the smallest axis k̃² first rises to 1 (separatrix), then k² "
         "falls from 1 to 0",
+        qualified=qualified,
         min_rate_regime_x1=min_x1,
         averaged_end={
             "k2": float(avg["k2"][-1]),
@@ -101,7 +104,6 @@ def rf_13() -> Measurement:
         full_k2_largest_increase_between_samples=full_up,
         x1_transient_peak_k2=peak,
     )
-    return Measurement(holds, qualified, m, panels)
 
 
 def _modulus_rates() -> FloatArray:
@@ -220,7 +222,9 @@ def rf_15() -> Measurement:
     # the full model's O(ε) wobble of ρ (~5e-3 at ε = 0.02): 1e-2, in both models.
     holds = float(long["rho"][-1]) < 1e-3
     qualified = rise_full > 1e-2 and rise_avg > 1e-2
-    m = measured(
+    return judged(
+        holds,
+        panels,
         rise_full,
         "rad",
         "increase of ρ over τ ≤ 60 in the full model (β = π/2, z3 ≈ 3, ρ0 = 0.3, ε = 0.02)",
@@ -228,11 +232,11 @@ def rf_15() -> Measurement:
         "limit: averaged ρ(τ = 8000) < 1e-3; qualification: ρ rises by > 1e-2 in both models",
         "true in the end for β ≠ 0 but not monotone: ρ′ > 0 while (1 − 3cos²β)cosρ T/L > "
         "sin²β; for β = 0 both ρ = 0 and ρ = π attract",
+        qualified=qualified,
         rise_averaged=rise_avg,
         rho_end_long_run=float(long["rho"][-1]),
         beta_zero_rho_end_from_rho0_2_2=float(beta0["rho"][-1]),
     )
-    return Measurement(holds, qualified, m, panels)
 
 
 @claim(
@@ -275,7 +279,9 @@ def rf_16() -> Measurement:
             )
     panels = (Panel(series=tuple(series), xlabel="sin²ρ", ylabel="dk²/dτ relative to ρ = 0"),)
     holds = variation <= 1e-13  # round-off: A = 8/3 exactly when 1 − 3cos²β = 0
-    m = measured(
+    return judged(
+        holds,
+        panels,
         variation,
         "1",
         "max relative variation of dk²/dτ of (3.7) over sin²ρ ∈ [0, 1] at cos²β = 1/3",
@@ -283,9 +289,9 @@ def rf_16() -> Measurement:
         "value ≤ 1e-13 (A = 8/3 for every ρ); at β = 1 the variation is O(1)",
         "the decoupling is correct; its identification with Chernousko's viscous-fluid body and "
         "the heavy body in a weakly resisting medium was not checked",
+        qualified=True,
         variation_at_beta_1=contrast,
     )
-    return Measurement(holds, True, m, panels)
 
 
 @claim(
@@ -335,7 +341,9 @@ def rf_17() -> Measurement:
     devphi = max(abs(r["rate"] / r["phase_formula"] - 1.0) for r in rows)
     # First-order rates against an envelope fit: O(ε) corrections and fit noise, 5 %.
     holds = dev37 <= 0.05
-    m = measured(
+    return judged(
+        holds,
+        panels,
         dev37,
         "1",
         "max |fitted k² decay rate of the full model / linearized (3.7) rate − 1| over three "
@@ -345,6 +353,7 @@ def rf_17() -> Measurement:
         "§12: the final decay follows the phase φ at which the body settles, "
         "2 Re λ2,3(φ) = rate(3.7) + (ε sin²β/2)(I2 − I1)/(I1 I2) cos 2φ: (2.6) is its slowest "
         "value (φ = 0), (3.7) its mean over φ",
+        qualified=False,
         theory_consistent=devphi <= 0.05,
         deviation_from_2_6=dev26,
         deviation_from_phase_formula=devphi,
@@ -353,7 +362,6 @@ def rf_17() -> Measurement:
         runs=rows,
         averaged_linearization_at_end=_end_linearization(p),
     )
-    return Measurement(holds, False, m, panels)
 
 
 def _settling(p: rf.Params, psi0: float) -> tuple[dict[str, float], Series]:

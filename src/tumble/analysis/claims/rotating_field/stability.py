@@ -9,7 +9,7 @@ import numpy as np
 
 from tumble._typing import BoolArray, FloatArray
 from tumble.analysis.claims.base import Measurement, Panel, Series, claim
-from tumble.analysis.claims.common import measured, tolerances
+from tumble.analysis.claims.common import judged, tolerances
 from tumble.analysis.claims.rotating_field.cases import RF, XI3, params
 from tumble.analysis.stability import CRITICAL_TOL, analyze, polynomial_roots
 from tumble.analysis.stability_maps import inertia_map
@@ -61,7 +61,9 @@ def rf_5() -> Measurement:
     value = max(map_max, sweep_max)
     panels = (Panel(kind="stability_map", data={"ds": ds}),)
     holds = map_ok and sweep_bad == 0 and value < -CRITICAL_TOL
-    m = measured(
+    return judged(
+        holds,
+        panels,
         value,
         "1/τ",
         "largest max Re λ over every body with x3 the largest axis: the (I1/I3, I2/I3) map at "
@@ -71,11 +73,11 @@ def rf_5() -> Measurement:
         "asymptotic stability in the first approximation; exceptions are the critical cases "
         "(thin plate I3 = I1 + I2 at β = π/2, β = 0, I3 equal to another moment); the sweep "
         "of §7 also covers 'non-physical' I3 > I1 + I2, which tumble's Params reject",
+        qualified=True,
         sweep_points=n,
         sweep_not_stable=int(sweep_bad),
         map_points_largest=int(np.count_nonzero(largest)),
     )
-    return Measurement(holds, True, m, panels)
 
 
 def _rf_axis_roots_panel(inertia: tuple[float, float, float], eps: float) -> Panel:
@@ -151,18 +153,20 @@ def rf_6() -> Measurement:
         and root_rel <= p.eps / 1.0
         and rel <= 1e-2
     )
-    m = measured(
+    return judged(
+        holds,
+        panels,
         rel,
         "1",
         "|nonlinear growth rate of (1.5) / exact real root − 1| (body (1, 2, 1.5), β = π/3, "
         "ε = 0.05)",
         1e-2,
         "value ≤ 1e-2, classification unstable, real root within ε/min I of |ω0| (ε = 1e-3)",
+        qualified=False,
         growth_rate=growth,
         exact_root=float(lead.real),
         root_over_omega0_minus_1_at_eps_1e_3=root_rel,
     )
-    return Measurement(holds, False, m, panels)
 
 
 @claim(
@@ -195,17 +199,19 @@ def rf_7() -> Measurement:
         and rep.roots[1] == np.conj(rep.roots[0])
         and rel <= eps / I3
     )
-    m = measured(
+    return judged(
+        holds,
+        panels,
         rel,
         "1",
         "|max Re λ (exact) / (ε/2)[(I2−I3)/(I2I3) + (I1−I3)/(I1I3)cos²β] − 1|, body (2, 2.5, 1.5), "
         "β = π/4, ε = 0.01",
         eps / I3,
         "value ≤ ε/I3, classification unstable with a complex leading pair",
+        qualified=False,
         max_re_lambda=rep.max_real,
         first_order_rate=growth,
     )
-    return Measurement(holds, False, m, panels)
 
 
 @claim(
@@ -260,7 +266,9 @@ def rf_8() -> Measurement:
         and all(v == "critical" for v in labels.values())
         and all(v == "asymptotically stable" for v in conical.values())
     )
-    m = measured(
+    return judged(
+        holds,
+        panels,
         worst,
         "1 (relative to Σ|a_k|)",
         "max |P(±i)| of (2.5) for three thin plates at β = π/2, ε = 1e-4 … 10",
@@ -268,10 +276,10 @@ def rf_8() -> Measurement:
         "value ≤ 16 ulp, all classified critical; β = 0.3, π/4, 1.2 asymptotically stable",
         "(2.6) is invalid there (it predicts damping of the ±i pair); the critical mode is not "
         "damped linearly and decays only through nonlinear terms (not proven, rf-9)",
+        qualified=True,
         classifications=labels,
         conical_field=conical,
     )
-    return Measurement(holds, True, m, panels)
 
 
 @claim(
@@ -312,7 +320,9 @@ def rf_9() -> Measurement:
     quadratic_reading = abs(n_lin / 2.0 - 2.0) <= 0.5
     nonlinear_only = bool(np.all(np.diff(A) < 0.0)) and float(np.max(rate)) < 0.1 * others
     holds = nonlinear_only and (linear_reading or quadratic_reading)
-    m = measured(
+    return judged(
+        holds,
+        panels,
         n_lin,
         "1 (exponent)",
         "exponent n of the decay rate −d ln A/dτ ∝ Aⁿ of the critical mode (A the linear "
@@ -330,13 +340,13 @@ def rf_9() -> Measurement:
             if linear_reading
             else "contradicted for both readings"
         ),
+        qualified=True,
         theory_consistent=quadratic_reading,
         amplitude_power_law_in_tau=p_lin,
         local_exponent_larger_amplitudes=n_large_A,
         local_exponent_smaller_amplitudes=n_small_A,
         max_rate_over_slowest_linear_rate=float(np.max(rate)) / others,
     )
-    return Measurement(holds, True, m, panels)
 
 
 def _thin_plate_decay(p: rf.Params) -> tuple[FloatArray, FloatArray, FloatArray]:

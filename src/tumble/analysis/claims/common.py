@@ -42,6 +42,7 @@ __all__ = [
     "measured_by",
     "quiet",
     "threshold_panel",
+    "time_panel",
     "tolerance_scale",
     "tolerances",
     "within",
@@ -513,6 +514,14 @@ def threshold_panel(
         hlines=((threshold, label),),
         xticks=xticks,
     )
+
+
+def time_panel(
+    series: Iterable[Series], ylabel: str, title: str = "", *, xlabel: str = "τ", **options: Any
+) -> Panel:
+    """Curves against time: the paper's τ unless ``xlabel`` names another (ετ, t / T);
+    ``options`` are the panel's other fields (scales, reference lines)."""
+    return Panel(series=tuple(series), xlabel=xlabel, ylabel=ylabel, title=title, **options)
 
 
 def eps_panel(series: Iterable[Series], ylabel: str, title: str = "") -> Panel:

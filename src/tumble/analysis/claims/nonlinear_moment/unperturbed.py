@@ -8,7 +8,7 @@ from typing import Any
 
 import numpy as np
 
-from tumble.analysis.claims.base import Measurement, Panel, Series, claim
+from tumble.analysis.claims.base import Measurement, Series, claim
 from tumble.analysis.claims.common import (
     Difference,
     Tolerances,
@@ -17,6 +17,7 @@ from tumble.analysis.claims.common import (
     converged,
     max_abs,
     threshold_panel,
+    time_panel,
     within,
 )
 from tumble.analysis.claims.nonlinear_moment.cases import NM, NM_CASES, UNPERTURBED, case_ticks
@@ -283,16 +284,16 @@ def nm_4() -> Measurement:
         )
     worst_rate = max(e["mean_psidot"] for e in per.values())
     panels = (
-        Panel(
-            series=tuple(psi_series),
+        time_panel(
+            psi_series,
+            "|ψ(1.13) − ψ integrated|",
             xlabel="t / T",
-            ylabel="|ψ(1.13) − ψ integrated|",
             yscale="log",
         ),
-        Panel(
-            series=tuple(phi_series),
+        time_panel(
+            phi_series,
+            "|φ(1.13) − φ integrated|",
             xlabel="t / T",
-            ylabel="|φ(1.13) − φ integrated|",
             yscale="log",
         ),
     )

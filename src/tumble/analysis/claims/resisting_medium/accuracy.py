@@ -17,6 +17,7 @@ from tumble.analysis.claims.common import (
     eps_panel,
     judged,
     max_abs,
+    time_panel,
     tolerances,
 )
 from tumble.analysis.claims.resisting_medium.cases import (
@@ -241,11 +242,10 @@ def rm_16() -> Measurement:
     tilt = p.eps * (1 + p.kappa) * math.hypot(0.05, 0.03) / (abs(p.kappa) * k_inf**2)
     theta_end = float(full["theta"][-1])
     panels = (
-        Panel(
-            series=(Series(tau, full["theta"], "full model ϑ"),),
-            xlabel="τ",
-            ylabel="ϑ [rad]",
-            title="a3 > 0, a1, a2 ≠ 0, ε = 0.05",
+        time_panel(
+            (Series(tau, full["theta"], "full model ϑ"),),
+            "ϑ [rad]",
+            "a3 > 0, a1, a2 ≠ 0, ε = 0.05",
             yscale="log",
             hlines=((tilt, "§10.4 tilt ε(1+κ)|m⊥|/(|κ|k∞²)"),),
         ),

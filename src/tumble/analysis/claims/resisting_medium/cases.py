@@ -4,14 +4,9 @@ the branch cases of the closed forms (A. V. Medvedev 1987; docs/theory/resisting
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable
-from typing import Any
 
 import numpy as np
 
-from tumble.analysis.claims.base import Panel, Series
-from tumble.analysis.claims.common import Tolerances, quiet, tolerances
-from tumble.integrate import simulate
 from tumble.models import resisting_medium as rm
 
 RM = "resisting_medium"
@@ -62,25 +57,6 @@ def medium(
 
 def state(k: float, theta: float, phi: float = 0.0) -> rm.State:
     return rm.State(k=k, rho=1.0, sigma=0.2, psi=0.0, theta=theta, phi=phi)
-
-
-def averaged_run(p: rm.Params, st: rm.State, tau: np.ndarray, tol: Tolerances | None = None) -> Any:
-    """Averaged system (2.2) integrated tightly (the reference for the closed forms): the
-    trajectory (``columns``, ``nfev``), at ``tol`` or the reference tolerances."""
-    return quiet(simulate, rm.MODEL, p, st, tau, "averaged", **(tol or tolerances()))
-
-
-def slow_panel(
-    series: Iterable[Series],
-    ylabel: str,
-    title: str = "",
-    hlines: tuple[tuple[float, str], ...] = (),
-    vlines: tuple[tuple[float, str], ...] = (),
-) -> Panel:
-    """Curves against the slow time ετ [1], with reference lines ((value, label) pairs)."""
-    return Panel(
-        series=tuple(series), xlabel="ετ", ylabel=ylabel, title=title, hlines=hlines, vlines=vlines
-    )
 
 
 def random_states(n: int, seed: int) -> list[tuple[rm.Params, float, float, float]]:

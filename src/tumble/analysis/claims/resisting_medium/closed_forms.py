@@ -11,16 +11,26 @@ import numpy as np
 
 from tumble._typing import FloatArray
 from tumble.analysis.claims.base import Measurement, Series, claim
-from tumble.analysis.claims.common import Difference, Tolerances, by_convergence, converged, max_abs
-from tumble.analysis.claims.resisting_medium.cases import (
-    RM,
-    RM_AXIAL_CASES,
-    averaged_run,
-    medium,
-    slow_panel,
-    state,
+from tumble.analysis.claims.common import (
+    Difference,
+    Tolerances,
+    by_convergence,
+    converged,
+    max_abs,
+    quiet,
+    time_panel,
+    tolerances,
 )
+from tumble.analysis.claims.resisting_medium.cases import RM, RM_AXIAL_CASES, medium, state
+from tumble.integrate import simulate
 from tumble.models import resisting_medium as rm
+
+
+def averaged_run(p: rm.Params, st: rm.State, tau: np.ndarray, tol: Tolerances | None = None) -> Any:
+    """Averaged system (2.2) integrated tightly (the reference for the closed forms): the
+    trajectory (``columns``, ``nfev``), at ``tol`` or the reference tolerances."""
+    return quiet(simulate, rm.MODEL, p, st, tau, "averaged", **(tol or tolerances()))
+
 
 Prediction = Callable[
     [rm.Params, rm.State, FloatArray, Mapping[str, FloatArray]], tuple[FloatArray, FloatArray]
@@ -112,10 +122,11 @@ def rm_5() -> Measurement:
     # Criterion: (2.4) is exact for (2.2), so V agrees to integration accuracy of (2.2).
     conv, (per, series) = converged(difference)
     panels = (
-        slow_panel(
+        time_panel(
             series,
             "V = k sin ϑ",
             "lines (2.4), dots: (2.2) integrated",
+            xlabel="ετ",
         ),
     )
     return by_convergence(
@@ -196,10 +207,11 @@ def rm_6() -> Measurement:
         if math.isfinite(tau1) and tau1 <= tau[-1]:
             crossings.append((p.eps * tau1, ""))
     panels = (
-        slow_panel(
+        time_panel(
             series,
             "W = k cos ϑ",
             "closed forms (lines), (2.2) integrated (dots), τ1 (vertical)",
+            xlabel="ετ",
             hlines=((0.0, ""),),
             vlines=tuple(crossings),
         ),
@@ -261,10 +273,11 @@ def rm_7() -> Measurement:
     # Criterion: (2.9)/(2.10) are exact for (2.2): ϑ to its integration accuracy.
     conv, (per, series) = converged(difference)
     panels = (
-        slow_panel(
+        time_panel(
             series,
             "ϑ [rad]",
             "lines: (2.9)/(2.10); dots: (2.2) integrated",
+            xlabel="ετ",
         ),
     )
     return by_convergence(

@@ -9,19 +9,13 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
-from tumble.analysis.claims.base import Measurement, Panel, Series, claim
-from tumble.analysis.claims.common import by_convergence, converged, judged, tolerances
-from tumble.analysis.claims.resisting_medium.cases import (
-    RM,
-    RM_AXIAL_CASES,
-    averaged_run,
-    medium,
-    slow_panel,
-    state,
-)
+from tumble.analysis.claims.base import Measurement, Series, claim
+from tumble.analysis.claims.common import by_convergence, converged, judged, time_panel, tolerances
+from tumble.analysis.claims.resisting_medium.cases import RM, RM_AXIAL_CASES, medium, state
 from tumble.analysis.claims.resisting_medium.closed_forms import (
     AveragedCase,
     against_averaged,
+    averaged_run,
     theta_of_tan,
 )
 from tumble.integrate import simulate
@@ -74,13 +68,14 @@ def rm_8() -> Measurement:
     rise = float(np.max(cf["theta"]) - st.theta)
     rise_full = float(np.max(full["theta"]) - st.theta)
     panels = (
-        slow_panel(
+        time_panel(
             (
                 Series(p.eps * tau, cf["theta"], "closed form (2.4)/(2.5)"),
                 Series(p.eps * tau[: full["theta"].size], full["theta"], "full model", "dashed"),
             ),
             "ϑ [rad]",
             "a3 > 0, α = 0.05 ≪ β = 1, W0 > W+: ϑ first rises",
+            xlabel="ετ",
             hlines=((st.theta, ""),),
         ),
     )
@@ -161,12 +156,13 @@ def rm_9() -> Measurement:
     W28 = rm.axial_lower_tan(t28, st.W, p)
     below = W28 <= 4.0
     panels = (
-        slow_panel(
+        time_panel(
             (
                 Series(p.eps * tau[shown], W[shown], "(2.2) integrated: W = k cos ϑ"),
                 Series(p.eps * t28[below], W28[below], "(2.8) beyond its window", "dashed"),
             ),
             "W",
+            xlabel="ετ",
             hlines=((W_plus, "W+ (E5)"), (paper_limit, "printed limit (β+δμ2π)/(2δ) (E4)")),
             vlines=((p.eps * tau1, ""),),
         ),
@@ -249,11 +245,10 @@ def rm_10() -> Measurement:
             spin_lines.append((spin, ""))
     worst = max(r["error_full"] for r in res.values())
     panels = (
-        Panel(
-            series=tuple(series),
-            xlabel="τ",
-            ylabel="ϑ [rad]",
-            title="a3 = 0, ε = 0.05 (dotted: averaged; vertical: k too small)",
+        time_panel(
+            series,
+            "ϑ [rad]",
+            "a3 = 0, ε = 0.05 (dotted: averaged; vertical: k too small)",
             vlines=tuple(spin_lines),
         ),
     )
@@ -307,10 +302,11 @@ def rm_11() -> Measurement:
     conv, (per, series) = converged(difference)
     limits = (math.atan(p.delta / p.gamma), math.pi - math.atan(p.delta / p.gamma))
     panels = (
-        slow_panel(
+        time_panel(
             series,
             "ϑ [rad]",
             "quadratic-only medium (dotted: ±δ/γ limits)",
+            xlabel="ετ",
             hlines=tuple((lim, "") for lim in limits),
         ),
     )
@@ -356,11 +352,10 @@ def rm_12() -> Measurement:
         # τ = 0 left out of the series: the τ axis is logarithmic.
         series.append(Series(tau[1:], full["theta"][1:], f"full model, ϑ0 = {theta0:.3f}"))
     panels = (
-        Panel(
-            series=tuple(series),
-            xlabel="τ",
-            ylabel="ϑ [rad]",
-            title="quadratic-only medium, ε = 0.05",
+        time_panel(
+            series,
+            "ϑ [rad]",
+            "quadratic-only medium, ε = 0.05",
             xscale="log",
             hlines=(
                 (target, "arctan(δ/γ) (the paper's unique position)"),

@@ -16,6 +16,7 @@ from tumble.analysis.claims.common import (
     judged,
     max_abs,
     quiet,
+    time_panel,
     wrap,
 )
 from tumble.analysis.claims.rotating_field.cases import RF, RF_BODY, XI3, params, transient_runs
@@ -59,20 +60,15 @@ def rf_13() -> Measurement:
     peak = float(np.max(tavg["k2"]))
     full_up = float(np.max(np.diff(full["k2"][tt > tt[np.argmax(tavg["k2"])] + 20.0])))
     panels = (
-        Panel(
-            series=(
-                Series(tt, full["k2"], "full (1.5)"),
-                Series(tt, tavg["k2"], "averaged (3.5)–(3.7)"),
-            ),
-            xlabel="τ",
-            ylabel="k² of the current regime",
-            title="from regime x1, ε = 0.01",
+        time_panel(
+            (Series(tt, full["k2"], "full (1.5)"), Series(tt, tavg["k2"], "averaged (3.5)–(3.7)")),
+            "k² of the current regime",
+            "from regime x1, ε = 0.01",
         ),
-        Panel(
-            series=(Series(tau, np.maximum(avg["k2"], 1e-18)),),
-            xlabel="τ",
-            ylabel="averaged k²",
-            title="regime x3, β = 1, ε = 0.02",
+        time_panel(
+            (Series(tau, np.maximum(avg["k2"], 1e-18)),),
+            "averaged k²",
+            "regime x3, β = 1, ε = 0.02",
             yscale="log",
         ),
     )
@@ -155,11 +151,11 @@ def rf_14() -> Measurement:
         series.append(Series(e * tau, wrap(full["sigma"] - 0.3) / e, f"full, ε = {e}"))
     order = fitted_order(eps, exc)
     panels = (
-        Panel(
-            series=tuple(series),
+        time_panel(
+            series,
+            "(σ − σ0)/ε",
+            "averaged σ′ = 0; full σ − σ0 scaled by ε",
             xlabel="ετ",
-            ylabel="(σ − σ0)/ε",
-            title="averaged σ′ = 0; full σ − σ0 scaled by ε",
         ),
     )
     # Averaged σ′ = 0 exactly (integration tolerance, 1e-9); full excursions O(ε) (order ≥ 0.75).
@@ -205,17 +201,15 @@ def rf_15() -> Measurement:
     st0 = rf.state_from_elements(p0, 1.8, 2.2, 0.0, 0.4, "x3")
     beta0 = quiet(simulate, rf.MODEL, p0, st0, np.linspace(0.0, 1500.0, 31), "averaged").columns
     panels = (
-        Panel(
-            series=(Series(tau, full["rho"], "full"), Series(tau, avg["rho"], "averaged")),
-            xlabel="τ",
-            ylabel="ρ [rad]",
-            title="β = π/2, fast spin T/L ≈ 1.5: ρ first grows",
+        time_panel(
+            (Series(tau, full["rho"], "full"), Series(tau, avg["rho"], "averaged")),
+            "ρ [rad]",
+            "β = π/2, fast spin T/L ≈ 1.5: ρ first grows",
         ),
-        Panel(
-            series=(Series(long_tau, long["rho"]),),
-            xlabel="τ",
-            ylabel="averaged ρ [rad]",
-            title="… and then → 0",
+        time_panel(
+            (Series(long_tau, long["rho"]),),
+            "averaged ρ [rad]",
+            "… and then → 0",
         ),
     )
     # Holds: ρ → 0 (1e-3 at slow time 160); qualification measured: ρ grows first by more than
@@ -328,11 +322,10 @@ def rf_17() -> Measurement:
             )
         )
     panels = (
-        Panel(
-            series=tuple(series),
-            xlabel="τ",
-            ylabel="k²",
-            title="near co-rotation, body (1, 1.6, 2.2), β = 1, ε = 0.02",
+        time_panel(
+            series,
+            "k²",
+            "near co-rotation, body (1, 1.6, 2.2), β = 1, ε = 0.02",
             yscale="log",
         ),
     )

@@ -9,7 +9,7 @@ import numpy as np
 
 from tumble._typing import BoolArray, FloatArray
 from tumble.analysis.claims.base import Measurement, Panel, Series, claim
-from tumble.analysis.claims.common import judged, tolerances
+from tumble.analysis.claims.common import judged, time_panel, tolerances
 from tumble.analysis.claims.rotating_field.cases import RF, XI3, params
 from tumble.analysis.stability import CRITICAL_TOL, analyze, polynomial_roots
 from tumble.analysis.stability_maps import inertia_map
@@ -133,13 +133,12 @@ def rf_6() -> Measurement:
     guide = d[sel][0] * np.exp(lead.real * (tau - tau[sel][0]))
     inside = (guide >= 1e-8) & (guide <= 10.0)  # the figure's window 1e-8 … 10, cut from the data
     panels = (
-        Panel(
-            series=(
+        time_panel(
+            (
                 Series(tau, d, "|z − ξ3| of (1.5)"),
                 Series(tau[inside], guide[inside], "e^{λτ}", "dotted"),
             ),
-            xlabel="τ",
-            ylabel="deviation",
+            "deviation",
             yscale="log",
         ),
         _rf_axis_roots_panel((1.0, 1.5, 2.0), 0.05),
@@ -391,14 +390,13 @@ def _rf_9_panels(
     r_mid = float(np.exp(np.mean(np.log(rate[ok]))))
     a_mid = float(np.exp(np.mean(np.log(A[ok]))))
     return (
-        Panel(
-            series=(
+        time_panel(
+            (
                 Series(tb, A, "envelope of |(x, γ1, γ2)|"),
                 Series(tb, A[5] * (tb / tb[5]) ** -0.5, "τ^(−1/2) (§7)", "dotted"),
                 Series(tb, A[5] * (tb / tb[5]) ** -0.25, "τ^(−1/4)", "dotted"),
             ),
-            xlabel="τ",
-            ylabel="amplitude A",
+            "amplitude A",
             xscale="log",
             yscale="log",
         ),

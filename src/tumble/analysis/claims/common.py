@@ -35,7 +35,7 @@ __all__ = [
     "cache_per_scale",
     "converged",
     "eps_panel",
-    "floored",
+    "forms_panel",
     "judged",
     "max_abs",
     "measured",
@@ -475,12 +475,6 @@ def wrap(x: Any) -> FloatArray:
     return np.asarray(np.angle(np.exp(1j * np.asarray(x, dtype=float))), dtype=float)
 
 
-def floored(x: Any, curves: Mapping[str, Any], floor: float = 1e-17) -> tuple[Series, ...]:
-    """One :class:`~tumble.analysis.claims.base.Series` per named curve over ``x``, floored at
-    ``floor`` so that exact zeros can be drawn on a logarithmic axis."""
-    return tuple(Series(x, np.maximum(y, floor), name) for name, y in curves.items())
-
-
 def budget_panel(
     series: Iterable[Series], conv: Convergence, xlabel: str, ylabel: str, title: str = ""
 ) -> Panel:
@@ -489,6 +483,16 @@ def budget_panel(
     return threshold_panel(
         series, conv.budget, xlabel, ylabel, label="round-off budget", title=title
     )
+
+
+def forms_panel(
+    conv: Convergence, tau: Any, differences: Mapping[str, Any], ylabel: str, title: str
+) -> Panel:
+    """The figure of a run compared by :func:`converged` with another form or a closed form:
+    each variable's difference against τ on a logarithmic axis (floored at 1e-17, so that exact
+    zeros can be drawn), with the round-off budget of ``conv``."""
+    series = (Series(tau, np.maximum(d, 1e-17), name) for name, d in differences.items())
+    return budget_panel(series, conv, "τ", ylabel, title)
 
 
 def threshold_panel(

@@ -10,8 +10,13 @@ import numpy as np
 from scipy.integrate import quad
 
 from tumble.analysis.claims.base import Measurement, Series, claim
-from tumble.analysis.claims.common import threshold_panel, within
-from tumble.analysis.claims.nonlinear_moment.cases import NM, NM_CASES, case_ticks, perturbed
+from tumble.analysis.claims.nonlinear_moment.cases import (
+    NM,
+    NM_CASES,
+    case_ticks,
+    per_case_within,
+    perturbed,
+)
 from tumble.models import nonlinear_moment as nm
 from tumble.unperturbed import NutationOrbit, potential_slope
 
@@ -67,27 +72,21 @@ def nm_5() -> Measurement:
         per[name] = {"brute_force": brute, **rel}
     worst = max(max(v for k, v in r.items() if k != "brute_force") for r in per.values())
     names = list(per)
-    panels = (
-        threshold_panel(
-            (
-                Series(
-                    np.arange(len(names), dtype=float) + 0.1 * i,
-                    np.array([max(per[n][key], 1e-18) for n in names]),
-                    key,
-                    "markers",
-                )
-                for i, key in enumerate(("numerator", "theta_max", "theta_min"))
-            ),
-            1e-10,
-            ylabel="relative difference",
-            xticks=case_ticks(names),
-        ),
-    )
     # Criterion: quad at epsrel 1e-12 over one period of the closed-form motion: 1e-10.
-    return within(
+    return per_case_within(
         worst,
         1e-10,
-        panels,
+        (
+            Series(
+                np.arange(len(names), dtype=float) + 0.1 * i,
+                np.array([max(per[n][key], 1e-18) for n in names]),
+                key,
+                "markers",
+            )
+            for i, key in enumerate(("numerator", "theta_max", "theta_min"))
+        ),
+        case_ticks(names),
+        "relative difference",
         "1",
         "max relative difference between the numerator of (2.2) (closed forms of §8) and a "
         "brute-force time average (quad) over one period; and θmax′, θmin′ of (2.2) against "
@@ -128,27 +127,21 @@ def nm_6() -> Measurement:
         per[name] = {k: abs(v - o.average(f)) / max(1.0, abs(v)) for k, (v, f) in checks.items()}
     worst = max(max(r.values()) for r in per.values())
     keys = ["<u>", "<u^2>", "<u^3>", "<1/(1+u)>", "<1/(1-u)>"]
-    panels = (
-        threshold_panel(
-            (
-                Series(
-                    np.arange(len(keys), dtype=float),
-                    np.array([max(r[k], 1e-18) for k in keys]),
-                    name,
-                    "line+markers",
-                )
-                for name, r in per.items()
-            ),
-            1e-10,
-            ylabel="|closed form (K, E, Π) − trapezoid in t| ",
-            xticks=tuple((float(i), k) for i, k in enumerate(keys)),
-        ),
-    )
     # The periodic trapezoid rule converges geometrically (§8).
-    return within(
+    return per_case_within(
         worst,
         1e-10,
-        panels,
+        (
+            Series(
+                np.arange(len(keys), dtype=float),
+                np.array([max(r[k], 1e-18) for k in keys]),
+                name,
+                "line+markers",
+            )
+            for name, r in per.items()
+        ),
+        tuple((float(i), k) for i, k in enumerate(keys)),
+        "|closed form (K, E, Π) − trapezoid in t| ",
         "1 (relative to max(1, |value|))",
         "max difference between ⟨u⟩, ⟨u²⟩, ⟨u³⟩, ⟨1/(1±u)⟩ by K, E, Π (§8) and the periodic "
         "trapezoid rule in time, four orbits",

@@ -9,8 +9,15 @@ from typing import Any
 
 import numpy as np
 
-from tumble.analysis.claims.base import Panel, Series
-from tumble.analysis.claims.common import Tolerances, cache_per_scale, quiet, tolerances
+from tumble.analysis.claims.base import Measurement, Panel, Series
+from tumble.analysis.claims.common import (
+    Tolerances,
+    cache_per_scale,
+    quiet,
+    threshold_panel,
+    tolerances,
+    within,
+)
 from tumble.integrate import simulate
 from tumble.models import nonlinear_moment as nm
 
@@ -54,6 +61,24 @@ def case_ticks(names: Iterable[str]) -> tuple[tuple[float, str], ...]:
     """The x ticks of a figure of one bar or marker per orbit of :data:`NM_CASES`: each name
     without its parenthesis ("(case 1)"), at 0, 1, …"""
     return tuple((float(i), n.split(" (")[0]) for i, n in enumerate(names))
+
+
+def per_case_within(
+    value: float,
+    threshold: float,
+    series: Iterable[Series],
+    ticks: tuple[tuple[float, str], ...],
+    ylabel: str,
+    units: str,
+    what: str,
+    qualification: str = "",
+    **details: Any,
+) -> Measurement:
+    """:func:`~tumble.analysis.claims.common.within` for a check made case by case (an orbit or
+    an average each): its figure is one bar or marker per case, at ``ticks``, on a logarithmic
+    axis with the threshold [``units``]."""
+    panel = threshold_panel(series, threshold, ylabel=ylabel, xticks=ticks)
+    return within(value, threshold, (panel,), units, what, qualification, **details)
 
 
 UNPERTURBED: Tolerances = {"rtol": 1e-13, "atol": 1e-14}

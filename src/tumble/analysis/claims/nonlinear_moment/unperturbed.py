@@ -16,11 +16,15 @@ from tumble.analysis.claims.common import (
     by_convergence,
     converged,
     max_abs,
-    threshold_panel,
     time_panel,
-    within,
 )
-from tumble.analysis.claims.nonlinear_moment.cases import NM, NM_CASES, UNPERTURBED, case_ticks
+from tumble.analysis.claims.nonlinear_moment.cases import (
+    NM,
+    NM_CASES,
+    UNPERTURBED,
+    case_ticks,
+    per_case_within,
+)
 from tumble.integrate import integrate, simulate
 from tumble.models import nonlinear_moment as nm
 from tumble.unperturbed import NutationOrbit, quartic_coefficients
@@ -210,25 +214,19 @@ def nm_3() -> Measurement:
         rows[name] = row
     worst = max(r["rel"] for r in rows.values())
     names = list(rows)
-    panels = (
-        threshold_panel(
-            (
-                Series(
-                    np.arange(len(names), dtype=float),
-                    np.array([max(rows[n]["rel"], 1e-17) for n in names]),
-                    style="bar",
-                ),
-            ),
-            1e-10,
-            ylabel="|T(2K/β or 4K/β) / 2∫du/√f − 1|",
-            xticks=case_ticks(names),
-        ),
-    )
     # Gauss–Legendre on a smooth integrand: round-off.
-    return within(
+    return per_case_within(
         worst,
         1e-10,
-        panels,
+        (
+            Series(
+                np.arange(len(names), dtype=float),
+                np.array([max(rows[n]["rel"], 1e-17) for n in names]),
+                style="bar",
+            ),
+        ),
+        case_ticks(names),
+        "|T(2K/β or 4K/β) / 2∫du/√f − 1|",
         "1",
         "max relative difference between the period 2K/β (case 1) or 4K/β (case 2) and "
         "2∫_{u2}^{u1} du/√f(u) by quadrature, five orbits",

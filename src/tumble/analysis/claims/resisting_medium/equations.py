@@ -12,10 +12,9 @@ from tumble.analysis.claims.base import Measurement, Panel, Series, claim
 from tumble.analysis.claims.common import (
     Difference,
     Tolerances,
-    budget_panel,
     by_convergence,
     converged,
-    floored,
+    forms_panel,
     max_abs,
     threshold_panel,
     within,
@@ -66,10 +65,10 @@ def rm_1() -> Measurement:
     }
     fast = {n: max_abs(wrap(euler[n] - osc[n])) for n in ("psi", "phi")}
     panels = (
-        budget_panel(
-            floored(tau, diffs),
+        forms_panel(
             conv,
-            "τ",
+            tau,
+            diffs,
             "|Euler+quaternions − (1.3)|",
             "two full forms, GENERAL medium",
         ),
@@ -124,9 +123,7 @@ def rm_2() -> Measurement:
     conv, dev = converged(difference)  # §13.1: constant to integration accuracy
     rel = {n: max_abs(d) for n, d in dev.items()}
     panels = (
-        budget_panel(
-            floored(tau, dev), conv, "τ", "deviation from (2.1) (ψ, φ relative to phase)", "ε = 0"
-        ),
+        forms_panel(conv, tau, dev, "deviation from (2.1) (ψ, φ relative to phase)", "ε = 0"),
     )
     return by_convergence(
         conv,

@@ -12,11 +12,10 @@ from tumble.analysis.claims.base import Measurement, Panel, Series, claim
 from tumble.analysis.claims.common import (
     Difference,
     Tolerances,
-    budget_panel,
     by_convergence,
     converged,
     eps_panel,
-    floored,
+    forms_panel,
     judged,
     max_abs,
     threshold_panel,
@@ -145,9 +144,7 @@ def rf_2() -> Measurement:
     # tolerance); the OCR's Γ′ leaves an O(1) difference.
     conv, diffs = converged(difference)
     panels = (
-        budget_panel(
-            floored(tau, diffs), conv, "τ", "|(1.5) − (1.4)|", "body (1, 1.6, 2.2), β = 1, ε = 0.01"
-        ),
+        forms_panel(conv, tau, diffs, "|(1.5) − (1.4)|", "body (1, 1.6, 2.2), β = 1, ε = 0.01"),
     )
     return by_convergence(
         conv,

@@ -1,4 +1,6 @@
-"""Pieces shared by the claim modules: tolerances, the measured record and small numerics.
+"""Pieces shared by the claim modules: tolerances, the measured record, the measurement of the
+usual criteria (:func:`by_convergence`, :func:`by_order`, :func:`within`; :func:`judged` for a
+claim's own), the usual figures (``*_panel``) and small numerics.
 
 The verdicts of the claims follow three rules (see each module): "to integration accuracy"
 is decided by convergence (:func:`converged`: the difference falls as the tolerance is

@@ -52,6 +52,8 @@ NM_EPS = [0.1, 0.05, 0.02, 0.01, 0.005]
 
 
 def perturbed(p: nm.Params, eps: float, **kw: Any) -> nm.Params:
+    """The orbit's parameters ``p`` under the perturbation :data:`NM_PERTURBATION` at ``eps``
+    [1], with ``kw`` replacing any of the perturbation's fields."""
     args: dict[str, Any] = {"mu": p.mu, "a": p.a, "b": p.b, "eps": eps, **NM_PERTURBATION}
     args.update(kw)
     return nm.Params(**args)

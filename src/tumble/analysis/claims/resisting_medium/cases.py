@@ -56,6 +56,7 @@ def medium(
 
 
 def state(k: float, theta: float, phi: float = 0.0) -> rm.State:
+    """The closed-form cases' initial state: k [1], ϑ and φ [rad], with ρ = 1, σ = 0.2, ψ = 0."""
     return rm.State(k=k, rho=1.0, sigma=0.2, psi=0.0, theta=theta, phi=phi)
 
 

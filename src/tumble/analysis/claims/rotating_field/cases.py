@@ -33,6 +33,8 @@ def transient() -> tuple[rf.Params, rf.State]:
 
 @cache_per_scale
 def transient_runs() -> tuple[np.ndarray, dict[str, np.ndarray], dict[str, np.ndarray]]:
+    """The :func:`transient` over τ ≤ 300: its times and the full and averaged columns (shared
+    by rf-13 and rf-18)."""
     p, st = transient()
     tau = np.linspace(0.0, 300.0, 601)
     full = quiet(simulate, rf.MODEL, p, st, tau, "full").columns

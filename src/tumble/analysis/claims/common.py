@@ -1,4 +1,6 @@
-"""Pieces shared by the claim modules: tolerances, the measured record and small numerics.
+"""Pieces shared by the claim modules: tolerances, the measured record, the measurement of the
+usual criteria (:func:`by_convergence`, :func:`by_order`, :func:`within`; :func:`judged` for a
+claim's own), the usual figures (``*_panel``) and small numerics.
 
 The verdicts of the claims follow three rules (see each module): "to integration accuracy"
 is decided by convergence (:func:`converged`: the difference falls as the tolerance is
@@ -12,15 +14,15 @@ from __future__ import annotations
 import contextlib
 import functools
 import warnings
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterable, Iterator, Mapping
 from contextvars import ContextVar
 from dataclasses import dataclass
-from typing import Any, TypedDict, TypeVar, cast
+from typing import Any, Literal, TypedDict, TypeVar, cast
 
 import numpy as np
 
 from tumble._typing import FloatArray
-from tumble.analysis.claims.base import plain
+from tumble.analysis.claims.base import Measurement, Panel, Series, plain
 from tumble.errors import TumbleWarning
 
 __all__ = [
@@ -29,14 +31,23 @@ __all__ = [
     "Convergence",
     "Difference",
     "Tolerances",
+    "budget_panel",
+    "by_convergence",
+    "by_order",
     "cache_per_scale",
     "converged",
+    "eps_panel",
+    "forms_panel",
+    "judged",
     "max_abs",
     "measured",
     "measured_by",
     "quiet",
+    "threshold_panel",
+    "time_panel",
     "tolerance_scale",
     "tolerances",
+    "within",
     "wrap",
 ]
 
@@ -207,6 +218,41 @@ def measured_by(
     )
 
 
+def by_convergence(
+    conv: Convergence,
+    panels: Iterable[Panel],
+    units: str,
+    what: str,
+    qualification: str = "",
+    *,
+    also: str = "",
+    condition: bool = True,
+    **details: Any,
+) -> Measurement:
+    """The :class:`~tumble.analysis.claims.base.Measurement` of a claim decided by ``conv``.
+
+    Parameters
+    ----------
+    conv : Convergence
+        The comparison that decides the claim.
+    panels : iterable of Panel
+        The figure's panels.
+    units, what, qualification, also, **details
+        As for :func:`measured_by`.
+    condition : bool, optional
+        A further condition of the claim (the one ``also`` states): the claim holds if ``conv``
+        does and this holds.
+
+    Returns
+    -------
+    Measurement
+        Holds if ``conv.holds`` and ``condition``; qualified if the theory page's
+        ``qualification`` is given.
+    """
+    m = measured_by(conv, units, what, qualification, also=also, **details)
+    return Measurement(conv.holds and condition, bool(qualification), m, tuple(panels))
+
+
 def converged(
     difference: Callable[[Tolerances], tuple[Difference, int, T]],
     base: Tolerances = TIGHT,
@@ -244,6 +290,79 @@ FIRST_ORDER = 0.75
 """A fitted order of the averaging error at or above this is first order: the ±0.25 band that
 tumble's own error studies use (three to five values of ε; the O(ε²) remainder and the phase of
 the O(ε) oscillation at the sampled maxima scatter the slope by up to ±0.2)."""
+
+
+def by_order(
+    order: float,
+    panels: Iterable[Panel],
+    what: str,
+    qualification: str = "",
+    *,
+    criterion: str = "order ≥ 0.75",
+    condition: bool = True,
+    qualified: bool | None = None,
+    **details: Any,
+) -> Measurement:
+    """The :class:`~tumble.analysis.claims.base.Measurement` of a claim that holds to first
+    order: its error's fitted order against ε is at least :data:`FIRST_ORDER`.
+
+    Parameters
+    ----------
+    order : float
+        The fitted order [1].
+    panels : iterable of Panel
+        The figure's panels.
+    what : str
+        What was fitted, with the values of ε and the runs.
+    qualification : str, optional
+        The theory page's qualification of the paper's statement.
+    criterion : str, optional
+        The rule of the verdict, where the claim adds a condition to the order's.
+    condition : bool, optional
+        That further condition (the one ``criterion`` states).
+    qualified : bool, optional
+        Whether the theory page qualifies the paper's statement; by default, whether a
+        ``qualification`` is given.
+    **details
+        Further measurements, stored under ``details``.
+
+    Returns
+    -------
+    Measurement
+        Holds if ``order`` ≥ :data:`FIRST_ORDER` and ``condition``.
+    """
+    return judged(
+        order >= FIRST_ORDER and condition,
+        panels,
+        order,
+        "1 (fitted order)",
+        what,
+        FIRST_ORDER,
+        criterion,
+        qualification,
+        qualified=bool(qualification) if qualified is None else qualified,
+        **details,
+    )
+
+
+def judged(
+    holds: bool | np.bool_,
+    panels: Iterable[Panel],
+    value: float,
+    units: str,
+    what: str,
+    threshold: float | str,
+    criterion: str,
+    qualification: str = "",
+    *,
+    qualified: bool,
+    **details: Any,
+) -> Measurement:
+    """The :class:`~tumble.analysis.claims.base.Measurement` of a claim judged by its own
+    criterion: whether it ``holds`` and whether the theory page ``qualified`` it, its figure's
+    ``panels``, and its :func:`measured` record (the other arguments, as there)."""
+    m = measured(value, units, what, threshold, criterion, qualification, **details)
+    return Measurement(holds, qualified, m, tuple(panels))
 
 
 def measured(
@@ -295,6 +414,50 @@ def measured(
     return result
 
 
+def within(
+    value: float,
+    threshold: float,
+    panels: Iterable[Panel],
+    units: str,
+    what: str,
+    qualification: str = "",
+    **details: Any,
+) -> Measurement:
+    """The :class:`~tumble.analysis.claims.base.Measurement` of a claim that holds if the
+    measured figure is at most a threshold.
+
+    Parameters
+    ----------
+    value : float
+        The measured figure [``units``].
+    threshold : float
+        Its bound [``units``], justified where the claim calls this.
+    panels : iterable of Panel
+        The figure's panels.
+    units, what, qualification, **details
+        As for :func:`measured`.
+
+    Returns
+    -------
+    Measurement
+        Holds if ``value`` ≤ ``threshold`` (criterion "value ≤ <threshold>"); qualified if the
+        theory page's ``qualification`` is given.
+    """
+    bound = f"{threshold:g}".replace("e-0", "e-")  # 1e-09 written 1e-9
+    return judged(
+        value <= threshold,
+        panels,
+        value,
+        units,
+        what,
+        threshold,
+        f"value ≤ {bound}",
+        qualification,
+        qualified=bool(qualification),
+        **details,
+    )
+
+
 def quiet(fn: Callable[..., Any], *args: Any, **kwargs: Any) -> Any:
     """Call ``fn`` with tumble's validity warnings silenced: the claims record the conditions
     they need explicitly (e.g. ``rm.validity``), and the runner's output stays readable."""
@@ -312,3 +475,63 @@ def wrap(x: Any) -> FloatArray:
     """Angle difference wrapped to (−π, π] [rad]: angles are compared modulo 2π
     (docs/theory/resisting-medium.md §14)."""
     return np.asarray(np.angle(np.exp(1j * np.asarray(x, dtype=float))), dtype=float)
+
+
+def budget_panel(
+    series: Iterable[Series], conv: Convergence, xlabel: str, ylabel: str, title: str = ""
+) -> Panel:
+    """Differences on a logarithmic axis, with the round-off budget of ``conv`` as a reference
+    line (the figure of a claim decided by :func:`converged`)."""
+    return threshold_panel(
+        series, conv.budget, xlabel, ylabel, label="round-off budget", title=title
+    )
+
+
+def forms_panel(
+    conv: Convergence, tau: Any, differences: Mapping[str, Any], ylabel: str, title: str
+) -> Panel:
+    """The figure of a run compared by :func:`converged` with another form or a closed form:
+    each variable's difference against τ on a logarithmic axis (floored at 1e-17, so that exact
+    zeros can be drawn), with the round-off budget of ``conv``."""
+    series = (Series(tau, np.maximum(d, 1e-17), name) for name, d in differences.items())
+    return budget_panel(series, conv, "τ", ylabel, title)
+
+
+def threshold_panel(
+    series: Iterable[Series],
+    threshold: float,
+    xlabel: str = "",
+    ylabel: str = "",
+    *,
+    label: str = "",
+    xscale: Literal["linear", "log"] = "linear",
+    xticks: tuple[tuple[float, str], ...] | None = None,
+    title: str = "",
+) -> Panel:
+    """Differences on a logarithmic axis with the claim's threshold [their units] as a reference
+    line (labelled ``label``)."""
+    return Panel(
+        series=tuple(series),
+        xlabel=xlabel,
+        ylabel=ylabel,
+        title=title,
+        xscale=xscale,
+        yscale="log",
+        hlines=((threshold, label),),
+        xticks=xticks,
+    )
+
+
+def time_panel(
+    series: Iterable[Series], ylabel: str, title: str = "", *, xlabel: str = "τ", **options: Any
+) -> Panel:
+    """Curves against time: the paper's τ unless ``xlabel`` names another (ετ, t / T);
+    ``options`` are the panel's other fields (scales, reference lines)."""
+    return Panel(series=tuple(series), xlabel=xlabel, ylabel=ylabel, title=title, **options)
+
+
+def eps_panel(series: Iterable[Series], ylabel: str, title: str = "") -> Panel:
+    """Errors against ε on logarithmic axes (the figure of a fitted order)."""
+    return Panel(
+        series=tuple(series), xlabel="ε", ylabel=ylabel, title=title, xscale="log", yscale="log"
+    )

@@ -12,7 +12,7 @@ import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import IntegrationError
-from tumble.unperturbed.euler_poinsot import _jacobi
+from tumble.unperturbed.elliptic import _jacobi
 from tumble.unperturbed.symmetric_body.carlson import _drj_dp, _rj_complete
 from tumble.unperturbed.symmetric_body.charts import _EPS, _Chart, _Jac
 from tumble.unperturbed.symmetric_body.potential import quartic_coefficients

@@ -13,7 +13,7 @@ import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import IntegrationError, ParameterError, check_finite, check_range
-from tumble.unperturbed.euler_poinsot import _jacobi
+from tumble.unperturbed.elliptic import _jacobi
 from tumble.unperturbed.symmetric_body import means
 from tumble.unperturbed.symmetric_body.carlson import _lam_integral, _s_integral
 from tumble.unperturbed.symmetric_body.charts import (

@@ -246,6 +246,43 @@ def _symmetric(Is: tuple[float, float, float], zs: FloatArray, L: float, sym: st
     return "symmetric", 0.0, nu, period, nu, L / Ia, kern, P
 
 
+def _amplitudes(
+    side: Literal["x3", "x1"], Is: tuple[float, float, float], d1: float, d3: float
+) -> tuple[float, float, float]:
+    """Amplitudes (a_cn, a_sn, a_dn) of cn u, sn u, dn u in (3.1), regime ``side``.
+
+    Regime x3 (and the separatrix, its m = 1 form): the largest |z1|, |z2|, |z3|; regime x1:
+    those of |z3|, |z2|, |z1|, the same formulas with indices 1 and 3 exchanged (correction
+    C7).
+
+    Parameters
+    ----------
+    side : {"x3", "x1"}
+        Which set of formulas (polar axis x3 or x1).
+    Is : tuple of float
+        Principal moments I1 ≤ I2 ≤ I3 [inertia unit].
+    d1, d3 : float
+        L² − 2T·I1 and 2T·I3 − L², both ≥ 0 [inertia unit² · (rad/τ)²].
+
+    Returns
+    -------
+    a_cn, a_sn, a_dn : float
+        [rad/τ].
+    """
+    I1, I2, I3 = Is
+    if side == "x3":
+        return (
+            math.sqrt(d3 / (I1 * (I3 - I1))),
+            math.sqrt(d3 / (I2 * (I3 - I2))),
+            math.sqrt(d1 / (I3 * (I3 - I1))),
+        )
+    return (
+        math.sqrt(d1 / (I3 * (I3 - I1))),
+        math.sqrt(d1 / (I2 * (I2 - I1))),
+        math.sqrt(d3 / (I1 * (I3 - I1))),
+    )
+
+
 def _on_separatrix(
     Is: tuple[float, float, float], zs: FloatArray, L: float, d1: float, d3: float
 ) -> _Built:
@@ -257,9 +294,7 @@ def _on_separatrix(
     s1, s3 = math.copysign(1.0, z1), math.copysign(1.0, z3)
     S = np.diag([s1, s1 * s3, s3])
     b1, b2, _ = (float(x) for x in S @ zs)
-    a_cn = math.sqrt(d3 / (I1 * (I3 - I1)))
-    a_sn = math.sqrt(d3 / (I2 * (I3 - I2)))
-    a_dn = math.sqrt(d1 / (I3 * (I3 - I1)))
+    a_cn, a_sn, a_dn = _amplitudes("x3", Is, d1, d3)
     s0, c0 = b2 / a_sn, (b1 / a_cn if a_cn > 0.0 else 0.0)
     if c0 == 0.0 or z3 == 0.0:  # on it, z1 = 0 ⇔ z3 = 0: rotation about x2
         return _uniform(zs, "separatrix", 1.0, nu, math.inf, 0.0, L / I2)
@@ -295,20 +330,13 @@ def _elliptic(
         nu1, nu2 = 0.5 * math.pi * nu / K, _mean_precession(side, I1, I2, I3, L, mc)
     if side == "x3":
         S = np.diag([1.0, math.copysign(1.0, zs[2]), math.copysign(1.0, zs[2])])  # z3 > 0
-        b1, b2, _ = (float(x) for x in S @ zs)
-        a_cn = math.sqrt(d3 / (I1 * (I3 - I1)))
-        a_sn = math.sqrt(d3 / (I2 * (I3 - I2)))
-        a_dn = math.sqrt(d1 / (I3 * (I3 - I1)))
-        bcn, bsn = b1, b2
+        bcn, bsn, _ = (float(x) for x in S @ zs)  # (z1, z2) ∝ (cn, sn)
         P = S
     else:
         S = np.diag([math.copysign(1.0, zs[0]), math.copysign(1.0, zs[0]), 1.0])  # z1 > 0
-        _, b2, b3 = (float(x) for x in S @ zs)
-        a_cn = math.sqrt(d1 / (I3 * (I3 - I1)))
-        a_sn = math.sqrt(d1 / (I2 * (I2 - I1)))
-        a_dn = math.sqrt(d3 / (I1 * (I3 - I1)))
-        bcn, bsn = b3, b2
+        _, bsn, bcn = (float(x) for x in S @ zs)  # (z2, z3) ∝ (sn, cn)
         P = _CYCLE_TO_X1 @ S
+    a_cn, a_sn, a_dn = _amplitudes(side, Is, d1, d3)
     if a_cn == 0.0 or a_sn == 0.0:  # k = 0 (to underflow): uniform rotation about the pole
         return _uniform(zs, reg, k2, nu, period, nu1, nu2)
     u0 = _u_from_sn_cn(bsn / a_sn, bcn / a_cn, mc, K)

@@ -12,6 +12,7 @@ from typing import Literal
 import numpy as np
 from scipy import special
 
+from tumble._docstrings import DocSections
 from tumble._typing import ArrayLike, FloatArray
 from tumble.bodies import RigidBody, proper_sorting
 from tumble.errors import ParameterError, TumbleWarning, check_finite
@@ -34,6 +35,15 @@ from tumble.unperturbed.euler_poinsot.regimes import (
 )
 
 _ATTITUDE_ATOL = 1e-9  # ‖A Aᵀ − E‖ allowed for attitude0 (a rotation given to ~1e-9)
+
+_DOC = DocSections(
+    tau="""
+    Parameters
+    ----------
+    tau : array_like
+        Times [τ].
+    """
+)
 
 
 def _qz(a: FloatArray) -> FloatArray:
@@ -541,6 +551,7 @@ class EulerPoinsot:
         zp = self._kernel.evaluate(self._tau(tau))[0]
         return np.asarray(self._scale * (zp @ self.polar_frame), dtype=float)  # s Pᵀ z_p
 
+    @_DOC
     def euler_angles(self, tau: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
         """3-1-3 angles (ψ, θ, φ) of the p-frame relative to the L-frame, §8.
 
@@ -549,10 +560,7 @@ class EulerPoinsot:
         with Π(n; am u | k²). For a uniform rotation (k2 = 0, or a symmetric body spinning
         about a principal axis) θ = φ = 0 and ψ = |z| τ.
 
-        Parameters
-        ----------
-        tau : array_like
-            Times [τ].
+        {{tau}}
 
         Returns
         -------
@@ -562,13 +570,11 @@ class EulerPoinsot:
         _, psi, theta, phi = self._kernel.evaluate(self._tau(tau))
         return psi, theta, phi
 
+    @_DOC
     def quaternion(self, tau: ArrayLike) -> FloatArray:
         """Attitude quaternion q(τ) (scalar first, body → inertial), continuous in τ.
 
-        Parameters
-        ----------
-        tau : array_like
-            Times [τ].
+        {{tau}}
 
         Returns
         -------
@@ -580,13 +586,11 @@ class EulerPoinsot:
         q = quat_multiply(q, quat_multiply(_qz(phi), self._q_polar))
         return quat_multiply(self._q_lframe, q)
 
+    @_DOC
     def attitude(self, tau: ArrayLike) -> FloatArray:
         """Attitude matrix A(τ), body (user's axes) → inertial, A(0) = attitude0.
 
-        Parameters
-        ----------
-        tau : array_like
-            Times [τ].
+        {{tau}}
 
         Returns
         -------

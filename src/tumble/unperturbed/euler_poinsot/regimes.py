@@ -10,6 +10,7 @@ from typing import Literal
 import numpy as np
 from scipy import special
 
+from tumble._docstrings import DocSections
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import ParameterError, check_finite
 from tumble.kernels.codes import DEGENERATE_RTOL, REACHED_MARGIN, SEPARATRIX_RTOL
@@ -21,6 +22,21 @@ ENERGY_RTOL = 1e-9
 """(L, T) pairs may violate 2T·I1 ≤ L² ≤ 2T·I3 by this fraction of L² (round-off or an
 integrator's step error at the pure rotations k2 = 0); they are clipped onto the range.
 Larger violations describe no motion and raise :class:`~tumble.errors.ParameterError`."""
+
+_DOC = DocSections(
+    moments="""
+    I1, I2, I3 : float
+        Principal moments, I1 ≤ I2 ≤ I3 [inertia unit].
+    """,
+    state="""
+    I1, I2, I3 : float
+        Principal moments, I1 ≤ I2 ≤ I3 [inertia unit].
+    L : float
+        Angular momentum magnitude [inertia unit · rad/τ].
+    T : float
+        Kinetic energy [inertia unit · (rad/τ)²].
+    """,
+)
 
 
 def _check_sorted(I1: float, I2: float, I3: float) -> None:
@@ -207,6 +223,7 @@ def regime(inertia_sorted: ArrayLike, L: float, T: float) -> Regime:
     return _classify(I1, I2, I3, float(L), float(T))[0]
 
 
+@_DOC
 def modulus_squared(I1: float, I2: float, I3: float, L: float, T: float) -> tuple[float, Regime]:
     """Modulus squared k² of (3.1) for the current regime, and the regime, §8 and correction C7.
 
@@ -216,12 +233,7 @@ def modulus_squared(I1: float, I2: float, I3: float, L: float, T: float) -> tupl
 
     Parameters
     ----------
-    I1, I2, I3 : float
-        Principal moments, I1 ≤ I2 ≤ I3 [inertia unit].
-    L : float
-        Angular momentum magnitude [inertia unit · rad/τ].
-    T : float
-        Kinetic energy [inertia unit · (rad/τ)²].
+    {{state}}
 
     Returns
     -------
@@ -239,6 +251,7 @@ def modulus_squared(I1: float, I2: float, I3: float, L: float, T: float) -> tupl
     return _side_modulus(reg, I1, I2, I3, d1, d2, d3)[0], reg
 
 
+@_DOC
 def modulus_squared_of_ratio(I1: float, I2: float, I3: float, r: ArrayLike) -> FloatArray:
     """:func:`modulus_squared` for many states at once, given by r = 2T/L² (k² depends on r
     only): the same regimes and formulas, vectorized, for r on [1/I3, 1/I1] (an averaged
@@ -246,8 +259,7 @@ def modulus_squared_of_ratio(I1: float, I2: float, I3: float, r: ArrayLike) -> F
 
     Parameters
     ----------
-    I1, I2, I3 : float
-        Principal moments, I1 ≤ I2 ≤ I3 [inertia unit].
+    {{moments}}
     r : array_like
         2T/L² [1/inertia unit].
     """
@@ -266,6 +278,7 @@ def modulus_squared_of_ratio(I1: float, I2: float, I3: float, r: ArrayLike) -> F
     return np.where((np.abs(d2) <= SEPARATRIX_RTOL) | ~(mc >= _MC_FLOOR), 1.0, k2)
 
 
+@_DOC
 def modulus_squared_of_states(
     I1: float, I2: float, I3: float, L: ArrayLike, T: ArrayLike
 ) -> FloatArray:
@@ -274,8 +287,7 @@ def modulus_squared_of_states(
 
     Parameters
     ----------
-    I1, I2, I3 : float
-        Principal moments, I1 ≤ I2 ≤ I3 [inertia unit].
+    {{moments}}
     L, T : array_like
         Angular momentum magnitudes [inertia unit · rad/τ] and kinetic energies
         [inertia unit · (rad/τ)²], broadcasting.
@@ -286,6 +298,7 @@ def modulus_squared_of_states(
     return np.where(moving, modulus_squared_of_ratio(I1, I2, I3, r), 0.0)
 
 
+@_DOC
 def energy_from_modulus(
     I1: float, I2: float, I3: float, L: float, k2: float, regime: Regime
 ) -> float:
@@ -296,8 +309,7 @@ def energy_from_modulus(
 
     Parameters
     ----------
-    I1, I2, I3 : float
-        Principal moments, I1 ≤ I2 ≤ I3 [inertia unit].
+    {{moments}}
     L : float
         Angular momentum magnitude [inertia unit · rad/τ].
     k2 : float
@@ -351,6 +363,7 @@ def energy_from_modulus(
     return 0.5 * L2 * ((I3 - I2) + k2 * (I2 - I1)) / (I1 * (I3 - I2) + I3 * (I2 - I1) * k2)
 
 
+@_DOC
 def mean_square_rate(I1: float, I2: float, I3: float, L: float, T: float) -> float:
     """Period average ⟨|z|²⟩ over the Euler–Poinsot motion, (3.6) with §8 "Degenerate inertia".
 
@@ -364,12 +377,7 @@ def mean_square_rate(I1: float, I2: float, I3: float, L: float, T: float) -> flo
 
     Parameters
     ----------
-    I1, I2, I3 : float
-        Principal moments, I1 ≤ I2 ≤ I3 [inertia unit].
-    L : float
-        Angular momentum magnitude [inertia unit · rad/τ].
-    T : float
-        Kinetic energy [inertia unit · (rad/τ)²].
+    {{state}}
 
     Returns
     -------
@@ -391,6 +399,7 @@ def mean_square_rate(I1: float, I2: float, I3: float, L: float, T: float) -> flo
     return 2.0 * T / I2 + L * (L * (w1 * dn2 - w3 * cn2)) / I2  # x1: z1 ∝ dn u, z3 ∝ cn u
 
 
+@_DOC
 def fast_frequencies(I1: float, I2: float, I3: float, L: float, T: float) -> tuple[float, float]:
     """Frequencies of the fast motion, §8 "Frequencies of the fast motion" (and §12).
 
@@ -402,12 +411,7 @@ def fast_frequencies(I1: float, I2: float, I3: float, L: float, T: float) -> tup
 
     Parameters
     ----------
-    I1, I2, I3 : float
-        Principal moments, I1 ≤ I2 ≤ I3 [inertia unit].
-    L : float
-        Angular momentum magnitude [inertia unit · rad/τ].
-    T : float
-        Kinetic energy [inertia unit · (rad/τ)²].
+    {{state}}
 
     Returns
     -------

@@ -11,6 +11,7 @@ from typing import Literal
 
 import numpy as np
 
+from tumble._docstrings import DocSections
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import IntegrationError, ParameterError, check_finite, check_range
 from tumble.unperturbed.elliptic import _jacobi
@@ -29,6 +30,27 @@ from tumble.unperturbed.symmetric_body.charts import (
 )
 
 _N_START = 32  # first trapezoid level of :meth:`NutationOrbit.average`
+
+_DOC = DocSections(
+    constants="""
+    mu : float
+        C/A [1], in (0, 2].
+    a, b : float
+        Moment coefficients [1/time²].
+    R, G : float
+        Reduced angular momenta [1/time].
+    """,
+    angles="""
+    psi, phi : float
+        ψ0, φ0 [rad].
+    """,
+    t="""
+    Parameters
+    ----------
+    t : array_like
+        Times [time].
+    """,
+)
 
 
 @dataclass(frozen=True, eq=False)
@@ -123,6 +145,7 @@ class NutationOrbit:
     # ----------------------------------------------------------------------------------
 
     @classmethod
+    @_DOC
     def from_state(
         cls,
         mu: float,
@@ -149,8 +172,7 @@ class NutationOrbit:
             Nutation angle θ0 [rad], strictly inside (0, π).
         theta_dot : float
             θ0' [rad/time]; 0 starts at a turning point (side chosen by the sign of f'(u0), §3).
-        psi, phi : float
-            ψ0, φ0 [rad].
+        {{angles}}
 
         Returns
         -------
@@ -167,6 +189,7 @@ class NutationOrbit:
         return build.from_state(mu, a, b, R, G, theta, theta_dot, psi, phi, "theta")
 
     @classmethod
+    @_DOC
     def from_turning_point(
         cls,
         mu: float,
@@ -184,16 +207,10 @@ class NutationOrbit:
 
         Parameters
         ----------
-        mu : float
-            C/A [1], in (0, 2].
-        a, b : float
-            Moment coefficients [1/time²].
-        R, G : float
-            Reduced angular momenta [1/time].
+        {{constants}}
         theta_ext : float
             Turning point θ(0) [rad], strictly inside (0, π).
-        psi, phi : float
-            ψ0, φ0 [rad].
+        {{angles}}
 
         Returns
         -------
@@ -209,6 +226,7 @@ class NutationOrbit:
         return build.from_state(mu, a, b, R, G, theta_ext, 0.0, psi, phi, "theta_ext")
 
     @classmethod
+    @_DOC
     def from_energy(
         cls, mu: float, a: float, b: float, R: float, G: float, E: float, u_hint: float
     ) -> NutationOrbit:
@@ -220,12 +238,7 @@ class NutationOrbit:
 
         Parameters
         ----------
-        mu : float
-            C/A [1], in (0, 2].
-        a, b : float
-            Moment coefficients [1/time²].
-        R, G : float
-            Reduced angular momenta [1/time].
+        {{constants}}
         E : float
             Energy (1.6) [1/time²].
         u_hint : float
@@ -313,13 +326,11 @@ class NutationOrbit:
         op = self._mix(sig, sigc, ch.A.op, ch.B.op)
         return np.asarray(2.0 * np.arctan2(np.sqrt(om), np.sqrt(op)), dtype=float), om, op
 
+    @_DOC
     def theta(self, t: ArrayLike) -> FloatArray:
         """Nutation angle θ(t), Serov (1991), eq. (1.9), accurate also near θ = 0 and π.
 
-        Parameters
-        ----------
-        t : array_like
-            Times [time].
+        {{t}}
 
         Returns
         -------
@@ -353,13 +364,11 @@ class NutationOrbit:
         limit = np.where(om == 0.0, up, down)
         return np.asarray(np.where(sin_th > 0.0, -udot / safe, limit), dtype=float)
 
+    @_DOC
     def theta_dot(self, t: ArrayLike) -> FloatArray:
         """Nutation rate θ'(t) = −u'/sinθ, from Serov (1991), eqs. (1.9)–(1.10).
 
-        Parameters
-        ----------
-        t : array_like
-            Times [time].
+        {{t}}
 
         Returns
         -------
@@ -419,13 +428,11 @@ class NutationOrbit:
         phi = phi + self.R * (1.0 / self.mu - 1.0) * tt
         return np.asarray(self.psi0 + psi, dtype=float), np.asarray(self.phi0 + phi, dtype=float)
 
+    @_DOC
     def psi(self, t: ArrayLike) -> FloatArray:
         """Precession angle ψ(t), Serov (1991), eqs. (1.11)–(1.13); continuous, ψ(0) = ψ0.
 
-        Parameters
-        ----------
-        t : array_like
-            Times [time].
+        {{t}}
 
         Returns
         -------
@@ -434,13 +441,11 @@ class NutationOrbit:
         """
         return self._angles(t)[0]
 
+    @_DOC
     def phi(self, t: ArrayLike) -> FloatArray:
         """Proper rotation φ(t), Serov (1991), eqs. (1.11)–(1.13); continuous, φ(0) = φ0.
 
-        Parameters
-        ----------
-        t : array_like
-            Times [time].
+        {{t}}
 
         Returns
         -------

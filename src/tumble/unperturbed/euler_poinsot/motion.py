@@ -24,6 +24,7 @@ from tumble.rotations import (
     quat_normalize,
     quat_to_matrix,
 )
+from tumble.unperturbed._checks import finite_array
 from tumble.unperturbed.elliptic import _ellipf_sc, _ellippi_mc, _ellippi_sc, _jacobi
 from tumble.unperturbed.euler_poinsot.regimes import (
     Regime,
@@ -530,9 +531,7 @@ class EulerPoinsot:
         return cls.from_state(inertia, y[:3], quat_to_matrix(quat_normalize(y[3:7])))
 
     def _tau(self, tau: ArrayLike) -> FloatArray:
-        t = np.asarray(tau, dtype=float)
-        if not np.all(np.isfinite(t)):
-            raise ParameterError("tau must be finite")
+        t = finite_array("tau", tau)
         return np.asarray(self._scale * t, dtype=float)  # the kernel's time (unit largest |z_i|)
 
     def omega(self, tau: ArrayLike) -> FloatArray:

@@ -14,6 +14,7 @@ import numpy as np
 from tumble._docstrings import DocSections
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import IntegrationError, ParameterError, check_finite, check_range
+from tumble.unperturbed._checks import finite_array
 from tumble.unperturbed.elliptic import _jacobi
 from tumble.unperturbed.symmetric_body import means
 from tumble.unperturbed.symmetric_body.carlson import _lam_integral, _s_integral
@@ -262,10 +263,7 @@ class NutationOrbit:
     # ----------------------------------------------------------------------------------
 
     def _t(self, t: ArrayLike) -> FloatArray:
-        tt = np.asarray(t, dtype=float)
-        if not np.all(np.isfinite(tt)):
-            raise ParameterError("t must be finite")
-        return tt
+        return finite_array("t", t)
 
     def _jac(self, tt: FloatArray) -> _Jac:
         v = self.beta * tt + self._tau0

@@ -10,6 +10,7 @@ import numpy as np
 from tumble._docstrings import DocSections
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import ParameterError, check_finite
+from tumble.unperturbed._checks import finite_array
 
 __all__ = ["effective_potential", "energy", "potential_slope", "quartic_coefficients"]
 
@@ -116,9 +117,7 @@ def energy(
     ndarray
         E [1/time²], broadcast shape of ``theta`` and ``theta_dot``.
     """
-    td = np.asarray(theta_dot, dtype=float)
-    if not np.all(np.isfinite(td)):
-        raise ParameterError("theta_dot must be finite")
+    td = finite_array("theta_dot", theta_dot)
     return np.asarray(0.5 * td * td + effective_potential(theta, R, G, a, b), dtype=float)
 
 

@@ -32,3 +32,32 @@ def finite_array(field: str, values: ArrayLike) -> FloatArray:
     if not np.all(np.isfinite(arr)):
         raise ParameterError(f"{field} must be finite")
     return arr
+
+
+def whole_number(field: str, value: object, least: int) -> int:
+    """``value`` as an int, refused unless it is an integer (Python or numpy) ≥ ``least``.
+
+    Parameters
+    ----------
+    field : str
+        The name the error message gives the input.
+    value : object
+        A count or a power [1].
+    least : int
+        Smallest allowed value [1].
+
+    Returns
+    -------
+    int
+        ``int(value)``.
+
+    Raises
+    ------
+    ParameterError
+        ``value`` is not an integer, or below ``least``.
+    """
+    if not isinstance(value, int | np.integer) or value < least:
+        raise ParameterError(
+            f"{field} = {value!r} is outside the allowed range: integers ≥ {least}"
+        )
+    return int(value)

@@ -14,7 +14,7 @@ import numpy as np
 from tumble._docstrings import DocSections
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import IntegrationError, ParameterError, check_finite, check_range
-from tumble.unperturbed._checks import finite_array
+from tumble.unperturbed._checks import finite_array, whole_number
 from tumble.unperturbed.elliptic import _jacobi
 from tumble.unperturbed.symmetric_body import means
 from tumble.unperturbed.symmetric_body.carlson import _lam_integral, _s_integral
@@ -505,9 +505,8 @@ class NutationOrbit:
         float
             ⟨u^n⟩ [1].
         """
-        if not isinstance(n, int | np.integer) or n < 0:
-            raise ParameterError(f"n = {n!r} is outside the allowed range: integers ≥ 0")
-        return float(means.u_moments(self, int(n))[int(n)])
+        n = whole_number("n", n, 0)
+        return float(means.u_moments(self, n)[n])
 
     def _pole(self, rho: float) -> _Pole:
         return _make_pole(self, rho)
@@ -590,11 +589,10 @@ class NutationOrbit:
             Times [time], θ [rad], θ' [rad/time] (both halves of the swing) and weights [1]
             (≥ 0, sum 1).
         """
-        if not isinstance(n, int | np.integer) or n < 1:
-            raise ParameterError(f"n = {n!r} is outside the allowed range: integers ≥ 1")
-        t = self.period * np.arange(int(n)) / int(n)
+        n = whole_number("n", n, 1)
+        t = self.period * np.arange(n) / n
         th, thd = self._theta_pair(t)
-        return t, th, thd, np.full(int(n), 1.0 / int(n))
+        return t, th, thd, np.full(n, 1.0 / n)
 
     def _theta_pair(self, t: FloatArray) -> tuple[FloatArray, FloatArray]:
         if self.kind == "steady":

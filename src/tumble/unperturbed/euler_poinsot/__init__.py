@@ -35,11 +35,10 @@ motion itself, :class:`EulerPoinsot`).
 """
 
 from tumble.bodies import proper_sorting
+from tumble.kernels.codes import DEGENERATE_RTOL, SEPARATRIX_RTOL
 from tumble.unperturbed.euler_poinsot.motion import EulerPoinsot
 from tumble.unperturbed.euler_poinsot.regimes import (
-    DEGENERATE_RTOL,
     ENERGY_RTOL,
-    SEPARATRIX_RTOL,
     Regime,
     energy_from_modulus,
     fast_frequencies,

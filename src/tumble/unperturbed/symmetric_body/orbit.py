@@ -41,10 +41,6 @@ _DOC = DocSections(
     R, G : float
         Reduced angular momenta [1/time].
     """,
-    angles="""
-    psi, phi : float
-        ψ0, φ0 [rad].
-    """,
     t="""
     Parameters
     ----------
@@ -146,7 +142,6 @@ class NutationOrbit:
     # ----------------------------------------------------------------------------------
 
     @classmethod
-    @_DOC
     def from_state(
         cls,
         mu: float,
@@ -173,7 +168,8 @@ class NutationOrbit:
             Nutation angle θ0 [rad], strictly inside (0, π).
         theta_dot : float
             θ0' [rad/time]; 0 starts at a turning point (side chosen by the sign of f'(u0), §3).
-        {{angles}}
+        psi, phi : float
+            ψ0, φ0 [rad].
 
         Returns
         -------
@@ -211,7 +207,8 @@ class NutationOrbit:
         {{constants}}
         theta_ext : float
             Turning point θ(0) [rad], strictly inside (0, π).
-        {{angles}}
+        psi, phi : float
+            ψ0, φ0 [rad].
 
         Returns
         -------

@@ -31,6 +31,7 @@ from typing import Protocol
 import ambiance
 import numpy as np
 
+from tumble._docstrings import DocSections
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import ParameterError, check_range
 
@@ -63,6 +64,22 @@ _G0 = float(_C.g_0)
 _R0 = float(_C.r)
 
 
+_DOC = DocSections(
+    h="""
+    Parameters
+    ----------
+    h : array_like
+        Geometric altitude [m], ≥ H_MIN.
+    """,
+    bad_h="""
+    Raises
+    ------
+    ParameterError
+        If an altitude is below H_MIN or not finite.
+    """,
+)
+
+
 def _geopotential(h: FloatArray | float) -> FloatArray | float:
     """Geopotential height H = r0 h/(r0 + h) [m] of geometric altitude h [m] (ICAO 1993)."""
     return _R0 * h / (_R0 + h)
@@ -79,6 +96,23 @@ def _altitudes(h: ArrayLike, field: str = "h") -> FloatArray:
             f"{name} = {arr.ravel()[i]:g} m is outside the allowed range [{H_MIN:g}, inf) m"
         )
     return arr
+
+
+def _check_altitude(h: float) -> None:
+    """Refuse one altitude below H_MIN or NaN, the scalar form of :func:`_altitudes`.
+
+    Parameters
+    ----------
+    h : float
+        Geometric altitude [m].
+
+    Raises
+    ------
+    ParameterError
+        If h < H_MIN or h is NaN.
+    """
+    if not h >= H_MIN:  # also catches NaN
+        raise ParameterError(f"h = {h:g} m is outside the allowed range [{H_MIN:g}, inf) m")
 
 
 def _top() -> tuple[float, float, float]:
@@ -122,6 +156,7 @@ def _tp(h: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
     return t, p, dtdh
 
 
+@_DOC
 def temperature(h: ArrayLike) -> FloatArray:
     """Air temperature of the ICAO 1993 standard atmosphere, isothermal above H_MAX.
 
@@ -135,10 +170,7 @@ def temperature(h: ArrayLike) -> FloatArray:
     ndarray
         Temperature [K], same shape as ``h``; T(H_MAX) ≈ 196.65 K above H_MAX.
 
-    Raises
-    ------
-    ParameterError
-        If an altitude is below H_MIN or not finite.
+    {{bad_h}}
 
     References
     ----------
@@ -148,23 +180,18 @@ def temperature(h: ArrayLike) -> FloatArray:
     return _tp(arr)[0]
 
 
+@_DOC
 def pressure(h: ArrayLike) -> FloatArray:
     """Air pressure of the ICAO 1993 standard atmosphere, isothermal hydrostatic above H_MAX.
 
-    Parameters
-    ----------
-    h : array_like
-        Geometric altitude [m], ≥ H_MIN.
+    {{h}}
 
     Returns
     -------
     ndarray
         Pressure [Pa], same shape as ``h``.
 
-    Raises
-    ------
-    ParameterError
-        If an altitude is below H_MIN or not finite.
+    {{bad_h}}
 
     References
     ----------
@@ -176,13 +203,11 @@ def pressure(h: ArrayLike) -> FloatArray:
     return _tp(arr)[1]
 
 
+@_DOC
 def density(h: ArrayLike) -> FloatArray:
     """Air density ρ = p/(R T) of the ICAO 1993 atmosphere with its isothermal extension.
 
-    Parameters
-    ----------
-    h : array_like
-        Geometric altitude [m], ≥ H_MIN.
+    {{h}}
 
     Returns
     -------
@@ -190,10 +215,7 @@ def density(h: ArrayLike) -> FloatArray:
         Density [kg/m³], same shape as ``h``; above H_MAX it decays with the local scale
         height R T_top / g(h) ≈ 5.9 km.
 
-    Raises
-    ------
-    ParameterError
-        If an altitude is below H_MIN or not finite.
+    {{bad_h}}
 
     References
     ----------
@@ -204,26 +226,21 @@ def density(h: ArrayLike) -> FloatArray:
     return p / (R_AIR * t)
 
 
+@_DOC
 def density_gradient(h: ArrayLike) -> FloatArray:
     """Exact derivative dρ/dh of :func:`density` (one-sided at layer boundaries).
 
     Hydrostatics gives d(ln p)/dh = -g(h)/(R T), so dρ/dh = ρ (-g/(R T) - (dT/dh)/T) with
     dT/dh the layer's lapse rate times dH/dh = (r0/(r0 + h))².
 
-    Parameters
-    ----------
-    h : array_like
-        Geometric altitude [m], ≥ H_MIN.
+    {{h}}
 
     Returns
     -------
     ndarray
         dρ/dh [kg/m⁴], same shape as ``h`` (the upper layer's value on a boundary).
 
-    Raises
-    ------
-    ParameterError
-        If an altitude is below H_MIN or not finite.
+    {{bad_h}}
 
     References
     ----------
@@ -236,23 +253,18 @@ def density_gradient(h: ArrayLike) -> FloatArray:
     return rho * (-g / (R_AIR * t) - dtdh / t)
 
 
+@_DOC
 def speed_of_sound(h: ArrayLike) -> FloatArray:
     """Speed of sound a = sqrt(γ R T) of the ICAO 1993 atmosphere, isothermal above H_MAX.
 
-    Parameters
-    ----------
-    h : array_like
-        Geometric altitude [m], ≥ H_MIN.
+    {{h}}
 
     Returns
     -------
     ndarray
         Speed of sound [m/s], same shape as ``h``.
 
-    Raises
-    ------
-    ParameterError
-        If an altitude is below H_MIN or not finite.
+    {{bad_h}}
 
     References
     ----------
@@ -267,8 +279,7 @@ def _density_scalar(h: float) -> float:
     The same ICAO 1993 layer formulas as ``ambiance`` (they agree to rounding; the tests
     check it) at ~1 µs instead of ~400 µs per call.
     """
-    if not h >= H_MIN:  # also catches NaN
-        raise ParameterError(f"h = {h:g} m is outside the allowed range [{H_MIN:g}, inf) m")
+    _check_altitude(h)
     hgp = _R0 * h / (_R0 + h)
     if h > H_MAX:
         t = _T_TOP
@@ -401,6 +412,5 @@ class ExponentialAtmosphere:
 
     def density_at(self, h: float) -> float:
         """Density [kg/m³] at one altitude h [m] ≥ H_MIN."""
-        if not h >= H_MIN:  # also catches NaN
-            raise ParameterError(f"h = {h:g} m is outside the allowed range [{H_MIN:g}, inf) m")
+        _check_altitude(h)
         return self.rho0 * math.exp(-h / self.scale_height)

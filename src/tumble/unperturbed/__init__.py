@@ -1,7 +1,7 @@
 """Exact unperturbed motions: plain numerics (numpy, scipy) below the models.
 
 * :mod:`~tumble.unperturbed.elliptic`: Legendre elliptic integrals of the third kind for any
-  amplitude (Carlson's forms).
+  amplitude (Carlson's forms), and the Jacobi functions of the closed forms.
 * :mod:`~tumble.unperturbed.euler_poinsot`: the torque-free rigid body (3.1) of
   the rotating-field paper (docs/theory/rotating-field.md §8), its averages and fast
   frequencies.

@@ -23,6 +23,10 @@ Domain: n ≤ 1, 0 ≤ m ≤ 1, any finite φ; where n = 1 or m = 1 the integral
 φ = ±π/2, so there |φ| ≤ π/2 (the floating-point π/2, which lies just below the true one).
 n > 1 (a principal value) is not supported. Outside the domain the functions raise
 :class:`~tumble.errors.ParameterError`; they never return NaN.
+
+The Jacobi elliptic functions sn, cn, dn of the closed-form motions (the Euler–Poinsot body
+and the symmetric body) are here too: :func:`_jacobi` reduces the argument to a quarter
+period and polishes scipy's values there, so that they keep their digits up to m = 1.
 """
 
 from __future__ import annotations
@@ -166,3 +170,59 @@ def ellippi(n: ArrayLike, m: ArrayLike) -> FloatArray:
     _reject("n", n_, np.isfinite(n_) & (n_ < 1.0), "(-inf, 1)")
     _reject("m", m_, np.isfinite(m_) & (m_ >= 0.0) & (m_ < 1.0), "[0, 1)")
     return np.asarray(_ellippi_mc(n_, 1.0 - m_), dtype=float)
+
+
+# --------------------------------------------------------------------------------------
+# Jacobi elliptic functions, accurate up to the separatrix m = 1
+# --------------------------------------------------------------------------------------
+
+
+def _sech(u: FloatArray) -> FloatArray:
+    e = np.exp(-np.abs(u))  # no overflow for large |u|
+    return 2.0 * e / (1.0 + e * e)
+
+
+def _jacobi_quarter(v: FloatArray, m: float, mc: float) -> tuple[FloatArray, ...]:
+    """sn, cn, dn of 0 ≤ v ≤ K/2: scipy's amplitude polished by Newton on F(φ | m) = v.
+
+    On [0, K/2] F'(φ) = 1/dn ≤ (1 − m)^(−1/4), so Newton is well conditioned, and scipy's
+    start is good to O(1 − m) even where ellipj uses its expansion in 1 − m (m > 1 − 1e-9).
+    Above φ = π/4 the iteration runs on χ = π/2 − φ, which keeps the digits of a small cn
+    (χ → 0 as v → K/2 → ∞ for m → 1).
+    """
+    sn, cn, _, _ = special.ellipj(v, m)
+    phi, chi = np.arctan2(sn, cn), np.arctan2(cn, sn)
+    upper = phi > 0.25 * math.pi
+    for _ in range(3):  # quadratic convergence: ~1e-7 → 1e-11 → round-off
+        s = np.where(upper, np.cos(chi), np.sin(phi))
+        c = np.where(upper, np.sin(chi), np.cos(phi))
+        dn = np.sqrt(c * c + mc * s * s)
+        step = (_ellipf_sc(s, c, mc) - v) * dn
+        phi, chi = phi - step, chi + step
+    s = np.where(upper, np.cos(chi), np.sin(phi))
+    c = np.where(upper, np.sin(chi), np.cos(phi))
+    return s, c, np.sqrt(c * c + mc * s * s)  # dn without the cancellation of 1 − m sn²
+
+
+def _jacobi(u: FloatArray, m: float, mc: float, K: float) -> tuple[FloatArray, ...]:
+    """Reduced Jacobi functions of u, parameter m (mc = 1 − m): (sn u_r, cn u_r, dn u, j).
+
+    u = 2jK + u_r with |u_r| ≤ K, so sn u = (−1)^j sn u_r, cn u = (−1)^j cn u_r ≥ ... and
+    am u = jπ + am u_r with |am u_r| ≤ π/2 (cn u_r ≥ 0). |u_r| > K/2 is reflected to
+    v = K − |u_r| ≤ K/2 with sn(K − v) = cd v, cn(K − v) = k' sd v, dn(K − v) = k' nd v
+    (k' = sqrt(mc)): the small values of cn and dn near u = K keep their digits for any
+    mc > 0, where scipy's ellipj alone loses them (its expansion for mc < 1e-9). On the
+    separatrix (mc = 0): sn = tanh u, cn = dn = sech u, j = 0.
+    """
+    if mc == 0.0:
+        return np.tanh(u), _sech(u), _sech(u), np.zeros_like(u)
+    j = np.rint(u / (2.0 * K))
+    ur = u - 2.0 * K * j
+    a = np.minimum(np.abs(ur), K)
+    far = a > 0.5 * K
+    sv, cv, dv = _jacobi_quarter(np.where(far, K - a, a), m, mc)
+    kc = math.sqrt(mc)
+    sn = np.where(far, cv / dv, sv) * np.sign(ur)
+    cn = np.where(far, kc * sv / dv, cv)
+    dn = np.where(far, kc / dv, dv)
+    return sn, cn, dn, j

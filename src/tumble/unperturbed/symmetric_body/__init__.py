@@ -54,7 +54,7 @@ Modules: :mod:`~.potential` (W, the energy, f), :mod:`~.quartic` (its roots, bot
 :mod:`~.build` (from a state or an energy to an orbit), :mod:`~.orbit` (the motion) and
 :mod:`~.means` (period averages).
 
-Jacobi functions come from :func:`tumble.unperturbed.euler_poinsot._jacobi` (reduction to a
+Jacobi functions come from :func:`tumble.unperturbed.elliptic._jacobi` (reduction to a
 quarter period with Newton polishing), accurate up to the separatrix; incomplete integrals use
 the quasi-periodic reduction of §5.
 

@@ -12,7 +12,7 @@ import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import IntegrationError
-from tumble.unperturbed.euler_poinsot import _jacobi
+from tumble.unperturbed.elliptic import _jacobi
 from tumble.unperturbed.symmetric_body.carlson import _drj_dp, _rj_complete
 from tumble.unperturbed.symmetric_body.charts import _EPS, _Chart, _Jac
 from tumble.unperturbed.symmetric_body.potential import quartic_coefficients
@@ -55,13 +55,15 @@ def periodic_mean(
 ) -> float:
     """Trapezoid in the Jacobi argument over one period of σ (uniform in time), doubling."""
     period_v = (2.0 if orbit.root_case == 1 else 4.0) * orbit._K
+
+    def node_sum(v: FloatArray) -> float:  # Σ func(σ, 1 − σ) at Jacobi arguments v
+        return float(np.sum(func(*orbit._sigma(_Jac(*_jacobi(v, orbit.k2, orbit.mc, orbit._K))))))
+
     n = 16
-    v = period_v * np.arange(n) / n
-    total = float(np.sum(func(*orbit._sigma(_Jac(*_jacobi(v, orbit.k2, orbit.mc, orbit._K))))))
+    total = node_sum(period_v * np.arange(n) / n)
     est = total / n
     while n < (1 << 20):
-        v = period_v * (np.arange(n) + 0.5) / n
-        total += float(np.sum(func(*orbit._sigma(_Jac(*_jacobi(v, orbit.k2, orbit.mc, orbit._K))))))
+        total += node_sum(period_v * (np.arange(n) + 0.5) / n)
         n *= 2
         new = total / n
         if abs(new - est) <= _QUAD_RTOL * max(abs(new), scale) and n >= 64:

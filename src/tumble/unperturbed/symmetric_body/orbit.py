@@ -11,9 +11,11 @@ from typing import Literal
 
 import numpy as np
 
+from tumble._docstrings import DocSections
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import IntegrationError, ParameterError, check_finite, check_range
-from tumble.unperturbed.euler_poinsot import _jacobi
+from tumble.unperturbed._checks import finite_array, whole_number
+from tumble.unperturbed.elliptic import _jacobi
 from tumble.unperturbed.symmetric_body import means
 from tumble.unperturbed.symmetric_body.carlson import _lam_integral, _s_integral
 from tumble.unperturbed.symmetric_body.charts import (
@@ -29,6 +31,23 @@ from tumble.unperturbed.symmetric_body.charts import (
 )
 
 _N_START = 32  # first trapezoid level of :meth:`NutationOrbit.average`
+
+_DOC = DocSections(
+    constants="""
+    mu : float
+        C/A [1], in (0, 2].
+    a, b : float
+        Moment coefficients [1/time²].
+    R, G : float
+        Reduced angular momenta [1/time].
+    """,
+    t="""
+    Parameters
+    ----------
+    t : array_like
+        Times [time].
+    """,
+)
 
 
 @dataclass(frozen=True, eq=False)
@@ -167,6 +186,7 @@ class NutationOrbit:
         return build.from_state(mu, a, b, R, G, theta, theta_dot, psi, phi, "theta")
 
     @classmethod
+    @_DOC
     def from_turning_point(
         cls,
         mu: float,
@@ -184,12 +204,7 @@ class NutationOrbit:
 
         Parameters
         ----------
-        mu : float
-            C/A [1], in (0, 2].
-        a, b : float
-            Moment coefficients [1/time²].
-        R, G : float
-            Reduced angular momenta [1/time].
+        {{constants}}
         theta_ext : float
             Turning point θ(0) [rad], strictly inside (0, π).
         psi, phi : float
@@ -209,6 +224,7 @@ class NutationOrbit:
         return build.from_state(mu, a, b, R, G, theta_ext, 0.0, psi, phi, "theta_ext")
 
     @classmethod
+    @_DOC
     def from_energy(
         cls, mu: float, a: float, b: float, R: float, G: float, E: float, u_hint: float
     ) -> NutationOrbit:
@@ -220,12 +236,7 @@ class NutationOrbit:
 
         Parameters
         ----------
-        mu : float
-            C/A [1], in (0, 2].
-        a, b : float
-            Moment coefficients [1/time²].
-        R, G : float
-            Reduced angular momenta [1/time].
+        {{constants}}
         E : float
             Energy (1.6) [1/time²].
         u_hint : float
@@ -249,10 +260,7 @@ class NutationOrbit:
     # ----------------------------------------------------------------------------------
 
     def _t(self, t: ArrayLike) -> FloatArray:
-        tt = np.asarray(t, dtype=float)
-        if not np.all(np.isfinite(tt)):
-            raise ParameterError("t must be finite")
-        return tt
+        return finite_array("t", t)
 
     def _jac(self, tt: FloatArray) -> _Jac:
         v = self.beta * tt + self._tau0
@@ -313,13 +321,11 @@ class NutationOrbit:
         op = self._mix(sig, sigc, ch.A.op, ch.B.op)
         return np.asarray(2.0 * np.arctan2(np.sqrt(om), np.sqrt(op)), dtype=float), om, op
 
+    @_DOC
     def theta(self, t: ArrayLike) -> FloatArray:
         """Nutation angle θ(t), Serov (1991), eq. (1.9), accurate also near θ = 0 and π.
 
-        Parameters
-        ----------
-        t : array_like
-            Times [time].
+        {{t}}
 
         Returns
         -------
@@ -353,13 +359,11 @@ class NutationOrbit:
         limit = np.where(om == 0.0, up, down)
         return np.asarray(np.where(sin_th > 0.0, -udot / safe, limit), dtype=float)
 
+    @_DOC
     def theta_dot(self, t: ArrayLike) -> FloatArray:
         """Nutation rate θ'(t) = −u'/sinθ, from Serov (1991), eqs. (1.9)–(1.10).
 
-        Parameters
-        ----------
-        t : array_like
-            Times [time].
+        {{t}}
 
         Returns
         -------
@@ -419,13 +423,11 @@ class NutationOrbit:
         phi = phi + self.R * (1.0 / self.mu - 1.0) * tt
         return np.asarray(self.psi0 + psi, dtype=float), np.asarray(self.phi0 + phi, dtype=float)
 
+    @_DOC
     def psi(self, t: ArrayLike) -> FloatArray:
         """Precession angle ψ(t), Serov (1991), eqs. (1.11)–(1.13); continuous, ψ(0) = ψ0.
 
-        Parameters
-        ----------
-        t : array_like
-            Times [time].
+        {{t}}
 
         Returns
         -------
@@ -434,13 +436,11 @@ class NutationOrbit:
         """
         return self._angles(t)[0]
 
+    @_DOC
     def phi(self, t: ArrayLike) -> FloatArray:
         """Proper rotation φ(t), Serov (1991), eqs. (1.11)–(1.13); continuous, φ(0) = φ0.
 
-        Parameters
-        ----------
-        t : array_like
-            Times [time].
+        {{t}}
 
         Returns
         -------
@@ -502,9 +502,8 @@ class NutationOrbit:
         float
             ⟨u^n⟩ [1].
         """
-        if not isinstance(n, int | np.integer) or n < 0:
-            raise ParameterError(f"n = {n!r} is outside the allowed range: integers ≥ 0")
-        return float(means.u_moments(self, int(n))[int(n)])
+        n = whole_number("n", n, 0)
+        return float(means.u_moments(self, n)[n])
 
     def _pole(self, rho: float) -> _Pole:
         return _make_pole(self, rho)
@@ -587,11 +586,10 @@ class NutationOrbit:
             Times [time], θ [rad], θ' [rad/time] (both halves of the swing) and weights [1]
             (≥ 0, sum 1).
         """
-        if not isinstance(n, int | np.integer) or n < 1:
-            raise ParameterError(f"n = {n!r} is outside the allowed range: integers ≥ 1")
-        t = self.period * np.arange(int(n)) / int(n)
+        n = whole_number("n", n, 1)
+        t = self.period * np.arange(n) / n
         th, thd = self._theta_pair(t)
-        return t, th, thd, np.full(int(n), 1.0 / int(n))
+        return t, th, thd, np.full(n, 1.0 / n)
 
     def _theta_pair(self, t: FloatArray) -> tuple[FloatArray, FloatArray]:
         if self.kind == "steady":

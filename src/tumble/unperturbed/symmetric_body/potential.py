@@ -7,10 +7,25 @@ import math
 
 import numpy as np
 
+from tumble._docstrings import DocSections
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import ParameterError, check_finite
+from tumble.unperturbed._checks import finite_array
 
 __all__ = ["effective_potential", "energy", "potential_slope", "quartic_coefficients"]
+
+_DOC = DocSections(
+    theta="""
+    theta : array_like
+        Nutation angle [rad], strictly inside (0, π).
+    """,
+    constants="""
+    R, G : float
+        Reduced angular momenta [1/time].
+    a, b : float
+        Moment coefficients of (1.5) [1/time²].
+    """,
+)
 
 
 def _theta_array(theta: ArrayLike, name: str = "theta") -> FloatArray:
@@ -27,6 +42,7 @@ def _finite(**values: float) -> None:
         check_finite(name, float(value))
 
 
+@_DOC
 def effective_potential(theta: ArrayLike, R: float, G: float, a: float, b: float) -> FloatArray:
     """Effective potential W(θ) of the nutation, Serov (1991), eq. (1.6).
 
@@ -34,8 +50,7 @@ def effective_potential(theta: ArrayLike, R: float, G: float, a: float, b: float
 
     Parameters
     ----------
-    theta : array_like
-        Nutation angle [rad], strictly inside (0, π).
+    {{theta}}
     R, G : float
         Reduced angular momenta μr and K·e_z/A [1/time].
     a, b : float
@@ -57,6 +72,7 @@ def effective_potential(theta: ArrayLike, R: float, G: float, a: float, b: float
     return np.asarray((G - R * u) ** 2 / (2.0 * s * s) + a * u + b * u * u, dtype=float)
 
 
+@_DOC
 def potential_slope(theta: ArrayLike, R: float, G: float, a: float, b: float) -> FloatArray:
     """Slope F(θ) = ∂W/∂θ of the effective potential, Serov (1991), eq. (2.1).
 
@@ -64,12 +80,8 @@ def potential_slope(theta: ArrayLike, R: float, G: float, a: float, b: float) ->
 
     Parameters
     ----------
-    theta : array_like
-        Nutation angle [rad], strictly inside (0, π).
-    R, G : float
-        Reduced angular momenta [1/time].
-    a, b : float
-        Moment coefficients of (1.5) [1/time²].
+    {{theta}}
+    {{constants}}
 
     Returns
     -------
@@ -87,6 +99,7 @@ def potential_slope(theta: ArrayLike, R: float, G: float, a: float, b: float) ->
     return np.asarray((G - R * u) * (R - G * u) / s**3 - a * s - b * np.sin(2.0 * th), dtype=float)
 
 
+@_DOC
 def energy(
     theta: ArrayLike, theta_dot: ArrayLike, R: float, G: float, a: float, b: float
 ) -> FloatArray:
@@ -94,26 +107,21 @@ def energy(
 
     Parameters
     ----------
-    theta : array_like
-        Nutation angle [rad], strictly inside (0, π).
+    {{theta}}
     theta_dot : array_like
         Nutation rate θ' [rad/time].
-    R, G : float
-        Reduced angular momenta [1/time].
-    a, b : float
-        Moment coefficients of (1.5) [1/time²].
+    {{constants}}
 
     Returns
     -------
     ndarray
         E [1/time²], broadcast shape of ``theta`` and ``theta_dot``.
     """
-    td = np.asarray(theta_dot, dtype=float)
-    if not np.all(np.isfinite(td)):
-        raise ParameterError("theta_dot must be finite")
+    td = finite_array("theta_dot", theta_dot)
     return np.asarray(0.5 * td * td + effective_potential(theta, R, G, a, b), dtype=float)
 
 
+@_DOC
 def quartic_coefficients(R: float, G: float, a: float, b: float, E: float) -> FloatArray:
     """Coefficients g0 … g4 of f(u) = u'² = Σ g_i u^i, Serov (1991), eq. (1.7).
 
@@ -121,10 +129,7 @@ def quartic_coefficients(R: float, G: float, a: float, b: float, E: float) -> Fl
 
     Parameters
     ----------
-    R, G : float
-        Reduced angular momenta [1/time].
-    a, b : float
-        Moment coefficients of (1.5) [1/time²].
+    {{constants}}
     E : float
         Energy (1.6) [1/time²].
 

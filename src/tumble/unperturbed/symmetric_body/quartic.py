@@ -10,7 +10,9 @@ None and the careful route decides.
 
 from __future__ import annotations
 
+import functools
 import math
+from collections.abc import Callable
 from typing import Literal
 
 import numpy as np
@@ -59,6 +61,37 @@ def _noise(c: tuple[float, ...], x: float) -> float:
     return 16.0 * _EPS * sum(abs(ci) * ax**i for i, ci in enumerate(c))
 
 
+def _newton_polish(
+    x: float, f: Callable[[float], float], fprime: Callable[[float], float]
+) -> float:
+    """x after at most three Newton steps on f(x) = 0, the polishing of a critical point.
+
+    The iteration stops early at a zero slope, or before a step that is not finite or longer
+    than 1e-3 (1 + |x|) (a poor start, which polishing must not move far).
+
+    Parameters
+    ----------
+    x : float
+        Starting point [1] (a value of u = cos θ).
+    f, fprime : callable
+        The function and its derivative, of one float [units of f, and of f per unit of u].
+
+    Returns
+    -------
+    float
+        The polished point [1].
+    """
+    for _ in range(3):
+        slope = fprime(x)
+        if slope == 0.0:
+            break
+        step = f(x) / slope
+        if not math.isfinite(step) or abs(step) > 1e-3 * (1.0 + abs(x)):
+            break
+        x -= step
+    return x
+
+
 def _critical_points(c: tuple[float, ...], lo: float, hi: float) -> list[float]:
     """Real parts of the roots of p'(x) inside (lo, hi), Newton-polished, sorted.
 
@@ -75,15 +108,9 @@ def _critical_points(c: tuple[float, ...], lo: float, hi: float) -> list[float]:
     dd = tuple(i * c[i] for i in range(1, len(c)))  # ascending coefficients of p'
     out = []
     for z in np.roots(d):
-        x = float(z.real)
-        for _ in range(3):
-            slope = _dhorner(dd, x)
-            if slope == 0.0:
-                break
-            step = _horner(dd, x) / slope
-            if not math.isfinite(step) or abs(step) > 1e-3 * (1.0 + abs(x)):
-                break
-            x -= step
+        x = _newton_polish(
+            float(z.real), functools.partial(_horner, dd), functools.partial(_dhorner, dd)
+        )
         if lo < x < hi:
             out.append(x)
     return sorted(out)
@@ -476,18 +503,18 @@ def _fast_critical_points(c: tuple[float, ...], lo: float, hi: float) -> list[fl
         raw = _quadratic_real_parts(d[0], d[1], d[2])
     else:
         raw = [-d[1] / d[0]]
+
+    def p_prime(x: float) -> float:
+        return ((e4 * x + e3) * x + e2) * x + e1
+
+    def p_second(x: float) -> float:
+        return (3.0 * e4 * x + 2.0 * e3) * x + e2
+
     out = []
     for x in raw:
         if not lo - 4e-3 * (1.0 + abs(x)) < x < hi + 4e-3 * (1.0 + abs(x)):
             continue  # three polishing steps of ≤ 1e-3 (1 + |x|) cannot bring it inside
-        for _ in range(3):
-            slope = (3.0 * e4 * x + 2.0 * e3) * x + e2
-            if slope == 0.0:
-                break
-            step = (((e4 * x + e3) * x + e2) * x + e1) / slope
-            if not math.isfinite(step) or abs(step) > 1e-3 * (1.0 + abs(x)):
-                break
-            x -= step
+        x = _newton_polish(x, p_prime, p_second)
         if lo < x < hi:
             out.append(x)
     return sorted(out)

@@ -15,6 +15,8 @@ so that a walk over a program needs nothing of the terms it does not evaluate.
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
+from importlib import import_module
+from types import ModuleType
 from typing import Any
 
 import numpy as np
@@ -23,20 +25,6 @@ from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import ParameterError
 from tumble.kernels.jit import INLINE, jit
 from tumble.kernels.layout import Field, Layout
-from tumble.kernels.terms import (
-    body_constant,
-    eddy_current,
-    field_moments,
-    gravity_gradient,
-    gravity_moments,
-    inertial_constant,
-    linear_drag,
-    orbit_eddy,
-    orbit_eddy_harmonic,
-    orbit_gravity,
-    quadratic_drag,
-    user,
-)
 from tumble.kernels.terms.base import NAN, OrbitContext, OrbitKey, Term, chain
 
 __all__ = [
@@ -64,22 +52,26 @@ __all__ = [
     "walk",
 ]
 
-MODULES = (
-    body_constant,
-    linear_drag,
-    quadratic_drag,
-    inertial_constant,
-    gravity_gradient,
-    eddy_current,
-    user,
-    orbit_eddy,
-    orbit_gravity,
-    field_moments,
-    gravity_moments,
-    orbit_eddy_harmonic,
+MODULES: tuple[ModuleType, ...] = tuple(
+    import_module(f"{__name__}.{name}")
+    for name in (
+        "body_constant",
+        "linear_drag",
+        "quadratic_drag",
+        "inertial_constant",
+        "gravity_gradient",
+        "eddy_current",
+        "user",
+        "orbit_eddy",
+        "orbit_gravity",
+        "field_moments",
+        "gravity_moments",
+        "orbit_eddy_harmonic",
+    )
 )
-"""The registered term modules, each declaring ``TERMS`` (and optionally ``ORBIT_KEYS``):
-registering a new one is one line here. Append, never reorder: a program stores codes."""
+"""The registered term modules (of this package, by name), each declaring ``TERMS`` (and
+optionally ``ORBIT_KEYS``): registering a new one is one line here. Append, never reorder: a
+program stores codes."""
 
 TERMS: tuple[Term, ...] = tuple(term for module in MODULES for term in module.TERMS)
 """The registered terms. A term's code is its place here plus one."""

@@ -67,6 +67,7 @@ MODULES: tuple[ModuleType, ...] = tuple(
         "field_moments",
         "gravity_moments",
         "orbit_eddy_harmonic",
+        "residual_dipole",
     )
 )
 """The registered term modules (of this package, by name), each declaring ``TERMS`` (and

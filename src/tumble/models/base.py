@@ -15,19 +15,22 @@ solvers' ``rhs(t, y, p)``.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field, replace
-from typing import Generic, Literal, Protocol, TypeAlias, TypeVar
+from typing import Any, Generic, Literal, Protocol, TypeAlias, TypeVar
 
 import numpy as np
 
 from tumble._typing import ArrayLike, ComplexArray, FloatArray, Json
-from tumble.catalogue import Paper
+from tumble.catalogue import CATALOGUE, Paper
 from tumble.errors import ParameterError
 from tumble.kernels import Kernel
 from tumble.models.schema import ScenarioSchema
 
 __all__ = [
+    "QUATERNION_STATE",
+    "TIME_T",
+    "TIME_TAU",
     "Averaged",
     "AveragedForm",
     "AveragingOptions",
@@ -55,6 +58,7 @@ __all__ = [
     "first_time",
     "fixed_columns",
     "frozen_array",
+    "mean_columns",
     "scaling_family",
     "separatrix_issue",
     "separatrix_time",
@@ -80,6 +84,28 @@ class Column:
     equation: str = ""
     angle: bool = False  # compare modulo 2π
     unwrap: bool = False  # written as a continuous function of time (theory/resisting-medium §14)
+
+
+TIME_TAU = Column("tau", "time τ", "1")
+"""The time column of a model in a normalised time τ of its paper [1]."""
+TIME_T = Column("t", "time t", "t")
+"""The time column of a model in the time t of its coefficients [t]."""
+
+
+def mean_columns(columns: Iterable[Column]) -> tuple[Column, ...]:
+    """The columns ``<name>_mean`` of the mean variables of an averaging of order 2, one for
+    each of ``columns``: the same unit, equation and angle flag (a mean angle is written as it
+    is, not unwrapped)."""
+    return tuple(
+        Column(f"{c.name}_mean", f"mean {c.long_name} (averaging of order 2)", c.units,
+               c.equation, angle=c.angle)
+        for c in columns
+    )  # fmt: skip
+
+
+QUATERNION_STATE = ("w1", "w2", "w3", "q0", "q1", "q2", "q3")
+"""The components of a full state of Euler's equations with quaternion kinematics: the body
+angular velocity ω, then the attitude quaternion q (scalar first, body → inertial)."""
 
 
 def attitude_columns(time: str) -> tuple[Column, ...]:
@@ -625,6 +651,46 @@ class Declaration(Generic[P, S]):
     corrected_start: bool = False
     orders: tuple[int, ...] = (1,)
     hybrid: bool = False
+
+    def averaged(
+        self,
+        form: Callable[[P, S, AveragingOptions], AveragedForm[P, S]],
+        columns: Callable[[P], tuple[Column, ...]],
+        **details: Any,
+    ) -> Averaged[P, S]:
+        """The model's averaged equations ``form`` with output ``columns``, offering exactly
+        the choices declared here (``numeric``, ``coordinates``, ``corrected_start``,
+        ``orders``, ``hybrid``); ``details`` are the other :class:`Averaged` fields
+        (``compare``, ``errors``, ``diagnostics``)."""
+        return Averaged(
+            form,
+            columns,
+            coordinates=self.coordinates,
+            corrected_start=self.corrected_start,
+            numeric=self.numeric,
+            orders=self.orders,
+            hybrid=self.hybrid,
+            **details,
+        )
+
+    def model(self, full: Full[P, S], **capabilities: Any) -> Model[P, S]:
+        """The shipped model declared here: its name, description and paper from
+        :data:`tumble.catalogue.CATALOGUE`, its time, methods, method check and scenario keys
+        from this declaration, its full equations ``full``; ``capabilities`` are the other
+        :class:`Model` fields (``averaged``, ``closed_form``, ``unperturbed``, ``validity``,
+        ``stationary``, ``report``)."""
+        entry = CATALOGUE[self.name]
+        return Model(
+            name=entry.name,
+            description=entry.description,
+            paper=entry.paper,
+            time=self.time,
+            full=full,
+            check=self.check,
+            methods=self.methods,
+            scenario=self.scenario,
+            **capabilities,
+        )
 
     @classmethod
     def of(cls, model: Model[P, S]) -> Declaration[P, S]:

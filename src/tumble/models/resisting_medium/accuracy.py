@@ -11,15 +11,8 @@ from collections.abc import Callable
 import numpy as np
 
 from tumble._typing import FloatArray
-from tumble.models.base import (
-    SlowPath,
-    ValidityIssue,
-    first_time,
-)
-from tumble.models.inputs.resisting_medium import (
-    Params,
-    State,
-)
+from tumble.models.base import SlowPath, ValidityIssue, first_time
+from tumble.models.inputs.resisting_medium import Params, State
 from tumble.models.resisting_medium.closed_forms import crossing_time
 
 VALIDITY_RATIO = 0.1

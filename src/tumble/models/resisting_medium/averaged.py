@@ -16,22 +16,10 @@ import numpy as np
 from tumble._typing import FloatArray
 from tumble.averaging.quadrature import AVERAGE_RTOL
 from tumble.averaging.second_order import RESONANCE_WIDTHS, MeanSystem, nearest_resonance
-from tumble.averaging.spinner import (
-    SPINNER_GRID,
-    spinner_average,
-    spinner_system,
-)
+from tumble.averaging.spinner import SPINNER_GRID, spinner_average, spinner_system
 from tumble.kernels import EVENT_EQUATOR, KIND_MEDIUM_AVERAGED, KIND_SPINNER_AVERAGED, Kernel
-from tumble.models.base import (
-    AveragedForm,
-    AveragingOptions,
-    Breakpoint,
-    Crossing,
-)
-from tumble.models.inputs.resisting_medium import (
-    Params,
-    State,
-)
+from tumble.models.base import AveragedForm, AveragingOptions, Breakpoint, Crossing
+from tumble.models.inputs.resisting_medium import Params, State
 from tumble.models.resisting_medium.closed_forms import crossing_time, plane_columns
 from tumble.models.resisting_medium.full import full_from_slow, slow_from_full
 

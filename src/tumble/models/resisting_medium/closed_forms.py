@@ -12,14 +12,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
-from tumble.errors import (
-    IntegrationError,
-    ParameterError,
-)
-from tumble.models.inputs.resisting_medium import (
-    Params,
-    State,
-)
+from tumble.errors import IntegrationError, ParameterError
+from tumble.models.inputs.resisting_medium import Params, State
 
 # ---------------------------------------------------------------------------------------------
 # Closed forms, §8. Internally in slow time s = ε τ.

@@ -8,20 +8,11 @@ from __future__ import annotations
 import numpy as np
 
 from tumble._typing import FloatArray
-from tumble.averaging.spinner import (
-    body_momentum,
-    standard_form,
-)
+from tumble.averaging.spinner import body_momentum, standard_form
 from tumble.kernels import Kernel
 from tumble.kernels.rhs import rigid_body
-from tumble.models.base import (
-    FullForm,
-    attitude_values,
-)
-from tumble.models.inputs.resisting_medium import (
-    Params,
-    State,
-)
+from tumble.models.base import QUATERNION_STATE, FullForm, attitude_values
+from tumble.models.inputs.resisting_medium import Params, State
 from tumble.rotations import (
     attitude_from_kframe_angles,
     kframe_angles_from_attitude,
@@ -175,7 +166,7 @@ def full_kernel(p: Params) -> Kernel | None:
 FULL_EULER: FullForm[Params, State] = FullForm(
     name="euler",
     equation="Euler + quaternions with (1.2)",
-    state=("w1", "w2", "w3", "q0", "q1", "q2", "q3"),
+    state=QUATERNION_STATE,
     rhs=full_rhs,
     initial_state=full_from_slow,
     to_columns=_euler_columns,

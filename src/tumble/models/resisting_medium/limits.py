@@ -9,10 +9,7 @@ import math
 from collections.abc import Callable
 from typing import Any
 
-from tumble.models.inputs.resisting_medium import (
-    Params,
-    State,
-)
+from tumble.models.inputs.resisting_medium import Params, State
 
 # ---------------------------------------------------------------------------------------------
 # Asymptotic conclusions, §9.

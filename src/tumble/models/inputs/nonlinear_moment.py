@@ -19,15 +19,7 @@ import numpy as np
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import ParameterError, ScenarioError, check_range, shorten
 from tumble.models.base import TIME_T, Declaration
-from tumble.models.schema import (
-    Built,
-    Inputs,
-    Key,
-    ScenarioSchema,
-    Section,
-    Variant,
-    required,
-)
+from tumble.models.schema import Built, Inputs, Key, ScenarioSchema, Section, Variant, required
 
 if TYPE_CHECKING:
     from tumble.unperturbed.symmetric_body import NutationOrbit
@@ -266,7 +258,9 @@ def orbit_of(p: Params, st: State) -> NutationOrbit:
     Parameters
     ----------
     p : Params
+        μ [1] and the moment's a, b at t = 0 [1/t²]; the perturbation is ignored.
     st : State
+        The state the orbit passes through at t = 0.
 
     Returns
     -------

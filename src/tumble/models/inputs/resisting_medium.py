@@ -18,15 +18,7 @@ from tumble.bodies import RigidBody
 from tumble.errors import ParameterError, ScenarioError, check_finite, check_range
 from tumble.kernels import Kernel
 from tumble.models.base import TIME_TAU, Declaration, frozen_array
-from tumble.models.schema import (
-    Built,
-    Inputs,
-    Key,
-    ScenarioSchema,
-    Section,
-    Variant,
-    required,
-)
+from tumble.models.schema import Built, Inputs, Key, ScenarioSchema, Section, Variant, required
 from tumble.rotations import kframe_angles_from_attitude, quat_to_matrix
 from tumble.torques import ConstantBodyTorque, LinearDrag, QuadraticDrag, Torque
 

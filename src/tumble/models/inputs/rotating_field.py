@@ -18,15 +18,7 @@ from tumble._typing import ArrayLike, FloatArray
 from tumble.bodies import RigidBody, proper_sorting
 from tumble.errors import ParameterError, ScenarioError, check_range
 from tumble.models.base import TIME_TAU, Declaration, frozen_array
-from tumble.models.schema import (
-    Built,
-    Inputs,
-    Key,
-    ScenarioSchema,
-    Section,
-    Variant,
-    required,
-)
+from tumble.models.schema import Built, Inputs, Key, ScenarioSchema, Section, Variant, required
 from tumble.rotations import euler313_to_matrix, kframe_matrix, matrix_to_quat, quat_to_matrix
 from tumble.torques import EddyCurrentTorque
 

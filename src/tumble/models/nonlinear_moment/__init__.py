@@ -33,15 +33,12 @@ from tumble.averaging.nutation import (
 )
 from tumble.models.base import (
     ClosedForm,
-    Column,
     Diagnostics,
     Full,
     Model,
     Unperturbed,
     Validity,
-    attitude_columns,
     fixed_columns,
-    mean_columns,
 )
 from tumble.models.inputs.nonlinear_moment import DECLARED, Params, Pressure, State, orbit_of
 from tumble.models.nonlinear_moment.averaged import (
@@ -50,6 +47,12 @@ from tumble.models.nonlinear_moment.averaged import (
     averaged_rhs,
     barrier_energies,
     nutation_phase,
+)
+from tumble.models.nonlinear_moment.columns import (
+    AVERAGED_COLUMNS,
+    DIAGNOSTIC_COLUMNS,
+    UNPERTURBED_COLUMNS,
+    full_columns,
 )
 from tumble.models.nonlinear_moment.envelope import (
     EPS_PERIOD_LIMIT,
@@ -119,72 +122,15 @@ __all__ = [
 # ---------------------------------------------------------------------------------------------
 # Registry record.
 
-_THETA = Column("theta", "nutation angle θ", "rad", "(1.9)")
-_PSI = Column("psi", "precession angle ψ", "rad", "(1.13)", angle=True, unwrap=True)
-_PHI = Column("phi", "proper rotation angle φ", "rad", "(1.13)", angle=True, unwrap=True)
-_THETA_DOT = Column("theta_dot", "nutation rate θ'", "rad/t", "(1.2)")
-_R = Column("R", "reduced axial momentum R = Cr/A", "1/t", "docs/theory/nonlinear-moment.md §1")
-_G = Column(
-    "G", "reduced momentum about e_z, G = K·e_z/A", "1/t", "docs/theory/nonlinear-moment.md §1"
-)
-_A = Column(
-    "a", "sinθ coefficient a(τ) of M0/A", "1/t^2", "(1.5), docs/theory/nonlinear-moment.md §9"
-)
-_B = Column(
-    "b", "sin2θ coefficient b(τ) of M0/A", "1/t^2", "(1.5), docs/theory/nonlinear-moment.md §9"
-)
-_UNPERTURBED = (_THETA, _PSI, _PHI, _THETA_DOT)
-_PERTURBED_FULL = (_THETA, _PSI, _PHI, _R, _G, _A, _B)
-_AVERAGED = (
-    Column("theta_max", "envelope θmax (averaged)", "rad", "(2.2)"),
-    Column("theta_min", "envelope θmin (averaged)", "rad", "(2.2)"),
-    _R,
-    _G,
-    _A,
-    _B,
-)
-_AVERAGED_MEAN = (
-    Column("H_mean", "mean energy H̄ (averaging of order 2)", "1/t^2", "(1.6)"),
-    *mean_columns((_R, _G, _A, _B)),
-    Column("w_mean", "mean nutation phase w̄ from θmax (averaging of order 2)", "rad",
-           "docs/theory/nonlinear-moment.md §4"),
-)  # fmt: skip
-_DIAGNOSTICS = (
-    Column("k2", "modulus squared k² of the nutation", "1", "docs/theory/nonlinear-moment.md §4"),
-    Column("period", "nutation period T", "t", "docs/theory/nonlinear-moment.md §4"),
-    Column(
-        "root_case",
-        "root case (1: four real roots, 2: a complex pair)",
-        "1",
-        "docs/theory/nonlinear-moment.md §3",
-    ),
-    Column(
-        "E",
-        "energy H of (1.6) along the averaged solution",
-        "1/t^2",
-        "(1.6), docs/theory/nonlinear-moment.md §7",
-    ),
-)
-
-
-def _full_columns(p: Params) -> tuple[Column, ...]:
-    # A perturbed run also writes the moment coefficients; every full run its attitude.
-    return (*(_PERTURBED_FULL if p.perturbed else _UNPERTURBED), *attitude_columns("t"))
-
-
 MODEL: Model[Params, State] = DECLARED.model(
-    Full(
-        forms={"quaternion": FULL_QUATERNION, "reduced": FULL_REDUCED},
-        default="quaternion",
-        columns=_full_columns,
-    ),
+    Full.of(full_columns, FULL_QUATERNION, FULL_REDUCED),
     averaged=DECLARED.averaged(
         _averaged_form,
-        fixed_columns((*_AVERAGED, *_AVERAGED_MEAN)),
+        fixed_columns(AVERAGED_COLUMNS),
         errors=slow_errors,
-        diagnostics=Diagnostics(_diagnostics, _DIAGNOSTICS),
+        diagnostics=Diagnostics(_diagnostics, DIAGNOSTIC_COLUMNS),
     ),
-    closed_form=ClosedForm(evaluate=closed_form, columns=fixed_columns(_UNPERTURBED)),
+    closed_form=ClosedForm(evaluate=closed_form, columns=fixed_columns(UNPERTURBED_COLUMNS)),
     unperturbed=Unperturbed(
         "(1.9)-(1.13)", exact_motion, lambda t, y, p: full_rhs(t, y, p.unperturbed())
     ),

@@ -111,8 +111,11 @@ def averaged_rhs(
     t : float
         Time [t].
     y : ndarray, shape (5,)
+        ``[H, R, G, a, b]`` [1/t², 1/t, 1/t, 1/t², 1/t²], or θext [rad] in place of H.
     p : Params
-    form : str
+        μ and ε, and the damping d, ν and the pressure of the built-in perturbation.
+    form : {"energy", "theta_max", "theta_min"}
+        The slow variable besides z: the energy H or a turning point θext.
     u_hint : float
         cos θ inside the tracked well (energy form).
     perturbation : Perturbation, optional

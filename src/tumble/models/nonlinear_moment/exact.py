@@ -66,11 +66,16 @@ def limits(p: Params, st: State) -> dict[str, Json]:
     Parameters
     ----------
     p : Params
+        The body and the moment at t = 0 (μ, a, b; the perturbation is ignored).
     st : State
+        A state on the orbit (θ [rad], θ' [rad/t], R, G [1/t]).
 
     Returns
     -------
     dict
+        ``root_case`` (1 or 2), ``roots`` u1…u4 [1] (a complex one as [re, im], None at
+        infinity), ``k2`` [1], ``E`` [1/t²], ``theta_min``, ``theta_max`` [rad], ``period``
+        [t], ``mean_psidot``, ``mean_phidot`` [rad/t] and the orbit's ``kind``.
     """
     orbit = orbit_of(p, st)
 

@@ -31,7 +31,9 @@ def full_from_slow(p: Params, st: State) -> FloatArray:
     Parameters
     ----------
     p : Params
+        μ = C/A [1] (R = μr).
     st : State
+        Euler angles θ, ψ, φ [rad], θ' [rad/t] and the momenta R, G [1/t].
 
     Returns
     -------
@@ -176,9 +178,11 @@ def reduced_rhs(t: float, y: FloatArray, p: Params, perturbation: Perturbation) 
     t : float
         Time [t].
     y : ndarray, shape (8,)
+        ``[θ, θ', ψ, φ, R, G, a, b]`` [rad, rad/t, rad, rad, 1/t, 1/t, 1/t², 1/t²].
     p : Params
         μ and ε (a, b come from the state).
     perturbation : Perturbation
+        Φθ and Φz of (2.1).
 
     Returns
     -------

@@ -15,17 +15,7 @@ internally and take τ at the interface.
 
 from __future__ import annotations
 
-from tumble.models.base import (
-    ClosedForm,
-    Column,
-    Full,
-    Model,
-    Unperturbed,
-    Validity,
-    attitude_columns,
-    fixed_columns,
-    mean_columns,
-)
+from tumble.models.base import ClosedForm, Full, Model, Unperturbed, Validity, fixed_columns
 from tumble.models.inputs.resisting_medium import (
     DECLARED,
     Params,
@@ -63,6 +53,7 @@ from tumble.models.resisting_medium.closed_forms import (
     tan_theta_a3_zero_upper,
     tan_theta_quadratic,
 )
+from tumble.models.resisting_medium.columns import AVERAGED_COLUMNS, FULL_COLUMNS, SLOW_COLUMNS
 from tumble.models.resisting_medium.full import (
     FULL_EULER,
     FULL_OSCULATING,
@@ -123,35 +114,14 @@ __all__ = [
 # ---------------------------------------------------------------------------------------------
 # Registry record.
 
-_ANGLE = "rad"
-_COLUMNS_SLOW = (
-    Column("k", "angular momentum |K|/K0", "1", "(1.3)"),
-    Column("theta", "nutation angle ϑ between x3 and K", _ANGLE, "(1.3)", angle=False),
-    Column("rho", "polar angle ρ of K from X3", _ANGLE, "(1.3)"),
-    Column("sigma", "azimuth σ of K about X3", _ANGLE, "(1.3)", angle=True, unwrap=True),
-)
-_PSI = Column("psi", "precession angle ψ of x3 about K", _ANGLE, "(1.3)", angle=True)
-_PHI = Column("phi", "proper rotation angle φ", _ANGLE, "(1.3)", angle=True)
-_COLUMNS_MEAN = mean_columns((*_COLUMNS_SLOW, _PSI, _PHI))
-_COLUMNS_FULL = (
-    *_COLUMNS_SLOW,
-    Column(_PSI.name, _PSI.long_name, _ANGLE, "(1.3)", angle=True, unwrap=True),
-    Column(_PHI.name, _PHI.long_name, _ANGLE, "(1.3)", angle=True, unwrap=True),
-    *attitude_columns("τ"),
-)
-
 MODEL: Model[Params, State] = DECLARED.model(
-    Full(
-        forms={"euler": FULL_EULER, "osculating": FULL_OSCULATING},
-        default="euler",
-        columns=fixed_columns(_COLUMNS_FULL),
-    ),
+    Full.of(fixed_columns(FULL_COLUMNS), FULL_EULER, FULL_OSCULATING),
     averaged=DECLARED.averaged(
         _averaged_form,
-        fixed_columns((*_COLUMNS_SLOW, *_COLUMNS_MEAN)),
+        fixed_columns(AVERAGED_COLUMNS),
         compare=("k", "rho", "sigma", "theta"),
     ),
-    closed_form=ClosedForm(evaluate=closed_form, columns=fixed_columns(_COLUMNS_SLOW)),
+    closed_form=ClosedForm(evaluate=closed_form, columns=fixed_columns(SLOW_COLUMNS)),
     unperturbed=Unperturbed(
         "the free symmetric body",
         lambda p, st: EulerPoinsot.from_rigid_body_state(p.inertia, full_from_slow(p, st)).states,

@@ -63,9 +63,10 @@ def validity(p: Params, st: State, slow: SlowPath, tau_end: float) -> list[Valid
     Parameters
     ----------
     p : Params
-        Model parameters.
+        The body (κ), the moment and the medium (a, b, s), and ε.
     st : State
-        Initial state.
+        The initial state: W0 = k0 cos ϑ0 and ϑ0 decide the passages of ϑ = π/2 (§8.4) and
+        of k = 0 (§11).
     slow : callable
         ``slow(tau) -> {"k": ..., "theta": ...}`` along the averaged trajectory.
     tau_end : float

@@ -62,9 +62,9 @@ def predicted_limits(p: Params, st: State) -> dict[str, Any]:
     Parameters
     ----------
     p : Params
-        Model parameters.
+        The moment and the medium (a3, α, β, γ, δ, ε).
     st : State
-        Initial state.
+        The initial state, through W0 = k0 cos ϑ0 and V0 = k0 sin ϑ0 [1].
 
     Returns
     -------

@@ -17,17 +17,7 @@ means the angular momentum encircles the axis of the largest moment, ``"x1"`` th
 
 from __future__ import annotations
 
-from tumble.models.base import (
-    Column,
-    Diagnostics,
-    Full,
-    Model,
-    Unperturbed,
-    Validity,
-    attitude_columns,
-    fixed_columns,
-    mean_columns,
-)
+from tumble.models.base import Diagnostics, Full, Model, Unperturbed, Validity, fixed_columns
 from tumble.models.inputs.rotating_field import (
     DECLARED,
     GAMMA_TOL,
@@ -56,6 +46,7 @@ from tumble.models.rotating_field.averaged import (
     modulus_rate,
     numeric_kernel,
 )
+from tumble.models.rotating_field.columns import AVERAGED_COLUMNS, DIAGNOSTIC_COLUMNS, FULL_COLUMNS
 from tumble.models.rotating_field.full import (
     FULL_INERTIAL,
     FULL_ROTATING,
@@ -122,43 +113,15 @@ __all__ = [
 # ---------------------------------------------------------------------------------------------
 # Registry record.
 
-_T = Column("T", "kinetic energy T", "1", "(3.6)")
-_COLUMNS_SLOW = (
-    Column("L", "angular momentum |L|", "1", "(3.5)"),
-    Column("rho", "polar angle ρ of L from ξ3", "rad", "(3.5)"),
-    Column("sigma", "inertial azimuth σ of L", "rad", "(3.5)", angle=True, unwrap=True),
-    _T,
-    Column("k2", "Euler–Poinsot modulus k² of the current regime", "1", "(3.7)"),
-)
-_COLUMNS_MEAN = mean_columns(
-    (*(Column(f"L{i}", f"inertial angular momentum L_ξ{i}", "1", "(3.5)") for i in (1, 2, 3)), _T)
-)
-_COLUMNS_FULL = (
-    *_COLUMNS_SLOW,
-    Column("z1", "body angular velocity z1 = Ω1/ω", "1", "(1.5)"),
-    Column("z2", "body angular velocity z2 = Ω2/ω", "1", "(1.5)"),
-    Column("z3", "body angular velocity z3 = Ω3/ω", "1", "(1.5)"),
-    *attitude_columns("τ"),  # ω1, ω2, ω3 = z1, z2, z3, as in every model
-)
-_DIAGNOSTICS = (
-    Column("nu1", "polhode frequency ν1 = 2πν/4K", "1", "docs/theory/rotating-field.md §8"),
-    Column("nu2", "mean precession rate ν2 about L", "1", "docs/theory/rotating-field.md §8"),
-)
-
-
 MODEL: Model[Params, State] = DECLARED.model(
-    Full(
-        forms={"rotating": FULL_ROTATING, "inertial": FULL_INERTIAL},
-        default="rotating",
-        columns=fixed_columns(_COLUMNS_FULL),
-    ),
+    Full.of(fixed_columns(FULL_COLUMNS), FULL_ROTATING, FULL_INERTIAL),
     averaged=DECLARED.averaged(
         _averaged_form,
-        fixed_columns((*_COLUMNS_SLOW, *_COLUMNS_MEAN)),
+        fixed_columns(AVERAGED_COLUMNS),
         # σ is left out: it is the azimuth of L about ξ3, undefined as the transient aligns L
         # with ξ3 (ρ → 0), where its error says nothing about the motion.
         compare=("L", "rho", "T"),
-        diagnostics=Diagnostics(diagnostics, _DIAGNOSTICS),
+        diagnostics=Diagnostics(diagnostics, DIAGNOSTIC_COLUMNS),
     ),
     unperturbed=Unperturbed("the free body (3.1)", free_motion, _free_rhs),
     validity=Validity(check=validity, limits=predicted_limits),

@@ -71,9 +71,11 @@ def validity(p: Params, st: State, slow: SlowPath, tau_end: float) -> list[Valid
     Parameters
     ----------
     p : Params
+        The body and the field (ε/min I is the small parameter).
     st : State
+        The initial state (not read: the checks follow the averaged trajectory).
     slow : callable
-        ``slow(tau) -> columns`` along the averaged trajectory.
+        ``slow(tau) -> columns`` (``L``, ``T``) along the averaged trajectory.
     tau_end : float
         End of the run [1].
 

@@ -48,11 +48,17 @@ def predicted_limits(p: Params, st: State) -> dict[str, Any]:
     Parameters
     ----------
     p : Params
+        The body (principal moments [inertia unit]) and the field (β [rad], ε).
     st : State
+        The initial state (z [1], Γ), which fixes σ and, for β = 0, L_ξ3.
 
     Returns
     -------
     dict
+        ``L`` [inertia unit], ``rho``, ``sigma`` [rad], ``T`` [1], ``k2`` [1] and the
+        ``end_state`` in words; for I3 > I1 also the final nutation decay rates [1/τ] of the
+        averaged equations (``nutation_decay_rate_averaged``), at the phase 0 (``_phase0``)
+        and their range over the phase (``_range``).
     """
     I1, I2, I3 = p.sorted_inertia
     out: dict[str, Any] = {"sigma": _initial_sigma(p, st), "k2": 0.0}

@@ -15,7 +15,7 @@ from tumble.models.inputs.nonlinear_moment import Params, State, orbit_of
 from tumble.models.nonlinear_moment.full import full_from_slow
 
 # ---------------------------------------------------------------------------------------------
-# Closed form (unperturbed), extrema of the full solution, envelope discrepancy.
+# Closed form (unperturbed), the motion as full states, the orbit's constants.
 
 
 def closed_form(p: Params, st: State, t: FloatArray) -> dict[str, FloatArray]:

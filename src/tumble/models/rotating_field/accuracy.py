@@ -22,7 +22,7 @@ RESONANCE_ORDERS = (2, 2)
 
 
 # ---------------------------------------------------------------------------------------------
-# Validity, frequencies and predicted limits, §§11–13.
+# Validity and the fast frequencies, §12.
 
 
 def _frequencies(p: Params, cols: dict[str, FloatArray]) -> dict[str, FloatArray]:

@@ -7,7 +7,7 @@ order 2 in mean variables.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Callable
 from dataclasses import replace
 from typing import Literal
 
@@ -251,13 +251,33 @@ def nutation_phase(p: Params, st: State) -> float:
 _MEAN_SLOW = ("H", "R", "G", "a", "b", "w")
 
 
-def _well_columns(X: FloatArray, system: NutationSystem) -> FloatArray:
-    """θmax, θmin, k², period, root case of the orbits of rows [H, R, G, a, b], shape (n, 5)."""
-    table = nutation_columns(np.ascontiguousarray(X, dtype=float), system.u_hint)
-    for i in np.flatnonzero(np.isnan(table[:, 0])):
-        orbit = system.orbit(X[i])
-        table[i, :5] = orbit.theta_max, orbit.theta_min, orbit.k2, orbit.period, orbit.root_case
-    return table[:, :5]
+_ORBIT_COLUMNS = ("theta_max", "theta_min", "k2", "period", "root_case", "E")
+
+
+def _orbit_table(
+    X: FloatArray,
+    u_hint: float,
+    orbit: Callable[[FloatArray], NutationOrbit],
+    compiled: bool = True,
+) -> FloatArray:
+    """θmax, θmin [rad], k² [1], period [t], root case and energy [1/t²] of the orbits of the
+    rows of ``X`` (:data:`_ORBIT_COLUMNS`), shape (n, 6).
+
+    Where ``compiled`` (rows ``[H, R, G, a, b]``), from the compiled well
+    (:func:`tumble.kernels.nutation.nutation_columns`) about cos θ = ``u_hint``, and from the
+    Python orbit ``orbit(row)`` for a row it has no answer for; otherwise from the Python
+    orbit for every row.
+    """
+    if compiled:
+        table = nutation_columns(np.ascontiguousarray(X, dtype=float), u_hint)
+        rows = np.flatnonzero(np.isnan(table[:, 0])).tolist()
+    else:
+        table = np.empty((X.shape[0], len(_ORBIT_COLUMNS)))
+        rows = list(range(X.shape[0]))
+    for i in rows:
+        o = orbit(X[i])
+        table[i] = o.theta_max, o.theta_min, o.k2, o.period, o.root_case, o.E
+    return table
 
 
 def _mean_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:
@@ -286,7 +306,7 @@ def _mean_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[
         X, _ = mean.osculating(t, Y)
         # The osculating orbit's turning points and the mean orbit's k², period, root case:
         # the compiled well, the Python orbit for a row it has no answer for.
-        osc, avg = (_well_columns(rows, system) for rows in (X, Y[:, :5]))
+        osc, avg = (_orbit_table(rows, system.u_hint, system.orbit) for rows in (X, Y[:, :5]))
         cols = {"theta_max": osc[:, 0], "theta_min": osc[:, 1], "k2": avg[:, 2],
                 "period": avg[:, 3], "root_case": avg[:, 4], "E": Y[:, 0].copy()}  # fmt: skip
         for j, name in enumerate(("R", "G", "a", "b")):
@@ -427,7 +447,7 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
     )
 
 
-def _slow_orbit(y: Sequence[float], p: Params, form: str, u_hint: float) -> NutationOrbit:
+def _slow_orbit(y: FloatArray, p: Params, form: str, u_hint: float) -> NutationOrbit:
     x, R, G, a, b = (float(v) for v in y)
     if form == "energy":
         return NutationOrbit.from_energy(p.mu, a, b, R, G, x, u_hint=u_hint)
@@ -437,20 +457,8 @@ def _slow_orbit(y: Sequence[float], p: Params, form: str, u_hint: float) -> Nuta
 def _averaged_columns(
     Y: FloatArray, p: Params, form: str, u_hint: float, compiled: bool = False
 ) -> dict[str, FloatArray]:
-    n = Y.shape[0]
-    names = ("theta_max", "theta_min", "k2", "period", "root_case", "E")
-    if compiled:  # the compiled well; a row it has no answer for from the Python orbit
-        table = nutation_columns(np.ascontiguousarray(Y, dtype=float), u_hint)
-        out = {k: table[:, j].copy() for j, k in enumerate(names)}
-        rows = np.flatnonzero(np.isnan(table[:, 0])).tolist()
-    else:
-        out = {k: np.empty(n) for k in names}
-        rows = list(range(n))
-    for i in rows:
-        orbit = _slow_orbit(Y[i], p, form, u_hint)
-        out["theta_max"][i], out["theta_min"][i] = orbit.theta_max, orbit.theta_min
-        out["k2"][i], out["period"][i] = orbit.k2, orbit.period
-        out["root_case"][i], out["E"][i] = orbit.root_case, orbit.E
+    table = _orbit_table(Y, u_hint, lambda y: _slow_orbit(y, p, form, u_hint), compiled)
+    out = {k: table[:, j].copy() for j, k in enumerate(_ORBIT_COLUMNS)}
     if form == "theta_max":  # the integrated variable itself, not its round trip
         out["theta_max"] = Y[:, 0].copy()
     elif form == "theta_min":

@@ -13,6 +13,7 @@ from tumble.averaging import torus_mean
 from tumble.averaging.nutation import numeric_averages, torque_perturbation
 from tumble.errors import ParameterError
 from tumble.models import nonlinear_moment as nm
+from tumble.models.nonlinear_moment import perturbation as nm_perturbation
 from tumble.torques import ConstantBodyTorque, LinearDrag
 from tumble.unperturbed.symmetric_body import NutationOrbit
 
@@ -58,7 +59,7 @@ def test_damping_torque_through_the_engine_equals_the_closed_form(body, momenta,
         vectorized=False,
     )
     g_engine, z_engine = numeric_averages(orbit, pert, 0.2)
-    g_closed, z_closed = nm._builtin_averages(orbit, p, 0.2)
+    g_closed, z_closed = nm_perturbation._builtin_averages(orbit, p, 0.2)
     scale = max(1.0, abs(g_closed), float(np.max(np.abs(z_closed))))
     # Both to round-off (trapezoidal rules converged to 1e-12 relative): the required 1e-10.
     assert abs(g_engine - g_closed) < 1e-10 * scale
@@ -76,7 +77,7 @@ def test_engine_with_a_batched_torque_on_a_fixed_orbit():
     p = nm.Params(mu=0.8, a=-1.0, b=-0.3, eps=0.01, d=0.5, nu=0.2, pressure=nm.Pressure("exp"))
     orbit = NutationOrbit.from_state(0.8, -1.0, -0.3, 0.4, 0.6, 1.0, 0.3)
     g_engine, z_engine = numeric_averages(orbit, nm.engine_perturbation(p), 0.3)
-    g_closed, z_closed = nm._builtin_averages(orbit, p, 0.3)
+    g_closed, z_closed = nm_perturbation._builtin_averages(orbit, p, 0.3)
     # Round-off of both rules (converged to 1e-12): the required 1e-10.
     assert abs(g_engine - g_closed) < 1e-10
     assert np.max(np.abs(z_engine - z_closed)) < 1e-10
@@ -90,7 +91,7 @@ def test_torque_of_the_body_rate_is_averaged_over_phi_only():
     p = nm.Params(mu=0.8, a=-1.0, b=-0.3, eps=0.01, d=0.5, nu=0.2, pressure=nm.Pressure("exp"))
     orbit = NutationOrbit.from_state(0.8, -1.0, -0.3, 0.4, 0.6, 1.0, 0.3)
     drag = LinearDrag(np.diag([p.d, p.d, p.nu * p.mu]))
-    g_closed, z_closed = nm._builtin_averages(orbit, p, 0.3)
+    g_closed, z_closed = nm_perturbation._builtin_averages(orbit, p, 0.3)
     pert = torque_perturbation(drag, p.mu, ab_rate=lambda tau: tuple(map(float, p.ab_rate(tau))))
     g_fast, z_fast = numeric_averages(orbit, pert, 0.3)
     # Round-off of both rules (converged to 1e-12): the required 1e-10.

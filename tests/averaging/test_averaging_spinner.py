@@ -23,6 +23,7 @@ from tumble.averaging.spinner import (
 )
 from tumble.errors import ParameterError
 from tumble.models import resisting_medium as rm
+from tumble.models.resisting_medium import full as rm_full
 from tumble.rotations import (
     attitude_from_kframe_angles,
     euler313_to_matrix,
@@ -39,7 +40,7 @@ AGREEMENT = 1e-10
 
 def medium(p: rm.Params):
     """The moment m of (1.2) as a batched torque (the model's own law, without ε)."""
-    return lambda t, q, w: rm._body_moment(p, w)
+    return lambda t, q, w: rm_full._body_moment(p, w)
 
 
 def rate_scale(p: rm.Params, k: float, rho: float) -> np.ndarray:

@@ -13,6 +13,7 @@ from files import read_csv, write
 from typer.testing import CliRunner
 
 from tumble.cli import app
+from tumble.errors import ParameterError
 from tumble.io import parse_scenario, template
 from tumble.models import nonlinear_moment as nm
 from tumble.models.base import attitude_columns
@@ -198,7 +199,7 @@ def test_bad_input_is_one_line_exit_2_and_writes_nothing(tmp_path, text, field):
 
 
 def test_params_refuse_a_perturbation_without_eps():
-    with pytest.raises(nm.ParameterError, match=r"perturbation\.eps"):
+    with pytest.raises(ParameterError, match=r"perturbation\.eps"):
         nm.Params(mu=1.0, a=-1.0, b=0.0, d=0.5)
 
 

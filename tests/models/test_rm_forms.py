@@ -10,6 +10,7 @@ from strategies import kappa, matrices, rho_regular, theta_regular, vectors
 
 from tumble.integrate import integrate, simulate
 from tumble.models import resisting_medium as rm
+from tumble.models.resisting_medium import averaged as rm_averaged
 
 M = rm.MODEL
 GENERAL = rm.Params(
@@ -161,7 +162,9 @@ def test_compiled_averaged_forms_equal_the_python_ones(a, b, s, kap, k, theta):
     p = rm.Params(eps=0.01, kappa=kap, a=a, b=b, s=s)
     st_ = rm.State(k, 0.4, 0.2, 0.0, theta, 0.0)
     for form, y in (("k_theta", [k, theta]), ("W_V", [st_.W, st_.V])):
-        avg = next(f for f in (rm._AVERAGED_KTHETA, rm._AVERAGED_WV) if f.name == form)
+        avg = next(
+            f for f in (rm_averaged._AVERAGED_KTHETA, rm_averaged._AVERAGED_WV) if f.name == form
+        )
         assert avg.kernel is not None
         compiled = evaluate_rhs(avg.kernel(p), 0.0, y)
         python = avg.rhs(0.0, np.array(y), p)

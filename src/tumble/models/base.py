@@ -17,17 +17,33 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
-from typing import Generic, Literal, Protocol, TypeAlias, TypeVar
+from typing import Any, Generic, Literal, Protocol, TypeAlias, TypeVar
 
 import numpy as np
 
 from tumble._typing import ArrayLike, ComplexArray, FloatArray, Json
-from tumble.catalogue import Paper
+from tumble.catalogue import CATALOGUE, Paper
 from tumble.errors import ParameterError
 from tumble.kernels import Kernel
+from tumble.models.columns import (
+    QUATERNION_STATE,
+    TIME_T,
+    TIME_TAU,
+    Column,
+    Columns,
+    attitude_columns,
+    attitude_values,
+    fixed_columns,
+    mean_columns,
+)
+from tumble.models.family import DEFAULT_FAMILY, family_params, scaling_family
 from tumble.models.schema import ScenarioSchema
 
 __all__ = [
+    "DEFAULT_FAMILY",
+    "QUATERNION_STATE",
+    "TIME_T",
+    "TIME_TAU",
     "Averaged",
     "AveragedForm",
     "AveragingOptions",
@@ -55,6 +71,7 @@ __all__ = [
     "first_time",
     "fixed_columns",
     "frozen_array",
+    "mean_columns",
     "scaling_family",
     "separatrix_issue",
     "separatrix_time",
@@ -63,54 +80,9 @@ __all__ = [
 P = TypeVar("P")  # a model's Params
 S = TypeVar("S")  # a model's initial State
 
-Columns: TypeAlias = dict[str, FloatArray]
-"""Output columns by name, each an array over the sample times."""
 SlowPath: TypeAlias = Callable[[FloatArray], Columns]
 """A trajectory's columns anywhere in its time span: ``slow(tau) -> columns``."""
 Method = Literal["full", "averaged", "closed_form"]
-
-
-@dataclass(frozen=True, slots=True)
-class Column:
-    """Metadata of one output column; exports and axis labels read it, never retype it."""
-
-    name: str
-    long_name: str
-    units: str
-    equation: str = ""
-    angle: bool = False  # compare modulo 2π
-    unwrap: bool = False  # written as a continuous function of time (theory/resisting-medium §14)
-
-
-def attitude_columns(time: str) -> tuple[Column, ...]:
-    """The attitude and body angular velocity every full run writes, in a model whose time
-    is called ``time`` ("τ", "t").
-
-    The attitude quaternion q = (q0, q1, q2, q3) is scalar first and maps body components to
-    inertial ones, v_inertial = R(q) v_body (:mod:`tumble.rotations`), of unit norm and with
-    q0 ≥ 0 (q and −q are one attitude: every form of every model writes the same one, at the
-    cost of a change of sign where q0 passes 0); ω = (ω1, ω2, ω3) is the body angular velocity
-    in body axes, in the model's normalised units (rad per unit of its time)."""
-    parts = ("scalar part", "x component", "y component", "z component")
-    return (
-        *(Column(f"q{i}", f"attitude quaternion q{i}, {part} (body → inertial)", "1",
-                 "dq/dt = ½ q ⊗ (0, ω)") for i, part in enumerate(parts)),
-        *(Column(f"omega{i}", f"body angular velocity ω{i} about body axis x{i}", f"rad/{time}",
-                 "Euler's equations") for i in (1, 2, 3)),
-    )  # fmt: skip
-
-
-def attitude_values(q: FloatArray, omega: FloatArray) -> Columns:
-    """The columns of :func:`attitude_columns` of quaternions ``q`` (shape (n, 4), scalar first,
-    body → inertial; normalised here, q0 ≥ 0) and body angular velocities ``omega`` (shape
-    (n, 3))."""
-    q = np.asarray(q, dtype=float)
-    q = q / np.linalg.norm(q, axis=-1, keepdims=True)
-    q = np.where(q[:, :1] < 0.0, -q, q)
-    omega = np.asarray(omega, dtype=float)
-    out = {f"q{i}": q[:, i] for i in range(4)}
-    out |= {f"omega{i + 1}": omega[:, i] for i in range(3)}
-    return out
 
 
 AVERAGING_METHODS = ("closed_form", "numeric")
@@ -333,15 +305,6 @@ class Sampled(Protocol):
     def slow(self) -> SlowPath: ...
 
 
-def fixed_columns(columns: tuple[Column, ...]) -> Callable[[object], tuple[Column, ...]]:
-    """Columns that do not depend on the parameters, in the form the capabilities take."""
-
-    def of(_p: object) -> tuple[Column, ...]:
-        return columns
-
-    return of
-
-
 @dataclass(frozen=True, slots=True)
 class Full(Generic[P, S]):
     """The full equations of motion: every form by name, the default one, the output columns."""
@@ -353,6 +316,12 @@ class Full(Generic[P, S]):
     def __post_init__(self) -> None:
         if self.default not in self.forms:
             raise ValueError(f"default full form {self.default!r} is not among {list(self.forms)}")
+
+    @classmethod
+    def of(cls, columns: Callable[[P], tuple[Column, ...]], *forms: FullForm[P, S]) -> Full[P, S]:
+        """The full equations in ``forms``, each under its own name, the first the default,
+        with output ``columns``."""
+        return cls({form.name: form for form in forms}, forms[0].name, columns)
 
     def form(self, name: str | None = None) -> FullForm[P, S]:
         """The form called ``name`` (None: the default); ParameterError naming the others."""
@@ -626,6 +595,46 @@ class Declaration(Generic[P, S]):
     orders: tuple[int, ...] = (1,)
     hybrid: bool = False
 
+    def averaged(
+        self,
+        form: Callable[[P, S, AveragingOptions], AveragedForm[P, S]],
+        columns: Callable[[P], tuple[Column, ...]],
+        **details: Any,
+    ) -> Averaged[P, S]:
+        """The model's averaged equations ``form`` with output ``columns``, offering exactly
+        the choices declared here (``numeric``, ``coordinates``, ``corrected_start``,
+        ``orders``, ``hybrid``); ``details`` are the other :class:`Averaged` fields
+        (``compare``, ``errors``, ``diagnostics``)."""
+        return Averaged(
+            form,
+            columns,
+            coordinates=self.coordinates,
+            corrected_start=self.corrected_start,
+            numeric=self.numeric,
+            orders=self.orders,
+            hybrid=self.hybrid,
+            **details,
+        )
+
+    def model(self, full: Full[P, S], **capabilities: Any) -> Model[P, S]:
+        """The shipped model declared here: its name, description and paper from
+        :data:`tumble.catalogue.CATALOGUE`, its time, methods, method check and scenario keys
+        from this declaration, its full equations ``full``; ``capabilities`` are the other
+        :class:`Model` fields (``averaged``, ``closed_form``, ``unperturbed``, ``validity``,
+        ``stationary``, ``report``)."""
+        entry = CATALOGUE[self.name]
+        return Model(
+            name=entry.name,
+            description=entry.description,
+            paper=entry.paper,
+            time=self.time,
+            full=full,
+            check=self.check,
+            methods=self.methods,
+            scenario=self.scenario,
+            **capabilities,
+        )
+
     @classmethod
     def of(cls, model: Model[P, S]) -> Declaration[P, S]:
         """The declaration of ``model``."""
@@ -725,47 +734,3 @@ def frozen_array(name: str, value: ArrayLike, shape: tuple[int, ...]) -> FloatAr
         raise ParameterError(f"{name} must contain finite numbers only, got {value!r}")
     arr.setflags(write=False)
     return arr
-
-
-DEFAULT_FAMILY: Mapping[str, float] = {"eps": 1.0}
-"""How ``tumble verify`` scales a model's parameters with ε unless the model or the scenario
-says otherwise: ε alone, every other parameter fixed."""
-
-
-def scaling_family(p: object, exponents: Mapping[str, float] | None = None) -> dict[str, float]:
-    """The family of parameter sets along which ``tumble verify`` varies ε, as exponents:
-    along it each named parameter x scales as x·(ε/ε₀)^exponent.
-
-    ``exponents`` is the scenario's ``[run] verify_scaling``; None gives the model's default
-    (``Params.family()`` where it defines one, e.g. the orbital rate n ∝ √ε of a gravity
-    gradient, else ε alone). Names other than ``eps`` must be among ``Params.SCALABLE``.
-    """
-    if exponents is None:
-        default = getattr(p, "family", None)
-        return dict(default() if callable(default) else DEFAULT_FAMILY)
-    allowed = ("eps", *getattr(p, "SCALABLE", ()))
-    out = {"eps": 1.0}
-    for name, power in exponents.items():
-        if name not in allowed:
-            raise ParameterError(
-                f"run.verify_scaling: {name!r} is not a parameter that can scale with ε "
-                f"(allowed: {', '.join(allowed)})"
-            )
-        if not isinstance(power, int | float) or not -4.0 <= float(power) <= 4.0:
-            raise ParameterError(
-                f"run.verify_scaling.{name} = {power!r} is outside the allowed range [-4, 4] "
-                "(the exponent of ε/ε₀)"
-            )
-        out[name] = float(power)
-    return out
-
-
-def family_params(p: P, ratio: float, exponents: Mapping[str, float]) -> P:
-    """The parameter set at ε₀·ratio along the family ``exponents`` (:func:`scaling_family`):
-    ``eps`` scaled by ratio^exponents["eps"], and the model's own scalable parameters through
-    ``Params.along(ratio, others)``."""
-    q = p.with_eps(float(p.eps) * ratio ** exponents.get("eps", 1.0))  # type: ignore[attr-defined]
-    others = {k: v for k, v in exponents.items() if k != "eps" and v != 0.0}
-    if others:
-        q = q.along(ratio, others)
-    return q  # type: ignore[no-any-return]

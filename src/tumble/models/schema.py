@@ -26,6 +26,7 @@ __all__ = [
     "ScenarioSchema",
     "Section",
     "Variant",
+    "required",
     "si_columns",
 ]
 
@@ -121,6 +122,17 @@ class Inputs(Protocol):
     def run_end(self) -> float:
         """The last time the run asks for, in the units of its ``[run]`` table."""
         ...
+
+
+def required(inputs: Inputs, *names: str) -> tuple[Mapping[str, Any], ...]:
+    """The values of the required tables ``names`` of a scenario, in that order.
+
+    The loader has checked that every required table is present (an absent one is an input
+    error reported there), so a None here is a bug of the model's schema, not of the file.
+    """
+    found = tuple(inputs[name] for name in names)
+    assert all(values is not None for values in found), f"required sections {names}"
+    return found  # type: ignore[return-value]
 
 
 class Scaling(Protocol):

@@ -18,8 +18,8 @@ import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import ParameterError, ScenarioError, check_range, shorten
-from tumble.models.base import Column, Declaration
-from tumble.models.schema import Built, Inputs, Key, ScenarioSchema, Section, Variant
+from tumble.models.base import TIME_T, Declaration
+from tumble.models.schema import Built, Inputs, Key, ScenarioSchema, Section, Variant, required
 
 if TYPE_CHECKING:
     from tumble.unperturbed.symmetric_body import NutationOrbit
@@ -258,7 +258,9 @@ def orbit_of(p: Params, st: State) -> NutationOrbit:
     Parameters
     ----------
     p : Params
+        μ [1] and the moment's a, b at t = 0 [1/t²]; the perturbation is ignored.
     st : State
+        The state the orbit passes through at t = 0.
 
     Returns
     -------
@@ -364,8 +366,8 @@ def _pressure_of(value: Any, inputs: Inputs) -> Pressure:
 
 
 def _build(inputs: Inputs) -> Built[Params, State]:
-    par, pert, ini = inputs["parameters"], inputs["perturbation"], inputs["initial"]
-    assert par is not None and ini is not None  # required sections
+    par, ini = required(inputs, "parameters", "initial")
+    pert = inputs["perturbation"]
     if pert is not None and not (math.isfinite(pert["eps"]) and 0.0 < pert["eps"] < 1.0):
         raise ParameterError(
             f"perturbation.eps = {pert['eps']:g} is outside the allowed range (0, 1)"
@@ -401,7 +403,7 @@ SCENARIO: ScenarioSchema[Params, State] = ScenarioSchema(
 
 DECLARED: Declaration[Params, State] = Declaration(
     name="nonlinear_moment",
-    time=Column("t", "time t", "t"),
+    time=TIME_T,
     methods=("full", "closed_form", "averaged"),
     check=_check_method,
     scenario=SCENARIO,

@@ -17,8 +17,8 @@ from tumble._typing import ArrayLike, FloatArray, Json
 from tumble.bodies import RigidBody
 from tumble.errors import ParameterError, ScenarioError, check_finite, check_range
 from tumble.kernels import Kernel
-from tumble.models.base import Column, Declaration, frozen_array
-from tumble.models.schema import Built, Inputs, Key, ScenarioSchema, Section, Variant
+from tumble.models.base import TIME_TAU, Declaration, frozen_array
+from tumble.models.schema import Built, Inputs, Key, ScenarioSchema, Section, Variant, required
 from tumble.rotations import kframe_angles_from_attitude, quat_to_matrix
 from tumble.torques import ConstantBodyTorque, LinearDrag, QuadraticDrag, Torque
 
@@ -344,16 +344,14 @@ _PHYSICAL_INITIAL = Section(
 
 
 def _build(inputs: Inputs) -> Built[Params, State]:
-    par, ini = inputs["parameters"], inputs["initial"]
-    assert par is not None and ini is not None  # required sections
+    par, ini = required(inputs, "parameters", "initial")
     p = Params(eps=par["eps"], kappa=par["kappa"], a=par["a"], b=par["b"], s=par["s"])
     angles = {n: ini[n] for n in ("k", "rho", "sigma", "psi", "theta", "phi")}
     return Built(p, State(**angles))
 
 
 def _build_physical(inputs: Inputs) -> Built[Params, State]:
-    ph, ini = inputs["physical"], inputs["initial"]
-    assert ph is not None and ini is not None  # required sections
+    ph, ini = required(inputs, "physical", "initial")
     phys = PhysicalParams(I1=ph["I1"], I3=ph["I3"], A=ph["A"], B=ph["B"], S=ph["S"], M0=ph["M0"])
     given = [n for n in ("rho", "sigma", "psi") if ini[n] is not None]
     if ini["quaternion"] is not None and given:
@@ -379,7 +377,7 @@ SCENARIO: ScenarioSchema[Params, State] = ScenarioSchema(
 
 DECLARED: Declaration[Params, State] = Declaration(
     name="resisting_medium",
-    time=Column("tau", "time τ", "1"),
+    time=TIME_TAU,
     methods=("full", "averaged", "closed_form"),
     check=_check_method,
     scenario=SCENARIO,

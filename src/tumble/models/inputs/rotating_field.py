@@ -17,8 +17,8 @@ import numpy as np
 from tumble._typing import ArrayLike, FloatArray
 from tumble.bodies import RigidBody, proper_sorting
 from tumble.errors import ParameterError, ScenarioError, check_range
-from tumble.models.base import Column, Declaration, frozen_array
-from tumble.models.schema import Built, Inputs, Key, ScenarioSchema, Section, Variant
+from tumble.models.base import TIME_TAU, Declaration, frozen_array
+from tumble.models.schema import Built, Inputs, Key, ScenarioSchema, Section, Variant, required
 from tumble.rotations import euler313_to_matrix, kframe_matrix, matrix_to_quat, quat_to_matrix
 from tumble.torques import EddyCurrentTorque
 
@@ -423,15 +423,13 @@ def _initial_state(p: Params, ini: Mapping[str, Any]) -> State:
 
 
 def _build(inputs: Inputs) -> Built[Params, State]:
-    par, ini = inputs["parameters"], inputs["initial"]
-    assert par is not None and ini is not None  # required sections
+    par, ini = required(inputs, "parameters", "initial")
     p = Params(par["inertia"], par["beta"], par["eps"])
     return Built(p, _initial_state(p, ini))
 
 
 def _build_physical(inputs: Inputs) -> Built[Params, State]:
-    ph, ini = inputs["physical"], inputs["initial"]
-    assert ph is not None and ini is not None  # required sections
+    ph, ini = required(inputs, "physical", "initial")
     phys = PhysicalParams(ph["inertia"], ph["k_f"], ph["H"], ph["omega"], ph["beta"])
     p, st, scaling = normalize_physical(phys, ini["Omega"], ini["gamma"])
     return Built(p, st, scaling)
@@ -451,7 +449,7 @@ def _check_method(p: Params, method: str) -> None:
 
 DECLARED: Declaration[Params, State] = Declaration(
     name="rotating_field",
-    time=Column("tau", "time τ", "1"),
+    time=TIME_TAU,
     methods=("full", "averaged"),
     check=_check_method,
     scenario=SCENARIO,

@@ -157,6 +157,14 @@ FIGURES: tuple[Figure, ...] = (
         "report.png",
     ),
     Figure(
+        "kernels.svg",
+        "Declared terms, kinds and layouts",
+        "A term module, the registry generated from it, the kinds and a model package.",
+        "architecture",
+        (),
+        "",
+    ),
+    Figure(
         "layers.svg",
         "The layers of tumble",
         "Its parts top to bottom; imports point down only (the import-linter contract).",

@@ -10,24 +10,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from tumble.kernels.codes import (
-    EVENT_EQUATOR,
-    EVENT_FIELD_SEPARATRIX,
-    EVENT_NONE,
-    EVENT_NUTATION_SEPARATRIX,
-    EVENT_THETA_DOT,
-    EVENT_TRIAXIAL_SEPARATRIX,
-    KIND_FIELD_AVERAGED,
-    KIND_MEDIUM_AVERAGED,
-    KIND_NONLINEAR_MOMENT,
-    KIND_NUTATION_AVERAGED,
-    KIND_NUTATION_ENGINE,
-    KIND_ORBITING_BODY,
-    KIND_RIGID_BODY,
-    KIND_ROTATING_FIELD,
-    KIND_SPINNER_AVERAGED,
-    KIND_TRIAXIAL_AVERAGED,
-)
+from tumble.kernels import codes
 from tumble.kernels.layout import Layout
 from tumble.kernels.params import (
     FIELD_AVERAGED,
@@ -56,7 +39,7 @@ class Kind:
     params : Layout
         Its parameters.
     events : frozenset of int
-        The ``EVENT_*`` functions that may watch it (``EVENT_NONE`` always may).
+        The ``EVENT_*`` functions that may watch it (``codes.EVENT_NONE`` always may).
     """
 
     name: str
@@ -66,7 +49,7 @@ class Kind:
 
     def allows(self, event: int) -> bool:
         """Whether ``event`` may watch this kind."""
-        return event == EVENT_NONE or event in self.events
+        return event == codes.EVENT_NONE or event in self.events
 
 
 _BODY = ("w1", "w2", "w3", "q0", "q1", "q2", "q3")
@@ -74,51 +57,53 @@ _SLOW = ("L1", "L2", "L3", "r")
 _ENERGY = ("H", "R", "G", "a", "b")
 
 KINDS: dict[int, Kind] = {
-    KIND_RIGID_BODY: Kind("Euler's equations under a torque program", _BODY, RIGID_BODY),
-    KIND_ORBITING_BODY: Kind("Euler's equations under terms along an orbit", _BODY, RIGID_BODY),
-    KIND_ROTATING_FIELD: Kind(
+    codes.KIND_RIGID_BODY: Kind("Euler's equations under a torque program", _BODY, RIGID_BODY),
+    codes.KIND_ORBITING_BODY: Kind(
+        "Euler's equations under terms along an orbit", _BODY, RIGID_BODY
+    ),
+    codes.KIND_ROTATING_FIELD: Kind(
         "the rotating field's form (1.5)",
         ("z1", "z2", "z3", *(f"g{r}{c}" for r in range(1, 4) for c in range(1, 4))),
         ROTATING_FIELD,
     ),
-    KIND_NONLINEAR_MOMENT: Kind(
+    codes.KIND_NONLINEAR_MOMENT: Kind(
         "the nonlinear moment's Euler equations (1.1)",
         _BODY,
         NONLINEAR_MOMENT,
-        frozenset({EVENT_THETA_DOT}),
+        frozenset({codes.EVENT_THETA_DOT}),
     ),
-    KIND_MEDIUM_AVERAGED: Kind(
+    codes.KIND_MEDIUM_AVERAGED: Kind(
         "the averaged equations (2.2)/(2.3)", ("k", "theta"), MEDIUM_AVERAGED
     ),
-    KIND_FIELD_AVERAGED: Kind(
+    codes.KIND_FIELD_AVERAGED: Kind(
         "the rotating field's averaged vector form",
         _SLOW,
         FIELD_AVERAGED,
-        frozenset({EVENT_FIELD_SEPARATRIX}),
+        frozenset({codes.EVENT_FIELD_SEPARATRIX}),
     ),
-    KIND_NUTATION_AVERAGED: Kind(
+    codes.KIND_NUTATION_AVERAGED: Kind(
         "Volosov's averaged equations in the energy form",
         _ENERGY,
         NONLINEAR_MOMENT,
-        frozenset({EVENT_NUTATION_SEPARATRIX}),
+        frozenset({codes.EVENT_NUTATION_SEPARATRIX}),
     ),
-    KIND_NUTATION_ENGINE: Kind(
+    codes.KIND_NUTATION_ENGINE: Kind(
         "the engine's nutation setting",
         _ENERGY,
         NONLINEAR_MOMENT,
-        frozenset({EVENT_NUTATION_SEPARATRIX}),
+        frozenset({codes.EVENT_NUTATION_SEPARATRIX}),
     ),
-    KIND_SPINNER_AVERAGED: Kind(
+    codes.KIND_SPINNER_AVERAGED: Kind(
         "the engine's spinner setting",
         ("k", "rho", "sigma", "theta"),
         SPINNER_AVERAGED,
-        frozenset({EVENT_EQUATOR}),
+        frozenset({codes.EVENT_EQUATOR}),
     ),
-    KIND_TRIAXIAL_AVERAGED: Kind(
+    codes.KIND_TRIAXIAL_AVERAGED: Kind(
         "the engine's triaxial setting",
         _SLOW,
         TRIAXIAL_AVERAGED,
-        frozenset({EVENT_TRIAXIAL_SEPARATRIX}),
+        frozenset({codes.EVENT_TRIAXIAL_SEPARATRIX}),
     ),
 }
 """Every kind the compiled right-hand side (:func:`tumble.kernels.rhs.rhs`) knows."""

@@ -51,27 +51,7 @@ from numba import types
 from numba.extending import overload
 
 from tumble._typing import FloatArray
-from tumble.kernels.codes import (
-    DEGENERATE_RTOL,
-    EVENT_EQUATOR,
-    EVENT_FIELD_SEPARATRIX,
-    EVENT_NUTATION_SEPARATRIX,
-    EVENT_THETA_DOT,
-    EVENT_TRIAXIAL_SEPARATRIX,
-    KIND_FIELD_AVERAGED,
-    KIND_MEDIUM_AVERAGED,
-    KIND_NONLINEAR_MOMENT,
-    KIND_NUTATION_AVERAGED,
-    KIND_NUTATION_ENGINE,
-    KIND_ORBITING_BODY,
-    KIND_RIGID_BODY,
-    KIND_ROTATING_FIELD,
-    KIND_SPINNER_AVERAGED,
-    KIND_TRIAXIAL_AVERAGED,
-    MC_FLOOR,
-    REACHED_MARGIN,
-    SEPARATRIX_RTOL,
-)
+from tumble.kernels import codes
 from tumble.kernels.elliptic import elliprd, elliprf
 from tumble.kernels.frames import quaternion_rates
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, OVERLOAD, jit
@@ -264,10 +244,10 @@ def _mean_square_rate(i1: float, i2: float, i3: float, r: float) -> float:
     """⟨|z|²⟩/L² of the Euler–Poinsot motion with 2T/L² = r (sorted moments, r inside
     [1/I3, 1/I1]): :func:`tumble.unperturbed.euler_poinsot.mean_square_rate` at L = 1."""
     d1, d2, d3 = max(1.0 - r * i1, 0.0), 1.0 - r * i2, max(r * i3 - 1.0, 0.0)
-    tol = DEGENERATE_RTOL * i3
+    tol = codes.DEGENERATE_RTOL * i3
     if i3 - i1 <= 2.0 * tol:  # a sphere
         return 1.0 / (i2 * i2)
-    x3 = d2 >= 0.0 if abs(d2) <= SEPARATRIX_RTOL else d2 > 0.0
+    x3 = d2 >= 0.0 if abs(d2) <= codes.SEPARATRIX_RTOL else d2 > 0.0
     m, mc = 0.0, 1.0
     if i2 - i1 <= tol:  # symmetric about x3
         x3 = True
@@ -280,7 +260,7 @@ def _mean_square_rate(i1: float, i2: float, i3: float, r: float) -> float:
         else:
             den = (i2 - i1) * d3
             m, mc = (i3 - i2) * d1 / den, -(i3 - i1) * d2 / den
-        if mc < MC_FLOOR:
+        if mc < codes.MC_FLOOR:
             m, mc = 1.0, 0.0
         else:
             m, mc = min(max(m, 0.0), 1.0), min(mc, 1.0)
@@ -307,7 +287,7 @@ def _field_averaged(y: FloatArray, p: FloatArray, out: FloatArray) -> None:
     eps, s2, c2 = p[_FA.eps], p[_FA.s2], p[_FA.c2]
     i1, i2, i3 = vec3(p, _FA.inertia)
     lo, hi = 1.0 / i3, 1.0 / i1
-    margin = REACHED_MARGIN * hi
+    margin = codes.REACHED_MARGIN * hi
     r = y[3]
     if not lo - margin <= r <= hi + margin:
         for j in range(4):
@@ -329,25 +309,25 @@ def _field_averaged(y: FloatArray, p: FloatArray, out: FloatArray) -> None:
 def _any_kind(kind: int, t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> None:
     """:func:`rhs` for a kind known only at run time (NaN for an unknown one, so that the
     integration fails)."""
-    if kind == KIND_RIGID_BODY:
+    if kind == codes.KIND_RIGID_BODY:
         _rigid_body(t, y, p, out)
-    elif kind == KIND_ORBITING_BODY:
+    elif kind == codes.KIND_ORBITING_BODY:
         _orbiting_body(t, y, p, out)
-    elif kind == KIND_ROTATING_FIELD:
+    elif kind == codes.KIND_ROTATING_FIELD:
         _rotating_field(y, p, out)
-    elif kind == KIND_NONLINEAR_MOMENT:
+    elif kind == codes.KIND_NONLINEAR_MOMENT:
         _nonlinear_moment(t, y, p, out)
-    elif kind == KIND_MEDIUM_AVERAGED:
+    elif kind == codes.KIND_MEDIUM_AVERAGED:
         _medium_averaged(y, p, out)
-    elif kind == KIND_FIELD_AVERAGED:
+    elif kind == codes.KIND_FIELD_AVERAGED:
         _field_averaged(y, p, out)
-    elif kind == KIND_NUTATION_AVERAGED:
+    elif kind == codes.KIND_NUTATION_AVERAGED:
         nutation_averaged(t, y, p, out)
-    elif kind == KIND_SPINNER_AVERAGED:
+    elif kind == codes.KIND_SPINNER_AVERAGED:
         spinner_averaged(t, y, p, out)
-    elif kind == KIND_NUTATION_ENGINE:
+    elif kind == codes.KIND_NUTATION_ENGINE:
         nutation_engine(t, y, p, out)
-    elif kind == KIND_TRIAXIAL_AVERAGED:
+    elif kind == codes.KIND_TRIAXIAL_AVERAGED:
         triaxial_averaged(t, y, p, out)
     else:
         for j in range(y.size):
@@ -376,16 +356,16 @@ def _with_time(kernel: Callable[..., None]) -> Callable[..., None]:
 
 
 _BY_KIND: dict[int, Callable[..., None]] = {
-    KIND_RIGID_BODY: _rigid_body,
-    KIND_ORBITING_BODY: _orbiting_body,
-    KIND_ROTATING_FIELD: _with_time(_rotating_field),
-    KIND_NONLINEAR_MOMENT: _nonlinear_moment,
-    KIND_MEDIUM_AVERAGED: _with_time(_medium_averaged),
-    KIND_FIELD_AVERAGED: _with_time(_field_averaged),
-    KIND_NUTATION_AVERAGED: nutation_averaged,
-    KIND_SPINNER_AVERAGED: spinner_averaged,
-    KIND_NUTATION_ENGINE: nutation_engine,
-    KIND_TRIAXIAL_AVERAGED: triaxial_averaged,
+    codes.KIND_RIGID_BODY: _rigid_body,
+    codes.KIND_ORBITING_BODY: _orbiting_body,
+    codes.KIND_ROTATING_FIELD: _with_time(_rotating_field),
+    codes.KIND_NONLINEAR_MOMENT: _nonlinear_moment,
+    codes.KIND_MEDIUM_AVERAGED: _with_time(_medium_averaged),
+    codes.KIND_FIELD_AVERAGED: _with_time(_field_averaged),
+    codes.KIND_NUTATION_AVERAGED: nutation_averaged,
+    codes.KIND_SPINNER_AVERAGED: spinner_averaged,
+    codes.KIND_NUTATION_ENGINE: nutation_engine,
+    codes.KIND_TRIAXIAL_AVERAGED: triaxial_averaged,
 }
 
 
@@ -409,20 +389,20 @@ def _rhs_by_kind(kind: Any, t: Any, y: Any, p: Any, out: Any) -> Callable[..., N
 @jit(INLINE)
 def event(kind: int, t: float, y: FloatArray, p: FloatArray) -> float:
     """The event function ``kind`` at (t, y); the integrator locates its sign changes."""
-    if kind == EVENT_THETA_DOT:
+    if kind == codes.EVENT_THETA_DOT:
         # θ' sinθ = ω·(e_z × e3) (nonlinear-moment quaternion form): the sign of θ'.
         q0, q1, q2, q3 = y[3], y[4], y[5], y[6]
         n2 = q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3
         ex = 2.0 * (q1 * q3 - q0 * q2) / n2
         ey = 2.0 * (q2 * q3 + q0 * q1) / n2
         return y[0] * ey - y[1] * ex
-    if kind == EVENT_FIELD_SEPARATRIX:
+    if kind == codes.EVENT_FIELD_SEPARATRIX:
         return y[3] - 1.0 / p[_FA_I2]  # r − 1/I2 of the field's averaged vector form
-    if kind == EVENT_NUTATION_SEPARATRIX:
+    if kind == codes.EVENT_NUTATION_SEPARATRIX:
         return separatrix_distance(y)
-    if kind == EVENT_EQUATOR:
+    if kind == codes.EVENT_EQUATOR:
         return math.cos(y[3])  # a spinner's averaged state [k, ρ, σ, ϑ]
-    if kind == EVENT_TRIAXIAL_SEPARATRIX:
+    if kind == codes.EVENT_TRIAXIAL_SEPARATRIX:
         return y[3] - 1.0 / p[_TA_I2]  # r − 1/I2 of the triaxial engine
     return 1.0
 

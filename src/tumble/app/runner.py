@@ -187,9 +187,9 @@ def verify(
         A TOML scenario file or a loaded scenario (its ``methods`` are ignored: full and
         averaged always run).
     out_dir : str or Path, optional
-        Output directory (created if needed); None writes nothing.
     overwrite : bool
-        Replace the directory's contents even when they are another run's results.
+        As in :func:`run`: the output directory (created if needed; None writes nothing), and
+        whether to replace its contents even when they are another run's results.
 
     Returns
     -------

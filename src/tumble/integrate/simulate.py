@@ -43,6 +43,7 @@ Method = Literal["full", "averaged", "closed_form"]
 
 P = TypeVar("P")
 S = TypeVar("S")
+J = TypeVar("J")
 
 DEFAULT_AVERAGING = AveragingOptions()
 """The paper's averaged equations in the model's default coordinates, from the given state."""
@@ -656,7 +657,7 @@ def simulate_batch(
         except TumbleError as exc:
             out[i] = exc
 
-    _each(work, jobs, threads)
+    each_on_threads(work, jobs, threads)
     return [o for o in out if o is not None]
 
 
@@ -672,8 +673,20 @@ def batch_times(tau: ArrayLike, n_points: int) -> list[FloatArray]:
     return [shared] * n_points
 
 
-def _each(work: Callable[[_Job], None], jobs: list[_Job], threads: int | None) -> None:
-    """``work(job)`` for every job, on a pool of ``threads`` (None: every core numba uses)."""
+def each_on_threads(work: Callable[[J], None], jobs: Sequence[J], threads: int | None) -> None:
+    """``work(job)`` for every job, on a pool of ``threads`` (None: every core numba uses),
+    in the calling thread when there is one worker or one job.
+
+    Parameters
+    ----------
+    work : callable
+        Called once per job; its results go where it puts them (the compiled integrators
+        release the GIL, so the jobs run in parallel).
+    jobs : sequence
+        The jobs.
+    threads : int, optional
+        Threads of the pool (at most one per job).
+    """
     workers = dop853.available_threads() if threads is None else max(1, int(threads))
     if workers == 1 or len(jobs) < 2:
         for job in jobs:

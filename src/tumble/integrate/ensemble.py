@@ -25,14 +25,8 @@ from tumble.integrate.dop853.core import BAD_START, OK, RUNNING, STOPPED, Chunk
 from tumble.integrate.dop853.driver import _cut
 from tumble.integrate.limits import FIRST_CHUNK, MAX_STEPS, pace_message
 from tumble.integrate.ode import compiled_breakpoints, joined_pieces, split_plan
-from tumble.integrate.simulate import (
-    Trajectory,
-    _unwrap_columns,
-    each_on_threads,
-    simulate,
-    start_refusal,
-)
-from tumble.integrate.simulate import _trajectory as _dense_trajectory
+from tumble.integrate.simulate import each_on_threads, simulate, start_refusal
+from tumble.integrate.trajectory import RunSpec, Trajectory, integrated, unwrap_columns
 from tumble.kernels import EVENT_NONE, Kernel
 from tumble.models.base import AveragedForm, AveragingOptions, Breakpoint, Model
 
@@ -120,7 +114,8 @@ def averaged_batch(
             wall = (time.perf_counter() - start) / len(group)
             for pt in group:
                 if out[pt.index] is None:
-                    out[pt.index] = _finished(model, pt, wall, dense, single)
+                    run = RunSpec(model, pt.params, pt.initial, pt.tau, rtol, atol, max_steps)
+                    out[pt.index] = _finished(run, pt, wall, dense, single)
 
     blocks = [range(k, min(k + BLOCK_SIZE, n_points)) for k in range(0, n_points, BLOCK_SIZE)]
     each_on_threads(run_block, blocks, threads)
@@ -162,7 +157,7 @@ def _prepare(
 
 
 def _finished(
-    model: Model[P, S],
+    run: RunSpec[P, S],
     pt: _Point[P, S],
     wall: float,
     dense: bool,
@@ -172,11 +167,9 @@ def _finished(
     time: with ``dense`` from its pieces, as :func:`simulate` builds it, else from its
     samples."""
     if not dense:
-        return _trajectory(model, pt, wall, single)
-    what = f"{model.name} averaged equations {pt.form.equation}"
-    sol = joined_pieces(pt.pieces, what)
-    return _dense_trajectory(model, pt.params, pt.initial, pt.tau, "averaged", pt.form, sol,
-                             time.perf_counter() - wall)  # fmt: skip
+        return _trajectory(run.model, pt, wall, single)
+    sol = joined_pieces(pt.pieces, run.what(pt.form))
+    return integrated(run, "averaged", pt.form, sol, time.perf_counter() - wall)
 
 
 def _integrate_group(
@@ -306,7 +299,7 @@ def _trajectory(
     """The Trajectory of a point of a block from its samples."""
     try:
         cols = pt.form.to_columns(pt.params, pt.initial, pt.tau, pt.samples)
-        _unwrap_columns(model, pt.params, "averaged", cols, pt.initial)
+        unwrap_columns(model, pt.params, "averaged", cols, pt.initial)
     except TumbleError as exc:
         return exc
     rerun: list[Trajectory] = []

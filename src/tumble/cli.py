@@ -86,6 +86,8 @@ def _guarded(work: Callable[[], Any], interrupted: str = "interrupted") -> Any:
         raise typer.Exit(1) from None
 
 
+ScenarioFile = Annotated[Path, typer.Argument(help="TOML scenario file")]
+
 Overwrite = Annotated[
     bool,
     typer.Option(
@@ -128,7 +130,7 @@ def _interrupted(message: str = "interrupted") -> None:
 
 @app.command("run")
 def run_cmd(
-    scenario: Annotated[Path, typer.Argument(help="TOML scenario file")],
+    scenario: ScenarioFile,
     out_dir: Annotated[
         Path | None,
         typer.Option("-o", "--out", help="output directory [default: out/SCENARIO-NAME]"),
@@ -174,7 +176,7 @@ def _print_warnings(caught: list[warnings.WarningMessage]) -> None:
 
 @app.command("verify")
 def verify_cmd(
-    scenario: Annotated[Path, typer.Argument(help="TOML scenario file")],
+    scenario: ScenarioFile,
     out_dir: Annotated[
         Path | None,
         typer.Option("-o", "--out", help="output directory [default: out/SCENARIO-NAME_verify]"),

@@ -7,6 +7,7 @@ A scenario given in SI is shown in SI (the files hold both).
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from typing import Any
 
 from rich.markup import escape
@@ -45,7 +46,7 @@ def run_lines(result: RunResult, shown: tuple[str, ...]) -> list[str]:
     predicted limits of the variables in ``shown``, and the model's own summary figures."""
     scaling = result.request.scaling
 
-    def value(name: str, x: float, fmt: str) -> str:
+    def value(name: str, x: Any, fmt: str) -> str:
         # In SI, with its unit, for a scenario given in SI.
         conv = scaling.si(name) if scaling is not None else None
         return f"{x:{fmt}}" if conv is None else f"{x * conv[0]:{fmt}} {conv[1]}"
@@ -66,7 +67,7 @@ def run_lines(result: RunResult, shown: tuple[str, ...]) -> list[str]:
     return lines + _model_lines(result.report.summary)
 
 
-def _model_lines(extra: dict[str, Any]) -> list[str]:
+def _model_lines(extra: Mapping[str, Any]) -> list[str]:
     """The nonlinear moment's summary figures, where the run's report has them: the largest
     envelope discrepancy (θmax, relative) and the root case of the unperturbed motion."""
     lines = []

@@ -86,6 +86,8 @@ def _guarded(work: Callable[[], Any], interrupted: str = "interrupted") -> Any:
         raise typer.Exit(1) from None
 
 
+ScenarioFile = Annotated[Path, typer.Argument(help="TOML scenario file")]
+
 Overwrite = Annotated[
     bool,
     typer.Option(
@@ -128,7 +130,7 @@ def _interrupted(message: str = "interrupted") -> None:
 
 @app.command("run")
 def run_cmd(
-    scenario: Annotated[Path, typer.Argument(help="TOML scenario file")],
+    scenario: ScenarioFile,
     out_dir: Annotated[
         Path | None,
         typer.Option("-o", "--out", help="output directory [default: out/SCENARIO-NAME]"),
@@ -147,66 +149,20 @@ def run_cmd(
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", TumbleWarning)
         sc = _guarded(lambda: _load(scenario, allow_module))
-        from tumble.app.runner import in_si, run
+        from tumble.app.runner import run
 
         out_dir = out_dir or Path("out") / scenario.stem
         result = _guarded(lambda: run(sc, out_dir, overwrite=overwrite))
-    from tumble.plot.labels import with_units
+    from tumble.app.summary import run_lines, run_table
     from tumble.plot.settings import figure_settings
 
     _print_warnings(caught)
 
     model = result.request.model
     shown = figure_settings(model.name).variables
-    table = Table(title=f"{model.name} — {scenario}", title_justify="left")
-    # A scenario given in SI is shown in SI (the files hold both).
-    datasets = in_si(result).datasets
-    first = next(iter(datasets.values()))
-    finals = [with_units(f"final {v}", first[v].attrs.get("units", "")) if v in first
-              else f"final {v}" for v in shown]  # fmt: skip
-    for col in ("method", "form", "integrator", "wall time [s]", *finals):
-        table.add_column(escape(col))  # "[s]" is a unit, not rich markup
-    for m, ds in datasets.items():
-        table.add_row(
-            m,
-            ds.attrs["form"],
-            ds.attrs["integrator"],
-            f"{ds.attrs['wall_time_s']:.3g}",
-            *(f"{ds[v].values[-1]:.6g}" if v in ds else "—" for v in shown),
-        )
-    out.print(table)
-    scaling = result.request.scaling
-
-    def value(name: str, x: float, fmt: str) -> str:
-        # In SI, with its unit, for a scenario given in SI.
-        conv = scaling.si(name) if scaling is not None else None
-        return f"{x:{fmt}}" if conv is None else f"{x * conv[0]:{fmt}} {conv[1]}"
-
-    for pair, diffs in result.differences.items():
-        text = ", ".join(f"{k} {value(k, v, '.2e')}" for k, v in diffs.items())
-        out.print(f"max |difference| {pair}: {text}", highlight=False)
-    lim = result.limits
-    if lim:
-        text = ", ".join(
-            f"{v} → {'undefined' if lim[v] is None else value(v, lim[v], '.6g')}"
-            for v in shown
-            if v in lim
-        )
-        note = lim.get("statement") or lim.get("end_state")
-        out.print(f"predicted limits: {text}" + (f" ({note})" if note else ""), highlight=False)
-    extra = result.report.summary
-    if extra.get("max_envelope_discrepancy") is not None:
-        out.print(
-            f"max envelope discrepancy (θmax, relative): {extra['max_envelope_discrepancy']:.3%}",
-            highlight=False,
-        )
-    if "root_case" in extra:
-        out.print(
-            f"root case {extra['root_case']}, k² = {extra['k2']:.6g}, "
-            f"θ ∈ [{extra['theta_min']:.6g}, {extra['theta_max']:.6g}] rad, "
-            f"period {extra['period']:.6g}",
-            highlight=False,
-        )
+    out.print(run_table(result, shown, f"{model.name} — {scenario}"))
+    for line in run_lines(result, shown):
+        out.print(line, highlight=False)
     if result.verification is not None:
         out.print(f"verify: {result.verification.verdict}", highlight=False, soft_wrap=True)
     out.print(f"outputs written to {out_dir}/", highlight=False)
@@ -220,7 +176,7 @@ def _print_warnings(caught: list[warnings.WarningMessage]) -> None:
 
 @app.command("verify")
 def verify_cmd(
-    scenario: Annotated[Path, typer.Argument(help="TOML scenario file")],
+    scenario: ScenarioFile,
     out_dir: Annotated[
         Path | None,
         typer.Option("-o", "--out", help="output directory [default: out/SCENARIO-NAME_verify]"),
@@ -449,227 +405,6 @@ def stability_map_cmd(
     out.print(f"written: {', '.join(str(f) for f in files)}", highlight=False)
 
 
-def _yes(met: bool) -> str:
-    return "[green]yes[/]" if met else "[red]no[/]"
-
-
-def _full_table(r: dict[str, Any]) -> Table | None:
-    """The compiled DOP853 against scipy's calling the right-hand side from Python."""
-    tg, st = r["targets"], r["settings"]
-    if not r["full_speedup_vs_scipy"]:
-        return None
-    t = Table(
-        title=f"Full simulation, {st['horizon']:g} time units at rtol {st['rtol']:g}: "
-        "compiled DOP853 vs scipy DOP853 calling the right-hand side from Python",
-        title_justify="left",
-    )
-    for col in ("case", "tumble [s]", "error", "scipy [s]", "error", "speed-up", "≥ 50×"):
-        t.add_column(col, justify="left" if col == "case" else "right")
-    for name, v in r["full_speedup_vs_scipy"].items():
-        t.add_row(
-            name,
-            f"{v['tumble_s']:.3g}",
-            f"{v['tumble_error']:.1e}",
-            f"{v['scipy_s']:.3g}",
-            f"{v['scipy_error']:.1e}",
-            f"{v['speedup']:.0f}×",
-            _yes(v["speedup"] >= tg["full_speedup_vs_scipy"]),
-        )
-    return t
-
-
-def _heyoka_table(r: dict[str, Any]) -> Table | None:
-    """The compiled DOP853 against heyoka.py at equal error."""
-    tg = r["targets"]
-    if not r["full_time_ratio_vs_heyoka"]:
-        return None
-    t = Table(title="Against heyoka.py (Taylor, LLVM) at equal error", title_justify="left")
-    for col in ("case", "tumble [s]", "error", "heyoka [s]", "ratio", "≤ 1.5", "≤ 1.0"):
-        t.add_column(col, justify="left" if col == "case" else "right")
-    for name, v in r["full_time_ratio_vs_heyoka"].items():
-        label = f"{name} (no s)" if v["note"] else name
-        t.add_row(
-            label,
-            f"{v['tumble_s']:.3g}",
-            f"{v['tumble_error']:.1e}",
-            f"{v['heyoka_s_at_equal_error']:.3g}" + ("" if v["bracketed"] else "*"),
-            f"{v['ratio']:.2f}",
-            _yes(v["ratio"] <= tg["full_time_ratio_vs_heyoka"]),
-            _yes(v["ratio"] <= tg["full_time_ratio_vs_heyoka_stretch"]),
-        )
-    return t
-
-
-def _averaged_table(r: dict[str, Any], key: str = "averaged_speedup") -> Table | None:
-    """Averaged (and closed form) against full: the paper models' equations, or the general
-    engine's (``key = "engine_speedup"``)."""
-    if not r.get(key):
-        return None
-    what = (
-        "The general engine's averaged" if key == "engine_speedup" else "Averaged (and closed form)"
-    )
-    t = Table(
-        title=f"{what} vs full over the template's slow horizon; error relative, on the slow "
-        "variables",
-        title_justify="left",
-    )
-    for col in (
-        "model",
-        "ε",
-        "full [s]",
-        "averaged [s]",
-        "error",
-        "speed-up",
-        "at equal accuracy",
-        "nfev ratio",
-        "eval [µs]: averaged / full",
-        "closed form [s]",
-        "speed-up",
-    ):
-        t.add_column(col, justify="left" if col == "model" else "right")
-    for name, by_eps in r[key].items():
-        for eps, v in by_eps.items():
-            a, c = v["averaged"], v.get("closed_form")
-            t.add_row(
-                name,
-                eps,
-                f"{v['full_s']:.3g}",
-                f"{a['time_s']:.3g}",
-                f"{a['error']:.1e}",
-                f"{a['speedup']:.3g}×",
-                f"{a['speedup_equal_accuracy']:.3g}×"
-                if "speedup_equal_accuracy" in a
-                else f"≥ {a['speedup_equal_accuracy_at_least']:.3g}×"
-                if "speedup_equal_accuracy_at_least" in a
-                else "—",
-                f"{a['nfev_ratio']:.0f}",
-                f"{v['eval_us']['averaged']:.3g} / {v['eval_us']['full']:.3g}"
-                if "eval_us" in v
-                else "—",
-                f"{c['time_s']:.3g}" if c else "—",
-                f"{c['speedup']:.3g}×" if c else "—",
-            )
-    return t
-
-
-def _batch_table(r: dict[str, Any]) -> Table:
-    """Trajectories per second of the batches."""
-    tg = r["targets"]
-    b = r["batch_throughput"]
-    t = Table(
-        title=f"Batch: {b['size']} trajectories, {b['case']} (error {b['error']:.1e})",
-        title_justify="left",
-    )
-    for col in ("threads", "trajectories/s", "efficiency", "≥ 0.8"):
-        t.add_column(col, justify="right")
-    for n, v in b["threads"].items():
-        t.add_row(
-            n,
-            f"{v['trajectories_per_s']:.4g}",
-            f"{v['efficiency']:.2f}",
-            _yes(v["efficiency"] >= tg["batch_efficiency"]) if n != "1" else "",
-        )
-    return t
-
-
-def _ensemble_table(r: dict[str, Any]) -> Table | None:
-    """Averaged runs per second of the ensembles."""
-    tg = r["targets"]
-    ens = r.get("averaged_batch_throughput")
-    if not ens:
-        return None
-    t = Table(title="Averaged ensembles: runs per second (ε = 0.001)", title_justify="left")
-    for col in ("model", "size", "one simulate() per point", "1 thread", "all threads",
-                "efficiency", "≥ 0.8"):  # fmt: skip
-        t.add_column(col, justify="right" if col != "model" else "left")
-    for name, v in ens.items():
-        most = max(v["threads"], key=int)
-        row = v["threads"][most]
-        t.add_row(
-            name,
-            str(v["size"]),
-            f"{v['single_runs_per_s']:.4g}",
-            f"{v['threads']['1']['runs_per_s']:.4g}",
-            f"{row['runs_per_s']:.4g} ({most})",
-            f"{row['efficiency']:.2f}",
-            _yes(row["efficiency"] >= tg["averaged_batch_efficiency"]) if most != "1" else "",
-        )
-    return t
-
-
-def _compile_table(r: dict[str, Any]) -> Table | None:
-    """The first call of each case from an empty cache."""
-    tg = r["targets"]
-    if "compile" not in r:
-        return None
-    c = r["compile"]
-    t = Table(
-        title="Compile: first call of each case from an empty cache (fresh process)",
-        title_justify="left",
-    )
-    t.add_column("case")
-    t.add_column("first call [s]", justify="right")
-    for name, sec in c["first_call_s"].items():
-        t.add_row(name, f"{sec:.2f}")
-    t.add_row(
-        "[bold]total[/]",
-        f"{c['total_s']:.2f} (≤ {tg['compile_s']:g}: "
-        f"{'yes' if c['total_s'] <= tg['compile_s'] else 'no'})",
-    )
-    cached = c["cached_total_s"]
-    t.add_row("from the cache, all", f"{cached:.2f} (≤ {tg['compile_cached_s']:g}: "
-              f"{'yes' if cached <= tg['compile_cached_s'] else 'no'})")  # fmt: skip
-    return t
-
-
-def _startup_table(r: dict[str, Any]) -> Table | None:
-    """How fast tumble answers, from a fresh process."""
-    if not r.get("startup_s"):
-        return None
-    target = r["targets"]["startup_s"]
-    t = Table(title="Start-up: the answer from a fresh process (best of 3)", title_justify="left")
-    t.add_column("command")
-    t.add_column("wall time [s]", justify="right")
-    for name, sec in r["startup_s"].items():
-        t.add_row(name, f"{sec:.2f} (≤ {target:g}: {'yes' if sec <= target else 'no'})")
-    return t
-
-
-def _orbit_table(r: dict[str, Any]) -> Table | None:
-    """A year of an orbiting body, averaged against full, and its Monte Carlo."""
-    o = r.get("orbiting_body")
-    if not o:
-        return None
-    tg = r["targets"]
-    t = Table(title="Orbiting body: one year of a LEO object", title_justify="left")
-    for col in ("run", "rtol", "wall time [s]", "evaluations", "spin period vs full"):
-        t.add_column(col, justify="left" if col == "run" else "right")
-    for method in ("full", "averaged"):
-        for rtol, v in o[method].items():
-            t.add_row(method, rtol, f"{v['time_s']:.4g}", str(v["nfev"]),
-                      f"{v['period_error']:.2e}")  # fmt: skip
-    if "speedup" in o:
-        met = o["speedup"] >= tg["orbit_year_speedup"]
-        t.add_row(f"[bold]speed-up[/] (averaged at rtol {o['rtol']:g})",
-                  "", f"{o['speedup']:.0f}× (≥ {tg['orbit_year_speedup']:g}: {_yes(met)})",
-                  "", "")  # fmt: skip
-    mc = o.get("monte_carlo")
-    if mc:
-        met = mc["in_full_30_day_runs"] <= tg["orbit_monte_carlo_full_runs"]
-        t.add_row(f"{mc['samples']} averaged years (1 core)", "", f"{mc['time_s']:.4g}",
-                  f"= {mc['in_full_30_day_runs']:.3g} full 30-day runs "
-                  f"(≤ {tg['orbit_monte_carlo_full_runs']:g}: {_yes(met)})", "")  # fmt: skip
-    return t
-
-
-def _bench_tables(r: dict[str, Any]) -> list[Table]:
-    """The benchmark's figures as tables, each target beside its figure."""
-    tables = (_full_table(r), _heyoka_table(r), _averaged_table(r),
-              _averaged_table(r, "engine_speedup"), _batch_table(r), _ensemble_table(r),
-              _orbit_table(r), _compile_table(r), _startup_table(r))  # fmt: skip
-    return [t for t in tables if t is not None]
-
-
 @app.command("bench")
 def bench_cmd(
     as_json: Annotated[bool, typer.Option("--json", help="print the figures as JSON")] = False,
@@ -724,7 +459,9 @@ def bench_cmd(
     if as_json:
         print(text)
         return
-    for table in _bench_tables(result):
+    from tumble.app.bench_tables import bench_tables
+
+    for table in bench_tables(result):
         out.print(table)
     missed = [v for v in result["verdicts"] if not v["met"]]
     out.print(

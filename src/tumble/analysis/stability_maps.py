@@ -19,11 +19,12 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 import xarray as xr
 
+from tumble._typing import FloatArray
 from tumble.analysis.stability import stability_grid
 from tumble.errors import ParameterError, check_range
 from tumble.models import rotating_field
@@ -122,20 +123,18 @@ def inertia_map(
     def make(r1: float, r2: float) -> rotating_field.Params:
         return rotating_field.Params(np.array([r1, r2, 1.0]), beta, eps)
 
-    ds = stability_grid(
-        rotating_field.MODEL,
+    return _map(
         make,
         ("I1_over_I3", x, {"long_name": "I1/I3", "units": "1", "equation": "(2.5)"}),
         ("I2_over_I3", y, {"long_name": "I2/I3", "units": "1", "equation": "(2.5)"}),
-        attrs={
+        {
             "beta": float(beta),
             "eps": float(eps),
             "fixed_parameters": f"β = {_fmt(beta)} rad, ε = {_fmt(eps)}, I3 = 1",
             "outside_domain_label": "not a body (triangle inequality)",
         },
-        progress=progress,
+        progress,
     )
-    return _finish(ds)
 
 
 def field_map(
@@ -157,9 +156,9 @@ def field_map(
     eps : (float, float)
         Range of ε = M0/ω [inertia unit], positive (y axis, log-spaced).
     n : int
-        Grid points per axis, 2 … 1001.
+        Grid points per axis (in β and in ε), 2 … 1001.
     progress : callable, optional
-        ``progress(done, total)`` after each grid point.
+        ``progress(done, total)`` after each of the n² points.
 
     Returns
     -------
@@ -177,8 +176,7 @@ def field_map(
     def make(b: float, e: float) -> rotating_field.Params:
         return rotating_field.Params(body.inertia, b, e)
 
-    ds = stability_grid(
-        rotating_field.MODEL,
+    return _map(
         make,
         ("beta", x, {"long_name": "field cone angle β", "units": "rad", "equation": "(1.1)"}),
         (
@@ -186,17 +184,26 @@ def field_map(
             y,
             {"long_name": "ε = M0/ω", "units": "inertia unit", "equation": "(1.5)", "scale": "log"},
         ),
-        attrs={
+        {
             "inertia": body.inertia.tolist(),
             "fixed_parameters": f"I = ({moments})",
             "outside_domain_label": "outside the domain",
         },
-        progress=progress,
+        progress,
     )
-    return _finish(ds)
 
 
-def _finish(ds: xr.Dataset) -> xr.Dataset:
+def _map(
+    make: Callable[[float, float], rotating_field.Params],
+    x: tuple[str, FloatArray, dict[str, str]],
+    y: tuple[str, FloatArray, dict[str, str]],
+    attrs: dict[str, Any],
+    progress: Progress | None,
+) -> xr.Dataset:
+    """The co-rotation classified at the parameters ``make(x, y)`` of every point of the grid
+    of axes ``x`` and ``y`` (name, values, attributes), with the map's ``attrs``, the motion,
+    the equation and the reference (:func:`tumble.analysis.stability.stability_grid`)."""
+    ds = stability_grid(rotating_field.MODEL, make, x, y, attrs=attrs, progress=progress)
     ds.attrs.update(
         motion="co-rotation about body x3 (2.1), phase φ = 0",
         equation="(2.5)",
@@ -233,6 +240,7 @@ def rotating_field_map(
     Returns
     -------
     xarray.Dataset
+        The map of :func:`inertia_map` or of :func:`field_map`.
     """
     if over == "inertia":
         if inertia is not None:

@@ -408,24 +408,29 @@ class _Parts:
             stack = [self.fill(("nfev", m), integer=True, pending=0) for m in methods]
             attrs = _attrs("1", "right-hand-side evaluations")
             data["nfev"] = ((*dims, "method"), np.stack(stack, axis=-1), attrs)
-        for v in _union2(records, "final"):
-            stack = [self.fill(("final", m, v)) for m in methods]
-            data[f"final_{v}"] = (
-                (*dims, "method"),
-                np.stack(stack, axis=-1),
-                self.var_attrs(v, "final "),
-            )
+        data |= self.stacked("final", "method", methods, "final_", "final ")
         pairs = _union(records, "differences")
         if pairs:
             coords["pair"] = ("pair", np.array(pairs, dtype=object))
-        for v in _union2(records, "differences"):
-            stack = [self.fill(("differences", q, v)) for q in pairs]
-            data[f"difference_{v}"] = (
-                (*dims, "pair"),
-                np.stack(stack, axis=-1),
-                self.var_attrs(v, "max |difference| between two methods, "),
-            )
+        label = "max |difference| between two methods, "
+        data |= self.stacked("differences", "pair", pairs, "difference_", label)
         return data, coords
+
+    def stacked(
+        self, section: str, dim: str, keys: list[str], prefix: str, label: str
+    ) -> dict[str, Any]:
+        """One variable per name of the records' ``section`` (``section → key → name →
+        value``), called ``prefix + name``, its ``keys`` (methods or pairs of methods) stacked
+        along ``dim`` after the grid's; ``label`` starts its long name."""
+        data: dict[str, Any] = {}
+        for v in _union2(self.records, section):
+            stack = [self.fill((section, k, v)) for k in keys]
+            data[f"{prefix}{v}"] = (
+                (*self.plan.dims, dim),
+                np.stack(stack, axis=-1),
+                self.var_attrs(v, label),
+            )
+        return data
 
     def series(self) -> Variables:
         """The kept variables against time, per method: dims (*grid, sample, method, time)."""

@@ -43,19 +43,12 @@ from __future__ import annotations
 
 import contextlib
 import functools
-import json
 import math
 import os
-import platform
-import re
-import subprocess
-import sys
-import tempfile
 import time
 import tomllib
 from collections.abc import Callable
 from dataclasses import dataclass, replace
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -64,7 +57,8 @@ from scipy.integrate import solve_ivp
 from tumble._typing import FloatArray
 from tumble.analysis.verify import slow_errors
 from tumble.app import heyoka_peer
-from tumble.catalogue import CATALOGUE
+from tumble.app.bench_machine import compile_times, machine, startup_times
+from tumble.app.bench_verdicts import TARGETS, verdicts
 from tumble.dynamics import rigid_body_kernel, rigid_body_rhs
 from tumble.errors import IntegrationError, ParameterError, TumbleError
 from tumble.integrate import dop853, simulate, simulate_batch
@@ -80,29 +74,6 @@ __all__ = [
     "full_cases",
     "run_benchmark",
 ]
-
-TARGETS: dict[str, float] = {
-    "full_speedup_vs_scipy": 50.0,  # at least this many times faster
-    "full_time_ratio_vs_heyoka": 1.5,  # at most this multiple of heyoka's time
-    "full_time_ratio_vs_heyoka_stretch": 1.0,
-    "averaged_speedup_1e-3": 100.0,  # averaged vs full at the same rtol, at least, ε = 1e-3
-    "averaged_speedup_1e-4": 1000.0,  # the same at ε = 1e-4
-    "averaged_equal_accuracy_1e-4": 300.0,  # against the full run of equal slow error, ε = 1e-4
-    "averaged_eval_us": 1.0,  # one evaluation of a paper model's averaged equations, at most
-    "engine_speedup_1e-4": 100.0,  # the general engine's averaged vs full, at least, ε = 1e-4
-    "engine_eval_us": 20.0,  # one evaluation of the engine's averaged right-hand side, at most
-    "averaged_error": 0.01,  # at most, on the slow variables
-    "batch_efficiency": 0.8,  # throughput on 2 cores over twice that on 1, at least
-    "averaged_batch_efficiency": 0.8,  # the same for an averaged ensemble, on all cores
-    "compile_s": 10.0,  # first calls of every kind from an empty cache, in all, at most
-    "compile_cached_s": 0.5,  # the same calls loading from the disk cache, at most
-    "startup_s": 0.5,  # tumble --help, tumble models, an input error: the answer, at most
-    "second_order_eval_ratio": 3.0,  # one evaluation of order 2 over one of order 1, at most
-    "orbit_year_speedup": 1000.0,  # an averaged year of a LEO object over the full one, at least
-    "orbit_monte_carlo_full_runs": 5.0,  # 1000 averaged years in full 30-day runs ("a handful")
-    "orbit_period_agreement": 0.01,  # the averaged year's spin period against the full one
-}
-"""The targets, printed beside the measurements."""
 
 PAPER_MODELS = ("resisting_medium", "rotating_field", "nonlinear_moment")
 FULL_MODELS = (*PAPER_MODELS, "torqued_body")
@@ -708,128 +679,6 @@ def _averaged_ensemble(name: str, s: BenchSettings, log: Callable[[str], None]) 
     }
 
 
-# ---------------------------------------------------------------------------------------------
-# Compile time, in a fresh process with an empty cache.
-
-_COLD = """
-import json, sys, time
-start = time.perf_counter()
-from tumble.app import bench
-from tumble.integrate import dop853
-out = {"import_s": time.perf_counter() - start}
-for case in bench.full_cases(1e5):
-    start = time.perf_counter()
-    dop853.solve(case.kernel, case.y0, 1.0, rtol=1e-10, atol=1e-12, record=False, dense=False)
-    out[case.name] = time.perf_counter() - start
-print("JSON" + json.dumps(out))
-"""
-
-
-STARTUP_REPEAT = 5
-
-
-def _startup(log: Callable[[str], None]) -> dict[str, float]:
-    """Wall time of ``tumble`` answering at once [s], best of :data:`STARTUP_REPEAT` fresh
-    processes: its help, the model list, a template, a scenario file that is missing, a
-    scenario of each shipped model with a parameter out of range (validated against the
-    model's declaration, before its numerics load) and a sweep file with a bad axis."""
-    exe = Path(sys.executable).with_name("tumble")
-    command = [str(exe)] if exe.exists() else [sys.executable, "-m", "tumble.cli"]
-    out: dict[str, float] = {}
-    with tempfile.TemporaryDirectory(prefix="tumble-bench-startup-") as tmp:
-        cases = {
-            "--help": ["--help"],
-            "models": ["models"],
-            "init": ["init", "resisting_medium"],
-            "input error: missing file": ["run", str(Path(tmp) / "missing.toml")],
-        }
-        for name in CATALOGUE:
-            bad = Path(tmp) / f"{name}.toml"
-            # Every normalised template has one line "eps = <value>" (ε < 0 is out of range);
-            # a physical one has "conductivity = <value>" instead (< 0 is out of range).
-            text, count = re.subn(r"(?m)^eps = \S+", "eps = -1.0", template(name), count=1)
-            if count == 0:
-                text, count = re.subn(r"(?m)^conductivity = \S+", "conductivity = -1.0", text,
-                                      count=1)  # fmt: skip
-            if count != 1:  # a valid scenario would time a whole run, not an input error
-                raise RuntimeError(f"start-up: no out-of-range key to set in {name}'s template")
-            bad.write_text(text)
-            cases[f"input error: {name} parameter out of range"] = ["run", str(bad)]
-        sweep = Path(tmp) / "sweep.toml"
-        sweep.write_text(
-            'base = "resisting_medium.toml"\n[[axis]]\nkey = "parameters.kappa"\n'
-            "linspace = [0.1, 0.5, 0]\n"  # num = 0: not an integer in [1, 1e7]
-        )
-        cases["input error: sweep file"] = ["sweep", str(sweep)]
-        for name, args in cases.items():
-            log(f"start-up: tumble {' '.join(args[:1])} ({name})")
-            times = []
-            for _ in range(STARTUP_REPEAT):
-                start = time.perf_counter()
-                subprocess.run([*command, *args], capture_output=True, check=False, cwd=tmp)
-                times.append(time.perf_counter() - start)
-            out[name] = min(times)
-    return out
-
-
-def _compile(log: Callable[[str], None]) -> dict[str, Any]:
-    """First call of every case's kernel from an empty cache, then from the filled one."""
-    with tempfile.TemporaryDirectory(prefix="tumble-bench-cache-") as cache:
-        env = {**os.environ, "NUMBA_CACHE_DIR": cache}
-        runs = []
-        for phase in ("cold", "warm"):
-            log(f"compile: {phase} start in a fresh process")
-            done = subprocess.run(
-                [sys.executable, "-c", _COLD], env=env, capture_output=True, text=True, check=False
-            )
-            lines = [ln for ln in done.stdout.splitlines() if ln.startswith("JSON")]
-            if done.returncode != 0 or not lines:
-                raise IntegrationError(f"bench compile: {done.stderr.strip()[-300:]}")
-            runs.append(json.loads(lines[0][4:]))
-    cold, warm = runs
-    per_case = {k: v for k, v in cold.items() if k != "import_s"}
-    return {
-        "first_call_s": per_case,
-        # A kind compiles once: the first case of each kind carries its compile.
-        "total_s": float(sum(per_case.values())),
-        "largest_s": float(max(per_case.values())),
-        "cached_total_s": float(sum(v for k, v in warm.items() if k != "import_s")),
-        "import_s": cold["import_s"],
-    }
-
-
-# ---------------------------------------------------------------------------------------------
-
-
-def _machine() -> dict[str, Any]:
-    import numba
-    import scipy
-
-    cpu = platform.processor()
-    try:
-        with open("/proc/cpuinfo", encoding="utf-8") as fh:
-            for line in fh:
-                if line.startswith("model name"):
-                    cpu = line.split(":", 1)[1].strip()
-                    break
-    except OSError:
-        pass
-    hy = heyoka_peer.available()
-    from tumble._version import __version__
-
-    return {
-        "cpu": cpu,
-        "cores": os.cpu_count(),
-        "numba_threads": dop853.available_threads(),
-        "python": platform.python_version(),
-        "tumble": __version__,
-        "numpy": np.__version__,
-        "scipy": scipy.__version__,
-        "numba": numba.__version__,
-        "heyoka": getattr(hy, "__version__", None) if hy is not None else None,
-    }
-
-
 def run_benchmark(
     settings: BenchSettings | None = None,
     log: Callable[[str], None] | None = None,
@@ -855,14 +704,14 @@ def run_benchmark(
     s = settings or BenchSettings()
     say = log or (lambda _msg: None)
     result: dict[str, Any] = {
-        "machine": _machine(),
+        "machine": machine(),
         "settings": {k: getattr(s, k) for k in BenchSettings.__dataclass_fields__},
         "targets": dict(TARGETS),
     }
     if s.startup:
-        result["startup_s"] = _startup(say)
+        result["startup_s"] = startup_times(say)
     if s.compile:
-        result["compile"] = _compile(say)
+        result["compile"] = compile_times(say)
     cases = full_cases(s.horizon)
     say("warming the compiled kernels")
     for case in cases:
@@ -898,107 +747,3 @@ def run_benchmark(
         result["orbiting_body"] = orbiting_study(s.repeat, say)
     result["verdicts"] = verdicts(result)
     return result
-
-
-def verdicts(result: dict[str, Any]) -> list[dict[str, Any]]:
-    """Each target with the figure it is judged on and whether it is met."""
-    rows: list[dict[str, Any]] = []
-
-    def add(what: str, value: float, target: float, at_least: bool) -> None:
-        met = value >= target if at_least else value <= target
-        rows.append(
-            {"what": what, "value": value, "target": target, "at_least": at_least, "met": bool(met)}
-        )
-
-    for name, v in (result.get("full_speedup_vs_scipy") or {}).items():
-        add(f"full {name}: speed-up vs scipy", v["speedup"], TARGETS["full_speedup_vs_scipy"], True)
-    for name, v in (result.get("full_time_ratio_vs_heyoka") or {}).items():
-        add(
-            f"full {name}: time / heyoka's at equal error",
-            v["ratio"],
-            TARGETS["full_time_ratio_vs_heyoka"],
-            False,
-        )
-    for name, by_eps in result["averaged_speedup"].items():
-        for eps, v in by_eps.items():
-            avg, tag = v["averaged"], f"{float(eps):.0e}".replace("e-0", "e-")
-            if float(eps) > 1e-3:
-                continue
-            where = f"averaged {name} ε = {eps}"
-            add(f"{where}: slow error", avg["error"], TARGETS["averaged_error"], False)
-            add(f"{where}: speed-up vs full", avg["speedup"],
-                TARGETS[f"averaged_speedup_{tag}"], True)  # fmt: skip
-            if tag == "1e-4":
-                bound = "speedup_equal_accuracy_at_least" in avg
-                value = avg.get(
-                    "speedup_equal_accuracy", avg.get("speedup_equal_accuracy_at_least")
-                )
-                add(f"{where}: speed-up at equal accuracy" + (" (at least)" if bound else ""),
-                    value if value is not None else 0.0,
-                    TARGETS["averaged_equal_accuracy_1e-4"], True)  # fmt: skip
-                add(f"{where}: one averaged evaluation [µs]", v["eval_us"]["averaged"],
-                    TARGETS["averaged_eval_us"], False)  # fmt: skip
-                second = v.get("averaged_order2")
-                if second is not None and "failed" in second:
-                    add(f"{where}: order 2 (failed: {second['failed'][:80]})", 0.0,
-                        TARGETS["averaged_equal_accuracy_1e-4"], True)  # fmt: skip
-                elif second is not None:
-                    bound = "speedup_equal_accuracy_at_least" in second
-                    value = second.get("speedup_equal_accuracy",
-                                       second.get("speedup_equal_accuracy_at_least"))  # fmt: skip
-                    add(f"{where}: order 2, speed-up at equal accuracy"
-                        + (" (at least)" if bound else ""), value if value is not None else 0.0,
-                        TARGETS["averaged_equal_accuracy_1e-4"], True)  # fmt: skip
-                    add(f"{where}: order 2, evaluation cost over order 1's",
-                        v["eval_us"]["averaged_order2"] / v["eval_us"]["averaged"],
-                        TARGETS["second_order_eval_ratio"], False)  # fmt: skip
-    for label, by_eps in (result.get("engine_speedup") or {}).items():
-        v = by_eps.get("0.0001")
-        if v is not None:
-            where = f"engine {label} ε = 0.0001"
-            add(f"{where}: speed-up vs full", v["averaged"]["speedup"],
-                TARGETS["engine_speedup_1e-4"], True)  # fmt: skip
-            add(f"{where}: one averaged evaluation [µs]", v["eval_us"]["averaged"],
-                TARGETS["engine_eval_us"], False)  # fmt: skip
-    batch = result["batch_throughput"]["threads"]
-    if "2" in batch:
-        add(
-            "batch: efficiency on 2 cores",
-            batch["2"]["efficiency"],
-            TARGETS["batch_efficiency"],
-            True,
-        )
-    for name, ens in (result.get("averaged_batch_throughput") or {}).items():
-        most = max(ens["threads"], key=int)
-        if most != "1":
-            add(f"averaged ensemble {name}: efficiency on {most} cores",
-                ens["threads"][most]["efficiency"], TARGETS["averaged_batch_efficiency"],
-                True)  # fmt: skip
-    orbit = result.get("orbiting_body")
-    if orbit is not None:
-        chosen = orbit["rtol"]
-        error = orbit["averaged"][f"{chosen:g}"]["period_error"] if chosen else math.inf
-        add("orbiting body, a year: averaged spin period against the full one", error,
-            TARGETS["orbit_period_agreement"], False)  # fmt: skip
-        add("orbiting body, a year: averaged speed-up over the full run",
-            orbit.get("speedup", 0.0), TARGETS["orbit_year_speedup"], True)  # fmt: skip
-        mc = orbit.get("monte_carlo")
-        add("orbiting body: 1000 averaged years, in full 30-day runs",
-            mc["in_full_30_day_runs"] if mc else math.inf,
-            TARGETS["orbit_monte_carlo_full_runs"], False)  # fmt: skip
-    for name, seconds in (result.get("startup_s") or {}).items():
-        add(f"start-up: {name} [s]", seconds, TARGETS["startup_s"], False)
-    if "compile" in result:
-        add(
-            "compile: first calls from an empty cache, all kinds [s]",
-            result["compile"]["total_s"],
-            TARGETS["compile_s"],
-            False,
-        )
-        add(
-            "compile: the same first calls from the disk cache [s]",
-            result["compile"]["cached_total_s"],
-            TARGETS["compile_cached_s"],
-            False,
-        )
-    return rows

@@ -124,8 +124,15 @@ def _held(
         yield out
 
 
-def _scenario(scenario: str | Path | Scenario) -> Scenario:
-    return scenario if isinstance(scenario, Scenario) else load_scenario(scenario)
+@contextlib.contextmanager
+def _loaded(
+    scenario: str | Path | Scenario, out_dir: str | Path | None, command: str, overwrite: bool
+) -> Iterator[tuple[Scenario, OutputSet | None]]:
+    """The scenario (loaded unless given loaded) and its output directory held for the
+    whole of ``command`` (see :func:`_held`)."""
+    sc = scenario if isinstance(scenario, Scenario) else load_scenario(scenario)
+    with _held(out_dir, command, sc, overwrite) as out:
+        yield sc, out
 
 
 def run(
@@ -156,8 +163,7 @@ def run(
     -------
     RunResult
     """
-    sc = _scenario(scenario)
-    with _held(out_dir, "run", sc, overwrite) as out:
+    with _loaded(scenario, out_dir, "run", overwrite) as (sc, out):
         result = run_request(sc.request)
         verification = verify_request(sc.request) if sc.request.verify else None
         if out is not None:
@@ -187,16 +193,15 @@ def verify(
         A TOML scenario file or a loaded scenario (its ``methods`` are ignored: full and
         averaged always run).
     out_dir : str or Path, optional
-        Output directory (created if needed); None writes nothing.
     overwrite : bool
-        Replace the directory's contents even when they are another run's results.
+        As in :func:`run`: the output directory (created if needed; None writes nothing), and
+        whether to replace its contents even when they are another run's results.
 
     Returns
     -------
     VerifyResult
     """
-    sc = _scenario(scenario)
-    with _held(out_dir, "verify", sc, overwrite) as out:
+    with _loaded(scenario, out_dir, "verify", overwrite) as (sc, out):
         result = verify_request(sc.request)
         if out is not None:
             files = verify_outputs(result, sc.source)

@@ -19,7 +19,7 @@ _EXPORTS: dict[str, str] = {
     "MAX_STEPS": "tumble.integrate.limits",
     "check_times": "tumble.integrate.limits",
     "Method": "tumble.integrate.simulate",
-    "Trajectory": "tumble.integrate.simulate",
+    "Trajectory": "tumble.integrate.trajectory",
     "simulate": "tumble.integrate.simulate",
     "simulate_batch": "tumble.integrate.simulate",
 }
@@ -40,6 +40,7 @@ __all__ = [
 if TYPE_CHECKING:
     from tumble.integrate.limits import MAX_STEPS, check_times
     from tumble.integrate.ode import DEFAULT_ATOL, DEFAULT_RTOL, DenseSolution, integrate
-    from tumble.integrate.simulate import Method, Trajectory, simulate, simulate_batch
+    from tumble.integrate.simulate import Method, simulate, simulate_batch
+    from tumble.integrate.trajectory import Trajectory
 
 __getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)

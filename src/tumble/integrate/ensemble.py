@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Sequence
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from typing import Any, Generic, TypeVar
 
@@ -26,8 +25,8 @@ from tumble.integrate.dop853.core import BAD_START, OK, RUNNING, STOPPED, Chunk
 from tumble.integrate.dop853.driver import _cut
 from tumble.integrate.limits import FIRST_CHUNK, MAX_STEPS, pace_message
 from tumble.integrate.ode import compiled_breakpoints, joined_pieces, split_plan
-from tumble.integrate.simulate import Trajectory, _unwrap_columns, simulate, start_refusal
-from tumble.integrate.simulate import _trajectory as _dense_trajectory
+from tumble.integrate.simulate import each_on_threads, simulate, start_refusal
+from tumble.integrate.trajectory import RunSpec, Trajectory, integrated, unwrap_columns
 from tumble.kernels import EVENT_NONE, Kernel
 from tumble.models.base import AveragedForm, AveragingOptions, Breakpoint, Model
 
@@ -84,7 +83,7 @@ def averaged_batch(
     # function and the parameter object (an ensemble over initial states) share the kernel.
     # The key holds the function itself (alive while cached) and the id of a parameter set
     # that ``params`` keeps alive: no id is reused while the batch runs.
-    kernels: dict[tuple[Callable[[P], Kernel | None], int], Kernel | None] = {}
+    kernels: _Kernels[P] = {}
 
     def single(i: int) -> Trajectory | TumbleError:
         try:
@@ -93,37 +92,17 @@ def averaged_batch(
         except TumbleError as exc:
             return exc
 
-    def prepare(i: int) -> _Point[P, S] | None:
-        """The point's compiled run, or None for the single path (no kernel, nothing to
-        integrate); a TumbleError (an invalid point) goes to ``out``."""
-        p, initial = params[i], initials[i]
-        t_end = float(taus[i][-1])
-        try:
-            model.check(p, "averaged")
-            form = model.averaged.form(p, initial, options)  # type: ignore[union-attr]
-            if t_end == 0.0 or form.kernel is None or not compiled_breakpoints(form.breakpoints):
-                return None
-            key = (form.kernel, id(p))
-            if key not in kernels:
-                kernels[key] = form.kernel(p)
-            kernel = kernels[key]
-            if kernel is None:
-                return None
-            kernel.check_end(t_end)
-            y0 = np.asarray(form.initial_state(p, initial), dtype=np.float64)
-        except TumbleError as exc:
-            out[i] = exc
-            return None
-        stops, surface = split_plan(form.breakpoints, y0, t_end)
-        return _Point(i, taus[i], p, initial, form, kernel, y0, stops, surface)
-
     def run_block(indices: Sequence[int]) -> None:
         points: list[_Point[P, S]] = []
         for i in indices:
-            pt = prepare(i)
+            try:
+                pt = _prepare(model, options, kernels, i, params[i], initials[i], taus[i])
+            except TumbleError as exc:
+                out[i] = exc
+                continue
             if pt is not None:
                 points.append(pt)
-            elif out[i] is None:
+            else:
                 out[i] = single(i)
         groups: dict[tuple[int, int, int], list[_Point[P, S]]] = {}
         for pt in points:
@@ -134,28 +113,63 @@ def averaged_batch(
             _integrate_group(model.name, group, rtol, atol, max_steps, dense, out)
             wall = (time.perf_counter() - start) / len(group)
             for pt in group:
-                if out[pt.index] is not None:
-                    continue
-                if dense:
-                    what = f"{model.name} averaged equations {pt.form.equation}"
-                    sol = joined_pieces(pt.pieces, what)
-                    out[pt.index] = _dense_trajectory(model, pt.params, pt.initial, pt.tau,
-                                                      "averaged", pt.form, sol,
-                                                      time.perf_counter() - wall)  # fmt: skip
-                else:
-                    out[pt.index] = _trajectory(model, pt, wall, single)
+                if out[pt.index] is None:
+                    run = RunSpec(model, pt.params, pt.initial, pt.tau, rtol, atol, max_steps)
+                    out[pt.index] = _finished(run, pt, wall, dense, single)
 
     blocks = [range(k, min(k + BLOCK_SIZE, n_points)) for k in range(0, n_points, BLOCK_SIZE)]
-    workers = dop853.available_threads() if threads is None else max(1, int(threads))
-    if workers == 1 or len(blocks) < 2:
-        for block in blocks:
-            run_block(block)
-    else:
-        with ThreadPoolExecutor(max_workers=min(workers, len(blocks))) as pool:
-            list(pool.map(run_block, blocks))
+    each_on_threads(run_block, blocks, threads)
     done = [o for o in out if o is not None]
     assert len(done) == n_points  # every point is a Trajectory or its error
     return done
+
+
+_Kernels = dict[tuple[Callable[[P], Kernel | None], int], Kernel | None]
+"""The kernels built so far, by the form's kernel function and the id of the parameters."""
+
+
+def _prepare(
+    model: Model[P, S],
+    options: AveragingOptions,
+    kernels: _Kernels[P],
+    i: int,
+    p: P,
+    initial: S,
+    tau: FloatArray,
+) -> _Point[P, S] | None:
+    """Point ``i``'s compiled run, or None for the single path (no kernel, nothing to
+    integrate); raises the TumbleError of an invalid point."""
+    t_end = float(tau[-1])
+    model.check(p, "averaged")
+    form = model.averaged.form(p, initial, options)  # type: ignore[union-attr]
+    if t_end == 0.0 or form.kernel is None or not compiled_breakpoints(form.breakpoints):
+        return None
+    key = (form.kernel, id(p))
+    if key not in kernels:
+        kernels[key] = form.kernel(p)
+    kernel = kernels[key]
+    if kernel is None:
+        return None
+    kernel.check_end(t_end)
+    y0 = np.asarray(form.initial_state(p, initial), dtype=np.float64)
+    stops, surface = split_plan(form.breakpoints, y0, t_end)
+    return _Point(i, tau, p, initial, form, kernel, y0, stops, surface)
+
+
+def _finished(
+    run: RunSpec[P, S],
+    pt: _Point[P, S],
+    wall: float,
+    dense: bool,
+    single: Callable[[int], Trajectory | TumbleError],
+) -> Trajectory | TumbleError:
+    """The Trajectory of a point whose run is done, ``wall`` [s] its share of the block's
+    time: with ``dense`` from its pieces, as :func:`simulate` builds it, else from its
+    samples."""
+    if not dense:
+        return _trajectory(run.model, pt, wall, single)
+    sol = joined_pieces(pt.pieces, run.what(pt.form))
+    return integrated(run, "averaged", pt.form, sol, time.perf_counter() - wall)
 
 
 def _integrate_group(
@@ -201,52 +215,79 @@ def _integrate_group(
             pt, status = group[r], int(arrays["status"][r])
             t = float(arrays["t0"][r])
             if dense:  # the piece as a Solution of the single run's integrator
-                n_rec, nfev, ts, ys, Fs = pieces[r]
-                no_events = np.empty(0)
-                chunk = Chunk(int(n_rec), ts, ys, Fs, no_events, no_events, no_events, 0)
-                ts_, ys_, F_, ev_t, ev_s, ev_y = _cut(chunk, dim, True)
-                pt.pieces.append(dop853.Solution(status, t, arrays["Y"][r].copy(), int(nfev),
-                                                 ts_, ys_, F_, np.empty((0, dim)), ev_t,
-                                                 ev_s, ev_y))  # fmt: skip
-            what = f"{name} averaged equations {pt.form.equation}"
+                pt.pieces.append(_piece_solution(pieces[r], status, t, arrays["Y"][r], dim))
             try:
-                if status == STOPPED:
-                    surface = pt.surface
-                    assert surface is not None  # only a watched surface stops a run
-                    if surface.restart is not None:
-                        arrays["Y"][r] = surface.restart(t, arrays["Y"][r].copy())
-                    arrays["events"][r] = EVENT_NONE  # crossed at most once
+                spent[r] += steps if status == RUNNING else 0
+                if _goes_on(f"{name} averaged equations {pt.form.equation}", pt, status, t,
+                            arrays, r, piece, int(spent[r]), max_steps):  # fmt: skip
                     going.append(r)
-                elif status == OK:
-                    if piece[r] + 1 < len(pt.stops):
-                        piece[r] += 1
-                        going.append(r)
-                elif status == RUNNING:
-                    spent[r] += steps
-                    if spent[r] >= max_steps:
-                        raise IntegrationError(
-                            f"{what}: run.max_steps = {max_steps} steps spent at t = {t:.6g}"
-                        )
-                    refused = pace_message(t, float(pt.tau[-1]), float(arrays["first"][r]),
-                                        max_steps - int(spent[r]), max_steps)  # fmt: skip
-                    if refused:
-                        raise IntegrationError(f"{what}: {refused}")
-                    going.append(r)  # the same piece, on from where it stopped
-                else:
-                    reason = pt.form.failure() if pt.form.failure else None
-                    if reason is None and status == BAD_START:
-                        reason = start_refusal(pt.form, pt.params, t, arrays["Y"][r].copy())
-                    message = dop853.status_message(status)
-                    text = f"{what}: integration failed at t = {t:.6g}: {message}"
-                    if reason:
-                        text += f"; last refused state: {reason}"
-                    raise IntegrationError(text)
             except TumbleError as exc:
                 out[pt.index] = exc
         active = np.array(going, dtype=np.int64)
     for r, pt in enumerate(group):
         pt.samples = arrays["Y_eval"][r].reshape(n_eval, dim)
         pt.nfev = int(arrays["nfev"][r])
+
+
+def _piece_solution(
+    piece: tuple[Any, ...], status: int, t: float, y: FloatArray, dim: int
+) -> dop853.Solution:
+    """One run's piece of a block call (its recorded steps, evaluations, times, states and
+    interpolants) as the :class:`~tumble.integrate.dop853.Solution` a single run's integrator
+    returns, ending at (t, y) with ``status``."""
+    n_rec, nfev, ts, ys, Fs = piece
+    no_events = np.empty(0)
+    chunk = Chunk(int(n_rec), ts, ys, Fs, no_events, no_events, no_events, 0)
+    ts_, ys_, F_, ev_t, ev_s, ev_y = _cut(chunk, dim, True)
+    return dop853.Solution(status, t, y.copy(), int(nfev), ts_, ys_, F_, np.empty((0, dim)),
+                           ev_t, ev_s, ev_y)  # fmt: skip
+
+
+def _goes_on(
+    what: str,
+    pt: _Point[Any, Any],
+    status: int,
+    t: float,
+    arrays: dict[str, Any],
+    r: int,
+    piece: Any,
+    spent: int,
+    max_steps: int,
+) -> bool:
+    """Whether run ``r`` of a block goes on after a call that left it at ``t`` with
+    ``status``: across its watched surface (restarted there), into its next piece, or on in
+    the same piece (its budget not spent, its pace not hopeless); False at its end. Raises
+    the IntegrationError of a failed run."""
+    if status == STOPPED:
+        surface = pt.surface
+        assert surface is not None  # only a watched surface stops a run
+        if surface.restart is not None:
+            arrays["Y"][r] = surface.restart(t, arrays["Y"][r].copy())
+        arrays["events"][r] = EVENT_NONE  # crossed at most once
+        return True
+    if status == OK:
+        if piece[r] + 1 < len(pt.stops):
+            piece[r] += 1
+            return True
+        return False
+    if status == RUNNING:
+        if spent >= max_steps:
+            raise IntegrationError(
+                f"{what}: run.max_steps = {max_steps} steps spent at t = {t:.6g}"
+            )
+        refused = pace_message(t, float(pt.tau[-1]), float(arrays["first"][r]),
+                               max_steps - spent, max_steps)  # fmt: skip
+        if refused:
+            raise IntegrationError(f"{what}: {refused}")
+        return True  # the same piece, on from where it stopped
+    reason = pt.form.failure() if pt.form.failure else None
+    if reason is None and status == BAD_START:
+        reason = start_refusal(pt.form, pt.params, t, arrays["Y"][r].copy())
+    message = dop853.status_message(status)
+    text = f"{what}: integration failed at t = {t:.6g}: {message}"
+    if reason:
+        text += f"; last refused state: {reason}"
+    raise IntegrationError(text)
 
 
 def _trajectory(
@@ -258,7 +299,7 @@ def _trajectory(
     """The Trajectory of a point of a block from its samples."""
     try:
         cols = pt.form.to_columns(pt.params, pt.initial, pt.tau, pt.samples)
-        _unwrap_columns(model, pt.params, "averaged", cols, pt.initial)
+        unwrap_columns(model, pt.params, "averaged", cols, pt.initial)
     except TumbleError as exc:
         return exc
     rerun: list[Trajectory] = []

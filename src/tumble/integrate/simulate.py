@@ -10,7 +10,6 @@ from __future__ import annotations
 import time
 from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass, field
 from typing import Any, Literal, TypeVar
 
 import numpy as np
@@ -22,11 +21,11 @@ from tumble.integrate.limits import MAX_STEPS, pace_message
 from tumble.integrate.ode import (
     DEFAULT_ATOL,
     DEFAULT_RTOL,
-    DenseSolution,
     check_times,
     compiled_breakpoints,
     integrate,
 )
+from tumble.integrate.trajectory import RunSpec, Trajectory, integrated, unwrap_columns
 from tumble.kernels import Kernel
 from tumble.models.base import (
     AveragedForm,
@@ -37,12 +36,21 @@ from tumble.models.base import (
     Model,
 )
 
-__all__ = ["INTEGRATORS", "Method", "Trajectory", "simulate", "simulate_batch"]
+__all__ = [
+    "INTEGRATORS",
+    "Integrator",
+    "Method",
+    "Trajectory",
+    "integrator_named",
+    "simulate",
+    "simulate_batch",
+]
 
 Method = Literal["full", "averaged", "closed_form"]
 
 P = TypeVar("P")
 S = TypeVar("S")
+J = TypeVar("J")
 
 DEFAULT_AVERAGING = AveragingOptions()
 """The paper's averaged equations in the model's default coordinates, from the given state."""
@@ -54,110 +62,6 @@ INTEGRATORS = ("auto", "numba", "scipy")
 the compiled DOP853 of :mod:`tumble.integrate.dop853`; ``"scipy"`` scipy's DOP853 on the model's
 Python right-hand side (the reference); ``"auto"`` (default) the compiled one unless the
 parameters hold a Python function (a user torque, a pressure given as a function)."""
-
-
-@dataclass(frozen=True)
-class Trajectory:
-    """Output of one method: columns at the sample times, and how it was obtained.
-
-    Attributes
-    ----------
-    tau : ndarray
-        Sample times [model time unit].
-    columns : dict
-        Output columns (names as in the model record), each of the shape of ``tau``.
-    method, form : str
-        Method and the form of the equations used.
-    wall_time : float
-        Seconds spent [s].
-    nfev : int
-        Right-hand-side evaluations (0 for closed forms).
-    slow : callable
-        ``slow(tau) -> columns`` anywhere in ``[0, tau[-1]]``, for validity checks.
-    steps : ndarray
-        The integrator's step times (empty for closed forms): a grid that resolves every fast
-        oscillation, for locating extrema.
-    integrator : str
-        ``"numba"``, ``"scipy"`` or ``""`` (closed forms).
-    events, event_signs : ndarray
-        Zeros of the full form's event function found during the integration (e.g. the
-        extrema of θ), and the sign of the event function before each.
-    event_columns : dict
-        The columns at ``events``.
-    """
-
-    tau: FloatArray
-    columns: dict[str, FloatArray]
-    method: str
-    form: str
-    wall_time: float
-    nfev: int
-    slow: Callable[[FloatArray], dict[str, FloatArray]] = field(repr=False)
-    steps: FloatArray = field(default_factory=lambda: np.empty(0), repr=False)
-    integrator: str = ""
-    events: FloatArray = field(default_factory=lambda: np.empty(0), repr=False)
-    event_signs: FloatArray = field(default_factory=lambda: np.empty(0), repr=False)
-    event_columns: Columns = field(default_factory=dict, repr=False)
-
-    def attitude(self) -> Any:
-        """The attitude at the samples, body → inertial, from the columns q0 … q3 of a full
-        run (scalar first; :func:`tumble.models.base.attitude_columns`).
-
-        Returns
-        -------
-        scipy.spatial.transform.Rotation
-            One rotation per sample: ``.as_matrix()`` gives R with v_inertial = R v_body.
-
-        Raises
-        ------
-        ParameterError
-            The run has no attitude (an averaged or closed-form run).
-        """
-        if "q0" not in self.columns:
-            raise ParameterError(
-                f"the {self.method} run has no attitude: only full runs write q0 … q3"
-            )
-        from scipy.spatial.transform import Rotation  # loaded where asked for: import time
-
-        q = np.stack([self.columns[f"q{i}"] for i in (1, 2, 3, 0)], axis=-1)  # scalar last
-        return Rotation.from_quat(q)
-
-
-def _unwrap_columns(model: Model[P, S], p: P, method: str, cols: Columns, initial: S) -> None:
-    """Make angle columns continuous, starting from the initial value, not mod 2π."""
-    for c in model.columns(p, method):
-        if c.unwrap and c.name in cols:
-            angle = cols[c.name]
-            if angle.size > 1 and np.any(np.abs(np.diff(angle)) >= np.pi):  # else the same
-                angle = np.unwrap(angle)
-            start = getattr(initial, c.name, angle[0])
-            cols[c.name] = angle + 2.0 * np.pi * np.round((start - angle[0]) / (2.0 * np.pi))
-
-
-def _sampled(
-    model: Model[P, S],
-    p: P,
-    method: str,
-    sol: DenseSolution,
-    to_columns: Callable[[FloatArray, FloatArray], Columns],
-    tau: FloatArray,
-    initial: S,
-) -> Columns:
-    """Columns at ``tau``; angles unwrapped on the union of solver steps and samples.
-
-    The solver's steps resolve every turn of the fast phases, so unwrapping on them gives the
-    continuous angle even when the samples are sparser than a turn.
-    """
-    # Both are ascending: a stable sort merges them (a time in both is kept twice, harmless).
-    times = np.concatenate([sol.ts, tau])
-    order = np.argsort(times, kind="stable")
-    grid = times[order]
-    cols = to_columns(grid, sol(grid))
-    _unwrap_columns(model, p, method, cols, initial)
-    where = np.empty(times.size, dtype=np.intp)
-    where[order] = np.arange(times.size)
-    at = where[sol.ts.size :]
-    return {name: values[at] for name, values in cols.items()}
 
 
 def simulate(
@@ -219,103 +123,190 @@ def simulate(
     Trajectory
     """
     tau = check_times(tau)
-    if integrator not in INTEGRATORS:
-        raise ParameterError(
-            f"run.integrator = {integrator!r} is not an integrator "
-            '(allowed: "auto", "numba", "scipy")'
-        )
+    chosen = integrator_named(integrator)
     if method not in model.methods:
         raise ParameterError(
             f"run.methods: {method!r} is not a method of {model.name} "
             f"(allowed: {', '.join(model.methods)})"
         )
     model.check(p, method)
+    run: RunSpec[P, S] = RunSpec(model, p, initial, tau, rtol, atol, max_steps)
     if method == "full":
-        full = model.full.form(form)
-        kernel = _kernel(model, full, p, integrator)
-        if kernel is not None and not dense:
-            return _streamed(model, full, p, initial, tau, rtol, atol, kernel, max_steps)
-        return _full(model, full, p, initial, tau, rtol, atol, kernel, max_steps)
+        return chosen.run_full(run, model.full.form(form), dense)
     if method == "averaged" and model.averaged is not None:
         options = model.averaged.check(averaging)
-        form_ = model.averaged.form(p, initial, options)
+        avg = model.averaged.form(p, initial, options)
         if options.hybrid:
-            return _hybrid(model, form_, p, initial, tau, rtol, atol, integrator, max_steps)
-        compiled = _averaged_kernel(form_, p, integrator)
-        return _averaged(model, form_, p, initial, tau, rtol, atol, max_steps, compiled)
+            return chosen.run_hybrid(run, avg)
+        return chosen.run_averaged(run, avg)
     assert model.closed_form is not None  # the methods follow the capabilities
     return _closed(model.closed_form, p, initial, tau)
 
 
-def _full(
-    model: Model[P, S],
-    full: FullForm[P, S],
-    p: P,
-    initial: S,
-    tau: FloatArray,
-    rtol: float,
-    atol: float,
-    kernel: Kernel | None,
-    max_steps: int = MAX_STEPS,
-) -> Trajectory:
-    """A full form integrated (compiled when ``kernel`` is given) and sampled at ``tau``."""
+class Integrator:
+    """How a run's equations are integrated: one of :data:`INTEGRATORS` (the scenario key
+    ``[run] integrator``), found by :func:`integrator_named`.
+
+    An integrator chooses the compiled right-hand side of each form (None: scipy's DOP853 on
+    the form's Python right-hand side); the runs are then the same for every integrator.
+    """
+
+    name: str = ""
+
+    def full_kernel(self, model: Model[P, S], full: FullForm[P, S], p: P) -> Kernel | None:
+        """The compiled kernel of a full form, or None for scipy's path."""
+        raise NotImplementedError
+
+    def averaged_kernel(self, avg: AveragedForm[P, S], p: P) -> Kernel | None:
+        """The compiled averaged right-hand side to run, or None for scipy's path: none
+        asked, none written, or breakpoint surfaces the compiled integrator cannot watch (more
+        than one, or one without a compiled event function)."""
+        if avg.kernel is None or not compiled_breakpoints(avg.breakpoints):
+            return None
+        return avg.kernel(p)
+
+    def run_full(self, run: RunSpec[P, S], full: FullForm[P, S], dense: bool) -> Trajectory:
+        """A full form integrated and sampled at ``run.tau``: compiled, chunk by chunk
+        (unless ``dense``), where this integrator has a kernel for it."""
+        kernel = self.full_kernel(run.model, full, run.p)
+        if kernel is not None and not dense:
+            return _streamed(run, full)
+        return _full(run, full, kernel)
+
+    def run_averaged(self, run: RunSpec[P, S], avg: AveragedForm[P, S]) -> Trajectory:
+        """The averaged equations integrated and sampled at ``run.tau``."""
+        return _averaged(run, avg, self.averaged_kernel(avg, run.p))
+
+    def run_hybrid(self, run: RunSpec[P, S], avg: AveragedForm[P, S]) -> Trajectory:
+        """The averaged form with its band crossed on the full equations
+        (:func:`tumble.integrate.hybrid.hybrid`), sampled at ``run.tau``."""
+        from tumble.integrate.hybrid import hybrid
+
+        model, p, initial, tau = run.model, run.p, run.initial, run.tau
+        if avg.crossing is None:
+            raise ParameterError(
+                f'run.averaged_method = "hybrid" is not available for the averaged form '
+                f"{avg.name} of {model.name} (it has no band to hand to the full equations)"
+            )
+        start = time.perf_counter()
+        full = model.full.form()
+        kernel = self.full_kernel(model, full, p)
+        legs = hybrid(avg, full, p, initial, run.t_end, run.rtol, run.atol, kernel,
+                      run.max_steps)  # fmt: skip
+        cols = legs.columns(tau)
+        unwrap_columns(model, p, "averaged", cols, initial)
+
+        def slow(t: FloatArray) -> Columns:
+            return legs.columns(t, osculating=False)
+
+        wall = time.perf_counter() - start
+        return Trajectory(tau, cols, "averaged", f"{avg.name} hybrid", wall, legs.nfev, slow,
+                          legs.steps, "numba" if kernel is not None else "scipy")  # fmt: skip
+
+
+class _Compiled(Integrator):
+    """The compiled DOP853 of :mod:`tumble.integrate.dop853`; a full form without a kernel
+    (none written, or a Python function in its parameters) is refused."""
+
+    name = "numba"
+
+    def full_kernel(self, model: Model[P, S], full: FullForm[P, S], p: P) -> Kernel | None:
+        kernel = full.kernel(p) if full.kernel is not None else None
+        if kernel is None:
+            why = (
+                "it has no compiled form"
+                if full.kernel is None
+                else "its parameters hold a Python function"
+            )
+            raise ParameterError(
+                f"run.integrator = 'numba' cannot integrate the {full.name} form of "
+                f'{model.name}: {why} (use "auto" or "scipy")'
+            )
+        return kernel
+
+
+class _Scipy(Integrator):
+    """scipy's DOP853 on the forms' Python right-hand sides (the reference)."""
+
+    name = "scipy"
+
+    def full_kernel(self, model: Model[P, S], full: FullForm[P, S], p: P) -> Kernel | None:
+        return None
+
+    def averaged_kernel(self, avg: AveragedForm[P, S], p: P) -> Kernel | None:
+        return None
+
+
+class _Auto(Integrator):
+    """The compiled integrator where a form has a kernel, scipy's elsewhere."""
+
+    name = "auto"
+
+    def full_kernel(self, model: Model[P, S], full: FullForm[P, S], p: P) -> Kernel | None:
+        return full.kernel(p) if full.kernel is not None else None
+
+
+_REGISTRY: dict[str, Integrator] = {i.name: i for i in (_Auto(), _Compiled(), _Scipy())}
+assert tuple(_REGISTRY) == INTEGRATORS  # one registry, in the documented order
+_COMPILED = _REGISTRY["numba"]
+
+
+def integrator_named(name: str) -> Integrator:
+    """The integrator called ``name`` (one of :data:`INTEGRATORS`).
+
+    Raises
+    ------
+    ParameterError
+        ``name`` is not an integrator.
+    """
+    if name not in _REGISTRY:
+        allowed = ", ".join(f'"{n}"' for n in INTEGRATORS)
+        raise ParameterError(f"run.integrator = {name!r} is not an integrator (allowed: {allowed})")
+    return _REGISTRY[name]
+
+
+def _full(run: RunSpec[P, S], full: FullForm[P, S], kernel: Kernel | None) -> Trajectory:
+    """A full form integrated (compiled when ``kernel`` is given) and sampled at ``run.tau``."""
     start = time.perf_counter()
+    p = run.p
     sol = integrate(
         lambda t, y: full.rhs(t, y, p),
-        full.initial_state(p, initial),
-        float(tau[-1]),
-        rtol=rtol,
-        atol=atol,
-        what=f"{model.name} full equations {full.equation}",
+        full.initial_state(p, run.initial),
+        run.t_end,
+        rtol=run.rtol,
+        atol=run.atol,
+        what=run.what(full),
         kernel=kernel,
         event=None if full.event is None else _bind(full.event, p),
-        max_steps=max_steps,
+        max_steps=run.max_steps,
     )
-    return _trajectory(model, p, initial, tau, "full", full, sol, start)
+    return integrated(run, "full", full, sol, start)
 
 
-def _streamed(
-    model: Model[P, S],
-    full: FullForm[P, S],
-    p: P,
-    initial: S,
-    tau: FloatArray,
-    rtol: float,
-    atol: float,
-    kernel: Kernel,
-    max_steps: int = MAX_STEPS,
-) -> Trajectory:
+def _streamed(run: RunSpec[P, S], full: FullForm[P, S]) -> Trajectory:
     """A full form on the compiled integrator, consumed chunk by chunk: the samples come from
     the integrator's dense output as it passes them, the angle columns are unwrapped on each
     chunk's steps (which resolve every turn) continuing from the chunk before, and the steps
     are then dropped. Memory: the samples and one chunk."""
     start = time.perf_counter()
-    kernel, y0 = _batch_job(model, full, p, initial, float(tau[-1]))
-    run = _integration(kernel, y0, tau, rtol, atol)
-    return _consume(model, full, p, initial, tau, run, start, max_steps)
+    kernel, y0 = _batch_job(run, full)
+    return _consume(run, full, _integration(run, kernel, y0), start)
 
 
-def _integration(
-    kernel: Kernel, y0: FloatArray, tau: FloatArray, rtol: float, atol: float
-) -> dop853.Integration:
-    """A compiled run that samples at ``tau`` and records its steps without interpolants."""
-    options = dop853.Options(rtol, atol, 0.0, True, False)
-    return dop853.Integration(kernel, y0, float(tau[-1]), options, t_eval=tau)
+def _integration(run: RunSpec[Any, Any], kernel: Kernel, y0: FloatArray) -> dop853.Integration:
+    """A compiled run that samples at ``run.tau`` and records its steps without
+    interpolants."""
+    options = dop853.Options(run.rtol, run.atol, 0.0, True, False)
+    return dop853.Integration(kernel, y0, run.t_end, options, t_eval=run.tau)
 
 
 def _consume(
-    model: Model[P, S],
-    full: FullForm[P, S],
-    p: P,
-    initial: S,
-    tau: FloatArray,
-    run: dop853.Integration,
-    start: float,
-    max_steps: int = MAX_STEPS,
+    run: RunSpec[P, S], full: FullForm[P, S], integration: dop853.Integration, start: float
 ) -> Trajectory:
-    """Advance ``run`` to its end chunk by chunk, keeping the samples (see :func:`_streamed`)."""
-    what = f"{model.name} full equations {full.equation}"
-    angles = [c.name for c in model.columns(p, "full") if c.unwrap]
+    """Advance ``integration`` to its end chunk by chunk, keeping the samples (see
+    :func:`_streamed`); its wall time counted from ``start``."""
+    p, tau = run.p, run.tau
+    angles = [c.name for c in run.model.columns(p, "full") if c.unwrap]
 
     def angle_columns(p: P, t: FloatArray, Y: FloatArray) -> Columns:
         cols = full.angles(p, t, Y) if full.angles else full.to_columns(p, t, Y)
@@ -327,22 +318,10 @@ def _consume(
     done_samples = 0
     done = False
     while not done:
-        done = run.advance(min(dop853.CHUNK_STEPS, max(1, max_steps - run.progress.n_steps)))
-        piece = run.take()
-        if done and piece.status != 0:
-            raise IntegrationError(
-                f"{what}: integration failed at t = {piece.t:.6g}: {piece.message}"
-            )
-        if not done and run.progress.n_steps >= max_steps:
-            raise IntegrationError(
-                f"{what}: run.max_steps = {max_steps} steps spent at t = {piece.t:.6g} of "
-                f"{float(tau[-1]):.6g} (raise run.max_steps, shorten the run, or check the "
-                "input: a very fast or stiff motion)"
-            )
-        left = max_steps - run.progress.n_steps
-        refused = pace_message(piece.t, float(tau[-1]), run.progress.h_abs, left, max_steps)
-        if not done and refused:
-            raise IntegrationError(f"{what}: {refused}")
+        left = max(1, run.max_steps - integration.progress.n_steps)
+        done = integration.advance(min(dop853.CHUNK_STEPS, left))
+        piece = integration.take()
+        _check_chunk(run, run.what(full), integration.progress, piece, done)
         upto = tau.size if done else int(np.searchsorted(tau, piece.ts[-1], side="right"))
         t_samples = tau[done_samples:upto]
         if t_samples.size:
@@ -352,7 +331,7 @@ def _consume(
             cols = {name: np.empty(0) for name in angles}
         if angles:
             at_steps = angle_columns(p, piece.ts, piece.ys)
-            _unwrap_streamed(cols, t_samples, at_steps, piece.ts, carry, initial)
+            _unwrap_streamed(cols, t_samples, at_steps, piece.ts, carry, run.initial)
         events.append((piece.event_t, piece.event_signs, piece.event_y))
         done_samples = upto
     columns = {name: np.concatenate([part[name] for part in parts]) for name in parts[0]}
@@ -371,7 +350,7 @@ def _consume(
         "full",
         full.name,
         time.perf_counter() - start,
-        int(run.progress.nfev),
+        int(integration.progress.nfev),
         slow,
         np.empty(0),
         "numba",
@@ -379,6 +358,27 @@ def _consume(
         ev_s,
         event_columns,
     )
+
+
+def _check_chunk(
+    run: RunSpec[Any, Any], what: str, progress: Any, piece: dop853.Solution, done: bool
+) -> None:
+    """Raise the IntegrationError of a chunk of a streamed run (integrator ``progress`` after
+    it, ``done`` if the run ended): the run failed, spent its step budget, or goes at a pace
+    that would need a hundred times the steps it has left."""
+    max_steps = run.max_steps
+    if done and piece.status != 0:
+        raise IntegrationError(f"{what}: integration failed at t = {piece.t:.6g}: {piece.message}")
+    if not done and progress.n_steps >= max_steps:
+        raise IntegrationError(
+            f"{what}: run.max_steps = {max_steps} steps spent at t = {piece.t:.6g} of "
+            f"{run.t_end:.6g} (raise run.max_steps, shorten the run, or check the "
+            "input: a very fast or stiff motion)"
+        )
+    left = max_steps - progress.n_steps
+    refused = pace_message(piece.t, run.t_end, progress.h_abs, left, max_steps)
+    if not done and refused:
+        raise IntegrationError(f"{what}: {refused}")
 
 
 def _unwrap_streamed(
@@ -418,41 +418,23 @@ def _closed(closed: ClosedForm[P, S], p: P, initial: S, tau: FloatArray) -> Traj
     return Trajectory(tau, cols, "closed_form", "closed_form", wall, 0, slow)
 
 
-def _averaged_kernel(avg: AveragedForm[P, S], p: P, integrator: str) -> Kernel | None:
-    """The compiled averaged right-hand side to run, or None for scipy's path: none asked
-    (``integrator = "scipy"``), none written, or breakpoint surfaces the compiled integrator
-    cannot watch (more than one, or one without a compiled event function)."""
-    if integrator == "scipy" or avg.kernel is None or not compiled_breakpoints(avg.breakpoints):
-        return None
-    return avg.kernel(p)
-
-
-def _averaged(
-    model: Model[P, S],
-    avg: AveragedForm[P, S],
-    p: P,
-    initial: S,
-    tau: FloatArray,
-    rtol: float,
-    atol: float,
-    max_steps: int = MAX_STEPS,
-    kernel: Kernel | None = None,
-) -> Trajectory:
+def _averaged(run: RunSpec[P, S], avg: AveragedForm[P, S], kernel: Kernel | None) -> Trajectory:
     """The averaged equations integrated (compiled when ``kernel`` is given) and sampled at
-    ``tau``."""
+    ``run.tau``."""
     start = time.perf_counter()
-    y0 = avg.initial_state(p, initial)
+    p = run.p
+    y0 = avg.initial_state(p, run.initial)
     try:
         sol = integrate(
             lambda t, y: avg.rhs(t, y, p),
             y0,
-            float(tau[-1]),
-            rtol=rtol,
-            atol=atol,
-            what=f"{model.name} averaged equations {avg.equation}",
+            run.t_end,
+            rtol=run.rtol,
+            atol=run.atol,
+            what=run.what(avg),
             breakpoints=avg.breakpoints,
             kernel=kernel,
-            max_steps=max_steps,
+            max_steps=run.max_steps,
         )
     except IntegrationError as exc:
         reason = avg.failure() if avg.failure else None
@@ -461,42 +443,7 @@ def _averaged(
         if reason is None:
             raise
         raise IntegrationError(f"{exc}; last refused state: {reason}") from None
-    return _trajectory(model, p, initial, tau, "averaged", avg, sol, start)
-
-
-def _hybrid(
-    model: Model[P, S],
-    avg: AveragedForm[P, S],
-    p: P,
-    initial: S,
-    tau: FloatArray,
-    rtol: float,
-    atol: float,
-    integrator: str,
-    max_steps: int,
-) -> Trajectory:
-    """The averaged form with its band crossed on the full equations
-    (:func:`tumble.integrate.hybrid.hybrid`), sampled at ``tau``."""
-    from tumble.integrate.hybrid import hybrid
-
-    if avg.crossing is None:
-        raise ParameterError(
-            f'run.averaged_method = "hybrid" is not available for the averaged form {avg.name} '
-            f"of {model.name} (it has no band to hand to the full equations)"
-        )
-    start = time.perf_counter()
-    full = model.full.form()
-    kernel = _kernel(model, full, p, integrator)
-    run = hybrid(avg, full, p, initial, float(tau[-1]), rtol, atol, kernel, max_steps)
-    cols = run.columns(tau)
-    _unwrap_columns(model, p, "averaged", cols, initial)
-
-    def slow(t: FloatArray) -> Columns:
-        return run.columns(t, osculating=False)
-
-    wall = time.perf_counter() - start
-    return Trajectory(tau, cols, "averaged", f"{avg.name} hybrid", wall, run.nfev, slow,
-                      run.steps, "numba" if kernel is not None else "scipy")  # fmt: skip
+    return integrated(run, "averaged", avg, sol, start)
 
 
 def start_refusal(avg: AveragedForm[P, S], p: P, t: float, y: FloatArray) -> str | None:
@@ -507,55 +454,6 @@ def start_refusal(avg: AveragedForm[P, S], p: P, t: float, y: FloatArray) -> str
     except TumbleError as exc:
         return str(exc)
     return None
-
-
-def _trajectory(
-    model: Model[P, S],
-    p: P,
-    initial: S,
-    tau: FloatArray,
-    method: str,
-    eq: FullForm[P, S] | AveragedForm[P, S],
-    sol: DenseSolution,
-    start: float,
-) -> Trajectory:
-    """The Trajectory of an integrated method, its wall time counted from ``start``."""
-    if isinstance(eq, AveragedForm):
-        avg = eq
-
-        def to_columns(t: FloatArray, Y: FloatArray) -> Columns:
-            return avg.to_columns(p, initial, t, Y)
-
-    else:
-        full = eq
-
-        def to_columns(t: FloatArray, Y: FloatArray) -> Columns:
-            return full.to_columns(p, t, Y)
-
-    cols = _sampled(model, p, method, sol, to_columns, tau, initial)
-    if isinstance(eq, AveragedForm) and eq.osculating is not None:
-        cols.update(eq.osculating(p, initial, tau, sol(tau)))
-
-    def slow(t: FloatArray) -> Columns:
-        return to_columns(t, sol(t))
-
-    events = sol.events
-    event_columns = to_columns(events, sol(events)) if events.size else {}
-    wall = time.perf_counter() - start
-    return Trajectory(
-        tau,
-        cols,
-        method,
-        eq.name,
-        wall,
-        sol.nfev,
-        slow,
-        sol.ts,
-        sol.integrator,
-        events,
-        sol.event_signs,
-        event_columns,
-    )
 
 
 def simulate_batch(
@@ -633,30 +531,38 @@ def simulate_batch(
         )  # fmt: skip
     if method != "full":
         raise ParameterError(f"simulate_batch: method {method!r} is not 'full' or 'averaged'")
-    full = model.full.form(form)
-    out: list[Trajectory | TumbleError | None] = [None] * len(params)
+    runs: list[RunSpec[P, S]] = [RunSpec(model, p, initial, tau_i, rtol, atol, max_steps)
+            for p, initial, tau_i in zip(params, initials, taus, strict=True)]  # fmt: skip
+    return _full_batch(runs, model.full.form(form), form, threads)
+
+
+def _full_batch(
+    runs: Sequence[RunSpec[P, S]], full: FullForm[P, S], form: str | None, threads: int | None
+) -> list[Trajectory | TumbleError]:
+    """The full form ``full`` (named ``form``) of every run, compiled and streamed, on a pool
+    of ``threads`` (see :func:`simulate_batch`)."""
+    out: list[Trajectory | TumbleError | None] = [None] * len(runs)
     jobs: list[_Job] = []
-    for i, (p, initial) in enumerate(zip(params, initials, strict=True)):
+    for i, run in enumerate(runs):
         try:
-            jobs.append((i, *_batch_job(model, full, p, initial, float(taus[i][-1]))))
+            jobs.append((i, *_batch_job(run, full)))
         except TumbleError as exc:
             out[i] = exc
 
     def work(job: _Job) -> None:
         i, kernel, y0 = job
         start = time.perf_counter()
-        tau_i = taus[i]
+        run = runs[i]
         try:
-            if tau_i[-1] == 0.0:  # nothing to integrate: simulate's own path
-                out[i] = simulate(model, params[i], initials[i], tau_i, "full", rtol=rtol,
-                                  atol=atol, form=form, integrator="numba")  # fmt: skip
+            if run.t_end == 0.0:  # nothing to integrate: simulate's own path
+                out[i] = simulate(run.model, run.p, run.initial, run.tau, "full", rtol=run.rtol,
+                                  atol=run.atol, form=form, integrator="numba")  # fmt: skip
                 return
-            run = _integration(kernel, y0, tau_i, rtol, atol)
-            out[i] = _consume(model, full, params[i], initials[i], tau_i, run, start, max_steps)
+            out[i] = _consume(run, full, _integration(run, kernel, y0), start)
         except TumbleError as exc:
             out[i] = exc
 
-    _each(work, jobs, threads)
+    each_on_threads(work, jobs, threads)
     return [o for o in out if o is not None]
 
 
@@ -672,8 +578,20 @@ def batch_times(tau: ArrayLike, n_points: int) -> list[FloatArray]:
     return [shared] * n_points
 
 
-def _each(work: Callable[[_Job], None], jobs: list[_Job], threads: int | None) -> None:
-    """``work(job)`` for every job, on a pool of ``threads`` (None: every core numba uses)."""
+def each_on_threads(work: Callable[[J], None], jobs: Sequence[J], threads: int | None) -> None:
+    """``work(job)`` for every job, on a pool of ``threads`` (None: every core numba uses),
+    in the calling thread when there is one worker or one job.
+
+    Parameters
+    ----------
+    work : callable
+        Called once per job; its results go where it puts them (the compiled integrators
+        release the GIL, so the jobs run in parallel).
+    jobs : sequence
+        The jobs.
+    threads : int, optional
+        Threads of the pool (at most one per job).
+    """
     workers = dop853.available_threads() if threads is None else max(1, int(threads))
     if workers == 1 or len(jobs) < 2:
         for job in jobs:
@@ -683,19 +601,16 @@ def _each(work: Callable[[_Job], None], jobs: list[_Job], threads: int | None) -
             list(pool.map(work, jobs))
 
 
-def _batch_job(
-    model: Model[P, S], full: FullForm[P, S], p: P, initial: S, t_end: float
-) -> tuple[Kernel, FloatArray]:
+def _batch_job(run: RunSpec[P, S], full: FullForm[P, S]) -> tuple[Kernel, FloatArray]:
     """The kernel and initial state vector of one point of a batch; TumbleError if the point
     cannot run compiled (a Python function in it, times beyond its tables, no finite start)."""
-    model.check(p, "full")
-    kernel = _kernel(model, full, p, "numba")
+    run.model.check(run.p, "full")
+    kernel = _COMPILED.full_kernel(run.model, full, run.p)
     assert kernel is not None  # "numba" raises instead of returning None
-    kernel.check_end(t_end)
-    y0 = np.asarray(full.initial_state(p, initial), dtype=np.float64)
+    kernel.check_end(run.t_end)
+    y0 = np.asarray(full.initial_state(run.p, run.initial), dtype=np.float64)
     if not np.all(np.isfinite(y0)):
-        what = f"{model.name} full equations {full.equation}"
-        raise IntegrationError(f"{what}: the initial state is not finite: {y0}")
+        raise IntegrationError(f"{run.what(full)}: the initial state is not finite: {y0}")
     return kernel, y0
 
 
@@ -704,21 +619,3 @@ def _bind(
 ) -> Callable[[float, FloatArray], float]:
     """A form's event at parameters ``p``, as the integrator calls it."""
     return lambda t, y: event(t, y, p)
-
-
-def _kernel(model: Model[P, S], full: FullForm[P, S], p: P, integrator: str) -> Kernel | None:
-    """The compiled kernel of a full form for ``integrator``; None for the scipy path."""
-    if integrator == "scipy":
-        return None
-    kernel = full.kernel(p) if full.kernel is not None else None
-    if kernel is None and integrator == "numba":
-        why = (
-            "it has no compiled form"
-            if full.kernel is None
-            else "its parameters hold a Python function"
-        )
-        raise ParameterError(
-            f"run.integrator = 'numba' cannot integrate the {full.name} form of {model.name}: "
-            f'{why} (use "auto" or "scipy")'
-        )
-    return kernel

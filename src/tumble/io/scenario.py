@@ -225,40 +225,30 @@ def run_keys(model: Declaration[Any, Any], variant: Variant[Any, Any]) -> tuple[
                 "the averaged equations: at most 1e6)"),
     ]  # fmt: skip
     if model.numeric:
-        keys.append(
-            Key("averaging", "text", '"closed_form" or "numeric"', default="closed_form",
-                choices=("closed_form", "numeric"),
-                doc="the paper's averaged equations, or the general engine's quadrature")
-        )  # fmt: skip
+        doc = "the paper's averaged equations, or the general engine's quadrature"
+        keys.append(_choice("averaging", ("closed_form", "numeric"), doc))
     if model.coordinates:
         choices = " or ".join(f'"{c}"' for c in model.coordinates)
         first = model.coordinates[0]
         keys.append(Key("averaged_form", "text", choices, default=first, choices=model.coordinates,
                         doc="the slow coordinates the averaged run integrates"))  # fmt: skip
     if model.corrected_start:
-        keys.append(
-            Key("averaged_init", "text", '"exact" or "corrected"', default="exact",
-                choices=("exact", "corrected"),
-                doc="start from the given state, or from its first-order mean")
-        )  # fmt: skip
+        doc = "start from the given state, or from its first-order mean"
+        keys.append(_choice("averaged_init", ("exact", "corrected"), doc))
     if max(model.orders) > 1:
         keys += [
             Key("averaging_order", "integer", "1 or 2", default=1,
                 doc="the order of the averaged equations; 2 adds the second-order rates and "
                     "the mean ↔ osculating map"),
-            Key("initial", "text", '"osculating" or "mean"', default="osculating",
-                choices=("osculating", "mean"),
-                doc="for averaging_order = 2: the initial state is the physical one "
+            _choice("initial", ("osculating", "mean"),
+                    "for averaging_order = 2: the initial state is the physical one "
                     "(converted to the mean one) or the mean one"),
         ]  # fmt: skip
     if model.hybrid:
-        keys.append(
-            Key("averaged_method", "text", '"plain" or "hybrid"', default="plain",
-                choices=("plain", "hybrid"),
-                doc="hybrid: the bands where averaging fails (ϑ = π/2 for the resisting "
-                    "medium) are crossed on the full equations, re-entered through the "
-                    "osculating → mean map")
-        )  # fmt: skip
+        keys.append(_choice("averaged_method", ("plain", "hybrid"),
+                            "hybrid: the bands where averaging fails (ϑ = π/2 for the "
+                            "resisting medium) are crossed on the full equations, re-entered "
+                            "through the osculating → mean map"))  # fmt: skip
     keys += [
         Key("verify", "boolean", "true or false", default=False,
             doc="also measure the averaging error at ε, ε/2, ε/4"),
@@ -266,12 +256,19 @@ def run_keys(model: Declaration[Any, Any], variant: Variant[Any, Any]) -> tuple[
             default=None,
             doc="how verify scales the parameters with ε: each x as x·(ε/ε₀)^exponent "
                 "(default: ε alone; for a gravity gradient n ∝ √ε at fixed eps)"),
-        Key("integrator", "text", '"auto", "numba" or "scipy"', default="auto",
-            choices=("auto", "numba", "scipy"),
-            doc="the compiled DOP853 (auto: unless the parameters hold Python) or scipy's"),
+        _choice("integrator", ("auto", "numba", "scipy"),
+                "the compiled DOP853 (auto: unless the parameters hold Python) or scipy's"),
     ]  # fmt: skip
     assert model.scenario is not None
     return (*keys, *model.scenario.run)
+
+
+def _choice(name: str, choices: tuple[str, ...], doc: str) -> Key:
+    """A ``[run]`` text key that takes one of ``choices``, the first its default; its allowed
+    values in words as '"a", "b" or "c"'."""
+    *rest, last = (f'"{c}"' for c in choices)
+    expected = f"{', '.join(rest)} or {last}" if rest else last
+    return Key(name, "text", expected, default=choices[0], choices=choices, doc=doc)
 
 
 def _methods_field(model: Declaration[Any, Any]) -> tuple[Any, Any]:

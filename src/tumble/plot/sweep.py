@@ -137,42 +137,63 @@ def plot_sweep_variable(
         da, failed = da.mean("sample", skipna=True), failed.any("sample")
         title = "mean over samples of " + title
     if not grid:
-        values = np.asarray(da.values, dtype=float).ravel()
-        ok = values[np.isfinite(values)]
-        ax.hist(ok, bins=max(5, min(40, int(np.sqrt(max(ok.size, 1))) * 2)), color="tab:blue")
-        ax.set_xlabel(short)
-        ax.set_ylabel("samples")
-        title += f"\n{ok.size} of {values.size} samples" + (
-            f", {int(failed.sum())} failed" if int(failed.sum()) else ""
-        )
+        title += _histogram(da, failed, ax, short)
     elif len(grid) == 1:
-        x = ds[grid[0]]
-        ax.plot(x.values, da.values, marker="o", ms=3, color="tab:blue")
-        bad = np.asarray(failed.values, dtype=bool)
-        if bad.any():
-            ax.plot(x.values[bad], np.zeros(bad.sum()), "x", color="tab:red", label="failed")
-            ax.legend(loc="best", fontsize="small")
-        ax.set_xlabel(_label(x))
-        ax.set_ylabel(short)
-        _log_axes(ax, _is_log(x), False)
+        _line(da, failed, ds[grid[0]], ax, short)
     else:
-        ydim, xdim = grid[0], grid[1]
-        x, y = ds[xdim], ds[ydim]
-        values = np.asarray(da.transpose(ydim, xdim).values, dtype=float)
-        mesh = ax.pcolormesh(
-            _edges(x.values, _is_log(x)), _edges(y.values, _is_log(y)), values, shading="flat"
-        )
-        ax.figure.colorbar(mesh, ax=ax, label=short)
-        bad = np.asarray(failed.transpose(ydim, xdim).values, dtype=bool)
-        if bad.any():
-            yy, xx = np.nonzero(bad)
-            ax.plot(x.values[xx], y.values[yy], "x", color="black", ms=4, label="failed")
-            ax.legend(loc="upper right", fontsize="small")
-        ax.set_xlabel(_label(x))
-        ax.set_ylabel(_label(y))
-        _log_axes(ax, _is_log(x), _is_log(y))
+        _heat_map(da, failed, ds[grid[1]], ds[grid[0]], ax, short)
     ax.set_title("\n".join(textwrap.fill(line, 60) for line in title.split("\n")), fontsize="small")
     return ax
+
+
+def _histogram(da: xr.DataArray, failed: xr.DataArray, ax: Axes, label: str) -> str:
+    """A Monte Carlo sweep's values as a histogram; the title's line of how many samples are
+    drawn and how many failed."""
+    values = np.asarray(da.values, dtype=float).ravel()
+    ok = values[np.isfinite(values)]
+    ax.hist(ok, bins=max(5, min(40, int(np.sqrt(max(ok.size, 1))) * 2)), color="tab:blue")
+    ax.set_xlabel(label)
+    ax.set_ylabel("samples")
+    return f"\n{ok.size} of {values.size} samples" + (
+        f", {int(failed.sum())} failed" if int(failed.sum()) else ""
+    )
+
+
+def _line(da: xr.DataArray, failed: xr.DataArray, x: xr.DataArray, ax: Axes, label: str) -> None:
+    """A sweep over one grid axis ``x`` as a line, its failed points marked × on zero."""
+    ax.plot(x.values, da.values, marker="o", ms=3, color="tab:blue")
+    bad = np.asarray(failed.values, dtype=bool)
+    if bad.any():
+        ax.plot(x.values[bad], np.zeros(bad.sum()), "x", color="tab:red", label="failed")
+        ax.legend(loc="best", fontsize="small")
+    ax.set_xlabel(_label(x))
+    ax.set_ylabel(label)
+    _log_axes(ax, _is_log(x), False)
+
+
+def _heat_map(
+    da: xr.DataArray,
+    failed: xr.DataArray,
+    x: xr.DataArray,
+    y: xr.DataArray,
+    ax: Axes,
+    label: str,
+) -> None:
+    """A sweep over two grid axes ``x`` and ``y`` as a heat map, its failed points marked ×."""
+    ydim, xdim = str(y.name), str(x.name)
+    values = np.asarray(da.transpose(ydim, xdim).values, dtype=float)
+    mesh = ax.pcolormesh(
+        _edges(x.values, _is_log(x)), _edges(y.values, _is_log(y)), values, shading="flat"
+    )
+    ax.figure.colorbar(mesh, ax=ax, label=label)
+    bad = np.asarray(failed.transpose(ydim, xdim).values, dtype=bool)
+    if bad.any():
+        yy, xx = np.nonzero(bad)
+        ax.plot(x.values[xx], y.values[yy], "x", color="black", ms=4, label="failed")
+        ax.legend(loc="upper right", fontsize="small")
+    ax.set_xlabel(_label(x))
+    ax.set_ylabel(_label(y))
+    _log_axes(ax, _is_log(x), _is_log(y))
 
 
 def sweep_figure(

@@ -12,30 +12,9 @@ the error norm, the step-size control), :mod:`~.dense` (the interpolant), :mod:`
 batches over threads with the GIL released).
 """
 
+from tumble.integrate.dop853 import driver
 from tumble.integrate.dop853.core import STOPPED
-from tumble.integrate.dop853.driver import (
-    CHUNK_STEPS,
-    BatchResult,
-    Integration,
-    Options,
-    Solution,
-    available_threads,
-    solve,
-    solve_batch,
-    solve_many,
-    status_message,
-)
+from tumble.integrate.dop853.driver import *  # noqa: F403  (the names of the driver's __all__)
 
-__all__ = [
-    "CHUNK_STEPS",
-    "STOPPED",
-    "BatchResult",
-    "Integration",
-    "Options",
-    "Solution",
-    "available_threads",
-    "solve",
-    "solve_batch",
-    "solve_many",
-    "status_message",
-]
+__all__ = ["STOPPED"]
+__all__ += driver.__all__  # the core's stop status, and the driver's names

@@ -25,6 +25,7 @@ from tumble.integrate.dop853.tableau import N_INTERPOLANT
 from tumble.kernels import Kernel
 
 __all__ = [
+    "CHUNK_STEPS",
     "BatchResult",
     "Integration",
     "Options",
@@ -320,11 +321,11 @@ def solve(
     Parameters
     ----------
     kernel : Kernel
-        The right-hand side.
+        The compiled right-hand side.
     y0 : array_like
-        State at ``t0``.
+        Initial state, at ``t0``.
     t_end : float
-        Final time [the kernel's time unit].
+        End of the run [the kernel's time unit].
     rtol, atol : float
         Tolerances of the local error (as scipy's DOP853 interprets them).
     t_eval : array_like, optional

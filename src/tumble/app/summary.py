@@ -1,0 +1,84 @@
+"""What ``tumble run`` prints after a run: the table of final values, and the lines of the
+differences between methods, the predicted limits and the model's own figures (the nonlinear
+moment's envelope discrepancy and root case).
+
+A scenario given in SI is shown in SI (the files hold both).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+from rich.markup import escape
+from rich.table import Table
+
+from tumble.analysis import RunResult
+from tumble.app.runner import in_si
+from tumble.plot.labels import with_units
+
+__all__ = ["run_lines", "run_table"]
+
+
+def run_table(result: RunResult, shown: tuple[str, ...], title: str) -> Table:
+    """One row per method: form, integrator, wall time [s] and the final value of each
+    variable in ``shown`` (in SI for a scenario given in SI)."""
+    table = Table(title=title, title_justify="left")
+    datasets = in_si(result).datasets
+    first = next(iter(datasets.values()))
+    finals = [with_units(f"final {v}", first[v].attrs.get("units", "")) if v in first
+              else f"final {v}" for v in shown]  # fmt: skip
+    for col in ("method", "form", "integrator", "wall time [s]", *finals):
+        table.add_column(escape(col))  # "[s]" is a unit, not rich markup
+    for m, ds in datasets.items():
+        table.add_row(
+            m,
+            ds.attrs["form"],
+            ds.attrs["integrator"],
+            f"{ds.attrs['wall_time_s']:.3g}",
+            *(f"{ds[v].values[-1]:.6g}" if v in ds else "—" for v in shown),
+        )
+    return table
+
+
+def run_lines(result: RunResult, shown: tuple[str, ...]) -> list[str]:
+    """The lines under the table: the largest difference of each pair of methods, the
+    predicted limits of the variables in ``shown``, and the model's own summary figures."""
+    scaling = result.request.scaling
+
+    def value(name: str, x: Any, fmt: str) -> str:
+        # In SI, with its unit, for a scenario given in SI.
+        conv = scaling.si(name) if scaling is not None else None
+        return f"{x:{fmt}}" if conv is None else f"{x * conv[0]:{fmt}} {conv[1]}"
+
+    lines = []
+    for pair, diffs in result.differences.items():
+        text = ", ".join(f"{k} {value(k, v, '.2e')}" for k, v in diffs.items())
+        lines.append(f"max |difference| {pair}: {text}")
+    lim = result.limits
+    if lim:
+        text = ", ".join(
+            f"{v} → {'undefined' if lim[v] is None else value(v, lim[v], '.6g')}"
+            for v in shown
+            if v in lim
+        )
+        note = lim.get("statement") or lim.get("end_state")
+        lines.append(f"predicted limits: {text}" + (f" ({note})" if note else ""))
+    return lines + _model_lines(result.report.summary)
+
+
+def _model_lines(extra: Mapping[str, Any]) -> list[str]:
+    """The nonlinear moment's summary figures, where the run's report has them: the largest
+    envelope discrepancy (θmax, relative) and the root case of the unperturbed motion."""
+    lines = []
+    if extra.get("max_envelope_discrepancy") is not None:
+        lines.append(
+            f"max envelope discrepancy (θmax, relative): {extra['max_envelope_discrepancy']:.3%}"
+        )
+    if "root_case" in extra:
+        lines.append(
+            f"root case {extra['root_case']}, k² = {extra['k2']:.6g}, "
+            f"θ ∈ [{extra['theta_min']:.6g}, {extra['theta_max']:.6g}] rad, "
+            f"period {extra['period']:.6g}"
+        )
+    return lines

@@ -1,0 +1,197 @@
+"""What a run of a model returns (:class:`Trajectory`), what an integrated run is asked for
+(:class:`RunSpec`), and the Trajectory of an integrated run built from its dense solution."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any, Generic, TypeVar
+
+import numpy as np
+
+from tumble._typing import FloatArray
+from tumble.errors import ParameterError
+from tumble.integrate.limits import MAX_STEPS
+from tumble.integrate.ode import DenseSolution
+from tumble.models.base import AveragedForm, Columns, FullForm, Model
+
+__all__ = ["RunSpec", "Trajectory", "integrated", "unwrap_columns"]
+
+P = TypeVar("P")
+S = TypeVar("S")
+
+
+@dataclass(frozen=True)
+class Trajectory:
+    """Output of one method: columns at the sample times, and how it was obtained.
+
+    Attributes
+    ----------
+    tau : ndarray
+        Sample times [model time unit].
+    columns : dict
+        Output columns (names as in the model record), each of the shape of ``tau``.
+    method, form : str
+        Method and the form of the equations used.
+    wall_time : float
+        Seconds spent [s].
+    nfev : int
+        Right-hand-side evaluations (0 for closed forms).
+    slow : callable
+        ``slow(tau) -> columns`` anywhere in ``[0, tau[-1]]``, for validity checks.
+    steps : ndarray
+        The integrator's step times (empty for closed forms): a grid that resolves every fast
+        oscillation, for locating extrema.
+    integrator : str
+        ``"numba"``, ``"scipy"`` or ``""`` (closed forms).
+    events, event_signs : ndarray
+        Zeros of the full form's event function found during the integration (e.g. the
+        extrema of θ), and the sign of the event function before each.
+    event_columns : dict
+        The columns at ``events``.
+    """
+
+    tau: FloatArray
+    columns: dict[str, FloatArray]
+    method: str
+    form: str
+    wall_time: float
+    nfev: int
+    slow: Callable[[FloatArray], dict[str, FloatArray]] = field(repr=False)
+    steps: FloatArray = field(default_factory=lambda: np.empty(0), repr=False)
+    integrator: str = ""
+    events: FloatArray = field(default_factory=lambda: np.empty(0), repr=False)
+    event_signs: FloatArray = field(default_factory=lambda: np.empty(0), repr=False)
+    event_columns: Columns = field(default_factory=dict, repr=False)
+
+    def attitude(self) -> Any:
+        """The attitude at the samples, body → inertial, from the columns q0 … q3 of a full
+        run (scalar first; :func:`tumble.models.base.attitude_columns`).
+
+        Returns
+        -------
+        scipy.spatial.transform.Rotation
+            One rotation per sample: ``.as_matrix()`` gives R with v_inertial = R v_body.
+
+        Raises
+        ------
+        ParameterError
+            The run has no attitude (an averaged or closed-form run).
+        """
+        if "q0" not in self.columns:
+            raise ParameterError(
+                f"the {self.method} run has no attitude: only full runs write q0 … q3"
+            )
+        from scipy.spatial.transform import Rotation  # loaded where asked for: import time
+
+        q = np.stack([self.columns[f"q{i}"] for i in (1, 2, 3, 0)], axis=-1)  # scalar last
+        return Rotation.from_quat(q)
+
+
+def unwrap_columns(model: Model[P, S], p: P, method: str, cols: Columns, initial: S) -> None:
+    """Make angle columns continuous, starting from the initial value, not mod 2π."""
+    for c in model.columns(p, method):
+        if c.unwrap and c.name in cols:
+            angle = cols[c.name]
+            if angle.size > 1 and np.any(np.abs(np.diff(angle)) >= np.pi):  # else the same
+                angle = np.unwrap(angle)
+            start = getattr(initial, c.name, angle[0])
+            cols[c.name] = angle + 2.0 * np.pi * np.round((start - angle[0]) / (2.0 * np.pi))
+
+
+def _sampled(
+    model: Model[P, S],
+    p: P,
+    method: str,
+    sol: DenseSolution,
+    to_columns: Callable[[FloatArray, FloatArray], Columns],
+    tau: FloatArray,
+    initial: S,
+) -> Columns:
+    """Columns at ``tau``; angles unwrapped on the union of solver steps and samples.
+
+    The solver's steps resolve every turn of the fast phases, so unwrapping on them gives the
+    continuous angle even when the samples are sparser than a turn.
+    """
+    # Both are ascending: a stable sort merges them (a time in both is kept twice, harmless).
+    times = np.concatenate([sol.ts, tau])
+    order = np.argsort(times, kind="stable")
+    grid = times[order]
+    cols = to_columns(grid, sol(grid))
+    unwrap_columns(model, p, method, cols, initial)
+    where = np.empty(times.size, dtype=np.intp)
+    where[order] = np.arange(times.size)
+    at = where[sol.ts.size :]
+    return {name: values[at] for name, values in cols.items()}
+
+
+@dataclass(frozen=True)
+class RunSpec(Generic[P, S]):
+    """What one run of a model integrates: its parameters, initial state, sample times
+    [model time unit], tolerances and step budget."""
+
+    model: Model[P, S]
+    p: P
+    initial: S
+    tau: FloatArray
+    rtol: float
+    atol: float
+    max_steps: int = MAX_STEPS
+
+    @property
+    def t_end(self) -> float:
+        """The last sample time, where the integration ends [model time unit]."""
+        return float(self.tau[-1])
+
+    def what(self, eq: FullForm[P, S] | AveragedForm[P, S]) -> str:
+        """The equations ``eq`` as an error message names them."""
+        kind = "averaged" if isinstance(eq, AveragedForm) else "full"
+        return f"{self.model.name} {kind} equations {eq.equation}"
+
+
+def integrated(
+    run: RunSpec[P, S],
+    method: str,
+    eq: FullForm[P, S] | AveragedForm[P, S],
+    sol: DenseSolution,
+    start: float,
+) -> Trajectory:
+    """The Trajectory of an integrated method, its wall time counted from ``start``."""
+    model, p, initial, tau = run.model, run.p, run.initial, run.tau
+    if isinstance(eq, AveragedForm):
+        avg = eq
+
+        def to_columns(t: FloatArray, Y: FloatArray) -> Columns:
+            return avg.to_columns(p, initial, t, Y)
+
+    else:
+        full = eq
+
+        def to_columns(t: FloatArray, Y: FloatArray) -> Columns:
+            return full.to_columns(p, t, Y)
+
+    cols = _sampled(model, p, method, sol, to_columns, tau, initial)
+    if isinstance(eq, AveragedForm) and eq.osculating is not None:
+        cols.update(eq.osculating(p, initial, tau, sol(tau)))
+
+    def slow(t: FloatArray) -> Columns:
+        return to_columns(t, sol(t))
+
+    events = sol.events
+    event_columns = to_columns(events, sol(events)) if events.size else {}
+    wall = time.perf_counter() - start
+    return Trajectory(
+        tau,
+        cols,
+        method,
+        eq.name,
+        wall,
+        sol.nfev,
+        slow,
+        sol.ts,
+        sol.integrator,
+        events,
+        sol.event_signs,
+        event_columns,
+    )

@@ -33,7 +33,8 @@ import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import ParameterError, check_range
-from tumble.kernels.terms import CompiledTerm, compiled_term, flatten, term_of
+from tumble.kernels import terms as registry
+from tumble.kernels.terms import CompiledTerm
 
 __all__ = [
     "CallableTorque",
@@ -115,20 +116,20 @@ class Torque:
         terms = self.compiled_terms()
         if terms is None:
             return None
-        return flatten(terms)
+        return registry.flatten(terms)
 
     @cached_property
     def rate_only(self) -> bool:
         """Whether the moment is known to depend on the body rate alone (compiled terms that
         read neither the attitude nor the time)."""
         terms = self.compiled_terms()
-        return terms is not None and all(term_of(code).rate_only for code, _, _ in terms)
+        return terms is not None and all(registry.term_of(code).rate_only for code, _, _ in terms)
 
     @cached_property
     def along_orbit(self) -> bool:
         """Whether a compiled term is evaluated along an orbit (Kepler's equation, the
         geomagnetic field): such a program runs on the orbiting body's right-hand side."""
-        return any(term_of(code).along_orbit for code, _, _ in self.compiled_terms() or ())
+        return any(registry.term_of(code).along_orbit for code, _, _ in self.compiled_terms() or ())
 
     def __add__(self, other: Torque) -> Torque:
         if not isinstance(other, Torque):
@@ -253,7 +254,7 @@ class ConstantBodyTorque(Torque):
         object.__setattr__(self, "moment", _vector("moment", self.moment))
 
     def compiled_terms(self) -> tuple[CompiledTerm, ...]:
-        return (compiled_term("body_constant", {"moment": self.moment}),)
+        return (registry.compiled_term("body_constant", {"moment": self.moment}),)
 
 
 @dataclass(frozen=True, eq=False)
@@ -272,7 +273,7 @@ class LinearDrag(Torque):
         object.__setattr__(self, "B", _matrix("B", self.B))
 
     def compiled_terms(self) -> tuple[CompiledTerm, ...]:
-        return (compiled_term("linear_drag", {"B": self.B}),)
+        return (registry.compiled_term("linear_drag", {"B": self.B}),)
 
 
 @dataclass(frozen=True, eq=False)
@@ -292,7 +293,7 @@ class QuadraticDrag(Torque):
         object.__setattr__(self, "S", _matrix("S", self.S))
 
     def compiled_terms(self) -> tuple[CompiledTerm, ...]:
-        return (compiled_term("quadratic_drag", {"S": self.S}),)
+        return (registry.compiled_term("quadratic_drag", {"S": self.S}),)
 
 
 @dataclass(frozen=True, eq=False)
@@ -402,7 +403,7 @@ class UserTorque(Torque):
             )
         address = compiled_user_torque(function).address
         head = {"address": float(address), "n": float(len(values))}
-        return (compiled_term("user", head, tail=values),)
+        return (registry.compiled_term("user", head, tail=values),)
 
 
 @dataclass(frozen=True, eq=False)
@@ -448,7 +449,7 @@ class EddyCurrentTorque(Torque):
 
     def compiled_terms(self) -> tuple[CompiledTerm, ...]:
         values = {"M0": self.M0, "rate": self.omega, "beta": self.beta}
-        return (compiled_term("eddy_current", values),)
+        return (registry.compiled_term("eddy_current", values),)
 
 
 @dataclass(frozen=True, eq=False)
@@ -470,7 +471,7 @@ class ConstantInertialTorque(Torque):
         object.__setattr__(self, "moment", _vector("moment", self.moment))
 
     def compiled_terms(self) -> tuple[CompiledTerm, ...]:
-        return (compiled_term("inertial_constant", {"moment": self.moment}),)
+        return (registry.compiled_term("inertial_constant", {"moment": self.moment}),)
 
 
 @dataclass(frozen=True, eq=False)
@@ -543,4 +544,4 @@ class GravityGradientTorque(Torque):
 
     def compiled_terms(self) -> tuple[CompiledTerm, ...]:
         values = {"inertia": self.inertia, "n": self.n, "u0": self.u0, "basis": self.basis}
-        return (compiled_term("gravity_gradient", values),)
+        return (registry.compiled_term("gravity_gradient", values),)

@@ -165,3 +165,15 @@ def test_every_peer_transcription_is_the_compiled_moment(term):
         want = moments(program, np.array([t]), q[None, :], w[None, :])[0]
         # Two transcriptions of the same formula in double precision: round-off apart.
         np.testing.assert_allclose(np.asarray(got, dtype=float), want, rtol=1e-12, atol=1e-12)
+
+
+def test_the_keys_read_from_source_are_the_declared_ones():
+    # The orbiting body's schema reads the term modules' ORBIT_KEYS from their source, so that
+    # a scenario validates before numba loads; they must be the imported declarations.
+    specs = terms.orbit_key_specs()
+    declared = terms.ORBIT_KEYS
+    assert [s.name for s in specs] == [k.name for k in declared]
+    for spec, key in zip(specs, declared, strict=True):
+        assert (spec.kind, spec.meaning, spec.unit, spec.default, spec.doc) == (
+            key.kind, key.meaning, key.unit, key.default, key.doc
+        )  # fmt: skip

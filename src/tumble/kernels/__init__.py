@@ -36,7 +36,6 @@ from tumble.kernels.codes import (
     KIND_SPINNER_AVERAGED,
     KIND_TRIAXIAL_AVERAGED,
 )
-from tumble.kernels.kinds import KINDS
 
 __all__ = [
     "EVENT_EQUATOR",
@@ -89,6 +88,8 @@ class Kernel:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "params", np.ascontiguousarray(self.params, dtype=np.float64))
+        from tumble.kernels.kinds import KINDS  # the layouts' readers load numba: not at import
+
         declared = KINDS.get(int(self.kind))
         if declared is None:
             raise ParameterError(f"no right-hand side of kind {self.kind}")

@@ -17,7 +17,7 @@ import numpy as np
 
 from tumble._typing import FloatArray
 from tumble.errors import ParameterError, check_range
-from tumble.kernels.terms import compiled_term
+from tumble.kernels import terms as registry
 from tumble.space.geomagnetic import Dipole, Igrf
 from tumble.space.moments import field_moments, gravity_factor
 from tumble.space.orbit import Orbit
@@ -86,9 +86,9 @@ class OrbitEddyTorque(Torque):
         orbit, field = self.orbit.payload(self.time_unit), self.field.payload(self.time_unit)
         if isinstance(self.field, Igrf):
             values = {"orbit": orbit, "tensor": self.tensor}
-            return (compiled_term("orbit_eddy_harmonic", values, tail=field),)
+            return (registry.compiled_term("orbit_eddy_harmonic", values, tail=field),)
         values = {"orbit": orbit, "field": field, "tensor": self.tensor}
-        return (compiled_term("orbit_eddy", values),)
+        return (registry.compiled_term("orbit_eddy", values),)
 
     def averaged(self) -> FieldMomentsTorque:
         """The same moment averaged over the orbit and the Earth's rotation."""
@@ -120,7 +120,7 @@ class OrbitGravityTorque(Torque):
 
     def compiled_terms(self) -> tuple[CompiledTerm, ...]:
         values = {"orbit": self.orbit.payload(self.time_unit), "inertia": self.inertia}
-        return (compiled_term("orbit_gravity", values),)
+        return (registry.compiled_term("orbit_gravity", values),)
 
     def averaged(self) -> GravityMomentsTorque:
         """The same moment averaged over the orbit."""
@@ -164,7 +164,7 @@ class FieldMomentsTorque(Torque):
         D = self.D
         delta = 0.5 * np.array([D[2, 1] - D[1, 2], D[0, 2] - D[2, 0], D[1, 0] - D[0, 1]])
         values = {"tensor": self.tensor, "S": self.S, "delta": delta, "node_rate": self.node_rate}
-        return (compiled_term("field_moments", values),)
+        return (registry.compiled_term("field_moments", values),)
 
 
 @dataclass(frozen=True, eq=False)
@@ -202,4 +202,4 @@ class GravityMomentsTorque(Torque):
 
     def compiled_terms(self) -> tuple[CompiledTerm, ...]:
         values = {"inertia": self.inertia, "c": self.c, "normal": self.normal}
-        return (compiled_term("gravity_moments", {**values, "node_rate": self.node_rate}),)
+        return (registry.compiled_term("gravity_moments", {**values, "node_rate": self.node_rate}),)

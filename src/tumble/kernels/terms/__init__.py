@@ -1,179 +1,89 @@
-"""The registry of torque terms: every term the compiled code evaluates, one module each.
+"""The torque terms: every term the compiled code evaluates, one module each, and their registry.
 
-A term module declares its :class:`~tumble.kernels.terms.base.Term` objects in ``TERMS`` (their
-parameters, what they read, their compiled moments and averages) and, if a scenario may switch
-them on, its ``ORBIT_KEYS``; registering it is one line in :data:`MODULES`. From
-the registry follow the codes, the program's packing (:func:`compiled_term`, :func:`flatten`)
-and the compiled dispatch every kernel uses (:data:`moment_of` and the others below).
-
-A *program* is the flat float array of a sum of terms,
-``[number of terms, (code, factor, size, payload...)...]``: each term's header
-(:data:`HEADER`) gives its code, the factor that multiplies its moment and its payload's length,
-so that a walk over a program needs nothing of the terms it does not evaluate.
+Registering a term is one line: its module's name in :data:`NAMES`. The registry itself
+(:mod:`tumble.kernels.terms.registry`: the codes, the packing, the program walk and the
+compiled dispatch generated from the modules' declarations) loads numba; this package's own
+namespace does not, so that a scenario can be validated before any numerics load: the keys that
+term modules add to the orbiting body's scenario are read from their declarations' source
+(:func:`orbit_key_specs`, literal values only), and every other name of the registry is
+loaded on first access (``terms.compiled_term``, ``from tumble.kernels.terms import TERMS``).
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping
+import ast
+from dataclasses import dataclass
+from functools import cache
 from importlib import import_module
-from types import ModuleType
+from pathlib import Path
 from typing import Any
 
-import numpy as np
-
-from tumble._typing import ArrayLike, FloatArray
-from tumble.errors import ParameterError
-from tumble.kernels.jit import INLINE, jit
-from tumble.kernels.layout import Field, Layout
-from tumble.kernels.terms.base import NAN, OrbitContext, OrbitKey, Term, chain
-
-__all__ = [
-    "BY_CODE",
-    "CODES",
-    "HEADER",
-    "HEAD_SIZE",
-    "MODULES",
-    "ORBIT_KEYS",
-    "TERMS",
-    "CompiledTerm",
-    "OrbitContext",
-    "OrbitKey",
-    "Term",
-    "closed_of",
-    "code",
-    "compiled_term",
-    "flatten",
-    "moment_of",
-    "next_term",
-    "orbit_moment_of",
-    "phase_mean_of",
-    "spinner_of",
-    "term_of",
-    "walk",
-]
-
-MODULES: tuple[ModuleType, ...] = tuple(
-    import_module(f"{__name__}.{name}")
-    for name in (
-        "body_constant",
-        "linear_drag",
-        "quadratic_drag",
-        "inertial_constant",
-        "gravity_gradient",
-        "eddy_current",
-        "user",
-        "orbit_eddy",
-        "orbit_gravity",
-        "field_moments",
-        "gravity_moments",
-        "orbit_eddy_harmonic",
-        "residual_dipole",
-    )
-)
-"""The registered term modules (of this package, by name), each declaring ``TERMS`` (and
-optionally ``ORBIT_KEYS``): registering a new one is one line here. Append, never reorder: a
-program stores codes."""
-
-TERMS: tuple[Term, ...] = tuple(term for module in MODULES for term in module.TERMS)
-"""The registered terms. A term's code is its place here plus one."""
-ORBIT_KEYS: tuple[OrbitKey, ...] = tuple(
-    key for module in MODULES for key in getattr(module, "ORBIT_KEYS", ())
-)
-"""The keys of the orbiting body's ``[torques]`` section that registered modules declare."""
-
-CODES: dict[str, int] = {term.name: k + 1 for k, term in enumerate(TERMS)}
-BY_CODE: dict[int, Term] = {k + 1: term for k, term in enumerate(TERMS)}
-if len(CODES) != len(TERMS):
-    raise ValueError("two registered terms share a name")
-
-HEADER = Layout(
-    "program term",
-    (
-        Field("code", 1, "1", "the term's code (its place in TERMS, from 1)", 1.0),
-        Field("factor", 1, "1", "multiplies the term's moment"),
-        Field("size", 1, "1", "length of the payload that follows", 0.0),
-    ),
-)
-"""The header of every term in a program."""
-_HEAD = HEADER.at
-HEAD_SIZE = HEADER.size
-"""Length of a term's header in a program (an int compiled code can read)."""
+__all__ = ["NAMES", "CompiledTerm", "KeySpec", "orbit_key_specs"]
 
 CompiledTerm = tuple[int, float, tuple[float, ...]]
 """One term of a compiled torque: (code, factor, payload)."""
 
+NAMES: tuple[str, ...] = (
+    "body_constant",
+    "linear_drag",
+    "quadratic_drag",
+    "inertial_constant",
+    "gravity_gradient",
+    "eddy_current",
+    "user",
+    "orbit_eddy",
+    "orbit_gravity",
+    "field_moments",
+    "gravity_moments",
+    "orbit_eddy_harmonic",
+    "residual_dipole",
+)
+"""The registered term modules of this package. Append, never reorder: a program stores codes
+(a term's place in the registry)."""
 
-def code(name: str) -> int:
-    """The code of the registered term ``name``."""
+
+@dataclass(frozen=True)
+class KeySpec:
+    """What a scenario schema needs of an :class:`~tumble.kernels.terms.base.OrbitKey`: its
+    name, value type, meaning, unit, default and doc line (its builder stays with the term)."""
+
+    name: str
+    kind: str
+    meaning: str
+    unit: str
+    default: Any
+    doc: str
+
+
+_SPEC_FIELDS = ("name", "kind", "meaning", "unit", "default", "doc")
+
+
+@cache
+def orbit_key_specs() -> tuple[KeySpec, ...]:
+    """The ``ORBIT_KEYS`` of the registered modules, read from their source without importing
+    them (each ``OrbitKey(...)`` with its fields as keyword arguments of literal values; a test
+    holds these equal to the imported declarations)."""
+    specs = []
+    for name in NAMES:
+        tree = ast.parse((Path(__file__).parent / f"{name}.py").read_text(encoding="utf-8"))
+        for node in tree.body:
+            if not (
+                isinstance(node, ast.Assign)
+                and any(isinstance(t, ast.Name) and t.id == "ORBIT_KEYS" for t in node.targets)
+            ):
+                continue
+            for call in getattr(node.value, "elts", ()):
+                kwargs = {k.arg: k.value for k in call.keywords if k.arg in _SPEC_FIELDS}
+                specs.append(KeySpec(**{k: ast.literal_eval(v) for k, v in kwargs.items()}))
+    return tuple(specs)
+
+
+def __getattr__(name: str) -> Any:
+    """Every other name of the registry, loaded (with numba) on first access."""
+    if name.startswith("__"):
+        raise AttributeError(name)
+    registry = import_module(f"{__name__}.registry")
     try:
-        return CODES[name]
-    except KeyError:
-        raise ParameterError(f"no torque term {name!r}; registered: {sorted(CODES)}") from None
-
-
-def term_of(which: int) -> Term:
-    """The registered term of code ``which``."""
-    try:
-        return BY_CODE[which]
-    except KeyError:
-        raise ParameterError(f"torque program: unknown term code {which}") from None
-
-
-def compiled_term(
-    name: str, values: Mapping[str, Any], *, factor: float = 1.0, tail: ArrayLike = ()
-) -> CompiledTerm:
-    """One term of a program: the registered term ``name`` with its parameters ``values`` (by
-    field name, checked against its layout) and its variable-length ``tail``."""
-    which = code(name)
-    return which, float(factor), BY_CODE[which].layout.pack(values, tail)
-
-
-def flatten(terms: Iterable[CompiledTerm]) -> FloatArray:
-    """The program of ``terms`` (module notes), read-only."""
-    terms = tuple(terms)
-    flat: list[float] = [float(len(terms))]
-    for which, factor, payload in terms:
-        flat += [float(which), float(factor), float(len(payload)), *(float(v) for v in payload)]
-    program = np.array(flat)
-    program.setflags(write=False)
-    return program
-
-
-def walk(program: FloatArray, start: int = 0) -> list[tuple[Term, float, FloatArray]]:
-    """(term, factor, payload) of every term of ``program[start:]``, from Python."""
-    out = []
-    i = start + 1
-    for _ in range(int(program[start])):
-        size = int(program[i + _HEAD.size])
-        payload = np.asarray(program[i + HEADER.size : i + HEADER.size + size])
-        out.append(
-            (term_of(int(program[i + _HEAD.code])), float(program[i + _HEAD.factor]), payload)
-        )
-        i += HEADER.size + size
-    return out
-
-
-@jit(INLINE)
-def next_term(prog: FloatArray, i: int) -> int:
-    """Index of the term after the one whose header starts at ``prog[i]``."""
-    return i + HEAD_SIZE + int(prog[i + _HEAD.size])
-
-
-def _entries(kind: str, among: Iterable[Term]) -> list[tuple[int, Any]]:
-    return [(CODES[t.name], getattr(t, kind)) for t in among if getattr(t, kind) is not None]
-
-
-_FIXED = [t for t in TERMS if not t.along_orbit]
-
-moment_of = chain(_entries("moment", _FIXED), NAN[3])
-"""``moment_of(code, f, prog, v, t, w1, w2, w3, a)``: the body moment of a term not along an
-orbit (NaN for one along an orbit: only the orbiting body's kind compiles those)."""
-orbit_moment_of = chain(_entries("moment", TERMS), NAN[3])
-"""The same for every term, those along an orbit included."""
-phase_mean_of = chain([(CODES[t.name], t.phase_mean or t.moment) for t in _FIXED], NAN[3])
-"""``phase_mean_of(code, ...)``: the moment averaged over the term's forcing phase, or as it is
-at the time t for a term without one."""
-closed_of = chain(_entries("closed", TERMS), NAN[4])
-"""``closed_of(code, p, v, t, ctx)``: a term's closed-form Euler–Poinsot average."""
-spinner_of = chain(_entries("spinner", TERMS), NAN[2])
-"""``spinner_of(code, p, v, a, c)``: a term's means over the spin angle."""
+        return getattr(registry, name)
+    except AttributeError:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}") from None

@@ -251,7 +251,7 @@ _TORQUES = Section(
         Key("residual_moment", "vector3", "3 numbers (body axes)", "N m", [0.0, 0.0, 0.0]),
         *(
             Key(k.name, cast(KeyKind, k.kind), k.meaning, k.unit, k.default, doc=k.doc)
-            for k in terms.ORBIT_KEYS
+            for k in terms.orbit_key_specs()
         ),
     ),
     required=False,

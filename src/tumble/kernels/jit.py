@@ -12,7 +12,11 @@ in that list.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import sys
+import threading
+import time
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any, TypeVar
 
@@ -26,7 +30,9 @@ __all__ = [
     "INNER_INLINE",
     "KERNEL",
     "OVERLOAD",
+    "compile_notice",
     "jit",
+    "set_compile_notifier",
     "source_stamp",
 ]
 
@@ -93,3 +99,55 @@ def jit(options: dict[str, Any]) -> Callable[[F], F]:
         return dispatcher  # type: ignore[no-any-return]
 
     return decorate
+
+
+NOTICE_AFTER_S = 1.0
+"""A compile is announced once it has run this long [s]: a load from the disk cache takes less
+(every kind of the benchmark together in 0.43 s)."""
+FIRST_COMPILE_S = 15
+"""What the first compile in a process takes, about [s]: the integrator with its first kind
+(13 s measured on 2 shared cores, from an empty cache)."""
+LATER_COMPILE_S = 5
+"""What each further kind takes, about [s] (4.8–5.0 s measured alike)."""
+
+
+def _to_terminal(message: str) -> None:
+    """The default notifier: one line on stderr, and only when it is a terminal (a pipe or a
+    log file gets nothing)."""
+    stream = sys.stderr
+    if stream is not None and stream.isatty():
+        print(message, file=stream, flush=True)
+
+
+_notify: Callable[[str], None] = _to_terminal
+_compiled = threading.Event()  # set once a compile has been announced in this process
+
+
+def set_compile_notifier(notify: Callable[[str], None] | None) -> None:
+    """Where the compile notice goes: ``notify(message)``, or nowhere (None); the default
+    writes to stderr when it is a terminal."""
+    global _notify
+    _notify = notify if notify is not None else (lambda message: None)
+
+
+@contextmanager
+def compile_notice() -> Iterator[None]:
+    """Around a call that may compile: if it lasts more than :data:`NOTICE_AFTER_S`, the
+    notifier hears "compiling tumble's kernels (first run only, about N s)" while it runs."""
+    estimate = LATER_COMPILE_S if _compiled.is_set() else FIRST_COMPILE_S
+    message = f"compiling tumble's kernels (first run only, about {estimate} s) …"
+
+    def say() -> None:
+        _compiled.set()
+        _notify(message)
+
+    timer = threading.Timer(NOTICE_AFTER_S, say)
+    timer.daemon = True
+    start = time.perf_counter()
+    timer.start()
+    try:
+        yield
+    finally:
+        timer.cancel()
+        if time.perf_counter() - start > NOTICE_AFTER_S:
+            _compiled.set()

@@ -23,6 +23,7 @@ from tumble.integrate.dop853.core import Chunk, Options, Progress
 from tumble.integrate.dop853.dense import evaluate_dense
 from tumble.integrate.dop853.tableau import N_INTERPOLANT
 from tumble.kernels import Kernel
+from tumble.kernels.jit import compile_notice
 
 __all__ = [
     "CHUNK_STEPS",
@@ -109,7 +110,8 @@ def _specialised(kind: int, args: tuple[Any, ...]) -> Callable[..., tuple[Any, A
     entry = _ENTRIES.get(key)
     if entry is None:
         signature = (numba.types.literal(kind), *(numba.typeof(a) for a in args))
-        entry = cast(Any, core.advance).compile(signature)
+        with compile_notice():  # from the disk cache in well under a second, else announced
+            entry = cast(Any, core.advance).compile(signature)
         _ENTRIES[key] = entry
     return entry
 

@@ -112,13 +112,8 @@ class _Moment:
         if kind is EddyCurrentTorque:
             # (1.3); EddyCurrentTorque.inertial broadcasts t against Ω_ξ.
             return np.asarray(torque.inertial(t, g.Omega), dtype=float)
-        if kind is ScaledTorque:
-            return torque.factor * self._inertial(torque.torque, t, g)
-        if kind is TorqueSum:
-            total: FloatArray = np.zeros(3)
-            for term in torque.terms:
-                total = total + self._inertial(term, t, g)
-            return total
+        if kind in (ScaledTorque, TorqueSum):
+            return _termwise(torque, t, g, self._inertial)
         return _rotate(g.A, self._body(torque, t, g))
 
     def _body(self, torque: Any, t: FloatArray, g: _Grid) -> FloatArray:
@@ -135,13 +130,8 @@ class _Moment:
             # with r̂(t) broadcast over the time axis (one evaluation, not one per time node).
             rb = _rotate_back(g.A, torque.radial(t))
             return 3.0 * torque.n**2 * np.cross(rb, torque.inertia * rb)
-        if kind is ScaledTorque:
-            return torque.factor * self._body(torque.torque, t, g)
-        if kind is TorqueSum:
-            total: FloatArray = np.zeros(3)
-            for term in torque.terms:
-                total = total + self._body(term, t, g)
-            return total
+        if kind in (ScaledTorque, TorqueSum):
+            return _termwise(torque, t, g, self._body)
         return self._user(torque, t, g)
 
     def _user(self, torque: Any, t: FloatArray, g: _Grid) -> FloatArray:
@@ -161,3 +151,21 @@ class _Moment:
             call = BatchedTorque(torque, self.batched, "the Euler–Poinsot motion (3.1)")
             self._leaves[id(torque)] = call
         return call(t, q, w)
+
+
+def _termwise(
+    torque: Any,
+    t: FloatArray,
+    g: _Grid,
+    part: Callable[[Any, FloatArray, _Grid], FloatArray],
+) -> FloatArray:
+    """A :class:`~tumble.torques.ScaledTorque` or a :class:`~tumble.torques.TorqueSum` on the
+    grid, term by term (exact types, as :class:`_Moment` tests them): ``part(term, t, g)`` gives
+    each term's moment (:meth:`_Moment._inertial` for inertial components, :meth:`_Moment._body`
+    for body ones) [moment unit], scaled by the factor or summed in the order of the terms."""
+    if type(torque) is ScaledTorque:
+        return torque.factor * part(torque.torque, t, g)
+    total: FloatArray = np.zeros(3)
+    for term in torque.terms:
+        total = total + part(term, t, g)
+    return total

@@ -13,6 +13,9 @@
   transformation on a torus grid (FFT), with its small divisors reported.
 * :mod:`~tumble.averaging.fourier`: Fourier series of values on a uniform torus grid
   (interpolation, spectral derivatives, the resolution test).
+* :mod:`~tumble.averaging.second_order`: the averaged equations to second order and the
+  mean ↔ osculating map for any fast system, with
+  :mod:`~tumble.averaging.resonance_widths` (the distance of its phases from a resonance).
 """
 
 from tumble.averaging.generator import SmallDivisorError, zero_mean_antiderivative

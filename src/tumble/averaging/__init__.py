@@ -4,11 +4,18 @@
 * :mod:`~tumble.averaging.spinner`: the fast symmetric spinner of the resisting-medium paper
   (slow k, ρ, σ, ϑ; averaged over ψ and φ).
 * :mod:`~tumble.averaging.triaxial`: the triaxial body of the rotating-field paper (slow L_ξ, T;
-  averaged over the polhode, the precession about L and a periodic forcing).
+  averaged over the polhode, the precession about L and a periodic forcing), with
+  :mod:`~tumble.averaging.triaxial_grid` (the states of its grid and a torque on them) and
+  :mod:`~tumble.averaging.triaxial_resonance` (its fast frequencies and nearest resonance).
 * :mod:`~tumble.averaging.nutation`: Volosov averaging over the nutation of the nonlinear-moment
   paper.
 * :mod:`~tumble.averaging.generator`: the first-order generator w₁ of the near-identity
   transformation on a torus grid (FFT), with its small divisors reported.
+* :mod:`~tumble.averaging.fourier`: Fourier series of values on a uniform torus grid
+  (interpolation, spectral derivatives, the resolution test).
+* :mod:`~tumble.averaging.second_order`: the averaged equations to second order and the
+  mean ↔ osculating map for any fast system, with
+  :mod:`~tumble.averaging.resonance_widths` (the distance of its phases from a resonance).
 """
 
 from tumble.averaging.generator import SmallDivisorError, zero_mean_antiderivative

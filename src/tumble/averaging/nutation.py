@@ -18,6 +18,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
+from tumble.averaging.fourier import resolved
 from tumble.averaging.generator import zero_mean_antiderivative
 from tumble.averaging.quadrature import (
     AVERAGE_RTOL,
@@ -32,7 +33,6 @@ from tumble.averaging.second_order import (
     SecondOrder,
     generator_drift,
     grid_terms,
-    resolved,
 )
 from tumble.unperturbed.symmetric_body import NutationOrbit
 
@@ -164,12 +164,7 @@ def numeric_averages(
     # ufunc reductions rather than np.mean, np.sum, np.max: on these few numbers their
     # wrappers cost more than the arithmetic.
     def integrand(theta: FloatArray, theta_dot: FloatArray) -> FloatArray:
-        """Rows g = Φθθ' + Φz·W^z and Φz (shape (5, n)) at the nodes."""
-        ph, pz = perturbation.evaluate(tau, theta, theta_dot, z)
-        out = np.empty((5, theta.size))
-        out[0] = ph * theta_dot + np.add.reduce(pz * potential_gradient(np.cos(theta), z))
-        out[1:] = pz
-        return out
+        return _slow_rates(perturbation, tau, z, theta, theta_dot)
 
     n = 2 * n_start
     if n_start < n_max:
@@ -238,10 +233,7 @@ def nutation_generator(
     n = n_start
     while n <= n_max:
         _, theta, theta_dot, _ = orbit.nodes(n)
-        ph, pz = perturbation.evaluate(tau, theta, theta_dot, z)
-        f = np.empty((5, n))
-        f[0] = ph * theta_dot + np.add.reduce(pz * potential_gradient(np.cos(theta), z))
-        f[1:] = pz
+        f = _slow_rates(perturbation, tau, z, theta, theta_dot)
         u0 = zero_mean_antiderivative(f, [nu])[:, 0]
         size = float(np.max(np.abs(f))) / nu
         if last is not None and float(np.max(np.abs(u0 - last))) <= rtol * max(size, 1e-300):
@@ -251,6 +243,37 @@ def nutation_generator(
         f"the generator over the nutation period did not converge with {n_max} nodes "
         f"(k² = {orbit.k2:.12g}, 1 − k² = {orbit.mc:.3g}): the motion is too near a separatrix"
     )
+
+
+def _slow_rates(
+    perturbation: Perturbation,
+    tau: float,
+    z: FloatArray,
+    theta: FloatArray,
+    theta_dot: FloatArray,
+) -> FloatArray:
+    """The integrand of (2.3) at nodes of the orbit: rows g = Φθθ' + Φz·W^z and Φz.
+
+    Parameters
+    ----------
+    perturbation : Perturbation
+    tau : float
+        Slow time τ = εt (frozen) [1].
+    z : ndarray, shape (4,)
+        The orbit's (R, G, a, b) [1/t, 1/t, 1/t², 1/t²].
+    theta, theta_dot : ndarray, shape (n,)
+        θ [rad] and θ' [rad/t] at the nodes.
+
+    Returns
+    -------
+    ndarray, shape (5, n)
+        g [1/t³] and Φz at the nodes.
+    """
+    ph, pz = perturbation.evaluate(tau, theta, theta_dot, z)
+    out = np.empty((5, theta.size))
+    out[0] = ph * theta_dot + np.add.reduce(pz * potential_gradient(np.cos(theta), z))
+    out[1:] = pz
+    return out
 
 
 def _mean(values: FloatArray, step: int = 1) -> FloatArray:

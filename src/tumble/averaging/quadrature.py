@@ -171,15 +171,7 @@ def torus_mean(
     AveragingError
         If the rule has not converged with ``n_max`` nodes per phase.
     """
-    if dims not in (1, 2):
-        raise ValueError("dims must be 1 or 2")
-    if (extrapolate or known is not None) and dims != 1:
-        raise ValueError("extrapolate and known need dims = 1")
-    stored = 0 if known is None else int(np.shape(known)[-1])
-    if stored and (
-        stored < n_start or stored % n_start or (stored // n_start) & (stored // n_start - 1)
-    ):
-        raise ValueError(f"known has {stored} nodes: it needs n_start·2^p")
+    _check_mode(dims, n_start, extrapolate, known)
     if dims == 1:
         found = _circle_mean(f, rtol, atol, n_start, n_max, extrapolate, known)
     else:
@@ -190,6 +182,27 @@ def torus_mean(
         f"{what} did not converge with {n_max} nodes per phase: the integrand is nearly "
         "singular on the unperturbed motion (a separatrix, a resonance, or a pole on the path)"
     )
+
+
+def _check_mode(dims: int, n_start: int, extrapolate: bool, known: FloatArray | None) -> None:
+    """Refuse a combination of :func:`torus_mean`'s options it does not implement: ``dims``
+    other than 1 or 2, ``extrapolate`` or ``known`` on two phases, or ``known`` values on a
+    number of nodes other than ``n_start``·2^p (arguments as there).
+
+    Raises
+    ------
+    ValueError
+        Naming the option and what it needs.
+    """
+    if dims not in (1, 2):
+        raise ValueError("dims must be 1 or 2")
+    if (extrapolate or known is not None) and dims != 1:
+        raise ValueError("extrapolate and known need dims = 1")
+    stored = 0 if known is None else int(np.shape(known)[-1])
+    if stored and (
+        stored < n_start or stored % n_start or (stored // n_start) & (stored // n_start - 1)
+    ):
+        raise ValueError(f"known has {stored} nodes: it needs n_start·2^p")
 
 
 def _grid(n: int, offset: float, dims: int) -> list[FloatArray]:

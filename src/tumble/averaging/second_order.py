@@ -60,12 +60,27 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
+from tumble.averaging.fourier import (
+    _coefficients,
+    _nodes,
+    _padded,
+    _phase_derivatives,
+    _series,
+    resolved,
+    torus_values,
+)
 from tumble.averaging.generator import (
     DIVISOR_RTOL,
     SmallDivisorError,
     zero_mean_antiderivative,
 )
 from tumble.averaging.quadrature import AveragingError
+from tumble.averaging.resonance_widths import (
+    RESONANCE_WIDTHS,
+    nearest_resonance,
+    resonance_distance,
+    resonance_table,
+)
 from tumble.errors import IntegrationError, ParameterError
 
 __all__ = [
@@ -177,75 +192,6 @@ class SecondOrder:
         return values[..., :m], values[..., m:]
 
 
-def _nodes(shape: Sequence[int]) -> list[FloatArray]:
-    """The phases of a uniform grid, one array per axis shaped to broadcast (ij indexing)."""
-    d = len(shape)
-    out: list[FloatArray] = []
-    for axis, n in enumerate(shape):
-        view = [1] * d
-        view[axis] = n
-        out.append(np.asarray(np.arange(n) * (2.0 * math.pi / n), dtype=float).reshape(view))
-    return out
-
-
-def _waves(shape: Sequence[int]) -> list[FloatArray]:
-    """Integer harmonics of each axis, shaped to broadcast over the grid, Nyquist set to 0."""
-    d = len(shape)
-    out: list[FloatArray] = []
-    for axis, n in enumerate(shape):
-        k = np.asarray(np.fft.fftfreq(n) * n, dtype=float)
-        if n % 2 == 0:
-            k[n // 2] = 0.0  # the Nyquist harmonic is not resolved: treated as absent
-        view = [1] * d
-        view[axis] = n
-        out.append(k.reshape(view))
-    return out
-
-
-def torus_values(values: ArrayLike, phases: ArrayLike) -> FloatArray:
-    """The trigonometric interpolant of grid values at arbitrary phases.
-
-    Parameters
-    ----------
-    values : array_like, shape (c, n_1, …, n_d)
-        c functions at the nodes φ_j = 2π i_j / n_j.
-    phases : array_like, shape (d,) or (n, d)
-        Where to evaluate them [rad].
-
-    Returns
-    -------
-    ndarray, shape (c,) or (n, c)
-        The interpolant (the Nyquist harmonic of an even axis dropped).
-    """
-    f = np.asarray(values, dtype=float)
-    at = np.asarray(phases, dtype=float)
-    single = at.ndim == 1
-    at = np.atleast_2d(at)
-    shape = f.shape[1:]
-    d = len(shape)
-    if at.shape[-1] != d:
-        raise ParameterError(f"phases: {at.shape[-1]} phases given for a {d}-torus")
-    coef = _coefficients(f)
-    out = _series(np.broadcast_to(coef, (at.shape[0], *coef.shape)), at)  # (n, c)
-    return out[0] if single else out
-
-
-def resolved(values: FloatArray, rtol: float) -> list[bool]:
-    """Per phase axis: whether the harmonics above a quarter of the grid are below ``rtol``
-    of the largest coefficient of ``values`` (shape (c, *grid))."""
-    d = values.ndim - 1
-    coef = np.abs(np.fft.fftn(values, axes=tuple(range(1, d + 1)))).max(axis=0)
-    top = float(coef.max())
-    if top == 0.0:
-        return [True] * d
-    out = []
-    for axis, n in enumerate(coef.shape):
-        k = np.abs(np.fft.fftfreq(n) * n)
-        high = np.moveaxis(coef, axis, 0)[k > n / 4]
-        out.append(n < 4 or high.size == 0 or float(high.max()) <= rtol * top)
-    return out
-
-
 def _evaluate(
     rates: FastRates, t: float, x: FloatArray, shape: tuple[int, ...]
 ) -> tuple[FloatArray, FloatArray]:
@@ -327,21 +273,8 @@ def second_order(
         The right-hand side is not finite on the torus, or the grid needs more than
         ``GRID_MAX`` nodes along a phase.
     """
-    x = np.asarray(x, dtype=float).reshape(-1)
-    scale_ = np.maximum(np.abs(x), 1.0) if scale is None else np.asarray(scale, dtype=float)
-    f, g = _resolved(rates, t, x, grid, rtol)
+    x, scale_, f, g, nu = _frozen_state(rates, frequencies, t, x, grid, scale, rtol)
     shape = f.shape[1:]
-    nu = np.asarray(frequencies(x), dtype=float).reshape(-1)
-    x_grid = x.reshape(-1, *([1] * len(shape)))
-
-    def along(u: FloatArray) -> FloatArray:
-        # (∂f/∂x) u at every node: a central difference of f along u.
-        h = _step(u, scale_)
-        if not h:
-            return np.zeros_like(f)
-        up = _evaluate(rates, t, x_grid + h * u, shape)[0]
-        down = _evaluate(rates, t, x_grid - h * u, shape)[0]
-        return (up - down) / (2.0 * h)
 
     def rates_at(y: FloatArray) -> tuple[FloatArray, FloatArray]:
         return _evaluate(rates, t, y, shape)[0], np.asarray(frequencies(y), dtype=float).ravel()
@@ -356,10 +289,60 @@ def second_order(
         g,
         nu,
         _jacobian(frequencies, x, scale_),
-        along,
+        _along(rates, t, x, f, scale_),
         drift if generator_order == 2 else None,
         divisor_rtol=divisor_rtol,
     )
+
+
+def _frozen_state(
+    rates: FastRates,
+    frequencies: Frequencies,
+    t: float,
+    x: ArrayLike,
+    grid: Sequence[int],
+    scale: ArrayLike | None,
+    rtol: float,
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray]:
+    """What :func:`second_order` and :func:`resonances_at` start from (arguments as there).
+
+    Returns
+    -------
+    x : ndarray, shape (m,)
+        The slow state [slow unit].
+    scale : ndarray, shape (m,)
+        The size of each slow variable: ``scale``, or max(|x|, 1) [slow unit].
+    f, g : ndarray, shapes (m, *grid), (d, *grid)
+        The slow rates and the phases' perturbation on the resolved grid
+        [slow unit / time unit], [rad / time unit].
+    nu : ndarray, shape (d,)
+        ν(x) [rad / time unit].
+    """
+    x = np.asarray(x, dtype=float).reshape(-1)
+    scale_ = np.maximum(np.abs(x), 1.0) if scale is None else np.asarray(scale, dtype=float)
+    f, g = _resolved(rates, t, x, grid, rtol)
+    nu = np.asarray(frequencies(x), dtype=float).reshape(-1)
+    return x, scale_, f, g, nu
+
+
+def _along(
+    rates: FastRates, t: float, x: FloatArray, f: FloatArray, scale: FloatArray
+) -> Callable[[FloatArray], FloatArray]:
+    """``along(u) -> (∂f/∂x) u`` at every node of the grid of ``f`` (shape (m, *grid)): a
+    central difference of the slow rates along u about the slow state x, with the step of
+    :func:`_step` for the slow scale ``scale`` [slow unit]; zeros for u = 0."""
+    shape = f.shape[1:]
+    x_grid = x.reshape(-1, *([1] * len(shape)))
+
+    def along(u: FloatArray) -> FloatArray:
+        h = _step(u, scale)
+        if not h:
+            return np.zeros_like(f)
+        up = _evaluate(rates, t, x_grid + h * u, shape)[0]
+        down = _evaluate(rates, t, x_grid - h * u, shape)[0]
+        return (up - down) / (2.0 * h)
+
+    return along
 
 
 def _resolved(
@@ -392,10 +375,7 @@ def resonances_at(
 ) -> dict[tuple[int, ...], float]:
     """:func:`resonance_table` at one slow state, without the generator: defined at a
     resonance too, where :func:`second_order` meets a zero divisor (arguments as there)."""
-    x = np.asarray(x, dtype=float).reshape(-1)
-    scale_ = np.maximum(np.abs(x), 1.0) if scale is None else np.asarray(scale, dtype=float)
-    f, _ = _resolved(rates, t, x, grid, rtol)
-    nu = np.asarray(frequencies(x), dtype=float).reshape(-1)
+    x, scale_, f, _, nu = _frozen_state(rates, frequencies, t, x, grid, scale, rtol)
     return resonance_table(
         f, nu, _jacobian(frequencies, x, scale_), f.mean(axis=tuple(range(1, f.ndim)))
     )
@@ -465,92 +445,6 @@ def grid_terms(
     )
 
 
-RESONANCE_WIDTHS = 3.0
-"""A mean state closer than this many widths to a resonance is refused by a run of order 2
-(and handed to the full equations by a hybrid one): there the generator, of the size
-|f̂_k|/|k·ν| ≳ √ε/RESONANCE_WIDTHS, no longer makes a small correction."""
-
-
-def resonance_table(
-    f: FloatArray, nu: FloatArray, nu_jacobian: FloatArray, drift: FloatArray
-) -> dict[tuple[int, ...], float]:
-    """The signed distance of each harmonic of the slow rates from its resonance, in units of
-    its width.
-
-    The combination θ = k·φ of a harmonic k of the slow rates (coefficient f̂_k) turns at
-    k·ν, which changes at the rate (k·∂ν/∂x)·(F₁ + f̂_k e^{iθ}): the mean drift carries the
-    solution through the resonance k·ν = 0, and the harmonic itself drives θ like a pendulum.
-    Both give the resonance the width w_k = √(|(k·∂ν/∂x)·F₁| + |(k·∂ν/∂x)·f̂_k|) in k·ν:
-    within a few widths the phase no longer turns many times while k·ν changes (the
-    adiabatic condition |k·ν|² ≫ |d(k·ν)/dt| fails), the solution passes with an O(√ε) jump
-    or is captured, and the generator's terms f̂_k/(k·ν) stop being small.
-
-    Parameters
-    ----------
-    f : ndarray, shape (m, *grid)
-        The slow rates on the grid.
-    nu : ndarray, shape (d,)
-        ν.
-    nu_jacobian : ndarray, shape (d, m)
-        ∂ν/∂x.
-    drift : ndarray, shape (m,)
-        F₁.
-
-    Returns
-    -------
-    dict
-        k·ν/w_k for each harmonic k above 1e-6 of the largest that can resonate
-        (k·∂ν/∂x ≠ 0), one of each pair ±k (the one whose first non-zero entry is positive).
-        Its sign tells on which side of the resonance the state is, so that a step of an
-        integrator that jumps a whole band is seen by the sign's change.
-    """
-    shape = f.shape[1:]
-    d = len(shape)
-    coef = np.fft.fftn(f, axes=tuple(range(1, d + 1))) / math.prod(shape)
-    waves = _waves(shape)
-    k_nu = sum(w * n for w, n in zip(waves, nu, strict=True))
-    # k·∂ν/∂x, shape (m, *grid)
-    k_jac = sum(w[None] * np.reshape(row, (-1, *([1] * d)))
-                for w, row in zip(waves, nu_jacobian, strict=True))  # fmt: skip
-    width2 = np.abs(np.tensordot(drift, k_jac, axes=(0, 0)))
-    width2 = width2 + np.abs(np.sum(k_jac * coef, axis=0))
-    size = np.abs(coef).max(axis=0)
-    present = size > 1e-6 * float(size.max())
-    present &= width2 > 0.0
-    table: dict[tuple[int, ...], float] = {}
-    for at in zip(*np.nonzero(present), strict=True):
-        k = tuple(int(np.broadcast_to(w, shape)[at]) for w in waves)
-        leading = next((c for c in k if c != 0), 0)
-        if leading > 0:  # k = 0 has no width; of ±k the one leading with a positive entry
-            table[k] = float(k_nu[at] / math.sqrt(float(width2[at])))
-    return table
-
-
-def resonance_distance(
-    f: FloatArray, nu: FloatArray, nu_jacobian: FloatArray, drift: FloatArray
-) -> tuple[float, tuple[int, ...]]:
-    """How far the phases are from their nearest resonance, in units of its width: the least
-    |k·ν|/w_k of :func:`resonance_table`, and that k.
-
-    Returns
-    -------
-    distance : float
-        inf where no harmonic present can resonate (k·∂ν/∂x = 0 for all of them).
-    harmonic : tuple of int
-        The nearest resonance's k.
-    """
-    return nearest_resonance(resonance_table(f, nu, nu_jacobian, drift))
-
-
-def nearest_resonance(table: dict[tuple[int, ...], float]) -> tuple[float, tuple[int, ...]]:
-    """The least |distance| of a :func:`resonance_table` and its harmonic (inf, () if
-    empty)."""
-    if not table:
-        return math.inf, ()
-    k = min(table, key=lambda h: abs(table[h]))
-    return abs(table[k]), k
-
-
 def generator_drift(
     rates_at: Callable[[FloatArray], tuple[FloatArray, FloatArray]],
     x: FloatArray,
@@ -574,14 +468,6 @@ def _step(direction: FloatArray, scale: FloatArray) -> float:
     is ``_FD_STEP`` of the slow scale at its largest; 0 for a zero direction."""
     size = float(np.max(np.abs(direction) / scale.reshape(-1, *([1] * (direction.ndim - 1)))))
     return _FD_STEP / size if size > 0.0 else 0.0
-
-
-def _phase_derivatives(values: FloatArray) -> list[FloatArray]:
-    """∂/∂φ_j of grid values (shape (c, *grid)), spectrally, one array per phase."""
-    shape = values.shape[1:]
-    axes = tuple(range(1, len(shape) + 1))
-    coef = np.fft.fftn(values, axes=axes)
-    return [np.fft.ifftn(1j * k * coef, axes=axes).real for k in _waves(shape)]
 
 
 @dataclass(frozen=True)
@@ -822,38 +708,3 @@ def _anchors(times: FloatArray) -> FloatArray | None:
     _, first = np.unique(times[chosen], return_index=True)  # a time given twice: once
     chosen = chosen[first]
     return chosen if chosen.size >= 4 else None
-
-
-def _coefficients(values: FloatArray) -> FloatArray:
-    """Fourier coefficients of grid values (c, *grid) with the Nyquist harmonics removed."""
-    shape = values.shape[1:]
-    d = len(shape)
-    coef = np.fft.fftn(values, axes=tuple(range(1, d + 1))) / math.prod(shape)
-    for axis, n in enumerate(shape):
-        if n % 2 == 0:
-            index = [slice(None)] * (d + 1)
-            index[axis + 1] = slice(n // 2, n // 2 + 1)
-            coef[tuple(index)] = 0.0
-    return np.asarray(coef)
-
-
-def _padded(coef: FloatArray, shape: tuple[int, ...]) -> FloatArray:
-    """Coefficients of a coarser grid placed on a finer one (harmonics by their numbers)."""
-    out = np.zeros((coef.shape[0], *shape[1:]), dtype=complex)
-    places = [
-        (np.fft.fftfreq(n) * n).astype(int) % fine
-        for n, fine in zip(coef.shape[1:], shape[1:], strict=True)
-    ]
-    index = np.ix_(range(coef.shape[0]), *places)
-    out[index] = coef
-    return out
-
-
-def _series(coef: FloatArray, phases: FloatArray) -> FloatArray:
-    """Σ_k c_k e^{i k·φ} for each row: coef (n, c, *grid), phases (n, d) → (n, c)."""
-    shape = coef.shape[2:]
-    waves = _waves(shape)
-    k = np.stack([np.broadcast_to(w, shape).reshape(-1) for w in waves], -1)  # (N, d)
-    turn = np.exp(1j * (phases @ k.T))  # (n, N)
-    flat = coef.reshape(coef.shape[0], coef.shape[1], -1)  # (n, c, N)
-    return np.asarray(np.real(np.einsum("ncN,nN->nc", flat, turn)), dtype=float)

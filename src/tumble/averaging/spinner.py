@@ -11,11 +11,22 @@ torque. For the moment (1.2) of the paper it reproduces (2.2).
 Two ways to the mean. A moment that depends on the body rate only (sums and multiples of the
 built-in :class:`~tumble.torques.ConstantBodyTorque`, :class:`~tumble.torques.LinearDrag` and
 :class:`~tumble.torques.QuadraticDrag`, recognized by their exact types: the law (1.2)) does not
-depend on ψ, so its mean over ψ is known exactly and only φ is averaged, on the body rates
-alone. Any other torque is evaluated on the product grid of ψ and φ with the attitude. Either
-way the φ mean is a trapezoidal rule with Romberg extrapolation
-(:func:`~tumble.averaging.quadrature.torus_mean`), which the kinks of the quadratic law at the
-nodes φ = 0, π/2, π, 3π/2 call for.
+depend on ψ, so its mean over ψ is known exactly (⟨dρ/dτ⟩ = ⟨dσ/dτ⟩ = 0) and only φ is
+averaged, on the body rates alone. Any other torque is evaluated on the product grid of ψ and φ
+with the attitude: the ψ nodes are chosen first, on 64 values of φ: one node if the moment does
+not depend on ψ at 8 nodes (a body-fixed law given as a plain function), else the fewest of 2,
+4, 8, … that resolve the ψ-mean. Either way the φ nodes are doubled by
+:func:`~tumble.averaging.quadrature.torus_mean` until two results agree to ``rtol`` relative to
+the size of the moment on the torus, the trapezoidal means or their Romberg extrapolation,
+which the kinks of the quadratic law call for: its third derivative jumps at the nodes φ = 0,
+π/2, π, 3π/2, so the plain rule would need 1024–4096 φ nodes and the extrapolated one needs
+256–512 (the body-rate path) or 512–1024 (the product grid, which starts at 64). (The 2-D mode
+of ``torus_mean`` would refine ψ together with φ, while (1.2) needs one ψ node.)
+
+Measured cost of one :func:`spinner_average` call at the default rtol (2 shared cores): for
+``resisting_medium.Params.torque`` about 0.25 ms, with or without the quadratic term; for (1.2)
+as a plain batched function about 1 ms (0.5 ms without the quadratic term); called one state at
+a time (``batched=False``), about 40 ms.
 
 This module also holds the kinematics of the standard form (1.3), the part that does not depend
 on the moment law: :func:`body_momentum` and :func:`standard_form`.
@@ -465,24 +476,9 @@ def spinner_average(
     the rates k of ψ and −kκ cos ϑ/(1+κ) of φ are not commensurate (first-order averaging,
     §6; at ϑ = π/2 φ stops and the result is the limit of the average, §10.2).
 
-    A torque built of the body-rate laws of (1.2) (sums and multiples of the built-in
-    :class:`~tumble.torques.ConstantBodyTorque`, :class:`~tumble.torques.LinearDrag`,
-    :class:`~tumble.torques.QuadraticDrag`, recognized by their exact types) does not depend
-    on ψ: its ψ-mean is exact (⟨dρ/dτ⟩ = ⟨dσ/dτ⟩ = 0) and only φ is averaged, on the body
-    rates alone. Any other torque is averaged on a product grid: the ψ nodes are chosen first,
-    on 64 values of φ: one node if the moment does not depend on ψ at 8 nodes (a body-fixed
-    law given as a plain function), else the fewest of 2, 4, 8, … that resolve the ψ-mean.
-    Either way the φ nodes are doubled by :func:`~tumble.averaging.quadrature.torus_mean`
-    until two results agree to ``rtol`` relative to the size of the moment on the torus,
-    the trapezoidal means or their Romberg extrapolation: the quadratic law of (1.2) has a
-    jump in the third derivative at the nodes φ = 0, π/2, π, 3π/2, so the plain rule would
-    need 1024–4096 φ nodes and the extrapolated one needs 256–512 (the body-rate path) or
-    512–1024 (the product grid, which starts at 64). (The 2-D mode of ``torus_mean`` would
-    refine ψ together with φ, while (1.2) needs one ψ node.)
-    Measured cost of one call at the default rtol (2 shared cores): for
-    ``resisting_medium.Params.torque`` about 0.25 ms, with or without the quadratic term; for
-    (1.2) as a plain batched function about 1 ms (0.5 ms without the quadratic term); called
-    one state at a time (``batched=False``), about 40 ms.
+    How the mean is formed (the exact ψ-mean of a moment of the body rate only, the ψ nodes
+    of any other torque, the Romberg extrapolation in φ) and what a call costs: module notes,
+    "Two ways to the mean".
 
     Parameters
     ----------

@@ -35,48 +35,42 @@ Torques on arrays. The built-in torques of :mod:`tumble.torques` are evaluated h
 whole grid at once, with arrays that broadcast over the phases (time included); any other
 torque is called with the package's batched convention (q of shape (N, 4), omega (N, 3),
 one time per call), checked against one-state calls, or one state at a time if it does not
-follow it (see :class:`_Moment` and the ``batched`` argument).
+follow it (see :class:`~tumble.averaging.triaxial_grid._Moment` and the ``batched``
+argument).
 """
 
 from __future__ import annotations
 
-import itertools
 import math
 import warnings
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from functools import cached_property
 from typing import Any
 
 import numpy as np
 from scipy import special
 
 from tumble._typing import ArrayLike, FloatArray
-from tumble.averaging.quadrature import AVERAGE_RTOL, AveragingError, BatchedTorque
+from tumble.averaging.quadrature import AVERAGE_RTOL, AveragingError
+from tumble.averaging.triaxial_grid import _Grid, _Moment, _rotate
+from tumble.averaging.triaxial_resonance import (
+    Resonance,
+    nearest_resonance,
+    nearest_resonances,
+)
 from tumble.bodies import proper_sorting
 from tumble.errors import ParameterError, TumbleWarning, check_finite, check_range
 from tumble.kernels import KIND_TRIAXIAL_AVERAGED, Kernel
 from tumble.kernels.codes import DEGENERATE_RTOL
 from tumble.kernels.params import TRIAXIAL_AVERAGED
 from tumble.kernels.terms import term_of
-from tumble.rotations import matrix_to_quat, quat_multiply
-from tumble.torques import (
-    ConstantBodyTorque,
-    ConstantInertialTorque,
-    EddyCurrentTorque,
-    GravityGradientTorque,
-    LinearDrag,
-    QuadraticDrag,
-    ScaledTorque,
-    TorqueSum,
-    ZeroTorque,
-)
+from tumble.rotations import matrix_to_quat
 from tumble.unperturbed.euler_poinsot import (
     SEPARATRIX_RTOL,
     EulerPoinsot,
-    fast_frequencies,
     regime,
 )
+from tumble.unperturbed.euler_poinsot.motion import _frame_with_third_row
 
 __all__ = [
     "AVERAGE_RTOL",
@@ -111,103 +105,6 @@ _SQUARING_SAFETY = 100.0
 torque over 3000 random bodies and states (both regimes, k² ≤ 1 − 10⁻⁴) at rtol = 1e-12: the
 shortcut saved a doubling in 57 % of them and its results differed from those of the plain
 test by at most 5e-13 of the integrand's size, within rtol."""
-
-
-# ---------------------------------------------------------------------------------------------
-# Torques on arrays.
-
-
-def _rotate(A: FloatArray, v: FloatArray) -> FloatArray:
-    """A v for stacks of matrices and vectors that broadcast (matmul: faster than einsum)."""
-    return np.matmul(A, v[..., None])[..., 0]
-
-
-def _rotate_back(A: FloatArray, v: FloatArray) -> FloatArray:
-    """Aᵀ v, broadcasting."""
-    return np.matmul(np.swapaxes(A, -1, -2), v[..., None])[..., 0]
-
-
-class _Moment:
-    """A torque on the product grid, in inertial components A M (broadcasting (n0, n1[, n2])).
-
-    Sums and multiples of built-in torques (exact types: a subclass may override
-    ``__call__``) are walked term by term: the inertial-form ones (eddy current (1.3), constant
-    inertial moment) are evaluated in inertial axes with the explicit time broadcast over the
-    forcing axis, the time-independent body ones in one batched call on the grid's rates, the
-    gravity gradient on the grid's attitude matrices with its r̂(t) broadcast over the forcing
-    axis. Any other torque is called through :class:`BatchedTorque`, once per time node, with
-    the N = n0·n1 attitudes of the grid. ``batched=False`` calls the whole torque, built-ins
-    included, one state at a time (the reference for the fast paths).
-    """
-
-    def __init__(self, torque: Any, batched: bool | None) -> None:
-        self.torque = torque
-        self.batched = batched
-        self._leaves: dict[int, BatchedTorque] = {}
-
-    def inertial(self, t: FloatArray, g: _Grid) -> FloatArray:
-        if self.batched is False:
-            return _rotate(g.A, self._user(self.torque, t, g))
-        return self._inertial(self.torque, t, g)
-
-    def _inertial(self, torque: Any, t: FloatArray, g: _Grid) -> FloatArray:
-        kind = type(torque)
-        if kind is ZeroTorque:
-            return np.zeros(3)
-        if kind is ConstantInertialTorque:
-            return np.array(torque.moment)
-        if kind is EddyCurrentTorque:
-            # (1.3); EddyCurrentTorque.inertial broadcasts t against Ω_ξ.
-            return np.asarray(torque.inertial(t, g.Omega), dtype=float)
-        if kind is ScaledTorque:
-            return torque.factor * self._inertial(torque.torque, t, g)
-        if kind is TorqueSum:
-            total: FloatArray = np.zeros(3)
-            for term in torque.terms:
-                total = total + self._inertial(term, t, g)
-            return total
-        return _rotate(g.A, self._body(torque, t, g))
-
-    def _body(self, torque: Any, t: FloatArray, g: _Grid) -> FloatArray:
-        kind = type(torque)
-        w = g.omega
-        if kind in (ConstantBodyTorque, LinearDrag, QuadraticDrag):
-            # Time-independent and batch-aware: one call on the grid's body rates.
-            return np.asarray(torque(0.0, None, w), dtype=float)
-        if kind in (ZeroTorque, ConstantInertialTorque, EddyCurrentTorque):
-            return _rotate_back(g.A, self._inertial(torque, t, g))
-        if kind is GravityGradientTorque:
-            # M = 3n² r̂_b × (I r̂_b), r̂_b = Aᵀ r̂(t) the body components of its radial(t):
-            # GravityGradientTorque.__call__ on the grid's matrices rather than quaternions,
-            # with r̂(t) broadcast over the time axis (one evaluation, not one per time node).
-            rb = _rotate_back(g.A, torque.radial(t))
-            return 3.0 * torque.n**2 * np.cross(rb, torque.inertia * rb)
-        if kind is ScaledTorque:
-            return torque.factor * self._body(torque.torque, t, g)
-        if kind is TorqueSum:
-            total: FloatArray = np.zeros(3)
-            for term in torque.terms:
-                total = total + self._body(term, t, g)
-            return total
-        return self._user(torque, t, g)
-
-    def _user(self, torque: Any, t: FloatArray, g: _Grid) -> FloatArray:
-        """Body moments of a torque called with the batched convention, one time at a time."""
-        q, w = g.q_nodes, g.omega_nodes  # (n0, n1, 4), (n0, n1, 3)
-        n0, n1 = q.shape[:2]
-        qf, wf = q.reshape(-1, 4), w.reshape(-1, 3)
-        times = np.ravel(t)
-        per_time = [self._call(torque, float(tj), qf, wf).reshape(n0, n1, 3) for tj in times]
-        if t.ndim == 0:
-            return per_time[0]
-        return np.stack(per_time, axis=2)  # (n0, n1, n2, 3): t varies along the third axis
-
-    def _call(self, torque: Any, t: float, q: FloatArray, w: FloatArray) -> FloatArray:
-        call = self._leaves.get(id(torque))
-        if call is None:
-            call = BatchedTorque(torque, self.batched, "the Euler–Poinsot motion (3.1)")
-            self._leaves[id(torque)] = call
-        return call(t, q, w)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -400,50 +297,9 @@ def _polhode(
 
 
 def _frame_with_third_column(v: FloatArray) -> FloatArray:
-    """A rotation matrix whose third column is v/|v|."""
-    e3 = v / np.linalg.norm(v)
-    a = np.zeros(3)
-    a[int(np.argmin(np.abs(e3)))] = 1.0
-    e1 = np.cross(a, e3)
-    e1 /= np.linalg.norm(e1)
-    return np.stack([e1, np.cross(e3, e1), e3], axis=1)
-
-
-class _Grid:
-    """States on the product grid in shapes that broadcast, (n0, n1[, 1], …): attitude
-    ``A = F Rz(χ) G(τ)``, body rate ``omega``, inertial rate ``Omega``; A and the
-    quaternions are built only when a torque asks for them."""
-
-    def __init__(
-        self,
-        FRz: FloatArray,
-        G: FloatArray,
-        omega: FloatArray,
-        Omega: FloatArray,
-        q_factors: tuple[Callable[[], FloatArray], FloatArray, FloatArray],
-        forced: bool,
-    ) -> None:
-        self._FRz, self._G, self._q_factors, self._forced = FRz, G, q_factors, forced
-        self.omega, self.Omega = omega, Omega
-
-    def _expand(self, x: FloatArray) -> FloatArray:
-        return x[:, :, None] if self._forced else x
-
-    @cached_property
-    def A(self) -> FloatArray:
-        return self._expand(np.matmul(self._FRz[None], self._G[:, None]))
-
-    @cached_property
-    def q_nodes(self) -> FloatArray:
-        """Attitude quaternions of the (polhode, precession) nodes, shape (n0, n1, 4)."""
-        q_F, q_z, q_G = self._q_factors
-        return quat_multiply(quat_multiply(q_F(), q_z)[None], q_G[:, None])
-
-    @property
-    def omega_nodes(self) -> FloatArray:
-        """Body rates at the same nodes, shape (n0, n1, 3)."""
-        n0, n1 = self._G.shape[0], self._FRz.shape[0]
-        return np.broadcast_to(self.omega.reshape(n0, 1, 3), (n0, n1, 3))
+    """A rotation matrix whose third column is v/|v|: the transpose of the Euler–Poinsot
+    motion's frame with that third row (C-ordered, as the products on the grid expect)."""
+    return np.ascontiguousarray(_frame_with_third_row(v).T)
 
 
 class _Prefetched:
@@ -817,123 +673,3 @@ def triaxial_kernel(
         }
     )
     return Kernel(KIND_TRIAXIAL_AVERAGED, np.concatenate([head, program]))
-
-
-# ---------------------------------------------------------------------------------------------
-# Fast frequencies and resonances, §8 and §12.
-
-
-@dataclass(frozen=True)
-class Resonance:
-    """The fast frequencies at (L, T) and the nearest low-order resonance, §12.
-
-    Attributes
-    ----------
-    nu1 : float
-        Polhode frequency 2πν/(4K) [rad/τ].
-    nu2 : float
-        Mean precession rate about L [rad/τ].
-    forcing : float
-        Forcing frequency Ω_f = 2π/forcing_period [rad/τ]; 0 without forcing.
-    m, n1, n2 : int
-        The relation m Ω_f = n1 ν1 + n2 ν2 closest to holding (m ≥ 0; m = 0 is a
-        commensurability of the free motion itself, which matters for attitude-dependent
-        torques). (1, −1, 1) is the co-rotation of the rotating-field paper.
-    detuning : float
-        n1 ν1 + n2 ν2 − m Ω_f [rad/τ].
-    relative : float
-        |detuning| / Ω_ref, Ω_ref = Ω_f, or max(ν1, ν2) without forcing [1]. Averaging is
-        trustworthy while this is large against √(ε/I) (§12).
-    """
-
-    nu1: float
-    nu2: float
-    forcing: float
-    m: int
-    n1: int
-    n2: int
-    detuning: float
-    relative: float
-
-
-def nearest_resonance(
-    inertia: ArrayLike,
-    L: float,
-    T: float,
-    forcing_period: float | None = None,
-    *,
-    max_harmonic: int = 2,
-    max_order: int = 2,
-) -> Resonance:
-    """Fast frequencies ν1, ν2 (§8) and the nearest relation m Ω_f = n1 ν1 + n2 ν2 (§12).
-
-    Searched over 0 ≤ m ≤ ``max_harmonic`` (m = 0 alone without forcing) and
-    |n1|, |n2| ≤ ``max_order``, (n1, n2) ≠ (0, 0). Callers warn when ``relative`` is small;
-    the averages of :func:`triaxial_average` assume it is not.
-
-    Parameters
-    ----------
-    inertia : array_like, shape (3,)
-        Principal moments, any order [inertia unit].
-    L : float
-        Angular momentum magnitude [inertia unit · rad/τ].
-    T : float
-        Kinetic energy [inertia unit · (rad/τ)²].
-    forcing_period : float, optional
-        Period of the torque's explicit time dependence [τ].
-    max_harmonic, max_order : int
-        Largest m and |n1|, |n2| (§12 watches m ∈ {1, 2}, |n2| ≤ 2).
-
-    Returns
-    -------
-    Resonance
-    """
-    Is = np.sort(np.asarray(inertia, dtype=float).reshape(-1))
-    if Is.shape != (3,):
-        raise ParameterError(f"inertia must have 3 moments, got {Is.size}")
-    nu1, nu2 = fast_frequencies(float(Is[0]), float(Is[1]), float(Is[2]), float(L), float(T))
-    found = nearest_resonances(np.array([nu1]), np.array([nu2]), forcing_period,
-                               max_harmonic=max_harmonic, max_order=max_order)  # fmt: skip
-    return found[0]
-
-
-def _relations(harmonics: int, max_order: int) -> FloatArray:
-    """The relations (m, n1, n2) searched, in a fixed order (the first of equally near ones
-    wins): 0 ≤ m < ``harmonics``, |n1|, |n2| ≤ ``max_order``, (n1, n2) ≠ (0, 0), and one of
-    ±(n1, n2) for m = 0."""
-    orders = range(-max_order, max_order + 1)
-    rows = [(m, n1, n2) for m, n1, n2 in itertools.product(range(harmonics), orders, orders)
-            if (n1, n2) != (0, 0) and not (m == 0 and (n1, n2) < (0, 0))]  # fmt: skip
-    return np.array(rows, dtype=float)
-
-
-def nearest_resonances(
-    nu1: FloatArray,
-    nu2: FloatArray,
-    forcing_period: float | None = None,
-    *,
-    max_harmonic: int = 2,
-    max_order: int = 2,
-) -> list[Resonance]:
-    """:func:`nearest_resonance` at many states at once, from their fast frequencies ν1, ν2
-    (arrays of one shape) [rad/τ]: one vectorised search, the same relation chosen."""
-    nu1, nu2 = np.asarray(nu1, dtype=float).ravel(), np.asarray(nu2, dtype=float).ravel()
-    if forcing_period is None:
-        forcing, harmonics = 0.0, 1
-        ref = np.maximum(nu1, np.abs(nu2))
-    else:
-        check_range("forcing_period", forcing_period, low=0.0)
-        forcing, harmonics = 2.0 * math.pi / forcing_period, max_harmonic + 1
-        ref = np.full(nu1.shape, forcing)
-    rel = _relations(harmonics, max_order)
-    det = rel[:, 1, None] * nu1 + rel[:, 2, None] * nu2 - rel[:, 0, None] * forcing
-    # A sphere (ν1 = 0) has no polhode phase to be commensurate: relations with n1 ≠ 0 drop.
-    det = np.where((nu1 == 0.0) & (rel[:, 1, None] != 0.0), np.inf, det)
-    best = np.argmin(np.abs(det), axis=0)
-    out = []
-    for k, j in enumerate(best):
-        d = float(det[j, k])
-        relative = abs(d) / ref[k] if ref[k] > 0.0 else math.inf
-        m, n1, n2 = (int(v) for v in rel[j])
-        out.append(Resonance(float(nu1[k]), float(nu2[k]), forcing, m, n1, n2, d, relative))
-    return out

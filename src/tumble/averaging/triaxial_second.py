@@ -34,6 +34,7 @@ from typing import Any
 import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
+from tumble.averaging.fourier import resolved
 from tumble.averaging.quadrature import AveragingError, BatchedTorque
 from tumble.averaging.second_order import (
     GRID_MAX,
@@ -41,7 +42,6 @@ from tumble.averaging.second_order import (
     SecondOrder,
     generator_drift,
     grid_terms,
-    resolved,
 )
 from tumble.bodies import proper_sorting
 from tumble.rotations import matrix_to_quat, rot_x, rot_z

@@ -1,0 +1,139 @@
+"""The fast frequencies of a triaxial body and its nearest low-order resonance.
+
+The rotating-field setting of Yu. G. Martynenko (1979), docs/theory/rotating-field.md: at
+frozen (L, T) the Euler–Poinsot motion is quasi-periodic with the polhode frequency ν1 and
+the mean precession rate ν2 about L (§8, "Frequencies of the fast motion"); the averages of
+:func:`~tumble.averaging.triaxial.triaxial_average` assume that no relation
+m Ω_f = n1 ν1 + n2 ν2 of low order nearly holds (§10 "Assumptions", §12). The functions here
+find the nearest one, for one state or for many at once.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from tumble._typing import ArrayLike, FloatArray
+from tumble.errors import ParameterError, check_range
+from tumble.unperturbed.euler_poinsot import fast_frequencies
+
+__all__ = ["Resonance", "nearest_resonance", "nearest_resonances"]
+
+
+@dataclass(frozen=True)
+class Resonance:
+    """The fast frequencies at (L, T) and the nearest low-order resonance, §12.
+
+    Attributes
+    ----------
+    nu1 : float
+        Polhode frequency 2πν/(4K) [rad/τ].
+    nu2 : float
+        Mean precession rate about L [rad/τ].
+    forcing : float
+        Forcing frequency Ω_f = 2π/forcing_period [rad/τ]; 0 without forcing.
+    m, n1, n2 : int
+        The relation m Ω_f = n1 ν1 + n2 ν2 closest to holding (m ≥ 0; m = 0 is a
+        commensurability of the free motion itself, which matters for attitude-dependent
+        torques). (1, −1, 1) is the co-rotation of the rotating-field paper.
+    detuning : float
+        n1 ν1 + n2 ν2 − m Ω_f [rad/τ].
+    relative : float
+        |detuning| / Ω_ref, Ω_ref = Ω_f, or max(ν1, ν2) without forcing [1]. Averaging is
+        trustworthy while this is large against √(ε/I) (§12).
+    """
+
+    nu1: float
+    nu2: float
+    forcing: float
+    m: int
+    n1: int
+    n2: int
+    detuning: float
+    relative: float
+
+
+def nearest_resonance(
+    inertia: ArrayLike,
+    L: float,
+    T: float,
+    forcing_period: float | None = None,
+    *,
+    max_harmonic: int = 2,
+    max_order: int = 2,
+) -> Resonance:
+    """Fast frequencies ν1, ν2 (§8) and the nearest relation m Ω_f = n1 ν1 + n2 ν2 (§12).
+
+    Searched over 0 ≤ m ≤ ``max_harmonic`` (m = 0 alone without forcing) and
+    |n1|, |n2| ≤ ``max_order``, (n1, n2) ≠ (0, 0). Callers warn when ``relative`` is small;
+    the averages of :func:`~tumble.averaging.triaxial.triaxial_average` assume it is not.
+
+    Parameters
+    ----------
+    inertia : array_like, shape (3,)
+        Principal moments, any order [inertia unit].
+    L : float
+        Angular momentum magnitude [inertia unit · rad/τ].
+    T : float
+        Kinetic energy [inertia unit · (rad/τ)²].
+    forcing_period : float, optional
+        Period of the torque's explicit time dependence [τ].
+    max_harmonic, max_order : int
+        Largest m and |n1|, |n2| (§12 watches m ∈ {1, 2}, |n2| ≤ 2).
+
+    Returns
+    -------
+    Resonance
+    """
+    Is = np.sort(np.asarray(inertia, dtype=float).reshape(-1))
+    if Is.shape != (3,):
+        raise ParameterError(f"inertia must have 3 moments, got {Is.size}")
+    nu1, nu2 = fast_frequencies(float(Is[0]), float(Is[1]), float(Is[2]), float(L), float(T))
+    found = nearest_resonances(np.array([nu1]), np.array([nu2]), forcing_period,
+                               max_harmonic=max_harmonic, max_order=max_order)  # fmt: skip
+    return found[0]
+
+
+def _relations(harmonics: int, max_order: int) -> FloatArray:
+    """The relations (m, n1, n2) searched, in a fixed order (the first of equally near ones
+    wins): 0 ≤ m < ``harmonics``, |n1|, |n2| ≤ ``max_order``, (n1, n2) ≠ (0, 0), and one of
+    ±(n1, n2) for m = 0."""
+    orders = range(-max_order, max_order + 1)
+    rows = [(m, n1, n2) for m, n1, n2 in itertools.product(range(harmonics), orders, orders)
+            if (n1, n2) != (0, 0) and not (m == 0 and (n1, n2) < (0, 0))]  # fmt: skip
+    return np.array(rows, dtype=float)
+
+
+def nearest_resonances(
+    nu1: FloatArray,
+    nu2: FloatArray,
+    forcing_period: float | None = None,
+    *,
+    max_harmonic: int = 2,
+    max_order: int = 2,
+) -> list[Resonance]:
+    """:func:`nearest_resonance` at many states at once, from their fast frequencies ν1, ν2
+    (arrays of one shape) [rad/τ]: one vectorised search, the same relation chosen."""
+    nu1, nu2 = np.asarray(nu1, dtype=float).ravel(), np.asarray(nu2, dtype=float).ravel()
+    if forcing_period is None:
+        forcing, harmonics = 0.0, 1
+        ref = np.maximum(nu1, np.abs(nu2))
+    else:
+        check_range("forcing_period", forcing_period, low=0.0)
+        forcing, harmonics = 2.0 * math.pi / forcing_period, max_harmonic + 1
+        ref = np.full(nu1.shape, forcing)
+    rel = _relations(harmonics, max_order)
+    det = rel[:, 1, None] * nu1 + rel[:, 2, None] * nu2 - rel[:, 0, None] * forcing
+    # A sphere (ν1 = 0) has no polhode phase to be commensurate: relations with n1 ≠ 0 drop.
+    det = np.where((nu1 == 0.0) & (rel[:, 1, None] != 0.0), np.inf, det)
+    best = np.argmin(np.abs(det), axis=0)
+    out = []
+    for k, j in enumerate(best):
+        d = float(det[j, k])
+        relative = abs(d) / ref[k] if ref[k] > 0.0 else math.inf
+        m, n1, n2 = (int(v) for v in rel[j])
+        out.append(Resonance(float(nu1[k]), float(nu2[k]), forcing, m, n1, n2, d, relative))
+    return out

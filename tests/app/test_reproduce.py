@@ -41,7 +41,7 @@ def _fake(cid, holds):
             "details": {"theory_consistent": holds},
         }
         return Claim(cid, "rotating_field", f"title {cid}", "statement", "§1",
-                     verdict(holds, False), measured, fig)  # fmt: skip
+                     verdict(holds, False), measured, fig, name=f"name_{cid[3:]}")  # fmt: skip
 
     check.__name__ = cid.replace("-", "_")
     return check

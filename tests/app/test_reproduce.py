@@ -102,10 +102,11 @@ def test_a_claim_is_selected_by_its_name_or_its_id(fake_claims):
         == rep.select_claims(["rf-2"])
         == [("rotating_field", fake_claims["rotating_field"][1])]
     )
-    # Mixed with papers, each claim once, in report order.
+    # Mixed with papers: each claim once, the papers in the order first named.
     mixed = rep.select_claims(["rf-3", "rm-2", "rotating_field", DECLARED["rf-1"].name])
-    assert [c.__name__ for _, c in mixed] == ["rm_2", "rf_1", "rf_2", "rf_3"]
-    assert rep.select_claims([]) == rep.select_claims(["all"])
+    assert [c.__name__ for _, c in mixed] == ["rf_1", "rf_2", "rf_3", "rm_2"]
+    assert rep.select_claims([]) == rep.select_claims(["nonlinear_moment", "all"])
+    assert [p for p, _ in rep.select_claims([])] == [p for p, cs in fake_claims.items() for _ in cs]
 
 
 def test_reproduce_one_claim_by_name_labels_it_with_its_id(fake_claims, tmp_path):

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from tumble.analysis.claims import CLAIMS
-from tumble.analysis.claims.base import DECLARED, PAPERS, Claim, ClaimInfo, claim_id
+from tumble.analysis.claims.base import DECLARED, PAPERS, Claim, claim_id
 from tumble.errors import ParameterError, TumbleWarning
 from tumble.io.fileset import output_set
 from tumble.io.report import ClaimRun, claims_json, claims_markdown, report_html
@@ -54,19 +54,19 @@ def _claim_id(check: Callable[[], Claim]) -> str:
 
 
 def _unknown(selector: str) -> ParameterError:
-    claims = ", ".join(f"{c.name} ({c.id})" for p in PAPER_NAMES for c in _declared(p))
+    claims = ", ".join(
+        f"{c.name} ({c.id})" for p in PAPER_NAMES for c in DECLARED.values() if c.paper == p
+    )
     return ParameterError(
         f"{selector!r} is neither a paper nor a claim (allowed: all, {', '.join(PAPER_NAMES)}, "
         f"or a claim's name or id: {claims})"
     )
 
 
-def _declared(paper: str) -> list[ClaimInfo]:
-    return [c for c in DECLARED.values() if c.paper == paper]
-
-
 def select_claims(selectors: Sequence[str]) -> list[tuple[str, Callable[[], Claim]]]:
-    """The (paper, check) pairs that ``selectors`` choose, in report order, each once.
+    """The (paper, check) pairs that ``selectors`` choose, each once: the papers in the order
+    first named (all of them in report order if ``"all"`` is one), each paper's claims in its
+    own order.
 
     Parameters
     ----------
@@ -79,23 +79,29 @@ def select_claims(selectors: Sequence[str]) -> list[tuple[str, Callable[[], Clai
     ParameterError
         For a selector that is none of these; the message lists what is allowed, in one line.
     """
+    selectors = list(selectors) or ["all"]
+    papers = dict.fromkeys(PAPER_NAMES if "all" in selectors else [])
     wanted: set[str] = set()
-    for s in selectors or ["all"]:
+    for s in selectors:
         if s == "all" or s in PAPERS:
-            wanted |= {_claim_id(c) for p in PAPER_NAMES if s in ("all", p) for c in CLAIMS[p]}
+            chosen = PAPER_NAMES if s == "all" else (s,)
+            wanted |= {_claim_id(c) for p in chosen for c in CLAIMS[p]}
+            papers.update(dict.fromkeys(chosen))
             continue
         try:
-            wanted.add(claim_id(s))
+            cid = claim_id(s)
         except ParameterError:
             raise _unknown(s) from None
-    return [(p, c) for p in PAPER_NAMES for c in CLAIMS[p] if _claim_id(c) in wanted]
+        wanted.add(cid)
+        papers.setdefault(DECLARED[cid].paper)
+    return [(p, c) for p in papers for c in CLAIMS[p] if _claim_id(c) in wanted]
 
 
 def _selection(checks: Sequence[tuple[str, Callable[[], Claim]]]) -> list[str]:
     """The selection as a command line would write it: a paper whose every claim was chosen
     by its model name, any other chosen claim by its id (for ``scenario`` and the report)."""
     words: list[str] = []
-    for paper in PAPER_NAMES:
+    for paper in dict.fromkeys(p for p, _ in checks):
         mine = [_claim_id(c) for p, c in checks if p == paper]
         whole = len(mine) == len(CLAIMS[paper])
         words += [paper] if whole else mine
@@ -154,7 +160,7 @@ def reproduce(
     ReproduceResult
     """
     checks = select_claims(papers)
-    chosen = [p for p in PAPER_NAMES if any(p == paper for paper, _ in checks)]
+    chosen = list(dict.fromkeys(p for p, _ in checks))
     selection = _selection(checks)
     with output_set(
         out_dir, command="reproduce", scenario=" ".join(selection), overwrite=overwrite

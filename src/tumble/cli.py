@@ -643,7 +643,8 @@ def reproduce_cmd(
         )
     colour = {"confirmed": "green", "confirmed with qualification": "yellow", "refuted": "red"}
     table = Table(title=f"claims of the papers ({result.wall_time:.0f} s)", title_justify="left")
-    for col in ("name (id)", "claim", "verdict", "measured"):
+    table.add_column("name (id)", overflow="fold")  # a name wraps, never cut: it selects
+    for col in ("claim", "verdict", "measured"):
         table.add_column(col)
     for r in result.runs:
         if r.claim is None:

@@ -137,8 +137,8 @@ class Claim:
     figure : FigureSpec
         The figure of the check.
     name : str
-        What the claim states, in snake_case (``spin_rate_decays_exponentially``); it selects
-        the claim as the id does. Keyword-only, after the fields above.
+        What the claim states, in snake_case (``rotation_about_middle_axis_is_unstable`` for
+        ``rf-6``); it selects the claim as the id does. Keyword-only, after the fields above.
     """
 
     id: str
@@ -150,12 +150,6 @@ class Claim:
     measured: dict[str, Any]
     figure: FigureSpec
     name: str = field(kw_only=True)
-
-    @property
-    def label(self) -> str:
-        """The name with the id beside it as its alias: ``spin_rate_decays_exponentially
-        (rm-3)``."""
-        return f"{self.name} ({self.id})"
 
     def to_dict(self) -> dict[str, Any]:
         """Everything but the figure, as plain JSON values (for ``claims.json``)."""

@@ -607,7 +607,8 @@ def reproduce_cmd(
     papers: Annotated[
         list[str] | None,
         typer.Argument(
-            help="resisting_medium, rotating_field, nonlinear_moment or all (default: all)"
+            help="resisting_medium, rotating_field, nonlinear_moment, a claim by name or id "
+            "(rotation_about_middle_axis_is_unstable or rf-6), or all (default: all)"
         ),
     ] = None,
     out_dir: Annotated[Path, typer.Option("-o", "--out", help="output directory")] = Path(
@@ -615,8 +616,11 @@ def reproduce_cmd(
     ),
     overwrite: Overwrite = False,
 ) -> None:
-    """Check every claim of the papers: report.html (figures embedded), claims.json,
+    """Check the claims of the papers: report.html (figures embedded), claims.json,
     claims.md, figures/.
+
+    Choose papers by model name, single claims by name or by id (the name's short alias), or
+    all of them.
 
     Each claim gets a verdict computed from its measured figure: confirmed, confirmed with
     qualification (as tumble's theory pages correct or restrict it), or refuted. Exits 1 if a
@@ -639,14 +643,15 @@ def reproduce_cmd(
         )
     colour = {"confirmed": "green", "confirmed with qualification": "yellow", "refuted": "red"}
     table = Table(title=f"claims of the papers ({result.wall_time:.0f} s)", title_justify="left")
-    for col in ("id", "claim", "verdict", "measured"):
+    table.add_column("name (id)", overflow="fold")  # a name wraps, never cut: it selects
+    for col in ("claim", "verdict", "measured"):
         table.add_column(col)
     for r in result.runs:
         if r.claim is None:
-            table.add_row(r.id, r.error, "[red]error[/]", "")
+            table.add_row(escape(r.label), r.error, "[red]error[/]", "")
             continue
         table.add_row(
-            r.id,
+            escape(r.label),
             escape(r.claim.title),
             f"[{colour.get(r.verdict, 'white')}]{r.verdict}[/]",
             escape(measured_text(r.claim.measured)),

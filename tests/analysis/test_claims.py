@@ -10,6 +10,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 from collections.abc import Callable
@@ -34,8 +35,10 @@ from tumble.analysis.claims import (
 from tumble.analysis.claims import nonlinear_moment as nm_claims
 from tumble.analysis.claims import resisting_medium as rm_claims
 from tumble.analysis.claims import rotating_field as rf_claims
+from tumble.analysis.claims.base import DECLARED, claim, claim_id
 from tumble.analysis.claims.common import SLOPE, converged, tolerance_scale
 from tumble.analysis.stability_maps import inertia_map
+from tumble.errors import ParameterError
 from tumble.plot import claim_figure, claim_png
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
@@ -208,6 +211,7 @@ def test_cheap_claim_holds_within_its_threshold(fn, expected):
     # test checks that the verdict and the measured figure agree.
     assert _within(m), m
     assert c.id == fn.__name__.replace("_", "-")
+    assert c.name == DECLARED[c.id].name and c.to_dict()["name"] == c.name
     assert isinstance(c.figure, FigureSpec) and c.figure.panels
 
 
@@ -228,6 +232,31 @@ def test_registry_is_ordered_and_named_for_the_papers():
         names = [fn.__name__ for fn in fns]
         assert names == [f"{PREFIX[paper]}_{i}" for i in range(1, len(fns) + 1)]
     assert [len(fns) for fns in CLAIMS.values()] == [16, 18, 11]
+
+
+def test_every_claim_has_a_unique_snake_case_name():
+    names = [c.name for c in DECLARED.values()]
+    assert len(names) == len(set(names)) == 45
+    assert all(re.fullmatch(r"[a-z][a-z0-9]*(_[a-z0-9]+)+", n) for n in names), names
+
+
+def test_a_claim_is_found_by_its_name_or_its_id():
+    for c in DECLARED.values():
+        assert claim_id(c.name) == claim_id(c.id) == c.id
+    # An unknown selector: one line that lists every name with its id.
+    with pytest.raises(ParameterError, match=r"^claim 'rf-99' is not declared \(allowed: ") as e:
+        claim_id("rf-99")
+    assert "rotation_about_middle_axis_is_unstable (rf-6)" in str(e.value)
+    assert "\n" not in str(e.value)
+
+
+def test_a_name_must_be_snake_case_and_new():
+    with pytest.raises(ValueError, match="not snake_case"):
+        claim("xx-1", "rotating_field", "t", "s", "r", name="Not-Snake")
+    with pytest.raises(ValueError, match="already taken"):
+        claim("xx-1", "rotating_field", "t", "s", "r", name=DECLARED["rf-6"].name)
+    with pytest.raises(ValueError, match="already taken"):
+        claim("rf-6", "rotating_field", "t", "s", "r", name="a_new_name")
 
 
 # ---------------------------------------------------------------------------------------------
@@ -255,7 +284,7 @@ def test_every_claim_keeps_the_interface(all_claims):
             assert isinstance(c.measured["value"], float | int), c.id
             json.dumps(c.to_dict(), allow_nan=False)
             assert isinstance(c.figure, FigureSpec) and len(c.figure.panels) >= 1
-            assert c.figure.title.startswith(f"{c.id}: ")
+            assert c.figure.title.startswith(f"{c.name} ({c.id}): ")
             assert claim_png(c.figure).startswith(PNG_MAGIC), c.id
         seen += ids
     assert len(seen) == len(set(seen)) == 45

@@ -15,6 +15,7 @@ import tumble.app.reproduce as rep
 from tumble.analysis.claims import CLAIMS
 from tumble.analysis.claims.base import (
     CONFIRMED,
+    DECLARED,
     REFUTED,
     VERDICTS,
     Claim,
@@ -41,7 +42,7 @@ def _fake(cid, holds):
             "details": {"theory_consistent": holds},
         }
         return Claim(cid, "rotating_field", f"title {cid}", "statement", "§1",
-                     verdict(holds, False), measured, fig)  # fmt: skip
+                     verdict(holds, False), measured, fig, name=f"name_{cid[3:]}")  # fmt: skip
 
     check.__name__ = cid.replace("-", "_")
     return check
@@ -85,14 +86,53 @@ def test_cli_reproduce_table_and_exit_codes(fake_claims, tmp_path):
     assert "rf-1" in res.stdout and "refuted" in res.stdout
     bad = runner.invoke(app, ["reproduce", "gyroscope", "-o", str(tmp_path / "x")])
     assert bad.exit_code == 2
-    assert "paper 'gyroscope' is not reproduced" in bad.stderr
+    # One line that lists what is allowed: the papers, and every claim by name and id.
+    assert bad.stderr.count("\n") == 1
+    assert (
+        "'gyroscope' is neither a paper nor a claim (allowed: all, resisting_medium" in bad.stderr
+    )
+    assert f"{DECLARED['rf-6'].name} (rf-6)" in bad.stderr
     assert not (tmp_path / "x").exists()
+
+
+def test_a_claim_is_selected_by_its_name_or_its_id(fake_claims):
+    by_name = rep.select_claims([DECLARED["rf-2"].name])
+    assert (
+        by_name
+        == rep.select_claims(["rf-2"])
+        == [("rotating_field", fake_claims["rotating_field"][1])]
+    )
+    # Mixed with papers: each claim once, the papers in the order first named.
+    mixed = rep.select_claims(["rf-3", "rm-2", "rotating_field", DECLARED["rf-1"].name])
+    assert [c.__name__ for _, c in mixed] == ["rf_1", "rf_2", "rf_3", "rm_2"]
+    assert rep.select_claims([]) == rep.select_claims(["nonlinear_moment", "all"])
+    assert [p for p, _ in rep.select_claims([])] == [p for p, cs in fake_claims.items() for _ in cs]
+
+
+def test_reproduce_one_claim_by_name_labels_it_with_its_id(fake_claims, tmp_path):
+    result = rep.reproduce([DECLARED["rf-2"].name], tmp_path)
+    assert [(r.name, r.id) for r in result.runs] == [("name_2", "rf-2")]
+    doc = json.loads((tmp_path / "claims.json").read_text())
+    assert [(c["name"], c["id"]) for c in doc["claims"]] == [("name_2", "rf-2")]
+    assert "| `name_2` (rf-2) |" in (tmp_path / "claims.md").read_text()
+    page = (tmp_path / "report.html").read_text()
+    assert "<code>name_2</code> (rf-2)" in page
+    assert "<code>tumble reproduce rf-2</code>" in page
 
 
 def test_registry_names_every_paper():
     assert list(CLAIMS) == list(rep.PAPER_NAMES)
     ids = [c.__name__ for p in CLAIMS.values() for c in p]
     assert len(ids) == len(set(ids)) and all(CLAIMS.values())
+
+
+def test_every_claim_has_a_unique_snake_case_name():
+    names = [c.name for c in DECLARED.values()]
+    assert len(DECLARED) == sum(len(c) for c in CLAIMS.values())
+    assert len(set(names)) == len(names)
+    assert all(re.fullmatch(r"[a-z][a-z0-9]*(_[a-z0-9]+)+", n) for n in names), names
+    # A name never shadows a paper or "all" (it could not be selected).
+    assert not set(names) & {*rep.PAPER_NAMES, "all"}
 
 
 CHROMIUM_FLAGS = [

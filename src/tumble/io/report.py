@@ -79,6 +79,8 @@ class ClaimRun:
         Wall time of the check [s].
     error : str
         Why the check could not run ("" when it ran).
+    name : str
+        The claim's name, which states it ("" when not declared); the id is its alias.
     """
 
     id: str
@@ -87,10 +89,16 @@ class ClaimRun:
     png: bytes
     seconds: float
     error: str = ""
+    name: str = ""
 
     @property
     def verdict(self) -> str:
         return "error" if self.claim is None else self.claim.verdict
+
+    @property
+    def label(self) -> str:
+        """The name with the id beside it, ``name (id)``; the id alone if there is no name."""
+        return f"{self.name} ({self.id})" if self.name else self.id
 
 
 def _counts(runs: Sequence[ClaimRun]) -> dict[str, int]:
@@ -106,7 +114,11 @@ def claims_json(runs: Sequence[ClaimRun], papers: Sequence[str], wall_time: floa
         "counts": _counts(runs),
         "claims": [
             {
-                **(r.claim.to_dict() if r.claim is not None else {"id": r.id, "paper": r.paper}),
+                **(
+                    r.claim.to_dict()
+                    if r.claim is not None
+                    else {"id": r.id, "name": r.name, "paper": r.paper}
+                ),
                 "verdict": r.verdict,
                 "error": r.error,
                 "seconds": r.seconds,
@@ -134,11 +146,13 @@ def claims_markdown(doc: Mapping[str, Any]) -> str:
         f"{doc['tumble_version']}, {len(doc['claims'])} claims: {counts}; "
         f'{doc["wall_time_s"]:.0f} s). *qualified* is "confirmed with qualification": the '
         "claim holds in the form the theory page gives it. Each figure is measured against "
-        "the criterion in `claims.json`; the report (`report.html`) draws every check.",
+        "the criterion in `claims.json`; the report (`report.html`) draws every check. Each "
+        "claim is listed by its name, with its id beside it as its alias; `tumble reproduce` "
+        "selects a claim by either.",
     ]
     for paper, citation in doc["papers"].items():
         lines += ["", f"## {citation}", ""]
-        lines += ["| id | claim | verdict | measured | theory |", "|---|---|---|---|---|"]
+        lines += ["| name (id) | claim | verdict | measured | theory |", "|---|---|---|---|---|"]
         for c in doc["claims"]:
             if c.get("paper") != paper:
                 continue
@@ -146,8 +160,9 @@ def claims_markdown(doc: Mapping[str, Any]) -> str:
             if verdict == "refuted":
                 verdict = "**refuted**"
             m = c.get("measured", {})
+            label = f"`{c['name']}` ({c['id']})" if c.get("name") else c["id"]
             lines.append(
-                f"| {c['id']} | {cell(c.get('title', ''))} | {verdict} | "
+                f"| {label} | {cell(c.get('title', ''))} | {verdict} | "
                 f"{cell(measured_text(m)) if m else cell(c.get('error', ''))} | "
                 f"{cell(c.get('theory_ref', ''))} |"
             )
@@ -169,10 +184,16 @@ def measured_text(measured: Mapping[str, Any]) -> str:
     return f"{text} {units}".strip()
 
 
+def _label(r: ClaimRun) -> str:
+    """The name in code type with the id beside it, as HTML."""
+    e = html.escape
+    return f"<code>{e(r.name)}</code> ({e(r.id)})" if r.name else e(r.id)
+
+
 def _claim_section(r: ClaimRun) -> str:
     e = html.escape
     title = e(r.claim.title) if r.claim else ""
-    head = f'<h3 id="{e(r.id)}">{e(r.id)}: {title} {_badge(r.verdict)}</h3>'
+    head = f'<h3 id="{e(r.id)}">{_label(r)}: {title} {_badge(r.verdict)}</h3>'
     if r.claim is None:
         return (
             f'<div class="claim">{head}<p><span class="label">The check raised:</span> '
@@ -201,12 +222,18 @@ def _claim_section(r: ClaimRun) -> str:
         text = json.dumps(m["details"], indent=1, ensure_ascii=False)
         details = f"<details><summary>details</summary><pre>{e(text)}</pre></details>"
     data = base64.b64encode(r.png).decode("ascii")
-    img = f'<img class="figure" alt="figure of {e(r.id)}" src="data:image/png;base64,{data}">'
+    img = f'<img class="figure" alt="figure of {e(r.label)}" src="data:image/png;base64,{data}">'
     time = f'<p class="meta">checked in {r.seconds:.2f} s</p>'
     return f'<div class="claim">{head}{body}{details}{img}{time}</div>'
 
 
-def report_html(runs: Sequence[ClaimRun], papers: Sequence[str], wall_time: float) -> str:
+def report_html(
+    runs: Sequence[ClaimRun],
+    papers: Sequence[str],
+    wall_time: float,
+    *,
+    selection: Sequence[str] | None = None,
+) -> str:
     """The self-contained HTML report of :func:`tumble.app.reproduce.reproduce`.
 
     Parameters
@@ -217,6 +244,9 @@ def report_html(runs: Sequence[ClaimRun], papers: Sequence[str], wall_time: floa
         The model names reproduced.
     wall_time : float
         Seconds of the whole run [s].
+    selection : sequence of str, optional
+        The arguments of ``tumble reproduce`` that chose the claims (papers and claim ids), for
+        the footer; ``papers`` when not given.
     """
     e = html.escape
     counts = _counts(runs)
@@ -244,9 +274,9 @@ def report_html(runs: Sequence[ClaimRun], papers: Sequence[str], wall_time: floa
         mine = [r for r in runs if r.paper == paper]
         parts.append(f'<h2 id="{e(paper)}">{e(PAPERS[paper])}</h2>')
         parts.append(
-            "<table><tr><th>id</th><th>claim</th><th>verdict</th><th>measured</th></tr>"
+            "<table><tr><th>name (id)</th><th>claim</th><th>verdict</th><th>measured</th></tr>"
             + "".join(
-                f'<tr><td><a href="#{e(r.id)}">{e(r.id)}</a></td>'
+                f'<tr><td><a href="#{e(r.id)}">{_label(r)}</a></td>'
                 f"<td>{e(r.claim.title if r.claim else r.error)}</td><td>{_badge(r.verdict)}</td>"
                 f"<td>{e(measured_text(r.claim.measured)) if r.claim else ''}</td></tr>"
                 for r in mine
@@ -256,7 +286,8 @@ def report_html(runs: Sequence[ClaimRun], papers: Sequence[str], wall_time: floa
         parts.extend(_claim_section(r) for r in mine)
     parts.append(
         f'<footer>Figures rendered by this browser: <span id="rendered">(script off)</span>. '
-        f"Produced by <code>tumble reproduce {' '.join(e(p) for p in papers)}</code>.</footer>"
+        f"Produced by <code>tumble reproduce {' '.join(e(p) for p in selection or papers)}"
+        "</code>.</footer>"
     )
     parts.append("</body></html>")
     return "\n".join(parts) + "\n"

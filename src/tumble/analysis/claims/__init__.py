@@ -8,6 +8,10 @@ against a justified threshold, the verdict computed from it, and its figure as a
 :class:`FigureSpec` (drawn by :func:`tumble.plot.claim_figure`). Importing this package runs
 nothing; call the functions of :data:`CLAIMS`.
 
+Each claim also has a name that states it (``rotation_about_middle_axis_is_unstable``), declared
+in its registration beside its id (``rf-6``), which stays as the name's short alias;
+:func:`~tumble.analysis.claims.base.claim_id` finds a claim by either.
+
 References
 ----------
 A. V. Medvedev (1987), Yu. G. Martynenko (1979) and V. M. Serov (1991); the theory pages

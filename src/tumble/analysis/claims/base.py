@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import functools
 import math
+import re
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any, Literal
@@ -17,6 +18,7 @@ from typing import Any, Literal
 import numpy as np
 
 from tumble._typing import FloatArray
+from tumble.errors import ParameterError
 
 __all__ = [
     "CONFIRMED",
@@ -27,11 +29,13 @@ __all__ = [
     "REGISTRY",
     "VERDICTS",
     "Claim",
+    "ClaimInfo",
     "FigureSpec",
     "Measurement",
     "Panel",
     "Series",
     "claim",
+    "claim_id",
     "plain",
     "verdict",
 ]
@@ -116,7 +120,7 @@ class Claim:
     Attributes
     ----------
     id : str
-        ``rm-1`` …, ``rf-1`` …, ``nm-1`` ….
+        ``rm-1`` …, ``rf-1`` …, ``nm-1`` …: the short alias that published verdict lists use.
     paper : str
         Model name (``resisting_medium``, ``rotating_field``, ``nonlinear_moment``).
     title : str
@@ -132,6 +136,9 @@ class Claim:
         where it applies, ``qualification`` and ``details``.
     figure : FigureSpec
         The figure of the check.
+    name : str
+        What the claim states, in snake_case (``rotation_about_middle_axis_is_unstable`` for
+        ``rf-6``); it selects the claim as the id does. Keyword-only, after the fields above.
     """
 
     id: str
@@ -142,12 +149,14 @@ class Claim:
     verdict: str
     measured: dict[str, Any]
     figure: FigureSpec
+    name: str = field(kw_only=True)
 
     def to_dict(self) -> dict[str, Any]:
         """Everything but the figure, as plain JSON values (for ``claims.json``)."""
         return plain(
             {
                 "id": self.id,
+                "name": self.name,
                 "paper": self.paper,
                 "title": self.title,
                 "statement": self.statement,
@@ -171,23 +180,50 @@ class Measurement:
     ncols: int | None = None
 
 
+@dataclass(frozen=True)
+class ClaimInfo:
+    """What a claim's declaration says, known without running its check.
+
+    Attributes
+    ----------
+    id, name : str
+        The short id (``rm-3``) and the name that states the claim; either selects it.
+    paper, title, theory_ref : str
+        As in :class:`Claim`.
+    """
+
+    id: str
+    name: str
+    paper: str
+    title: str
+    theory_ref: str
+
+
 REGISTRY: dict[str, list[Callable[[], Claim]]] = {}
 """Every claim, by paper, in the order the modules define them (:func:`claim` fills it)."""
 
-DECLARED: dict[str, tuple[str, str, str]] = {}
-"""Every claim's (paper, title, theory references) by id, known without running it."""
+DECLARED: dict[str, ClaimInfo] = {}
+"""Every claim's declaration by id, known without running it."""
+
+_NAME = re.compile(r"[a-z][a-z0-9]*(_[a-z0-9]+)*")
 
 
 def claim(
-    cid: str, paper: str, title: str, statement: str, theory_ref: str
+    cid: str, paper: str, title: str, statement: str, theory_ref: str, *, name: str
 ) -> Callable[[Callable[[], Measurement]], Callable[[], Claim]]:
-    """Declare a claim: its id, paper, title, the paper's statement and the references that
-    state or qualify it, ahead of the check that measures it.
+    """Declare a claim: its id, paper, title, the paper's statement, the references that
+    state or qualify it and the name that states it, ahead of the check that measures it.
 
     The decorated function returns a :class:`Measurement`; calling the registered function
     returns the :class:`Claim`, its verdict computed by :func:`verdict` and its figure titled
-    ``"<id>: <title>"``.
+    ``"<name> (<id>): <title>"``. A name that is not snake_case, or an id or name declared
+    twice, raises ``ValueError`` when the module is imported.
     """
+    if not _NAME.fullmatch(name):
+        raise ValueError(f"claim {cid}: name {name!r} is not snake_case")
+    taken = {c.name for c in DECLARED.values()} | set(PAPERS) | {"all"}
+    if cid in DECLARED or name in taken:
+        raise ValueError(f"claim {cid}: its id or its name {name!r} is already taken")
 
     def register(check: Callable[[], Measurement]) -> Callable[[], Claim]:
         @functools.wraps(check)
@@ -196,16 +232,37 @@ def claim(
             figure = FigureSpec(
                 panels=tuple(got.panels),
                 ncols=len(got.panels) if got.ncols is None else got.ncols,
-                title=f"{cid}: {title}",
+                title=f"{name} ({cid}): {title}",
             )
             found = verdict(bool(got.holds), bool(got.qualified))
-            return Claim(cid, paper, title, statement, theory_ref, found, got.measured, figure)
+            return Claim(
+                cid, paper, title, statement, theory_ref, found, got.measured, figure, name=name
+            )
 
         REGISTRY.setdefault(paper, []).append(run)
-        DECLARED[cid] = (paper, title, theory_ref)
+        DECLARED[cid] = ClaimInfo(cid, name, paper, title, theory_ref)
         return run
 
     return register
+
+
+def claim_id(selector: str) -> str:
+    """The id of the claim that ``selector`` names: its name or its id.
+
+    Raises
+    ------
+    ParameterError
+        For a selector that is neither; the message lists every name with its id, in one line.
+    """
+    if selector in DECLARED:
+        return selector
+    for c in DECLARED.values():
+        if c.name == selector:
+            return c.id
+    papers = list(PAPERS)
+    in_order = sorted(DECLARED.values(), key=lambda c: papers.index(c.paper))
+    allowed = ", ".join(f"{c.name} ({c.id})" for c in in_order)
+    raise ParameterError(f"claim {selector!r} is not declared (allowed: {allowed})")
 
 
 def verdict(holds: bool, qualified: bool) -> str:

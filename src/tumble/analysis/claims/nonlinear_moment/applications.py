@@ -39,6 +39,7 @@ from tumble.models import nonlinear_moment as nm
     "§3 (i): unlike quasi-linear or quasi-static methods, the averaged equations need no "
     "restriction on the amplitude of the angle of attack.",
     "docs/theory/nonlinear-moment.md §10 (i)",
+    name="averaging_needs_no_angle_of_attack_restriction",
 )
 def nm_9() -> Measurement:
     """Application (i): no restriction on the angle of attack (§10).
@@ -120,6 +121,7 @@ def _nm_capsule() -> tuple[Any, Any, float, float]:
     "§3 (ii): the averaged equations reduce the computing cost by about an order of "
     "magnitude compared with the full equations.",
     "docs/theory/nonlinear-moment.md §10 (ii)",
+    name="averaged_model_is_an_order_of_magnitude_cheaper",
 )
 def nm_10() -> Measurement:
     """Application (ii): the averaged model is an order of magnitude cheaper (§10).
@@ -203,6 +205,7 @@ def nm_10() -> Measurement:
     "§3 (iii): for a segmental-conical capsule the envelope of θmax from the averaged "
     "equations differs from the full model by at most 4 %.",
     "docs/theory/nonlinear-moment.md §9, §10 (iii)",
+    name="capsule_envelope_within_4_percent_of_full_model",
 )
 def nm_11() -> Measurement:
     """Application (iii): the capsule's envelope of θmax within 4 % of the full model.

@@ -28,6 +28,7 @@ from tumble.unperturbed import NutationOrbit, potential_slope
     "(2.2): θ̇ext = ε[⟨Φθθ′⟩ + ⟨Φz·W^z⟩ − ⟨Φz⟩·W^z(θext)]/F(θext, z), ż = ε⟨Φz⟩, with the "
     "averages (2.3) over the unperturbed nutation.",
     "docs/theory/nonlinear-moment.md §6, §7; correction S13",
+    name="volosov_averaging_gives_equations_2_2_and_2_3",
 )
 def nm_5() -> Measurement:
     """Volosov's averaged equations (2.2)–(2.3) (§7, correction S13: no error).
@@ -102,6 +103,7 @@ def nm_5() -> Measurement:
     "(2.4)–(2.5): for Φ rational in u with real poles the averages reduce to ∫cosⁱθ dt and "
     "∫dt/(1 ± cosθ) over a period, i.e. to complete elliptic integrals.",
     "docs/theory/nonlinear-moment.md §8",
+    name="averages_reduce_to_complete_elliptic_integrals",
 )
 def nm_6() -> Measurement:
     """Reduction of the averages to complete elliptic integrals (2.4)–(2.5) (§8).

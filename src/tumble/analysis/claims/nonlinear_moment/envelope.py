@@ -61,6 +61,7 @@ def _nm_envelope_claim(init: str) -> tuple[float, np.ndarray, tuple[Panel, Panel
     "§2: the averaged system (2.2) gives the evolution of the nutation envelope θmax, θmin "
     "(first-order Volosov averaging).",
     "docs/theory/nonlinear-moment.md §7 'Initial state and accuracy', §13",
+    name="averaged_envelope_is_first_order_accurate",
 )
 def nm_7() -> Measurement:
     """Averaged envelope vs full: O(ε) with the paper's initial state (§7, §13).
@@ -91,6 +92,7 @@ def nm_7() -> Measurement:
     "Not in the paper. Theory §7: with a turning-point start or the corrected initial state "
     "H̄(0), z̄(0) the averaged θmin, θmax match the extrema to O(ε²).",
     "docs/theory/nonlinear-moment.md §7 (an observation), §13",
+    name="corrected_initial_state_gives_second_order_envelope",
 )
 def nm_8() -> Measurement:
     """Corrected initial state: envelope error O(ε²) (§7, observed).

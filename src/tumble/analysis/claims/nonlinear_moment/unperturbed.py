@@ -54,6 +54,7 @@ def _nm_unperturbed_runs(
     "(1.1)–(1.6): with M0 along the line of nodes R = Cr/A and G are constant and "
     "E = θ′²/2 + W(θ) is an energy integral.",
     "docs/theory/nonlinear-moment.md §1, §2; corrections S1, S2; §13",
+    name="r_g_and_energy_are_integrals_of_unperturbed_motion",
 )
 def nm_1() -> Measurement:
     """R, G and the energy E are integrals of the unperturbed motion (1.3a), (1.6) (E1, E2).
@@ -118,6 +119,7 @@ def nm_1() -> Measurement:
     "(1.9) cosθ = L + M/(1 + N sin²(δγ)), γ = am(βt + τ0, k), with L, M, N, k, β of case 1 "
     "(four real roots) and case 2 (a complex pair); (1.10) τ0 and γ0.",
     "docs/theory/nonlinear-moment.md §3, §4; corrections S3, S4, S5, S6, S11; §13",
+    name="nutation_follows_closed_form_1_9_and_1_10",
 )
 def nm_2() -> Measurement:
     """Nutation in closed form (1.9)–(1.10) (corrections S3–S6, 11).
@@ -181,6 +183,7 @@ def _period_by_quadrature(orbit: NutationOrbit) -> float:
     "nutation period and β of (1.10)",
     "§1: T = 2K(k)/β with β = [2b(u1−u3)(u2−u4)]^{1/2} (case 1) and β = (2bη)^{1/2} (case 2).",
     "docs/theory/nonlinear-moment.md §4.1, §4.2; corrections S5, S6",
+    name="nutation_period_follows_from_beta_of_1_10",
 )
 def nm_3() -> Measurement:
     """Nutation period T = 2K/β (case 1), 4K/β (case 2) with the corrected β (corrections S5, S6).
@@ -243,6 +246,7 @@ def nm_3() -> Measurement:
     "(1.13): ψ − ψ0 and φ − φ0 are the secular terms P_ψ t, P_φ t plus χ±Π(γ, w±, k) and, "
     "in case 2, w± L±(γ).",
     "docs/theory/nonlinear-moment.md §5; corrections S7, S8, S9, S10, S14",
+    name="precession_and_spin_follow_1_11_to_1_13",
 )
 def nm_4() -> Measurement:
     """Precession and spin (1.11)–(1.13) (corrections S7–S10).

@@ -76,6 +76,7 @@ def _study_orders(
     "(2.2): k dρ/dτ = 0, k sinρ dσ/dτ = 0 — the angular momentum keeps its direction in "
     "inertial space.",
     "docs/theory/resisting-medium.md §6, §9 item 5, §10.1",
+    name="angular_momentum_keeps_its_direction",
 )
 def rm_13() -> Measurement:
     """ρ, σ constant: the direction of K is fixed to first order (§9 item 5).
@@ -124,6 +125,7 @@ def rm_13() -> Measurement:
     "§2: the averaged system (2.2) describes the evolution of k, ϑ to first order in ε on "
     "τ ~ 1/ε (Volosov–Morgunov averaging).",
     "docs/theory/resisting-medium.md §10.1, §13.6",
+    name="averaged_system_2_2_is_first_order_accurate",
 )
 def rm_14() -> Measurement:
     """Averaged-vs-full accuracy O(ε) away from ϑ = π/2 (§10.1, §13.6).
@@ -158,6 +160,7 @@ def rm_14() -> Measurement:
     "§2: k, ρ, σ, ϑ are slow and ψ, φ fast; the averaged solution is used through ϑ = π/2 "
     "(worked example, branch switch).",
     "docs/theory/resisting-medium.md §10.2, §11; correction E10; §13.7",
+    name="averaging_holds_through_theta_pi_over_2",
 )
 def rm_15() -> Measurement:
     """φ is a fast variable everywhere (E10): through ϑ = π/2 averaging is only O(√ε) (§10.2).
@@ -221,6 +224,7 @@ def rm_15() -> Measurement:
     "full model: ϑ → 0 is a steady O(ε) tilt",
     "§2: for a3 > 0 the symmetry axis tends to the angular momentum (ϑ → 0).",
     "docs/theory/resisting-medium.md §9 item 1, §10.4; §13.8",
+    name="symmetry_axis_tends_to_angular_momentum_in_full_model",
 )
 def rm_16() -> Measurement:
     """The final state of the full model: ϑ → O(ε), a steady tilt (§10.4).

@@ -100,6 +100,7 @@ def theta_of_tan(formula: Callable[..., FloatArray], shift: float) -> Prediction
     "equatorial component (2.4)",
     "(2.4): k sinϑ = αV0 e^{−εατ}/[α + γV0(1 − e^{−εατ})], in both hemispheres.",
     "docs/theory/resisting-medium.md §8.1; §13.5",
+    name="equatorial_component_follows_closed_form_2_4",
 )
 def rm_5() -> Measurement:
     """Closed form (2.4) of the equatorial component against integration of (2.2) (§8.1).
@@ -161,6 +162,7 @@ def _printed_2_5_at_zero(W0: float, p: rm.Params) -> float:
     "(2.5)/(2.6) give k cosϑ in the upper hemisphere for a3/δ ≷ −(β/2δ)², (2.7)/(2.8) in the "
     "lower one for a3/δ ≶ (β/2δ)².",
     "docs/theory/resisting-medium.md §8.2–§8.5; correction E3; §13.5",
+    name="axial_component_follows_closed_forms_2_5_to_2_8",
 )
 def rm_6() -> Measurement:
     """Closed forms (2.5)–(2.8) with the branch switch at τ1 (§8.2–§8.5, E3).
@@ -244,6 +246,7 @@ def rm_6() -> Measurement:
     "(2.9), (2.10): for a3 = 0 the nutation angle follows tanϑ = (α/β) tanϑ0 … "
     "e^{ε(β−α)τ} (upper) and … e^{−εατ} (lower), obtained from (2.4), (2.5).",
     "docs/theory/resisting-medium.md §8.6; correction E7; §13.5",
+    name="tan_theta_follows_2_9_and_2_10_when_a3_is_zero",
 )
 def rm_7() -> Measurement:
     """tan ϑ for a3 = 0, (2.9) and (2.10) (§8.6, E7).

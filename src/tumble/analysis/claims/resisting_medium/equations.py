@@ -32,6 +32,7 @@ from tumble.models import resisting_medium as rm
     "(1.1): K dρ/dt = M1, K sinρ dσ/dt = M2, dK/dt = M3 and the ψ, ϑ, φ equations; (1.3) "
     "their normalized standard form with small parameter ε.",
     "docs/theory/resisting-medium.md §2, §3, §4; corrections E1, E2; §13.2",
+    name="equations_of_motion_1_1_and_1_3_hold",
 )
 def rm_1() -> Measurement:
     """Equations of motion (1.1)/(1.3) against Euler + quaternions (§3, §4, E1, E2).
@@ -91,6 +92,7 @@ def rm_1() -> Measurement:
     "unperturbed regular precession (2.1)",
     "(2.1): for ε = 0, k, ρ, σ, ϑ are constant, ψ = kτ + ψ0, φ = −kκτ cosϑ/(1+κ) + φ0.",
     "docs/theory/resisting-medium.md §5; §13.1",
+    name="unperturbed_motion_is_regular_precession",
 )
 def rm_2() -> Measurement:
     """Unperturbed motion (2.1): regular precession (§5, §13.1).
@@ -142,6 +144,7 @@ def rm_2() -> Measurement:
     "(2.2): averaging (1.3) over ψ and φ gives dρ = dσ = 0 and the k, ϑ equations with "
     "α = (b11+b22)/2, β = b33/(1+κ), γ = 4/3 π⁻¹ (s11+s22), δ = s33/(1+κ)².",
     "docs/theory/resisting-medium.md §6; correction E6; §13.3",
+    name="averaging_over_psi_and_phi_gives_system_2_2",
 )
 def rm_3() -> Measurement:
     """Averaged system (2.2) against direct averaging of the full right-hand side (§6, E6).
@@ -204,6 +207,7 @@ def rm_3() -> Measurement:
     "decoupled W, V form (2.3)",
     "(2.3): dW/dτ = ε(a3 − βW ∓ δW²), dV/dτ = −ε(αV + γV²), − for 0 ≤ ϑ ≤ π/2, + for π/2 < ϑ ≤ π.",
     "docs/theory/resisting-medium.md §7; §13.4",
+    name="averaged_system_decouples_in_w_and_v",
 )
 def rm_4() -> Measurement:
     """(2.2) in W = k cosϑ, V = k sinϑ is the decoupled (2.3) (§7, §13.4).

@@ -29,6 +29,7 @@ from tumble.models import resisting_medium as rm
     "§2 conclusion: if a3 > 0 the angle ϑ decreases and tends to zero; if a3 < 0 it "
     "increases and tends to π (from either hemisphere).",
     "docs/theory/resisting-medium.md §9 item 1 and table; correction E9",
+    name="theta_tends_monotonically_to_0_or_pi_by_sign_of_a3",
 )
 def rm_8() -> Measurement:
     """Conclusion 1: a3 > 0 ⇒ ϑ decreases to 0; a3 < 0 ⇒ ϑ increases to π (§9 item 1, E9).
@@ -125,6 +126,7 @@ def _printed_2_8(W0: float, p: rm.Params) -> dict[str, float]:
     "§2 example (π/2 < ϑ0 < π, a3/δ > (β/2δ)²): from (2.8), k cosϑ → (β + δμ2π)/(2δ) > 0, "
     "then by (2.5) k cosϑ → ½(2δν1 − β)/δ and ϑ → 0.",
     "docs/theory/resisting-medium.md §9 item 2, §8.4; corrections E4, E5",
+    name="lower_hemisphere_worked_example_holds",
 )
 def rm_9() -> Measurement:
     """The worked example π/2 < ϑ0 < π, a3/δ > h² (§9 item 2, §8.4, E4, E5).
@@ -197,6 +199,7 @@ def rm_9() -> Measurement:
     "From (2.9), (2.10): for β > α the angle ϑ tends to π/2; for β < α to 0 if 0 ≤ ϑ0 < "
     "π/2 or to π if π/2 < ϑ0 ≤ π.",
     "docs/theory/resisting-medium.md §9 item 3 and table",
+    name="theta_limit_at_a3_zero_set_by_beta_versus_alpha",
 )
 def rm_10() -> Measurement:
     """a3 = 0: β > α ⇒ ϑ → π/2, β < α ⇒ ϑ → 0 or π by hemisphere (§9 item 3).
@@ -276,6 +279,7 @@ def rm_10() -> Measurement:
     "quadratic-only medium: tan ϑ law",
     "§2, a3 = α = β = 0: tanϑ = tanϑ0 (1 + εδk0τ cosϑ0)(1 + εγk0τ sinϑ0)⁻¹.",
     "docs/theory/resisting-medium.md §8.7; §13.5",
+    name="quadratic_medium_follows_tan_theta_law",
 )
 def rm_11() -> Measurement:
     """Quadratic-only medium: the tan ϑ law of §8.7 in both hemispheres.
@@ -328,6 +332,7 @@ def rm_11() -> Measurement:
     "§2, end: tanϑ → δ/γ, i.e. the symmetry axis tends to a unique new position relative "
     "to K, other than 0, π/2 and π, if δ, γ ≠ 0.",
     "docs/theory/resisting-medium.md §9 item 4, §8.7; correction E8",
+    name="quadratic_medium_has_a_unique_new_position",
 )
 def rm_12() -> Measurement:
     """Quadratic-only medium: 'a unique new position' tan ϑ = δ/γ (E8).

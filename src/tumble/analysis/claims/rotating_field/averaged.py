@@ -37,6 +37,7 @@ from tumble.unperturbed import EulerPoinsot, mean_square_rate, modulus_squared
     "(3.1): z1 = Lk√((I3−I2)/(I1I0)) cn u, z2 = Lk√((I3−I1)/(I2I0)) sn u, z3 = "
     "L√((I2−I1)/(I3I0)) dn u; for the other regime swap the indices 1 and 3.",
     "docs/theory/rotating-field.md §8; correction C7",
+    name="unperturbed_motion_is_euler_poinsot_3_1",
 )
 def rf_10() -> Measurement:
     """Euler–Poinsot motion (3.1) in both regimes (§8, correction C7).
@@ -117,6 +118,7 @@ def rf_10() -> Measurement:
     "(3.6): ⟨z²⟩ = (L²/I0){(I3−I2)k²/I1 + (I2−I1)(I1+I2−I3)/(I1I2) + (I2−I1)(I3−I2)(I3−I1)"
     "/(I1I2I3) · E(k)/K(k)}.",
     "docs/theory/rotating-field.md §8",
+    name="period_average_of_z_squared_follows_3_6",
 )
 def rf_11() -> Measurement:
     """Period average ⟨z²⟩ of (3.6) (§8).
@@ -182,6 +184,7 @@ def rf_11() -> Measurement:
     "(3.5) L′, Lρ′, σ′ = 0; (3.6) T′ = ε{−¼[2(1+cos²β) + (1−3cos²β)sin²ρ]⟨z²⟩ + "
     "(1−3cos²β)(1−3sin²ρ)T²/L² + 2 sin²β cosρ T/L}; (3.7) dk²/dτ = ε(I3−I1)/(4I1I3)·A·F(k²).",
     "docs/theory/rotating-field.md §10; correction C5",
+    name="averaging_gives_equations_3_5_to_3_7",
 )
 def rf_12() -> Measurement:
     """Averaged equations (3.5), (3.6) corrected, (3.7) (§10, correction C5).

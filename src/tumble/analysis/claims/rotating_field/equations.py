@@ -35,6 +35,7 @@ from tumble.torques import EddyCurrentTorque
     "eddy-current torque (1.2)/(1.3)",
     "(1.2) M_ξ = k_f H_ξ × (H_ξ × Ω_ξ + Ḣ_ξ); (1.3) M_ξ = M0 Bᵀĥĥ(BΩ_ξ − ωξ3), M0 = k_f H².",
     "docs/theory/rotating-field.md §3; corrections C1, C2",
+    name="eddy_current_torque_follows_1_2_and_1_3",
 )
 def rf_1() -> Measurement:
     """Eddy-current torque (1.2)/(1.3) (§3, corrections C1, C2).
@@ -117,6 +118,7 @@ def rf_1() -> Measurement:
     "(1.5): Iz′ + z × Iz = εΓᵀĥĥ(Γz − ξ3), Γ′ = Γz⁺ − ξ3⁺Γ⁺, the rotating-frame form of "
     "(1.4) with τ = ωt, z = Ω/ω, ε = M0/ω.",
     "docs/theory/rotating-field.md §4; correction C3; §15",
+    name="rotating_frame_equations_1_5_match_inertial_1_4",
 )
 def rf_2() -> Measurement:
     """(1.5) with the corrected Γ′ = Γẑ − ξ̂3Γ against the inertial form (1.4) (correction C3).
@@ -164,6 +166,7 @@ def rf_2() -> Measurement:
     "(2.4) the linearized equations about z = ξ3, Γ = E; (2.5) a0λ⁵ + … + a5 = 0 with the "
     "printed a0 … a5.",
     "docs/theory/rotating-field.md §5, §6; §15",
+    name="linearization_2_4_gives_polynomial_2_5",
 )
 def rf_3() -> Measurement:
     """Linearization (2.4) and characteristic polynomial (2.5) as printed (§5–§6).
@@ -219,6 +222,7 @@ def rf_3() -> Measurement:
     "(2.6): λ1 = −ε sin²β/I3, λ2,3 = ±iω0 − (ε/2)[(I3−I2)/(I2I3) + (I3−I1)/(I1I3) cos²β], "
     "λ4,5 = ±i − ε(1 + cos²β)/(2I3), ω0² = (I3−I2)(I3−I1)/(I1I2).",
     "docs/theory/rotating-field.md §6",
+    name="first_order_roots_follow_2_6",
 )
 def rf_4() -> Measurement:
     """First-order roots (2.6): error O(ε²) for simple roots (§6).

@@ -31,6 +31,7 @@ from tumble.models import rotating_field as rf
     "§3: by (3.7) k² decreases monotonically from 1 to 0: the body tends to the unique stable "
     "motion, rotation about the axis of the largest moment of inertia.",
     "docs/theory/rotating-field.md §10 (monotonicity proof), §11 items 4–5",
+    name="k_squared_decreases_monotonically_to_largest_axis_rotation",
 )
 def rf_13() -> Measurement:
     """k² decreases monotonically from 1 to 0; the body ends about its largest axis (§11.4).
@@ -127,6 +128,7 @@ def _modulus_rates() -> FloatArray:
     "§3, from (3.5): σ′ = 0 — the angular momentum stays in the vertical plane through ξ3 "
     "and its initial position.",
     "docs/theory/rotating-field.md §11 item 1",
+    name="angular_momentum_stays_in_a_fixed_vertical_plane",
 )
 def rf_14() -> Measurement:
     """σ = const: L stays in a fixed vertical plane (§11.1).
@@ -177,6 +179,7 @@ def rf_14() -> Measurement:
     "ρ → 0 (L aligns with ξ3)",
     "§3: (3.5) implies ρ → 0 — the angular momentum turns to the axis of the field's rotation.",
     "docs/theory/rotating-field.md §11 item 2",
+    name="angular_momentum_turns_to_field_rotation_axis",
 )
 def rf_15() -> Measurement:
     """(3.5) implies ρ → 0 — true for β ≠ 0 but not monotone (§11.2).
@@ -240,6 +243,7 @@ def rf_15() -> Measurement:
     "§3: at ρ = 0 (and for cos²β = 1/3) (3.7) is the equation of a body with a cavity "
     "filled with viscous fluid and of a heavy body in a weakly resisting medium.",
     "docs/theory/rotating-field.md §11 item 3",
+    name="equation_3_7_decouples_at_rho_0_and_cos2_beta_1_3",
 )
 def rf_16() -> Measurement:
     """At ρ = 0 and at cos²β = 1/3 (3.7) decouples: A is constant (§11.3).
@@ -295,6 +299,7 @@ def rf_16() -> Measurement:
     "§3: near the stationary rotation (ρ = 0, k → 0) k² decays by (3.7), "
     "dk²/dτ ≈ −ε(I3−I1)(1 + cos²β)(3 + κ)k²/(4I1I3).",
     "docs/theory/rotating-field.md §11 item 5, §12 'co-rotation is itself resonant'",
+    name="final_nutation_decays_at_rate_of_3_7",
 )
 def rf_17() -> Measurement:
     """The final nutation decay near co-rotation: (3.7) vs (2.6) vs the settling phase (§12).
@@ -408,6 +413,7 @@ def _end_linearization(p: rf.Params) -> dict[str, float]:
     "§3: for ε ≪ 1 the averaged equations (3.5)–(3.7) describe the evolution of the slow "
     "variables L, ρ, σ, T (k²).",
     "docs/theory/rotating-field.md §10 assumptions, §12",
+    name="averaged_equations_3_5_to_3_7_are_first_order_accurate",
 )
 def rf_18() -> Measurement:
     """Averaged vs full: O(ε) in non-resonant transients (§12).

@@ -25,6 +25,7 @@ from tumble.rotations import euler313_to_matrix, quat_to_matrix
     "§2: rotation about the axis of the largest moment of inertia (I3 > I1, I2) is "
     "asymptotically stable in the first approximation (for real bodies).",
     "docs/theory/rotating-field.md §7 table row 1, 'for real bodies'",
+    name="rotation_about_largest_axis_is_asymptotically_stable",
 )
 def rf_5() -> Measurement:
     """Largest axis: asymptotically stable in the first approximation (§7 table, row 1).
@@ -106,6 +107,7 @@ def _rf_axis_roots_panel(inertia: tuple[float, float, float], eps: float) -> Pan
     "middle axis: unstable",
     "§2: rotation about the middle axis is unstable (ω0² < 0: ±iω0 becomes a real pair).",
     "docs/theory/rotating-field.md §6, §7 table row 2",
+    name="rotation_about_middle_axis_is_unstable",
 )
 def rf_6() -> Measurement:
     """Middle axis: unstable, a real root ≈ |ω0| (§7 table, row 2).
@@ -175,6 +177,7 @@ def rf_6() -> Measurement:
     "§2 and footnote 1: rotation about the smallest axis is unstable (Re λ2,3 > 0), "
     "refuting an earlier claim that it is asymptotically stable.",
     "docs/theory/rotating-field.md §7 table row 3",
+    name="rotation_about_smallest_axis_is_unstable",
 )
 def rf_7() -> Measurement:
     """Smallest axis: unstable, slow oscillatory growth (§7 row 3; footnote 1).
@@ -220,6 +223,7 @@ def rf_7() -> Measurement:
     "Footnote 2: a thin plate (I3 = I1 + I2) in a field rotating in a plane (β = π/2) is a "
     "critical case of the stability analysis.",
     "docs/theory/rotating-field.md §6, §7 'critical cases'",
+    name="thin_plate_in_planar_field_is_a_critical_case",
 )
 def rf_8() -> Measurement:
     """Thin plate I3 = I1 + I2 in a planar field: a critical case (footnote 2).
@@ -289,6 +293,7 @@ def rf_8() -> Measurement:
     "model this mode is observed to decay, at a rate proportional to the square of the "
     "amplitude, i.e. amplitude ~ τ^(−1/2).",
     "docs/theory/rotating-field.md §7 'critical cases' (an observation)",
+    name="thin_plate_critical_mode_decays_nonlinearly",
 )
 def rf_9() -> Measurement:
     """The observation of §7: the critical thin-plate mode decays at a rate ∝ amplitude².

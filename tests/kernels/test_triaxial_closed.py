@@ -7,10 +7,10 @@ import math
 
 import numpy as np
 import pytest
+from closed_forms import closed_and_quadrature
 from scipy import special
 
 from tumble.averaging import triaxial_kernel
-from tumble.kernels.rhs import evaluate
 from tumble.kernels.triaxial import MODE
 from tumble.kernels.triaxial_closed import polhode_moments, sn_means
 from tumble.space.torques import FieldMomentsTorque, GravityMomentsTorque
@@ -107,18 +107,7 @@ def test_closed_form_equals_the_quadrature(name):
     torques = _torques(rng)
     torque = sum(torques.values(), start=ZERO) if name == "all" else torques[name]
     period = 2.0 * math.pi / 0.4 if name in ("gravity gradient", "all") else None
-    kernel = triaxial_kernel(torque, INERTIA, period, rtol=1e-13)
-    assert kernel is not None and kernel.params[MODE] == 2.0
-    quadrature = np.array(kernel.params)
-    quadrature[MODE] = 1.0
-    I1, I2, I3 = sorted(INERTIA)
-    for r in np.concatenate([rng.uniform(1.0 / I3, 1.0 / I1, 20), [1.0001 / I3, 0.9999 / I1]]):
-        if abs(r * I2 - 1.0) < 1e-6:
-            continue
-        y = np.array([*rng.normal(size=3), r])
-        t = rng.uniform(0.0, 10.0)  # the node has turned
-        got = evaluate(kernel.kind, t, y, kernel.params)
-        ref = evaluate(kernel.kind, t, y, quadrature)
+    for y, got, ref in closed_and_quadrature(torque, INERTIA, period, rng):
         # The quadrature stops refining the polhode when two levels agree to 1e-13 of the
         # integrand's size and is exact in the precession; the closed form is exact: they
         # agree to round-off of the largest rate (measured 2e-14).

@@ -12,19 +12,17 @@ from datetime import UTC, datetime
 
 import numpy as np
 import pytest
+from closed_forms import closed_and_quadrature
 from files import EXAMPLES, write
 from scipy.spatial.transform import Rotation
 from typer.testing import CliRunner
 
-from tumble.averaging import triaxial_kernel
 from tumble.cli import app
 from tumble.integrate import simulate
 from tumble.io import parse_scenario
 from tumble.kernels import terms
-from tumble.kernels.rhs import evaluate
 from tumble.kernels.space import DIPOLE
 from tumble.kernels.terms import residual_dipole as rd
-from tumble.kernels.triaxial import MODE
 from tumble.space import Orbit
 from tumble.space.geomagnetic import Dipole, Igrf
 from tumble.torques import CompiledTorque
@@ -79,18 +77,7 @@ def test_the_closed_form_average_equals_the_quadrature():
     rng = np.random.default_rng(3)
     values = {"dipole": rng.normal(size=3), "field": rng.normal(size=3), "node_rate": -0.2}
     torque = CompiledTorque((terms.compiled_term("residual_dipole_mean", values),))
-    kernel = triaxial_kernel(torque, inertia, None, rtol=1e-13)
-    assert kernel is not None and kernel.params[MODE] == 2.0  # the closed form is chosen
-    quadrature = np.array(kernel.params)
-    quadrature[MODE] = 1.0
-    I1, I2, I3 = sorted(inertia)
-    for r in np.concatenate([rng.uniform(1.0 / I3, 1.0 / I1, 20), [1.0001 / I3, 0.9999 / I1]]):
-        if abs(r * I2 - 1.0) < 1e-6:
-            continue
-        y = np.array([*rng.normal(size=3), r])
-        t = rng.uniform(0.0, 10.0)  # the node has turned
-        got = evaluate(kernel.kind, t, y, kernel.params)
-        ref = evaluate(kernel.kind, t, y, quadrature)
+    for y, got, ref in closed_and_quadrature(torque, inertia, None, rng):
         # The quadrature refines the polhode to 1e-13 of the integrand and is exact in the
         # precession; the closed form is exact: round-off of the largest rate apart. The power
         # (the rate of r) is zero in both: the term does no work on average.

@@ -70,7 +70,9 @@ def rigid_body_kernel(inertia: ArrayLike, torque: Torque | None) -> Kernel | Non
     program = _NO_TORQUE if torque is None else torque.program
     if program is None:
         return None
-    kind = KIND_ORBITING_BODY if torque is not None and torque.along_orbit else KIND_RIGID_BODY
+    # A term along an orbit or calling out runs on the right-hand side of every term (a kind of
+    # its own, so that the common one stays small and free of opaque calls).
+    kind = KIND_ORBITING_BODY if torque is not None and torque.compiled_apart else KIND_RIGID_BODY
     return Kernel(kind, np.concatenate([np.asarray(inertia, dtype=float), program]))
 
 

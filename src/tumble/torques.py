@@ -126,6 +126,15 @@ class Torque:
         return terms is not None and all(registry.term_of(code).rate_only for code, _, _ in terms)
 
     @cached_property
+    def compiled_apart(self) -> bool:
+        """Whether a compiled term runs only on the right-hand side of every term
+        (``KIND_ORBITING_BODY``): a term along an orbit or one that calls out (a user's numba
+        function)."""
+        return any(
+            registry.term_of(code).compiled_apart for code, _, _ in self.compiled_terms() or ()
+        )
+
+    @cached_property
     def along_orbit(self) -> bool:
         """Whether a compiled term is evaluated along an orbit (Kepler's equation, the
         geomagnetic field): such a program runs on the orbiting body's right-hand side."""

@@ -44,8 +44,9 @@ KIND_SPINNER_AVERAGED = 7
 KIND_NUTATION_ENGINE = 8
 KIND_TRIAXIAL_AVERAGED = 9
 KIND_ORBITING_BODY = 10
-"""Euler's equations under a program with terms along an orbit (``Term.along_orbit``): the
-rigid body's, with Kepler's equation and the geomagnetic field compiled in only here."""
+"""Euler's equations under a program with terms compiled apart (``Term.compiled_apart``: along
+an orbit, or calling out to a user's function): the rigid body's, with Kepler's equation, the
+geomagnetic field and the callbacks compiled in only here."""
 
 EVENT_NONE = 0
 EVENT_THETA_DOT = 1

@@ -59,7 +59,7 @@ _ENERGY = ("H", "R", "G", "a", "b")
 KINDS: dict[int, Kind] = {
     codes.KIND_RIGID_BODY: Kind("Euler's equations under a torque program", _BODY, RIGID_BODY),
     codes.KIND_ORBITING_BODY: Kind(
-        "Euler's equations under terms along an orbit", _BODY, RIGID_BODY
+        "Euler's equations under every term (along an orbit, calling out)", _BODY, RIGID_BODY
     ),
     codes.KIND_ROTATING_FIELD: Kind(
         "the rotating field's form (1.5)",

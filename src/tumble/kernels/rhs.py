@@ -12,9 +12,10 @@ Kinds
     of Martynenko (1979), and the torques of the averaging engine). State ``[ω, q]``,
     parameters ``[I1, I2, I3, torque program]``.
 ``KIND_ORBITING_BODY``
-    The same under a program with terms along an orbit (the eddy current in the geomagnetic
-    field, the gravity gradient of an elliptic orbit): compiled apart, so that only this kind
-    compiles Kepler's equation and the field's synthesis.
+    The same under a program with terms compiled apart: along an orbit (the eddy current in the
+    geomagnetic field, the gravity gradient of an elliptic orbit) or calling out (a user's numba
+    function), so that only this kind compiles Kepler's equation, the field's synthesis and the
+    opaque calls, which would keep the common kind from holding its parameters in registers.
 ``KIND_ROTATING_FIELD``
     The rotating-field form (1.5) of Martynenko (1979), state ``[z, Γ by rows]``.
 ``KIND_NONLINEAR_MOMENT``

@@ -20,7 +20,14 @@ from tumble._typing import FloatArray
 from tumble.kernels.frames import attitude_matrix, quaternion_matrix, to_inertial
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
 from tumble.kernels.layout import Mat3, Vec3
-from tumble.kernels.terms import HEAD_SIZE, HEADER, moment_of, next_term, orbit_moment_of
+from tumble.kernels.terms import (
+    HEAD_SIZE,
+    HEADER,
+    engine_moment_of,
+    moment_of,
+    next_term,
+    orbit_moment_of,
+)
 
 __all__ = [
     "inertial_moments",
@@ -58,8 +65,10 @@ def program_of(term: Callable[..., Vec3]) -> Callable[..., Vec3]:
 
 
 fixed_program = program_of(moment_of)
-"""Body moment of the program ``prog[start:]`` at body rate ω and attitude matrix a (no term
-along an orbit: those are NaN)."""
+"""Body moment of the program ``prog[start:]`` at body rate ω and attitude matrix a (a term
+compiled apart, along an orbit or calling out, is NaN)."""
+engine_program = program_of(engine_moment_of)
+"""The same with a user's callback (the averaging engines' general quadrature)."""
 orbit_program = program_of(orbit_moment_of)
 """The same for any program, the terms along an orbit included."""
 
@@ -67,7 +76,7 @@ orbit_program = program_of(orbit_moment_of)
 @jit(KERNEL)
 def torque_moment(prog: FloatArray, start: int, t: float, y: FloatArray, out: FloatArray) -> None:
     """Body moment of the torque program ``prog[start:]`` at state ``y = [ω, q]`` into
-    out[0:3]; a term along an orbit gives NaN (:func:`orbit_torque_moment` has them)."""
+    out[0:3]; a term compiled apart gives NaN (:func:`orbit_torque_moment` has them)."""
     m1 = m2 = m3 = 0.0
     if prog[start] > 0:
         m1, m2, m3 = fixed_program(prog, start, t, y[0], y[1], y[2], attitude_matrix(y))
@@ -78,9 +87,9 @@ def torque_moment(prog: FloatArray, start: int, t: float, y: FloatArray, out: Fl
 def orbit_torque_moment(
     prog: FloatArray, start: int, t: float, y: FloatArray, out: FloatArray
 ) -> None:
-    """:func:`torque_moment` for any program, the terms along an orbit included: compiled
-    apart, so that the other right-hand sides do not compile Kepler's equation and the
-    geomagnetic field."""
+    """:func:`torque_moment` for any program, the terms compiled apart included (along an
+    orbit, calling out): compiled apart, so that the other right-hand sides neither compile
+    Kepler's equation and the geomagnetic field nor carry an opaque call."""
     m1 = m2 = m3 = 0.0
     if prog[start] > 0:
         m1, m2, m3 = orbit_program(prog, start, t, y[0], y[1], y[2], attitude_matrix(y))

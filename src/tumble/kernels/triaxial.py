@@ -58,7 +58,7 @@ from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
 from tumble.kernels.layout import Mat3, Vec3, mat3, vec3
 from tumble.kernels.params import TRIAXIAL_AVERAGED
 from tumble.kernels.terms import phase_mean_of
-from tumble.kernels.torque import fixed_program, program_of
+from tumble.kernels.torque import engine_program, program_of
 from tumble.kernels.triaxial_closed import closed_mean
 
 __all__ = ["MODE", "PERIOD", "PROGRAM_START", "jacobi_functions", "triaxial_averaged"]
@@ -354,7 +354,7 @@ def _grid_sums(
             a = _attitude(F, h0, h1, g2)
             for j2 in range(n2):
                 tt = t + (j2 + o2) * period / n2 if period > 0.0 else t
-                m1, m2, m3 = fixed_program(p, PROGRAM_START, tt, z1, z2, z3, a)
+                m1, m2, m3 = engine_program(p, PROGRAM_START, tt, z1, z2, z3, a)
                 t1, t2, t3, t4, t5, t6 = _channels(a, z1, z2, z3, m1, m2, m3, rl1, rl2, rl3)
                 s1 += t1
                 s2 += t2

@@ -39,6 +39,7 @@ TERM = Term(
     layout=LAYOUT,
     reads=frozenset({"rate", "attitude", "time"}),
     moment=moment,
+    calls_out=True,
     quadrature_only=True,
 )
 

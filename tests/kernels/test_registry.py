@@ -16,6 +16,7 @@ from tumble.errors import ParameterError
 from tumble.kernels import terms
 from tumble.kernels.kinds import KINDS
 from tumble.kernels.layout import Field, Layout
+from tumble.kernels.terms import KeySpec
 from tumble.kernels.torque import moments
 from tumble.torques import ConstantBodyTorque, GravityGradientTorque, LinearDrag
 
@@ -174,6 +175,4 @@ def test_the_keys_read_from_source_are_the_declared_ones():
     declared = terms.ORBIT_KEYS
     assert [s.name for s in specs] == [k.name for k in declared]
     for spec, key in zip(specs, declared, strict=True):
-        assert (spec.kind, spec.meaning, spec.unit, spec.default, spec.doc) == (
-            key.kind, key.meaning, key.unit, key.default, key.doc
-        )  # fmt: skip
+        assert spec == KeySpec(key.name, key.kind, key.meaning, key.unit, key.default, key.doc)

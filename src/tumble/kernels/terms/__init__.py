@@ -45,7 +45,9 @@ NAMES: tuple[str, ...] = (
 @dataclass(frozen=True)
 class KeySpec:
     """What a scenario schema needs of an :class:`~tumble.kernels.terms.base.OrbitKey`: its
-    name, value type, meaning, unit, default and doc line (its builder stays with the term)."""
+    name, value type (a kind of the scenario schema, e.g. ``"vector3"``), meaning (what a
+    valid value is, as the key reference prints it), unit (SI; tumble converts), default (the
+    value that leaves the term off) and doc line; its builder stays with the term."""
 
     name: str
     kind: str

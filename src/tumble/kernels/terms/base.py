@@ -34,6 +34,7 @@ from typing import Any, Literal
 from tumble._typing import FloatArray
 from tumble.kernels.jit import INLINE, jit
 from tumble.kernels.layout import Layout
+from tumble.kernels.terms import KeySpec
 
 __all__ = ["READS", "OrbitContext", "OrbitKey", "Term", "chain"]
 
@@ -163,36 +164,20 @@ class OrbitContext:
 
 
 @dataclass(frozen=True)
-class OrbitKey:
-    """A key of the orbiting body's ``[torques]`` section that switches on a registered term.
+class OrbitKey(KeySpec):
+    """A key of the orbiting body's ``[torques]`` section that switches on a registered term:
+    what the scenario schema reads of it (:class:`~tumble.kernels.terms.KeySpec`: name, value
+    type, meaning, unit, the default that leaves the term off, doc line), and its builder.
 
     Attributes
     ----------
-    name : str
-        The key.
-    kind : str
-        Its value's type in the scenario schema (e.g. ``"vector3"``).
-    meaning : str
-        What a valid value is, as the key reference prints it.
-    unit : str
-        The value's unit (SI; tumble converts).
-    default : object
-        The value that leaves the term off.
-    doc : str
-        One line for the key reference.
     build : callable
         ``build(value, context)`` → ``(label, full, averaged)`` or None (the term is off):
         the compiled terms (:data:`tumble.kernels.terms.CompiledTerm` lists) of the full
         equations and of the orbit-averaged ones, in the model's units.
     """
 
-    name: str
-    kind: str
-    meaning: str
-    unit: str
-    default: Any
-    doc: str
-    build: Callable[[Any, OrbitContext], Any]
+    build: Callable[[Any, OrbitContext], Any] = lambda value, context: None
 
 
 def _nan3(*args: Any) -> tuple[float, float, float]:

@@ -49,7 +49,7 @@ demo: $(TEST_STAMP)
 	done
 
 test: $(TEST_STAMP)
-	$(BIN)/python -m pytest -m "not slow" -q
+	$(BIN)/python -m pytest -m "not slow" -q -n 2 --dist loadfile
 
 bench: $(TEST_STAMP)
 	@command -v chromium >/dev/null || { echo "make bench: the report test needs Debian's chromium (apt-get install chromium)"; exit 1; }

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import math
 from collections import namedtuple
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -127,11 +127,6 @@ class Layout:
         if self.tail is not None:
             out[self.tail] = data[self.size :]
         return out
-
-    def describe(self) -> Iterable[tuple[str, int, int, str, str]]:
-        """(name, offset, size, unit, doc) of every field: the layout as the docs print it."""
-        for f, k in zip(self.fields, self.at, strict=True):
-            yield f.name, k, f.size, f.unit, f.doc
 
 
 def _checked(layout: str, f: Field, value: Any) -> list[float]:

@@ -29,7 +29,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import Any, Literal
+from typing import Any
 
 from tumble._typing import FloatArray
 from tumble.kernels.jit import INLINE, jit
@@ -38,7 +38,6 @@ from tumble.kernels.terms import KeySpec
 
 __all__ = ["READS", "OrbitContext", "OrbitKey", "Term", "chain"]
 
-Reads = Literal["rate", "attitude", "time", "orbit", "field"]
 READS: frozenset[str] = frozenset({"rate", "attitude", "time", "orbit", "field"})
 """What a moment may depend on: the body rate, the attitude, the time, a position along an
 orbit (Kepler's equation), the geomagnetic field there."""

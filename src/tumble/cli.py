@@ -52,6 +52,11 @@ def _main(
     ] = False,
 ) -> None:
     """tumble: slow evolution of rigid-body rotation under small torques."""
+    # The consoles read the terminal's settings (COLUMNS) when made: made again for every
+    # command, so that a program that invokes several in one process (a notebook, the tests)
+    # gets each one's.
+    global out, err
+    out, err = Console(), Console(stderr=True)
 
 
 def _shortened(message: str) -> str:

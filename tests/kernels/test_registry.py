@@ -174,5 +174,5 @@ def test_the_keys_read_from_source_are_the_declared_ones():
     specs = terms.orbit_key_specs()
     declared = terms.ORBIT_KEYS
     assert [s.name for s in specs] == [k.name for k in declared]
-    for spec, key in zip(specs, declared, strict=True):
-        assert spec == KeySpec(key.name, key.kind, key.meaning, key.unit, key.default, key.doc)
+    for read, key in zip(specs, declared, strict=True):
+        assert read == KeySpec(key.name, key.kind, key.meaning, key.unit, key.default, key.doc)

@@ -22,6 +22,7 @@ __all__ = [
     "quaternion_rates",
     "to_body",
     "to_inertial",
+    "turned_about_z",
 ]
 
 
@@ -62,6 +63,13 @@ def to_inertial(a: Mat3, x1: float, x2: float, x3: float) -> Vec3:
         a[3] * x1 + a[4] * x2 + a[5] * x3,
         a[6] * x1 + a[7] * x2 + a[8] * x3,
     )
+
+
+@jit(INLINE)
+def turned_about_z(angle: float, x: Vec3) -> Vec3:
+    """Rz(angle) x: an inertial vector turned about ξ3 (the node's turn of an orbit's inputs)."""
+    c, s = math.cos(angle), math.sin(angle)
+    return c * x[0] - s * x[1], s * x[0] + c * x[1], x[2]
 
 
 @jit(INLINE)

@@ -4,10 +4,8 @@ c = 3μ/(2a³(1 − e²)^{3/2}) (⟨3μ r̂ r̂ᵀ/r³⟩ = c (1 − ĥ ĥᵀ)) 
 
 from __future__ import annotations
 
-import math
-
 from tumble._typing import FloatArray
-from tumble.kernels.frames import to_body
+from tumble.kernels.frames import to_body, turned_about_z
 from tumble.kernels.jit import INLINE, jit
 from tumble.kernels.layout import Field, Layout, Mat3, Vec3, vec3
 from tumble.kernels.lframe import Context, Parts
@@ -29,10 +27,7 @@ _AT = LAYOUT.at
 @jit(INLINE)
 def _normal(prog: FloatArray, v: int, t: float) -> Vec3:
     """ĥ(t): the normal at t = 0 turned about ξ3 by Ω̇ t."""
-    angle = prog[v + _AT.node_rate] * t
-    cn, sn = math.cos(angle), math.sin(angle)
-    h1, h2, h3 = vec3(prog, v + _AT.normal)
-    return cn * h1 - sn * h2, sn * h1 + cn * h2, h3
+    return turned_about_z(prog[v + _AT.node_rate] * t, vec3(prog, v + _AT.normal))
 
 
 @jit(INLINE)

@@ -30,7 +30,7 @@ import numpy as np
 
 from tumble._typing import FloatArray
 from tumble.errors import IntegrationError, ParameterError
-from tumble.kernels.frames import to_body
+from tumble.kernels.frames import to_body, turned_about_z
 from tumble.kernels.jit import INLINE, jit
 from tumble.kernels.layout import Field, Layout, Mat3, Vec3, vec3
 from tumble.kernels.lframe import Context, Parts, column_dot, sorted_vector
@@ -93,10 +93,7 @@ def moment(
 @jit(INLINE)
 def _mean_field(prog: FloatArray, v: int, t: float) -> Vec3:
     """⟨B⟩ at time t: its value at t = 0 turned about ξ3 by Ω̇ t."""
-    angle = prog[v + _MEAN.node_rate] * t
-    c, s = math.cos(angle), math.sin(angle)
-    x1, x2, x3 = vec3(prog, v + _MEAN.field)
-    return c * x1 - s * x2, s * x1 + c * x2, x3
+    return turned_about_z(prog[v + _MEAN.node_rate] * t, vec3(prog, v + _MEAN.field))
 
 
 @jit(INLINE)

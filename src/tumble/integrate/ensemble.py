@@ -104,9 +104,9 @@ def averaged_batch(
                 points.append(pt)
             else:
                 out[i] = single(i)
-        groups: dict[tuple[int, int, int], list[_Point[P, S]]] = {}
+        groups: dict[tuple[int, int, int, int], list[_Point[P, S]]] = {}
         for pt in points:
-            key = (pt.kernel.kind, pt.kernel.params.size, pt.y0.size)
+            key = (pt.kernel.kind, pt.kernel.params.size, pt.y0.size, _watched(pt))
             groups.setdefault(key, []).append(pt)
         for group in groups.values():
             start = time.perf_counter()
@@ -172,6 +172,11 @@ def _finished(
     return integrated(run, "averaged", pt.form, sol, time.perf_counter() - wall)
 
 
+def _watched(pt: _Point[Any, Any]) -> int:
+    """The event (``EVENT_*``) the run of ``pt`` watches: its surface's, or none."""
+    return pt.surface.event if pt.surface is not None else EVENT_NONE
+
+
 def _integrate_group(
     name: str,
     group: Sequence[_Point[Any, Any]],
@@ -181,9 +186,9 @@ def _integrate_group(
     dense: bool,
     out: list[Any],
 ) -> None:
-    """Advance every run of ``group`` (one kind, one parameter length) to its end, piece by
-    piece; a failed run gets its IntegrationError in ``out``, the others their samples and
-    evaluation counts in their ``_Point``."""
+    """Advance every run of ``group`` (one kind, one parameter length, one event watched or
+    none) to its end, piece by piece; a failed run gets its IntegrationError in ``out``, the
+    others their samples and evaluation counts in their ``_Point``."""
     n = len(group)
     dim = group[0].y0.size
     n_eval = group[0].tau.size
@@ -192,11 +197,12 @@ def _integrate_group(
     t_eval = np.stack([pt.tau for pt in group])
     for r, pt in enumerate(group):
         arrays["Y"][r] = pt.y0
-        arrays["events"][r] = pt.surface.event if pt.surface is not None else EVENT_NONE
+        arrays["events"][r] = _watched(pt)
     piece = np.zeros(n, dtype=np.int64)  # index into each run's stops
     spent = np.zeros(n, dtype=np.int64)  # steps of the calls that ended with the budget spent
     active = np.arange(n)
     kind = group[0].kernel.kind
+    event = _watched(group[0])
     # Steps a run may take in one call: from FIRST_CHUNK, doubled each call, so that a run
     # whose pace is hopeless is refused early (as a single run is), not after its budget.
     allowance = FIRST_CHUNK
@@ -209,7 +215,7 @@ def _integrate_group(
                 arrays["Y"], arrays["F"], arrays["Y_eval"], arrays["status"],
                 arrays["nfev"])  # fmt: skip
         allowance *= 2
-        pieces = {int(pc[0]): pc[1:] for pc in block_entry(kind, args)(kind, *args)}
+        pieces = {int(pc[0]): pc[1:] for pc in block_entry(kind, event, args)(*args)}
         going = []
         for r in active.tolist():
             pt, status = group[r], int(arrays["status"][r])

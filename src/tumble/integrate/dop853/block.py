@@ -9,6 +9,7 @@ pieces (a breakpoint at a known time, the map past a surface) between calls.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable
 from typing import Any, cast
 
@@ -18,6 +19,7 @@ from numba.typed import List
 
 from tumble._typing import FloatArray
 from tumble.integrate.dop853.core import FRESH, Options, Progress, advance
+from tumble.integrate.dop853.functions import EVENT, RHS, STEP, event_function, kind_functions
 from tumble.kernels.jit import ENTRY, jit
 
 __all__ = ["advance_block", "block_entry"]
@@ -32,12 +34,14 @@ _PIECE = numba.types.Tuple(
 
 @jit(ENTRY)
 def advance_block(
-    kind: int, rows: Any, P: FloatArray, T: FloatArray, events: Any, first: FloatArray,
-    t0: FloatArray, ie: Any, rtol: float, atol: float, max_steps: int, dense: bool,
-    t_eval: FloatArray, Y: FloatArray, F: FloatArray, Y_eval: FloatArray, status: Any,
-    nfev: Any,
+    step_fn: Any, rhs_fn: Any, event_fn: Any, rows: Any, P: FloatArray, T: FloatArray,
+    events: Any, first: FloatArray, t0: FloatArray, ie: Any, rtol: float, atol: float,
+    max_steps: int, dense: bool, t_eval: FloatArray, Y: FloatArray, F: FloatArray,
+    Y_eval: FloatArray, status: Any, nfev: Any,
 ) -> Any:  # fmt: skip
-    """Advance each run ``i`` of ``rows`` from ``t0[i]`` (state ``Y[i]``) towards ``T[i]``.
+    """Advance each run ``i`` of ``rows`` from ``t0[i]`` (state ``Y[i]``) towards ``T[i]``,
+    with the right-hand side's compiled functions ``step_fn``, ``rhs_fn`` and the event
+    function ``event_fn`` of the runs that watch one (:mod:`~.functions`).
 
     Run i has parameters ``P[i]``, event code ``events[i]`` (terminal; 0: none), first step
     ``first[i]`` (0: Hairer's estimate), and fills its samples ``Y_eval[i]`` (flat rows, at
@@ -53,7 +57,8 @@ def advance_block(
         ev = events[i]
         opts = Options(rtol, atol, first[i], dense, dense, ev, max_steps, ev != 0)
         prog = Progress(FRESH, t0[i], 0.0, 1.0, 0, 0, ie[i])
-        progress, chunk = advance(kind, P[i], T[i], opts, prog, Y[i], F[i], t_eval[i], Y_eval[i])
+        progress, chunk = advance(step_fn, rhs_fn, event_fn, P[i], T[i], opts, prog, Y[i], F[i],
+                                  t_eval[i], Y_eval[i])  # fmt: skip
         status[i] = progress[0]
         t0[i] = progress[1]
         first[i] = progress[2]
@@ -67,17 +72,18 @@ def advance_block(
 _ENTRIES: dict[tuple[Any, ...], Callable[..., Any]] = {}
 
 
-def block_entry(kind: int, args: tuple[Any, ...]) -> Callable[..., Any]:
-    """:func:`advance_block` compiled for ``kind`` as a compile-time constant (as
-    :func:`tumble.integrate.dop853.driver._specialised` compiles the single run), once per
-    kind and argument types; ``args`` are the arguments after the kind."""
-    key = (kind, *(numba.typeof(a) for a in args))
+def block_entry(kind: int, event: int, args: tuple[Any, ...]) -> Callable[..., Any]:
+    """:func:`advance_block` for runs of the kind ``kind`` that watch the event ``event`` or
+    none, as ``entry(*args)``: the block compiled once per argument types (for every kind),
+    with the kind's and the event's compiled functions bound to it; ``args`` are the
+    arguments after the functions."""
+    key = tuple(numba.typeof(a) for a in args)
     entry = _ENTRIES.get(key)
     if entry is None:
-        signature = (numba.types.literal(kind), *key[1:])
-        entry = cast(Any, advance_block).compile(signature)
+        entry = cast(Any, advance_block).compile((STEP, RHS, EVENT, *key))
         _ENTRIES[key] = entry
-    return entry
+    fns = kind_functions(kind)
+    return functools.partial(entry, fns.step, fns.rhs, event_function(event))
 
 
 def empty_block(n_runs: int, dim: int, n_eval: int) -> dict[str, FloatArray]:

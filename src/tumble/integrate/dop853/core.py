@@ -21,7 +21,6 @@ from tumble.integrate.dop853.steps import STEP_OK, attempt_step, initial_step, m
 from tumble.integrate.dop853.tableau import N_INTERPOLANT, N_STAGES, N_STAGES_EXTENDED
 from tumble.kernels.codes import EVENT_NONE
 from tumble.kernels.jit import ENTRY, INLINE, INNER, INNER_INLINE, KERNEL, jit
-from tumble.kernels.rhs import event, rhs
 
 __all__ = ["BAD_START", "FRESH", "NOT_FINITE", "OK", "RUNNING", "STEP_TOO_SMALL", "STOPPED",
            "Chunk", "Options", "Progress", "advance"]  # fmt: skip
@@ -108,8 +107,8 @@ def _finite(y: FloatArray) -> bool:
 
 @jit(INNER)
 def _start(
-    kind: int, p: FloatArray, t_end: float, opts: Options, prog: Progress, y: FloatArray,
-    f: FloatArray, t_eval: FloatArray, y_eval: FloatArray,
+    rhs_fn: Any, event_fn: Any, p: FloatArray, t_end: float, opts: Options, prog: Progress,
+    y: FloatArray, f: FloatArray, t_eval: FloatArray, y_eval: FloatArray,
 ) -> Progress:  # fmt: skip
     """Evaluate f at the start, choose the first step, fill the samples at or before t0."""
     n = y.size
@@ -118,16 +117,16 @@ def _start(
     while ie < t_eval.size and t_eval[ie] <= t0:
         _copy(y, y_eval, ie * n)
         ie += 1
-    rhs(kind, t0, y, p, f)
+    rhs_fn(t0, y, p, f)
     nfev = 1
     h_abs = 0.0
     if t_end > t0:
         if opts.first_step > 0.0:
             h_abs = min(opts.first_step, t_end - t0)
         else:
-            h_abs = initial_step(kind, p, t0, y, f, t_end, opts.rtol, opts.atol)
+            h_abs = initial_step(rhs_fn, p, t0, y, f, t_end, opts.rtol, opts.atol)
             nfev += 1
-    g = event(opts.event, t0, y, p) if opts.event != EVENT_NONE else 1.0
+    g = event_fn(t0, y, p) if opts.event != EVENT_NONE else 1.0
     return Progress(RUNNING, t0, h_abs, g, nfev, 0, ie)
 
 
@@ -150,7 +149,7 @@ def _sample(
 
 @jit(KERNEL)
 def _step_events(
-    kind: int, p: FloatArray, t: float, h: float, y: FloatArray, y_new: FloatArray,
+    event_fn: Any, p: FloatArray, t: float, h: float, y: FloatArray, y_new: FloatArray,
     F: FloatArray, g_old: float, found: FloatArray, states: FloatArray, tmp: FloatArray,
 ) -> tuple[float, int]:  # fmt: skip
     """Sign changes of the event function on the step, sampled at quarters so that no swing
@@ -161,12 +160,12 @@ def _step_events(
     for quarter in range(1, 5):
         xb = 0.25 * quarter
         if quarter == 4:
-            gb = event(kind, t + h, y_new, p)
+            gb = event_fn(t + h, y_new, p)
         else:
             interpolate(F, y, xb, tmp)
-            gb = event(kind, t + xb * h, tmp, p)
+            gb = event_fn(t + xb * h, tmp, p)
         if (ga < 0.0 < gb) or (gb < 0.0 < ga):
-            x = event_root(kind, p, t, h, y, F, xa, ga, xb, gb, tmp)
+            x = event_root(event_fn, p, t, h, y, F, xa, ga, xb, gb, tmp)
             found[count, 0] = t + x * h
             found[count, 1] = 1.0 if ga > 0.0 else -1.0
             interpolate(F, y, x, states[count])
@@ -192,10 +191,14 @@ def _fit(buffer: FloatArray, rows: int, width: int) -> FloatArray:
 
 @jit(ENTRY)
 def advance(
-    kind: int, p: FloatArray, t_end: float, opts: Options, prog: Progress, y: FloatArray,
-    f: FloatArray, t_eval: FloatArray, y_eval: FloatArray,
+    step_fn: Any, rhs_fn: Any, event_fn: Any, p: FloatArray, t_end: float, opts: Options,
+    prog: Progress, y: FloatArray, f: FloatArray, t_eval: FloatArray, y_eval: FloatArray,
 ) -> tuple[tuple[Any, ...], tuple[Any, ...]]:  # fmt: skip
     """Integrate from ``prog.t`` towards ``t_end`` (at most ``opts.max_steps`` steps).
+
+    The right-hand side comes as the compiled functions of its kind, ``step_fn`` and
+    ``rhs_fn``, and the event function the run watches (``opts.event``) as ``event_fn``
+    (:mod:`~.functions`): this loop is compiled once for every kind.
 
     ``y`` holds the state at ``prog.t`` and ``f`` its derivative; both are updated in place.
     Samples at the times ``t_eval`` go to the flat ``y_eval`` as the run passes them. Returns
@@ -203,7 +206,7 @@ def advance(
     """
     n = y.size
     if prog.status == FRESH:
-        prog = _start(kind, p, t_end, opts, prog, y, f, t_eval, y_eval)
+        prog = _start(rhs_fn, event_fn, p, t_end, opts, prog, y, f, t_eval, y_eval)
     t, h_abs, g, nfev, ie = prog.t, prog.h_abs, prog.g, prog.nfev, prog.n_eval
     # The record: the start, then one row per step (buffers grow by doubling).
     dense = opts.dense and opts.record
@@ -225,7 +228,7 @@ def advance(
     looking = opts.event != EVENT_NONE
     t_stop = t_end
     while status == RUNNING and t < t_stop and (opts.max_steps <= 0 or n_rec < opts.max_steps):
-        step, h, h_abs, used = attempt_step(kind, p, t, t_stop, h_abs, y, K, y_new, tmp,
+        step, h, h_abs, used = attempt_step(step_fn, p, t, t_stop, h_abs, y, K, y_new, tmp,
                                             opts.rtol, opts.atol)  # fmt: skip
         nfev += used
         if step != STEP_OK:
@@ -236,10 +239,10 @@ def advance(
             break
         t_new = t + h
         if opts.dense or looking or (ie < t_eval.size and t_eval[ie] <= t_new):
-            dense_coefficients(kind, p, t, h, y, y_new, K, F, tmp)
+            dense_coefficients(step_fn, p, t, h, y, y_new, K, F, tmp)
             nfev += N_STAGES_EXTENDED - N_STAGES - 1
         if looking:
-            g_new, count = _step_events(opts.event, p, t, h, y, y_new, F, g, found, states, tmp)
+            g_new, count = _step_events(event_fn, p, t, h, y, y_new, F, g, found, states, tmp)
             if count > 0 and opts.terminal:
                 looking = False  # this step is not taken: the run ends at the zero instead
                 ev_t, ev_s = _fit(ev_t, n_ev + 1, 1), _fit(ev_s, n_ev + 1, 1)

@@ -3,10 +3,11 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from tumble._typing import FloatArray
-from tumble.integrate.dop853.steps import stages
 from tumble.integrate.dop853.tableau import N_INTERPOLANT, N_STAGES, N_STAGES_EXTENDED, D
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
 
@@ -15,13 +16,14 @@ __all__ = ["dense_coefficients", "evaluate_dense", "interpolate"]
 
 @jit(KERNEL)
 def dense_coefficients(
-    kind: int, p: FloatArray, t: float, h: float, y: FloatArray, y_new: FloatArray,
+    step_fn: Any, p: FloatArray, t: float, h: float, y: FloatArray, y_new: FloatArray,
     K: FloatArray, F: FloatArray, tmp: FloatArray,
 ) -> None:  # fmt: skip
     """The interpolant's coefficient rows F (7, n) of the step (t, y) → (t + h, y_new); K holds
-    the 13 stages of the step and receives the three extra ones."""
+    the 13 stages of the step and receives the three extra ones (from ``step_fn``, the
+    kind's compiled :func:`~.steps.step_stages`)."""
     n = y.size
-    stages(kind, p, t, h, y, K, tmp, N_STAGES + 1, N_STAGES_EXTENDED)
+    step_fn(p, t, h, y, K, y_new, tmp, 0.0, 0.0, True)
     for j in range(n):
         dy = y_new[j] - y[j]
         F[0, j] = dy

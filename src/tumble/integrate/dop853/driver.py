@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import _signal
 import contextlib
+import functools
 import os
 import signal
 import threading
@@ -21,6 +22,7 @@ from tumble.errors import ParameterError
 from tumble.integrate.dop853 import core
 from tumble.integrate.dop853.core import Chunk, Options, Progress
 from tumble.integrate.dop853.dense import evaluate_dense
+from tumble.integrate.dop853.functions import EVENT, RHS, STEP, event_function, kind_functions
 from tumble.integrate.dop853.tableau import N_INTERPOLANT
 from tumble.kernels import Kernel
 from tumble.kernels.jit import compile_notice
@@ -93,27 +95,28 @@ def available_threads() -> int:
     return _MAX_THREADS
 
 
-_ENTRIES: dict[tuple[Any, ...], Callable[..., tuple[Any, Any]]] = {}
+_LOOPS: dict[tuple[Any, ...], Callable[..., tuple[Any, Any]]] = {}
 
 
-def _specialised(kind: int, args: tuple[Any, ...]) -> Callable[..., tuple[Any, Any]]:
-    """:func:`core.advance` compiled for the kernel kind ``kind`` as a compile-time constant.
+def _specialised(kind: int, event: int, args: tuple[Any, ...]) -> Callable[..., tuple[Any, Any]]:
+    """:func:`core.advance` for the kernel kind ``kind`` watching the event ``event``: the
+    loop, compiled once for every kind, with the kind's compiled functions and the event's
+    bound to it (:mod:`~.functions`), as ``entry(*args)``.
 
-    With the kind a ``Literal[int]``, LLVM folds the right-hand side's dispatch and inlines
-    the one kernel into the stage loops (about 1.8× faster than a runtime kind). Each kind's
-    specialisation is compiled once and cached on disk like any other signature; the batches
-    run the same one. The entry is kept per kind and per writability of the arrays (the only
-    parts of the argument types that vary between runs): typing the arguments again costs
+    Each piece compiles on first use and is cached on disk like any other signature; the
+    batches run the same ones. The loop is kept per writability of the arrays (the only part
+    of its argument types that varies between runs): typing the arguments again costs
     ~0.1 ms, which a short run (an averaged one) would feel.
     """
-    key = (kind, *(a.flags.writeable if isinstance(a, np.ndarray) else type(a) for a in args))
-    entry = _ENTRIES.get(key)
-    if entry is None:
-        signature = (numba.types.literal(kind), *(numba.typeof(a) for a in args))
-        with compile_notice():  # from the disk cache in well under a second, else announced
-            entry = cast(Any, core.advance).compile(signature)
-        _ENTRIES[key] = entry
-    return entry
+    key = tuple(a.flags.writeable if isinstance(a, np.ndarray) else type(a) for a in args)
+    with compile_notice():  # from the disk cache in well under a second, else announced
+        loop = _LOOPS.get(key)
+        if loop is None:
+            signature = (STEP, RHS, EVENT, *(numba.typeof(a) for a in args))
+            loop = cast(Any, core.advance).compile(signature)
+            _LOOPS[key] = loop
+        fns = kind_functions(kind)
+        return functools.partial(loop, fns.step, fns.rhs, event_function(event))
 
 
 @dataclass(frozen=True)
@@ -206,6 +209,8 @@ class Integration:
         t_eval: ArrayLike | None = None,
     ) -> None:
         self.kernel = kernel
+        p = kernel.params
+        self._params = p if p.flags.writeable else p.copy()
         self.t_end = float(t_end)
         self.options = options._replace(
             rtol=float(options.rtol),
@@ -225,9 +230,10 @@ class Integration:
         self._entry: Callable[..., tuple[Any, Any]] | None = None
 
     def _args(self, max_steps: int) -> tuple[Any, ...]:
-        """The arguments of :func:`core.advance` after the kind."""
+        """The arguments of :func:`core.advance` after its compiled functions (the parameters
+        as a writable array: the functions' types are fixed)."""
         opts = self.options._replace(max_steps=int(max_steps))
-        return (self.kernel.params, self.t_end, opts, self.progress, self.y, self._f,
+        return (self._params, self.t_end, opts, self.progress, self.y, self._f,
                 self.t_eval, self._y_eval)  # fmt: skip
 
     @property
@@ -242,8 +248,8 @@ class Integration:
         args = self._args(0 if max_steps is None else max(1, int(max_steps)))
         with _signals_held():  # compiling, then the call: neither survives an interrupt
             if self._entry is None:
-                self._entry = _specialised(self.kernel.kind, args)
-            progress, chunk = self._entry(self.kernel.kind, *args)
+                self._entry = _specialised(self.kernel.kind, self.options.event, args)
+            progress, chunk = self._entry(*args)
         self.progress = Progress(*progress)
         self._chunks.append(Chunk(*chunk))
         return self.done
@@ -404,12 +410,15 @@ def solve_many(
     runs = [Integration(k, y, t, options) for k, y, t in zip(kernels, y0, t_end, strict=True)]
     # Look every kind's specialisation up first: compiling inside the pool would compile
     # the same function in several threads at once.
-    entries = {r.kernel.kind: _specialised(r.kernel.kind, r._args(0)) for r in runs}
+    entries = {
+        (r.kernel.kind, r.options.event): _specialised(r.kernel.kind, r.options.event, r._args(0))
+        for r in runs
+    }
     out: list[Any] = [None] * len(runs)
 
     def one(i: int) -> None:
         run = runs[i]
-        run._entry = entries[run.kernel.kind]
+        run._entry = entries[run.kernel.kind, run.options.event]
         start = time.perf_counter()
         run.advance()
         out[i] = (run.solution(), time.perf_counter() - start)
@@ -487,7 +496,7 @@ def solve_batch(
             for i in range(N)]  # fmt: skip
     # The same compiled integrator as solve() (no second, parallel compile), looked up once;
     # it releases the GIL, so threads run the trajectories concurrently.
-    entry = _specialised(int(kind), runs[0]._args(0))
+    entry = _specialised(int(kind), runs[0].options.event, runs[0]._args(0))
 
     def one(i: int) -> None:
         run = runs[i]

@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 from tumble._typing import FloatArray
 from tumble.integrate.dop853.dense import interpolate
 from tumble.kernels.jit import INNER, jit
-from tumble.kernels.rhs import event
 
 __all__ = ["event_root"]
 
@@ -14,11 +15,12 @@ _EPS = 2.220446049250313e-16  # machine epsilon of float64
 
 @jit(INNER)
 def event_root(
-    kind: int, p: FloatArray, t: float, h: float, y: FloatArray, F: FloatArray,
+    event_fn: Any, p: FloatArray, t: float, h: float, y: FloatArray, F: FloatArray,
     xa: float, ga: float, xb: float, gb: float, out: FloatArray,
 ) -> float:  # fmt: skip
-    """Fraction x in [xa, xb] of the step where the event function ``kind`` changes sign
-    (the Illinois variant of regula falsi on the interpolant, to a few ulps of t)."""
+    """Fraction x in [xa, xb] of the step where the event function ``event_fn(t, y, p)``
+    changes sign (the Illinois variant of regula falsi on the interpolant, to a few ulps of
+    t)."""
     side = 0
     x = xb
     for _ in range(200):
@@ -26,7 +28,7 @@ def event_root(
         if not xa < x < xb:
             x = 0.5 * (xa + xb)
         interpolate(F, y, x, out)
-        g = event(kind, t + x * h, out, p)
+        g = event_fn(t + x * h, out, p)
         if g == 0.0:
             return x
         if (g > 0.0) == (gb > 0.0):

@@ -9,15 +9,16 @@ is compiled too, and that is most of the first call's cost.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
 from tumble._typing import FloatArray
-from tumble.integrate.dop853.tableau import E3, E5, N_STAGES, A, B, C
-from tumble.kernels.jit import INLINE, INNER, KERNEL, jit
+from tumble.integrate.dop853.tableau import E3, E5, N_STAGES, N_STAGES_EXTENDED, A, B, C
+from tumble.kernels.jit import INLINE, INNER, jit
 from tumble.kernels.rhs import rhs
 
-__all__ = ["attempt_step", "error_norm", "initial_step", "stages"]
+__all__ = ["attempt_step", "error_norm", "initial_step", "stages", "step_stages"]
 
 _SAFETY, _MIN_FACTOR, _MAX_FACTOR = 0.9, 0.2, 10.0
 _ERROR_EXPONENT = -1.0 / 8.0  # the error estimator is of order 7
@@ -35,10 +36,11 @@ def min_step(t: float) -> float:
 
 @jit(INNER)
 def initial_step(
-    kind: int, p: FloatArray, t0: float, y0: FloatArray, f0: FloatArray, t1: float,
+    rhs_fn: Any, p: FloatArray, t0: float, y0: FloatArray, f0: FloatArray, t1: float,
     rtol: float, atol: float,
 ) -> float:  # fmt: skip
-    """Hairer's starting step (scipy's select_initial_step with the estimator's order 7)."""
+    """Hairer's starting step (scipy's select_initial_step with the estimator's order 7);
+    ``rhs_fn(t, y, p, out)`` is the right-hand side (:data:`~.functions.RHS`)."""
     n = y0.size
     d0 = d1 = 0.0
     for j in range(n):
@@ -52,7 +54,7 @@ def initial_step(
     for j in range(n):
         y1[j] = y0[j] + h0 * f0[j]
     f1 = np.empty(n)
-    rhs(kind, t0 + h0, y1, p, f1)
+    rhs_fn(t0 + h0, y1, p, f1)
     d2 = 0.0
     for j in range(n):
         scale = atol + abs(y0[j]) * rtol
@@ -65,7 +67,7 @@ def initial_step(
     return min(100.0 * h0, h1, t1 - t0)
 
 
-@jit(KERNEL)
+@jit(INLINE)
 def stages(
     kind: int, p: FloatArray, t: float, h: float, y: FloatArray, K: FloatArray,
     tmp: FloatArray, first: int, last: int,
@@ -104,6 +106,32 @@ def error_norm(
 
 
 @jit(INLINE)
+def step_stages(
+    kind: int, p: FloatArray, t: float, h: float, y: FloatArray, K: FloatArray,
+    y_new: FloatArray, tmp: FloatArray, rtol: float, atol: float, extended: bool,
+) -> float:  # fmt: skip
+    """What a step of size h from (t, y), K[0] = f(t, y), asks of the right-hand side
+    ``kind``: its stages 1 … 12 into K, the new state into ``y_new``, its derivative into
+    K[12], and the step's :func:`error_norm` (returned); with ``extended``, the three extra
+    stages of the interpolant instead (K[13:16]; returns 0).
+
+    Each kind compiles this once (:mod:`~.functions`); the stage counts are constants in
+    both branches, so that the compiler unrolls the stages and drops the tableau's zeros.
+    """
+    if extended:
+        stages(kind, p, t, h, y, K, tmp, N_STAGES + 1, N_STAGES_EXTENDED)
+        return 0.0
+    stages(kind, p, t, h, y, K, tmp, 1, N_STAGES)
+    for j in range(y.size):
+        acc = 0.0
+        for k in range(N_STAGES):
+            acc += B[k] * K[k, j]
+        y_new[j] = y[j] + h * acc
+    rhs(kind, t + h, y_new, p, K[N_STAGES])
+    return error_norm(abs(h), y, y_new, K, rtol, atol)
+
+
+@jit(INLINE)
 def next_size(h_abs: float, err: float, rejected: bool) -> float:
     """The size of the next try after a step of size h_abs with error ``err``: grown (at
     most 10×, not at all right after a rejection) if it was accepted, shrunk if not."""
@@ -119,15 +147,15 @@ def next_size(h_abs: float, err: float, rejected: bool) -> float:
 
 @jit(INLINE)
 def attempt_step(
-    kind: int, p: FloatArray, t: float, t1: float, h_abs: float, y: FloatArray,
+    step_fn: Any, p: FloatArray, t: float, t1: float, h_abs: float, y: FloatArray,
     K: FloatArray, y_new: FloatArray, tmp: FloatArray, rtol: float, atol: float,
 ) -> tuple[int, float, float, int]:  # fmt: skip
-    """Try steps from (t, y), K[0] = f(t, y), shrinking until one is accepted.
+    """Try steps from (t, y), K[0] = f(t, y), shrinking until one is accepted; ``step_fn``
+    is the kind's compiled :func:`step_stages` (:mod:`~.functions`).
 
     Returns (status, h, the size to try next, evaluations); on success the new state is in
     ``y_new`` and the 13 stages in K.
     """
-    n = y.size
     nfev = 0
     rejected = False
     lowest = min_step(t)
@@ -138,15 +166,8 @@ def attempt_step(
         t_new = min(t + h_abs, t1)
         h = t_new - t
         h_abs = h
-        stages(kind, p, t, h, y, K, tmp, 1, N_STAGES)
-        for j in range(n):
-            acc = 0.0
-            for k in range(N_STAGES):
-                acc += B[k] * K[k, j]
-            y_new[j] = y[j] + h * acc
-        rhs(kind, t + h, y_new, p, K[N_STAGES])
+        err = step_fn(p, t, h, y, K, y_new, tmp, rtol, atol, False)
         nfev += N_STAGES
-        err = error_norm(h_abs, y, y_new, K, rtol, atol)
         next_h = next_size(h_abs, err, rejected)
         if err < 1.0:
             return STEP_OK, h, next_h, nfev

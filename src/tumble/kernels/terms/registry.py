@@ -148,19 +148,23 @@ def _entries(kind: str, among: Iterable[Term]) -> list[tuple[int, Any]]:
 
 _FIXED = [t for t in TERMS if not t.along_orbit]
 
-moment_of = chain(_entries("moment", [t for t in TERMS if not t.compiled_apart]), NAN[3])
+moment_of = chain(
+    "moment_of", _entries("moment", [t for t in TERMS if not t.compiled_apart]), NAN[3]
+)
 """``moment_of(code, f, prog, v, t, w1, w2, w3, a)``: the body moment of a term of the common
 right-hand side (NaN for a term compiled apart, along an orbit or calling out: only the kind of
 every term, ``KIND_ORBITING_BODY``, compiles those)."""
-engine_moment_of = chain(_entries("moment", _FIXED), NAN[3])
+engine_moment_of = chain("engine_moment_of", _entries("moment", _FIXED), NAN[3])
 """The same for every term not along an orbit, a user's callback included: what the averaging
 engines' general quadrature evaluates."""
-orbit_moment_of = chain(_entries("moment", TERMS), NAN[3])
+orbit_moment_of = chain("orbit_moment_of", _entries("moment", TERMS), NAN[3])
 """The same for every term."""
-phase_mean_of = chain([(CODES[t.name], t.phase_mean or t.moment) for t in _FIXED], NAN[3])
+phase_mean_of = chain(
+    "phase_mean_of", [(CODES[t.name], t.phase_mean or t.moment) for t in _FIXED], NAN[3]
+)
 """``phase_mean_of(code, ...)``: the moment averaged over the term's forcing phase, or as it is
 at the time t for a term without one."""
-closed_of = chain(_entries("closed", TERMS), NAN[4])
+closed_of = chain("closed_of", _entries("closed", TERMS), NAN[4])
 """``closed_of(code, p, v, t, ctx)``: a term's closed-form Euler–Poinsot average."""
-spinner_of = chain(_entries("spinner", TERMS), NAN[2])
+spinner_of = chain("spinner_of", _entries("spinner", TERMS), NAN[2])
 """``spinner_of(code, p, v, a, c)``: a term's means over the spin angle."""

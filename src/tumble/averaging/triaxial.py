@@ -51,7 +51,7 @@ import numpy as np
 from scipy import special
 
 from tumble._typing import ArrayLike, FloatArray
-from tumble.averaging.quadrature import AVERAGE_RTOL, AveragingError
+from tumble.averaging.quadrature import AveragingError
 from tumble.averaging.triaxial_grid import _Grid, _Moment, _rotate
 from tumble.averaging.triaxial_resonance import (
     Resonance,
@@ -62,6 +62,16 @@ from tumble.bodies import proper_sorting
 from tumble.errors import ParameterError, TumbleWarning, check_finite, check_range
 from tumble.kernels import KIND_TRIAXIAL_AVERAGED, Kernel
 from tumble.kernels.codes import DEGENERATE_RTOL
+from tumble.kernels.limits import (
+    AVERAGE_RTOL,
+    MAX_GRID,
+    MOMENTUM_FLOOR,
+    PHASE_MAX,
+    PHASE_START,
+    POLHODE_MAX,
+    POLHODE_START,
+    SQUARING_SAFETY,
+)
 from tumble.kernels.params import TRIAXIAL_AVERAGED
 from tumble.kernels.terms import term_of
 from tumble.rotations import matrix_to_quat
@@ -84,27 +94,10 @@ __all__ = [
     "triaxial_kernel",
 ]
 
-MOMENTUM_FLOOR = 1e-12
-"""L ≤ MOMENTUM_FLOOR·max I·Ω_ref is refused as "L → 0" (Ω_ref the forcing frequency, or
-1 rad per unit of τ without forcing): every fast frequency is then ≲ 1e-12 Ω_ref, the motion
-is not fast against anything, and the direction of L is set by the last digits of L_ξ."""
+_N_START = {"polhode": POLHODE_START, "precession": PHASE_START, "forcing": PHASE_START}
+"""First numbers of nodes (:mod:`tumble.kernels.limits`, shared with the compiled engine)."""
 
-MAX_GRID = 2**18
-"""Largest number of nodes of the product grid (a few MB per array): beyond it the average
-is reported as not converging rather than computed for seconds."""
-
-_N_START = {"polhode": 16, "precession": 4, "forcing": 4}
-"""First numbers of nodes. The trapezoidal rule with n nodes is exact for trigonometric
-polynomials of degree < n; 4 → 8 settles the degree-≤2 dependence on χ and on the field
-phase of the usual torques (eddy current, gravity gradient) in one doubling."""
-
-_N_MAX = {"polhode": 2**14, "precession": 2**9, "forcing": 2**9}
-
-_SQUARING_SAFETY = 100.0
-"""Margin of the squaring shortcut of :func:`_product_mean`. Measured for the eddy-current
-torque over 3000 random bodies and states (both regimes, k² ≤ 1 − 10⁻⁴) at rtol = 1e-12: the
-shortcut saved a doubling in 57 % of them and its results differed from those of the plain
-test by at most 5e-13 of the integrand's size, within rtol."""
+_N_MAX = {"polhode": POLHODE_MAX, "precession": PHASE_MAX, "forcing": PHASE_MAX}
 
 
 # ---------------------------------------------------------------------------------------------
@@ -144,15 +137,15 @@ def _product_mean(
     Squaring shortcut. For an analytic periodic integrand the error of n nodes is ~C ρⁿ,
     so the error of 2n nodes is ~(error of n)²/C: about change², with change = |I_2n − I_n|
     relative to the integrand's size. I_2n is then accepted once
-    ``_SQUARING_SAFETY·change² ≤ rtol``, provided the last two changes themselves squared
-    (``change ≤ _SQUARING_SAFETY·previous²``), which algebraic convergence (a torque with a
+    ``SQUARING_SAFETY·change² ≤ rtol``, provided the last two changes themselves squared
+    (``change ≤ SQUARING_SAFETY·previous²``), which algebraic convergence (a torque with a
     kink) never shows; such integrands fall back to the plain test ``change ≤ rtol``.
     """
     n = [ax.n_start for ax in axes]
     data = [ax.make(_phases(ax.n_start, 0.0)) for ax in axes]
     red = tuple(range(1, len(axes) + 1))
     mean = integrand(*data).mean(axis=red)
-    shortcut = math.sqrt(rtol / _SQUARING_SAFETY)
+    shortcut = math.sqrt(rtol / SQUARING_SAFETY)
     for i, ax in enumerate(axes):
         done = n[i] >= ax.n_max  # a frozen phase (one node) is not refined
         previous = math.inf
@@ -172,7 +165,7 @@ def _product_mean(
             )
             # Plain test, or the squaring shortcut once the sequence shows it: two changes at
             # least (the first doubling has nothing to square).
-            squaring = math.isfinite(previous) and change <= _SQUARING_SAFETY * previous**2
+            squaring = math.isfinite(previous) and change <= SQUARING_SAFETY * previous**2
             done = change <= rtol or (change <= shortcut and squaring)
             data[i] = tuple(np.concatenate([a, b]) for a, b in zip(data[i], fresh, strict=True))
             n[i] *= 2

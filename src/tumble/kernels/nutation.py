@@ -30,6 +30,7 @@ from tumble._typing import FloatArray
 from tumble.kernels.codes import NUTATION_SEPARATRIX_TOL
 from tumble.kernels.elliptic import ellipk_mc, elliprd, elliprj
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
+from tumble.kernels.limits import NUTATION_MAX, NUTATION_START, SPIN_MAX, SPIN_START
 from tumble.kernels.params import NONLINEAR_MOMENT, NUTATION_ENGINE
 from tumble.kernels.torque import fixed_program
 
@@ -479,10 +480,6 @@ def nutation_averaged(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -
     out[4] = eps * db
 
 
-_SPIN_MAX = 4096  # most spin nodes of the engine's mean over φ (the Python engine's limit)
-_NUTATION_MAX = 1 << 14  # most nodes over the nutation of the engine's time average
-
-
 @jit(KERNEL)
 def _spin_mean(
     p: FloatArray, start: int, tau: float, ps: float, thd: float, r: float, s: float,
@@ -497,9 +494,9 @@ def _spin_mean(
     body rate only."""
     eye = (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)
     t0, t1, t2 = 0.0, 0.0, 0.0
-    n, offset = 4, 0.0
+    n, offset = SPIN_START, 0.0
     old0, old1, old2 = 0.0, 0.0, 0.0
-    while n <= _SPIN_MAX:
+    while n <= SPIN_MAX:
         a0, a1, a2 = 0.0, 0.0, 0.0
         step = 2.0 * math.pi / n
         for j in range(n):
@@ -580,12 +577,12 @@ def _engine_averages(
     like √(1 − k²))."""
     cc, hh = 0.5 * (u1 + u2), 0.5 * (u1 - u2)
     ok, sw, sg, sr, sgg, ag, ar, agg = _nutation_sums(
-        p, start, tau, rtol, mu, R, G, da, db, cc, hh, c4, q1, q0, 16, 0.0
+        p, start, tau, rtol, mu, R, G, da, db, cc, hh, c4, q1, q0, NUTATION_START, 0.0
     )
     if not ok:
         return False, math.nan, math.nan, math.nan
-    n = 16
-    while n < _NUTATION_MAX:
+    n = NUTATION_START
+    while n < NUTATION_MAX:
         ok, sw2, sg2, sr2, sgg2, ag2, ar2, agg2 = _nutation_sums(
             p, start, tau, rtol, mu, R, G, da, db, cc, hh, c4, q1, q0, n, 0.5
         )

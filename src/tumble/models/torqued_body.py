@@ -34,7 +34,7 @@ from tumble.averaging import nearest_resonances, triaxial_average_vector, triaxi
 from tumble.catalogue import CATALOGUE
 from tumble.dynamics import rigid_body_rhs
 from tumble.errors import ParameterError
-from tumble.kernels import EVENT_TRIAXIAL_SEPARATRIX, Kernel
+from tumble.kernels import EVENT_TRIAXIAL_SEPARATRIX, Kernel, evaluate_rhs
 from tumble.kernels.rhs import rigid_body
 from tumble.models.base import (
     Averaged,
@@ -162,7 +162,11 @@ def averaged_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
     """Averaged rates of ``y = [L_ξ1, L_ξ2, L_ξ3, r]``, r = 2T/L², by quadrature.
 
     ε ⟨A M⟩ and 2ε⟨(ω − r Iω)·M⟩/L² over the polhode, the precession about L and the forcing
-    period (:func:`tumble.averaging.triaxial_average_vector`).
+    period: for a sum of built-in torques the compiled engine the integrator runs
+    (:func:`averaged_kernel`); for a user torque, a body with two equal moments, or where the
+    compiled engine refuses the state (NaN), the Python engine
+    (:func:`tumble.averaging.triaxial_average_vector`), which raises with the reason. The two
+    agree to the averages' tolerance (AVERAGE_RTOL).
 
     Parameters
     ----------
@@ -178,6 +182,11 @@ def averaged_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
     ndarray, shape (4,)
         dy/dt [moment unit, 1/(inertia unit · t)].
     """
+    kernel = averaged_kernel(p)
+    if kernel is not None:
+        rates = evaluate_rhs(kernel, t, y)
+        if not np.isnan(rates).any():
+            return rates
     r = reached_ratio(*p.sorted_inertia, float(y[3]))
     if math.isnan(r):
         return np.full(4, math.nan)  # past a pure rotation: the solver rejects the step

@@ -5,6 +5,10 @@ A perturbation is given either directly as Φθ(θ, θ', z), Φz(θ, z) (:class:
 as a body-axes torque (:func:`torque_perturbation`), converted through (1.3a) and §6 and
 averaged over the spin φ and the precession ψ (independent fast phases, the non-resonant
 case). :func:`numeric_averages` then averages over the nutation period of the frozen orbit.
+
+This is the engine for any perturbation; for a moment of the body rate only the compiled twin,
+:func:`tumble.kernels.nutation.nutation_engine`, forms the same averages from the same grids
+and limits (:mod:`tumble.kernels.limits`), and is tested against this one.
 """
 
 from __future__ import annotations

@@ -28,6 +28,10 @@ Measured cost of one :func:`spinner_average` call at the default rtol (2 shared 
 as a plain batched function about 1 ms (0.5 ms without the quadratic term); called one state at
 a time (``batched=False``), about 40 ms.
 
+This is the engine for any torque, and the quadrature oracle of the compiled spinner setting
+(:mod:`tumble.kernels.spinner`), which forms the φ-means of a moment of the body rate only in
+closed form (no grid, so no limit of its own to share) and is tested against this one.
+
 This module also holds the kinematics of the standard form (1.3), the part that does not depend
 on the moment law: :func:`body_momentum` and :func:`standard_form`.
 """

@@ -19,6 +19,11 @@ time dependence (the rotating field, (1.1)) adds a third independent phase: the 
 ``t + s`` over one forcing period. That is how (3.5)–(3.7) average the field independently
 of the body's phases (§10, "Field-phase average").
 
+This is the engine for any torque (a user's function, a body with two equal moments); a sum of
+built-in torques on a triaxial body runs the compiled twin, :mod:`tumble.kernels.triaxial`
+(:func:`triaxial_kernel`), which refines its quadratures from the same grids to the same limits
+(:mod:`tumble.kernels.limits`) and is tested against this one.
+
 Quadrature. A product periodic trapezoidal rule over the 2 or 3 phases, refined axis by
 axis: each axis is doubled (the new nodes are the midpoints, so every value is computed
 once) until the mean changes by at most ``rtol`` times the mean magnitude of the integrand,

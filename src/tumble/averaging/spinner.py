@@ -420,15 +420,14 @@ def _spinner_average(
     torque: TorqueLike,
     kappa: float,
     eps: float,
-    k: float,
-    rho: float,
-    sigma: float,
-    theta: float,
+    y: tuple[float, float, float, float],
     t: float,
     rtol: float,
     batched: bool | None,
 ) -> tuple[FloatArray, int, int]:
-    """:func:`spinner_average` and the nodes used in ψ and in φ."""
+    """:func:`spinner_average` at the slow state ``y = (k, ρ, σ, ϑ)`` [1, rad, rad, rad] (the
+    averaged form's state vector), and the nodes used in ψ and in φ."""
+    k, rho, sigma, theta = y
     kappa, eps, k, rho, sigma, theta, t = map(float, (kappa, eps, k, rho, sigma, theta, t))
     _check_state(kappa, eps, k, rho, sigma, theta)
     check_finite("t", t)
@@ -536,7 +535,7 @@ def spinner_average(
     ----------
     A. V. Medvedev (1987), (1.3), (2.1), (2.2); docs/theory/resisting-medium.md §4–§6.
     """
-    return _spinner_average(torque, kappa, eps, k, rho, sigma, theta, t, rtol, batched)[0]
+    return _spinner_average(torque, kappa, eps, (k, rho, sigma, theta), t, rtol, batched)[0]
 
 
 # ---------------------------------------------------------------------------------------------

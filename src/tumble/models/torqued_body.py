@@ -54,6 +54,7 @@ from tumble.models.base import (
     attitude_columns,
     attitude_values,
     fixed_columns,
+    mean_columns,
     separatrix_issue,
 )
 from tumble.models.inputs.torqued_body import (
@@ -413,11 +414,7 @@ _COLUMNS_SLOW = (
         "docs/theory/rotating-field.md §8",
     ),
 )
-_COLUMNS_MEAN = tuple(
-    Column(f"{c.name}_mean", f"mean {c.long_name} (averaging of order 2)", c.units, c.equation)
-    for c in _COLUMNS_SLOW
-    if c.name in MEAN_SLOW
-)
+_COLUMNS_MEAN = mean_columns(c for c in _COLUMNS_SLOW if c.name in MEAN_SLOW)
 _COLUMNS_FULL = (
     *_COLUMNS_SLOW,
     *attitude_columns("t"),

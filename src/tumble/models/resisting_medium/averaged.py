@@ -128,7 +128,10 @@ def _equator(p: Params, st: State) -> tuple[Breakpoint, ...]:
 
 def averaged_rhs_numeric(t: float, y: FloatArray, p: Params) -> FloatArray:
     """The averaged equations from the general engine: the moment (1.2) averaged over ψ and φ
-    of the standard form (1.3) by quadrature; equal to (2.2) to round-off.
+    of the standard form (1.3) by quadrature; equal to (2.2) to round-off. The Python engine
+    (:func:`tumble.averaging.spinner_average`): the oracle (2.2) and the compiled spinner
+    setting are tested against; an averaged run integrates the compiled one
+    (:func:`spinner_kernel`) for a moment of the body rate only.
 
     Parameters
     ----------

@@ -226,6 +226,9 @@ def averaged_rhs_numeric(t: float, y: FloatArray, p: Params) -> FloatArray:
     """The vector form of the averaged equations from the general engine: the
     eddy-current torque averaged over the Euler–Poinsot motion and the field's rotation by
     quadrature; equal to :func:`averaged_rhs_vector` to round-off away from the separatrix.
+    The Python engine (:func:`tumble.averaging.triaxial_average_vector`): the oracle the
+    closed-form vector form is tested against; an averaged run integrates its compiled twin
+    (:func:`numeric_kernel`) where one exists.
 
     Parameters
     ----------

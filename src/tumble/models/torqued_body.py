@@ -392,28 +392,17 @@ def _resonance_issue(p: Params, grid: FloatArray, sc: _Scales) -> ValidityIssue 
 # The record.
 
 
+_VECTOR_FORM = "docs/theory/rotating-field.md §10"  # the slow variables of the vector form
+
 _COLUMNS_SLOW = (
-    Column("L1", "inertial angular momentum L_ξ1", "1", "docs/theory/rotating-field.md §10"),
-    Column("L2", "inertial angular momentum L_ξ2", "1", "docs/theory/rotating-field.md §10"),
-    Column("L3", "inertial angular momentum L_ξ3", "1", "docs/theory/rotating-field.md §10"),
-    Column("L", "angular momentum |L|", "1", "docs/theory/rotating-field.md §10"),
-    Column("rho", "polar angle ρ of L from ξ3", "rad", "docs/theory/rotating-field.md §10"),
-    Column(
-        "sigma",
-        "inertial azimuth σ of L",
-        "rad",
-        "docs/theory/rotating-field.md §10",
-        angle=True,
-        unwrap=True,
-    ),
-    Column("T", "kinetic energy T", "1", "docs/theory/rotating-field.md §10"),
-    Column(
-        "k2",
-        "Euler–Poinsot modulus k² of the current regime",
-        "1",
-        "docs/theory/rotating-field.md §8",
-    ),
-)
+    *(Column(f"L{i}", f"inertial angular momentum L_ξ{i}", "1", _VECTOR_FORM) for i in (1, 2, 3)),
+    Column("L", "angular momentum |L|", "1", _VECTOR_FORM),
+    Column("rho", "polar angle ρ of L from ξ3", "rad", _VECTOR_FORM),
+    Column("sigma", "inertial azimuth σ of L", "rad", _VECTOR_FORM, angle=True, unwrap=True),
+    Column("T", "kinetic energy T", "1", _VECTOR_FORM),
+    Column("k2", "Euler–Poinsot modulus k² of the current regime", "1",
+           "docs/theory/rotating-field.md §8"),
+)  # fmt: skip
 _COLUMNS_MEAN = mean_columns(c for c in _COLUMNS_SLOW if c.name in MEAN_SLOW)
 _COLUMNS_FULL = (
     *_COLUMNS_SLOW,

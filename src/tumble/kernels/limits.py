@@ -13,6 +13,7 @@ from __future__ import annotations
 __all__ = [
     "AVERAGE_RTOL",
     "MAX_GRID",
+    "MODULUS_ROUNDOFF",
     "MOMENTUM_FLOOR",
     "NUTATION_MAX",
     "NUTATION_START",
@@ -23,6 +24,7 @@ __all__ = [
     "SPIN_MAX",
     "SPIN_START",
     "SQUARING_SAFETY",
+    "X2_CLOSED_DIST",
 ]
 
 AVERAGE_RTOL = 1e-12
@@ -77,3 +79,19 @@ SPIN_START = 4
 
 SPIN_MAX = 4096
 """Most nodes over the spin φ."""
+
+# The nutation's orbit: the turning points of the frozen motion and its period averages, as the
+# compiled well (:func:`tumble.kernels.nutation.well_averages`) forms them; the Python orbit
+# (:mod:`tumble.unperturbed.symmetric_body`) writes the same numbers.
+
+ROOT_MAXITER = 200
+"""Newton–bisection steps of a turning point before giving up (bisection alone needs ≤ ~1100
+from [−1, 1])."""
+
+MODULUS_ROUNDOFF = 1e-12
+"""How far below 0 the computed modulus m = k² or its complement 1 − k² may fall by round-off
+(then clipped to 0); further is no bounded motion."""
+
+X2_CLOSED_DIST = 0.02
+"""⟨X²⟩ by ∂R_J/∂p only when p is this far from its removable singularities (p = 1 − k² and
+p = 1); nearer, by quadrature."""

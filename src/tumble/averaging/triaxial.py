@@ -83,6 +83,7 @@ from tumble.rotations import matrix_to_quat
 from tumble.unperturbed.euler_poinsot import (
     SEPARATRIX_RTOL,
     EulerPoinsot,
+    reached_ratio,
     regime,
 )
 from tumble.unperturbed.euler_poinsot.motion import _frame_with_third_row
@@ -95,6 +96,7 @@ __all__ = [
     "nearest_resonance",
     "nearest_resonances",
     "triaxial_average",
+    "triaxial_average_stage",
     "triaxial_average_vector",
     "triaxial_kernel",
 ]
@@ -585,6 +587,40 @@ def triaxial_average_vector(
     T = 0.5 * r * L * L
     mean, _ = _means(torque, I_user, Lv, L, T, float(t), forcing_period, rtol, _GROUPS_R, batched)
     return np.array([*mean[:3], 2.0 * mean[4] / (L * L)])
+
+
+def triaxial_average_stage(
+    torque: Any, inertia: ArrayLike, y: FloatArray, t: float, forcing_period: float | None
+) -> FloatArray:
+    """:func:`triaxial_average_vector` at a stage of an integrator, ``y = [L_ξ, r]``: an r past
+    the range [1/I3, 1/I1] a rigid body reaches by no more than the solver's local error is
+    moved into it (:func:`~tumble.unperturbed.euler_poinsot.reached_ratio`), one further
+    beyond gives NaN rates, so that the solver rejects the step.
+
+    Parameters
+    ----------
+    torque : Torque or callable
+        As in :func:`triaxial_average`.
+    inertia : array_like, shape (3,)
+        Principal moments, any order [inertia unit].
+    y : ndarray, shape (4,)
+        ``[L_ξ1, L_ξ2, L_ξ3, r]`` [inertia unit · rad/τ, 1/inertia unit].
+    t : float
+        Time τ [1], as in :func:`triaxial_average`.
+    forcing_period : float or None
+        Period of the explicit time dependence [τ] (None: none).
+
+    Returns
+    -------
+    ndarray, shape (4,)
+        ``[dL_ξ/dτ (3), dr/dτ]`` [moment unit, 1/(inertia unit · τ)], or NaN.
+    """
+    I1, I2, I3 = sorted(float(v) for v in np.asarray(inertia, dtype=float).reshape(3))
+    r = reached_ratio(I1, I2, I3, float(y[3]))
+    if math.isnan(r):
+        return np.full(4, math.nan)  # past a pure rotation: the solver rejects the step
+    state = np.array([y[0], y[1], y[2], r])
+    return triaxial_average_vector(torque, inertia, state, t, forcing_period=forcing_period)
 
 
 _PERIOD_RTOL = 1e-9

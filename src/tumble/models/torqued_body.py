@@ -30,7 +30,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from tumble._typing import BoolArray, FloatArray
-from tumble.averaging import nearest_resonances, triaxial_average_vector, triaxial_kernel
+from tumble.averaging import nearest_resonances, triaxial_kernel
+from tumble.averaging.triaxial import triaxial_average_stage
 from tumble.catalogue import CATALOGUE
 from tumble.dynamics import rigid_body_rhs
 from tumble.errors import ParameterError
@@ -70,7 +71,6 @@ from tumble.unperturbed.euler_poinsot import (
     EulerPoinsot,
     fast_frequencies,
     modulus_squared_of_states,
-    reached_ratio,
 )
 
 __all__ = [
@@ -188,13 +188,8 @@ def averaged_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
         rates = evaluate_rhs(kernel, t, y)
         if not np.isnan(rates).any():
             return rates
-    r = reached_ratio(*p.sorted_inertia, float(y[3]))
-    if math.isnan(r):
-        return np.full(4, math.nan)  # past a pure rotation: the solver rejects the step
-    state = np.array([y[0], y[1], y[2], r])
     torque, period = p.averaging
-    rates = triaxial_average_vector(torque, p.inertia, state, t, forcing_period=period)
-    return p.eps * rates
+    return p.eps * triaxial_average_stage(torque, p.inertia, y, t, period)
 
 
 def _vector_from_slow(p: Params, st: State) -> FloatArray:

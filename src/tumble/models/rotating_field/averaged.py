@@ -12,7 +12,7 @@ import numpy as np
 from scipy.special import ellipe, ellipk
 
 from tumble._typing import ArrayLike, FloatArray
-from tumble.averaging.triaxial import triaxial_average_vector, triaxial_kernel
+from tumble.averaging.triaxial import triaxial_average_stage, triaxial_kernel
 from tumble.kernels import (
     EVENT_FIELD_SEPARATRIX,
     EVENT_TRIAXIAL_SEPARATRIX,
@@ -28,7 +28,6 @@ from tumble.unperturbed import (
     energy_from_modulus,
     mean_square_rate,
     modulus_squared_of_ratio,
-    reached_ratio,
 )
 
 # ---------------------------------------------------------------------------------------------
@@ -238,11 +237,7 @@ def averaged_rhs_numeric(t: float, y: FloatArray, p: Params) -> FloatArray:
         ``[L_ξ1, L_ξ2, L_ξ3, r]``, r = 2T/L² [inertia unit, 1/inertia unit].
     p : Params
     """
-    r = reached_ratio(*p.sorted_inertia, float(y[3]))
-    if math.isnan(r):
-        return np.full(4, math.nan)  # past a pure rotation: the solver rejects the step
-    state = np.array([y[0], y[1], y[2], r])
-    return triaxial_average_vector(p.torque, p.inertia, state, t, forcing_period=2.0 * math.pi)
+    return triaxial_average_stage(p.torque, p.inertia, y, t, 2.0 * math.pi)
 
 
 def _mean_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:

@@ -99,7 +99,7 @@ def test_model_torque_takes_the_rate_path_and_equals_2_2(
     over 2000 random points; plain doubling needs 1024–4096)."""
     p = rm.Params(eps=eps, kappa=kap, a=a, b=b, s=s)
     rates, n_psi, n_phi = _spinner_average(
-        p.torque, kap, 1.0, k, rho, sigma, theta, t, AVERAGE_RTOL, None
+        p.torque, kap, 1.0, (k, rho, sigma, theta), t, AVERAGE_RTOL, None
     )
     assert n_psi == 1 and n_phi <= 1024
     # Same budget as the general path above (quadrature converged to 1e-12 of max|m|).

@@ -5,6 +5,10 @@ A perturbation is given either directly as Φθ(θ, θ', z), Φz(θ, z) (:class:
 as a body-axes torque (:func:`torque_perturbation`), converted through (1.3a) and §6 and
 averaged over the spin φ and the precession ψ (independent fast phases, the non-resonant
 case). :func:`numeric_averages` then averages over the nutation period of the frozen orbit.
+
+This is the engine for any perturbation; for a moment of the body rate only the compiled twin,
+:func:`tumble.kernels.nutation.nutation_engine`, forms the same averages from the same grids
+and limits (:mod:`tumble.kernels.limits`), and is tested against this one.
 """
 
 from __future__ import annotations
@@ -34,6 +38,7 @@ from tumble.averaging.second_order import (
     generator_drift,
     grid_terms,
 )
+from tumble.kernels.limits import NUTATION_MAX, NUTATION_START, SPIN_MAX, SPIN_START
 from tumble.unperturbed.symmetric_body import NutationOrbit
 
 __all__ = [
@@ -122,8 +127,8 @@ def numeric_averages(
     tau: float,
     *,
     rtol: float = AVERAGE_RTOL,
-    n_start: int = 16,
-    n_max: int = 1 << 14,
+    n_start: int = NUTATION_START,
+    n_max: int = NUTATION_MAX,
 ) -> tuple[float, FloatArray]:
     """⟨Φθθ' + Φz·W^z⟩ and ⟨Φz⟩ over one nutation period of ``orbit``, (2.3).
 
@@ -397,8 +402,9 @@ class _TorqueAverages:
             circle = functools.partial(self.on_circle, nodes)
             first = circle(np.arange(8, dtype=np.float64) * (2.0 * math.pi / 8))
             mean, _ = torus_mean(
-                circle, 1, rtol=self.rtol, n_start=4, known=first, what=f"{self.name} over φ"
-            )
+                circle, 1, rtol=self.rtol, n_start=SPIN_START, n_max=SPIN_MAX, known=first,
+                what=f"{self.name} over φ",
+            )  # fmt: skip
         else:
             torus = functools.partial(self.on_torus, nodes)
             what = f"{self.name} over ψ and φ"

@@ -26,6 +26,7 @@ import numpy as np
 
 from tumble._typing import FloatArray
 from tumble.errors import IntegrationError, ParameterError
+from tumble.kernels.limits import AVERAGE_RTOL
 from tumble.torques import (
     ConstantBodyTorque,
     LinearDrag,
@@ -36,10 +37,6 @@ from tumble.torques import (
 )
 
 __all__ = ["AVERAGE_RTOL", "AveragingError", "BatchedTorque", "rate_only", "torus_mean"]
-
-AVERAGE_RTOL = 1e-12
-"""Default relative tolerance of the averages (the engine's right-hand sides are then exact
-to about this, far below any integration tolerance in use)."""
 
 
 class AveragingError(IntegrationError):

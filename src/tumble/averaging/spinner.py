@@ -28,6 +28,10 @@ Measured cost of one :func:`spinner_average` call at the default rtol (2 shared 
 as a plain batched function about 1 ms (0.5 ms without the quadratic term); called one state at
 a time (``batched=False``), about 40 ms.
 
+This is the engine for any torque, and the quadrature oracle of the compiled spinner setting
+(:mod:`tumble.kernels.spinner`), which forms the φ-means of a moment of the body rate only in
+closed form (no grid, so no limit of its own to share) and is tested against this one.
+
 This module also holds the kinematics of the standard form (1.3), the part that does not depend
 on the moment law: :func:`body_momentum` and :func:`standard_form`.
 """
@@ -416,15 +420,14 @@ def _spinner_average(
     torque: TorqueLike,
     kappa: float,
     eps: float,
-    k: float,
-    rho: float,
-    sigma: float,
-    theta: float,
+    y: tuple[float, float, float, float],
     t: float,
     rtol: float,
     batched: bool | None,
 ) -> tuple[FloatArray, int, int]:
-    """:func:`spinner_average` and the nodes used in ψ and in φ."""
+    """:func:`spinner_average` at the slow state ``y = (k, ρ, σ, ϑ)`` [1, rad, rad, rad] (the
+    averaged form's state vector), and the nodes used in ψ and in φ."""
+    k, rho, sigma, theta = y
     kappa, eps, k, rho, sigma, theta, t = map(float, (kappa, eps, k, rho, sigma, theta, t))
     _check_state(kappa, eps, k, rho, sigma, theta)
     check_finite("t", t)
@@ -532,7 +535,7 @@ def spinner_average(
     ----------
     A. V. Medvedev (1987), (1.3), (2.1), (2.2); docs/theory/resisting-medium.md §4–§6.
     """
-    return _spinner_average(torque, kappa, eps, k, rho, sigma, theta, t, rtol, batched)[0]
+    return _spinner_average(torque, kappa, eps, (k, rho, sigma, theta), t, rtol, batched)[0]
 
 
 # ---------------------------------------------------------------------------------------------

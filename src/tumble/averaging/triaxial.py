@@ -19,6 +19,11 @@ time dependence (the rotating field, (1.1)) adds a third independent phase: the 
 ``t + s`` over one forcing period. That is how (3.5)–(3.7) average the field independently
 of the body's phases (§10, "Field-phase average").
 
+This is the engine for any torque (a user's function, a body with two equal moments); a sum of
+built-in torques on a triaxial body runs the compiled twin, :mod:`tumble.kernels.triaxial`
+(:func:`triaxial_kernel`), which refines its quadratures from the same grids to the same limits
+(:mod:`tumble.kernels.limits`) and is tested against this one.
+
 Quadrature. A product periodic trapezoidal rule over the 2 or 3 phases, refined axis by
 axis: each axis is doubled (the new nodes are the midpoints, so every value is computed
 once) until the mean changes by at most ``rtol`` times the mean magnitude of the integrand,
@@ -51,7 +56,7 @@ import numpy as np
 from scipy import special
 
 from tumble._typing import ArrayLike, FloatArray
-from tumble.averaging.quadrature import AVERAGE_RTOL, AveragingError
+from tumble.averaging.quadrature import AveragingError
 from tumble.averaging.triaxial_grid import _Grid, _Moment, _rotate
 from tumble.averaging.triaxial_resonance import (
     Resonance,
@@ -62,12 +67,23 @@ from tumble.bodies import proper_sorting
 from tumble.errors import ParameterError, TumbleWarning, check_finite, check_range
 from tumble.kernels import KIND_TRIAXIAL_AVERAGED, Kernel
 from tumble.kernels.codes import DEGENERATE_RTOL
+from tumble.kernels.limits import (
+    AVERAGE_RTOL,
+    MAX_GRID,
+    MOMENTUM_FLOOR,
+    PHASE_MAX,
+    PHASE_START,
+    POLHODE_MAX,
+    POLHODE_START,
+    SQUARING_SAFETY,
+)
 from tumble.kernels.params import TRIAXIAL_AVERAGED
 from tumble.kernels.terms import term_of
 from tumble.rotations import matrix_to_quat
 from tumble.unperturbed.euler_poinsot import (
     SEPARATRIX_RTOL,
     EulerPoinsot,
+    reached_ratio,
     regime,
 )
 from tumble.unperturbed.euler_poinsot.motion import _frame_with_third_row
@@ -80,31 +96,15 @@ __all__ = [
     "nearest_resonance",
     "nearest_resonances",
     "triaxial_average",
+    "triaxial_average_stage",
     "triaxial_average_vector",
     "triaxial_kernel",
 ]
 
-MOMENTUM_FLOOR = 1e-12
-"""L ≤ MOMENTUM_FLOOR·max I·Ω_ref is refused as "L → 0" (Ω_ref the forcing frequency, or
-1 rad per unit of τ without forcing): every fast frequency is then ≲ 1e-12 Ω_ref, the motion
-is not fast against anything, and the direction of L is set by the last digits of L_ξ."""
+_N_START = {"polhode": POLHODE_START, "precession": PHASE_START, "forcing": PHASE_START}
+"""First numbers of nodes (:mod:`tumble.kernels.limits`, shared with the compiled engine)."""
 
-MAX_GRID = 2**18
-"""Largest number of nodes of the product grid (a few MB per array): beyond it the average
-is reported as not converging rather than computed for seconds."""
-
-_N_START = {"polhode": 16, "precession": 4, "forcing": 4}
-"""First numbers of nodes. The trapezoidal rule with n nodes is exact for trigonometric
-polynomials of degree < n; 4 → 8 settles the degree-≤2 dependence on χ and on the field
-phase of the usual torques (eddy current, gravity gradient) in one doubling."""
-
-_N_MAX = {"polhode": 2**14, "precession": 2**9, "forcing": 2**9}
-
-_SQUARING_SAFETY = 100.0
-"""Margin of the squaring shortcut of :func:`_product_mean`. Measured for the eddy-current
-torque over 3000 random bodies and states (both regimes, k² ≤ 1 − 10⁻⁴) at rtol = 1e-12: the
-shortcut saved a doubling in 57 % of them and its results differed from those of the plain
-test by at most 5e-13 of the integrand's size, within rtol."""
+_N_MAX = {"polhode": POLHODE_MAX, "precession": PHASE_MAX, "forcing": PHASE_MAX}
 
 
 # ---------------------------------------------------------------------------------------------
@@ -144,15 +144,15 @@ def _product_mean(
     Squaring shortcut. For an analytic periodic integrand the error of n nodes is ~C ρⁿ,
     so the error of 2n nodes is ~(error of n)²/C: about change², with change = |I_2n − I_n|
     relative to the integrand's size. I_2n is then accepted once
-    ``_SQUARING_SAFETY·change² ≤ rtol``, provided the last two changes themselves squared
-    (``change ≤ _SQUARING_SAFETY·previous²``), which algebraic convergence (a torque with a
+    ``SQUARING_SAFETY·change² ≤ rtol``, provided the last two changes themselves squared
+    (``change ≤ SQUARING_SAFETY·previous²``), which algebraic convergence (a torque with a
     kink) never shows; such integrands fall back to the plain test ``change ≤ rtol``.
     """
     n = [ax.n_start for ax in axes]
     data = [ax.make(_phases(ax.n_start, 0.0)) for ax in axes]
     red = tuple(range(1, len(axes) + 1))
     mean = integrand(*data).mean(axis=red)
-    shortcut = math.sqrt(rtol / _SQUARING_SAFETY)
+    shortcut = math.sqrt(rtol / SQUARING_SAFETY)
     for i, ax in enumerate(axes):
         done = n[i] >= ax.n_max  # a frozen phase (one node) is not refined
         previous = math.inf
@@ -172,7 +172,7 @@ def _product_mean(
             )
             # Plain test, or the squaring shortcut once the sequence shows it: two changes at
             # least (the first doubling has nothing to square).
-            squaring = math.isfinite(previous) and change <= _SQUARING_SAFETY * previous**2
+            squaring = math.isfinite(previous) and change <= SQUARING_SAFETY * previous**2
             done = change <= rtol or (change <= shortcut and squaring)
             data[i] = tuple(np.concatenate([a, b]) for a, b in zip(data[i], fresh, strict=True))
             n[i] *= 2
@@ -587,6 +587,40 @@ def triaxial_average_vector(
     T = 0.5 * r * L * L
     mean, _ = _means(torque, I_user, Lv, L, T, float(t), forcing_period, rtol, _GROUPS_R, batched)
     return np.array([*mean[:3], 2.0 * mean[4] / (L * L)])
+
+
+def triaxial_average_stage(
+    torque: Any, inertia: ArrayLike, y: FloatArray, t: float, forcing_period: float | None
+) -> FloatArray:
+    """:func:`triaxial_average_vector` at a stage of an integrator, ``y = [L_ξ, r]``: an r past
+    the range [1/I3, 1/I1] a rigid body reaches by no more than the solver's local error is
+    moved into it (:func:`~tumble.unperturbed.euler_poinsot.reached_ratio`), one further
+    beyond gives NaN rates, so that the solver rejects the step.
+
+    Parameters
+    ----------
+    torque : Torque or callable
+        As in :func:`triaxial_average`.
+    inertia : array_like, shape (3,)
+        Principal moments, any order [inertia unit].
+    y : ndarray, shape (4,)
+        ``[L_ξ1, L_ξ2, L_ξ3, r]`` [inertia unit · rad/τ, 1/inertia unit].
+    t : float
+        Time τ [1], as in :func:`triaxial_average`.
+    forcing_period : float or None
+        Period of the explicit time dependence [τ] (None: none).
+
+    Returns
+    -------
+    ndarray, shape (4,)
+        ``[dL_ξ/dτ (3), dr/dτ]`` [moment unit, 1/(inertia unit · τ)], or NaN.
+    """
+    I1, I2, I3 = sorted(float(v) for v in np.asarray(inertia, dtype=float).reshape(3))
+    r = reached_ratio(I1, I2, I3, float(y[3]))
+    if math.isnan(r):
+        return np.full(4, math.nan)  # past a pure rotation: the solver rejects the step
+    state = np.array([y[0], y[1], y[2], r])
+    return triaxial_average_vector(torque, inertia, state, t, forcing_period=forcing_period)
 
 
 _PERIOD_RTOL = 1e-9

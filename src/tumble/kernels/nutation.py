@@ -30,6 +30,15 @@ from tumble._typing import FloatArray
 from tumble.kernels.codes import NUTATION_SEPARATRIX_TOL
 from tumble.kernels.elliptic import ellipk_mc, elliprd, elliprj
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
+from tumble.kernels.limits import (
+    MODULUS_ROUNDOFF,
+    NUTATION_MAX,
+    NUTATION_START,
+    ROOT_MAXITER,
+    SPIN_MAX,
+    SPIN_START,
+    X2_CLOSED_DIST,
+)
 from tumble.kernels.params import NONLINEAR_MOMENT, NUTATION_ENGINE
 from tumble.kernels.torque import fixed_program
 
@@ -46,10 +55,8 @@ __all__ = [
 ]
 
 _EPS = 2.220446049250313e-16
-_X2_CLOSED_DIST = 0.02  # ⟨X²⟩ by ∂R_J/∂p only this far from its removable singularities
 _QUAD_RTOL = 1e-15  # trapezoid fallback: successive doublings agree to this (round-off)
 _QUAD_MAX = 1 << 16  # … within this many nodes, else the averages are refused (NaN)
-_MAXITER = 200  # Newton–bisection steps of a root (bisection alone needs ≤ ~1100 from [−1, 1])
 
 _NM, _NE = NONLINEAR_MOMENT.at, NUTATION_ENGINE.at
 _NE_PROGRAM = NUTATION_ENGINE.size
@@ -127,7 +134,7 @@ def _root(
         x = 0.5 * (lo + hi)
     a0, a1, a2, a3, a4, a5 = abs(c0), abs(c1), abs(c2), abs(c3), abs(c4), abs(c5)
     last = hi - lo
-    for _ in range(_MAXITER):
+    for _ in range(ROOT_MAXITER):
         fx = _poly(c0, c1, c2, c3, c4, c5, x)
         if fx == 0.0:
             return x
@@ -414,7 +421,7 @@ def well_averages(
                 beta2 = -0.25 * dbp * (A - u4)
             nu = _nu(u2, u1, u3, big3, qq, c4)  # the main chart: anchor u2, pole u3
             nu_other = _nu(u1, u2, u4, big4, qq, c4)  # the other: anchor u1, pole u4
-    if not (math.isfinite(m) and math.isfinite(mc)) or m < -1e-12 or mc < -1e-12:
+    if not (math.isfinite(m) and math.isfinite(mc)) or min(m, mc) < -MODULUS_ROUNDOFF:
         return fail
     m, mc = min(max(m, 0.0), 1.0), min(max(mc, 0.0), 1.0)
     if mc < NUTATION_SEPARATRIX_TOL or not (beta2 > 0.0 and math.isfinite(beta2)):
@@ -444,7 +451,7 @@ def well_averages(
             ua, dab, nu, dist = u1, u2 - u1, nu_other, dist_o
             rj = elliprj(0.0, mc, 1.0, nu)
             x1_closed = rj / (3.0 * K)
-        if dist >= _X2_CLOSED_DIST:
+        if dist >= X2_CLOSED_DIST:
             x2_closed = -_drj_dp(mc, nu, K, rj) / (3.0 * K)
     if math.isnan(x2_closed):
         m2 = _x2_by_trapezoid(u1, u2, c4, q1, q0)
@@ -479,10 +486,6 @@ def nutation_averaged(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -
     out[4] = eps * db
 
 
-_SPIN_MAX = 4096  # most spin nodes of the engine's mean over φ (the Python engine's limit)
-_NUTATION_MAX = 1 << 14  # most nodes over the nutation of the engine's time average
-
-
 @jit(KERNEL)
 def _spin_mean(
     p: FloatArray, start: int, tau: float, ps: float, thd: float, r: float, s: float,
@@ -497,9 +500,9 @@ def _spin_mean(
     body rate only."""
     eye = (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)
     t0, t1, t2 = 0.0, 0.0, 0.0
-    n, offset = 4, 0.0
+    n, offset = SPIN_START, 0.0
     old0, old1, old2 = 0.0, 0.0, 0.0
-    while n <= _SPIN_MAX:
+    while n <= SPIN_MAX:
         a0, a1, a2 = 0.0, 0.0, 0.0
         step = 2.0 * math.pi / n
         for j in range(n):
@@ -580,12 +583,12 @@ def _engine_averages(
     like √(1 − k²))."""
     cc, hh = 0.5 * (u1 + u2), 0.5 * (u1 - u2)
     ok, sw, sg, sr, sgg, ag, ar, agg = _nutation_sums(
-        p, start, tau, rtol, mu, R, G, da, db, cc, hh, c4, q1, q0, 16, 0.0
+        p, start, tau, rtol, mu, R, G, da, db, cc, hh, c4, q1, q0, NUTATION_START, 0.0
     )
     if not ok:
         return False, math.nan, math.nan, math.nan
-    n = 16
-    while n < _NUTATION_MAX:
+    n = NUTATION_START
+    while n < NUTATION_MAX:
         ok, sw2, sg2, sr2, sgg2, ag2, ar2, agg2 = _nutation_sums(
             p, start, tau, rtol, mu, R, G, da, db, cc, hh, c4, q1, q0, n, 0.5
         )

@@ -56,6 +56,14 @@ from tumble._typing import FloatArray
 from tumble.kernels.codes import MC_FLOOR, REACHED_MARGIN, SEPARATRIX_RTOL
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
 from tumble.kernels.layout import Mat3, Vec3, mat3, vec3
+from tumble.kernels.limits import (
+    MAX_GRID,
+    PHASE_MAX,
+    PHASE_START,
+    POLHODE_MAX,
+    POLHODE_START,
+    SQUARING_SAFETY,
+)
 from tumble.kernels.params import TRIAXIAL_AVERAGED
 from tumble.kernels.terms import phase_mean_of
 from tumble.kernels.torque import engine_program, program_of
@@ -73,12 +81,6 @@ PROGRAM_START = TRIAXIAL_AVERAGED.size
 """Index of the torque program in the parameters."""
 _Q = _AT.sorting
 
-_N_START = 16  # first polhode grid (a multiple of 4: the quarter shifts map nodes to nodes)
-_N_MAX = 2**14  # the Python engine's limits: polhode, precession and forcing, the whole grid
-_N_MAX_PHASE = 2**9
-_MAX_GRID = 2**18
-_N_START_PHASE = 4  # first precession and forcing grids (exact for degree ≤ 3; then doubled)
-_SQUARING_SAFETY = 100.0  # the Python engine's margin of the squaring shortcut
 _AGM_STEPS = 24  # more than the AGM needs down to mc = MC_FLOOR (about 13 steps)
 
 _Table = tuple[float, ...]
@@ -286,12 +288,12 @@ def _exact_mean(
 ) -> tuple[bool, float, float, float, float]:  # fmt: skip
     """(converged, ⟨A M⟩ (3), ⟨(Ω − r L_ξ)·M⟩) of built-in terms (mode 1): the polhode refined
     with the engine's test, the precession and the forcing phase exact (module notes)."""
-    nodes = _N_START
+    nodes = POLHODE_START
     m = _scaled(_polhode_sums(p, t, nodes, 0.0, amp, x3, big_k, kc, ratios, n_agm, a_agm, F, rl1,
                               rl2, rl3), 1.0 / (4 * nodes))  # fmt: skip
     previous = math.inf
     while True:
-        if 2 * nodes > _N_MAX:
+        if 2 * nodes > POLHODE_MAX:
             return False, math.nan, math.nan, math.nan, math.nan
         fresh = _polhode_sums(
             p, t, nodes, 0.5, amp, x3, big_k, kc, ratios, n_agm, a_agm, F, rl1, rl2, rl3
@@ -374,14 +376,14 @@ def _general_mean(
     by axis (polhode, precession, forcing) with the Python engine's test and limits
     (:func:`tumble.averaging.triaxial._product_mean`)."""
     forced = p[PERIOD] > 0.0
-    n0, n1, n2 = _N_START, _N_START_PHASE, _N_START_PHASE if forced else 1
+    n0, n1, n2 = POLHODE_START, PHASE_START, PHASE_START if forced else 1
     m = _scaled(_grid_sums(p, t, n0, 0.0, n1, 0.0, n2, 0.0, amp, x3, big_k, kc, ratios, n_agm,
                            a_agm, F, rl1, rl2, rl3), 1.0 / (n0 * n1 * n2))  # fmt: skip
     for axis in range(3 if forced else 2):
         previous = math.inf
         while True:
             n = n0 if axis == 0 else (n1 if axis == 1 else n2)
-            if 2 * n > (_N_MAX if axis == 0 else _N_MAX_PHASE) or 2 * n0 * n1 * n2 > _MAX_GRID:
+            if 2 * n > (POLHODE_MAX if axis == 0 else PHASE_MAX) or 2 * n0 * n1 * n2 > MAX_GRID:
                 return False, math.nan, math.nan, math.nan, math.nan
             fresh = _grid_sums(
                 p, t, n0, 0.5 if axis == 0 else 0.0, n1, 0.5 if axis == 1 else 0.0, n2,
@@ -426,8 +428,8 @@ def _doubled(m: _Sums, fresh: _Sums, scale: float, previous: float, rtol: float
         change = max(abs(new[0] - m[0]), abs(new[1] - m[1]), abs(new[2] - m[2])) / new[4]
     if new[5] > 0.0:
         change = max(change, abs(new[3] - m[3]) / new[5])
-    squaring = previous < math.inf and change <= _SQUARING_SAFETY * previous * previous
-    done = change <= rtol or (change <= math.sqrt(rtol / _SQUARING_SAFETY) and squaring)
+    squaring = previous < math.inf and change <= SQUARING_SAFETY * previous * previous
+    done = change <= rtol or (change <= math.sqrt(rtol / SQUARING_SAFETY) and squaring)
     return new, change, done
 
 

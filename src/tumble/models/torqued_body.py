@@ -30,11 +30,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from tumble._typing import BoolArray, FloatArray
-from tumble.averaging import nearest_resonances, triaxial_average_vector, triaxial_kernel
+from tumble.averaging import nearest_resonances, triaxial_kernel
+from tumble.averaging.triaxial import triaxial_average_stage
 from tumble.catalogue import CATALOGUE
 from tumble.dynamics import rigid_body_rhs
 from tumble.errors import ParameterError
-from tumble.kernels import EVENT_TRIAXIAL_SEPARATRIX, Kernel
+from tumble.kernels import EVENT_TRIAXIAL_SEPARATRIX, Kernel, evaluate_rhs
 from tumble.kernels.rhs import rigid_body
 from tumble.models.base import (
     Averaged,
@@ -54,6 +55,7 @@ from tumble.models.base import (
     attitude_columns,
     attitude_values,
     fixed_columns,
+    mean_columns,
     separatrix_issue,
 )
 from tumble.models.inputs.torqued_body import (
@@ -69,7 +71,6 @@ from tumble.unperturbed.euler_poinsot import (
     EulerPoinsot,
     fast_frequencies,
     modulus_squared_of_states,
-    reached_ratio,
 )
 
 __all__ = [
@@ -162,7 +163,11 @@ def averaged_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
     """Averaged rates of ``y = [L_ξ1, L_ξ2, L_ξ3, r]``, r = 2T/L², by quadrature.
 
     ε ⟨A M⟩ and 2ε⟨(ω − r Iω)·M⟩/L² over the polhode, the precession about L and the forcing
-    period (:func:`tumble.averaging.triaxial_average_vector`).
+    period: for a sum of built-in torques the compiled engine the integrator runs
+    (:func:`averaged_kernel`); for a user torque, a body with two equal moments, or where the
+    compiled engine refuses the state (NaN), the Python engine
+    (:func:`tumble.averaging.triaxial_average_vector`), which raises with the reason. The two
+    agree to the averages' tolerance (AVERAGE_RTOL).
 
     Parameters
     ----------
@@ -178,13 +183,13 @@ def averaged_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
     ndarray, shape (4,)
         dy/dt [moment unit, 1/(inertia unit · t)].
     """
-    r = reached_ratio(*p.sorted_inertia, float(y[3]))
-    if math.isnan(r):
-        return np.full(4, math.nan)  # past a pure rotation: the solver rejects the step
-    state = np.array([y[0], y[1], y[2], r])
+    kernel = averaged_kernel(p)
+    if kernel is not None:
+        rates = evaluate_rhs(kernel, t, y)
+        if not np.isnan(rates).any():
+            return rates
     torque, period = p.averaging
-    rates = triaxial_average_vector(torque, p.inertia, state, t, forcing_period=period)
-    return p.eps * rates
+    return p.eps * triaxial_average_stage(torque, p.inertia, y, t, period)
 
 
 def _vector_from_slow(p: Params, st: State) -> FloatArray:
@@ -382,33 +387,18 @@ def _resonance_issue(p: Params, grid: FloatArray, sc: _Scales) -> ValidityIssue 
 # The record.
 
 
+_VECTOR_FORM = "docs/theory/rotating-field.md §10"  # the slow variables of the vector form
+
 _COLUMNS_SLOW = (
-    Column("L1", "inertial angular momentum L_ξ1", "1", "docs/theory/rotating-field.md §10"),
-    Column("L2", "inertial angular momentum L_ξ2", "1", "docs/theory/rotating-field.md §10"),
-    Column("L3", "inertial angular momentum L_ξ3", "1", "docs/theory/rotating-field.md §10"),
-    Column("L", "angular momentum |L|", "1", "docs/theory/rotating-field.md §10"),
-    Column("rho", "polar angle ρ of L from ξ3", "rad", "docs/theory/rotating-field.md §10"),
-    Column(
-        "sigma",
-        "inertial azimuth σ of L",
-        "rad",
-        "docs/theory/rotating-field.md §10",
-        angle=True,
-        unwrap=True,
-    ),
-    Column("T", "kinetic energy T", "1", "docs/theory/rotating-field.md §10"),
-    Column(
-        "k2",
-        "Euler–Poinsot modulus k² of the current regime",
-        "1",
-        "docs/theory/rotating-field.md §8",
-    ),
-)
-_COLUMNS_MEAN = tuple(
-    Column(f"{c.name}_mean", f"mean {c.long_name} (averaging of order 2)", c.units, c.equation)
-    for c in _COLUMNS_SLOW
-    if c.name in MEAN_SLOW
-)
+    *(Column(f"L{i}", f"inertial angular momentum L_ξ{i}", "1", _VECTOR_FORM) for i in (1, 2, 3)),
+    Column("L", "angular momentum |L|", "1", _VECTOR_FORM),
+    Column("rho", "polar angle ρ of L from ξ3", "rad", _VECTOR_FORM),
+    Column("sigma", "inertial azimuth σ of L", "rad", _VECTOR_FORM, angle=True, unwrap=True),
+    Column("T", "kinetic energy T", "1", _VECTOR_FORM),
+    Column("k2", "Euler–Poinsot modulus k² of the current regime", "1",
+           "docs/theory/rotating-field.md §8"),
+)  # fmt: skip
+_COLUMNS_MEAN = mean_columns(c for c in _COLUMNS_SLOW if c.name in MEAN_SLOW)
 _COLUMNS_FULL = (
     *_COLUMNS_SLOW,
     *attitude_columns("t"),

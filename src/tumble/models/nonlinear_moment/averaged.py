@@ -106,6 +106,12 @@ def averaged_rhs(
     ``form = "theta_max"`` or ``"theta_min"``: y = [θext, R, G, a, b] and (2.2),
     θext' = ε(⟨Φθθ'⟩ + ⟨Φz·W^z⟩ − ⟨Φz⟩·W^z(θext))/F(θext, z).
 
+    The reference implementation: the orbit by :class:`NutationOrbit` (the quartic's roots,
+    scipy's Legendre integrals), independent of the compiled energy form
+    (:func:`tumble.kernels.nutation.nutation_averaged`, Carlson's integrals), which an
+    averaged run integrates where it can and which the tests hold against this one. The
+    θext forms and a perturbation without a compiled program run this one.
+
     Parameters
     ----------
     t : float

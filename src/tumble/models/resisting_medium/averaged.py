@@ -17,7 +17,13 @@ from tumble._typing import FloatArray
 from tumble.averaging.quadrature import AVERAGE_RTOL
 from tumble.averaging.second_order import RESONANCE_WIDTHS, MeanSystem, nearest_resonance
 from tumble.averaging.spinner import SPINNER_GRID, spinner_average, spinner_system
-from tumble.kernels import EVENT_EQUATOR, KIND_MEDIUM_AVERAGED, KIND_SPINNER_AVERAGED, Kernel
+from tumble.kernels import (
+    EVENT_EQUATOR,
+    KIND_MEDIUM_AVERAGED,
+    KIND_SPINNER_AVERAGED,
+    Kernel,
+    evaluate_rhs,
+)
 from tumble.models.base import AveragedForm, AveragingOptions, Breakpoint, Crossing
 from tumble.models.inputs.resisting_medium import Params, State
 from tumble.models.resisting_medium.closed_forms import crossing_time, plane_columns
@@ -27,8 +33,25 @@ from tumble.models.resisting_medium.full import full_from_slow, slow_from_full
 # Averaged system (2.2) and its W, V form (2.3).
 
 
+def plane_kernel(p: Params, form: int) -> Kernel:
+    """The compiled averaged equations of the plane of k: (2.2) (``form`` 0) or (2.3) (``form``
+    1), one code told apart by ``form`` (:func:`tumble.kernels.rhs.evaluate`,
+    ``KIND_MEDIUM_AVERAGED``), with the parameters of ``p`` packed as it reads them.
+
+    Parameters
+    ----------
+    p : Params
+        Model parameters.
+    form : int
+        0 for (2.2) in ``[k, ϑ]``, 1 for (2.3) in ``[W, V]``.
+    """
+    packed = [p.eps, float(p.a[2]), p.alpha, p.beta, p.gamma, p.delta, float(form)]
+    return Kernel(KIND_MEDIUM_AVERAGED, np.array(packed))
+
+
 def averaged_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
-    """Averaged equations (2.2) for (k, ϑ); ρ and σ are constant.
+    """Averaged equations (2.2) for (k, ϑ); ρ and σ are constant: the compiled code the
+    integrator runs (:func:`plane_kernel`).
 
     The a3 term of the ϑ-equation is evaluated as a3 sin ϑ / k, regular at ϑ = π/2 (§6).
 
@@ -41,18 +64,12 @@ def averaged_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
     p : Params
         Model parameters.
     """
-    k, theta = y
-    c, s = math.cos(theta), math.sin(theta)
-    ac, as_ = abs(c), abs(s)
-    a3 = float(p.a[2])
-    al, be, ga, de = p.alpha, p.beta, p.gamma, p.delta
-    dk = a3 * c - k * (al * s * s + be * c * c + k * (ga * s * s * as_ + de * c * c * ac))
-    dtheta = -(a3 * s / k + (al - be + k * (ga * as_ - de * ac)) * s * c)
-    return p.eps * np.array([dk, dtheta])
+    return evaluate_rhs(plane_kernel(p, 0), t, y)
 
 
 def averaged_rhs_wv(t: float, y: FloatArray, p: Params) -> FloatArray:
-    """W, V form (2.3): dW/dτ = ε(a3 − βW − δW|W|), dV/dτ = −ε(αV + γV²).
+    """W, V form (2.3): dW/dτ = ε(a3 − βW − δW|W|), dV/dτ = −ε(αV + γV²): the compiled code
+    the integrator runs (:func:`plane_kernel`).
 
     Parameters
     ----------
@@ -63,10 +80,7 @@ def averaged_rhs_wv(t: float, y: FloatArray, p: Params) -> FloatArray:
     p : Params
         Model parameters.
     """
-    W, V = y
-    return p.eps * np.array(
-        [float(p.a[2]) - p.beta * W - p.delta * W * abs(W), -(p.alpha * V + p.gamma * V * V)]
-    )
+    return evaluate_rhs(plane_kernel(p, 1), t, y)
 
 
 def _columns_ktheta(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
@@ -88,14 +102,8 @@ def _plane_form(
     to_columns: Callable[[Params, State, FloatArray, FloatArray], dict[str, FloatArray]],
 ) -> AveragedForm[Params, State]:
     """(2.2) (``form`` 0) or (2.3) (1) as an averaged form: the two slow variables ``slow``
-    (attributes of :class:`State`), ρ and σ constant, and the compiled twin of ``rhs`` (the
-    same code for both forms, told apart by ``form``)."""
-
-    def kernel(p: Params) -> Kernel:
-        a3 = float(p.a[2])
-        packed = [p.eps, a3, p.alpha, p.beta, p.gamma, p.delta, float(form)]
-        return Kernel(KIND_MEDIUM_AVERAGED, np.array(packed))
-
+    (attributes of :class:`State`), ρ and σ constant, and the compiled code ``rhs`` calls
+    (:func:`plane_kernel`)."""
     return AveragedForm(
         name=name,
         equation=equation,
@@ -103,7 +111,7 @@ def _plane_form(
         rhs=rhs,
         initial_state=lambda p, st: np.array([getattr(st, v) for v in slow]),
         to_columns=to_columns,
-        kernel=kernel,
+        kernel=lambda p: plane_kernel(p, form),
     )
 
 
@@ -120,7 +128,10 @@ def _equator(p: Params, st: State) -> tuple[Breakpoint, ...]:
 
 def averaged_rhs_numeric(t: float, y: FloatArray, p: Params) -> FloatArray:
     """The averaged equations from the general engine: the moment (1.2) averaged over ψ and φ
-    of the standard form (1.3) by quadrature; equal to (2.2) to round-off.
+    of the standard form (1.3) by quadrature; equal to (2.2) to round-off. The Python engine
+    (:func:`tumble.averaging.spinner_average`): the oracle (2.2) and the compiled spinner
+    setting are tested against; an averaged run integrates the compiled one
+    (:func:`spinner_kernel`) for a moment of the body rate only.
 
     Parameters
     ----------

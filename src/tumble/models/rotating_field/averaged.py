@@ -12,12 +12,13 @@ import numpy as np
 from scipy.special import ellipe, ellipk
 
 from tumble._typing import ArrayLike, FloatArray
-from tumble.averaging.triaxial import triaxial_average_vector, triaxial_kernel
+from tumble.averaging.triaxial import triaxial_average_stage, triaxial_kernel
 from tumble.kernels import (
     EVENT_FIELD_SEPARATRIX,
     EVENT_TRIAXIAL_SEPARATRIX,
     KIND_FIELD_AVERAGED,
     Kernel,
+    evaluate_rhs,
 )
 from tumble.models.base import AveragedForm, AveragingOptions, Breakpoint
 from tumble.models.inputs.rotating_field import Params, State
@@ -27,7 +28,6 @@ from tumble.unperturbed import (
     energy_from_modulus,
     mean_square_rate,
     modulus_squared_of_ratio,
-    reached_ratio,
 )
 
 # ---------------------------------------------------------------------------------------------
@@ -148,6 +148,11 @@ def averaged_rhs_vector(t: float, y: FloatArray, p: Params) -> FloatArray:
     ``dL_ξ/dτ = ε (r D L_ξ + sin²β ξ3)`` with ``r = 2T/L²``, and
     ``dr/dτ = (ε A / 2)(r² − ⟨z²⟩/L²)`` (the identity after (3.6)); ⟨z²⟩/L² depends on r only.
     No 1/L and no polar-angle singularity: it carries L through 0 and ρ through 0 and π.
+    One definition: the compiled code the integrator runs (:func:`averaged_kernel`), with the
+    period averages by Carlson's integrals; NaN past a pure rotation (r outside [1/I3, 1/I1]
+    by more than the margin of :func:`~tumble.unperturbed.reached_ratio`), so that the solver
+    rejects the step. The T-form :func:`averaged_rhs` (scipy's elliptic integrals) is the
+    independent form it is checked against.
 
     Parameters
     ----------
@@ -161,23 +166,7 @@ def averaged_rhs_vector(t: float, y: FloatArray, p: Params) -> FloatArray:
     -------
     ndarray, shape (4,)
     """
-    l1, l2, l3, r = (float(v) for v in y)
-    r = reached_ratio(*p.sorted_inertia, r)
-    if math.isnan(r):
-        return np.full(4, math.nan)  # past a pure rotation: the solver rejects the step
-    d = field_average(p)
-    L2 = l1 * l1 + l2 * l2 + l3 * l3
-    sin2_rho = (l1 * l1 + l2 * l2) / L2 if L2 > 0.0 else 0.0
-    g = mean_square_rate(*p.sorted_inertia, 1.0, 0.5 * r)  # ⟨z²⟩/L² at L = 1
-    eps = p.eps
-    return np.array(
-        [
-            eps * r * d[0] * l1,
-            eps * r * d[1] * l2,
-            eps * (r * d[2] * l3 + p.s2),
-            0.5 * eps * _A(p, sin2_rho) * (r * r - g),
-        ]
-    )
+    return evaluate_rhs(averaged_kernel(p), t, y)
 
 
 def _initial_sigma(p: Params, st: State) -> float:
@@ -236,6 +225,9 @@ def averaged_rhs_numeric(t: float, y: FloatArray, p: Params) -> FloatArray:
     """The vector form of the averaged equations from the general engine: the
     eddy-current torque averaged over the Euler–Poinsot motion and the field's rotation by
     quadrature; equal to :func:`averaged_rhs_vector` to round-off away from the separatrix.
+    The Python engine (:func:`tumble.averaging.triaxial_average_vector`): the oracle the
+    closed-form vector form is tested against; an averaged run integrates its compiled twin
+    (:func:`numeric_kernel`) where one exists.
 
     Parameters
     ----------
@@ -245,11 +237,7 @@ def averaged_rhs_numeric(t: float, y: FloatArray, p: Params) -> FloatArray:
         ``[L_ξ1, L_ξ2, L_ξ3, r]``, r = 2T/L² [inertia unit, 1/inertia unit].
     p : Params
     """
-    r = reached_ratio(*p.sorted_inertia, float(y[3]))
-    if math.isnan(r):
-        return np.full(4, math.nan)  # past a pure rotation: the solver rejects the step
-    state = np.array([y[0], y[1], y[2], r])
-    return triaxial_average_vector(p.torque, p.inertia, state, t, forcing_period=2.0 * math.pi)
+    return triaxial_average_stage(p.torque, p.inertia, y, t, 2.0 * math.pi)
 
 
 def _mean_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:

@@ -13,6 +13,7 @@ import numpy as np
 from tumble._typing import FloatArray
 from tumble.dynamics import rigid_body_kernel, rigid_body_rhs
 from tumble.kernels import KIND_ROTATING_FIELD, Kernel
+from tumble.kernels.params import ROTATING_FIELD
 from tumble.kernels.rhs import rotating_field as rotating_field_rhs
 from tumble.models.base import FullForm, attitude_values
 from tumble.models.inputs.rotating_field import Params, State
@@ -180,7 +181,7 @@ def _free_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
     """(1.5) without the eddy-current moment (ε = 0): the free body seen from the field
     frame; the same compiled code as :func:`full_rhs`."""
     packed = p.packed.copy()
-    packed[3] = 0.0  # ε
+    packed[ROTATING_FIELD.at.eps] = 0.0
     return rotating_field_rhs(np.ascontiguousarray(y, dtype=np.float64), packed)  # type: ignore[no-any-return]
 
 

@@ -1,7 +1,20 @@
-"""A model package whose ``__init__`` stays light: the package's public names live in its
-``model`` module (the registry record and the numerics it gathers), loaded on first use, so
-that importing the package — or its ``inputs`` module, to validate a scenario — loads no
-numba or scipy."""
+"""A model is a package, ``tumble.models.<name>``, whose ``__init__`` stays light: the
+package's public names live in its ``model`` module (the registry record and the numerics it
+gathers), loaded on first use, so that importing the package — or its ``inputs`` module, to
+validate a scenario — loads no numba or scipy.
+
+A package holds
+
+* ``__init__.py``: the paper and the variables (docstring), and :func:`model_exports`;
+* ``inputs.py``: parameters, initial state, physical units, scenario keys and ``DECLARED``
+  (numpy and tumble's validation only);
+* ``model.py``: the registry record ``MODEL``, built from ``DECLARED`` and the equations;
+* ``columns.py`` and the equations (``full.py``, ``averaged.py``, …), as the model needs;
+* ``display.py``: the run figure and the summary lines (:mod:`tumble.models.display`);
+* ``template.toml``: the commented scenario ``tumble init`` prints.
+
+docs/architecture.md ("Model packages") draws it and walks through adding one.
+"""
 
 from __future__ import annotations
 

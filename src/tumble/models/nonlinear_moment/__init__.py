@@ -21,13 +21,8 @@ averages come from the closed forms of §8 (⟨u⟩, ⟨u²⟩ by K, E, Π) for 
 perturbation, and from adaptive quadrature over the nutation period for any perturbation
 given as Φθ(θ, θ', z), Φz(θ, z) (:class:`Perturbation`).
 
-The package of the ``nonlinear_moment`` model: its registry record in
-:mod:`tumble.models.nonlinear_moment.model` (whose names this package gives, loaded on first
-use), its parameters, initial state and scenario keys in ``inputs``, its output columns in
-``columns`` and its equations in the other modules.
+A model package (:mod:`tumble.models.package`): its names load from ``model`` on first use.
 """
-
-from __future__ import annotations
 
 from typing import TYPE_CHECKING
 

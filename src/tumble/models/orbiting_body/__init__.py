@@ -1,12 +1,8 @@
 """A rigid body in Earth orbit under the eddy-current torque of the geomagnetic field and the
 gravity gradient, in physical units: the spin evolution of satellites and debris.
 
-The package of the ``orbiting_body`` model: its registry record and equations in
-:mod:`tumble.models.orbiting_body.model` (whose names this package gives, loaded on first use),
-its parameters, initial state and scenario keys in ``inputs``.
+A model package (:mod:`tumble.models.package`): its names load from ``model`` on first use.
 """
-
-from __future__ import annotations
 
 from typing import TYPE_CHECKING
 

@@ -23,8 +23,8 @@ from tumble.bodies import RigidBody
 from tumble.errors import ParameterError, ScenarioError, check_range
 from tumble.kernels import terms
 from tumble.models.base import Column, Declaration
-from tumble.models.inputs import torqued_body as tb
 from tumble.models.schema import Built, Inputs, Key, KeyKind, ScenarioSchema, Section, Variant
+from tumble.models.torqued_body import inputs as tb
 from tumble.rotations import matrix_to_quat, quat_to_matrix
 from tumble.space import (
     Dipole,

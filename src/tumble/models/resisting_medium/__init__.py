@@ -12,13 +12,8 @@ Everything here is in the paper's normalized variables (1.3): time τ, angular m
 K-frame. The averaged system and its closed forms are written in the slow time ``s = ε τ``
 internally and take τ at the interface.
 
-The package of the ``resisting_medium`` model: its registry record in
-:mod:`tumble.models.resisting_medium.model` (whose names this package gives, loaded on first
-use), its parameters, initial state and scenario keys in ``inputs``, its output columns in
-``columns`` and its equations in the other modules.
+A model package (:mod:`tumble.models.package`): its names load from ``model`` on first use.
 """
-
-from __future__ import annotations
 
 from typing import TYPE_CHECKING
 

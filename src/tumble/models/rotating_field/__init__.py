@@ -14,13 +14,8 @@ averaged transient (§§8–10) needs I1 < I2 < I3: it relabels the axes interna
 permutation, and its outputs (L, ρ, σ, T, k²) do not depend on the labels. ``regime = "x3"``
 means the angular momentum encircles the axis of the largest moment, ``"x1"`` the smallest.
 
-The package of the ``rotating_field`` model: its registry record in
-:mod:`tumble.models.rotating_field.model` (whose names this package gives, loaded on first
-use), its parameters, initial state and scenario keys in ``inputs``, its output columns in
-``columns`` and its equations in the other modules.
+A model package (:mod:`tumble.models.package`): its names load from ``model`` on first use.
 """
-
-from __future__ import annotations
 
 from typing import TYPE_CHECKING
 

@@ -1,11 +1,7 @@
 """A triaxial rigid body under any small torque, averaged by the general engine.
 
-The package of the ``torqued_body`` model: its registry record and equations in
-:mod:`tumble.models.torqued_body.model` (whose names this package gives, loaded on first use),
-its parameters, initial state and scenario keys in ``inputs``.
+A model package (:mod:`tumble.models.package`): its names load from ``model`` on first use.
 """
-
-from __future__ import annotations
 
 from typing import TYPE_CHECKING
 

@@ -8,7 +8,7 @@ functions ``f(t, q, omega, params)``.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field, replace
 from functools import cached_property
 from typing import Any
@@ -388,6 +388,39 @@ TERMS: dict[str, Section] = {
 """The [[torque]] tables by kind."""
 
 
+def _validated_tables(
+    inputs: Inputs, tables: list[dict[str, Any]], kinds: Mapping[str, Section], what: str
+) -> Iterator[tuple[str, dict[str, Any]]]:
+    """Each [[torque]] table checked against the keys of its kind, one at a time (the caller
+    acts on a table before the next is checked).
+
+    Parameters
+    ----------
+    inputs : Inputs
+        The scenario being read (its key validation).
+    tables : list of dict
+        The raw [[torque]] tables, in order.
+    kinds : mapping
+        The allowed kinds and their keys (:data:`TERMS` or :data:`PHYSICAL_TERMS`).
+    what : str
+        What a kind names, in the error of an unknown one ("a torque", …).
+
+    Yields
+    ------
+    (str, dict)
+        Each table's kind and its validated keys; ScenarioError at a bad table, naming it
+        ``torque[i]``.
+    """
+    for i, raw in enumerate(tables):
+        kind = raw.get("kind")
+        if not isinstance(kind, str) or kind not in kinds:
+            raise ScenarioError(
+                f"torque[{i}].kind = {shorten(repr(kind), 60)} is not {what} "
+                f"(allowed: {', '.join(kinds)})"
+            )
+        yield kind, inputs.validate(kinds[kind], raw, f"torque[{i}]")
+
+
 def _term_tables(inputs: Inputs) -> list[dict[str, Any]]:
     top = inputs[""]
     assert top is not None  # the top-level keys
@@ -408,14 +441,7 @@ def _term_tables(inputs: Inputs) -> list[dict[str, Any]]:
             f"torque = {torque!r}: expected " + '"file:function" or [[torque]] tables'
         )
     terms = []
-    for i, raw in enumerate(torque):
-        kind = raw.get("kind")
-        if not isinstance(kind, str) or kind not in TERMS:
-            raise ScenarioError(
-                f"torque[{i}].kind = {shorten(repr(kind), 60)} is not a torque "
-                f"(allowed: {', '.join(TERMS)})"
-            )
-        term = inputs.validate(TERMS[kind], raw, f"torque[{i}]")
+    for i, (kind, term) in enumerate(_validated_tables(inputs, torque, TERMS, "a torque")):
         if kind == "user":
             term["name"] = term["function"]
             term["function"] = inputs.import_function(term["function"], f"torque[{i}].function")
@@ -607,16 +633,8 @@ def _build_physical(inputs: Inputs) -> Built[Params, State]:
             f"of the kinds {', '.join(PHYSICAL_TERMS)} (a user function works in normalised "
             "units: use [parameters])"
         )
-    terms = []
-    for i, raw in enumerate(torque):
-        kind = raw.get("kind")
-        if not isinstance(kind, str) or kind not in PHYSICAL_TERMS:
-            raise ScenarioError(
-                f"torque[{i}].kind = {shorten(repr(kind), 60)} is not a torque of a physical "
-                f"scenario (allowed: {', '.join(PHYSICAL_TERMS)})"
-            )
-        term = inputs.validate(PHYSICAL_TERMS[kind], raw, f"torque[{i}]")
-        terms.append(_physical_term(i, term, T0, I0))
+    tables = _validated_tables(inputs, torque, PHYSICAL_TERMS, "a torque of a physical scenario")
+    terms = [_physical_term(i, term, T0, I0) for i, (_, term) in enumerate(tables)]
     normalised = {**ini, "omega": np.asarray(ini["omega"], dtype=float) * T0}
     p, st = _params_and_state(inertia / I0, 1.0, terms, normalised)
     return Built(p, st, Scaling(T0, I0))

@@ -9,7 +9,12 @@ from tumble.plot.settings import FIGURES, figure_settings
 
 def test_every_shipped_model_declares_its_figure() -> None:
     assert set(FIGURES) == set(CATALOGUE)
-    assert figure_settings("nonlinear_moment").kind == "envelope"
+    envelope = figure_settings("nonlinear_moment")
+    assert (envelope.kind, envelope.extrema, envelope.relative) == (
+        "envelope",
+        "full_extrema",
+        ("a", "Q(εt)/Q(0) = a(t)/a(0)"),
+    )
     assert figure_settings("not_shipped") == FigureSettings()
 
 

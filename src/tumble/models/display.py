@@ -37,12 +37,20 @@ class FigureSettings:
         the averaged method's columns.
     log : tuple of str
         The variables drawn on a logarithmic axis.
+    extrema : str
+        An envelope figure's table of the full motion's extrema in the run's report (its
+        name in ``Report.tables``); empty: none.
+    relative : (str, str), optional
+        A column drawn on a second axis relative to its initial value, with its label, where
+        it varies along a run (an envelope figure's); None: none.
     """
 
     file: str = "comparison.png"
     kind: Literal["comparison", "envelope"] = "comparison"
     variables: tuple[str, ...] = ()
     log: tuple[str, ...] = ()
+    extrema: str = ""
+    relative: tuple[str, str] | None = None
 
 
 @dataclass(frozen=True, slots=True)

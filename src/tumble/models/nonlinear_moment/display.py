@@ -3,8 +3,15 @@
 
 from tumble.models.display import FigureSettings, SummaryLine
 
-FIGURE = FigureSettings("envelope.png", "envelope", ("theta", "theta_max", "theta_min", "R", "G"))
-"""The run figure: θ(t) with its extrema and the averaged envelope."""
+FIGURE = FigureSettings(
+    "envelope.png",
+    "envelope",
+    ("theta", "theta_max", "theta_min", "R", "G"),
+    extrema="full_extrema",
+    relative=("a", "Q(εt)/Q(0) = a(t)/a(0)"),
+)
+"""The run figure: θ(t) with its extrema and the averaged envelope, and where the pressure
+varies, Q(εt)/Q(0) = a(t)/a(0)."""
 
 SUMMARY = (
     SummaryLine("max envelope discrepancy (θmax, relative): {max_envelope_discrepancy:.3%}"),

@@ -14,7 +14,7 @@ calls it during an averaged run, at the default tolerance AVERAGE_RTOL = 1e-12:
   Q(τ) = exp τ as prescribed a(τ), b(τ);
 * triaxial (the rotating field): ``rotating_field.averaged_rhs_numeric`` (the eddy-current
   torque and the field's rotation), and ``triaxial_average_vector`` as
-  ``models/torqued_body.py`` calls it for a gravity-gradient torque (forcing period the
+  ``models/torqued_body/model.py`` calls it for a gravity-gradient torque (forcing period the
   orbital one) and for a moment fixed in inertial space (no forcing); k² ≤ 0.9999.
 
 Each evaluation is timed as the best of ``--repeat`` calls (time.perf_counter; the best is the

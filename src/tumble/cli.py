@@ -287,24 +287,13 @@ def stability_cmd(
 ) -> None:
     """Stability of the co-rotation about x3 in a rotating field, (2.5)/(2.6)
     (docs/theory/rotating-field.md §16)."""
-    import numpy as np
+    from tumble.analysis.stability import match_roots
+    from tumble.analysis.stability_maps import co_rotation_stability
 
-    from tumble.analysis.stability import analyze, match_roots
-    from tumble.models import rotating_field as rf
-
-    def work() -> tuple[Any, Any]:
-        p = rf.Params(np.array(inertia), _beta_rad(beta, beta_deg), eps)
-        return p, analyze(rf.MODEL, p)
-
-    p, rep = _guarded(work)
+    p, rep, doc = _guarded(lambda: co_rotation_stability(inertia, _beta_rad(beta, beta_deg), eps))
     if as_json:
         import json
 
-        doc = {
-            "model": rf.MODEL.name,
-            "parameters": {"inertia": p.inertia.tolist(), "beta": p.beta, "eps": p.eps},
-            **rep.to_dict(),
-        }
         sys.stdout.write(json.dumps(doc, ensure_ascii=False) + "\n")
         return
 

@@ -25,9 +25,9 @@ from __future__ import annotations
 
 import inspect
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from functools import cached_property
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -56,20 +56,41 @@ __all__ = [
 ]
 
 
+_FINITE = {(3,): "3 finite numbers", (3, 3): "a 3×3 matrix of finite numbers"}
+"""What a parameter of each shape must be, as its error says."""
+
+
+def _finite(name: str, value: ArrayLike, shape: tuple[int, ...]) -> FloatArray:
+    """A torque's parameter as a read-only float array.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name, for the error.
+    value : array_like
+        Its value [the parameter's unit].
+    shape : (3,) or (3, 3)
+        The shape it must have, a body vector or a matrix in body axes.
+
+    Returns
+    -------
+    FloatArray
+        ``value`` as floats, not writeable; ParameterError if it has another shape or a
+        non-finite entry.
+    """
+    a = np.array(value, dtype=float)
+    if a.shape != shape or not np.all(np.isfinite(a)):
+        raise ParameterError(f"{name} must be {_FINITE[shape]}, got {value!r}")
+    a.setflags(write=False)
+    return a
+
+
 def _vector(name: str, value: ArrayLike) -> FloatArray:
-    v = np.array(value, dtype=float)
-    if v.shape != (3,) or not np.all(np.isfinite(v)):
-        raise ParameterError(f"{name} must be 3 finite numbers, got {value!r}")
-    v.setflags(write=False)
-    return v
+    return _finite(name, value, (3,))
 
 
 def _matrix(name: str, value: ArrayLike) -> FloatArray:
-    m = np.array(value, dtype=float)
-    if m.shape != (3, 3) or not np.all(np.isfinite(m)):
-        raise ParameterError(f"{name} must be a 3×3 matrix of finite numbers, got {value!r}")
-    m.setflags(write=False)
-    return m
+    return _finite(name, value, (3, 3))
 
 
 class Torque:
@@ -248,7 +269,25 @@ class CompiledTorque(Torque):
 
 
 @dataclass(frozen=True, eq=False)
-class ConstantBodyTorque(Torque):
+class _OneTerm(Torque):
+    """A built-in torque that is one compiled term of :mod:`tumble.kernels.terms` (kind
+    ``TERM``) with one parameter, the dataclass's only field, of shape ``SHAPE``: checked finite
+    and made read-only on construction."""
+
+    TERM: ClassVar[str]
+    SHAPE: ClassVar[tuple[int, ...]]
+
+    def __post_init__(self) -> None:
+        (f,) = fields(self)
+        object.__setattr__(self, f.name, _finite(f.name, getattr(self, f.name), self.SHAPE))
+
+    def compiled_terms(self) -> tuple[CompiledTerm, ...]:
+        (f,) = fields(self)
+        return (registry.compiled_term(self.TERM, {f.name: getattr(self, f.name)}),)
+
+
+@dataclass(frozen=True, eq=False)
+class ConstantBodyTorque(_OneTerm):
     """A moment constant in body axes, M = (A1, A2, A3); the first term of (1.2) of Medvedev (1987).
 
     Parameters
@@ -257,17 +296,14 @@ class ConstantBodyTorque(Torque):
         Body components [moment unit].
     """
 
+    TERM = "body_constant"
+    SHAPE = (3,)
+
     moment: FloatArray
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "moment", _vector("moment", self.moment))
-
-    def compiled_terms(self) -> tuple[CompiledTerm, ...]:
-        return (registry.compiled_term("body_constant", {"moment": self.moment}),)
 
 
 @dataclass(frozen=True, eq=False)
-class LinearDrag(Torque):
+class LinearDrag(_OneTerm):
     """Linear drag of a resisting medium, M = −B ω; the second term of (1.2) of Medvedev (1987).
 
     Parameters
@@ -276,17 +312,14 @@ class LinearDrag(Torque):
         Damping matrix in body axes [moment·time/rad]; any sign, off-diagonal entries allowed.
     """
 
+    TERM = "linear_drag"
+    SHAPE = (3, 3)
+
     B: FloatArray
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "B", _matrix("B", self.B))
-
-    def compiled_terms(self) -> tuple[CompiledTerm, ...]:
-        return (registry.compiled_term("linear_drag", {"B": self.B}),)
 
 
 @dataclass(frozen=True, eq=False)
-class QuadraticDrag(Torque):
+class QuadraticDrag(_OneTerm):
     """Quadratic drag, ``M = −S (ω ∘ |ω|)`` component-wise; the third term of (1.2) of
     Medvedev (1987).
 
@@ -296,13 +329,10 @@ class QuadraticDrag(Torque):
         Quadratic damping matrix in body axes [moment·time²/rad²].
     """
 
+    TERM = "quadratic_drag"
+    SHAPE = (3, 3)
+
     S: FloatArray
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "S", _matrix("S", self.S))
-
-    def compiled_terms(self) -> tuple[CompiledTerm, ...]:
-        return (registry.compiled_term("quadratic_drag", {"S": self.S}),)
 
 
 @dataclass(frozen=True, eq=False)
@@ -462,7 +492,7 @@ class EddyCurrentTorque(Torque):
 
 
 @dataclass(frozen=True, eq=False)
-class ConstantInertialTorque(Torque):
+class ConstantInertialTorque(_OneTerm):
     """A moment fixed in inertial space (e.g. a thruster misaligned with nothing that turns,
     solar pressure on a slowly tumbling body averaged over its shape): M_body = Aᵀ M.
 
@@ -474,13 +504,10 @@ class ConstantInertialTorque(Torque):
         Inertial components [moment unit].
     """
 
+    TERM = "inertial_constant"
+    SHAPE = (3,)
+
     moment: FloatArray
-
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "moment", _vector("moment", self.moment))
-
-    def compiled_terms(self) -> tuple[CompiledTerm, ...]:
-        return (registry.compiled_term("inertial_constant", {"moment": self.moment}),)
 
 
 @dataclass(frozen=True, eq=False)

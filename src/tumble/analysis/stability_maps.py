@@ -11,6 +11,9 @@ with :func:`tumble.analysis.stability.stability_grid`:
   I1 = I3, I2 = I3, and at β = π/2 the thin plate I1 + I2 = I3 on the edge of the domain.
 * ``over="beta-eps"``: the field cone angle β and ε (log-spaced) at a fixed body.
 
+One point of the maps, with its characteristic polynomial and roots, is
+:func:`co_rotation_stability` (``tumble stability``).
+
 Each point is the paper's member φ = 0 of the family of co-rotations (Γ = E, the field in the
 body's (x1, x3) plane), where (2.5) holds.
 """
@@ -25,7 +28,7 @@ import numpy as np
 import xarray as xr
 
 from tumble._typing import FloatArray
-from tumble.analysis.stability import stability_grid
+from tumble.analysis.stability import StabilityReport, analyze, stability_grid
 from tumble.errors import ParameterError, check_range
 from tumble.models import rotating_field
 
@@ -34,6 +37,7 @@ __all__ = [
     "DEFAULT_EPS",
     "DEFAULT_INERTIA",
     "DEFAULT_N",
+    "co_rotation_stability",
     "field_map",
     "inertia_map",
     "rotating_field_map",
@@ -58,6 +62,40 @@ EPS_RANGE = (1e-3, 1.0)
 MAX_N = 1001
 
 Progress = Callable[[int, int], None]
+
+
+def co_rotation_stability(
+    inertia: Sequence[float], beta: float, eps: float
+) -> tuple[rotating_field.Params, StabilityReport, dict[str, Any]]:
+    """The stability of the co-rotation (2.1) about body x3 of one body, from (2.5)/(2.6).
+
+    Parameters
+    ----------
+    inertia : (I1, I2, I3)
+        Principal moments [inertia unit]; the rotation is about x3.
+    beta : float
+        Field cone angle β [rad], in [0, π].
+    eps : float
+        ε = M0/ω > 0 [inertia unit].
+
+    Returns
+    -------
+    params : rotating_field.Params
+        The validated parameters.
+    report : StabilityReport
+        Coefficients, exact and first-order roots, classification
+        (:func:`tumble.analysis.stability.analyze`).
+    document : dict
+        The model, the parameters and the report as one JSON-ready mapping.
+    """
+    p = rotating_field.Params(np.array(inertia), beta, eps)
+    rep = analyze(rotating_field.MODEL, p)
+    doc = {
+        "model": rotating_field.MODEL.name,
+        "parameters": {"inertia": p.inertia.tolist(), "beta": p.beta, "eps": p.eps},
+        **rep.to_dict(),
+    }
+    return p, rep, doc
 
 
 def _check_n(n: int) -> int:

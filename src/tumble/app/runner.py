@@ -37,11 +37,15 @@ from tumble.plot import (
 __all__ = ["run", "verify"]
 
 
-def _pressure_curve(result: RunResult) -> tuple[Any, Any, str] | None:
-    """a(t)/a(0) = Q(εt)/Q(0) of a perturbed nonlinear-moment run whose pressure varies."""
+def _relative_curve(result: RunResult, settings: FigureSettings) -> tuple[Any, Any, str] | None:
+    """The column the figure draws relative to its initial value (``settings.relative``,
+    e.g. the nonlinear moment's a(t)/a(0)), from the first run along which it varies."""
+    if settings.relative is None:
+        return None
+    name, label = settings.relative
     for ds in result.datasets.values():
-        if "a" in ds and ds["a"].values[0] != 0.0 and np.ptp(ds["a"].values) > 0.0:
-            return ds["tau"].values, ds["a"].values / ds["a"].values[0], "Q(εt)/Q(0) = a(t)/a(0)"
+        if name in ds and ds[name].values[0] != 0.0 and np.ptp(ds[name].values) > 0.0:
+            return ds["tau"].values, ds[name].values / ds[name].values[0], label
     return None
 
 
@@ -60,11 +64,11 @@ def _figure_png(result: RunResult, title: str) -> bytes:
     settings = _settings(result)
     result = in_si(result)
     if settings.kind == "envelope":
-        _header, rows = result.report.tables.get("full_extrema", ((), []))
+        _header, rows = result.report.tables.get(settings.extrema, ((), []))
         fig = plot_envelope(
             result.datasets,
             extrema=rows,
-            pressure=_pressure_curve(result),
+            pressure=_relative_curve(result, settings),
             marks=result.issues,
             title=title,
         )

@@ -1,13 +1,12 @@
 """What ``tumble run`` prints after a run: the table of final values, and the lines of the
-differences between methods, the predicted limits and the model's own figures (the nonlinear
-moment's envelope discrepancy and root case).
+differences between methods, the predicted limits and the model's own summary figures, as its
+package declares them (:func:`tumble.models.display.summary_lines`).
 
 A scenario given in SI is shown in SI (the files hold both).
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping
 from typing import Any
 
 from rich.markup import escape
@@ -15,6 +14,7 @@ from rich.table import Table
 
 from tumble.analysis import RunResult
 from tumble.app.runner import in_si
+from tumble.models.display import summary_lines
 from tumble.plot.labels import with_units
 
 __all__ = ["run_lines", "run_table"]
@@ -43,7 +43,8 @@ def run_table(result: RunResult, shown: tuple[str, ...], title: str) -> Table:
 
 def run_lines(result: RunResult, shown: tuple[str, ...]) -> list[str]:
     """The lines under the table: the largest difference of each pair of methods, the
-    predicted limits of the variables in ``shown``, and the model's own summary figures."""
+    predicted limits of the variables in ``shown``, and the model's own summary figures (the
+    lines its package declares)."""
     scaling = result.request.scaling
 
     def value(name: str, x: Any, fmt: str) -> str:
@@ -64,21 +65,6 @@ def run_lines(result: RunResult, shown: tuple[str, ...]) -> list[str]:
         )
         note = lim.get("statement") or lim.get("end_state")
         lines.append(f"predicted limits: {text}" + (f" ({note})" if note else ""))
-    return lines + _model_lines(result.report.summary)
-
-
-def _model_lines(extra: Mapping[str, Any]) -> list[str]:
-    """The nonlinear moment's summary figures, where the run's report has them: the largest
-    envelope discrepancy (θmax, relative) and the root case of the unperturbed motion."""
-    lines = []
-    if extra.get("max_envelope_discrepancy") is not None:
-        lines.append(
-            f"max envelope discrepancy (θmax, relative): {extra['max_envelope_discrepancy']:.3%}"
-        )
-    if "root_case" in extra:
-        lines.append(
-            f"root case {extra['root_case']}, k² = {extra['k2']:.6g}, "
-            f"θ ∈ [{extra['theta_min']:.6g}, {extra['theta_max']:.6g}] rad, "
-            f"period {extra['period']:.6g}"
-        )
-    return lines
+    summary = result.report.summary
+    declared = (line.render(summary) for line in summary_lines(result.request.model.name))
+    return lines + [text for text in declared if text is not None]

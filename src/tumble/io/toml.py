@@ -47,10 +47,13 @@ def read_file(path: str | Path, what: str = "scenario") -> dict[str, Any]:
 
 
 def template(model: str) -> str:
-    """A commented example scenario for ``model`` (what ``tumble init`` prints)."""
+    """A commented example scenario for ``model`` (what ``tumble init`` prints): the
+    ``template.toml`` of its package, ``tumble.models.<model>``."""
     if model not in CATALOGUE:
         raise ScenarioError(
             f"model = {shorten(repr(model), 60)} is not a known model "
             f"(allowed: {', '.join(sorted(CATALOGUE))})"
         )
-    return resources.files("tumble.io").joinpath("templates", f"{model}.toml").read_text("utf-8")
+    # Read as a file of the package tree: importing tumble.models would load numpy.
+    found = resources.files("tumble").joinpath("models", model, "template.toml")
+    return found.read_text("utf-8")

@@ -1,8 +1,8 @@
-"""Paper models, one module each, registered by name (STYLE.md section 2).
+"""Paper models, one package each, registered by name (STYLE.md section 2).
 
 The registry loads on first use (:data:`MODELS`, :func:`get_model`): a scenario is validated
 against a model's :class:`~tumble.models.base.Declaration` (:func:`declaration`), which the
-shipped models keep apart from their numerics in :mod:`tumble.models.inputs`.
+shipped models keep apart from their numerics in the ``inputs`` module of their package.
 """
 
 from __future__ import annotations
@@ -90,7 +90,7 @@ def declaration(name: str) -> Declaration[Any, Any]:
     if isinstance(name, str) and name in _MODELS:
         return Declaration.of(_MODELS[name])
     if isinstance(name, str) and name in CATALOGUE:
-        module = importlib.import_module(f"tumble.models.inputs.{name}")
+        module = importlib.import_module(f"tumble.models.{name}.inputs")
         found: Declaration[Any, Any] = module.DECLARED
         return found
     raise _unknown(name)

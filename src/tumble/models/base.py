@@ -571,7 +571,7 @@ class Declaration(Generic[P, S]):
 
     A scenario is validated against this alone (its keys, its ``[run]`` choices, the methods
     its parameters allow), so that an input error is reported before numba, scipy and the
-    model's equations load. A shipped model declares it in :mod:`tumble.models.inputs` and
+    model's equations load. A shipped model declares it in its package's ``inputs`` module and
     builds its :class:`Model` from it; for any other model it is read off the model
     (:meth:`of`).
 

@@ -58,8 +58,7 @@ __all__ = [
 ]
 
 CLAIMS: dict[str, tuple[Callable[[], Claim], ...]] = {
-    paper: tuple(REGISTRY[paper])
-    for paper in ("resisting_medium", "rotating_field", "nonlinear_moment")
+    paper: tuple(REGISTRY[paper]) for paper in PAPERS
 }
 """Every claim, by paper, in the order of the papers' text (registered by
 :func:`~tumble.analysis.claims.base.claim` where each is defined)."""

@@ -1,9 +1,8 @@
-"""The inputs of each shipped model, apart from its numerics: parameters, initial state,
-physical units, scenario keys and the :class:`~tumble.models.base.Declaration` a scenario is
-validated against.
+"""The inputs of each shipped model under their former paths: each model keeps its parameters,
+initial state, physical units, scenario keys and :class:`~tumble.models.base.Declaration` in
+its own package (``tumble.models.<name>.inputs``), and ``tumble.models.inputs.<name>`` gives the
+same names.
 
 These modules load numpy and tumble's validation only, so that a scenario is read and
-checked — and an input error reported — in a fraction of a second; each model module
-(:mod:`tumble.models.resisting_medium`, …) imports its inputs from here and adds the
-equations.
+checked — and an input error reported — in a fraction of a second.
 """

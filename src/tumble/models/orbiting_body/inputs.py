@@ -1,0 +1,527 @@
+"""The orbiting body's inputs, in SI units: the body (inertia tensor, magnetic tensor or a
+conducting shape), the orbit, the geomagnetic field, the torques and the initial state, and
+their conversion to the normalised variables of the torqued body (:mod:`tumble.models.
+torqued_body`), apart from its numerics (:mod:`tumble.models.orbiting_body`).
+
+Normalisation, done here and nowhere else: time t = T0 τ with T0 = 1/|ω(0)| [s], moments of
+inertia over I0 = the largest principal moment [kg·m²], moments over I0/T0²; the torque is then
+the physical one (ε = 1), small because the orbit's torques are small against I ω².
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from datetime import UTC, datetime
+from typing import Any, cast
+
+import numpy as np
+
+from tumble._typing import FloatArray
+from tumble.bodies import RigidBody
+from tumble.errors import ParameterError, ScenarioError, check_range
+from tumble.kernels import terms
+from tumble.models.base import Column, Declaration
+from tumble.models.schema import Built, Inputs, Key, KeyKind, ScenarioSchema, Section, Variant
+from tumble.models.torqued_body import inputs as tb
+from tumble.rotations import matrix_to_quat, quat_to_matrix
+from tumble.space import (
+    Dipole,
+    Igrf,
+    Orbit,
+    OrbitEddyTorque,
+    OrbitGravityTorque,
+    flat_plate,
+    solid_sphere,
+    sun_synchronous_inclination,
+    thin_cylindrical_shell,
+    thin_spherical_shell,
+)
+from tumble.space.orbit import EARTH_RADIUS
+from tumble.torques import CompiledTorque, ConstantBodyTorque, Torque, TorqueSum
+
+__all__ = ["DAY", "DECLARED", "SHAPES", "Params", "Scaling", "State", "principal_axes"]
+
+SHAPES = ("thin_spherical_shell", "solid_sphere", "thin_cylindrical_shell", "flat_plate")
+"""The conducting shapes whose magnetic tensor tumble computes (:mod:`tumble.space.conductors`)."""
+
+DAY = 86400.0  # [s]
+
+
+def principal_axes(inertia: Any, name: str = "body.inertia") -> tuple[FloatArray, FloatArray]:
+    """Principal moments (ascending) [kg·m²] and the rotation R whose columns are the principal
+    axes in the given body axes (det R = +1): J = R diag(I) Rᵀ.
+
+    Raises
+    ------
+    ParameterError
+        For a tensor that is not symmetric, not positive definite, or whose moments break the
+        triangle inequality.
+    """
+    try:
+        J = np.array(inertia, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError(
+            f"{name} must be 3 principal moments or a 3×3 tensor [kg m²]"
+        ) from None
+    if J.shape == (3,):
+        J = np.diag(J)
+    if J.shape != (3, 3) or not np.all(np.isfinite(J)):
+        raise ParameterError(f"{name} must be 3 principal moments or a 3×3 tensor [kg m²]")
+    if not np.allclose(J, J.T, rtol=1e-12, atol=1e-12 * np.max(np.abs(J))):
+        raise ParameterError(f"{name} must be symmetric (J = Jᵀ)")
+    moments, R = np.linalg.eigh(J)
+    if moments[0] <= 0.0:
+        raise ParameterError(
+            f"{name} is not positive definite (principal moments "
+            f"{', '.join(f'{m:.6g}' for m in moments)} kg m²; allowed: all > 0)"
+        )
+    RigidBody(*moments.tolist())  # the triangle inequality
+    if np.linalg.det(R) < 0.0:
+        R[:, 2] = -R[:, 2]
+    return moments, R
+
+
+@dataclass(frozen=True)
+class Scaling(tb.Scaling):
+    """The torqued body's normalisation (t = T0 τ, inertia over I0, ε = 1) with the outputs of
+    an orbiting body in SI: the rate 2T/L [rad/s] and the spin period [s]."""
+
+    def si(self, name: str) -> tuple[float, str, str] | None:
+        if name == "rate":
+            return 1.0 / self.T0, "rad/s", "rate_rad_s"
+        if name == "period":
+            return self.T0, "s", "period_s"
+        return super().si(name)
+
+
+@dataclass(frozen=True)
+class Params(tb.Params):
+    """The torqued body's parameters (principal axes, normalised units) with what an orbiting
+    body adds for its outputs: the orbit, the field, the principal axes R in the user's body
+    axes (columns), the scales and the epoch."""
+
+    orbit: Orbit | None = None
+    magnetic_field: Dipole | Igrf | None = None
+    axes: FloatArray = field(default_factory=lambda: np.eye(3))
+    T0: float = 1.0  # [s]
+    I0: float = 1.0  # [kg m²]
+    epoch: str = ""
+
+
+State = tb.State
+
+
+# ---------------------------------------------------------------------------------------------
+# Scenario keys.
+
+_BODY = Section(
+    "body",
+    (
+        Key("mass", "number", "a mass > 0", "kg", None, doc="for the record only"),
+        Key(
+            "inertia",
+            "any",
+            "3 principal moments or a 3×3 symmetric positive-definite tensor",
+            "kg m^2",
+            doc="in the body axes every other body vector is given in",
+        ),
+        Key(
+            "magnetic_tensor",
+            "matrix3",
+            "a 3×3 matrix (S m⁴), or give [conductor]",
+            "S m^4",
+            None,
+            doc="eddy-current tensor M: induced dipole M x, x = −dB/dt in the body",
+        ),
+    ),
+    doc="the body, SI units",
+)
+_CONDUCTOR = Section(
+    "conductor",
+    (
+        Key("shape", "text", " or ".join(f'"{s}"' for s in SHAPES), choices=SHAPES),
+        Key("conductivity", "number", "a conductivity > 0", "S/m"),
+        Key("radius", "number", "a radius > 0 (sphere, shell, cylinder)", "m", None),
+        Key("thickness", "number", "a wall thickness > 0 (shells, plate)", "m", None),
+        Key("length", "number", "a length > 0 (cylinder; plate side)", "m", None),
+        Key("width", "number", "a width > 0 (plate side)", "m", None),
+        Key(
+            "axis",
+            "vector3",
+            "a nonzero body vector",
+            "",
+            [0.0, 0.0, 1.0],
+            doc="the cylinder's axis or the plate's normal, in body axes",
+        ),
+    ),
+    required=False,
+    doc="the magnetic tensor from a conducting shape (instead of body.magnetic_tensor)",
+)
+_ORBIT = Section(
+    "orbit",
+    (
+        Key("altitude", "number", "a circular orbit's altitude > 0", "km", None),
+        Key("semi_major_axis", "number", "a semi-major axis > the Earth's radius", "km", None),
+        Key("eccentricity", "number", "a number in [0, 1)", "", None, doc="default 0"),
+        Key("inclination", "number", "in [0, π]", "rad", None, angle=True),
+        Key(
+            "sun_synchronous",
+            "boolean",
+            "true or false",
+            default=False,
+            doc="the inclination of a sun-synchronous orbit (instead of inclination)",
+        ),
+        Key(
+            "raan",
+            "number",
+            "right ascension of the ascending node",
+            "rad",
+            None,
+            angle=True,
+            doc="default 0",
+        ),
+        Key("argp", "number", "argument of perigee", "rad", None, angle=True, doc="default 0"),
+        Key(
+            "mean_anomaly",
+            "number",
+            "mean anomaly at the epoch (circular: argument of latitude)",
+            "rad",
+            None,
+            angle=True,
+            doc="default 0",
+        ),
+        Key(
+            "tle",
+            "any",
+            "two lines of a two-line element set",
+            default=None,
+            doc="the orbit and its epoch from a TLE (SGP4's mean elements; needs sgp4)",
+        ),
+        Key(
+            "j2",
+            "boolean",
+            "true or false",
+            default=True,
+            doc="secular drift of node, perigee and mean anomaly under J2",
+        ),
+        Key(
+            "epoch",
+            "text",
+            'an ISO 8601 UTC time, e.g. "2025-01-01T00:00:00Z"',
+            default=None,
+            doc="t = 0: the field's epoch and Earth angle (default: the TLE's, or "
+            "2025-01-01T00:00:00Z)",
+        ),
+    ),
+    doc="the orbit: circular by altitude or Keplerian elements at the epoch",
+)
+_FIELD = Section(
+    "field",
+    (
+        Key(
+            "model",
+            "text",
+            '"dipole", "igrf" or "none"',
+            default="dipole",
+            choices=("dipole", "igrf", "none"),
+            doc="igrf: the whole IGRF to `degree` (needs the space extra's ppigrf)",
+        ),
+        Key("g10", "number", "Gauss coefficient", "nT", None, doc="default: IGRF-13 at epoch"),
+        Key("g11", "number", "Gauss coefficient", "nT", None),
+        Key("h11", "number", "Gauss coefficient", "nT", None),
+        Key("degree", "integer", "an integer in [1, 13]", "", None, doc="IGRF only; default 13"),
+        Key(
+            "rotating",
+            "boolean",
+            "true or false",
+            default=True,
+            doc="the field turns with the Earth",
+        ),
+    ),
+    required=False,
+    doc="the geomagnetic field (default: the IGRF-13 tilted dipole at the epoch)",
+)
+_TORQUES = Section(
+    "torques",
+    (
+        Key("eddy_current", "boolean", "true or false", default=True),
+        Key("gravity_gradient", "boolean", "true or false", default=True),
+        Key("residual_moment", "vector3", "3 numbers (body axes)", "N m", [0.0, 0.0, 0.0]),
+        *(
+            Key(k.name, cast(KeyKind, k.kind), k.meaning, k.unit, k.default, doc=k.doc)
+            for k in terms.orbit_key_specs()
+        ),
+    ),
+    required=False,
+    doc="which torques act (default: eddy current and gravity gradient)",
+)
+_INITIAL = Section(
+    "initial",
+    (
+        Key("omega", "vector3", "body angular velocity", "rad/s", None),
+        Key("omega_deg_s", "vector3", "body angular velocity", "deg/s", None),
+        Key("omega_rpm", "vector3", "body angular velocity", "rpm", None),
+        Key("spin_period", "number", "a period > 0 (with spin_axis)", "s", None),
+        Key("spin_axis", "vector3", "a nonzero body vector (with spin_period)", "", None),
+        Key(
+            "quaternion",
+            "vector4",
+            "attitude quaternion [q0, q1, q2, q3], body → inertial",
+            default=None,
+        ),
+        Key("psi", "number", "3-1-3 Euler angle ψ", "rad", None, angle=True),
+        Key("theta", "number", "3-1-3 Euler angle ϑ", "rad", None, angle=True),
+        Key("phi", "number", "3-1-3 Euler angle φ", "rad", None, angle=True),
+    ),
+    doc="at the epoch: the body rate (one of omega, omega_deg_s, omega_rpm, spin_period with "
+    "spin_axis) and the attitude (default identity: body axes on the inertial ones)",
+)
+
+
+def _epoch(text: str) -> datetime:
+    try:
+        when = datetime.fromisoformat(text.replace("Z", "+00:00"))
+    except ValueError:
+        raise ScenarioError(
+            f'orbit.epoch = {text!r} is not an ISO 8601 time (e.g. "2025-01-01T00:00:00Z")'
+        ) from None
+    return when.replace(tzinfo=UTC) if when.tzinfo is None else when.astimezone(UTC)
+
+
+DEFAULT_EPOCH = "2025-01-01T00:00:00Z"
+
+
+def _orbit(o: Mapping[str, Any]) -> tuple[Orbit, datetime]:
+    """The orbit and the epoch of the [orbit] table."""
+    if o["tle"] is not None:
+        return _from_tle(o)
+    given = [k for k in ("altitude", "semi_major_axis") if o[k] is not None]
+    if len(given) != 1:
+        raise ScenarioError("orbit: give altitude [km] (circular), semi_major_axis [km], or tle")
+    if o["inclination"] is not None and o["sun_synchronous"]:
+        raise ScenarioError("orbit: give inclination or sun_synchronous = true, not both")
+    e = 0.0 if o["eccentricity"] is None else o["eccentricity"]
+    check_range("orbit.eccentricity", e, low=0.0, high=1.0, low_open=False)
+    if given == ["altitude"]:
+        check_range("orbit.altitude [km]", o["altitude"], low=0.0)
+        a = EARTH_RADIUS + 1e3 * o["altitude"]
+        if e != 0.0:
+            raise ScenarioError("orbit: altitude gives a circular orbit; with eccentricity give "
+                                "semi_major_axis")  # fmt: skip
+    else:
+        check_range("orbit.semi_major_axis [km]", o["semi_major_axis"], low=EARTH_RADIUS / 1e3)
+        a = 1e3 * o["semi_major_axis"]
+    if o["sun_synchronous"]:
+        if e != 0.0:
+            raise ScenarioError("orbit.sun_synchronous: only for a circular orbit (altitude)")
+        inclination = sun_synchronous_inclination((a - EARTH_RADIUS) / 1e3)
+    else:
+        inclination = 0.0 if o["inclination"] is None else o["inclination"]
+    raan, argp, mean = (0.0 if o[k] is None else o[k] for k in ("raan", "argp", "mean_anomaly"))
+    epoch = _epoch(DEFAULT_EPOCH if o["epoch"] is None else o["epoch"])
+    return Orbit(a, e, inclination, raan, argp, mean, o["j2"]), epoch
+
+
+def _from_tle(o: Mapping[str, Any]) -> tuple[Orbit, datetime]:
+    """The orbit and epoch of ``orbit.tle``, alone: its elements and epoch are the TLE's."""
+    others = [k for k in ("altitude", "semi_major_axis", "eccentricity", "inclination", "raan",
+                          "argp", "mean_anomaly", "epoch") if o[k] is not None]  # fmt: skip
+    if others or o["sun_synchronous"]:
+        extra = ", ".join(others or ["sun_synchronous"])
+        raise ScenarioError(f"orbit.tle gives the elements and the epoch: drop {extra}")
+    lines = o["tle"]
+    if not (isinstance(lines, list) and len(lines) == 2 and all(isinstance(x, str) for x in lines)):
+        raise ScenarioError("orbit.tle must be a list of the two lines of the element set")
+    return Orbit.from_tle(lines[0], lines[1], o["j2"])
+
+
+def _field(f: Mapping[str, Any] | None, epoch: datetime) -> Dipole | Igrf | None:
+    if f is not None and f["model"] == "none":
+        return None
+    if f is not None and f["model"] == "igrf":
+        given = [k for k in ("g10", "g11", "h11") if f[k] is not None]
+        if given:
+            raise ScenarioError(f'field.{given[0]} is for model = "dipole"; the IGRF has its own')
+        degree = 13 if f["degree"] is None else f["degree"]
+        if not (isinstance(degree, int) and 1 <= degree <= 13):
+            raise ScenarioError(f"field.degree must be an integer in 1–13, got {degree!r}")
+        try:
+            return Igrf.at(epoch, degree, f["rotating"])
+        except ImportError:
+            raise ScenarioError(
+                'field.model = "igrf" needs the package ppigrf: pip install "tumble[space]"'
+            ) from None
+    if f is not None and f["degree"] is not None:
+        raise ScenarioError('field.degree is for model = "igrf"; the dipole is degree 1')
+    reference = Dipole.igrf(epoch)
+    if f is None:
+        return reference
+    values = {k: reference.__dict__[k] if f[k] is None else f[k] for k in ("g10", "g11", "h11")}
+    return Dipole(**values, theta0=reference.theta0,
+                  rotation=reference.rotation if f["rotating"] else 0.0)  # fmt: skip
+
+
+def _magnetic_tensor(body: Mapping[str, Any], c: Mapping[str, Any] | None) -> FloatArray | None:
+    given = body["magnetic_tensor"]
+    if given is not None and c is not None:
+        raise ScenarioError("body.magnetic_tensor and [conductor]: give one of them")
+    if given is not None:
+        M = np.array(given, dtype=float)
+        if not np.allclose(M, M.T, rtol=1e-9, atol=1e-12 * max(np.max(np.abs(M)), 1e-300)):
+            raise ParameterError("body.magnetic_tensor must be symmetric (M = Mᵀ)")
+        if np.min(np.linalg.eigvalsh(M)) < -1e-12 * np.max(np.abs(M)):
+            raise ParameterError("body.magnetic_tensor must be positive semi-definite (a "
+                                 "conductor dissipates)")  # fmt: skip
+        return M
+    if c is None:
+        return None
+    shape = c["shape"]
+    need = {
+        "thin_spherical_shell": ("radius", "thickness"),
+        "solid_sphere": ("radius",),
+        "thin_cylindrical_shell": ("radius", "length", "thickness"),
+        "flat_plate": ("length", "width", "thickness"),
+    }[shape]
+    missing = [k for k in need if c[k] is None]
+    if missing:
+        raise ScenarioError(f"conductor: a {shape} needs {', '.join(need)} (missing "
+                            f"{', '.join(missing)})")  # fmt: skip
+    check_range("conductor.conductivity [S/m]", c["conductivity"], low=0.0)
+    for k in need:
+        check_range(f"conductor.{k} [m]", c[k], low=0.0)
+    sigma = c["conductivity"]
+    if shape == "thin_spherical_shell":
+        own = thin_spherical_shell(sigma, c["radius"], c["thickness"])
+    elif shape == "solid_sphere":
+        own = solid_sphere(sigma, c["radius"])
+    elif shape == "thin_cylindrical_shell":
+        own = thin_cylindrical_shell(sigma, c["radius"], c["length"], c["thickness"])
+    else:
+        own = flat_plate(sigma, c["length"], c["width"], c["thickness"])
+    axis = np.array(c["axis"], dtype=float)
+    if not np.any(axis):
+        raise ParameterError("conductor.axis = [0, 0, 0] is not a direction")
+    a = axis / np.linalg.norm(axis)
+    # Every shape's tensor is diag(M⊥, M⊥, M∥) about its axis: M⊥ (1 − a aᵀ) + M∥ a aᵀ.
+    return own[0, 0] * (np.eye(3) - np.outer(a, a)) + own[2, 2] * np.outer(a, a)
+
+
+def _omega(ini: Mapping[str, Any]) -> FloatArray:
+    """The initial body rate [rad/s] from whichever form the scenario gives."""
+    forms = [k for k in ("omega", "omega_deg_s", "omega_rpm", "spin_period") if ini[k] is not None]
+    if len(forms) != 1:
+        raise ScenarioError("initial: give one of omega [rad/s], omega_deg_s, omega_rpm, or "
+                            "spin_period [s] with spin_axis")  # fmt: skip
+    if (ini["spin_axis"] is not None) != (forms == ["spin_period"]):
+        raise ScenarioError("initial: spin_axis goes with spin_period, and only with it")
+    if forms == ["spin_period"]:
+        check_range("initial.spin_period [s]", ini["spin_period"], low=0.0)
+        axis = np.array(ini["spin_axis"], dtype=float)
+        if not np.any(axis):
+            raise ParameterError("initial.spin_axis = [0, 0, 0] is not a direction")
+        return 2.0 * math.pi / ini["spin_period"] * axis / np.linalg.norm(axis)
+    factor = {"omega": 1.0, "omega_deg_s": math.pi / 180.0, "omega_rpm": math.pi / 30.0}
+    w = np.array(ini[forms[0]], dtype=float) * factor[forms[0]]
+    if not np.any(w):
+        raise ScenarioError(f"initial.{forms[0]} = [0, 0, 0]: the body must rotate (|ω| > 0 "
+                            "sets the time scale)")  # fmt: skip
+    return w
+
+
+def _attitude(ini: Mapping[str, Any]) -> FloatArray:
+    """The initial attitude, normalised (:func:`torqued_body.initial_attitude`)."""
+    q = np.asarray(tb.initial_attitude(ini), dtype=float)
+    if not np.any(q):
+        raise ParameterError("initial.quaternion = [0, 0, 0, 0] is not a rotation")
+    return q / np.linalg.norm(q)
+
+
+def _build(inputs: Inputs) -> Built[Params, State]:
+    body, orbit_keys, ini = inputs["body"], inputs["orbit"], inputs["initial"]
+    torques = inputs["torques"] or {key.name: key.default for key in _TORQUES.keys}
+    assert body is not None and orbit_keys is not None and ini is not None  # required
+    if body["mass"] is not None:
+        check_range("body.mass [kg]", body["mass"], low=0.0)
+    moments, R = principal_axes(body["inertia"])
+    orbit, epoch = _orbit(orbit_keys)
+    field_model = _field(inputs["field"], epoch)
+    M = _magnetic_tensor(body, inputs["conductor"])
+    w = _omega(ini)
+    T0, I0 = 1.0 / float(np.linalg.norm(w)), float(moments[-1])
+    full: list[Torque] = []
+    mean: list[Torque] = []
+    labels: list[str] = []
+    if torques["eddy_current"]:
+        if M is None:
+            raise ScenarioError("torques.eddy_current: give body.magnetic_tensor or [conductor] "
+                                "(or eddy_current = false)")  # fmt: skip
+        if field_model is None:
+            raise ScenarioError('torques.eddy_current needs a field: [field] model = "none"')
+        eddy = OrbitEddyTorque(orbit, field_model, R.T @ M @ R * (T0 / I0), T0)
+        full.append(eddy)
+        mean.append(eddy.averaged())
+        labels.append("eddy current")
+    if torques["gravity_gradient"]:
+        gg = OrbitGravityTorque(orbit, moments / I0, T0)
+        full.append(gg)
+        mean.append(gg.averaged())
+        labels.append("gravity gradient")
+    residual = np.asarray(torques["residual_moment"], dtype=float)
+    if np.any(residual):
+        moment = ConstantBodyTorque(R.T @ residual * T0**2 / I0)
+        full.append(moment)
+        mean.append(moment)
+        labels.append("residual moment")
+    context = terms.OrbitContext(
+        orbit.payload(T0), None if field_model is None else field_model.payload(T0), R, T0, I0
+    )
+    for key in terms.ORBIT_KEYS:
+        built = key.build(torques[key.name], context)
+        if built is not None:
+            label, with_orbit, averaged = built
+            full.append(CompiledTorque(tuple(with_orbit), label))
+            mean.append(CompiledTorque(tuple(averaged), label))
+            labels.append(label)
+    if not full:
+        raise ScenarioError("torques: every torque is off (nothing drives the evolution)")
+    q_user = _attitude(ini)
+    q = matrix_to_quat(quat_to_matrix(q_user) @ R)  # principal axes → inertial
+    p = Params(
+        moments / I0,
+        1.0,
+        full[0] if len(full) == 1 else TorqueSum(tuple(full)),
+        orbit.period / T0,
+        " + ".join(labels),
+        mean[0] if len(mean) == 1 else TorqueSum(tuple(mean)),
+        orbit=orbit,
+        magnetic_field=field_model,
+        axes=R,
+        T0=T0,
+        I0=I0,
+        epoch=epoch.isoformat(),
+    )
+    return Built(p, State(R.T @ w * T0, q), Scaling(T0, I0))
+
+
+SCENARIO: ScenarioSchema[Params, State] = ScenarioSchema(
+    variants=(
+        Variant(
+            (_BODY, _CONDUCTOR, _ORBIT, _FIELD, _TORQUES, _INITIAL),
+            _build,
+            physical=True,
+            doc="tumble normalises t = T0 τ with T0 = 1/|ω(0)| inside",
+        ),
+    )
+)
+
+DECLARED: Declaration[Params, State] = Declaration(
+    name="orbiting_body",
+    time=Column("t", "time t", "t"),
+    methods=("full", "averaged"),
+    check=tb.DECLARED.check,
+    scenario=SCENARIO,
+    orders=(1,),
+)
+"""What a scenario of the model may ask for."""

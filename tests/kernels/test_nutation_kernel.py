@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 import pytest
+from compiled_runs import numba_and_scipy
 
 from tumble.errors import IntegrationError, ParameterError
 from tumble.integrate import simulate
@@ -107,15 +108,11 @@ def _capsule(pressure: nm.Pressure) -> tuple[nm.Params, nm.State]:
 def test_compiled_averaged_run_equals_the_python_one(pressure):
     p, s0 = _capsule(pressure)
     t = np.linspace(0.0, 1500.0, 31)
-    runs = [
-        simulate(nm.MODEL, p, s0, t, "averaged", rtol=1e-10, atol=1e-12, integrator=integrator)
-        for integrator in ("numba", "scipy")
-    ]
-    assert runs[0].integrator == "numba" and runs[1].integrator == "scipy"
+    runs = numba_and_scipy(nm.MODEL, p, s0, t, "averaged", rtol=1e-10, atol=1e-12)
     for key in ("theta_max", "theta_min", "k2", "period", "E", "R", "G", "a", "b"):
         # The same DOP853 on the same equations (the averages equal to 1e-12): measured 5e-14
         # apart; 1e-9 is the runs' own tolerance.
-        assert np.max(np.abs(runs[0].columns[key] - runs[1].columns[key])) < 1e-9, key
+        assert np.max(np.abs(runs["numba"].columns[key] - runs["scipy"].columns[key])) < 1e-9, key
 
 
 def test_compiled_run_stops_at_the_separatrix_where_the_python_one_does():
@@ -192,11 +189,9 @@ def test_compiled_engine_run_equals_the_python_one():
     p, s0 = _capsule(nm.Pressure("exp"))
     numeric = AveragingOptions(averaging="numeric")
     t = np.linspace(0.0, 1500.0, 16)
-    runs = {}
-    for integrator in ("numba", "scipy"):
-        runs[integrator] = simulate(nm.MODEL, p, s0, t, "averaged", rtol=1e-10, atol=1e-12,
-                                    averaging=numeric, integrator=integrator)  # fmt: skip
-    assert runs["numba"].integrator == "numba" and runs["scipy"].integrator == "scipy"
+    runs = numba_and_scipy(
+        nm.MODEL, p, s0, t, "averaged", rtol=1e-10, atol=1e-12, averaging=numeric
+    )
     for key, ref in runs["scipy"].columns.items():
         # The same DOP853 on averages equal to 1e-12: measured 1e-13 apart.
         assert np.max(np.abs(runs["numba"].columns[key] - ref)) < 1e-9, key

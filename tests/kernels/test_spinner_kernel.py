@@ -5,9 +5,9 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from compiled_runs import numba_and_scipy
 
 from tumble.averaging.spinner import spinner_average
-from tumble.integrate import simulate
 from tumble.kernels.rhs import evaluate
 from tumble.models import resisting_medium as rm
 from tumble.models.base import AveragingOptions
@@ -55,11 +55,9 @@ def test_compiled_engine_run_equals_the_python_one_across_the_equator():
                   s=np.diag([0.05, 0.05, 0.05]))  # fmt: skip
     st = rm.State(k=1.0, rho=0.8, sigma=0.0, psi=0.0, theta=1.0, phi=0.0)
     tau = np.linspace(0.0, 300.0, 61)
-    runs = {}
-    for i in ("numba", "scipy"):
-        runs[i] = simulate(rm.MODEL, p, st, tau, "averaged", rtol=1e-10, atol=1e-12,
-                           averaging=NUMERIC, integrator=i)  # fmt: skip
-    assert runs["numba"].integrator == "numba" and runs["scipy"].integrator == "scipy"
+    runs = numba_and_scipy(
+        rm.MODEL, p, st, tau, "averaged", rtol=1e-10, atol=1e-12, averaging=NUMERIC
+    )
     theta = runs["numba"].columns["theta"]
     assert theta[0] < np.pi / 2 < theta[-1]  # the run crosses the equator
     for name, ref in runs["scipy"].columns.items():

@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 import pytest
+from compiled_runs import numba_and_scipy
 from scipy import special
 
 from tumble.averaging import triaxial_average_vector, triaxial_kernel
@@ -123,11 +124,9 @@ def test_compiled_engine_run_equals_the_python_one_across_the_separatrix():
     p = rf.Params(inertia=[1.0, 1.6, 2.0], eps=0.05, beta=0.6)
     st = rf.State([1.2, 0.3, 0.2], np.eye(3))
     tau = np.linspace(0.0, 150.0, 31)
-    runs = {}
-    for i in ("numba", "scipy"):
-        runs[i] = simulate(rf.MODEL, p, st, tau, "averaged", rtol=1e-10, atol=1e-12,
-                           averaging=NUMERIC, integrator=i)  # fmt: skip
-    assert runs["numba"].integrator == "numba" and runs["scipy"].integrator == "scipy"
+    runs = numba_and_scipy(
+        rf.MODEL, p, st, tau, "averaged", rtol=1e-10, atol=1e-12, averaging=NUMERIC
+    )
     cols = runs["numba"].columns
     r = 2.0 * cols["T"] / cols["L"] ** 2
     assert r[0] > 1.0 / 1.6 > r[-1]  # the run crosses the separatrix
@@ -144,9 +143,7 @@ def test_torqued_body_runs_compiled():
                   forcing_period=_torques()["all terms"][1])  # fmt: skip
     st = tb.State(omega=np.array([0.2, 0.3, 1.0]), q=np.array([1.0, 0.0, 0.0, 0.0]))
     tau = np.linspace(0.0, 100.0, 11)
-    runs = {i: simulate(tb.MODEL, p, st, tau, "averaged", rtol=1e-10, atol=1e-12, integrator=i)
-            for i in ("numba", "scipy")}  # fmt: skip
-    assert runs["numba"].integrator == "numba"
+    runs = numba_and_scipy(tb.MODEL, p, st, tau, "averaged", rtol=1e-10, atol=1e-12)
     for name, ref in runs["scipy"].columns.items():
         assert np.max(np.abs(runs["numba"].columns[name] - ref)) < 1e-7, name
 

@@ -584,19 +584,27 @@ def test_potential_slope_energy_and_quartic_agree():
 
 coef = st.one_of(st.just(0.0), st.floats(-3.0, 3.0), st.floats(-1e-7, 1e-7))
 momentum = st.floats(-3.0, 3.0)
+# The inputs (μ, a, b, R, G, θ, θ') of a random state; G is also drawn as exactly ±R ("R",
+# "-R": the motions through a pole), which _resolve_G resolves.
+STATE_INPUTS = {
+    "mu": st.floats(0.1, 2.0),
+    "a": coef,
+    "b": coef,
+    "R": momentum,
+    "G": st.one_of(momentum, st.just("R"), st.just("-R")),
+    "theta": theta_regular,
+    "theta_dot": st.one_of(st.just(0.0), st.floats(-3.0, 3.0)),
+}
 
 
-@given(
-    mu=st.floats(0.1, 2.0),
-    a=coef,
-    b=coef,
-    R=momentum,
-    G=st.one_of(momentum, st.just("R"), st.just("-R")),
-    theta=theta_regular,
-    theta_dot=st.one_of(st.just(0.0), st.floats(-3.0, 3.0)),
-)
+def _resolve_G(R: float, G: float | str) -> float:
+    """G of a drawn state: R or −R where it was drawn as "R" or "-R"."""
+    return R if G == "R" else -R if G == "-R" else float(G)
+
+
+@given(**STATE_INPUTS)
 def test_random_states_build_or_raise_and_never_give_nan(mu, a, b, R, G, theta, theta_dot):
-    G = R if G == "R" else -R if G == "-R" else G
+    G = _resolve_G(R, G)
     try:
         orbit = NutationOrbit.from_state(mu, a, b, R, G, theta, theta_dot, PSI0, PHI0)
     except ParameterError:
@@ -721,19 +729,11 @@ def test_fast_path_is_taken_and_agrees_with_the_careful_path(name):
 
 
 @settings(max_examples=150, deadline=None)
-@given(
-    mu=st.floats(0.1, 2.0),
-    a=coef,
-    b=coef,
-    R=momentum,
-    G=st.one_of(momentum, st.just("R"), st.just("-R")),
-    theta=theta_regular,
-    theta_dot=st.one_of(st.just(0.0), st.floats(-3.0, 3.0)),
-)
+@given(**STATE_INPUTS)
 def test_fast_and_careful_paths_agree_on_random_orbits(mu, a, b, R, G, theta, theta_dot):
     """Same errors, same kind and root case, the same turning points within their round-off
     band, wherever the fast path is taken or not (it defers near double roots, at G ≈ ±R, …)."""
-    G = R if G == "R" else -R if G == "-R" else G
+    G = _resolve_G(R, G)
     try:
         builds = constructions(mu, a, b, R, G, theta, theta_dot)
     except ParameterError:

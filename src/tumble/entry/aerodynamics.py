@@ -36,7 +36,7 @@ V. M. Serov (1991); docs/theory/nonlinear-moment.md §1, §9, §10.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy.optimize import brentq
@@ -258,7 +258,8 @@ class Capsule:
             high_open=False,
         )
         check_range("capsule.m", m, low=0.0)
-        # Geometry checks with placeholder mass properties that pass every range check.
+        # Geometry checks with placeholder mass properties that pass every range check; the
+        # result is this capsule with the mass properties of the distribution.
         geo = cls(D=D, Rn=Rn, theta_c=theta_c, Lc=Lc, Rb=Rb, m=m, A=1.0, C=1.0, x_cg=1e-9)
         surf = _surface(geo, 64)
         vol = _volume(geo, 64)
@@ -267,17 +268,7 @@ class Capsule:
         x_cg = sum((p[0] * p[1]).sum() for p in parts) / mass
         a_inertia = sum((p[0] * (p[2] + (p[1] - x_cg) ** 2)).sum() for p in parts)
         c_inertia = sum((p[0] * p[3]).sum() for p in parts)
-        return cls(
-            D=D,
-            Rn=Rn,
-            theta_c=theta_c,
-            Lc=Lc,
-            Rb=Rb,
-            m=m,
-            A=float(a_inertia),
-            C=float(c_inertia),
-            x_cg=float(x_cg),
-        )
+        return replace(geo, A=float(a_inertia), C=float(c_inertia), x_cg=float(x_cg))
 
 
 def _mass_elements(

@@ -25,7 +25,7 @@ import math
 import numpy as np
 
 from tumble._typing import FloatArray
-from tumble.kernels.jit import ENTRY, KERNEL, jit
+from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
 
 __all__ = [
     "ellipe_mc",
@@ -65,6 +65,18 @@ def elliprf(x: float, y: float, z: float) -> float:
     return series / math.sqrt(a)
 
 
+@jit(INLINE)
+def _rj_series(e2: float, e3: float, e4: float, e5: float, scale: float, a: float) -> float:
+    """The series R_J and R_D (R_J with p = z) end their duplication with: its value at the
+    last mean ``a``, times ``scale`` = 4^(−m), in the elementary symmetric functions e2 … e5 of
+    the scaled deviations from ``a`` (each function forms its own e's)."""
+    series = (
+        1.0 - 3.0 * e2 / 14.0 + e3 / 6.0 + 9.0 * e2 * e2 / 88.0 - 3.0 * e4 / 22.0
+        - 9.0 * e2 * e3 / 52.0 + 3.0 * e5 / 26.0
+    )  # fmt: skip
+    return scale * series / (a * math.sqrt(a))
+
+
 @jit(KERNEL)
 def elliprd(x: float, y: float, z: float) -> float:
     """R_D(x, y, z) = (3/2)∫0^∞ dt / ((t + z)√((t + x)(t + y)(t + z))) (DLMF 19.16.5)."""
@@ -84,11 +96,7 @@ def elliprd(x: float, y: float, z: float) -> float:
     e3 = (3.0 * xy - 8.0 * zz) * Z
     e4 = 3.0 * (xy - zz) * zz
     e5 = xy * zz * Z
-    series = (
-        1.0 - 3.0 * e2 / 14.0 + e3 / 6.0 + 9.0 * e2 * e2 / 88.0 - 3.0 * e4 / 22.0
-        - 9.0 * e2 * e3 / 52.0 + 3.0 * e5 / 26.0
-    )  # fmt: skip
-    return scale * series / (a * math.sqrt(a)) + 3.0 * total
+    return _rj_series(e2, e3, e4, e5, scale, a) + 3.0 * total
 
 
 @jit(KERNEL)
@@ -146,11 +154,7 @@ def elliprj(x: float, y: float, z: float, p: float) -> float:
     e3 = X * Y * Z + 2.0 * e2 * P + 4.0 * P * P * P
     e4 = (2.0 * X * Y * Z + e2 * P + 3.0 * P * P * P) * P
     e5 = X * Y * Z * P * P
-    series = (
-        1.0 - 3.0 * e2 / 14.0 + e3 / 6.0 + 9.0 * e2 * e2 / 88.0 - 3.0 * e4 / 22.0
-        - 9.0 * e2 * e3 / 52.0 + 3.0 * e5 / 26.0
-    )  # fmt: skip
-    return scale * series / (a * math.sqrt(a)) + 6.0 * total
+    return _rj_series(e2, e3, e4, e5, scale, a) + 6.0 * total
 
 
 @jit(KERNEL)

@@ -12,14 +12,16 @@ import math
 
 from tumble._typing import FloatArray
 from tumble.kernels.jit import INLINE, jit
-from tumble.kernels.layout import Mat3, Vec3
+from tumble.kernels.layout import Mat3, Vec3, vec3
 
 __all__ = [
     "attitude_matrix",
     "dot",
     "matrix_quaternion",
+    "node_turned",
     "quaternion_matrix",
     "quaternion_rates",
+    "scaled_cross",
     "to_body",
     "to_inertial",
     "turned_about_z",
@@ -73,9 +75,23 @@ def turned_about_z(angle: float, x: Vec3) -> Vec3:
 
 
 @jit(INLINE)
+def node_turned(prog: FloatArray, vx: int, vrate: int, t: float) -> Vec3:
+    """An orbit-averaged inertial input at time t: the vector stored at prog[vx : vx + 3] (its
+    value at t = 0) turned about ξ3 by Ω̇ t, with the node's rate Ω̇ [rad/time] at prog[vrate]
+    and t [time]."""
+    return turned_about_z(prog[vrate] * t, vec3(prog, vx))
+
+
+@jit(INLINE)
 def dot(x: Vec3, y: Vec3) -> float:
     """x · y."""
     return x[0] * y[0] + x[1] * y[1] + x[2] * y[2]
+
+
+@jit(INLINE)
+def scaled_cross(f: float, x: Vec3, y1: float, y2: float, y3: float) -> Vec3:
+    """f x × y: the moment of a dipole x in a field y, times the factor f."""
+    return f * (x[1] * y3 - x[2] * y2), f * (x[2] * y1 - x[0] * y3), f * (x[0] * y2 - x[1] * y1)
 
 
 @jit(INLINE)

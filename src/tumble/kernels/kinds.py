@@ -55,6 +55,8 @@ class Kind:
 _BODY = ("w1", "w2", "w3", "q0", "q1", "q2", "q3")
 _SLOW = ("L1", "L2", "L3", "r")
 _ENERGY = ("H", "R", "G", "a", "b")
+# Volosov's equations and the engine's nutation setting: one state, layout and event.
+_NUTATION = (_ENERGY, NONLINEAR_MOMENT, frozenset({codes.EVENT_NUTATION_SEPARATRIX}))
 
 KINDS: dict[int, Kind] = {
     codes.KIND_RIGID_BODY: Kind("Euler's equations under a torque program", _BODY, RIGID_BODY),
@@ -82,17 +84,9 @@ KINDS: dict[int, Kind] = {
         frozenset({codes.EVENT_FIELD_SEPARATRIX}),
     ),
     codes.KIND_NUTATION_AVERAGED: Kind(
-        "Volosov's averaged equations in the energy form",
-        _ENERGY,
-        NONLINEAR_MOMENT,
-        frozenset({codes.EVENT_NUTATION_SEPARATRIX}),
+        "Volosov's averaged equations in the energy form", *_NUTATION
     ),
-    codes.KIND_NUTATION_ENGINE: Kind(
-        "the engine's nutation setting",
-        _ENERGY,
-        NONLINEAR_MOMENT,
-        frozenset({codes.EVENT_NUTATION_SEPARATRIX}),
-    ),
+    codes.KIND_NUTATION_ENGINE: Kind("the engine's nutation setting", *_NUTATION),
     codes.KIND_SPINNER_AVERAGED: Kind(
         "the engine's spinner setting",
         ("k", "rho", "sigma", "theta"),

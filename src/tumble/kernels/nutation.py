@@ -70,31 +70,32 @@ _OK, _U1, _U2, _M1, _M2, _K2, _MC, _K, _BETA, _CASE = range(10)
 def pressure(p: FloatArray, tau: float) -> float:
     """Q(τ)/Q(0) of the nonlinear-moment parameters: constant, exponential, or a table
     (piecewise linear between its knots; the run was checked to stay inside)."""
-    kind = int(p[_NM.pressure])
-    if kind == 0:
-        return 1.0
-    if kind == 1:
-        return math.exp(tau) / p[_NM.q0]
-    lo, hi = _segment(p, tau)
-    n = int(p[_NM.knots])
-    x0, x1 = p[_TABLE + lo], p[_TABLE + hi]
-    v0, v1 = p[_TABLE + n + lo], p[_TABLE + n + hi]
-    return (v0 + (v1 - v0) * (tau - x0) / (x1 - x0)) / p[_NM.q0]
+    return _pressure_law(p, tau)[0]
 
 
 @jit(KERNEL)
 def pressure_rate(p: FloatArray, tau: float) -> float:
     """dQ/dτ / Q(0): for a table the slope of the segment τ lies in (right-continuous, as
     :meth:`tumble.models.inputs.nonlinear_moment.Pressure.rate`)."""
+    return _pressure_law(p, tau)[1]
+
+
+@jit(INLINE)
+def _pressure_law(p: FloatArray, tau: float) -> tuple[float, float]:
+    """Q(τ)/Q(0) and dQ/dτ / Q(0), τ the paper's time: constant, exponential (Q = e^τ), or a
+    table (between its knots linear; its slope that of the segment τ lies in)."""
     kind = int(p[_NM.pressure])
     if kind == 0:
-        return 0.0
+        return 1.0, 0.0
+    q0 = p[_NM.q0]
     if kind == 1:
-        return math.exp(tau) / p[_NM.q0]
+        q = math.exp(tau) / q0
+        return q, q
     lo, hi = _segment(p, tau)
     n = int(p[_NM.knots])
-    rise = p[_TABLE + n + hi] - p[_TABLE + n + lo]
-    return rise / (p[_TABLE + hi] - p[_TABLE + lo]) / p[_NM.q0]
+    x0, x1 = p[_TABLE + lo], p[_TABLE + hi]
+    v0, v1 = p[_TABLE + n + lo], p[_TABLE + n + hi]
+    return (v0 + (v1 - v0) * (tau - x0) / (x1 - x0)) / q0, (v1 - v0) / (x1 - x0) / q0
 
 
 @jit(KERNEL)

@@ -45,6 +45,7 @@ __all__ = [
     "field_samples",
     "fields_along",
     "harmonic_field",
+    "harmonic_field_at",
     "harmonic_size",
     "orbit_at",
     "orbit_state",
@@ -199,6 +200,16 @@ def field_at(orbit: FloatArray, vo: int, field: FloatArray, vf: int, t: float) -
     """B and dB/dt (inertial axes) at the body's place at time t."""
     r, vel = orbit_at(orbit, vo, t)
     return dipole_field(field, vf, field[vf + _D.theta0] + field[vf + _D.earth_rate] * t, r, vel)
+
+
+@jit(INLINE)
+def harmonic_field_at(orbit: FloatArray, vo: int, field: FloatArray, vf: int, t: float
+                      ) -> tuple[Vec3, Vec3]:  # fmt: skip
+    """B and dB/dt (inertial axes) of the harmonic field at field[vf:] (:data:`HARMONIC`) at
+    the body's place at time t on the orbit at orbit[vo:] (:data:`ORBIT`): :func:`field_at`
+    for a harmonic field."""
+    r, vel = orbit_at(orbit, vo, t)
+    return harmonic_field(field, vf, field[vf + _H.theta0] + field[vf + _H.earth_rate] * t, r, vel)
 
 
 @jit(ENTRY)

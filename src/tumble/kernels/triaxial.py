@@ -54,6 +54,7 @@ from numba.cpython.unsafe.tuple import tuple_setitem as _tuple_setitem
 
 from tumble._typing import FloatArray
 from tumble.kernels.codes import MC_FLOOR, REACHED_MARGIN, SEPARATRIX_RTOL
+from tumble.kernels.frames import to_body, to_inertial
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
 from tumble.kernels.layout import Mat3, Vec3, mat3, vec3
 from tumble.kernels.limits import (
@@ -192,6 +193,17 @@ def _body_frame(p: FloatArray, z1: float, z2: float, z3: float) -> tuple[Vec3, V
     return (cp, -sp, 0.0), (l3 * sp, l3 * cp, -st), (l1, l2, l3)
 
 
+_Sums = tuple[float, float, float, float, float, float]
+"""The channels of the integrand: ⟨A M⟩ (3), ⟨(Ω − r L_ξ)·M⟩, and the sizes ⟨|M|⟩, ⟨|Ω||M|⟩."""
+_NO_SUMS: _Sums = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+
+
+@jit(INLINE)
+def _added(s: _Sums, x: _Sums) -> _Sums:
+    """s + x channel by channel: a sum of the integrand over nodes, one node more."""
+    return s[0] + x[0], s[1] + x[1], s[2] + x[2], s[3] + x[3], s[4] + x[4], s[5] + x[5]
+
+
 @jit(INLINE)
 def _attitude(F: Mat3, h0: Vec3, h1: Vec3, g2: Vec3) -> Mat3:
     """A = F R with R the rotation of rows h0, h1, g2 (by rows)."""
@@ -212,15 +224,11 @@ def _attitude(F: Mat3, h0: Vec3, h1: Vec3, g2: Vec3) -> Mat3:
 def _channels(
     a: Mat3, z1: float, z2: float, z3: float, m1: float, m2: float, m3: float, rl1: float,
     rl2: float, rl3: float,
-) -> tuple[float, float, float, float, float, float]:  # fmt: skip
+) -> _Sums:  # fmt: skip
     """The integrand at one node: A M (3), (Ω − r L_ξ)·A M with Ω = A z, and the sizes |M|
     and |Ω||M| of the engine's convergence test."""
-    n1 = a[0] * m1 + a[1] * m2 + a[2] * m3
-    n2 = a[3] * m1 + a[4] * m2 + a[5] * m3
-    n3 = a[6] * m1 + a[7] * m2 + a[8] * m3
-    o1 = a[0] * z1 + a[1] * z2 + a[2] * z3
-    o2 = a[3] * z1 + a[4] * z2 + a[5] * z3
-    o3 = a[6] * z1 + a[7] * z2 + a[8] * z3
+    n1, n2, n3 = to_inertial(a, m1, m2, m3)
+    o1, o2, o3 = to_inertial(a, z1, z2, z3)
     mag = math.sqrt(m1 * m1 + m2 * m2 + m3 * m3)
     power = (o1 - rl1) * n1 + (o2 - rl2) * n2 + (o3 - rl3) * n3
     return n1, n2, n3, power, mag, mag * math.sqrt(o1 * o1 + o2 * o2 + o3 * o3)
@@ -230,11 +238,11 @@ def _channels(
 def _node_sums(
     p: FloatArray, t: float, z1: float, z2: float, z3: float, F: Mat3, rl1: float, rl2: float,
     rl3: float,
-) -> tuple[float, float, float, float, float, float]:  # fmt: skip
+) -> _Sums:  # fmt: skip
     """Built-in terms (mode 1): the channels summed over the four precession nodes at the
     body rate z (user axes), with A = F Rz(χ) G and each term at its phase mean."""
     g0, g1, g2 = _body_frame(p, z1, z2, z3)
-    s1 = s2 = s3 = s4 = s5 = s6 = 0.0
+    sums = _NO_SUMS
     for k in range(4):
         # Rz(χ) G at χ = kπ/2: its first two rows (cos χ g0 − sin χ g1, sin χ g0 + cos χ g1).
         if k == 0:
@@ -247,14 +255,8 @@ def _node_sums(
             h0, h1 = g1, (-g0[0], -g0[1], -g0[2])
         a = _attitude(F, h0, h1, g2)
         m1, m2, m3 = _mean_program(p, PROGRAM_START, t, z1, z2, z3, a)
-        t1, t2, t3, t4, t5, t6 = _channels(a, z1, z2, z3, m1, m2, m3, rl1, rl2, rl3)
-        s1 += t1
-        s2 += t2
-        s3 += t3
-        s4 += t4
-        s5 += t5
-        s6 += t6
-    return s1, s2, s3, s4, s5, s6
+        sums = _added(sums, _channels(a, z1, z2, z3, m1, m2, m3, rl1, rl2, rl3))
+    return sums
 
 
 @jit(KERNEL)
@@ -262,23 +264,17 @@ def _polhode_sums(
     p: FloatArray, t: float, nodes: int, offset: float, amp: Vec3, x3: bool, big_k: float,
     kc: float, ratios: _Table, n_agm: int, a_agm: float, F: Mat3, rl1: float, rl2: float,
     rl3: float,
-) -> tuple[float, float, float, float, float, float]:  # fmt: skip
+) -> _Sums:  # fmt: skip
     """:func:`_node_sums` summed over the polhode nodes u = (j + offset)·4K/nodes, j < nodes:
     one Jacobi evaluation serves the four nodes a quarter period apart."""
-    s1 = s2 = s3 = s4 = s5 = s6 = 0.0
+    sums = _NO_SUMS
     step = 4.0 * big_k / nodes
     for j in range(nodes // 4):
         sn0, cn0, dn0 = _quarter((j + offset) * step, big_k, kc, ratios, n_agm, a_agm)
         for q in range(4):
             z1, z2, z3 = _user_rates(p, amp, x3, *_shifted(q, sn0, cn0, dn0, kc))
-            t1, t2, t3, t4, t5, t6 = _node_sums(p, t, z1, z2, z3, F, rl1, rl2, rl3)
-            s1 += t1
-            s2 += t2
-            s3 += t3
-            s4 += t4
-            s5 += t5
-            s6 += t6
-    return s1, s2, s3, s4, s5, s6
+            sums = _added(sums, _node_sums(p, t, z1, z2, z3, F, rl1, rl2, rl3))
+    return sums
 
 
 @jit(KERNEL)
@@ -324,12 +320,7 @@ def _user_rates(p: FloatArray, amp: Vec3, x3: bool, sn: float, cn: float, dn: fl
         w1, w2, w3 = amp[0] * cn, amp[1] * sn, amp[2] * dn
     else:
         w1, w2, w3 = amp[2] * dn, amp[1] * sn, amp[0] * cn
-    q = mat3(p, _Q)  # Qᵀ w
-    return (
-        q[0] * w1 + q[3] * w2 + q[6] * w3,
-        q[1] * w1 + q[4] * w2 + q[7] * w3,
-        q[2] * w1 + q[5] * w2 + q[8] * w3,
-    )
+    return to_body(mat3(p, _Q), w1, w2, w3)  # Qᵀ w
 
 
 @jit(KERNEL)
@@ -337,12 +328,12 @@ def _grid_sums(
     p: FloatArray, t: float, n0: int, o0: float, n1: int, o1: float, n2: int, o2: float,
     amp: Vec3, x3: bool, big_k: float, kc: float, ratios: _Table, n_agm: int, a_agm: float,
     F: Mat3, rl1: float, rl2: float, rl3: float,
-) -> tuple[float, float, float, float, float, float]:  # fmt: skip
+) -> _Sums:  # fmt: skip
     """Any program (mode 0): the channels of :func:`_node_sums` summed over the product grid
     of n0 polhode phases, n1 precession angles and n2 forcing phases, each axis uniform with
     its offset (in nodes), the moment at its explicit time t + s·P/2π (the Python engine's
     integrand, :func:`tumble.averaging.triaxial._means`)."""
-    s1 = s2 = s3 = s4 = s5 = s6 = 0.0
+    sums = _NO_SUMS
     period = p[PERIOD]
     for j0 in range(n0):
         z1, z2, z3 = _rates_at(p, (j0 + o0) * 4.0 * big_k / n0, amp, x3, big_k, kc, ratios,
@@ -357,14 +348,8 @@ def _grid_sums(
             for j2 in range(n2):
                 tt = t + (j2 + o2) * period / n2 if period > 0.0 else t
                 m1, m2, m3 = engine_program(p, PROGRAM_START, tt, z1, z2, z3, a)
-                t1, t2, t3, t4, t5, t6 = _channels(a, z1, z2, z3, m1, m2, m3, rl1, rl2, rl3)
-                s1 += t1
-                s2 += t2
-                s3 += t3
-                s4 += t4
-                s5 += t5
-                s6 += t6
-    return s1, s2, s3, s4, s5, s6
+                sums = _added(sums, _channels(a, z1, z2, z3, m1, m2, m3, rl1, rl2, rl3))
+    return sums
 
 
 @jit(KERNEL)
@@ -400,10 +385,6 @@ def _general_mean(
             if done:
                 break
     return True, m[0], m[1], m[2], m[3]
-
-
-_Sums = tuple[float, float, float, float, float, float]
-"""The channels of the integrand: ⟨A M⟩ (3), ⟨(Ω − r L_ξ)·M⟩, and the sizes ⟨|M|⟩, ⟨|Ω||M|⟩."""
 
 
 @jit(INLINE)

@@ -33,14 +33,50 @@ from typing import Any
 
 from tumble._typing import FloatArray
 from tumble.kernels.jit import INLINE, jit
-from tumble.kernels.layout import Layout
+from tumble.kernels.layout import Field, Layout
+from tumble.kernels.space import ORBIT
 from tumble.kernels.terms import KeySpec
 
-__all__ = ["READS", "OrbitContext", "OrbitKey", "Term", "chain"]
+__all__ = [
+    "MAGNETIC_TENSOR",
+    "NODE_RATE",
+    "ORBIT_FIELD",
+    "READS",
+    "OrbitContext",
+    "OrbitKey",
+    "Term",
+    "chain",
+    "principal_moments",
+]
 
 READS: frozenset[str] = frozenset({"rate", "attitude", "time", "orbit", "field"})
 """What a moment may depend on: the body rate, the attitude, the time, a position along an
 orbit (Kepler's equation), the geomagnetic field there."""
+
+
+# Parameters several terms declare alike: one declaration each.
+ORBIT_FIELD = Field("orbit", ORBIT.size, doc="the orbit (kernels.space.ORBIT)")
+"""A term's orbit, the body's place along it (:data:`tumble.kernels.space.ORBIT`)."""
+MAGNETIC_TENSOR = Field("tensor", 9, "A·m²/(T/s)", "magnetic tensor M, body axes, by rows")
+"""A conductor's magnetic tensor M: its induced dipole is M x for the field's rate x seen in
+the body."""
+NODE_RATE = Field("node_rate", 1, "rad/time", "rate of the node Ω̇")
+"""The rate at which an orbit-averaged input turns about ξ3 with the orbit's node."""
+
+
+def principal_moments(unit: str) -> Field:
+    """The parameter ``inertia``: the principal moments I1, I2, I3, each at least 0.
+
+    Parameters
+    ----------
+    unit : str
+        Their unit, as the docs print it (e.g. "kg·m²").
+
+    Returns
+    -------
+    Field
+    """
+    return Field("inertia", 3, unit, "principal moments I1, I2, I3", 0.0)
 
 
 @dataclass(frozen=True)

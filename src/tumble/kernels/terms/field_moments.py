@@ -23,15 +23,15 @@ from tumble.kernels.lframe import (
     turned,
     weighted,
 )
-from tumble.kernels.terms.base import Term
+from tumble.kernels.terms.base import MAGNETIC_TENSOR, NODE_RATE, Term
 
 LAYOUT = Layout(
     "field_moments",
     (
-        Field("tensor", 9, "A·m²/(T/s)", "magnetic tensor M, body axes, by rows"),
+        MAGNETIC_TENSOR,
         Field("S", 9, "T²", "⟨B Bᵀ⟩, inertial axes at t = 0, by rows"),
         Field("delta", 3, "T²/time", "δ of ⟨Ḃ Bᵀ⟩ = [δ]×, inertial axes at t = 0"),
-        Field("node_rate", 1, "rad/time", "rate of the node Ω̇"),
+        NODE_RATE,
     ),
 )
 _AT = LAYOUT.at

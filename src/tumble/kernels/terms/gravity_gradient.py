@@ -13,12 +13,12 @@ from tumble.kernels.frames import to_body
 from tumble.kernels.jit import INLINE, jit
 from tumble.kernels.layout import Field, Layout, Mat3, Vec3, vec3
 from tumble.kernels.lframe import Context, Parts, column_dot, sorted_moments, weighted
-from tumble.kernels.terms.base import Term
+from tumble.kernels.terms.base import Term, principal_moments
 
 LAYOUT = Layout(
     "gravity_gradient",
     (
-        Field("inertia", 3, "inertia unit", "principal moments I1, I2, I3", 0.0),
+        principal_moments("inertia unit"),
         Field("n", 1, "rad/time", "orbital mean motion", 0.0),
         Field("u0", 1, "rad", "argument of latitude at t = 0"),
         Field("basis", 9, "1", "rows e1 (ascending node), e2, orbit normal (inertial)"),
@@ -29,9 +29,11 @@ _E1, _E2, _NORMAL = _AT.basis, _AT.basis + 3, _AT.basis + 6
 
 
 @jit(INLINE)
-def gradient_moment(g: float, prog: FloatArray, v: int, r1: float, r2: float, r3: float) -> Vec3:
-    """g r × (I r) for the body unit vector r and the principal moments at prog[v + inertia]."""
-    i1, i2, i3 = vec3(prog, v + _AT.inertia)
+def gradient_moment(g: float, prog: FloatArray, vi: int, r1: float, r2: float, r3: float) -> Vec3:
+    """g r × (I r) for the body unit vector r and the principal moments at prog[vi : vi + 3]:
+    the gravity-gradient moment of every term that has one, g [moment per inertia unit]
+    collecting 3μ/r³ and the term's factor."""
+    i1, i2, i3 = vec3(prog, vi)
     return g * (i3 - i2) * r2 * r3, g * (i1 - i3) * r3 * r1, g * (i2 - i1) * r1 * r2
 
 
@@ -45,7 +47,7 @@ def moment(
     r1, r2, r3 = to_body(
         a, cu * e1[0] + su * e2[0], cu * e1[1] + su * e2[1], cu * e1[2] + su * e2[2]
     )
-    return gradient_moment(3.0 * n * n * f, prog, v, r1, r2, r3)
+    return gradient_moment(3.0 * n * n * f, prog, v + _AT.inertia, r1, r2, r3)
 
 
 @jit(INLINE)
@@ -55,8 +57,8 @@ def phase_mean(
     """Over the orbit: the moment at ⟨r̂ r̂ᵀ⟩ = ½(e₁e₁ᵀ + e₂e₂ᵀ)."""
     g = 3.0 * prog[v + _AT.n] ** 2 * f
     e1, e2 = vec3(prog, v + _E1), vec3(prog, v + _E2)
-    x = gradient_moment(g, prog, v, *to_body(a, e1[0], e1[1], e1[2]))
-    y = gradient_moment(g, prog, v, *to_body(a, e2[0], e2[1], e2[2]))
+    x = gradient_moment(g, prog, v + _AT.inertia, *to_body(a, e1[0], e1[1], e1[2]))
+    y = gradient_moment(g, prog, v + _AT.inertia, *to_body(a, e2[0], e2[1], e2[2]))
     return 0.5 * (x[0] + y[0]), 0.5 * (x[1] + y[1]), 0.5 * (x[2] + y[2])
 
 

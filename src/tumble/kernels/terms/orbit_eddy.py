@@ -5,18 +5,18 @@ of the Earth: the induced dipole M x of the magnetic tensor M, x = −dB/dt seen
 from __future__ import annotations
 
 from tumble._typing import FloatArray
-from tumble.kernels.frames import to_body
+from tumble.kernels.frames import scaled_cross, to_body
 from tumble.kernels.jit import INLINE, jit
 from tumble.kernels.layout import Field, Layout, Mat3, Vec3, mat_vec
-from tumble.kernels.space import DIPOLE, ORBIT, field_at
-from tumble.kernels.terms.base import Term
+from tumble.kernels.space import DIPOLE, field_at
+from tumble.kernels.terms.base import MAGNETIC_TENSOR, ORBIT_FIELD, Term
 
 LAYOUT = Layout(
     "orbit_eddy",
     (
-        Field("orbit", ORBIT.size, doc="the orbit (kernels.space.ORBIT)"),
+        ORBIT_FIELD,
         Field("field", DIPOLE.size, doc="the tilted dipole (kernels.space.DIPOLE)"),
-        Field("tensor", 9, "A·m²/(T/s)", "magnetic tensor M, body axes, by rows"),
+        MAGNETIC_TENSOR,
     ),
 )
 _AT = LAYOUT.at
@@ -32,8 +32,7 @@ def eddy_moment(
     b1, b2, b3 = to_body(a, bi[0], bi[1], bi[2])
     c1, c2, c3 = to_body(a, ci[0], ci[1], ci[2])
     x1, x2, x3 = w2 * b3 - w3 * b2 - c1, w3 * b1 - w1 * b3 - c2, w1 * b2 - w2 * b1 - c3
-    m1, m2, m3 = mat_vec(prog, vm, x1, x2, x3)
-    return f * (m2 * b3 - m3 * b2), f * (m3 * b1 - m1 * b3), f * (m1 * b2 - m2 * b1)
+    return scaled_cross(f, mat_vec(prog, vm, x1, x2, x3), b1, b2, b3)
 
 
 @jit(INLINE)

@@ -8,15 +8,16 @@ import math
 from tumble._typing import FloatArray
 from tumble.kernels.frames import to_body
 from tumble.kernels.jit import INLINE, jit
-from tumble.kernels.layout import Field, Layout, Mat3, Vec3, vec3
+from tumble.kernels.layout import Layout, Mat3, Vec3
 from tumble.kernels.space import ORBIT, orbit_at
-from tumble.kernels.terms.base import Term
+from tumble.kernels.terms.base import ORBIT_FIELD, Term, principal_moments
+from tumble.kernels.terms.gravity_gradient import gradient_moment
 
 LAYOUT = Layout(
     "orbit_gravity",
     (
-        Field("orbit", ORBIT.size, doc="the orbit (kernels.space.ORBIT)"),
-        Field("inertia", 3, "kg·m²", "principal moments I1, I2, I3", 0.0),
+        ORBIT_FIELD,
+        principal_moments("kg·m²"),
     ),
 )
 _AT = LAYOUT.at
@@ -32,8 +33,7 @@ def moment(
     r1, r2, r3 = to_body(a, r[0], r[1], r[2])
     mu = prog[v + _MU]
     g = 3.0 * mu * f / (size2 * size2 * math.sqrt(size2))  # 3μ/r³ over r²
-    i1, i2, i3 = vec3(prog, v + _AT.inertia)
-    return g * (i3 - i2) * r2 * r3, g * (i1 - i3) * r3 * r1, g * (i2 - i1) * r1 * r2
+    return gradient_moment(g, prog, v + _AT.inertia, r1, r2, r3)
 
 
 TERM = Term(

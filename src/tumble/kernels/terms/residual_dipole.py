@@ -30,7 +30,7 @@ import numpy as np
 
 from tumble._typing import FloatArray
 from tumble.errors import IntegrationError, ParameterError
-from tumble.kernels.frames import to_body, turned_about_z
+from tumble.kernels.frames import node_turned, scaled_cross, to_body
 from tumble.kernels.jit import INLINE, jit
 from tumble.kernels.layout import Field, Layout, Mat3, Vec3, vec3
 from tumble.kernels.lframe import Context, Parts, column_dot, sorted_vector
@@ -43,13 +43,14 @@ from tumble.kernels.space import (
     harmonic_field,
     orbit_at,
 )
-from tumble.kernels.terms.base import OrbitContext, OrbitKey, Term
+from tumble.kernels.terms.base import NODE_RATE, ORBIT_FIELD, OrbitContext, OrbitKey, Term
 
+_DIPOLE = Field("dipole", 3, "A·m²", "the body's magnetic moment m, body axes")
 LAYOUT = Layout(
     "residual_dipole",
     (
-        Field("orbit", ORBIT.size, doc="the orbit (kernels.space.ORBIT)"),
-        Field("dipole", 3, "A·m²", "the body's magnetic moment m, body axes"),
+        ORBIT_FIELD,
+        _DIPOLE,
         Field("harmonic", 1, "1", "0: the field is a tilted dipole; 1: a harmonic field", 0.0, 1.0),
     ),
     tail="field",  # kernels.space.DIPOLE or kernels.space.HARMONIC
@@ -57,9 +58,9 @@ LAYOUT = Layout(
 MEAN_LAYOUT = Layout(
     "residual_dipole_mean",
     (
-        Field("dipole", 3, "A·m²", "the body's magnetic moment m, body axes"),
+        _DIPOLE,
         Field("field", 3, "T", "⟨B⟩ over the orbit and the Earth's turn, inertial, at t = 0"),
-        Field("node_rate", 1, "rad/time", "rate of the node Ω̇"),
+        NODE_RATE,
     ),
 )
 _AT, _MEAN = LAYOUT.at, MEAN_LAYOUT.at
@@ -68,16 +69,12 @@ _D, _H = DIPOLE.at, HARMONIC.at
 
 
 @jit(INLINE)
-def _cross(f: float, m: Vec3, b1: float, b2: float, b3: float) -> Vec3:
-    """f m × b."""
-    return f * (m[1] * b3 - m[2] * b2), f * (m[2] * b1 - m[0] * b3), f * (m[0] * b2 - m[1] * b1)
-
-
-@jit(INLINE)
 def moment(
     f: float, prog: FloatArray, v: int, t: float, w1: float, w2: float, w3: float, a: Mat3
 ) -> Vec3:
     """f m × Aᵀ B(t), B at the body's place on the orbit."""
+    # The body placed once for either field, not by field_at / harmonic_field_at in each
+    # branch: that compiles to other roundings (results an ulp apart).
     r, vel = orbit_at(prog, v + _AT.orbit, t)
     vf = v + _FIELD
     if prog[v + _AT.harmonic] == 0.0:
@@ -87,13 +84,13 @@ def moment(
         angle = prog[vf + _H.theta0] + prog[vf + _H.earth_rate] * t
         b, _ = harmonic_field(prog, vf, angle, r, vel)
     b1, b2, b3 = to_body(a, b[0], b[1], b[2])
-    return _cross(f, vec3(prog, v + _AT.dipole), b1, b2, b3)
+    return scaled_cross(f, vec3(prog, v + _AT.dipole), b1, b2, b3)
 
 
 @jit(INLINE)
 def _mean_field(prog: FloatArray, v: int, t: float) -> Vec3:
     """⟨B⟩ at time t: its value at t = 0 turned about ξ3 by Ω̇ t."""
-    return turned_about_z(prog[v + _MEAN.node_rate] * t, vec3(prog, v + _MEAN.field))
+    return node_turned(prog, v + _MEAN.field, v + _MEAN.node_rate, t)
 
 
 @jit(INLINE)
@@ -103,7 +100,7 @@ def mean_moment(
     """f m × Aᵀ ⟨B⟩."""
     x1, x2, x3 = _mean_field(prog, v, t)
     b1, b2, b3 = to_body(a, x1, x2, x3)
-    return _cross(f, vec3(prog, v + _MEAN.dipole), b1, b2, b3)
+    return scaled_cross(f, vec3(prog, v + _MEAN.dipole), b1, b2, b3)
 
 
 @jit(INLINE)

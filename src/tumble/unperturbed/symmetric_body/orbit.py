@@ -37,9 +37,13 @@ _DOC = DocSections(
     mu : float
         C/A [1], in (0, 2].
     a, b : float
-        Moment coefficients [1/time²].
+        Moment coefficients of (1.5) [1/time²].
     R, G : float
-        Reduced angular momenta [1/time].
+        Reduced angular momenta μr and K·e_z/A [1/time].
+    """,
+    angles="""
+    psi, phi : float
+        ψ0, φ0 [rad].
     """,
     t="""
     Parameters
@@ -142,6 +146,7 @@ class NutationOrbit:
     # ----------------------------------------------------------------------------------
 
     @classmethod
+    @_DOC
     def from_state(
         cls,
         mu: float,
@@ -158,18 +163,12 @@ class NutationOrbit:
 
         Parameters
         ----------
-        mu : float
-            C/A [1], in (0, 2].
-        a, b : float
-            Moment coefficients of (1.5) [1/time²].
-        R, G : float
-            Reduced angular momenta μr and K·e_z/A [1/time].
+        {{constants}}
         theta : float
             Nutation angle θ0 [rad], strictly inside (0, π).
         theta_dot : float
             θ0' [rad/time]; 0 starts at a turning point (side chosen by the sign of f'(u0), §3).
-        psi, phi : float
-            ψ0, φ0 [rad].
+        {{angles}}
 
         Returns
         -------
@@ -207,8 +206,7 @@ class NutationOrbit:
         {{constants}}
         theta_ext : float
             Turning point θ(0) [rad], strictly inside (0, π).
-        psi, phi : float
-            ψ0, φ0 [rad].
+        {{angles}}
 
         Returns
         -------

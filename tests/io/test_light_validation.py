@@ -52,6 +52,13 @@ CASES = [
     ("torqued_body", (r"(?m)^n = \S+", "n = -0.3"), "torque[0].n = -0.3"),
     ("torqued_body", (r"(?m)^methods = .*$", 'methods = ["bogus"]'), "run.methods[0]"),
     ("resisting_medium", (r"(?m)^\[initial\]", "[inital]"), "inital: unknown key"),
+    # The orbiting body's inputs import the torqued body's: a package's submodule, which must
+    # not load the package's numerics on the way.
+    (
+        "orbiting_body",
+        (r"(?m)^conductivity = \S+", "conductivity = -1.0"),
+        "conductor.conductivity [S/m] = -1",
+    ),
 ]
 
 

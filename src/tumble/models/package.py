@@ -19,6 +19,7 @@ docs/architecture.md ("Model packages") draws it and walks through adding one.
 from __future__ import annotations
 
 import importlib
+import importlib.util
 import sys
 from collections.abc import Callable
 from typing import Any
@@ -49,6 +50,10 @@ def model_exports(package: str) -> tuple[Callable[[str], Any], Callable[[], list
     def __getattr__(name: str) -> Any:
         if name.startswith("__"):  # dunder probes (pickle, doctest, …) do not load the numerics
             raise AttributeError(f"module {package!r} has no attribute {name!r}")
+        if importlib.util.find_spec(f"{package}.{name}") is not None:
+            # A submodule: ``from <package> import inputs`` asks for it as an attribute
+            # first, which must not load the numerics (validation stays light).
+            return importlib.import_module(f"{package}.{name}")
         try:
             return getattr(_model(), name)
         except AttributeError:

@@ -285,7 +285,7 @@ def test_compiled_code_is_cached_on_disk():
         dop853.solve(k, np.array([0.3, 1.0, 0.2, 1.0, 0.0, 0.0, 0.0]), 1.0, rtol=1e-8,
                      atol=1e-10)
         kind = functions.kind_functions(k.kind)
-        for f in (core.advance, kind.step, kind.rhs):
+        for f in (core.advance, kind.step.dispatcher, kind.rhs.dispatcher):
             print(sum(f.stats.cache_hits.values()), sum(f.stats.cache_misses.values()))
         """
     )

@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import sys
 import threading
-import time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -104,11 +103,6 @@ def jit(options: dict[str, Any]) -> Callable[[F], F]:
 NOTICE_AFTER_S = 1.0
 """A compile is announced once it has run this long [s]: a load from the disk cache takes less
 (every kind of the benchmark together in 0.43 s)."""
-FIRST_COMPILE_S = 15
-"""What the first compile in a process takes, about [s]: the integrator with its first kind
-(13 s measured on 2 shared cores, from an empty cache)."""
-LATER_COMPILE_S = 5
-"""What each further kind takes, about [s] (4.8–5.0 s measured alike)."""
 
 
 def _to_terminal(message: str) -> None:
@@ -120,7 +114,6 @@ def _to_terminal(message: str) -> None:
 
 
 _notify: Callable[[str], None] = _to_terminal
-_compiled = threading.Event()  # set once a compile has been announced in this process
 
 
 def set_compile_notifier(notify: Callable[[str], None] | None) -> None:
@@ -131,23 +124,16 @@ def set_compile_notifier(notify: Callable[[str], None] | None) -> None:
 
 
 @contextmanager
-def compile_notice() -> Iterator[None]:
-    """Around a call that may compile: if it lasts more than :data:`NOTICE_AFTER_S`, the
-    notifier hears "compiling tumble's kernels (first run only, about N s)" while it runs."""
-    estimate = LATER_COMPILE_S if _compiled.is_set() else FIRST_COMPILE_S
-    message = f"compiling tumble's kernels (first run only, about {estimate} s) …"
+def compile_notice(estimate_s: float) -> Iterator[None]:
+    """Around a call that may compile what takes about ``estimate_s`` [s] to compile: if it
+    lasts more than :data:`NOTICE_AFTER_S`, the notifier hears "compiling tumble's kernels
+    (first run only, about N s)" while it runs."""
+    message = f"compiling tumble's kernels (first run only, about {estimate_s:.0f} s) …"
 
-    def say() -> None:
-        _compiled.set()
-        _notify(message)
-
-    timer = threading.Timer(NOTICE_AFTER_S, say)
+    timer = threading.Timer(NOTICE_AFTER_S, _notify, (message,))
     timer.daemon = True
-    start = time.perf_counter()
     timer.start()
     try:
         yield
     finally:
         timer.cancel()
-        if time.perf_counter() - start > NOTICE_AFTER_S:
-            _compiled.set()

@@ -40,12 +40,16 @@ class Kind:
         Its parameters.
     events : frozenset of int
         The ``EVENT_*`` functions that may watch it (``codes.EVENT_NONE`` always may).
+    compile_s : float
+        About how long its functions take to compile from an empty cache [s] (CPU time
+        measured on 2 cores; what the compile notice announces).
     """
 
     name: str
     state: tuple[str, ...]
     params: Layout
     events: frozenset[int] = frozenset()
+    compile_s: float = 2.0
 
     def allows(self, event: int) -> bool:
         """Whether ``event`` may watch this kind."""
@@ -59,9 +63,14 @@ _ENERGY = ("H", "R", "G", "a", "b")
 _NUTATION = (_ENERGY, NONLINEAR_MOMENT, frozenset({codes.EVENT_NUTATION_SEPARATRIX}))
 
 KINDS: dict[int, Kind] = {
-    codes.KIND_RIGID_BODY: Kind("Euler's equations under a torque program", _BODY, RIGID_BODY),
+    codes.KIND_RIGID_BODY: Kind(
+        "Euler's equations under a torque program", _BODY, RIGID_BODY, compile_s=4.5
+    ),
     codes.KIND_ORBITING_BODY: Kind(
-        "Euler's equations under every term (along an orbit, calling out)", _BODY, RIGID_BODY
+        "Euler's equations under every term (along an orbit, calling out)",
+        _BODY,
+        RIGID_BODY,
+        compile_s=11.0,
     ),
     codes.KIND_ROTATING_FIELD: Kind(
         "the rotating field's form (1.5)",
@@ -82,11 +91,12 @@ KINDS: dict[int, Kind] = {
         _SLOW,
         FIELD_AVERAGED,
         frozenset({codes.EVENT_FIELD_SEPARATRIX}),
+        compile_s=3.0,
     ),
     codes.KIND_NUTATION_AVERAGED: Kind(
-        "Volosov's averaged equations in the energy form", *_NUTATION
+        "Volosov's averaged equations in the energy form", *_NUTATION, compile_s=7.0
     ),
-    codes.KIND_NUTATION_ENGINE: Kind("the engine's nutation setting", *_NUTATION),
+    codes.KIND_NUTATION_ENGINE: Kind("the engine's nutation setting", *_NUTATION, compile_s=12.0),
     codes.KIND_SPINNER_AVERAGED: Kind(
         "the engine's spinner setting",
         ("k", "rho", "sigma", "theta"),
@@ -98,6 +108,9 @@ KINDS: dict[int, Kind] = {
         _SLOW,
         TRIAXIAL_AVERAGED,
         frozenset({codes.EVENT_TRIAXIAL_SEPARATRIX}),
+        compile_s=25.0,
     ),
 }
-"""Every kind the compiled right-hand side (:func:`tumble.kernels.rhs.rhs`) knows."""
+"""Every kind the compiled right-hand side (:func:`tumble.kernels.rhs.rhs`) knows. The compile
+times are each kind's functions alone from an empty cache, CPU time on 2 cores (the averaging
+engines compile their quadratures and every term's averages)."""

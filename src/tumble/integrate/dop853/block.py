@@ -19,7 +19,7 @@ from numba.typed import List
 
 from tumble._typing import FloatArray
 from tumble.integrate.dop853.core import FRESH, Options, Progress, advance
-from tumble.integrate.dop853.functions import EVENT, RHS, STEP, event_function, kind_functions
+from tumble.integrate.dop853.functions import addresses
 from tumble.kernels.jit import ENTRY, jit
 
 __all__ = ["advance_block", "block_entry"]
@@ -34,14 +34,14 @@ _PIECE = numba.types.Tuple(
 
 @jit(ENTRY)
 def advance_block(
-    step_fn: Any, rhs_fn: Any, event_fn: Any, rows: Any, P: FloatArray, T: FloatArray,
+    fns: Any, rows: Any, P: FloatArray, T: FloatArray,
     events: Any, first: FloatArray, t0: FloatArray, ie: Any, rtol: float, atol: float,
     max_steps: int, dense: bool, t_eval: FloatArray, Y: FloatArray, F: FloatArray,
     Y_eval: FloatArray, status: Any, nfev: Any,
 ) -> Any:  # fmt: skip
     """Advance each run ``i`` of ``rows`` from ``t0[i]`` (state ``Y[i]``) towards ``T[i]``,
-    with the right-hand side's compiled functions ``step_fn``, ``rhs_fn`` and the event
-    function ``event_fn`` of the runs that watch one (:mod:`~.functions`).
+    with the right-hand side's compiled functions and the event function of the runs that
+    watch one at the addresses ``fns`` (:func:`~.functions.addresses`).
 
     Run i has parameters ``P[i]``, event code ``events[i]`` (terminal; 0: none), first step
     ``first[i]`` (0: Hairer's estimate), and fills its samples ``Y_eval[i]`` (flat rows, at
@@ -57,7 +57,7 @@ def advance_block(
         ev = events[i]
         opts = Options(rtol, atol, first[i], dense, dense, ev, max_steps, ev != 0)
         prog = Progress(FRESH, t0[i], 0.0, 1.0, 0, 0, ie[i])
-        progress, chunk = advance(step_fn, rhs_fn, event_fn, P[i], T[i], opts, prog, Y[i], F[i],
+        progress, chunk = advance(fns, P[i], T[i], opts, prog, Y[i], F[i],
                                   t_eval[i], Y_eval[i])  # fmt: skip
         status[i] = progress[0]
         t0[i] = progress[1]
@@ -77,13 +77,13 @@ def block_entry(kind: int, event: int, args: tuple[Any, ...]) -> Callable[..., A
     none, as ``entry(*args)``: the block compiled once per argument types (for every kind),
     with the kind's and the event's compiled functions bound to it; ``args`` are the
     arguments after the functions."""
+    fns = addresses(kind, event)
     key = tuple(numba.typeof(a) for a in args)
     entry = _ENTRIES.get(key)
     if entry is None:
-        entry = cast(Any, advance_block).compile((STEP, RHS, EVENT, *key))
+        entry = cast(Any, advance_block).compile((numba.typeof(fns), *key))
         _ENTRIES[key] = entry
-    fns = kind_functions(kind)
-    return functools.partial(entry, fns.step, fns.rhs, event_function(event))
+    return functools.partial(entry, fns)
 
 
 def empty_block(n_runs: int, dim: int, n_eval: int) -> dict[str, FloatArray]:

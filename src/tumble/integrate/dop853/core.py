@@ -17,6 +17,7 @@ import numpy as np
 from tumble._typing import FloatArray
 from tumble.integrate.dop853.dense import dense_coefficients, interpolate
 from tumble.integrate.dop853.events import event_root
+from tumble.integrate.dop853.functions import EVENT, RHS, STEP, function_at
 from tumble.integrate.dop853.steps import STEP_OK, attempt_step, initial_step, min_step
 from tumble.integrate.dop853.tableau import N_INTERPOLANT, N_STAGES, N_STAGES_EXTENDED
 from tumble.kernels.codes import EVENT_NONE
@@ -191,19 +192,23 @@ def _fit(buffer: FloatArray, rows: int, width: int) -> FloatArray:
 
 @jit(ENTRY)
 def advance(
-    step_fn: Any, rhs_fn: Any, event_fn: Any, p: FloatArray, t_end: float, opts: Options,
-    prog: Progress, y: FloatArray, f: FloatArray, t_eval: FloatArray, y_eval: FloatArray,
+    fns: tuple[int, ...], p: FloatArray, t_end: float, opts: Options, prog: Progress,
+    y: FloatArray, f: FloatArray, t_eval: FloatArray, y_eval: FloatArray,
 ) -> tuple[tuple[Any, ...], tuple[Any, ...]]:  # fmt: skip
     """Integrate from ``prog.t`` towards ``t_end`` (at most ``opts.max_steps`` steps).
 
-    The right-hand side comes as the compiled functions of its kind, ``step_fn`` and
-    ``rhs_fn``, and the event function the run watches (``opts.event``) as ``event_fn``
-    (:mod:`~.functions`): this loop is compiled once for every kind.
+    The right-hand side comes as the compiled functions of its kind, its step and its
+    right-hand side, and the event function the run watches (``opts.event``), by their
+    addresses ``fns`` (:func:`~.functions.addresses`): this loop is compiled once for every
+    kind.
 
     ``y`` holds the state at ``prog.t`` and ``f`` its derivative; both are updated in place.
     Samples at the times ``t_eval`` go to the flat ``y_eval`` as the run passes them. Returns
     the fields of the new :class:`Progress` and of the :class:`Chunk`, as plain tuples.
     """
+    step_fn = function_at(fns[0], fns[1], STEP)
+    rhs_fn = function_at(fns[2], fns[3], RHS)
+    event_fn = function_at(fns[4], fns[5], EVENT)
     n = y.size
     if prog.status == FRESH:
         prog = _start(rhs_fn, event_fn, p, t_end, opts, prog, y, f, t_eval, y_eval)

@@ -22,10 +22,11 @@ from tumble.errors import ParameterError
 from tumble.integrate.dop853 import core
 from tumble.integrate.dop853.core import Chunk, Options, Progress
 from tumble.integrate.dop853.dense import evaluate_dense
-from tumble.integrate.dop853.functions import EVENT, RHS, STEP, event_function, kind_functions
+from tumble.integrate.dop853.functions import addresses
 from tumble.integrate.dop853.tableau import N_INTERPOLANT
 from tumble.kernels import Kernel
 from tumble.kernels.jit import compile_notice
+from tumble.kernels.kinds import KINDS
 
 __all__ = [
     "CHUNK_STEPS",
@@ -96,6 +97,11 @@ def available_threads() -> int:
 
 
 _LOOPS: dict[tuple[Any, ...], Callable[..., tuple[Any, Any]]] = {}
+_ENTRIES: dict[tuple[Any, ...], Callable[..., tuple[Any, Any]]] = {}
+
+LOOP_COMPILE_S = 5.0
+"""About how long the loop (:func:`core.advance`) takes to compile from an empty cache [s] (4.5 s
+CPU measured on 2 cores); each kind adds its own (:attr:`tumble.kernels.kinds.Kind.compile_s`)."""
 
 
 def _specialised(kind: int, event: int, args: tuple[Any, ...]) -> Callable[..., tuple[Any, Any]]:
@@ -104,19 +110,25 @@ def _specialised(kind: int, event: int, args: tuple[Any, ...]) -> Callable[..., 
     bound to it (:mod:`~.functions`), as ``entry(*args)``.
 
     Each piece compiles on first use and is cached on disk like any other signature; the
-    batches run the same ones. The loop is kept per writability of the arrays (the only part
-    of its argument types that varies between runs): typing the arguments again costs
-    ~0.1 ms, which a short run (an averaged one) would feel.
+    batches run the same ones. The entry is kept per kind, event and writability of the
+    arrays (the only part of the loop's argument types that varies between runs): a short
+    run (an averaged one) would feel the lookups again (~0.5 ms).
     """
-    key = tuple(a.flags.writeable if isinstance(a, np.ndarray) else type(a) for a in args)
-    with compile_notice():  # from the disk cache in well under a second, else announced
-        loop = _LOOPS.get(key)
-        if loop is None:
-            signature = (STEP, RHS, EVENT, *(numba.typeof(a) for a in args))
-            loop = cast(Any, core.advance).compile(signature)
-            _LOOPS[key] = loop
-        fns = kind_functions(kind)
-        return functools.partial(loop, fns.step, fns.rhs, event_function(event))
+    key = (kind, event, *(a.flags.writeable if isinstance(a, np.ndarray) else type(a)
+                          for a in args))  # fmt: skip
+    entry = _ENTRIES.get(key)
+    if entry is None:
+        estimate = KINDS[kind].compile_s + (LOOP_COMPILE_S if not _LOOPS else 0.0)
+        with compile_notice(estimate):  # from the disk cache in well under a second
+            fns = addresses(kind, event)
+            loop = _LOOPS.get(key[2:])
+            if loop is None:
+                signature = (numba.typeof(fns), *(numba.typeof(a) for a in args))
+                loop = cast(Any, core.advance).compile(signature)
+                _LOOPS[key[2:]] = loop
+            entry = functools.partial(loop, fns)
+        _ENTRIES[key] = entry
+    return entry
 
 
 @dataclass(frozen=True)

@@ -21,16 +21,30 @@ a few nanoseconds, one per step against the 12 evaluations it makes.
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Any, NamedTuple
+from typing import Any, NamedTuple, cast
 
+from llvmlite import ir
 from numba import types
+from numba.core import cgutils
+from numba.experimental.function_type import _get_jit_address, _get_wrapper_address
+from numba.extending import intrinsic
 
 from tumble.integrate.dop853.steps import step_stages
 from tumble.kernels.codes import EVENT_NONE
 from tumble.kernels.jit import KERNEL, jit
 from tumble.kernels.rhs import event, rhs
 
-__all__ = ["EVENT", "RHS", "STEP", "KindFunctions", "event_function", "kind_functions"]
+__all__ = [
+    "EVENT",
+    "RHS",
+    "STEP",
+    "Compiled",
+    "KindFunctions",
+    "addresses",
+    "event_function",
+    "function_at",
+    "kind_functions",
+]
 
 _VEC = types.Array(types.float64, 1, "C")
 _MAT = types.Array(types.float64, 2, "C")
@@ -62,22 +76,70 @@ EVENT = types.FunctionType(types.float64(types.float64, _VEC, _VEC))
 _POINTER = {**KERNEL, "no_cfunc_wrapper": False}
 
 
+class Compiled(NamedTuple):
+    """A function compiled for a function type, and the two addresses by which compiled code
+    calls it (:func:`function_at`): its C wrapper's and its own (numba's calling convention,
+    the one a call takes when it has it).
+
+    Passing a dispatcher itself as a first-class function makes numba look both addresses up
+    by name at every call from Python (0.1 ms a run, which a short averaged run feels); these
+    are looked up once.
+    """
+
+    dispatcher: Any
+    c_address: int
+    jit_address: int
+
+    @classmethod
+    def of(cls, dispatcher: Any, ftype: Any) -> Compiled:
+        """``dispatcher``, compiled for the function type ``ftype``, with its addresses."""
+        return cls(
+            dispatcher,
+            _get_wrapper_address(dispatcher, ftype.signature),
+            _get_jit_address(dispatcher, ftype.signature),
+        )
+
+
+@intrinsic
+def _function_at(typingctx: Any, c_address: Any, jit_address: Any, ftype: Any) -> Any:
+    """``function_at(c_address, jit_address, FTYPE)``: in compiled code, the first-class
+    function of type ``FTYPE`` (:data:`STEP`, :data:`RHS` or :data:`EVENT`) at those addresses
+    (:class:`Compiled`), called as any other; the addresses arrive as plain integers, which
+    cost nothing to pass from Python."""
+    fnty = ftype.instance_type
+
+    def codegen(context: Any, builder: Any, signature: Any, args: Any) -> Any:
+        pointer = context.get_value_type(types.voidptr)
+        made = cgutils.create_struct_proxy(fnty)(context, builder)
+        made.c_addr = builder.inttoptr(args[0], pointer)
+        made.jit_addr = builder.inttoptr(args[1], pointer)
+        made.py_addr = ir.Constant(pointer, None)
+        return made._getvalue()
+
+    return fnty(types.intp, types.intp, ftype), codegen
+
+
+function_at = cast(Callable[[int, int, Any], Any], _function_at)
+"""``function_at(c_address, jit_address, FTYPE)`` from compiled code (the intrinsic above, typed
+for the callers)."""
+
+
 class KindFunctions(NamedTuple):
     """The compiled functions of one right-hand-side kind."""
 
-    step: Any
-    rhs: Any
+    step: Compiled
+    rhs: Compiled
 
 
 _KINDS: dict[int, KindFunctions] = {}
-_EVENTS: dict[int, Any] = {}
+_EVENTS: dict[int, Compiled] = {}
 
 
-def _compiled(signature: Any, func: Callable[..., Any]) -> Any:
-    """``func`` compiled now for ``signature`` (a disk-cached, pointer-ready dispatcher)."""
-    dispatcher = jit(_POINTER)(func)
-    dispatcher.compile(signature.signature)
-    return dispatcher
+def _compiled(ftype: Any, func: Callable[..., Any]) -> Compiled:
+    """``func`` compiled now for the function type ``ftype`` (disk-cached)."""
+    dispatcher = cast(Any, jit(_POINTER)(func))
+    dispatcher.compile(ftype.signature)
+    return Compiled.of(dispatcher, ftype)
 
 
 def kind_functions(kind: int) -> KindFunctions:
@@ -102,7 +164,7 @@ def kind_functions(kind: int) -> KindFunctions:
     return got
 
 
-def event_function(code: int) -> Any:
+def event_function(code: int) -> Compiled:
     """The event function ``code`` (``EVENT_*``; ``EVENT_NONE``: none, a constant 1),
     compiled on first use."""
     got = _EVENTS.get(code)
@@ -120,3 +182,12 @@ def event_function(code: int) -> Any:
         got = _compiled(EVENT, watched)
         _EVENTS[code] = got
     return got
+
+
+def addresses(kind: int, event: int) -> tuple[int, int, int, int, int, int]:
+    """What the loop (:func:`~.core.advance`) takes of the kind ``kind`` and the event
+    ``event``: the addresses of the step, the right-hand side and the event function, each
+    (C wrapper, numba's own), compiling them on first use."""
+    fns, watched = kind_functions(kind), event_function(event)
+    return (fns.step.c_address, fns.step.jit_address, fns.rhs.c_address,
+            fns.rhs.jit_address, watched.c_address, watched.jit_address)  # fmt: skip

@@ -50,8 +50,7 @@ def startup_times(log: Callable[[str], None]) -> dict[str, float]:
     processes: its help, the model list, a template, a scenario file that is missing, a
     scenario of each shipped model with a parameter out of range (validated against the
     model's declaration, before its numerics load) and a sweep file with a bad axis."""
-    exe = Path(sys.executable).with_name("tumble")
-    command = [str(exe)] if exe.exists() else [sys.executable, "-m", "tumble.cli"]
+    command = _tumble_command()
     out: dict[str, float] = {}
     with tempfile.TemporaryDirectory(prefix="tumble-bench-startup-") as tmp:
         cases = {
@@ -89,8 +88,41 @@ def startup_times(log: Callable[[str], None]) -> dict[str, float]:
     return out
 
 
+def _tumble_command() -> list[str]:
+    """The command that runs this installation's ``tumble``."""
+    exe = Path(sys.executable).with_name("tumble")
+    return [str(exe)] if exe.exists() else [sys.executable, "-m", "tumble.cli"]
+
+
+def _first_runs(log: Callable[[str], None]) -> dict[str, dict[str, float]]:
+    """``tumble run`` of each model's template [s], from an empty disk cache and then from
+    the filled one, in fresh processes: what the first run of a newcomer's example compiles is
+    the difference (``compile_s``)."""
+    out: dict[str, dict[str, float]] = {}
+    for name in CATALOGUE:
+        with tempfile.TemporaryDirectory(prefix="tumble-bench-first-") as tmp:
+            scenario = Path(tmp) / f"{name}.toml"
+            scenario.write_text(template(name))
+            env = {**os.environ, "NUMBA_CACHE_DIR": str(Path(tmp) / "cache")}
+            times = {}
+            for phase in ("cold", "warm"):
+                log(f"compile: first run of the {name} template ({phase})")
+                start = time.perf_counter()
+                done = subprocess.run(
+                    [*_tumble_command(), "run", str(scenario), "--out", str(Path(tmp) / phase)],
+                    env=env, capture_output=True, text=True, check=False, cwd=tmp,
+                )  # fmt: skip
+                times[phase] = time.perf_counter() - start
+                if done.returncode != 0:
+                    raise IntegrationError(f"bench compile: {name}: {done.stderr.strip()[-300:]}")
+            out[name] = {"cold_s": times["cold"], "warm_s": times["warm"],
+                         "compile_s": times["cold"] - times["warm"]}  # fmt: skip
+    return out
+
+
 def compile_times(log: Callable[[str], None]) -> dict[str, Any]:
-    """First call of every case's kernel from an empty cache, then from the filled one."""
+    """First call of every case's kernel from an empty cache, then from the filled one; and
+    the compile of the first run of each model's template (:func:`_first_runs`)."""
     with tempfile.TemporaryDirectory(prefix="tumble-bench-cache-") as cache:
         env = {**os.environ, "NUMBA_CACHE_DIR": cache}
         runs = []
@@ -105,6 +137,7 @@ def compile_times(log: Callable[[str], None]) -> dict[str, Any]:
             runs.append(json.loads(lines[0][4:]))
     cold, warm = runs
     per_case = {k: v for k, v in cold.items() if k != "import_s"}
+    first_runs = _first_runs(log)
     return {
         "first_call_s": per_case,
         # A kind compiles once: the first case of each kind carries its compile.
@@ -112,6 +145,8 @@ def compile_times(log: Callable[[str], None]) -> dict[str, Any]:
         "largest_s": float(max(per_case.values())),
         "cached_total_s": float(sum(v for k, v in warm.items() if k != "import_s")),
         "import_s": cold["import_s"],
+        "first_run": first_runs,
+        "first_run_largest_s": max(r["compile_s"] for r in first_runs.values()),
     }
 
 

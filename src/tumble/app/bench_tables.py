@@ -179,11 +179,17 @@ def _compile_table(r: dict[str, Any]) -> Table | None:
     t.add_column("first call [s]", justify="right")
     for name, sec in c["first_call_s"].items():
         t.add_row(name, f"{sec:.2f}")
+    every = tg.get("compile_all_s", tg["compile_s"])  # a result from before the two targets
     t.add_row(
         "[bold]total[/]",
-        f"{c['total_s']:.2f} (≤ {tg['compile_s']:g}: "
-        f"{'yes' if c['total_s'] <= tg['compile_s'] else 'no'})",
+        f"{c['total_s']:.2f} (≤ {every:g}: {'yes' if c['total_s'] <= every else 'no'})",
     )
+    for name, run in (c.get("first_run") or {}).items():
+        t.add_row(
+            f"first run of the {name} template (cold − warm)",
+            f"{run['compile_s']:.2f} (≤ {tg['compile_s']:g}: "
+            f"{'yes' if run['compile_s'] <= tg['compile_s'] else 'no'})",
+        )
     cached = c["cached_total_s"]
     t.add_row("from the cache, all", f"{cached:.2f} (≤ {tg['compile_cached_s']:g}: "
               f"{'yes' if cached <= tg['compile_cached_s'] else 'no'})")  # fmt: skip

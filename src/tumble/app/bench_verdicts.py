@@ -21,7 +21,8 @@ TARGETS: dict[str, float] = {
     "averaged_error": 0.01,  # at most, on the slow variables
     "batch_efficiency": 0.8,  # throughput on 2 cores over twice that on 1, at least
     "averaged_batch_efficiency": 0.8,  # the same for an averaged ensemble, on all cores
-    "compile_s": 10.0,  # first calls of every kind from an empty cache, in all, at most
+    "compile_s": 10.0,  # what the first run of a model's template compiles, the largest, at most
+    "compile_all_s": 15.0,  # first calls of every full kind from an empty cache, in all, at most
     "compile_cached_s": 0.5,  # the same calls loading from the disk cache, at most
     "startup_s": 0.5,  # tumble --help, tumble models, an input error: the answer, at most
     "second_order_eval_ratio": 3.0,  # one evaluation of order 2 over one of order 1, at most
@@ -142,8 +143,12 @@ def _machine_rows(rows: _Rows, result: dict[str, Any]) -> None:
     for name, seconds in (result.get("startup_s") or {}).items():
         rows.add(f"start-up: {name} [s]", seconds, TARGETS["startup_s"], False)
     if "compile" in result:
+        c = result["compile"]
         rows.add("compile: first calls from an empty cache, all kinds [s]",
-                 result["compile"]["total_s"], TARGETS["compile_s"], False)  # fmt: skip
+                 c["total_s"], TARGETS["compile_all_s"], False)  # fmt: skip
+        for name, run in (c.get("first_run") or {}).items():
+            rows.add(f"compile: the first run of the {name} template [s]", run["compile_s"],
+                     TARGETS["compile_s"], False)  # fmt: skip
         rows.add("compile: the same first calls from the disk cache [s]",
                  result["compile"]["cached_total_s"], TARGETS["compile_cached_s"],
                  False)  # fmt: skip

@@ -1,5 +1,5 @@
 """What the integrator calls of a right-hand side, compiled once per kind and passed to the
-loop as function pointers.
+loop by address.
 
 The loop (:func:`~.core.advance`), the step-size control, the interpolant and the location of
 events do not depend on the right-hand side: they are compiled once, with three first-class
@@ -14,8 +14,11 @@ function arguments of fixed types,
 
 Each kind compiles only these small functions, with its kind a compile-time constant, and
 each event code its own: a cold start compiles the loop once and the right-hand sides a run
-uses (rather than the whole integrator again for every kind). A call through a pointer costs
-a few nanoseconds, one per step against the 12 evaluations it makes.
+uses (rather than the whole integrator again for every kind). The loop receives their
+addresses as plain integers (:func:`addresses`) and turns them back into functions
+(:func:`function_at`); the functions are kept for the life of the process, so that the
+addresses stay valid. A call through a pointer costs a few nanoseconds, one per step against
+the 12 evaluations it makes.
 """
 
 from __future__ import annotations

@@ -597,23 +597,8 @@ def triaxial_average_stage(
     moved into it (:func:`~tumble.unperturbed.euler_poinsot.reached_ratio`), one further
     beyond gives NaN rates, so that the solver rejects the step.
 
-    Parameters
-    ----------
-    torque : Torque or callable
-        As in :func:`triaxial_average`.
-    inertia : array_like, shape (3,)
-        Principal moments, any order [inertia unit].
-    y : ndarray, shape (4,)
-        ``[L_ξ1, L_ξ2, L_ξ3, r]`` [inertia unit · rad/τ, 1/inertia unit].
-    t : float
-        Time τ [1], as in :func:`triaxial_average`.
-    forcing_period : float or None
-        Period of the explicit time dependence [τ] (None: none).
-
-    Returns
-    -------
-    ndarray, shape (4,)
-        ``[dL_ξ/dτ (3), dr/dτ]`` [moment unit, 1/(inertia unit · τ)], or NaN.
+    The parameters and the rates returned are those of :func:`triaxial_average_vector`
+    (``forcing_period`` None: no explicit time dependence), or NaN.
     """
     I1, I2, I3 = sorted(float(v) for v in np.asarray(inertia, dtype=float).reshape(3))
     r = reached_ratio(I1, I2, I3, float(y[3]))

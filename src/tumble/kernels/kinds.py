@@ -43,6 +43,10 @@ class Kind:
     compile_s : float
         About how long its functions take to compile from an empty cache [s] (CPU time
         measured on 2 cores; what the compile notice announces).
+    inlined : bool
+        Whether the integrator's step compiles the right-hand side into its stages (a short
+        one, whose parameters then stay in registers across them) or calls it (a long one,
+        which would otherwise be compiled into the step sixteen times).
     """
 
     name: str
@@ -50,6 +54,7 @@ class Kind:
     params: Layout
     events: frozenset[int] = frozenset()
     compile_s: float = 2.0
+    inlined: bool = True
 
     def allows(self, event: int) -> bool:
         """Whether ``event`` may watch this kind."""
@@ -71,6 +76,7 @@ KINDS: dict[int, Kind] = {
         _BODY,
         RIGID_BODY,
         compile_s=11.0,
+        inlined=False,
     ),
     codes.KIND_ROTATING_FIELD: Kind(
         "the rotating field's form (1.5)",
@@ -94,14 +100,17 @@ KINDS: dict[int, Kind] = {
         compile_s=3.0,
     ),
     codes.KIND_NUTATION_AVERAGED: Kind(
-        "Volosov's averaged equations in the energy form", *_NUTATION, compile_s=7.0
+        "Volosov's averaged equations in the energy form", *_NUTATION, compile_s=7.0, inlined=False
     ),
-    codes.KIND_NUTATION_ENGINE: Kind("the engine's nutation setting", *_NUTATION, compile_s=12.0),
+    codes.KIND_NUTATION_ENGINE: Kind(
+        "the engine's nutation setting", *_NUTATION, compile_s=12.0, inlined=False
+    ),
     codes.KIND_SPINNER_AVERAGED: Kind(
         "the engine's spinner setting",
         ("k", "rho", "sigma", "theta"),
         SPINNER_AVERAGED,
         frozenset({codes.EVENT_EQUATOR}),
+        inlined=False,
     ),
     codes.KIND_TRIAXIAL_AVERAGED: Kind(
         "the engine's triaxial setting",
@@ -109,6 +118,7 @@ KINDS: dict[int, Kind] = {
         TRIAXIAL_AVERAGED,
         frozenset({codes.EVENT_TRIAXIAL_SEPARATRIX}),
         compile_s=25.0,
+        inlined=False,
     ),
 }
 """Every kind the compiled right-hand side (:func:`tumble.kernels.rhs.rhs`) knows. The compile

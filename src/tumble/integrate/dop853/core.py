@@ -233,8 +233,8 @@ def advance(
     looking = opts.event != EVENT_NONE
     t_stop = t_end
     while status == RUNNING and t < t_stop and (opts.max_steps <= 0 or n_rec < opts.max_steps):
-        step, h, h_abs, used = attempt_step(step_fn, p, t, t_stop, h_abs, y, K, y_new, tmp,
-                                            opts.rtol, opts.atol)  # fmt: skip
+        step, h, h_abs, used = attempt_step(step_fn, rhs_fn, p, t, t_stop, h_abs, y, K, y_new,
+                                            tmp, opts.rtol, opts.atol)  # fmt: skip
         nfev += used
         if step != STEP_OK:
             status = STEP_TOO_SMALL
@@ -244,7 +244,7 @@ def advance(
             break
         t_new = t + h
         if opts.dense or looking or (ie < t_eval.size and t_eval[ie] <= t_new):
-            dense_coefficients(step_fn, p, t, h, y, y_new, K, F, tmp)
+            dense_coefficients(step_fn, rhs_fn, p, t, h, y, y_new, K, F, tmp)
             nfev += N_STAGES_EXTENDED - N_STAGES - 1
         if looking:
             g_new, count = _step_events(event_fn, p, t, h, y, y_new, F, g, found, states, tmp)

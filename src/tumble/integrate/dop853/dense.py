@@ -16,14 +16,14 @@ __all__ = ["dense_coefficients", "evaluate_dense", "interpolate"]
 
 @jit(KERNEL)
 def dense_coefficients(
-    step_fn: Any, p: FloatArray, t: float, h: float, y: FloatArray, y_new: FloatArray,
+    step_fn: Any, rhs_fn: Any, p: FloatArray, t: float, h: float, y: FloatArray, y_new: FloatArray,
     K: FloatArray, F: FloatArray, tmp: FloatArray,
 ) -> None:  # fmt: skip
     """The interpolant's coefficient rows F (7, n) of the step (t, y) → (t + h, y_new); K holds
     the 13 stages of the step and receives the three extra ones (from ``step_fn``, the
-    kind's compiled :func:`~.steps.step_stages`)."""
+    kind's compiled :func:`~.steps.step_stages`, given its right-hand side ``rhs_fn``)."""
     n = y.size
-    step_fn(p, t, h, y, K, y_new, tmp, 0.0, 0.0, True)
+    step_fn(rhs_fn, p, t, h, y, K, y_new, tmp, 0.0, 0.0, True)
     for j in range(n):
         dy = y_new[j] - y[j]
         F[0, j] = dy

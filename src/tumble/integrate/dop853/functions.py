@@ -5,20 +5,22 @@ The loop (:func:`~.core.advance`), the step-size control, the interpolant and th
 events do not depend on the right-hand side: they are compiled once, with three first-class
 function arguments of fixed types,
 
-- :data:`STEP`, ``step(p, t, h, y, K, y_new, tmp, rtol, atol, extended)``: the stages of a
-  step, its new state, the derivative there and its error, or the extra stages of its
-  interpolant
-  (:func:`~.steps.step_stages`, with the kind's right-hand side inlined into its loops),
-- :data:`RHS`, ``rhs(t, y, p, out)``: one evaluation (the start, the starting step),
+- :data:`STEP`, ``step(rhs, p, t, h, y, K, y_new, tmp, rtol, atol, extended)``: the stages of
+  a step, its new state, the derivative there and its error, or the extra stages of its
+  interpolant (:func:`~.steps.step_stages`),
+- :data:`RHS`, ``rhs(t, y, p, out)``: one evaluation,
 - :data:`EVENT`, ``event(t, y, p)``: the event function the run watches.
 
-Each kind compiles only these small functions, with its kind a compile-time constant, and
-each event code its own: a cold start compiles the loop once and the right-hand sides a run
-uses (rather than the whole integrator again for every kind). The loop receives their
-addresses as plain integers (:func:`addresses`) and turns them back into functions
-(:func:`function_at`); the functions are kept for the life of the process, so that the
-addresses stay valid. A call through a pointer costs a few nanoseconds, one per step against
-the 12 evaluations it makes.
+A kind whose right-hand side is short (``Kind.inlined``) compiles its own step, with the
+right-hand side inlined into the unrolled stages, where the compiler keeps its parameters in
+registers across them. A long one (an averaging engine, the terms along an orbit) would be
+copied sixteen times into that step and optimised again at every level of the calls that
+inline it, which was most of its compile time: those kinds share one step, compiled once, that
+calls the right-hand side it is given, and compile only their right-hand side (a call through
+a pointer costs nanoseconds against the microseconds of such an evaluation). Each event code
+compiles its own function. The loop receives the addresses as plain integers
+(:func:`addresses`) and turns them back into functions (:func:`function_at`); the functions
+are kept for the life of the process, so that the addresses stay valid.
 """
 
 from __future__ import annotations
@@ -35,6 +37,7 @@ from numba.extending import intrinsic
 from tumble.integrate.dop853.steps import step_stages
 from tumble.kernels.codes import EVENT_NONE
 from tumble.kernels.jit import KERNEL, jit
+from tumble.kernels.kinds import KINDS
 from tumble.kernels.rhs import event, rhs
 
 __all__ = [
@@ -52,8 +55,12 @@ __all__ = [
 _VEC = types.Array(types.float64, 1, "C")
 _MAT = types.Array(types.float64, 2, "C")
 
+RHS = types.FunctionType(types.void(types.float64, _VEC, _VEC, _VEC))
+"""``rhs(t, y, p, out)``: dy/dt into ``out``."""
+
 STEP = types.FunctionType(
     types.float64(
+        RHS,
         _VEC,
         types.float64,
         types.float64,
@@ -66,11 +73,8 @@ STEP = types.FunctionType(
         types.boolean,
     )
 )
-"""``step(p, t, h, y, K, y_new, tmp, rtol, atol, extended)``: :func:`~.steps.step_stages` of
-a kind."""
-
-RHS = types.FunctionType(types.void(types.float64, _VEC, _VEC, _VEC))
-"""``rhs(t, y, p, out)``: dy/dt into ``out``."""
+"""``step(rhs, p, t, h, y, K, y_new, tmp, rtol, atol, extended)``: :func:`~.steps.step_stages`
+of a kind (which calls ``rhs``, the kind's :data:`RHS`, unless it compiles it in)."""
 
 EVENT = types.FunctionType(types.float64(types.float64, _VEC, _VEC))
 """``event(t, y, p)``: the event function whose sign changes the run locates."""
@@ -136,6 +140,19 @@ class KindFunctions(NamedTuple):
 
 _KINDS: dict[int, KindFunctions] = {}
 _EVENTS: dict[int, Compiled] = {}
+_CALLED: list[Compiled] = []
+
+
+def called_step(rhs_fn, p, t, h, y, K, y_new, tmp, rtol, atol, extended):  # type: ignore[no-untyped-def]
+    """The step of every kind whose right-hand side is not inlined: it calls ``rhs_fn``."""
+    return step_stages(rhs_fn, p, t, h, y, K, y_new, tmp, rtol, atol, extended)
+
+
+def _called_step() -> Compiled:
+    """:func:`called_step`, compiled on first use."""
+    if not _CALLED:
+        _CALLED.append(_compiled(STEP, called_step))
+    return _CALLED[0]
 
 
 def _compiled(ftype: Any, func: Callable[..., Any]) -> Compiled:
@@ -147,7 +164,8 @@ def _compiled(ftype: Any, func: Callable[..., Any]) -> Compiled:
 
 def kind_functions(kind: int) -> KindFunctions:
     """The step's stages and the right-hand side of ``kind`` (``KIND_*``), compiled on first
-    use.
+    use: the kind's own step if its right-hand side is inlined (``Kind.inlined``), else the
+    shared :func:`called_step`.
 
     ``kind`` is a constant of the closures, which numba types as a literal: the right-hand
     side's dispatch (:func:`tumble.kernels.rhs.rhs`) folds to that kind's kernel, and numba's
@@ -156,13 +174,14 @@ def kind_functions(kind: int) -> KindFunctions:
     got = _KINDS.get(kind)
     if got is None:
 
-        def kind_step(p, t, h, y, K, y_new, tmp, rtol, atol, extended):  # type: ignore[no-untyped-def]
+        def kind_step(rhs_fn, p, t, h, y, K, y_new, tmp, rtol, atol, extended):  # type: ignore[no-untyped-def]
             return step_stages(kind, p, t, h, y, K, y_new, tmp, rtol, atol, extended)
 
         def kind_rhs(t, y, p, out):  # type: ignore[no-untyped-def]
             rhs(kind, t, y, p, out)
 
-        got = KindFunctions(_compiled(STEP, kind_step), _compiled(RHS, kind_rhs))
+        step = _compiled(STEP, kind_step) if KINDS[kind].inlined else _called_step()
+        got = KindFunctions(step, _compiled(RHS, kind_rhs))
         _KINDS[kind] = got
     return got
 

@@ -9,16 +9,26 @@ is compiled too, and that is most of the first call's cost.
 from __future__ import annotations
 
 import math
-from typing import Any
+from collections.abc import Callable
+from typing import Any, cast
 
 import numpy as np
+from numba import types
+from numba.extending import overload
 
 from tumble._typing import FloatArray
 from tumble.integrate.dop853.tableau import E3, E5, N_STAGES, N_STAGES_EXTENDED, A, B, C
-from tumble.kernels.jit import INLINE, INNER, jit
+from tumble.kernels.jit import INLINE, INNER, OVERLOAD, jit
 from tumble.kernels.rhs import rhs
 
-__all__ = ["attempt_step", "error_norm", "initial_step", "stages", "step_stages"]
+__all__ = [
+    "attempt_step",
+    "error_norm",
+    "evaluate",
+    "initial_step",
+    "stages",
+    "step_stages",
+]
 
 _SAFETY, _MIN_FACTOR, _MAX_FACTOR = 0.9, 0.2, 10.0
 _ERROR_EXPONENT = -1.0 / 8.0  # the error estimator is of order 7
@@ -67,19 +77,44 @@ def initial_step(
     return min(100.0 * h0, h1, t1 - t0)
 
 
+def evaluate(
+    source: Any, t: float, y: FloatArray, p: FloatArray, out: FloatArray
+) -> None:  # pragma: no cover - compiled only (the overload below)
+    """dy/dt into ``out`` from ``source``: a kind (``KIND_*``, a compile-time constant), whose
+    right-hand side is then compiled in, or a compiled right-hand side (:data:`~.functions.RHS`),
+    which is then called."""
+    raise NotImplementedError("compiled code only")
+
+
+@overload(evaluate, prefer_literal=True, inline="always", jit_options=cast(Any, OVERLOAD))
+def _evaluate(source: Any, t: Any, y: Any, p: Any, out: Any) -> Callable[..., None]:
+    if isinstance(source, types.FunctionType):
+
+        def called(source: Any, t: Any, y: Any, p: Any, out: Any) -> None:
+            source(t, y, p, out)
+
+        return called
+
+    def inlined(source: Any, t: Any, y: Any, p: Any, out: Any) -> None:
+        rhs(source, t, y, p, out)
+
+    return inlined
+
+
 @jit(INLINE)
 def stages(
-    kind: int, p: FloatArray, t: float, h: float, y: FloatArray, K: FloatArray,
+    source: Any, p: FloatArray, t: float, h: float, y: FloatArray, K: FloatArray,
     tmp: FloatArray, first: int, last: int,
 ) -> None:  # fmt: skip
-    """Stages first … last − 1 of the step from (t, y) of size h into the rows of K."""
+    """Stages first … last − 1 of the step from (t, y) of size h into the rows of K, of the
+    right-hand side ``source`` (:func:`evaluate`)."""
     for s in range(first, last):
         for j in range(y.size):
             acc = 0.0
             for k in range(s):
                 acc += A[s, k] * K[k, j]
             tmp[j] = y[j] + h * acc
-        rhs(kind, t + C[s] * h, tmp, p, K[s])
+        evaluate(source, t + C[s] * h, tmp, p, K[s])
 
 
 @jit(INLINE)
@@ -107,27 +142,29 @@ def error_norm(
 
 @jit(INLINE)
 def step_stages(
-    kind: int, p: FloatArray, t: float, h: float, y: FloatArray, K: FloatArray,
+    source: Any, p: FloatArray, t: float, h: float, y: FloatArray, K: FloatArray,
     y_new: FloatArray, tmp: FloatArray, rtol: float, atol: float, extended: bool,
 ) -> float:  # fmt: skip
     """What a step of size h from (t, y), K[0] = f(t, y), asks of the right-hand side
-    ``kind``: its stages 1 … 12 into K, the new state into ``y_new``, its derivative into
-    K[12], and the step's :func:`error_norm` (returned); with ``extended``, the three extra
-    stages of the interpolant instead (K[13:16]; returns 0).
+    ``source`` (a kind or a compiled function, :func:`evaluate`): its stages 1 … 12 into K,
+    the new state into ``y_new``, its derivative into K[12], and the step's
+    :func:`error_norm` (returned); with ``extended``, the three extra stages of the
+    interpolant instead (K[13:16]; returns 0).
 
-    Each kind compiles this once (:mod:`~.functions`); the stage counts are constants in
-    both branches, so that the compiler unrolls the stages and drops the tableau's zeros.
+    Each kind whose right-hand side is inlined compiles this once (:mod:`~.functions`); the
+    stage counts are constants in both branches, so that the compiler unrolls the stages and
+    drops the tableau's zeros. The kinds whose right-hand side is called share one.
     """
     if extended:
-        stages(kind, p, t, h, y, K, tmp, N_STAGES + 1, N_STAGES_EXTENDED)
+        stages(source, p, t, h, y, K, tmp, N_STAGES + 1, N_STAGES_EXTENDED)
         return 0.0
-    stages(kind, p, t, h, y, K, tmp, 1, N_STAGES)
+    stages(source, p, t, h, y, K, tmp, 1, N_STAGES)
     for j in range(y.size):
         acc = 0.0
         for k in range(N_STAGES):
             acc += B[k] * K[k, j]
         y_new[j] = y[j] + h * acc
-    rhs(kind, t + h, y_new, p, K[N_STAGES])
+    evaluate(source, t + h, y_new, p, K[N_STAGES])
     return error_norm(abs(h), y, y_new, K, rtol, atol)
 
 
@@ -147,14 +184,15 @@ def next_size(h_abs: float, err: float, rejected: bool) -> float:
 
 @jit(INLINE)
 def attempt_step(
-    step_fn: Any, p: FloatArray, t: float, t1: float, h_abs: float, y: FloatArray,
+    step_fn: Any, rhs_fn: Any, p: FloatArray, t: float, t1: float, h_abs: float, y: FloatArray,
     K: FloatArray, y_new: FloatArray, tmp: FloatArray, rtol: float, atol: float,
 ) -> tuple[int, float, float, int]:  # fmt: skip
     """Try steps from (t, y), K[0] = f(t, y), shrinking until one is accepted; ``step_fn``
     is the kind's compiled :func:`step_stages` (:mod:`~.functions`).
 
     Returns (status, h, the size to try next, evaluations); on success the new state is in
-    ``y_new`` and the 13 stages in K.
+    ``y_new`` and the 13 stages in K. ``rhs_fn`` is the right-hand side, which ``step_fn``
+    calls where it does not compile it in.
     """
     nfev = 0
     rejected = False
@@ -166,7 +204,7 @@ def attempt_step(
         t_new = min(t + h_abs, t1)
         h = t_new - t
         h_abs = h
-        err = step_fn(p, t, h, y, K, y_new, tmp, rtol, atol, False)
+        err = step_fn(rhs_fn, p, t, h, y, K, y_new, tmp, rtol, atol, False)
         nfev += N_STAGES
         next_h = next_size(h_abs, err, rejected)
         if err < 1.0:

@@ -1,6 +1,6 @@
 """Pieces shared by the claim modules: tolerances, the measured record, the measurement of the
-usual criteria (:func:`by_convergence`, :func:`by_order`, :func:`within`; :func:`judged` for a
-claim's own), the usual figures (``*_panel``) and small numerics.
+usual criteria (:func:`by_convergence`, :func:`by_forms`, :func:`by_order`, :func:`within`;
+:func:`judged` for a claim's own), the usual figures (``*_panel``) and small numerics.
 
 The verdicts of the claims follow three rules (see each module): "to integration accuracy"
 is decided by convergence (:func:`converged`: the difference falls as the tolerance is
@@ -33,6 +33,7 @@ __all__ = [
     "Tolerances",
     "budget_panel",
     "by_convergence",
+    "by_forms",
     "by_order",
     "cache_per_scale",
     "converged",
@@ -251,6 +252,42 @@ def by_convergence(
     """
     m = measured_by(conv, units, what, qualification, also=also, **details)
     return Measurement(conv.holds and condition, bool(qualification), m, tuple(panels))
+
+
+def by_forms(
+    conv: Convergence,
+    tau: Any,
+    differences: Mapping[str, Any],
+    ylabel: str,
+    title: str,
+    units: str,
+    what: str,
+    qualification: str = "",
+    **details: Any,
+) -> Measurement:
+    """The :class:`~tumble.analysis.claims.base.Measurement` of a claim that compares a run with
+    another form or a closed form, decided by ``conv``: its one panel is :func:`forms_panel`.
+
+    Parameters
+    ----------
+    conv : Convergence
+        The comparison that decides the claim.
+    tau : array_like
+        Sample times of the compared runs [the paper's time unit].
+    differences : mapping of str to array_like
+        Each variable's difference along ``tau`` [its own unit].
+    ylabel, title : str
+        The panel's y label and title (as for :func:`forms_panel`).
+    units, what, qualification, **details
+        As for :func:`by_convergence`.
+
+    Returns
+    -------
+    Measurement
+        As :func:`by_convergence` gives it, with that one panel.
+    """
+    panels = (forms_panel(conv, tau, differences, ylabel, title),)
+    return by_convergence(conv, panels, units, what, qualification, **details)
 
 
 def converged(

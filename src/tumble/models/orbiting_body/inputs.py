@@ -363,6 +363,33 @@ def _field(f: Mapping[str, Any] | None, epoch: datetime) -> Dipole | Igrf | None
                   rotation=reference.rotation if f["rotating"] else 0.0)  # fmt: skip
 
 
+def _direction(field: str, value: Any) -> FloatArray:
+    """A body vector of the scenario that gives a direction, checked nonzero (the callers
+    normalise it where they use it).
+
+    Parameters
+    ----------
+    field : str
+        The scenario key, for the error (``conductor.axis``).
+    value : array_like, shape (3,)
+        The vector [any unit; only its direction counts].
+
+    Returns
+    -------
+    ndarray, shape (3,)
+        ``value`` as floats [as given].
+
+    Raises
+    ------
+    ParameterError
+        If ``value`` is the zero vector.
+    """
+    axis = np.array(value, dtype=float)
+    if not np.any(axis):
+        raise ParameterError(f"{field} = [0, 0, 0] is not a direction")
+    return axis
+
+
 def _magnetic_tensor(body: Mapping[str, Any], c: Mapping[str, Any] | None) -> FloatArray | None:
     given = body["magnetic_tensor"]
     if given is not None and c is not None:
@@ -400,9 +427,7 @@ def _magnetic_tensor(body: Mapping[str, Any], c: Mapping[str, Any] | None) -> Fl
         own = thin_cylindrical_shell(sigma, c["radius"], c["length"], c["thickness"])
     else:
         own = flat_plate(sigma, c["length"], c["width"], c["thickness"])
-    axis = np.array(c["axis"], dtype=float)
-    if not np.any(axis):
-        raise ParameterError("conductor.axis = [0, 0, 0] is not a direction")
+    axis = _direction("conductor.axis", c["axis"])
     a = axis / np.linalg.norm(axis)
     # Every shape's tensor is diag(M⊥, M⊥, M∥) about its axis: M⊥ (1 − a aᵀ) + M∥ a aᵀ.
     return own[0, 0] * (np.eye(3) - np.outer(a, a)) + own[2, 2] * np.outer(a, a)
@@ -418,9 +443,7 @@ def _omega(ini: Mapping[str, Any]) -> FloatArray:
         raise ScenarioError("initial: spin_axis goes with spin_period, and only with it")
     if forms == ["spin_period"]:
         check_range("initial.spin_period [s]", ini["spin_period"], low=0.0)
-        axis = np.array(ini["spin_axis"], dtype=float)
-        if not np.any(axis):
-            raise ParameterError("initial.spin_axis = [0, 0, 0] is not a direction")
+        axis = _direction("initial.spin_axis", ini["spin_axis"])
         return 2.0 * math.pi / ini["spin_period"] * axis / np.linalg.norm(axis)
     factor = {"omega": 1.0, "omega_deg_s": math.pi / 180.0, "omega_rpm": math.pi / 30.0}
     w = np.array(ini[forms[0]], dtype=float) * factor[forms[0]]

@@ -28,10 +28,8 @@ from typing import Any, cast
 import numpy as np
 
 from tumble._typing import FloatArray
-from tumble.catalogue import CATALOGUE
 from tumble.models import torqued_body as tb
 from tumble.models.base import (
-    Averaged,
     AveragedForm,
     AveragingOptions,
     Column,
@@ -137,27 +135,15 @@ FULL: FullForm[Params, State] = replace(
     cast("FullForm[Any, State]", tb.FULL), to_columns=_full_columns
 )
 
-_ENTRY = CATALOGUE["orbiting_body"]
-
-MODEL: Model[Params, State] = Model(
-    name=_ENTRY.name,
-    description=_ENTRY.description,
-    paper=_ENTRY.paper,
-    time=DECLARED.time,
-    full=Full(
-        forms={"quaternion": FULL},
-        default="quaternion",
-        columns=fixed_columns(
-            (*tb._COLUMNS_SLOW, *_ORBIT_COLUMNS, *attitude_columns("t"), *_SPIN_AXIS)
-        ),
+MODEL: Model[Params, State] = DECLARED.model(
+    Full.of(
+        fixed_columns((*tb._COLUMNS_SLOW, *_ORBIT_COLUMNS, *attitude_columns("t"), *_SPIN_AXIS)),
+        FULL,
     ),
-    check=DECLARED.check,
-    methods=DECLARED.methods,
-    averaged=Averaged(
-        form=_averaged_form,
-        columns=fixed_columns((*tb._COLUMNS_SLOW, *_ORBIT_COLUMNS)),
+    averaged=DECLARED.averaged(
+        _averaged_form,
+        fixed_columns((*tb._COLUMNS_SLOW, *_ORBIT_COLUMNS)),
         compare=("L1", "L2", "L3", "T"),
-        orders=DECLARED.orders,
     ),
     unperturbed=Unperturbed(
         "the free body (3.1)",
@@ -166,5 +152,4 @@ MODEL: Model[Params, State] = Model(
     ),
     validity=Validity(check=tb.validity),
     report=_report,
-    scenario=DECLARED.scenario,
 )

@@ -32,13 +32,11 @@ import numpy as np
 from tumble._typing import BoolArray, FloatArray
 from tumble.averaging import nearest_resonances, triaxial_kernel
 from tumble.averaging.triaxial import triaxial_average_stage
-from tumble.catalogue import CATALOGUE
 from tumble.dynamics import rigid_body_rhs
 from tumble.errors import ParameterError
 from tumble.kernels import EVENT_TRIAXIAL_SEPARATRIX, Kernel, evaluate_rhs
 from tumble.kernels.rhs import rigid_body
 from tumble.models.base import (
-    Averaged,
     AveragedForm,
     AveragingOptions,
     Breakpoint,
@@ -427,23 +425,12 @@ def _report(p: Params, st: State, trajectories: Mapping[str, Sampled]) -> Report
     return Report(summary={"torque": p.label, "forcing_period": p.forcing_period})
 
 
-_ENTRY = CATALOGUE["torqued_body"]  # name, description and paper
-
-MODEL: Model[Params, State] = Model(
-    name=_ENTRY.name,
-    description=_ENTRY.description,
-    paper=_ENTRY.paper,
-    time=DECLARED.time,
-    full=Full(
-        forms={"quaternion": FULL}, default="quaternion", columns=fixed_columns(_COLUMNS_FULL)
-    ),
-    check=DECLARED.check,
-    methods=DECLARED.methods,
-    averaged=Averaged(
-        form=_averaged_form,
-        columns=fixed_columns((*_COLUMNS_SLOW, *_COLUMNS_MEAN)),
+MODEL: Model[Params, State] = DECLARED.model(
+    Full.of(fixed_columns(_COLUMNS_FULL), FULL),
+    averaged=DECLARED.averaged(
+        _averaged_form,
+        fixed_columns((*_COLUMNS_SLOW, *_COLUMNS_MEAN)),
         compare=("L1", "L2", "L3", "T"),
-        orders=DECLARED.orders,
     ),
     unperturbed=Unperturbed(
         "the free body (3.1)",
@@ -452,5 +439,4 @@ MODEL: Model[Params, State] = Model(
     ),
     validity=Validity(check=validity),
     report=_report,
-    scenario=DECLARED.scenario,
 )

@@ -12,9 +12,8 @@ from tumble.analysis.claims.base import Measurement, Panel, Series, claim
 from tumble.analysis.claims.common import (
     Difference,
     Tolerances,
-    by_convergence,
+    by_forms,
     converged,
-    forms_panel,
     max_abs,
     threshold_panel,
     within,
@@ -65,18 +64,12 @@ def rm_1() -> Measurement:
         "sigma": np.abs(wrap(euler["sigma"] - osc["sigma"])),
     }
     fast = {n: max_abs(wrap(euler[n] - osc[n])) for n in ("psi", "phi")}
-    panels = (
-        forms_panel(
-            conv,
-            tau,
-            diffs,
-            "|Euler+quaternions − (1.3)|",
-            "two full forms, GENERAL medium",
-        ),
-    )
-    return by_convergence(
+    return by_forms(
         conv,
-        panels,
+        tau,
+        diffs,
+        "|Euler+quaternions − (1.3)|",
+        "two full forms, GENERAL medium",
         "1 (k), rad (angles)",
         "max |Δ| of k, ϑ, ρ, σ between Euler+quaternions and the standard form (1.3), τ ≤ 2/ε",
         "E1: the first equation is K dρ/dt = M1 (printed: K dφ/dt); E2: ρ, σ are the polar angle "
@@ -124,12 +117,12 @@ def rm_2() -> Measurement:
 
     conv, dev = converged(difference)  # §13.1: constant to integration accuracy
     rel = {n: max_abs(d) for n, d in dev.items()}
-    panels = (
-        forms_panel(conv, tau, dev, "deviation from (2.1) (ψ, φ relative to phase)", "ε = 0"),
-    )
-    return by_convergence(
+    return by_forms(
         conv,
-        panels,
+        tau,
+        dev,
+        "deviation from (2.1) (ψ, φ relative to phase)",
+        "ε = 0",
         "1",
         "max deviation of k, ϑ, ρ, σ from constants and of ψ, φ from kτ and −kκcosϑ τ/(1+κ) "
         "(relative to the accumulated phase), ε = 0, τ ≤ 500",

@@ -12,10 +12,9 @@ from tumble.analysis.claims.base import Measurement, Panel, Series, claim
 from tumble.analysis.claims.common import (
     Difference,
     Tolerances,
-    by_convergence,
+    by_forms,
     converged,
     eps_panel,
-    forms_panel,
     judged,
     max_abs,
     threshold_panel,
@@ -145,12 +144,12 @@ def rf_2() -> Measurement:
     # §15: the best independent check, to integration accuracy (the difference falls with the
     # tolerance); the OCR's Γ′ leaves an O(1) difference.
     conv, diffs = converged(difference)
-    panels = (
-        forms_panel(conv, tau, diffs, "|(1.5) − (1.4)|", "body (1, 1.6, 2.2), β = 1, ε = 0.01"),
-    )
-    return by_convergence(
+    return by_forms(
         conv,
-        panels,
+        tau,
+        diffs,
+        "|(1.5) − (1.4)|",
+        "body (1, 1.6, 2.2), β = 1, ε = 0.01",
         "1 (z, L, T), rad (angles)",
         "max |Δ| of L, ρ, σ, T, z between the rotating-frame form (1.5) and the inertial form "
         "(1.4) with quaternions, τ ≤ 1/ε",

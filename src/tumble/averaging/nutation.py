@@ -32,7 +32,6 @@ from tumble.averaging.quadrature import (
 )
 from tumble.averaging.second_order import (
     GRID_MAX,
-    GRID_RTOL,
     SecondOrder,
     generator_drift,
     grid_terms,
@@ -536,7 +535,7 @@ class NutationSystem:
             values = self._on(tau, x, shape[0])
             return values[2], values
 
-        found, (n,) = refine_grid(on, (self.n,), GRID_RTOL)
+        found, (n,) = refine_grid(on, (self.n,))
         self.n = n  # kept also when refused: the next state starts from the finest grid tried
         if found is None:
             raise AveragingError(

@@ -352,7 +352,7 @@ def _along(
 def refine_grid(
     evaluate: Callable[[tuple[int, ...]], tuple[FloatArray, _Kept]],
     grid: Sequence[int],
-    rtol: float,
+    rtol: float = GRID_RTOL,
 ) -> tuple[_Kept | None, tuple[int, ...]]:
     """Evaluate on a torus grid doubled along each phase that is not yet resolved.
 
@@ -367,7 +367,7 @@ def refine_grid(
     grid : sequence of int
         Nodes along each phase to start from.
     rtol : float
-        Resolution test (:data:`GRID_RTOL` for the systems here) [1].
+        Resolution test, as in :func:`second_order` [1].
 
     Returns
     -------

@@ -37,7 +37,6 @@ from tumble._typing import ArrayLike, FloatArray
 from tumble.averaging.quadrature import AveragingError, BatchedTorque
 from tumble.averaging.second_order import (
     GRID_MAX,
-    GRID_RTOL,
     SecondOrder,
     generator_drift,
     grid_terms,
@@ -227,7 +226,7 @@ class TriaxialSystem:
             rates = self._rates(x, shape)
             return rates[0], rates
 
-        found, shape = refine_grid(on, self.grid, GRID_RTOL)
+        found, shape = refine_grid(on, self.grid)
         if found is None:
             raise AveragingError(
                 f"the Euler–Poinsot motion needs more than {GRID_MAX} phase nodes at "

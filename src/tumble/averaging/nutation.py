@@ -22,7 +22,6 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
-from tumble.averaging.fourier import resolved
 from tumble.averaging.generator import zero_mean_antiderivative
 from tumble.averaging.quadrature import (
     AVERAGE_RTOL,
@@ -33,10 +32,10 @@ from tumble.averaging.quadrature import (
 )
 from tumble.averaging.second_order import (
     GRID_MAX,
-    GRID_RTOL,
     SecondOrder,
     generator_drift,
     grid_terms,
+    refine_grid,
 )
 from tumble.kernels.limits import NUTATION_MAX, NUTATION_START, SPIN_MAX, SPIN_START
 from tumble.unperturbed.symmetric_body import NutationOrbit
@@ -531,17 +530,19 @@ class NutationSystem:
         fast time; the slow time εt is the perturbation's)."""
         x = np.asarray(x, dtype=float)
         tau = self.eps * t
-        while True:
-            theta, _, f, ph, pz, nu = self._on(tau, x, self.n)
-            if all(resolved(f, GRID_RTOL)):
-                break
-            if self.n >= GRID_MAX:
-                raise AveragingError(
-                    f"the nutation needs more than {GRID_MAX} phase nodes at H = {x[0]:.6g}: "
-                    "the orbit is too near a separatrix"
-                )
-            self.n *= 2
-        n = self.n
+
+        def on(shape: tuple[int, ...]) -> tuple[FloatArray, tuple[FloatArray, ...]]:
+            values = self._on(tau, x, shape[0])
+            return values[2], values
+
+        found, (n,) = refine_grid(on, (self.n,))
+        self.n = n  # kept also when refused: the next state starts from the finest grid tried
+        if found is None:
+            raise AveragingError(
+                f"the nutation needs more than {GRID_MAX} phase nodes at H = {x[0]:.6g}: "
+                "the orbit is too near a separatrix"
+            )
+        theta, _, f, ph, pz, nu = found
         orbit = self.orbit(x)
         self.u_hint = 0.5 * (orbit.u1 + orbit.u2)
         scale = np.maximum(np.abs(x), 1.0)

@@ -56,6 +56,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from typing import TypeVar
 
 import numpy as np
 
@@ -94,6 +95,7 @@ __all__ = [
     "generator_drift",
     "grid_terms",
     "nearest_resonance",
+    "refine_grid",
     "resolved",
     "resonance_distance",
     "resonance_table",
@@ -116,6 +118,8 @@ and need no more than this relative accuracy."""
 
 GRID_MAX = 1 << 12
 """Most nodes along one phase."""
+
+_Kept = TypeVar("_Kept")
 
 _FD_STEP = 1e-5
 """Central differences along u and in x take steps of this size relative to the slow scale:
@@ -345,22 +349,61 @@ def _along(
     return along
 
 
+def refine_grid(
+    evaluate: Callable[[tuple[int, ...]], tuple[FloatArray, _Kept]],
+    grid: Sequence[int],
+    rtol: float = GRID_RTOL,
+) -> tuple[_Kept | None, tuple[int, ...]]:
+    """Evaluate on a torus grid doubled along each phase that is not yet resolved.
+
+    The resolution test is :func:`~tumble.averaging.fourier.resolved`; a phase stops doubling
+    once resolved, and the search stops when a phase that is not has ``GRID_MAX`` nodes.
+
+    Parameters
+    ----------
+    evaluate : callable
+        ``evaluate(shape) -> (values, kept)``: the grid values the test reads, shape
+        (c, *shape), and what the caller keeps of that grid.
+    grid : sequence of int
+        Nodes along each phase to start from.
+    rtol : float
+        Resolution test, as in :func:`second_order` [1].
+
+    Returns
+    -------
+    kept : object or None
+        ``kept`` of the first grid on which every phase is resolved; None when a phase with
+        ``GRID_MAX`` nodes is still not (the caller raises, saying what is too fine).
+    shape : tuple of int
+        Nodes along each phase of the last grid evaluated.
+    """
+    shape = tuple(int(n) for n in grid)
+    while True:
+        values, kept = evaluate(shape)
+        done = resolved(values, rtol)
+        if all(done):
+            return kept, shape
+        if max(shape) >= GRID_MAX:
+            return None, shape
+        shape = tuple(n if ok else 2 * n for n, ok in zip(shape, done, strict=True))
+
+
 def _resolved(
     rates: FastRates, t: float, x: FloatArray, grid: Sequence[int], rtol: float
 ) -> tuple[FloatArray, FloatArray]:
     """f and g on a grid doubled along each phase from ``grid`` until resolved."""
-    shape = tuple(int(n) for n in grid)
-    while True:
+
+    def on(shape: tuple[int, ...]) -> tuple[FloatArray, tuple[FloatArray, FloatArray]]:
         f, g = _evaluate(rates, t, x, shape)
-        done = resolved(np.concatenate([f, g]), rtol)
-        if all(done):
-            return f, g
-        if max(shape) >= GRID_MAX:
-            raise AveragingError(
-                f"the fast right-hand side needs more than {GRID_MAX} nodes along a phase at "
-                f"x = {x.tolist()}: it varies too fast (or is not smooth) on the torus"
-            )
-        shape = tuple(n if ok else 2 * n for n, ok in zip(shape, done, strict=True))
+        return np.concatenate([f, g]), (f, g)
+
+    found, _ = refine_grid(on, grid, rtol)
+    if found is None:
+        raise AveragingError(
+            f"the fast right-hand side needs more than {GRID_MAX} nodes along a phase at "
+            f"x = {x.tolist()}: it varies too fast (or is not smooth) on the torus"
+        )
+    return found
 
 
 def resonances_at(

@@ -80,6 +80,7 @@ from tumble.kernels.limits import (
 from tumble.kernels.params import TRIAXIAL_AVERAGED
 from tumble.kernels.terms import term_of
 from tumble.rotations import matrix_to_quat
+from tumble.unperturbed._checks import finite_vector, moments
 from tumble.unperturbed.euler_poinsot import (
     SEPARATRIX_RTOL,
     EulerPoinsot,
@@ -187,14 +188,8 @@ def _product_mean(
 def _check_inputs(
     inertia: ArrayLike, L_xi: ArrayLike, forcing_period: float | None, rtol: float
 ) -> tuple[FloatArray, FloatArray, float]:
-    I_user = np.asarray(inertia, dtype=float).reshape(-1)
-    if I_user.shape != (3,):
-        raise ParameterError(f"inertia must have 3 moments, got {I_user.size}")
-    Lv = np.asarray(L_xi, dtype=float).reshape(-1)
-    if Lv.shape != (3,):
-        raise ParameterError(f"L_xi must have 3 components, got {Lv.size}")
-    for i, value in enumerate(Lv):
-        check_finite(f"L_xi[{i}]", float(value))
+    I_user = moments(inertia)
+    Lv = finite_vector("L_xi", L_xi)
     check_range("rtol", rtol, low=0.0, high=1.0)
     if forcing_period is not None:
         check_range("forcing_period", forcing_period, low=0.0)

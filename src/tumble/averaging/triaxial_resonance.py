@@ -17,7 +17,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
-from tumble.errors import ParameterError, check_range
+from tumble.errors import check_range
+from tumble.unperturbed._checks import moments
 from tumble.unperturbed.euler_poinsot import fast_frequencies
 
 __all__ = ["Resonance", "nearest_resonance", "nearest_resonances"]
@@ -88,9 +89,7 @@ def nearest_resonance(
     -------
     Resonance
     """
-    Is = np.sort(np.asarray(inertia, dtype=float).reshape(-1))
-    if Is.shape != (3,):
-        raise ParameterError(f"inertia must have 3 moments, got {Is.size}")
+    Is = np.sort(moments(inertia))
     nu1, nu2 = fast_frequencies(float(Is[0]), float(Is[1]), float(Is[2]), float(L), float(T))
     found = nearest_resonances(np.array([nu1]), np.array([nu2]), forcing_period,
                                max_harmonic=max_harmonic, max_order=max_order)  # fmt: skip

@@ -34,14 +34,13 @@ from typing import Any
 import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
-from tumble.averaging.fourier import resolved
 from tumble.averaging.quadrature import AveragingError, BatchedTorque
 from tumble.averaging.second_order import (
     GRID_MAX,
-    GRID_RTOL,
     SecondOrder,
     generator_drift,
     grid_terms,
+    refine_grid,
 )
 from tumble.bodies import proper_sorting
 from tumble.rotations import matrix_to_quat, rot_x, rot_z
@@ -222,18 +221,18 @@ class TriaxialSystem:
     def terms(self, t: float, x: ArrayLike, generator_order: int = 1) -> SecondOrder:
         """:class:`~tumble.averaging.second_order.SecondOrder` at the slow state x."""
         x = np.asarray(x, dtype=float)
-        shape = self.grid
-        while True:
-            f, M, A, omega = self._rates(x, shape)
-            done = resolved(f, GRID_RTOL)
-            if all(done):
-                break
-            if max(shape) >= GRID_MAX:
-                raise AveragingError(
-                    f"the Euler–Poinsot motion needs more than {GRID_MAX} phase nodes at "
-                    f"x = {x.tolist()}: too near the separatrix"
-                )
-            shape = tuple(n if ok else 2 * n for n, ok in zip(shape, done, strict=True))
+
+        def on(shape: tuple[int, ...]) -> tuple[FloatArray, tuple[FloatArray, ...]]:
+            rates = self._rates(x, shape)
+            return rates[0], rates
+
+        found, shape = refine_grid(on, self.grid)
+        if found is None:
+            raise AveragingError(
+                f"the Euler–Poinsot motion needs more than {GRID_MAX} phase nodes at "
+                f"x = {x.tolist()}: too near the separatrix"
+            )
+        f, M, A, omega = found
         self.grid = shape
         n1, n2 = shape[0], shape[1]
         L = float(np.linalg.norm(x[:3]))

@@ -15,7 +15,7 @@ from scipy import special
 from tumble._docstrings import DocSections
 from tumble._typing import ArrayLike, FloatArray
 from tumble.bodies import RigidBody, proper_sorting
-from tumble.errors import ParameterError, TumbleWarning, check_finite
+from tumble.errors import ParameterError, TumbleWarning
 from tumble.kernels.codes import SEPARATRIX_RTOL
 from tumble.rotations import (
     matrix_to_quat,
@@ -24,7 +24,7 @@ from tumble.rotations import (
     quat_normalize,
     quat_to_matrix,
 )
-from tumble.unperturbed._checks import finite_array
+from tumble.unperturbed._checks import finite_array, finite_vector, moments
 from tumble.unperturbed.elliptic import _ellipf_sc, _ellippi_mc, _ellippi_sc, _jacobi
 from tumble.unperturbed.euler_poinsot.regimes import (
     Regime,
@@ -361,15 +361,9 @@ def _checked_state(
     inertia: ArrayLike, z0: ArrayLike, attitude0: ArrayLike | None
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """The inputs of :meth:`EulerPoinsot.from_state` checked: moments, body rate, attitude."""
-    I_user = np.asarray(inertia, dtype=float).reshape(-1)
-    if I_user.shape != (3,):
-        raise ParameterError(f"inertia must have 3 moments, got {I_user.size}")
+    I_user = moments(inertia)
     RigidBody(*(float(x) for x in I_user))  # positive moments, triangle inequality
-    z_user = np.asarray(z0, dtype=float).reshape(-1)
-    if z_user.shape != (3,):
-        raise ParameterError(f"z0 must have 3 components, got {z_user.size}")
-    for i, zi in enumerate(z_user):
-        check_finite(f"z0[{i}]", float(zi))
+    z_user = finite_vector("z0", z0)
     A0 = np.eye(3) if attitude0 is None else np.asarray(attitude0, dtype=float)
     _check_attitude(A0)
     return I_user, z_user, A0

@@ -30,6 +30,7 @@ from tumble.unperturbed.symmetric_body.quartic import (
     _careful_turning_points,
     _case1_modulus,
     _case2_modulus,
+    _deflate,
     _dhorner,
     _fast_interval,
     _fast_turning_points,
@@ -222,10 +223,7 @@ def _points(
 
 def _outer_roots(mo: _Motion, u0: float, c: tuple[float, ...], d1: float, d2: float) -> _Outer:
     """Deflation f(u0 + δ) = (δ − d1)(δ − d2)(c4 δ² + q1 δ + q0), and §4 from its roots."""
-    c2, c3, c4 = c[2], c[3], c[4]
-    s, pr = d1 + d2, d1 * d2
-    q1 = c3 + c4 * s
-    q0 = c2 + s * q1 - c4 * pr
+    c4, q1, q0 = _deflate(c, d1, d2)
     inf = complex(math.inf)
     if mo.a == 0.0 and mo.b == 0.0:
         # q ≡ c2 = −(2E + R²): u'' = −(2E + R²)u + GR (§11)

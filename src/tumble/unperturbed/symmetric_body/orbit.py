@@ -368,13 +368,7 @@ class NutationOrbit:
         ndarray
             θ' [rad/time], shape of ``t``.
         """
-        tt = self._t(t)
-        if self.kind == "steady":
-            return np.zeros_like(tt)
-        jac = self._jac(tt)
-        sig, sigc = self._sigma(jac)
-        _, om, op = self._theta_from(sig, sigc)
-        return self._theta_dot_from(jac, sig, sigc, om, op)
+        return self._theta_pair(self._t(t))[1]
 
     @functools.cached_property
     def _pole_starts(self) -> tuple[tuple[float, float], ...]:
@@ -590,6 +584,7 @@ class NutationOrbit:
         return t, th, thd, np.full(n, 1.0 / n)
 
     def _theta_pair(self, t: FloatArray) -> tuple[FloatArray, FloatArray]:
+        """(θ [rad], θ' [rad/time]) at checked times t [time], from one set of Jacobi values."""
         if self.kind == "steady":
             return np.full_like(t, self.theta_min), np.zeros_like(t)
         jac = self._jac(t)

@@ -321,7 +321,24 @@ def _clear_of(c4: float, q1: float, q0: float, lo: float, hi: float, margin: flo
 
 
 def _deflate(c: tuple[float, ...], d1: float, d2: float) -> tuple[float, float, float]:
-    """(c4, q1, q0) with c = (δ − d1)(δ − d2)(c4 δ² + q1 δ + q0), as in :func:`_build`."""
+    """Deflate two known roots of f (1.7): c = (δ − d1)(δ − d2)(c4 δ² + q1 δ + q0).
+
+    Used for the outer roots of an orbit (:func:`~.build._outer_roots`) and to certify the
+    turning points of the fast path (:func:`_certified`, :func:`_fast_interval`).
+
+    Parameters
+    ----------
+    c : tuple of float
+        Coefficients of f, ascending (c0 … c4), in δ = u − u0 or in u itself [1/time²].
+    d1, d2 : float
+        The two roots to divide out, in the same variable [1].
+
+    Returns
+    -------
+    c4, q1, q0 : float
+        The remaining quadratic c4 δ² + q1 δ + q0, its coefficients from the leading one
+        down [1/time²].
+    """
     s, pr = d1 + d2, d1 * d2
     q1 = c[3] + c[4] * s
     return c[4], q1, c[2] + s * q1 - c[4] * pr

@@ -10,30 +10,6 @@ Python ones import them from here, once.
 
 from __future__ import annotations
 
-__all__ = [
-    "DEGENERATE_RTOL",
-    "EVENT_EQUATOR",
-    "EVENT_FIELD_SEPARATRIX",
-    "EVENT_NONE",
-    "EVENT_NUTATION_SEPARATRIX",
-    "EVENT_THETA_DOT",
-    "EVENT_TRIAXIAL_SEPARATRIX",
-    "KIND_FIELD_AVERAGED",
-    "KIND_MEDIUM_AVERAGED",
-    "KIND_NONLINEAR_MOMENT",
-    "KIND_NUTATION_AVERAGED",
-    "KIND_NUTATION_ENGINE",
-    "KIND_ORBITING_BODY",
-    "KIND_RIGID_BODY",
-    "KIND_ROTATING_FIELD",
-    "KIND_SPINNER_AVERAGED",
-    "KIND_TRIAXIAL_AVERAGED",
-    "MC_FLOOR",
-    "NUTATION_SEPARATRIX_TOL",
-    "REACHED_MARGIN",
-    "SEPARATRIX_RTOL",
-]
-
 KIND_RIGID_BODY = 1
 KIND_ROTATING_FIELD = 2
 KIND_NONLINEAR_MOMENT = 3
@@ -88,3 +64,7 @@ REACHED_MARGIN = 1e-3
 """How far, as a fraction of 1/I1 (the range's upper end: the width 1/I1 − 1/I3 vanishes for
 a sphere), an integrated 2T/L² may step beyond the range before
 :func:`tumble.unperturbed.euler_poinsot.reached_ratio` refuses it."""
+
+__all__ = sorted(name for name in dir() if name.isupper())
+"""Every constant above: its upper-case names, so that a new code is public where it is defined
+(and :mod:`tumble.kernels` lists those of the right-hand sides and their events)."""

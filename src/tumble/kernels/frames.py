@@ -19,6 +19,7 @@ __all__ = [
     "dot",
     "matrix_quaternion",
     "node_turned",
+    "node_turned_body",
     "quaternion_matrix",
     "quaternion_rates",
     "scaled_cross",
@@ -80,6 +81,15 @@ def node_turned(prog: FloatArray, vx: int, vrate: int, t: float) -> Vec3:
     value at t = 0) turned about ξ3 by Ω̇ t, with the node's rate Ω̇ [rad/time] at prog[vrate]
     and t [time]."""
     return turned_about_z(prog[vrate] * t, vec3(prog, vx))
+
+
+@jit(INLINE)
+def node_turned_body(a: Mat3, prog: FloatArray, vx: int, vrate: int, t: float) -> Vec3:
+    """Aᵀ :func:`node_turned`: the orbit-averaged inertial input at time t [time] (stored at
+    prog[vx : vx + 3] for t = 0, turned about ξ3 by Ω̇ t, Ω̇ [rad/time] at prog[vrate]) in the
+    body axes of the body → inertial matrix a, as a term's moment reads it."""
+    x1, x2, x3 = node_turned(prog, vx, vrate, t)
+    return to_body(a, x1, x2, x3)
 
 
 @jit(INLINE)

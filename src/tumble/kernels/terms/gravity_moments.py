@@ -5,7 +5,7 @@ c = 3μ/(2a³(1 − e²)^{3/2}) (⟨3μ r̂ r̂ᵀ/r³⟩ = c (1 − ĥ ĥᵀ)) 
 from __future__ import annotations
 
 from tumble._typing import FloatArray
-from tumble.kernels.frames import node_turned, to_body
+from tumble.kernels.frames import node_turned, node_turned_body
 from tumble.kernels.jit import INLINE, jit
 from tumble.kernels.layout import Field, Layout, Mat3, Vec3
 from tumble.kernels.lframe import Context, Parts
@@ -25,23 +25,18 @@ _AT = LAYOUT.at
 
 
 @jit(INLINE)
-def _normal(prog: FloatArray, v: int, t: float) -> Vec3:
-    """ĥ(t): the normal at t = 0 turned about ξ3 by Ω̇ t."""
-    return node_turned(prog, v + _AT.normal, v + _AT.node_rate, t)
-
-
-@jit(INLINE)
 def moment(
     f: float, prog: FloatArray, v: int, t: float, w1: float, w2: float, w3: float, a: Mat3
 ) -> Vec3:
-    h1, h2, h3 = _normal(prog, v, t)
-    b1, b2, b3 = to_body(a, h1, h2, h3)
+    """−f c ĥ × (I ĥ) in body axes, ĥ(t) the normal at t = 0 turned about ξ3 by Ω̇ t."""
+    b1, b2, b3 = node_turned_body(a, prog, v + _AT.normal, v + _AT.node_rate, t)
     return gradient_moment(-f * prog[v + _AT.c], prog, v + _AT.inertia, b1, b2, b3)
 
 
 @jit(INLINE)
 def closed(p: FloatArray, v: int, t: float, ctx: Context) -> Parts:
-    h1, h2, h3 = _normal(p, v, t)
+    """The Euler–Poinsot average (:func:`gravity_closed`) at the normal ĥ(t)."""
+    h1, h2, h3 = node_turned(p, v + _AT.normal, v + _AT.node_rate, t)
     return gravity_closed(p, v + _AT.inertia, p[v + _AT.c], h1, h2, h3, ctx)
 
 

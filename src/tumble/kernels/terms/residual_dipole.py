@@ -30,7 +30,7 @@ import numpy as np
 
 from tumble._typing import FloatArray
 from tumble.errors import IntegrationError, ParameterError
-from tumble.kernels.frames import node_turned, scaled_cross, to_body
+from tumble.kernels.frames import node_turned, node_turned_body, scaled_cross, to_body
 from tumble.kernels.jit import INLINE, jit
 from tumble.kernels.layout import Field, Layout, Mat3, Vec3, vec3
 from tumble.kernels.lframe import Context, Parts, column_dot, sorted_vector
@@ -88,18 +88,11 @@ def moment(
 
 
 @jit(INLINE)
-def _mean_field(prog: FloatArray, v: int, t: float) -> Vec3:
-    """⟨B⟩ at time t: its value at t = 0 turned about ξ3 by Ω̇ t."""
-    return node_turned(prog, v + _MEAN.field, v + _MEAN.node_rate, t)
-
-
-@jit(INLINE)
 def mean_moment(
     f: float, prog: FloatArray, v: int, t: float, w1: float, w2: float, w3: float, a: Mat3
 ) -> Vec3:
-    """f m × Aᵀ ⟨B⟩."""
-    x1, x2, x3 = _mean_field(prog, v, t)
-    b1, b2, b3 = to_body(a, x1, x2, x3)
+    """f m × Aᵀ ⟨B⟩, ⟨B⟩(t) its value at t = 0 turned about ξ3 by Ω̇ t."""
+    b1, b2, b3 = node_turned_body(a, prog, v + _MEAN.field, v + _MEAN.node_rate, t)
     return scaled_cross(f, vec3(prog, v + _MEAN.dipole), b1, b2, b3)
 
 
@@ -109,7 +102,7 @@ def closed(p: FloatArray, v: int, t: float, ctx: Context) -> Parts:
     first, a, F = ctx[6], ctx[7], ctx[8]
     m1, m2, m3 = vec3(p, v + _MEAN.dipole)
     c = sorted_vector(p, m1, m2, m3)[a] * first
-    x1, x2, x3 = _mean_field(p, v, t)
+    x1, x2, x3 = node_turned(p, v + _MEAN.field, v + _MEAN.node_rate, t)
     return -c * column_dot(F, 1, x1, x2, x3), c * column_dot(F, 0, x1, x2, x3), 0.0, 0.0
 
 

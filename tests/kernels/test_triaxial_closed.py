@@ -1,5 +1,6 @@
-"""The closed-form Euler–Poinsot average (mode 2 of the compiled triaxial engine) against the
-same average by quadrature (mode 1), and its polhode means against direct quadrature."""
+"""The closed-form Euler–Poinsot average (``KIND_TRIAXIAL_CLOSED`` of the compiled triaxial
+engine) against the same average by quadrature (``KIND_TRIAXIAL_PHASE_MEANS``), and its polhode
+means against direct quadrature."""
 
 from __future__ import annotations
 
@@ -11,7 +12,7 @@ from closed_forms import closed_and_quadrature
 from scipy import special
 
 from tumble.averaging import triaxial_kernel
-from tumble.kernels.triaxial import MODE
+from tumble.kernels import KIND_TRIAXIAL_PHASE_MEANS
 from tumble.kernels.triaxial_closed import polhode_moments, sn_means
 from tumble.space.torques import FieldMomentsTorque, GravityMomentsTorque
 from tumble.torques import (
@@ -122,7 +123,7 @@ def test_terms_without_a_closed_form_keep_the_quadrature():
         QuadraticDrag(np.diag([0.1, 0.2, 0.3])) + ConstantBodyTorque([0.0, 0.1, 0.0]),
     ):
         kernel = triaxial_kernel(torque, INERTIA)
-        assert kernel is not None and kernel.params[MODE] == 1.0
+        assert kernel is not None and kernel.kind == KIND_TRIAXIAL_PHASE_MEANS
 
 
 ZERO = ConstantBodyTorque(np.zeros(3))

@@ -12,7 +12,11 @@ from scipy import special
 
 from tumble.averaging import triaxial_average_vector, triaxial_kernel
 from tumble.integrate import simulate
-from tumble.kernels import KIND_TRIAXIAL_AVERAGED
+from tumble.kernels import (
+    KIND_TRIAXIAL_AVERAGED,
+    KIND_TRIAXIAL_CLOSED,
+    KIND_TRIAXIAL_PHASE_MEANS,
+)
 from tumble.kernels.rhs import evaluate
 from tumble.kernels.triaxial import jacobi_functions
 from tumble.models import rotating_field as rf
@@ -81,7 +85,8 @@ def _torques():
 def test_compiled_average_equals_the_python_engine(name):
     torque, period = _torques()[name]
     kernel = triaxial_kernel(torque, INERTIA, period)
-    assert kernel is not None and kernel.kind == KIND_TRIAXIAL_AVERAGED
+    triaxial = (KIND_TRIAXIAL_CLOSED, KIND_TRIAXIAL_PHASE_MEANS, KIND_TRIAXIAL_AVERAGED)
+    assert kernel is not None and kernel.kind in triaxial
     rng = np.random.default_rng(11)
     I1, I2, I3 = sorted(INERTIA)
     for _ in range(30):

@@ -12,8 +12,8 @@ import pytest
 from tumble.averaging import triaxial_average_vector, triaxial_kernel
 from tumble.errors import ParameterError
 from tumble.integrate import simulate
+from tumble.kernels import KIND_TRIAXIAL_AVERAGED, KIND_TRIAXIAL_CLOSED
 from tumble.kernels.rhs import evaluate
-from tumble.kernels.triaxial import MODE
 from tumble.models import torqued_body as tb
 from tumble.torques import GravityGradientTorque, UserTorque
 
@@ -83,10 +83,8 @@ def test_the_triaxial_engine_averages_it_compiled_as_the_python_engine_does():
     period = 2 * math.pi / N
     k_user = triaxial_kernel(user, INERTIA, period)
     k_built = triaxial_kernel(built, INERTIA, period)
-    assert k_user is not None and k_user.params[MODE] == 0.0
-    assert k_built is not None and k_built.params[MODE] == 2.0  # a closed form
-    general = k_built.params.copy()
-    general[MODE] = 0.0  # the built-in terms through the general product rule
+    assert k_user is not None and k_user.kind == KIND_TRIAXIAL_AVERAGED  # the product rule
+    assert k_built is not None and k_built.kind == KIND_TRIAXIAL_CLOSED  # a closed form
     rng = np.random.default_rng(9)
     I1, I2, I3 = sorted(INERTIA)
     for _ in range(10):
@@ -98,8 +96,13 @@ def test_the_triaxial_engine_averages_it_compiled_as_the_python_engine_does():
         # The three quadratures stop refining when two levels agree to 1e-12 of the torque's
         # size: the user's function (general rule), the built-in term by the same rule and by
         # its closed form, and the Python engine agree to 1e-10 of the largest rate.
-        for params in (k_user.params, general, k_built.params):
-            got = evaluate(k_user.kind, 0.0, y, params)
+        # (the built-in terms by the closed form, and through the general product rule too)
+        for kind, params in (
+            (k_user.kind, k_user.params),
+            (KIND_TRIAXIAL_AVERAGED, k_built.params),
+            (k_built.kind, k_built.params),
+        ):
+            got = evaluate(kind, 0.0, y, params)
             assert np.max(np.abs(got - ref)) <= 1e-10 * scale, (y, got, ref)
 
 

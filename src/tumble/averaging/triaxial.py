@@ -65,7 +65,12 @@ from tumble.averaging.triaxial_resonance import (
 )
 from tumble.bodies import proper_sorting
 from tumble.errors import ParameterError, TumbleWarning, check_finite, check_range
-from tumble.kernels import KIND_TRIAXIAL_AVERAGED, Kernel
+from tumble.kernels import (
+    KIND_TRIAXIAL_AVERAGED,
+    KIND_TRIAXIAL_CLOSED,
+    KIND_TRIAXIAL_PHASE_MEANS,
+    Kernel,
+)
 from tumble.kernels.codes import DEGENERATE_RTOL
 from tumble.kernels.limits import (
     AVERAGE_RTOL,
@@ -682,8 +687,9 @@ def triaxial_kernel(
             "inertia": (I1, I2, I3),
             "sorting": proper_sorting(I_user),
             "user_inertia": I_user,
-            "mode": 2.0 if closed else (1.0 if exact else 0.0),
             "period": 0.0 if forcing_period is None else float(forcing_period),
         }
     )
-    return Kernel(KIND_TRIAXIAL_AVERAGED, np.concatenate([head, program]))
+    kind = KIND_TRIAXIAL_CLOSED if closed else (KIND_TRIAXIAL_PHASE_MEANS if exact else
+                                                KIND_TRIAXIAL_AVERAGED)  # fmt: skip
+    return Kernel(kind, np.concatenate([head, program]))

@@ -35,6 +35,8 @@ from tumble.kernels.codes import (
     KIND_ROTATING_FIELD,
     KIND_SPINNER_AVERAGED,
     KIND_TRIAXIAL_AVERAGED,
+    KIND_TRIAXIAL_CLOSED,
+    KIND_TRIAXIAL_PHASE_MEANS,
 )
 
 __all__ = [
@@ -54,6 +56,8 @@ __all__ = [
     "KIND_ROTATING_FIELD",
     "KIND_SPINNER_AVERAGED",
     "KIND_TRIAXIAL_AVERAGED",
+    "KIND_TRIAXIAL_CLOSED",
+    "KIND_TRIAXIAL_PHASE_MEANS",
     "Kernel",
     "evaluate_rhs",
 ]

@@ -23,6 +23,13 @@ KIND_ORBITING_BODY = 10
 """Euler's equations under a program with terms compiled apart (``Term.compiled_apart``: along
 an orbit, or calling out to a user's function): the rigid body's, with Kepler's equation, the
 geomagnetic field and the callbacks compiled in only here."""
+KIND_TRIAXIAL_PHASE_MEANS = 11
+"""The triaxial setting for built-in terms without a closed-form average: the polhode phase
+refined, the precession angle and the forcing phase exact."""
+KIND_TRIAXIAL_CLOSED = 12
+"""The triaxial setting for terms whose every average has a closed form
+(:mod:`tumble.kernels.triaxial_closed`); ``KIND_TRIAXIAL_AVERAGED`` is the product rule, for
+any program."""
 
 EVENT_NONE = 0
 EVENT_THETA_DOT = 1

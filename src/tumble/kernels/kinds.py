@@ -66,6 +66,9 @@ _SLOW = ("L1", "L2", "L3", "r")
 _ENERGY = ("H", "R", "G", "a", "b")
 # Volosov's equations and the engine's nutation setting: one state, layout and event.
 _NUTATION = (_ENERGY, NONLINEAR_MOMENT, frozenset({codes.EVENT_NUTATION_SEPARATRIX}))
+# The triaxial engine's three ways (closed form, phase means, product rule): one state, layout
+# and event.
+_TRIAXIAL = (_SLOW, TRIAXIAL_AVERAGED, frozenset({codes.EVENT_TRIAXIAL_SEPARATRIX}))
 
 KINDS: dict[int, Kind] = {
     codes.KIND_RIGID_BODY: Kind(
@@ -113,10 +116,20 @@ KINDS: dict[int, Kind] = {
         inlined=False,
     ),
     codes.KIND_TRIAXIAL_AVERAGED: Kind(
-        "the engine's triaxial setting",
-        _SLOW,
-        TRIAXIAL_AVERAGED,
-        frozenset({codes.EVENT_TRIAXIAL_SEPARATRIX}),
+        "the engine's triaxial setting, the product rule",
+        *_TRIAXIAL,
+        compile_s=25.0,
+        inlined=False,
+    ),
+    codes.KIND_TRIAXIAL_PHASE_MEANS: Kind(
+        "the engine's triaxial setting, the phases averaged exactly",
+        *_TRIAXIAL,
+        compile_s=25.0,
+        inlined=False,
+    ),
+    codes.KIND_TRIAXIAL_CLOSED: Kind(
+        "the engine's triaxial setting in closed form",
+        *_TRIAXIAL,
         compile_s=25.0,
         inlined=False,
     ),

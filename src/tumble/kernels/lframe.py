@@ -1,7 +1,7 @@
 """The algebra of the closed-form Euler–Poinsot averages (:mod:`tumble.kernels.triaxial_closed`)
 that the torque terms' ``closed`` averages share: the sorted principal axes and the L-frame.
 
-``p`` is the parameter array of ``KIND_TRIAXIAL_AVERAGED`` (:data:`~tumble.kernels.params.
+``p`` is the parameter array of the ``KIND_TRIAXIAL_*`` kinds (:data:`~tumble.kernels.params.
 TRIAXIAL_AVERAGED`), whose ``sorting`` Q takes the user's body axes to the sorted ones; ``F`` is
 a frame (by rows) whose third column is L̂. The context ``ctx`` a term's ``closed`` receives is
 ``(L, r, inv, sq, pairs, odd, first, a, F)``: |L|, 2T/L², the inverse sorted moments, the

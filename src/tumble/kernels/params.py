@@ -103,9 +103,9 @@ TRIAXIAL_AVERAGED = Layout(
         Field("inertia", 3, "inertia unit", "principal moments, ascending", 0.0),
         Field("sorting", 9, "1", "Q: sorted axes ← user axes, by rows"),
         Field("user_inertia", 3, "inertia unit", "principal moments in the user's order", 0.0),
-        Field("mode", 1, "1", "2: closed form, 1: phase means, 0: product rule", 0.0, 2.0),
         Field("period", 1, "time", "forcing period (0: none)", 0.0),
     ),
     tail="program",
 )
-"""``KIND_TRIAXIAL_AVERAGED`` (:mod:`tumble.kernels.triaxial`): the torque program follows."""
+"""The triaxial engine's kinds (``KIND_TRIAXIAL_*``, :mod:`tumble.kernels.triaxial`): the torque
+program follows."""

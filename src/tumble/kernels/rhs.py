@@ -36,9 +36,10 @@ Kinds
 ``KIND_SPINNER_AVERAGED``
     The general engine's spinner setting for a moment of the body rate only, state
     ``[k, ρ, σ, ϑ]``, parameters ``[κ, rtol, torque program]`` (:mod:`tumble.kernels.spinner`).
-``KIND_TRIAXIAL_AVERAGED``
-    The general engine's triaxial setting for a sum of built-in torques, state ``[L_ξ, r]``
-    (:mod:`tumble.kernels.triaxial`).
+``KIND_TRIAXIAL_CLOSED``, ``KIND_TRIAXIAL_PHASE_MEANS``, ``KIND_TRIAXIAL_AVERAGED``
+    The general engine's triaxial setting, state ``[L_ξ, r]`` (:mod:`tumble.kernels.triaxial`):
+    in closed form, by the exact phase means of built-in terms, or by the product rule for any
+    program (a user's numba function).
 """
 
 from __future__ import annotations
@@ -73,7 +74,7 @@ from tumble.kernels.params import (
 )
 from tumble.kernels.spinner import spinner_averaged
 from tumble.kernels.torque import orbit_torque_moment, torque_moment
-from tumble.kernels.triaxial import triaxial_averaged
+from tumble.kernels.triaxial import triaxial_averaged, triaxial_closed, triaxial_phase_means
 
 __all__ = [
     "euler_quaternion",
@@ -330,6 +331,10 @@ def _any_kind(kind: int, t: float, y: FloatArray, p: FloatArray, out: FloatArray
         nutation_engine(t, y, p, out)
     elif kind == codes.KIND_TRIAXIAL_AVERAGED:
         triaxial_averaged(t, y, p, out)
+    elif kind == codes.KIND_TRIAXIAL_PHASE_MEANS:
+        triaxial_phase_means(t, y, p, out)
+    elif kind == codes.KIND_TRIAXIAL_CLOSED:
+        triaxial_closed(t, y, p, out)
     else:
         for j in range(y.size):
             out[j] = math.nan
@@ -367,6 +372,8 @@ _BY_KIND: dict[int, Callable[..., None]] = {
     codes.KIND_SPINNER_AVERAGED: spinner_averaged,
     codes.KIND_NUTATION_ENGINE: nutation_engine,
     codes.KIND_TRIAXIAL_AVERAGED: triaxial_averaged,
+    codes.KIND_TRIAXIAL_PHASE_MEANS: triaxial_phase_means,
+    codes.KIND_TRIAXIAL_CLOSED: triaxial_closed,
 }
 
 
@@ -388,30 +395,96 @@ def _rhs_by_kind(kind: Any, t: Any, y: Any, p: Any, out: Any) -> Callable[..., N
 
 
 @jit(INLINE)
-def event(kind: int, t: float, y: FloatArray, p: FloatArray) -> float:
-    """The event function ``kind`` at (t, y); the integrator locates its sign changes."""
-    if kind == codes.EVENT_THETA_DOT:
-        # θ' sinθ = ω·(e_z × e3) (nonlinear-moment quaternion form): the sign of θ'.
-        q0, q1, q2, q3 = y[3], y[4], y[5], y[6]
-        n2 = q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3
-        ex = 2.0 * (q1 * q3 - q0 * q2) / n2
-        ey = 2.0 * (q2 * q3 + q0 * q1) / n2
-        return y[0] * ey - y[1] * ex
-    if kind == codes.EVENT_FIELD_SEPARATRIX:
-        return y[3] - 1.0 / p[_FA_I2]  # r − 1/I2 of the field's averaged vector form
-    if kind == codes.EVENT_NUTATION_SEPARATRIX:
-        return separatrix_distance(y)
-    if kind == codes.EVENT_EQUATOR:
-        return math.cos(y[3])  # a spinner's averaged state [k, ρ, σ, ϑ]
-    if kind == codes.EVENT_TRIAXIAL_SEPARATRIX:
-        return y[3] - 1.0 / p[_TA_I2]  # r − 1/I2 of the triaxial engine
+def _theta_dot(t: float, y: FloatArray, p: FloatArray) -> float:
+    """θ' sinθ = ω·(e_z × e3) of the nonlinear-moment quaternion form: the sign of θ'."""
+    q0, q1, q2, q3 = y[3], y[4], y[5], y[6]
+    n2 = q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3
+    ex = 2.0 * (q1 * q3 - q0 * q2) / n2
+    ey = 2.0 * (q2 * q3 + q0 * q1) / n2
+    return y[0] * ey - y[1] * ex
+
+
+@jit(INLINE)
+def _field_separatrix(t: float, y: FloatArray, p: FloatArray) -> float:
+    """r − 1/I2 of the rotating field's averaged vector form."""
+    return y[3] - 1.0 / p[_FA_I2]
+
+
+@jit(INLINE)
+def _nutation_separatrix(t: float, y: FloatArray, p: FloatArray) -> float:
+    """The distance of the energy form's state from the separatrix."""
+    return separatrix_distance(y)
+
+
+@jit(INLINE)
+def _equator(t: float, y: FloatArray, p: FloatArray) -> float:
+    """cos ϑ of a spinner's averaged state [k, ρ, σ, ϑ]."""
+    return math.cos(y[3])
+
+
+@jit(INLINE)
+def _triaxial_separatrix(t: float, y: FloatArray, p: FloatArray) -> float:
+    """r − 1/I2 of the triaxial engine."""
+    return y[3] - 1.0 / p[_TA_I2]
+
+
+_BY_EVENT: dict[int, Callable[..., float]] = {
+    codes.EVENT_THETA_DOT: _theta_dot,
+    codes.EVENT_FIELD_SEPARATRIX: _field_separatrix,
+    codes.EVENT_NUTATION_SEPARATRIX: _nutation_separatrix,
+    codes.EVENT_EQUATOR: _equator,
+    codes.EVENT_TRIAXIAL_SEPARATRIX: _triaxial_separatrix,
+}
+
+
+@jit(INLINE)
+def _any_event(code: int, t: float, y: FloatArray, p: FloatArray) -> float:
+    """:func:`event` for a code known only at run time (1 for ``EVENT_NONE`` or an unknown
+    one: no zero)."""
+    if code == codes.EVENT_THETA_DOT:
+        return _theta_dot(t, y, p)
+    if code == codes.EVENT_FIELD_SEPARATRIX:
+        return _field_separatrix(t, y, p)
+    if code == codes.EVENT_NUTATION_SEPARATRIX:
+        return _nutation_separatrix(t, y, p)
+    if code == codes.EVENT_EQUATOR:
+        return _equator(t, y, p)
+    if code == codes.EVENT_TRIAXIAL_SEPARATRIX:
+        return _triaxial_separatrix(t, y, p)
     return 1.0
 
 
+def event(code: int, t: float, y: FloatArray, p: FloatArray) -> float:
+    """The event function ``code`` (``EVENT_*``) at (t, y); the integrator locates its sign
+    changes.
+
+    In compiled code an overload, as :func:`rhs`: for a code known at compile time (the
+    integrator's event function, :func:`tumble.integrate.dop853.functions.event_function`)
+    that event's function alone. From Python: the dispatch on the run-time code.
+    """
+    return float(cast(Any, _any_event).py_func(code, t, y, p))
+
+
+@overload(event, prefer_literal=True, jit_options=cast(Any, OVERLOAD))
+def _event_by_code(code: Any, t: Any, y: Any, p: Any) -> Callable[..., float]:
+    if isinstance(code, types.IntegerLiteral) and code.literal_value in _BY_EVENT:
+        one = _BY_EVENT[code.literal_value]
+
+        def impl(code: Any, t: Any, y: Any, p: Any) -> float:
+            return one(t, y, p)
+
+        return impl
+
+    def dispatch(code: Any, t: Any, y: Any, p: Any) -> float:
+        return _any_event(code, t, y, p)
+
+    return dispatch
+
+
 @jit(ENTRY)
-def evaluate_event(kind: int, t: float, y: FloatArray, p: FloatArray) -> float:
-    """The event function ``kind`` at (t, y), from Python: the integrator's own code."""
-    return event(kind, t, y, p)
+def evaluate_event(code: int, t: float, y: FloatArray, p: FloatArray) -> float:
+    """The event function ``code`` at (t, y), from Python: the integrator's own code."""
+    return event(code, t, y, p)
 
 
 @jit(ENTRY)

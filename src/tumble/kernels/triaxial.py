@@ -32,15 +32,18 @@ shifts u + K, u + 2K, u + 3K, and within the quarter the points beyond K/2 come 
 (DLMF 22.4.iii), so that dn is only ever formed where it is at least √k′ (:func:`_quarter`).
 
 A program whose every term is polynomial in the attitude (constant moments, linear drag, the
-gravity gradient, an orbiting body's orbit-averaged moments: mode 2) skips the quadrature: its
-average has a closed form (:mod:`tumble.kernels.triaxial_closed`). Any other program (mode 0:
-a user's numba function, :mod:`tumble.kernels.user`) is averaged as the Python engine
-averages it: the product rule on all three phases, each refined in turn
-from 16, 4 and 4 nodes with the same test, the moment at its explicit time.
+gravity gradient, an orbiting body's orbit-averaged moments) skips the quadrature: its average has a
+closed form (:mod:`tumble.kernels.triaxial_closed`). Any other program (a user's numba
+function, :mod:`tumble.kernels.user`) is averaged as the Python engine averages it: the
+product rule on all three phases, each refined in turn from 16, 4 and 4 nodes with the same
+test, the moment at its explicit time.
 
-Parameters of ``KIND_TRIAXIAL_AVERAGED``: ``[ε, rtol, L_floor, I1, I2, I3 (ascending),
-Q (sorted ← user, by rows, 9), I_user (3), mode, forcing period (0: none), torque program]``;
-state ``[L_ξ1, L_ξ2, L_ξ3, r]``.
+The three ways are three kinds, so that a run compiles the one it uses:
+``KIND_TRIAXIAL_CLOSED`` (:func:`triaxial_closed`), ``KIND_TRIAXIAL_PHASE_MEANS``
+(:func:`triaxial_phase_means`) and ``KIND_TRIAXIAL_AVERAGED`` (:func:`triaxial_averaged`, the
+product rule). Their parameters: ``[ε, rtol, L_floor, I1, I2, I3 (ascending), Q (sorted ←
+user, by rows, 9), I_user (3), forcing period (0: none), torque program]``; state
+``[L_ξ1, L_ξ2, L_ξ3, r]``.
 """
 
 from __future__ import annotations
@@ -70,12 +73,16 @@ from tumble.kernels.terms import phase_mean_of
 from tumble.kernels.torque import engine_program, program_of
 from tumble.kernels.triaxial_closed import closed_mean
 
-__all__ = ["MODE", "PERIOD", "PROGRAM_START", "jacobi_functions", "triaxial_averaged"]
+__all__ = [
+    "PERIOD",
+    "PROGRAM_START",
+    "jacobi_functions",
+    "triaxial_averaged",
+    "triaxial_closed",
+    "triaxial_phase_means",
+]
 
 _AT = TRIAXIAL_AVERAGED.at
-MODE = _AT.mode
-"""Index of the mode: 2 for terms with a closed-form average (:mod:`tumble.kernels.
-triaxial_closed`), 1 for other built-in terms (the reductions above), 0 for any program."""
 PERIOD = _AT.period
 """Index of the forcing period [τ] (0: none, the time frozen at t)."""
 PROGRAM_START = TRIAXIAL_AVERAGED.size
@@ -86,6 +93,7 @@ _AGM_STEPS = 24  # more than the AGM needs down to mc = MC_FLOOR (about 13 steps
 
 _Table = tuple[float, ...]
 _EMPTY = (0.0,) * _AGM_STEPS
+_NO_FRAME = (0.0,) * 9  # the frame of a refused state (never used)
 # numba's tuple "assignment" (a new tuple with one entry replaced): fixed-size tables without
 # an allocation, which the right-hand sides may not make.
 tuple_setitem = cast(Callable[[_Table, int, float], _Table], _tuple_setitem)
@@ -239,7 +247,7 @@ def _node_sums(
     p: FloatArray, t: float, z1: float, z2: float, z3: float, F: Mat3, rl1: float, rl2: float,
     rl3: float,
 ) -> _Sums:  # fmt: skip
-    """Built-in terms (mode 1): the channels summed over the four precession nodes at the
+    """Built-in terms: the channels summed over the four precession nodes at the
     body rate z (user axes), with A = F Rz(χ) G and each term at its phase mean."""
     g0, g1, g2 = _body_frame(p, z1, z2, z3)
     sums = _NO_SUMS
@@ -282,7 +290,7 @@ def _exact_mean(
     p: FloatArray, t: float, rtol: float, amp: Vec3, x3: bool, big_k: float, kc: float,
     ratios: _Table, n_agm: int, a_agm: float, F: Mat3, rl1: float, rl2: float, rl3: float,
 ) -> tuple[bool, float, float, float, float]:  # fmt: skip
-    """(converged, ⟨A M⟩ (3), ⟨(Ω − r L_ξ)·M⟩) of built-in terms (mode 1): the polhode refined
+    """(converged, ⟨A M⟩ (3), ⟨(Ω − r L_ξ)·M⟩) of built-in terms: the polhode refined
     with the engine's test, the precession and the forcing phase exact (module notes)."""
     nodes = POLHODE_START
     m = _scaled(_polhode_sums(p, t, nodes, 0.0, amp, x3, big_k, kc, ratios, n_agm, a_agm, F, rl1,
@@ -329,7 +337,7 @@ def _grid_sums(
     amp: Vec3, x3: bool, big_k: float, kc: float, ratios: _Table, n_agm: int, a_agm: float,
     F: Mat3, rl1: float, rl2: float, rl3: float,
 ) -> _Sums:  # fmt: skip
-    """Any program (mode 0): the channels of :func:`_node_sums` summed over the product grid
+    """Any program: the channels of :func:`_node_sums` summed over the product grid
     of n0 polhode phases, n1 precession angles and n2 forcing phases, each axis uniform with
     its offset (in nodes), the moment at its explicit time t + s·P/2π (the Python engine's
     integrand, :func:`tumble.averaging.triaxial._means`)."""
@@ -438,24 +446,21 @@ def _nan(out: FloatArray) -> None:
 
 
 @jit(INLINE)
-def triaxial_averaged(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> None:
-    """ε⟨A M⟩ and ε·2⟨(Ω − r L_ξ)·M⟩/L² for y = [L_ξ, r] (module notes); NaN where the
-    Python engine refuses the state (r beyond a pure rotation by more than the margin,
-    L at or below the floor, the separatrix band) or where the quadrature does not converge,
-    so that the step is rejected."""
-    eps, rtol, floor = p[_AT.eps], p[_AT.rtol], p[_AT.floor]
+def _polhode(y: FloatArray, p: FloatArray) -> tuple[bool, float, float, bool, float, Vec3, Mat3]:
+    """(valid, |L|, r, regime x3, the complementary parameter mc, the amplitudes of cn, sn,
+    dn, the frame F of L) of the state y = [L_ξ, r]; not valid where the Python engine
+    refuses the state: r beyond a pure rotation by more than the margin, L at or below the
+    floor, the separatrix band, mc below its floor."""
     i1, i2, i3 = vec3(p, _AT.inertia)
     lo, hi = 1.0 / i3, 1.0 / i1
     r = y[3]
     if not lo - REACHED_MARGIN * hi <= r <= hi + REACHED_MARGIN * hi:
-        _nan(out)
-        return
+        return False, 0.0, r, True, 0.0, (0.0, 0.0, 0.0), _NO_FRAME
     r = min(max(r, lo), hi)
     L = math.sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2])
     d1, d2, d3 = max(1.0 - r * i1, 0.0), 1.0 - r * i2, max(r * i3 - 1.0, 0.0)
-    if not L > floor or abs(d2) <= SEPARATRIX_RTOL:
-        _nan(out)
-        return
+    if not L > p[_AT.floor] or abs(d2) <= SEPARATRIX_RTOL:
+        return False, L, r, True, 0.0, (0.0, 0.0, 0.0), _NO_FRAME
     x3 = d2 > 0.0
     if x3:
         mc = (i3 - i1) * d2 / ((i3 - i2) * d1)
@@ -472,28 +477,59 @@ def triaxial_averaged(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -
             L * math.sqrt(d3 / (i1 * (i3 - i1))),
         )
     if not mc >= MC_FLOOR:
+        return False, L, r, x3, mc, amp, _NO_FRAME
+    return True, L, r, x3, min(mc, 1.0), amp, _frame(y[0] / L, y[1] / L, y[2] / L)
+
+
+@jit(INLINE)
+def triaxial_closed(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> None:
+    """``KIND_TRIAXIAL_CLOSED``: ε⟨A M⟩ and ε·2⟨(Ω − r L_ξ)·M⟩/L² for y = [L_ξ, r] of a
+    program whose every term has a closed-form average (:mod:`tumble.kernels.
+    triaxial_closed`); NaN where the Python engine refuses the state (:func:`_polhode`), so
+    that the step is rejected."""
+    valid, L, r, x3, mc, amp, F = _polhode(y, p)
+    if not valid:
         _nan(out)
         return
-    mc = min(mc, 1.0)
-    F = _frame(y[0] / L, y[1] / L, y[2] / L)
-    if p[MODE] == 2.0:
-        m1, m2, m3, m4 = closed_mean(p, PROGRAM_START, t, L, r, x3, mc, amp, F)
-        _rates(out, eps, L, m1, m2, m3, m4)
+    m1, m2, m3, m4 = closed_mean(p, PROGRAM_START, t, L, r, x3, mc, amp, F)
+    _rates(out, p[_AT.eps], L, m1, m2, m3, m4)
+
+
+@jit(INLINE)
+def _quadrature(
+    mean: Callable[..., tuple[bool, float, float, float, float]], t: float, y: FloatArray,
+    p: FloatArray, out: FloatArray,
+) -> None:  # fmt: skip
+    """The rates with the means of ``mean`` (:func:`_exact_mean` or :func:`_general_mean`,
+    a compile-time constant), NaN where the state is refused or the quadrature does not
+    converge."""
+    valid, L, r, x3, mc, amp, F = _polhode(y, p)
+    if not valid:
+        _nan(out)
         return
     ratios, n_agm, a_agm = _agm(mc)
     big_k = 0.5 * math.pi / a_agm
-    kc = math.sqrt(mc)
-    rl1, rl2, rl3 = r * y[0], r * y[1], r * y[2]
-    if p[MODE] == 1.0:
-        ok, m1, m2, m3, m4 = _exact_mean(p, t, rtol, amp, x3, big_k, kc, ratios, n_agm, a_agm, F,
-                                         rl1, rl2, rl3)  # fmt: skip
-    else:
-        ok, m1, m2, m3, m4 = _general_mean(p, t, rtol, amp, x3, big_k, kc, ratios, n_agm,
-                                           a_agm, F, rl1, rl2, rl3)  # fmt: skip
+    ok, m1, m2, m3, m4 = mean(p, t, p[_AT.rtol], amp, x3, big_k, math.sqrt(mc), ratios, n_agm,
+                              a_agm, F, r * y[0], r * y[1], r * y[2])  # fmt: skip
     if not ok:
         _nan(out)
         return
-    _rates(out, eps, L, m1, m2, m3, m4)
+    _rates(out, p[_AT.eps], L, m1, m2, m3, m4)
+
+
+@jit(INLINE)
+def triaxial_phase_means(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> None:
+    """``KIND_TRIAXIAL_PHASE_MEANS``: the rates of :func:`triaxial_closed` for built-in terms
+    without a closed form, the polhode refined, the precession and the forcing phase exact
+    (module notes)."""
+    _quadrature(_exact_mean, t, y, p, out)
+
+
+@jit(INLINE)
+def triaxial_averaged(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> None:
+    """``KIND_TRIAXIAL_AVERAGED``: the rates of :func:`triaxial_closed` for any program (a
+    user's numba function among its terms), by the product rule on all three phases."""
+    _quadrature(_general_mean, t, y, p, out)
 
 
 @jit(INLINE)

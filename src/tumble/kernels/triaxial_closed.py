@@ -3,8 +3,9 @@
 The general engine's triaxial setting (:mod:`tumble.kernels.triaxial`) averages the rates of
 ``[L_ξ, r = 2T/L²]`` over the polhode phase and the precession angle χ about L on a grid of
 nodes (at least 32 × 4 evaluations of the torque). For the terms below the average has a
-closed form, exact to round-off, at the cost of one arithmetic-geometric mean: mode 2 of that
-kernel (:func:`tumble.averaging.triaxial_kernel` chooses it when every term is one of them).
+closed form, exact to round-off, at the cost of one arithmetic-geometric mean: the kind
+``KIND_TRIAXIAL_CLOSED`` (:func:`tumble.kernels.triaxial.triaxial_closed`;
+:func:`tumble.averaging.triaxial_kernel` chooses it when every term is one of them).
 
 **The precession angle.** Write the attitude A = F Rz(χ) G with F a frame whose third axis is
 L̂ and G the body → L-frame rotation, whose third row is the body direction ℓ = L_body/L. The
@@ -86,7 +87,7 @@ def sn_means(mc: float) -> tuple[float, float, float]:
 def _moments(i1: float, i2: float, i3: float, L: float, x3: bool, mc: float, amp: Vec3) -> _Moments:
     """The polhode means (sorted axes) of ℓ = L_body/L: ⟨ℓᵢ²⟩, ⟨ℓⱼ²ℓₖ²⟩ (i, j, k cyclic, by
     i), ⟨ℓ_a ℓᵢ²⟩, ⟨ℓ_a⟩ and the encircled axis a (0 or 2). ``amp`` are the body rate's
-    amplitudes of cn, sn, dn as :func:`tumble.kernels.triaxial.triaxial_averaged` forms them
+    amplitudes of cn, sn, dn as :func:`tumble.kernels.triaxial._polhode` forms them
     (Martynenko (1979), eq. (3.1))."""
     big_k, x1, x2 = _sn_means(mc)
     m = 1.0 - mc

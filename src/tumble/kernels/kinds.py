@@ -53,7 +53,7 @@ class Kind:
     state: tuple[str, ...]
     params: Layout
     events: frozenset[int] = frozenset()
-    compile_s: float = 2.0
+    compile_s: float = 2.5
     inlined: bool = True
 
     def allows(self, event: int) -> bool:
@@ -72,13 +72,13 @@ _TRIAXIAL = (_SLOW, TRIAXIAL_AVERAGED, frozenset({codes.EVENT_TRIAXIAL_SEPARATRI
 
 KINDS: dict[int, Kind] = {
     codes.KIND_RIGID_BODY: Kind(
-        "Euler's equations under a torque program", _BODY, RIGID_BODY, compile_s=4.5
+        "Euler's equations under a torque program", _BODY, RIGID_BODY, compile_s=5.0
     ),
     codes.KIND_ORBITING_BODY: Kind(
         "Euler's equations under every term (along an orbit, calling out)",
         _BODY,
         RIGID_BODY,
-        compile_s=11.0,
+        compile_s=9.5,
         inlined=False,
     ),
     codes.KIND_ROTATING_FIELD: Kind(
@@ -103,10 +103,10 @@ KINDS: dict[int, Kind] = {
         compile_s=3.0,
     ),
     codes.KIND_NUTATION_AVERAGED: Kind(
-        "Volosov's averaged equations in the energy form", *_NUTATION, compile_s=7.0, inlined=False
+        "Volosov's averaged equations in the energy form", *_NUTATION, compile_s=5.5, inlined=False
     ),
     codes.KIND_NUTATION_ENGINE: Kind(
-        "the engine's nutation setting", *_NUTATION, compile_s=12.0, inlined=False
+        "the engine's nutation setting", *_NUTATION, compile_s=9.5, inlined=False
     ),
     codes.KIND_SPINNER_AVERAGED: Kind(
         "the engine's spinner setting",
@@ -118,19 +118,19 @@ KINDS: dict[int, Kind] = {
     codes.KIND_TRIAXIAL_AVERAGED: Kind(
         "the engine's triaxial setting, the product rule",
         *_TRIAXIAL,
-        compile_s=25.0,
+        compile_s=8.0,
         inlined=False,
     ),
     codes.KIND_TRIAXIAL_PHASE_MEANS: Kind(
         "the engine's triaxial setting, the phases averaged exactly",
         *_TRIAXIAL,
-        compile_s=25.0,
+        compile_s=8.0,
         inlined=False,
     ),
     codes.KIND_TRIAXIAL_CLOSED: Kind(
         "the engine's triaxial setting in closed form",
         *_TRIAXIAL,
-        compile_s=25.0,
+        compile_s=7.0,
         inlined=False,
     ),
 }

@@ -16,6 +16,7 @@ __all__ = [
     "ScenarioError",
     "TumbleError",
     "TumbleWarning",
+    "UserCodeError",
     "check_finite",
     "check_range",
     "shorten",
@@ -53,6 +54,12 @@ class IntegrationError(TumbleError, RuntimeError):
     """An integration that failed, or a solution that left the real numbers (blow-up)."""
 
     exit_code = 3
+
+
+class UserCodeError(TumbleError):
+    """A user's function (a torque the scenario names) that failed: it raised, returned a
+    moment that is not 3 finite numbers, or does not compile for the call tumble makes. A
+    fault of the user's input, as a parameter out of range is (exit 2)."""
 
 
 class TumbleWarning(UserWarning):

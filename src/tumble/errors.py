@@ -46,6 +46,12 @@ class ScenarioError(TumbleError):
     """A scenario file that cannot be read or does not follow the scenario contract."""
 
 
+class UserCodeError(ScenarioError):
+    """A user's function (a torque the scenario names) that failed: it raised, returned a
+    moment that is not 3 finite numbers, or does not compile for the call tumble makes. A
+    fault of the user's input, as a parameter out of range is (exit 2)."""
+
+
 class OutputError(TumbleError):
     """The output directory cannot take the results (not a directory, not writable)."""
 
@@ -54,12 +60,6 @@ class IntegrationError(TumbleError, RuntimeError):
     """An integration that failed, or a solution that left the real numbers (blow-up)."""
 
     exit_code = 3
-
-
-class UserCodeError(TumbleError):
-    """A user's function (a torque the scenario names) that failed: it raised, returned a
-    moment that is not 3 finite numbers, or does not compile for the call tumble makes. A
-    fault of the user's input, as a parameter out of range is (exit 2)."""
 
 
 class TumbleWarning(UserWarning):

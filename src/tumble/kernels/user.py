@@ -120,7 +120,7 @@ def compiled_user_torque(function: Any) -> Any:
     """
     checked = checked_function(function)
 
-    @numba.cfunc(SIGNATURE, boundscheck=True)
+    @cast(Any, numba.cfunc)(SIGNATURE, boundscheck=True)
     def callback(t, q0, q1, q2, q3, w1, w2, w3, params, n, out, record):  # type: ignore[no-untyped-def]
         try:
             moment = checked(

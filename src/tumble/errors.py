@@ -9,6 +9,7 @@ emits a :class:`TumbleWarning` and is never refused.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 __all__ = [
     "IntegrationError",
@@ -33,9 +34,17 @@ def shorten(text: object, limit: int = MAX_ECHO) -> str:
 
 
 class TumbleError(Exception):
-    """Base class of every error tumble raises on purpose; ``exit_code`` is the CLI's."""
+    """Base class of every error tumble raises on purpose; ``exit_code`` is the CLI's.
+
+    ``partial`` is what the run computed before the error stopped it, where it keeps any (a
+    full run's :class:`~tumble.integrate.Trajectory` up to the last step it took); the runner
+    writes it, marked as ending early, and sets ``written``.
+    """
 
     exit_code = 2
+    partial: Any = None
+    written: str | None = None
+    """The output directory that holds what the run computed before the error, if any."""
 
 
 class ParameterError(TumbleError, ValueError):

@@ -214,3 +214,32 @@ def test_the_torque_evaluated_from_python_reports_its_fault(tmp_path):
     assert np.isfinite(torque(1.0, q, np.zeros(3))).all()
     with pytest.raises(UserCodeError, match="ZeroDivisionError"):
         torque(6.0, q, np.zeros(3))
+
+
+def test_what_ran_before_a_fault_is_written_and_marked(tmp_path, capsys):
+    import json
+
+    code, err = _run(tmp_path, capsys, "nb_raise_late")
+    out = tmp_path / "out_nb_raise_late"
+    summary = json.loads((out / "summary.json").read_text())
+    ended = summary["ended_early"]
+    # The fault comes at t > 5: the samples at t = 0, 2.5 and 5 were passed or not depending
+    # on the last step taken before it; every one kept lies before the fault.
+    assert code == 2 and ended["method"] == "full" and "faults:nb_raise_late" in ended["reason"]
+    rows = (out / "full.csv").read_text().strip().splitlines()
+    assert 2 <= len(rows) <= 4 and ended["t"] <= 5.0  # the header and the samples before t = 5
+    assert "ending early" in " ".join(err.split())
+
+
+def test_a_spent_step_budget_keeps_what_ran(tmp_path, capsys):
+    import json
+
+    (tmp_path / "faults.py").write_text(FAULTS)
+    scenario = tmp_path / "budget.toml"
+    text = SCENARIO.format(name="ok").replace("t_end = 10.0", "t_end = 1000.0")
+    scenario.write_text(text + "max_steps = 200\n")
+    with pytest.raises(SystemExit) as stop:
+        app(["run", str(scenario), "--out", str(tmp_path / "out")])
+    err = capsys.readouterr().err
+    summary = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert stop.value.code == 3 and "run.max_steps" in summary["ended_early"]["reason"], err

@@ -229,7 +229,11 @@ def run(request: RunRequest, precomputed: Mapping[str, Trajectory] | None = None
             # What the method computed before it stopped: kept, and the error raised again
             # with the whole result attached, for the runner to write (marked).
             trajectories[m] = exc.partial
-            stopped = {"method": m, "t": float(exc.partial.tau[-1]), "reason": str(exc)}
+            stopped: dict[str, Json] = {
+                "method": m,
+                "t": float(exc.partial.tau[-1]),
+                "reason": str(exc),
+            }
             exc.partial = _result(request, trajectories, stopped)
             raise
     return _result(request, trajectories, None)

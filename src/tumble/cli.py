@@ -74,6 +74,14 @@ def _guarded(work: Callable[[], Any], interrupted: str = "interrupted") -> Any:
         _interrupted(interrupted)
     except TumbleError as exc:
         err.print(f"[red]error:[/red] {_shortened(str(exc))}", highlight=False, soft_wrap=True)
+        if exc.written is not None:  # what ran before the error, kept and marked
+            ended = getattr(exc.partial, "ended_early", None) or {}
+            upto = f" (t ≤ {ended['t']:.6g})" if "t" in ended else ""
+            err.print(
+                f"what the run computed until then{upto} is written to {exc.written}, marked "
+                "as ending early (summary.json: ended_early)",
+                markup=False, highlight=False, soft_wrap=True,
+            )  # fmt: skip
         raise typer.Exit(exc.exit_code) from None
     except Exception as exc:
         from tumble._interrupt import from_interrupt

@@ -9,6 +9,7 @@ emits a :class:`TumbleWarning` and is never refused.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 __all__ = [
     "IntegrationError",
@@ -16,6 +17,7 @@ __all__ = [
     "ScenarioError",
     "TumbleError",
     "TumbleWarning",
+    "UserCodeError",
     "check_finite",
     "check_range",
     "shorten",
@@ -32,9 +34,17 @@ def shorten(text: object, limit: int = MAX_ECHO) -> str:
 
 
 class TumbleError(Exception):
-    """Base class of every error tumble raises on purpose; ``exit_code`` is the CLI's."""
+    """Base class of every error tumble raises on purpose; ``exit_code`` is the CLI's.
+
+    ``partial`` is what the run computed before the error stopped it, where it keeps any (a
+    full run's :class:`~tumble.integrate.Trajectory` up to the last step it took); the runner
+    writes it, marked as ending early, and sets ``written``.
+    """
 
     exit_code = 2
+    partial: Any = None
+    written: str | None = None
+    """The output directory that holds what the run computed before the error, if any."""
 
 
 class ParameterError(TumbleError, ValueError):
@@ -43,6 +53,12 @@ class ParameterError(TumbleError, ValueError):
 
 class ScenarioError(TumbleError):
     """A scenario file that cannot be read or does not follow the scenario contract."""
+
+
+class UserCodeError(ScenarioError):
+    """A user's function (a torque the scenario names) that failed: it raised, returned a
+    moment that is not 3 finite numbers, or does not compile for the call tumble makes. A
+    fault of the user's input, as a parameter out of range is (exit 2)."""
 
 
 class OutputError(TumbleError):

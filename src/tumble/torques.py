@@ -32,7 +32,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
-from tumble.errors import ParameterError, check_range
+from tumble.errors import ParameterError, TumbleError, UserCodeError, check_range, shorten
 from tumble.kernels import terms as registry
 from tumble.kernels.terms import CompiledTerm
 
@@ -385,6 +385,18 @@ class CallableTorque(Torque):
         return np.asarray(self.function(t, q, omega), dtype=float)
 
 
+def _where(t: ArrayLike, q: ArrayLike | None, omega: ArrayLike) -> str:
+    """Where a user's function was called, for a message: the state, or the size of the grid
+    of states the averaging engine passed at once."""
+    if np.ndim(omega) > 1:
+        return f"one of {int(np.prod(np.shape(omega)[:-1]))} states the averaging engine passed"
+    fmt = ", ".join
+    rate = fmt(f"{x:.6g}" for x in np.ravel(omega))
+    attitude = "" if q is None else f", q = [{fmt(f'{x:.6g}' for x in np.ravel(q))}]"
+    time = f"{float(t):.9g}" if np.ndim(t) == 0 else "…"
+    return f"t = {time}{attitude}, omega = [{rate}]"
+
+
 @dataclass(frozen=True, eq=False)
 class UserTorque(Torque):
     """A user function ``f(t, q, omega, params) -> body moment`` with its parameters.
@@ -411,15 +423,43 @@ class UserTorque(Torque):
     name: str = "user torque"
 
     def __call__(self, t: ArrayLike, q: ArrayLike | None, omega: ArrayLike) -> FloatArray:
+        """The moment at (t, q, ω), or at every point of arrays of them; a fault of the user's
+        function (it raises, or returns anything but finite moments of 3 components) is a
+        :class:`~tumble.errors.UserCodeError` naming the function, the state and the fault."""
         if self.program is not None:  # a numba function: through its compiled callback
-            return super().__call__(t, q, omega)
-        return np.asarray(self.function(t, q, omega, self.params), dtype=float)
+            from tumble.kernels.user import raise_fault
+
+            moment = super().__call__(t, q, omega)
+            raise_fault()
+            return moment
+        try:
+            moment = np.asarray(self.function(t, q, omega, self.params), dtype=float)
+        except TumbleError:
+            raise
+        except Exception as exc:
+            raise UserCodeError(
+                f"{self.name} raised {type(exc).__name__}: {shorten(exc)} at {_where(t, q, omega)}"
+            ) from None
+        if moment.shape[-1:] != (3,) or (np.ndim(omega) == 1 and moment.shape != (3,)):
+            raise UserCodeError(
+                f"{self.name}: a torque function must return the 3 body components of the "
+                f"moment for each state, got shape {moment.shape} at {_where(t, q, omega)}"
+            )
+        if not np.all(np.isfinite(moment)):
+            raise UserCodeError(f"{self.name} returned a moment that is not finite at "
+                                f"{_where(t, q, omega)}")  # fmt: skip
+        return moment
 
     def compiled_terms(self) -> tuple[CompiledTerm, ...] | None:
         """A function compiled with ``numba.njit`` runs in the compiled code through a C
         callback (:mod:`tumble.kernels.user`), with ``params`` as a float array of the
         table's values in their order; any other is Python (None)."""
-        from tumble.kernels.user import compiled_user_torque, is_numba_function  # numba
+        from tumble.kernels.user import (  # numba
+            compiled_user_torque,
+            fault_record,
+            is_numba_function,
+            probe,
+        )
 
         function = inspect.unwrap(self.function, stop=is_numba_function)  # a lazy import too
         if not is_numba_function(function):
@@ -432,16 +472,15 @@ class UserTorque(Torque):
                     "only (its params arrive as a float array, in the table's order)"
                 )
             values.append(float(value))
-        # One call from Python first: inside the C callback an exception could not reach
-        # anyone, so a broken function fails here, with its own error.
-        trial = function(0.0, np.array([1.0, 0.0, 0.0, 0.0]), np.zeros(3), np.array(values))
-        if np.shape(trial) != (3,):
-            raise ParameterError(
-                f"{self.name}: a numba torque function must return the 3 body components of "
-                f"the moment, got shape {np.shape(trial)}"
-            )
-        address = compiled_user_torque(function).address
-        head = {"address": float(address), "n": float(len(values))}
+        # Calls from Python first, so that a function that does not compile for the call,
+        # raises or returns anything but 3 finite numbers fails here with its own error; in
+        # the run, a fault goes to the function's record (tumble.kernels.user).
+        probe(function, self.name, values)
+        head = {
+            "address": float(compiled_user_torque(function).address),
+            "record": float(fault_record(function, self.name, values)),
+            "n": float(len(values)),
+        }
         return (registry.compiled_term("user", head, tail=values),)
 
 

@@ -201,12 +201,13 @@ def test_an_engine_case_runs_the_general_engine():
 
 
 def test_without_quadratic_drag_steps_over_a_user_terms_own_length():
-    # A user term's payload is [address, n, n parameters]: the walk takes its length from the
-    # term's header (a fixed stride would have read a parameter as the next term's code). Not
-    # evaluated: the address is a placeholder.
+    # A user term's payload is [address, record, n, n parameters]: the walk takes its length
+    # from the term's header (a fixed stride would have read a parameter as the next term's
+    # code). Not evaluated: the addresses are placeholders.
     from tumble.kernels import terms
 
-    user = terms.compiled_term("user", {"address": 0.0, "n": 3.0}, tail=[7.0, 8.0, 9.0])
+    head = {"address": 0.0, "record": 0.0, "n": 3.0}
+    user = terms.compiled_term("user", head, tail=[7.0, 8.0, 9.0])
     drag = terms.compiled_term("quadratic_drag", {"S": np.eye(3)})
     body = terms.compiled_term("body_constant", {"moment": [0.1, 0.2, 0.3]}, factor=2.0)
     program = terms.flatten([user, drag, body])

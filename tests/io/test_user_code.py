@@ -76,7 +76,7 @@ def test_an_installed_module_runs_only_when_allowed(tmp_path):
     with pytest.raises(ScenarioError, match="only with --allow-module builtins"):
         load_scenario(path)
     # Allowed, it is imported and called at the initial state: print returns None, refused.
-    with pytest.raises(ScenarioError, match="at the initial state it returned"):
+    with pytest.raises(ScenarioError, match="must return the 3 body components"):
         load_scenario(path, allow_modules=["builtins"])
 
 

@@ -77,13 +77,13 @@ def test_every_term_declares_a_compiled_moment_and_what_it_reads():
 def test_a_program_walks_by_each_terms_own_size():
     # The user term's payload has a tail of its own length; the walk must not read a parameter
     # as the next term's code (the header carries each payload's size).
-    user = terms.compiled_term("user", {"address": 0.0, "n": 2.0}, tail=[8.0, 9.0])
+    user = terms.compiled_term("user", {"address": 0.0, "record": 0.0, "n": 2.0}, tail=[8.0, 9.0])
     body = terms.compiled_term("body_constant", {"moment": [1.0, 2.0, 3.0]}, factor=0.5)
     program = terms.flatten([user, body])
     walked = terms.walk(program)
     assert [t.name for t, _, _ in walked] == ["user", "body_constant"]
     assert walked[1][1] == 0.5
-    np.testing.assert_array_equal(walked[0][2], [0.0, 2.0, 8.0, 9.0])
+    np.testing.assert_array_equal(walked[0][2], [0.0, 0.0, 2.0, 8.0, 9.0])
     i = 1
     for _ in range(2):
         i = int(terms.next_term.py_func(program, i))

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from tumble.averaging import triaxial_average_vector, triaxial_kernel
-from tumble.errors import ParameterError
+from tumble.errors import ParameterError, UserCodeError
 from tumble.integrate import simulate
 from tumble.kernels import KIND_TRIAXIAL_AVERAGED, KIND_TRIAXIAL_CLOSED
 from tumble.kernels.rhs import evaluate
@@ -138,14 +138,14 @@ def _two_numbers(t, q, omega, params):  # type: ignore[no-untyped-def]
 
 
 def test_a_broken_numba_torque_fails_from_python_not_inside_the_callback():
-    with pytest.raises(ParameterError, match="must return the 3 body components"):
+    with pytest.raises(UserCodeError, match="must return the 3 body components"):
         _ = UserTorque(_two_numbers, {}, "test:two").program
-    # An exception of the function (here numba's bounds check, on for this one) is raised
-    # where Python sees it.
-    with pytest.raises(IndexError):
+    # An exception of the function (here tumble's bounds check: the function is compiled
+    # again with it) is one error naming the function, the exception and the state.
+    with pytest.raises(UserCodeError, match=r"test:broken raised IndexError.* at t = 0"):
         _ = UserTorque(_broken_checked, {"a": 1.0, "b": 2.0}, "test:broken").program
 
 
-@numba.njit(boundscheck=True)
+@numba.njit
 def _broken_checked(t, q, omega, params):  # type: ignore[no-untyped-def]
     return np.array([params[5], 0.0, 0.0])

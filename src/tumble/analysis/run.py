@@ -13,7 +13,7 @@ import xarray as xr
 
 from tumble._typing import FloatArray
 from tumble.analysis.compare import max_differences
-from tumble.errors import TumbleWarning
+from tumble.errors import TumbleError, TumbleWarning
 from tumble.integrate import DEFAULT_ATOL, DEFAULT_RTOL, MAX_STEPS, Trajectory, simulate
 from tumble.models import AnyModel
 from tumble.models.base import AveragingOptions, Column, Json, Report, ValidityIssue
@@ -77,7 +77,10 @@ class RunResult:
     ``diagnostics`` holds, per averaged method, the model's extra per-sample quantities (e.g.
     the fast frequencies of the rotating-field model); ``report`` the model's extra tables and
     summary keys (e.g. the extrema of the nonlinear-moment model); ``verification`` the
-    :class:`~tumble.analysis.verify.VerifyResult` of ``[run] verify``, when asked for.
+    :class:`~tumble.analysis.verify.VerifyResult` of ``[run] verify``, when asked for;
+    ``ended_early`` says which method stopped before the end, where and why (its dataset then
+    holds what it computed until then, and the methods after it did not run), None when every
+    method ran to the end.
     """
 
     request: RunRequest
@@ -89,6 +92,7 @@ class RunResult:
     diagnostics: dict[str, xr.Dataset] = field(default_factory=dict)
     report: Report = field(default_factory=Report)
     verification: Any = None
+    ended_early: Mapping[str, Json] | None = None
 
 
 def _columns_dataset(
@@ -204,38 +208,71 @@ def run(request: RunRequest, precomputed: Mapping[str, Trajectory] | None = None
     Returns
     -------
     RunResult
+
+    Raises
+    ------
+    TumbleError
+        A method that failed; where it kept what it computed before it stopped (a full run on
+        the compiled integrator), the error's ``partial`` is this function's
+        :class:`RunResult` of everything run until then, its ``ended_early`` set.
     """
-    model, p, st = request.model, request.params, request.initial
     for method in request.methods:  # refuse before any work is done
-        model.check(p, method)
+        request.model.check(request.params, method)
     done = precomputed or {}
-    trajectories = {
-        m: done[m]
-        if m in done
-        else simulate(
-            model,
-            p,
-            st,
-            request.tau,
-            m,
-            rtol=request.rtol,
-            atol=request.atol,
-            integrator=request.integrator,
-            averaging=request.averaging,
-            max_steps=request.max_steps,
-        )
-        for m in request.methods
-    }
+    trajectories: dict[str, Trajectory] = {}
+    for m in request.methods:
+        try:
+            trajectories[m] = done[m] if m in done else _simulated(request, m)
+        except TumbleError as exc:
+            if exc.partial is None:
+                raise
+            # What the method computed before it stopped: kept, and the error raised again
+            # with the whole result attached, for the runner to write (marked).
+            trajectories[m] = exc.partial
+            stopped: dict[str, Json] = {
+                "method": m,
+                "t": float(exc.partial.tau[-1]),
+                "reason": str(exc),
+            }
+            exc.partial = _result(request, trajectories, stopped)
+            raise
+    return _result(request, trajectories, None)
+
+
+def _simulated(request: RunRequest, method: str) -> Trajectory:
+    """One method of the request, run."""
+    return simulate(
+        request.model,
+        request.params,
+        request.initial,
+        request.tau,
+        method,
+        rtol=request.rtol,
+        atol=request.atol,
+        integrator=request.integrator,
+        averaging=request.averaging,
+        max_steps=request.max_steps,
+    )
+
+
+def _result(
+    request: RunRequest, trajectories: dict[str, Trajectory], stopped: Mapping[str, Json] | None
+) -> RunResult:
+    """The comparison, checks and reports of the trajectories run; with ``stopped`` (a method
+    that ended early), only what holds for a trajectory cut short: its samples, and the
+    differences of the methods that ran to the end."""
+    model, p, st = request.model, request.params, request.initial
     datasets = {m: to_dataset(model, t, p) for m, t in trajectories.items()}
+    whole = [m for m in trajectories if stopped is None or m != stopped["method"]]
     differences = {
         f"{b}_vs_{a}": max_differences(datasets[b], datasets[a])
-        for a, b in itertools.combinations(request.methods, 2)
+        for a, b in itertools.combinations(whole, 2)
     }
     tau_end = float(request.tau[-1])
     validity = model.validity
     found = {
-        m: validity.check(p, st, t.slow, tau_end)
-        for m, t in trajectories.items()
+        m: validity.check(p, st, trajectories[m].slow, tau_end)
+        for m in whole
         if m in ("averaged", "closed_form") and validity is not None
     }
     issues = _merge_issues(found)
@@ -244,13 +281,16 @@ def run(request: RunRequest, precomputed: Mapping[str, Trajectory] | None = None
     limits = validity.limits(p, st) if validity is not None and validity.limits else {}
     diagnostics = {}
     extra = model.averaged.diagnostics if model.averaged is not None else None
-    if extra is not None and "averaged" in trajectories:
+    if extra is not None and "averaged" in whole:
         traj = trajectories["averaged"]
         values = extra.compute(p, st, traj.columns)
         diagnostics["averaged"] = _columns_dataset(
             extra.columns, values, traj.tau, model.time.name, model.time.units
         )
-    report = model.report(p, st, trajectories) if model.report is not None else Report()
+    # (a model's tables want whole runs)
+    whole_run = stopped is None and model.report is not None
+    report = model.report(p, st, trajectories) if whole_run and model.report else Report()
     return RunResult(
-        request, datasets, trajectories, differences, issues, limits, diagnostics, report
-    )
+        request, datasets, trajectories, differences, issues, limits, diagnostics, report,
+        ended_early=stopped,
+    )  # fmt: skip

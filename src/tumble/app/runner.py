@@ -23,6 +23,7 @@ from tumble.analysis import RunResult, VerifyResult
 from tumble.analysis import run as run_request
 from tumble.analysis import verify as verify_request
 from tumble.analysis.run import si_dataset, si_time
+from tumble.errors import TumbleError
 from tumble.io.fileset import OutputSet, output_set
 from tumble.io.output import render_outputs, verify_outputs
 from tumble.io.scenario import Scenario, load_scenario
@@ -168,7 +169,15 @@ def run(
     RunResult
     """
     with _loaded(scenario, out_dir, "run", overwrite) as (sc, out):
-        result = run_request(sc.request)
+        try:
+            result = run_request(sc.request)
+        except TumbleError as exc:
+            if out is not None and isinstance(exc.partial, RunResult):
+                # What ran until the error: written, marked as ending early (summary.json's
+                # "ended_early"), then the error goes on to the caller.
+                out.commit(render_outputs(exc.partial, sc.inputs, sc.source, None))
+                exc.written = str(out_dir)
+            raise
         verification = verify_request(sc.request) if sc.request.verify else None
         if out is not None:
             files = render_outputs(result, sc.inputs, sc.source, verification)

@@ -28,6 +28,7 @@ from tumble.integrate.ode import compiled_breakpoints, joined_pieces, split_plan
 from tumble.integrate.simulate import each_on_threads, simulate, start_refusal
 from tumble.integrate.trajectory import RunSpec, Trajectory, integrated, unwrap_columns
 from tumble.kernels import EVENT_NONE, Kernel
+from tumble.kernels.user import raise_fault
 from tumble.models.base import AveragedForm, AveragingOptions, Breakpoint, Model
 
 __all__ = ["BLOCK_SIZE", "averaged_batch"]
@@ -216,6 +217,7 @@ def _integrate_group(
                 arrays["nfev"])  # fmt: skip
         allowance *= 2
         pieces = {int(pc[0]): pc[1:] for pc in block_entry(kind, event, args)(*args)}
+        raise_fault()  # a user's compiled torque that failed in the block: its own error
         going = []
         for r in active.tolist():
             pt, status = group[r], int(arrays["status"][r])

@@ -304,7 +304,12 @@ def _consume(
     run: RunSpec[P, S], full: FullForm[P, S], integration: dop853.Integration, start: float
 ) -> Trajectory:
     """Advance ``integration`` to its end chunk by chunk, keeping the samples (see
-    :func:`_streamed`); its wall time counted from ``start``."""
+    :func:`_streamed`); its wall time counted from ``start``.
+
+    A chunk that fails (the integration, its step budget, its pace, a user's torque) raises
+    its error with what the run computed until then attached (``TumbleError.partial``: the
+    samples up to the last step taken), so that the caller can keep it.
+    """
     p, tau = run.p, run.tau
     angles = [c.name for c in run.model.columns(p, "full") if c.unwrap]
 
@@ -316,47 +321,66 @@ def _consume(
     events: list[tuple[FloatArray, FloatArray, FloatArray]] = []
     carry: dict[str, float] = {}
     done_samples = 0
-    done = False
-    while not done:
-        left = max(1, run.max_steps - integration.progress.n_steps)
-        done = integration.advance(min(dop853.CHUNK_STEPS, left))
-        piece = integration.take()
-        _check_chunk(run, run.what(full), integration.progress, piece, done)
-        upto = tau.size if done else int(np.searchsorted(tau, piece.ts[-1], side="right"))
+
+    def keep(piece: dop853.Solution, upto: int) -> None:
+        """The samples of ``piece`` up to ``upto`` (unwrapped on its steps), and its events."""
+        nonlocal done_samples
         t_samples = tau[done_samples:upto]
         if t_samples.size:
             cols = full.to_columns(p, t_samples, piece.y_eval[done_samples:upto])
             parts.append(cols)
         else:  # no sample in this chunk: its steps still carry the turns of the angles
             cols = {name: np.empty(0) for name in angles}
-        if angles:
+        if angles and piece.ts.size:
             at_steps = angle_columns(p, piece.ts, piece.ys)
             _unwrap_streamed(cols, t_samples, at_steps, piece.ts, carry, run.initial)
         events.append((piece.event_t, piece.event_signs, piece.event_y))
         done_samples = upto
-    columns = {name: np.concatenate([part[name] for part in parts]) for name in parts[0]}
-    ev_t, ev_s, ev_y = (np.concatenate([e[k] for e in events]) for k in range(3))
-    event_columns = full.to_columns(p, ev_t, ev_y) if ev_t.size else {}
 
-    def slow(t: FloatArray) -> Columns:
-        raise ParameterError(
-            "this full run kept its samples only: simulate(..., dense=True) keeps the dense "
-            "output to evaluate it anywhere"
+    def kept() -> Trajectory:
+        """The trajectory of the samples kept so far."""
+        columns = {name: np.concatenate([part[name] for part in parts]) for name in parts[0]}
+        ev_t, ev_s, ev_y = (np.concatenate([e[k] for e in events]) for k in range(3))
+        event_columns = full.to_columns(p, ev_t, ev_y) if ev_t.size else {}
+        return Trajectory(
+            tau[:done_samples],
+            columns,
+            "full",
+            full.name,
+            time.perf_counter() - start,
+            int(integration.progress.nfev),
+            _samples_only,
+            np.empty(0),
+            "numba",
+            ev_t,
+            ev_s,
+            event_columns,
         )
 
-    return Trajectory(
-        tau,
-        columns,
-        "full",
-        full.name,
-        time.perf_counter() - start,
-        int(integration.progress.nfev),
-        slow,
-        np.empty(0),
-        "numba",
-        ev_t,
-        ev_s,
-        event_columns,
+    done = False
+    while not done:
+        left = max(1, run.max_steps - integration.progress.n_steps)
+        piece: dop853.Solution | None = None
+        try:
+            done = integration.advance(min(dop853.CHUNK_STEPS, left))
+            piece = integration.take()
+            _check_chunk(run, run.what(full), integration.progress, piece, done)
+        except TumbleError as exc:
+            if piece is None:  # what the failed chunk computed before it stopped
+                piece = integration.take()
+            keep(piece, int(np.searchsorted(tau, piece.ts[-1], side="right")))
+            if parts and exc.partial is None:
+                exc.partial = kept()
+            raise
+        keep(piece, tau.size if done else int(np.searchsorted(tau, piece.ts[-1], side="right")))
+    return kept()
+
+
+def _samples_only(t: FloatArray) -> Columns:
+    """The ``slow`` of a streamed full run, which keeps its samples only."""
+    raise ParameterError(
+        "this full run kept its samples only: simulate(..., dense=True) keeps the dense "
+        "output to evaluate it anywhere"
     )
 
 

@@ -99,6 +99,8 @@ def summary(
         "predicted_limits": result.limits,
         "warnings": result.issues,
     }
+    if result.ended_early is not None:
+        out["ended_early"] = dict(result.ended_early)
     if result.diagnostics:
         out["diagnostics"] = {
             m: {

@@ -27,6 +27,7 @@ from tumble.integrate.dop853.tableau import N_INTERPOLANT
 from tumble.kernels import Kernel
 from tumble.kernels.jit import compile_notice
 from tumble.kernels.kinds import KINDS
+from tumble.kernels.user import raise_fault
 
 __all__ = [
     "CHUNK_STEPS",
@@ -264,6 +265,7 @@ class Integration:
             progress, chunk = self._entry(*args)
         self.progress = Progress(*progress)
         self._chunks.append(Chunk(*chunk))
+        raise_fault()  # a user's compiled torque that failed in this chunk: its own error
         return self.done
 
     def take(self) -> Solution:

@@ -14,6 +14,7 @@ LAYOUT = Layout(
     "user",
     (
         Field("address", 1, "1", "address of the compiled callback"),
+        Field("record", 1, "1", "address of its fault record (tumble.kernels.user)"),
         Field("n", 1, "1", "number of parameters", 0.0),
     ),
     tail="params",  # the function's parameters (a scenario's [torque_params] values)
@@ -26,10 +27,11 @@ _PARAMS = LAYOUT.size  # the parameters follow the fixed part
 def moment(
     f: float, prog: FloatArray, v: int, t: float, w1: float, w2: float, w3: float, a: Mat3
 ) -> Vec3:
-    """The callback's moment at the quaternion of a (its sign arbitrary)."""
+    """The callback's moment at the quaternion of a (its sign arbitrary); NaN after a fault of
+    the user's function, which its record keeps."""
     q0, q1, q2, q3 = matrix_quaternion(a)
-    address, n = int(prog[v + _AT.address]), int(prog[v + _AT.n])
-    m1, m2, m3 = call_user(address, t, q0, q1, q2, q3, w1, w2, w3, prog, v + _PARAMS, n)
+    address, record, n = int(prog[v + _AT.address]), int(prog[v + _AT.record]), int(prog[v + _AT.n])
+    m1, m2, m3 = call_user(address, record, t, q0, q1, q2, q3, w1, w2, w3, prog, v + _PARAMS, n)
     return f * m1, f * m2, f * m3
 
 

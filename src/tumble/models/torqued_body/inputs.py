@@ -17,7 +17,7 @@ import numpy as np
 
 from tumble._typing import FloatArray
 from tumble.bodies import RigidBody
-from tumble.errors import ParameterError, ScenarioError, check_range, shorten
+from tumble.errors import ParameterError, ScenarioError, UserCodeError, check_range, shorten
 from tumble.kernels import Kernel
 from tumble.models.base import Column, Declaration, frozen_array
 from tumble.models.schema import Built, Inputs, Key, ScenarioSchema, Section, Variant
@@ -454,6 +454,8 @@ def _check_user_torque(torque: Torque, st: State) -> None:
     line, rather than deep inside an integration."""
     try:
         m = np.asarray(torque(0.0, st.q, st.omega), dtype=float)
+    except UserCodeError:
+        raise  # already one line naming the function, the state and the fault
     except Exception as exc:
         raise ScenarioError(
             f"torque: evaluating it at the initial state raised {type(exc).__name__}: {exc}"

@@ -579,6 +579,9 @@ class Declaration(Generic[P, S]):
     ----------
     name, time, methods, check, scenario
         As the :class:`Model` fields of those names.
+    check_initial : callable, optional
+        ``check_initial(params, initial, method)``: refuses an initial state the method
+        cannot start from (ParameterError naming the key), before any work is done.
     numeric, coordinates, corrected_start, orders, hybrid
         As the :class:`Averaged` fields of those names (False, (), False, (1,), False without
         averaged equations).
@@ -594,6 +597,7 @@ class Declaration(Generic[P, S]):
     corrected_start: bool = False
     orders: tuple[int, ...] = (1,)
     hybrid: bool = False
+    check_initial: Callable[[P, S, str], None] | None = None
 
     def averaged(
         self,

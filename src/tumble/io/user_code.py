@@ -139,8 +139,9 @@ def check_defines(path: Path, function: str, where: str) -> None:
     except (SyntaxError, ValueError) as exc:  # ValueError: a NUL byte in the source
         line = getattr(exc, "lineno", None)
         at = f" at line {line}" if line else ""
+        detail = exc.msg if isinstance(exc, SyntaxError) else str(exc)
         raise ScenarioError(
-            f"{where}: {path} is not valid Python{at} ({type(exc).__name__}: {shorten(exc)})"
+            f"{where}: {path} is not valid Python{at} ({type(exc).__name__}: {shorten(detail)})"
         ) from None
     except OSError as exc:
         raise ScenarioError(f"{where}: cannot read {path} ({shorten(exc)})") from None

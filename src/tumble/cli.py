@@ -456,7 +456,7 @@ def bench_cmd(
             orbit=not quick,
         )
         with Status("benchmark", console=err) as status:
-            return run_benchmark(settings, log=lambda msg: status.update(msg))
+            return run_benchmark(settings, log=lambda msg: status.update(escape(msg)))
 
     result = _guarded(work)
     text = json.dumps(result, indent=1, ensure_ascii=False)

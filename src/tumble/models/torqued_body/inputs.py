@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field, replace
-from functools import cached_property
+from functools import cached_property, partial
 from typing import Any
 
 import numpy as np
@@ -486,7 +486,7 @@ def _build(inputs: Inputs) -> Built[Params, State]:
     if not any(term["kind"] == "user" for term in terms):
         return Built(p, st)
     # The user's file is loaded only after every key is checked: the call waits for the loader.
-    return Built(p, st, user_checks=(lambda: _check_user_torque(p.torque, st),))
+    return Built(p, st, user_checks=(partial(_check_user_torque, p.torque, st),))
 
 
 def initial_attitude(ini: Mapping[str, Any]) -> FloatArray:

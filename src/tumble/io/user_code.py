@@ -258,6 +258,8 @@ def user_function(
     """
     target, sep, name = reference.rpartition(":")
     shown = f"{where} = {shorten(repr(reference))}"
+    if any(not c.isprintable() for c in reference):  # a NUL byte would reach the file system
+        raise ScenarioError(f"{shown}: control characters are not allowed in a reference")
     if not sep or not target or not name.isidentifier():
         raise ScenarioError(
             f'{shown}: expected "file:function" (a Python file beside the scenario)'

@@ -80,6 +80,18 @@ def test_a_refused_scenario_never_runs_the_users_file(tmp_path, case):
     assert not (tmp_path / "MARKER").exists()
 
 
+def test_a_bad_torque_table_after_a_user_term_never_runs_the_file(tmp_path):
+    path = _scenario(tmp_path)
+    text = path.read_text().replace(
+        'torque = "payload:torque"',
+        'torque = [{kind = "user", function = "payload:torque"}, {kind = "solar"}]',
+    )
+    path.write_text(text)
+    res = runner.invoke(app, ["run", str(path), "-o", str(tmp_path / "out")])
+    assert res.exit_code == 2 and "torque[1].kind" in res.stderr, res.stderr
+    assert not (tmp_path / "MARKER").exists()
+
+
 class _Watched(io.StringIO):
     """A terminal that notes, for each line written, whether the marker existed then."""
 

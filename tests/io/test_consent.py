@@ -23,6 +23,7 @@ from tumble.errors import ScenarioError, TumbleError
 from tumble.io.scenario import load_scenario
 from tumble.io.sweep import parse_sweep
 from tumble.io.user_code import check_defines
+from tumble.models import get_model
 
 runner = CliRunner()
 
@@ -70,9 +71,12 @@ REFUSED = {
 the methods) and after them (the steps, a body at rest for the averaged method)."""
 
 
+@pytest.mark.parametrize("loaded", [False, True], ids=["declared", "registered"])
 @pytest.mark.parametrize("case", REFUSED)
-def test_a_refused_scenario_never_runs_the_users_file(tmp_path, case):
+def test_a_refused_scenario_never_runs_the_users_file(tmp_path, case, loaded):
     changes, words = REFUSED[case]
+    if loaded:  # the model's numerics already loaded: its checks come from the model itself
+        get_model("torqued_body")
     path = _scenario(tmp_path, **changes)
     res = runner.invoke(app, ["run", str(path), "-o", str(tmp_path / "out")])
     assert res.exit_code == 2 and words in res.stderr, res.stderr

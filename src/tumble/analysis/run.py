@@ -208,6 +208,8 @@ def run(request: RunRequest, precomputed: Mapping[str, Trajectory] | None = None
     model, p, st = request.model, request.params, request.initial
     for method in request.methods:  # refuse before any work is done
         model.check(p, method)
+        if model.check_initial is not None:
+            model.check_initial(p, st, method)
     done = precomputed or {}
     trajectories = {
         m: done[m]

@@ -196,3 +196,36 @@ def test_a_refused_base_of_a_sweep_keeps_its_unit(tmp_path):
     res = runner.invoke(app, ["sweep", str(sweep), "-o", str(tmp_path / "out")])
     assert res.exit_code == 2
     assert "orbit.altitude [km] = -100" in res.stderr, res.stderr
+
+
+def test_a_warning_and_a_sweeps_failure_reasons_are_printed_as_written(monkeypatch):
+    import types
+    import warnings
+
+    import xarray as xr
+
+    from tumble.errors import TumbleWarning
+
+    buffer = io.StringIO()
+    monkeypatch.setattr(cli, "err", Console(file=buffer, width=80))
+    monkeypatch.setattr(cli, "out", Console(file=buffer, width=80))
+    text = "averaging near a resonance [1·ν1 = 2·Ω_f] from t [s] = 210"
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        warnings.warn(text, TumbleWarning, stacklevel=1)
+    cli._print_warnings(caught)
+    assert buffer.getvalue() == f"warning: {text}\n"
+    reason = "invalid input: body.magnetic_tensor and [conductor]: give one of them"
+    ds = xr.Dataset(
+        {"status": (("point",), [1, 0]), "reason": (("point",), [reason, ""])},
+        attrs={"points": 2},
+    )
+    result = types.SimpleNamespace(
+        dataset=ds, computed=2, resumed=0, failed=1, wall_time=1.0, workers=1, throughput=2.0,
+        files=["out/[bold]/sweep.nc"],
+    )  # fmt: skip
+    buffer.truncate(0)
+    buffer.seek(0)
+    cli._report_sweep(result)
+    lines = buffer.getvalue().splitlines()
+    assert lines[1:] == [f"failed ×1: {reason}", "written: out/[bold]/sweep.nc"]

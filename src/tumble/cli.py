@@ -3,6 +3,10 @@ bench | sweep | reproduce``.
 
 Commands only translate arguments: the work is done by library functions a notebook can call.
 Bad input prints one red line to stderr and exits 2; a failed integration exits 3.
+
+Messages, paths and anything else that echoes input are printed as written: rich reads no
+markup in them (a message's ``[km]`` or ``[conductor]`` is a word, not a tag). Only the
+labels and styles this module writes itself are markup.
 """
 
 from __future__ import annotations
@@ -21,6 +25,7 @@ import typer
 from rich.console import Console
 from rich.markup import escape
 from rich.table import Table
+from rich.text import Text
 
 from tumble.errors import TumbleError, TumbleWarning
 
@@ -59,6 +64,13 @@ def _main(
     out, err = Console(), Console(stderr=True)
 
 
+def _say(console: Console, text: str, label: str = "", style: str = "") -> None:
+    """Print ``text`` exactly as written (no rich markup is read in it), after an optional
+    ``label`` in ``style``: one line, however long."""
+    line = Text.assemble((label, style), " ", text) if label else Text(text)
+    console.print(line, highlight=False, soft_wrap=True)
+
+
 def _shortened(message: str) -> str:
     """``message`` with every run of more than 120 characters without a space cut to 80: an
     error line never repeats a huge input (a path or a value of ordinary length is kept)."""
@@ -73,15 +85,15 @@ def _guarded(work: Callable[[], Any], interrupted: str = "interrupted") -> Any:
     except KeyboardInterrupt:
         _interrupted(interrupted)
     except TumbleError as exc:
-        err.print(f"[red]error:[/red] {_shortened(str(exc))}", highlight=False, soft_wrap=True)
+        _say(err, _shortened(str(exc)), "error:", "red")
         if exc.written is not None:  # what ran before the error, kept and marked
             ended = getattr(exc.partial, "ended_early", None) or {}
             upto = f" (t ≤ {ended['t']:.6g})" if "t" in ended else ""
-            err.print(
+            _say(
+                err,
                 f"what the run computed until then{upto} is written to {exc.written}, marked "
                 "as ending early (summary.json: ended_early)",
-                markup=False, highlight=False, soft_wrap=True,
-            )  # fmt: skip
+            )
         raise typer.Exit(exc.exit_code) from None
     except Exception as exc:
         from tumble._interrupt import from_interrupt
@@ -90,12 +102,8 @@ def _guarded(work: Callable[[], Any], interrupted: str = "interrupted") -> Any:
             _interrupted(interrupted)
         if os.environ.get("TUMBLE_DEBUG"):
             raise
-        err.print(
-            f"[red]internal error:[/red] {type(exc).__name__}: {exc} "
-            "(set TUMBLE_DEBUG=1 for a traceback)",
-            highlight=False,
-            soft_wrap=True,
-        )
+        text = f"{type(exc).__name__}: {exc} (set TUMBLE_DEBUG=1 for a traceback)"
+        _say(err, text, "internal error:", "red")
         raise typer.Exit(1) from None
 
 
@@ -119,19 +127,22 @@ AllowModule = Annotated[
 ]
 
 
+def _consent(origins: tuple[str, ...]) -> None:
+    """Name every file of user code a valid scenario runs, before the first is loaded."""
+    for origin in origins:
+        _say(err, f"runs user code from {origin}")
+
+
 def _load(scenario: Path, allow_module: list[str] | None) -> Any:
-    """The validated scenario, with a line naming every file of user code it runs. A file
-    that cannot be read or is not TOML is reported before the models load (in a few tenths
-    of a second)."""
+    """The validated scenario. A file that cannot be read or is not TOML is reported before
+    the models load (in a few tenths of a second); user code it names is loaded only once the
+    whole scenario is valid, after a line naming each file."""
     from tumble.io.toml import read_file
 
     data = read_file(scenario)
     from tumble.io.scenario import parse_scenario
 
-    sc = parse_scenario(data, str(scenario), allow_modules=allow_module or ())
-    for origin in sc.user_code:
-        err.print(f"runs user code from {origin}", highlight=False, soft_wrap=True)
-    return sc
+    return parse_scenario(data, str(scenario), allow_modules=allow_module or (), consent=_consent)
 
 
 def _interrupted(message: str = "interrupted") -> None:
@@ -173,18 +184,18 @@ def run_cmd(
 
     model = result.request.model
     shown = figure_settings(model.name).variables
-    out.print(run_table(result, shown, f"{model.name} — {scenario}"))
+    out.print(run_table(result, shown, escape(f"{model.name} — {scenario}")))
     for line in run_lines(result, shown):
-        out.print(line, highlight=False)
+        _say(out, line)
     if result.verification is not None:
-        out.print(f"verify: {result.verification.verdict}", highlight=False, soft_wrap=True)
-    out.print(f"outputs written to {out_dir}/", highlight=False)
+        _say(out, f"verify: {result.verification.verdict}")
+    _say(out, f"outputs written to {out_dir}/")
 
 
 def _print_warnings(caught: list[warnings.WarningMessage]) -> None:
     for w in caught:
         if issubclass(w.category, TumbleWarning):
-            err.print(f"[yellow]warning:[/yellow] {w.message}", highlight=False, soft_wrap=True)
+            _say(err, str(w.message), "warning:", "yellow")
 
 
 @app.command("verify")
@@ -218,7 +229,9 @@ def verify_cmd(
     symbol = {"tau": "τ"}.get(result.time_name, result.time_name)
     horizon = "ε" + symbol if result.eps[0] > 0.0 else symbol
     table = Table(
-        title=f"verify {result.model} — {scenario} (horizon {horizon} = {result.horizon:.4g})",
+        title=escape(
+            f"verify {result.model} — {scenario} (horizon {horizon} = {result.horizon:.4g})"
+        ),
         title_justify="left",
     )
     table.add_column("variable")
@@ -235,12 +248,12 @@ def verify_cmd(
     out.print(table)
     for e, run in zip(result.eps, result.issues, strict=True):
         for issue in run:
-            out.print(f"[dim]ε = {e:.4g}:[/dim] {issue['message']}", highlight=False)
+            _say(out, str(issue["message"]), f"ε = {e:.4g}:", "dim")
     colour = {"first-order": "green", "exact": "green", "degraded": "yellow", "invalid": "red"}[
         result.status
     ]
-    out.print(f"[{colour}]{result.verdict}[/]", highlight=False, soft_wrap=True)
-    out.print(f"outputs written to {out_dir}/", highlight=False)
+    out.print(Text(result.verdict, style=colour), highlight=False, soft_wrap=True)
+    _say(out, f"outputs written to {out_dir}/")
     if strict and result.status not in ("first-order", "exact"):
         raise typer.Exit(4)
 
@@ -251,8 +264,8 @@ def models_cmd() -> None:
     from tumble.catalogue import CATALOGUE
 
     for name, rec in CATALOGUE.items():
-        paper = f"  [dim]({rec.paper})[/dim]" if rec.paper is not None else ""
-        out.print(f"[bold]{name}[/bold]: {rec.description}{paper}", highlight=False)
+        paper = ("", "") if rec.paper is None else (f"  ({rec.paper})", "dim")
+        out.print(Text.assemble((name, "bold"), f": {rec.description}", paper), highlight=False)
 
 
 @app.command("init")
@@ -306,8 +319,8 @@ def stability_cmd(
         return
 
     out.print(
-        f"[bold]{rep.motion}[/bold]: I = {tuple(p.inertia.tolist())}, β = {p.beta:.6g} rad, "
-        f"ε = {p.eps:.6g}",
+        f"[bold]{escape(rep.motion)}[/bold]: I = {tuple(p.inertia.tolist())}, "
+        f"β = {p.beta:.6g} rad, ε = {p.eps:.6g}",
         highlight=False,
     )
     coeffs = Table(title="characteristic polynomial (2.5)", title_justify="left")
@@ -334,7 +347,7 @@ def stability_cmd(
         highlight=False,
     )
     for note in ([rep.approx_note] if rep.approx_note else []) + list(rep.notes):
-        out.print(f"[dim]note:[/dim] {note}", highlight=False, soft_wrap=True)
+        _say(out, note, "note:", "dim")
 
 
 @app.command("stability-map")
@@ -404,7 +417,7 @@ def stability_map_cmd(
         return files
 
     files = _guarded(work)
-    out.print(f"written: {', '.join(str(f) for f in files)}", highlight=False)
+    _say(out, f"written: {', '.join(str(f) for f in files)}")
 
 
 @app.command("bench")
@@ -451,7 +464,7 @@ def bench_cmd(
             orbit=not quick,
         )
         with Status("benchmark", console=err) as status:
-            return run_benchmark(settings, log=lambda msg: status.update(msg))
+            return run_benchmark(settings, log=lambda msg: status.update(escape(msg)))
 
     result = _guarded(work)
     text = json.dumps(result, indent=1, ensure_ascii=False)
@@ -469,7 +482,7 @@ def bench_cmd(
     out.print(
         f"{len(result['verdicts']) - len(missed)} of {len(result['verdicts'])} targets met"
         + "".join(
-            f"\n  [red]missed:[/] {v['what']}: {v['value']:.3g} "
+            f"\n  [red]missed:[/] {escape(str(v['what']))}: {v['value']:.3g} "
             f"(target {'≥' if v['at_least'] else '≤'} {v['target']:g})"
             for v in missed
         ),
@@ -504,12 +517,14 @@ def sweep_cmd(
     runs on every worker: each loads it from the Python file beside the scenario.
     """
     if scheduler is not None and workers is not None:
-        err.print("[red]error:[/red] --workers applies to the local cluster, not --scheduler")
+        _say(err, "--workers applies to the local cluster, not --scheduler", "error:", "red")
         raise typer.Exit(2)
     from tumble.io.sweep import load_sweep
 
     # Validated before Dask, xarray and the integrators load: a bad key answers at once.
-    sweep_plan = _guarded(lambda: load_sweep(sweep_file, allow_modules=allow_module or ()))
+    sweep_plan = _guarded(
+        lambda: load_sweep(sweep_file, allow_modules=allow_module or (), consent=_consent)
+    )
     # At Ctrl-C the local cluster's processes are ended, not shut down: multiprocessing's
     # resource tracker (a child) would then warn about their semaphores on this terminal.
     os.environ.setdefault("PYTHONWARNINGS", "ignore::UserWarning:multiprocessing.resource_tracker")
@@ -583,13 +598,12 @@ def _report_sweep(result: Any) -> None:
     """What a sweep did: points, failures by reason, files."""
     ds = result.dataset
     shape = " × ".join(f"{d} {n}" for d, n in ds["status"].sizes.items())
-    out.print(
+    _say(
+        out,
         f"{ds.attrs['points']} points ({shape}): "
         f"{result.computed} computed, {result.resumed} already done, {result.failed} failed; "
         f"{result.wall_time:.1f} s on {result.workers} worker threads"
         + (f", {result.throughput:.3g} points/s" if result.computed else ""),
-        highlight=False,
-        soft_wrap=True,
     )
     if result.failed:
         reasons = collections.Counter(
@@ -597,11 +611,8 @@ def _report_sweep(result: Any) -> None:
                                     strict=True) if s == 1
         )  # fmt: skip
         for reason, count in reasons.most_common(3):
-            out.print(f"[yellow]failed ×{count}:[/yellow] {reason}", highlight=False,
-                      soft_wrap=True)  # fmt: skip
-    out.print(
-        f"written: {', '.join(str(f) for f in result.files)}", highlight=False, soft_wrap=True
-    )
+            _say(out, reason, f"failed ×{count}:", "yellow")
+    _say(out, f"written: {', '.join(str(f) for f in result.files)}")
 
 
 @app.command("reproduce")
@@ -650,7 +661,7 @@ def reproduce_cmd(
         table.add_column(col)
     for r in result.runs:
         if r.claim is None:
-            table.add_row(escape(r.label), r.error, "[red]error[/]", "")
+            table.add_row(escape(r.label), escape(str(r.error)), "[red]error[/]", "")
             continue
         table.add_row(
             escape(r.label),
@@ -659,7 +670,7 @@ def reproduce_cmd(
             escape(measured_text(r.claim.measured)),
         )
     out.print(table)
-    out.print(f"report: {Path(out_dir) / 'report.html'}", highlight=False, soft_wrap=True)
+    _say(out, f"report: {Path(out_dir) / 'report.html'}")
     if result.errors:
         err.print(f"[red]{len(result.errors)} check(s) could not run[/red] (see the report)")
         raise typer.Exit(1)

@@ -218,6 +218,8 @@ def run(request: RunRequest, precomputed: Mapping[str, Trajectory] | None = None
     """
     for method in request.methods:  # refuse before any work is done
         request.model.check(request.params, method)
+        if request.model.check_initial is not None:
+            request.model.check_initial(request.params, request.initial, method)
     done = precomputed or {}
     trajectories: dict[str, Trajectory] = {}
     for m in request.methods:

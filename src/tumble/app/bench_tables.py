@@ -1,13 +1,15 @@
 """The benchmark's figures as rich tables, each target beside its figure (``tumble bench``).
 
 The tables read the JSON-ready result of :func:`tumble.app.bench.run_benchmark` and compute
-nothing.
+nothing. Column headings carry units in brackets ("[s]"): escaped, so that rich does not read
+them as markup (``[s]`` is its tag for struck-through text).
 """
 
 from __future__ import annotations
 
 from typing import Any
 
+from rich.markup import escape
 from rich.table import Table
 
 __all__ = ["bench_tables"]
@@ -34,7 +36,7 @@ def _full_table(r: dict[str, Any]) -> Table | None:
         title_justify="left",
     )
     for col in ("case", "tumble [s]", "error", "scipy [s]", "error", "speed-up", "≥ 50×"):
-        t.add_column(col, justify="left" if col == "case" else "right")
+        t.add_column(escape(col), justify="left" if col == "case" else "right")
     for name, v in r["full_speedup_vs_scipy"].items():
         t.add_row(
             name,
@@ -55,7 +57,7 @@ def _heyoka_table(r: dict[str, Any]) -> Table | None:
         return None
     t = Table(title="Against heyoka.py (Taylor, LLVM) at equal error", title_justify="left")
     for col in ("case", "tumble [s]", "error", "heyoka [s]", "ratio", "≤ 1.5", "≤ 1.0"):
-        t.add_column(col, justify="left" if col == "case" else "right")
+        t.add_column(escape(col), justify="left" if col == "case" else "right")
     for name, v in r["full_time_ratio_vs_heyoka"].items():
         label = f"{name} (no s)" if v["note"] else name
         t.add_row(
@@ -96,7 +98,7 @@ def _averaged_table(r: dict[str, Any], key: str = "averaged_speedup") -> Table |
         "closed form [s]",
         "speed-up",
     ):
-        t.add_column(col, justify="left" if col == "model" else "right")
+        t.add_column(escape(col), justify="left" if col == "model" else "right")
     for name, by_eps in r[key].items():
         for eps, v in by_eps.items():
             a, c = v["averaged"], v.get("closed_form")
@@ -131,7 +133,7 @@ def _batch_table(r: dict[str, Any]) -> Table:
         title_justify="left",
     )
     for col in ("threads", "trajectories/s", "efficiency", "≥ 0.8"):
-        t.add_column(col, justify="right")
+        t.add_column(escape(col), justify="right")
     for n, v in b["threads"].items():
         t.add_row(
             n,
@@ -150,7 +152,7 @@ def _ensemble_table(r: dict[str, Any]) -> Table | None:
     t = Table(title="Averaged ensembles: runs per second (ε = 0.001)", title_justify="left")
     for col in ("model", "size", "one simulate() per point", "1 thread", "all threads",
                 "efficiency", "≥ 0.8"):  # fmt: skip
-        t.add_column(col, justify="right" if col != "model" else "left")
+        t.add_column(escape(col), justify="right" if col != "model" else "left")
     for name, v in ens.items():
         most = max(v["threads"], key=int)
         row = v["threads"][most]
@@ -176,7 +178,7 @@ def _compile_table(r: dict[str, Any]) -> Table | None:
         title_justify="left",
     )
     t.add_column("case")
-    t.add_column("first call [s]", justify="right")
+    t.add_column(escape("first call [s]"), justify="right")
     for name, sec in c["first_call_s"].items():
         t.add_row(name, f"{sec:.2f}")
     every = tg.get("compile_all_s", tg["compile_s"])  # a result from before the two targets
@@ -203,7 +205,7 @@ def _startup_table(r: dict[str, Any]) -> Table | None:
     target = r["targets"]["startup_s"]
     t = Table(title="Start-up: the answer from a fresh process (best of 3)", title_justify="left")
     t.add_column("command")
-    t.add_column("wall time [s]", justify="right")
+    t.add_column(escape("wall time [s]"), justify="right")
     for name, sec in r["startup_s"].items():
         t.add_row(name, f"{sec:.2f} (≤ {target:g}: {'yes' if sec <= target else 'no'})")
     return t
@@ -217,7 +219,7 @@ def _orbit_table(r: dict[str, Any]) -> Table | None:
     tg = r["targets"]
     t = Table(title="Orbiting body: one year of a LEO object", title_justify="left")
     for col in ("run", "rtol", "wall time [s]", "evaluations", "spin period vs full"):
-        t.add_column(col, justify="left" if col == "run" else "right")
+        t.add_column(escape(col), justify="left" if col == "run" else "right")
     for method in ("full", "averaged"):
         for rtol, v in o[method].items():
             t.add_row(method, rtol, f"{v['time_s']:.4g}", str(v["nfev"]),

@@ -45,7 +45,16 @@ from tumble.models.schema import REQUIRED, Key, Section, Variant
 if TYPE_CHECKING:
     from tumble.analysis import RunRequest
 
-__all__ = ["Scenario", "key_units", "load_scenario", "parse_scenario", "schema_for", "template"]
+__all__ = [
+    "Consent",
+    "Scenario",
+    "key_units",
+    "load_scenario",
+    "load_user_code",
+    "parse_scenario",
+    "schema_for",
+    "template",
+]
 
 MAX_MAGNITUDE = 1e100
 """Largest magnitude of any number in a scenario, and the inverse of the smallest nonzero
@@ -98,12 +107,27 @@ class _Section(BaseModel):
 
 @dataclass(frozen=True)
 class Scenario:
-    """A validated scenario: the run it asks for, and its inputs as given."""
+    """A validated scenario: the run it asks for, and its inputs as given.
+
+    A scenario that names user functions holds them not yet loaded until
+    :func:`load_user_code` (which :func:`parse_scenario` calls unless told to wait);
+    ``user_code`` lists the files (or allowed modules) whose code it runs.
+    """
 
     request: RunRequest
     inputs: dict[str, Any]
     source: str
     user_code: tuple[str, ...] = ()  # the files (or allowed modules) whose code it runs
+    pending: _UserCode | None = field(default=None, repr=False, compare=False)
+
+
+@dataclass
+class _UserCode:
+    """The user functions of a validated scenario and the checks that call them, run once."""
+
+    functions: list[UserFunction]
+    checks: tuple[Callable[[], None], ...]
+    loaded: bool = False
 
 
 # ---------------------------------------------------------------------------------------------
@@ -497,14 +521,26 @@ def _top_level(values: dict[str, Any], variant: Variant[Any, Any]) -> dict[str, 
 # The scenario.
 
 
+Consent = Callable[[tuple[str, ...]], None]
+"""Called with the files (or allowed modules) whose code a valid scenario runs, just before
+the first of them is loaded: the command line prints ``runs user code from …`` for each (a
+caller may also refuse by raising)."""
+
+
 def parse_scenario(
-    data: dict[str, Any], source: str = "<scenario>", *, allow_modules: Iterable[str] = ()
+    data: dict[str, Any],
+    source: str = "<scenario>",
+    *,
+    allow_modules: Iterable[str] = (),
+    consent: Consent | None = None,
+    load: bool = True,
 ) -> Scenario:
     """Validate a scenario given as a dict (as read from TOML).
 
-    A function the scenario names (a user torque) is loaded from its file only once the rest
-    of the scenario is valid (:mod:`tumble.io.user_code`); ``Scenario.user_code`` lists what
-    runs.
+    Nothing of a user's file runs before the whole scenario is valid: a function the scenario
+    names (a user torque) is looked for in its file's syntax tree, and the file is loaded
+    only once every key has been checked, after ``consent`` has been called with what runs
+    (:func:`load_user_code`; :mod:`tumble.io.user_code`). ``Scenario.user_code`` lists it.
 
     Parameters
     ----------
@@ -514,11 +550,18 @@ def parse_scenario(
         Its path: user functions are looked for beside it.
     allow_modules : iterable of str
         Importable modules a scenario may name functions of (``--allow-module``).
+    consent : callable, optional
+        Called with ``Scenario.user_code`` before any of it is loaded (not called for a
+        scenario without user code).
+    load : bool
+        False: validate only; the user functions stay unloaded and unchecked until
+        :func:`load_user_code` (a caller that validates more first: a sweep file).
 
     Raises
     ------
     ScenarioError, ParameterError
-        With a one-line message naming the key and its allowed range.
+        With a one-line message naming the key and its allowed range; also for a user
+        function that fails its checks once loaded (called at the initial state).
     """
     if "model" not in data:
         raise ScenarioError(
@@ -551,10 +594,45 @@ def parse_scenario(
     inputs = _Inputs(values, Path(source).resolve().parent, times, frozenset(allow_modules))
     built = variant.build(inputs)
     request = _request(model, sc.run, built, times)  # loads the model: the scenario is valid
-    for function in inputs.functions:
-        function.load()
     user_code = tuple(dict.fromkeys(f.origin for f in inputs.functions))
-    return Scenario(request, sc.model_dump(), source, user_code)
+    pending = _UserCode(inputs.functions, built.user_checks) if inputs.functions else None
+    scenario = Scenario(request, sc.model_dump(), source, user_code, pending)
+    return load_user_code(scenario, consent) if load else scenario
+
+
+def load_user_code(scenario: Scenario, consent: Consent | None = None) -> Scenario:
+    """Load the user functions of a validated scenario and run the checks that call them
+    (the torque at the initial state), once; ``consent`` is first called with what runs.
+
+    Parameters
+    ----------
+    scenario : Scenario
+        As :func:`parse_scenario` returned it (with ``load=False``, or already loaded: then
+        nothing happens).
+    consent : callable, optional
+        Called with ``scenario.user_code`` before the first file is loaded.
+
+    Returns
+    -------
+    Scenario
+        ``scenario``, its user functions loaded.
+
+    Raises
+    ------
+    ScenarioError, ParameterError
+        A file that fails to load, a name that is not a function, or a check that fails.
+    """
+    pending = scenario.pending
+    if pending is None or pending.loaded:
+        return scenario
+    if consent is not None:
+        consent(scenario.user_code)
+    for function in pending.functions:
+        function.load()
+    for check in pending.checks:
+        check()
+    pending.loaded = True
+    return scenario
 
 
 def _request(model: Declaration[Any, Any], run: Any, built: Any, times: np.ndarray) -> RunRequest:
@@ -564,6 +642,8 @@ def _request(model: Declaration[Any, Any], run: Any, built: Any, times: np.ndarr
     methods = _methods(run, model.methods, built.methods or model.methods)
     for m in methods:
         model.check(built.params, m)  # refuse before any work is done
+        if model.check_initial is not None:
+            model.check_initial(built.params, built.initial, m)
     rtol, atol = _tolerances(run)
     averaging = AveragingOptions(
         averaging=getattr(run, "averaging", "closed_form"),
@@ -612,11 +692,14 @@ def key_units(data: dict[str, Any], path: tuple[str | int, ...]) -> str:
     return "" if "," in unit else unit
 
 
-def load_scenario(path: str | Path, *, allow_modules: Iterable[str] = ()) -> Scenario:
+def load_scenario(
+    path: str | Path, *, allow_modules: Iterable[str] = (), consent: Consent | None = None
+) -> Scenario:
     """Read and validate a TOML scenario file.
 
     A scenario that names a torque function runs that code: it is loaded from the Python file
-    the scenario names, beside it (see :mod:`tumble.io.user_code`).
+    the scenario names, beside it, once the whole scenario is valid (see
+    :mod:`tumble.io.user_code`).
 
     Parameters
     ----------
@@ -624,5 +707,8 @@ def load_scenario(path: str | Path, *, allow_modules: Iterable[str] = ()) -> Sce
         The scenario file.
     allow_modules : iterable of str
         Importable modules the scenario may name functions of, besides files.
+    consent : callable, optional
+        Called with the files whose code runs, before the first is loaded
+        (:func:`parse_scenario`).
     """
-    return parse_scenario(read_file(path), str(path), allow_modules=allow_modules)
+    return parse_scenario(read_file(path), str(path), allow_modules=allow_modules, consent=consent)

@@ -44,7 +44,7 @@ from tumble._version import __version__
 from tumble.analysis.plan import Axis, Draw, Keep, Record, SweepPlan
 from tumble.errors import ParameterError, ScenarioError, shorten
 from tumble.io.fileset import atomic_write
-from tumble.io.scenario import _one_line, key_units, parse_scenario
+from tumble.io.scenario import Consent, _one_line, key_units, load_user_code, parse_scenario
 from tumble.io.toml import read_file, read_toml
 
 if TYPE_CHECKING:
@@ -335,9 +335,17 @@ def _default_chunk(size: int) -> int:
 
 
 def parse_sweep(
-    data: dict[str, Any], path: str | Path, *, allow_modules: Iterable[str] = ()
+    data: dict[str, Any],
+    path: str | Path,
+    *,
+    allow_modules: Iterable[str] = (),
+    consent: Consent | None = None,
 ) -> Sweep:
     """Validate a sweep given as a dict (as read from TOML) from the file ``path``.
+
+    User code the base scenario names is loaded (and called at its initial state) only once
+    the whole sweep file is valid, after ``consent`` has been called with what runs
+    (:func:`tumble.io.scenario.parse_scenario`).
 
     Raises
     ------
@@ -352,7 +360,9 @@ def parse_sweep(
     source, base = _base(sf, path)
     plan = _plan(sf, base)  # the sweep's own keys, against the base's data, before any model
     try:  # the base itself must be a valid run; points that are not are recorded as failed
-        sc = parse_scenario(copy.deepcopy(base), str(source), allow_modules=allow_modules)
+        sc = parse_scenario(
+            copy.deepcopy(base), str(source), allow_modules=allow_modules, load=False
+        )
     except (ScenarioError, ParameterError) as exc:
         raise ScenarioError(f"base scenario {source}: {exc}") from None
     from tumble.analysis.sweep import column_attrs  # the model is loaded: the base is valid
@@ -385,6 +395,10 @@ def parse_sweep(
             f"plot.method = {sf.plot.method!r} is not run by the base scenario (allowed: "
             f"{', '.join(sc.request.methods)})"
         )
+    try:  # the whole file is valid: now the base's user code may run
+        load_user_code(sc, consent)
+    except (ScenarioError, ParameterError) as exc:
+        raise ScenarioError(f"base scenario {source}: {exc}") from None
     return Sweep(
         plan,
         base,
@@ -460,10 +474,13 @@ def _keep(sf: SweepFile, request: RunRequest) -> Keep:
     )
 
 
-def load_sweep(path: str | Path, *, allow_modules: Iterable[str] = ()) -> Sweep:
-    """Read and validate a sweep file (TOML)."""
+def load_sweep(
+    path: str | Path, *, allow_modules: Iterable[str] = (), consent: Consent | None = None
+) -> Sweep:
+    """Read and validate a sweep file (TOML); ``consent`` as in :func:`parse_sweep`."""
     path = Path(path)
-    return parse_sweep(read_file(path, "sweep file"), path, allow_modules=allow_modules)
+    data = read_file(path, "sweep file")
+    return parse_sweep(data, path, allow_modules=allow_modules, consent=consent)
 
 
 class SweepStore:

@@ -11,15 +11,20 @@ A scenario that names a function runs that code. tumble therefore loads it only
 A file is loaded by its path, under a module name made of a hash of its resolved path and
 contents (``tumble_user_<hash>_<stem>``): two scenarios whose folders both hold a
 ``user_torques.py`` get their own functions in one process or on one Dask worker, and an
-edited file is loaded anew instead of served stale from ``sys.modules``. Loading is deferred:
-:func:`user_function` returns a :class:`UserFunction` that reads nothing until it is first
-called or :meth:`UserFunction.load` is called, which the scenario loader does once the whole
-scenario has been validated. A :class:`UserFunction` pickles as its file and name, so a Dask
-worker loads the file itself.
+edited file is loaded anew instead of served stale from ``sys.modules``.
+
+Nothing of a user's file runs before the user has been told: :func:`user_function` reads the
+file's syntax tree only (a missing function, or a file that is not Python, is refused without
+running it) and returns a :class:`UserFunction` that runs nothing until it is first called or
+:meth:`UserFunction.load` is called, which the scenario loader does once the whole scenario
+has been validated and the caller has been shown what runs
+(:func:`tumble.io.scenario.load_user_code`). A :class:`UserFunction` pickles as its file and
+name, so a Dask worker loads the file itself.
 """
 
 from __future__ import annotations
 
+import ast
 import hashlib
 import importlib
 import importlib.util
@@ -31,7 +36,7 @@ from typing import Any
 
 from tumble.errors import ScenarioError, shorten
 
-__all__ = ["UserFunction", "user_function"]
+__all__ = ["UserFunction", "check_defines", "user_function"]
 
 
 def _module_from_file(path: Path, where: str) -> ModuleType:
@@ -61,6 +66,88 @@ def _module_from_file(path: Path, where: str) -> ModuleType:
     finally:
         sys.path.remove(str(path.parent))
     return module
+
+
+def _bound(statements: list[ast.stmt]) -> tuple[set[str], bool]:
+    """The names that ``statements`` (a module's top level) bind, and whether a
+    ``from … import *`` among them may bind any other. Compound statements (``if``, ``try``,
+    ``with``, loops) are looked into, function and class bodies are not."""
+    names: set[str] = set()
+    star = False
+    for node in statements:
+        if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef | ast.ClassDef):
+            names.add(node.name)
+            continue
+        if isinstance(node, ast.Import | ast.ImportFrom):
+            for alias in node.names:
+                if alias.name == "*":
+                    star = True
+                else:
+                    names.add(alias.asname or alias.name.split(".")[0])
+            continue
+        # Assignments (also unpacking, annotated, augmented, walrus, loop targets, ``with …
+        # as``) at any depth of this statement outside nested functions and classes.
+        stack: list[ast.AST] = [node]
+        while stack:
+            item = stack.pop()
+            if isinstance(item, ast.Name) and isinstance(item.ctx, ast.Store):
+                names.add(item.id)
+            for child in ast.iter_child_nodes(item):
+                if isinstance(child, ast.stmt):
+                    continue  # nested statements: looked at below as statements
+                stack.append(child)
+        for block in ("body", "orelse", "finalbody", "handlers"):
+            inner = getattr(node, block, None)
+            if isinstance(inner, list) and inner:
+                found, any_star = _bound(
+                    [
+                        s
+                        for h in inner
+                        for s in (h.body if isinstance(h, ast.ExceptHandler) else [h])
+                    ]
+                )
+                names |= found
+                star = star or any_star
+        for case in getattr(node, "cases", ()):  # match statements
+            found, any_star = _bound(case.body)
+            names |= found
+            star = star or any_star
+    return names, star
+
+
+def check_defines(path: Path, function: str, where: str) -> None:
+    """Refuse a file that is not Python or binds no top-level ``function``, from its syntax
+    tree alone: nothing of the file runs.
+
+    Parameters
+    ----------
+    path : Path
+        The user's file.
+    function : str
+        The name the scenario gives.
+    where : str
+        The scenario key and value, for messages.
+
+    Raises
+    ------
+    ScenarioError
+        The file cannot be read, is not valid Python, or binds no such name (a ``def``, an
+        assignment or an import at its top level).
+    """
+    try:
+        tree = ast.parse(path.read_bytes(), filename=str(path))
+    except (SyntaxError, ValueError) as exc:  # ValueError: a NUL byte in the source
+        line = getattr(exc, "lineno", None)
+        at = f" at line {line}" if line else ""
+        detail = exc.msg if isinstance(exc, SyntaxError) else str(exc)
+        raise ScenarioError(
+            f"{where}: {path} is not valid Python{at} ({type(exc).__name__}: {shorten(detail)})"
+        ) from None
+    except OSError as exc:
+        raise ScenarioError(f"{where}: cannot read {path} ({shorten(exc)})") from None
+    names, star = _bound(tree.body)
+    if function not in names and not star:
+        raise ScenarioError(f"{where}: {path} has no function {function}")
 
 
 class UserFunction:
@@ -166,10 +253,13 @@ def user_function(
     Raises
     ------
     ScenarioError
-        Malformed, or naming neither a file beside the scenario nor an allowed module.
+        Malformed, naming neither a file beside the scenario nor an allowed module, or naming
+        a file that does not define the function (read from its syntax tree, not run).
     """
     target, sep, name = reference.rpartition(":")
     shown = f"{where} = {shorten(repr(reference))}"
+    if any(not c.isprintable() for c in reference):  # a NUL byte would reach the file system
+        raise ScenarioError(f"{shown}: control characters are not allowed in a reference")
     if not sep or not target or not name.isidentifier():
         raise ScenarioError(
             f'{shown}: expected "file:function" (a Python file beside the scenario)'
@@ -184,4 +274,5 @@ def user_function(
             f"file beside the scenario; an installed module runs only with --allow-module "
             f"{shorten(target, 40)})"
         )
+    check_defines(path, name, shown)
     return UserFunction(reference, name, path=path, where=where)

@@ -494,6 +494,10 @@ class Model(Generic[P, S]):
     check : callable
         ``check(p, method)``: ParameterError when ``method`` cannot apply to ``p`` (e.g. κ = 0
         for the averaged equations); called before any work.
+    check_initial : callable, optional
+        ``check_initial(p, initial, method)``: ParameterError when ``method`` cannot start
+        from ``initial`` (a body at rest for averaged equations that follow its angular
+        momentum); called before any work, and by the scenario loader before user code loads.
     averaged, closed_form, validity : optional
         The averaged equations, their closed form, and where they lose accuracy.
     unperturbed : Unperturbed, optional
@@ -524,6 +528,7 @@ class Model(Generic[P, S]):
     stationary: Callable[[P], StationaryMotion[P]] | None = None
     report: Callable[[P, S, Mapping[str, Sampled]], Report] | None = None
     scenario: ScenarioSchema[P, S] | None = None
+    check_initial: Callable[[P, S, str], None] | None = None
 
     def __post_init__(self) -> None:
         provided = {"full"}
@@ -579,6 +584,8 @@ class Declaration(Generic[P, S]):
     ----------
     name, time, methods, check, scenario
         As the :class:`Model` fields of those names.
+    check_initial
+        As the :class:`Model` field of that name.
     numeric, coordinates, corrected_start, orders, hybrid
         As the :class:`Averaged` fields of those names (False, (), False, (1,), False without
         averaged equations).
@@ -594,6 +601,7 @@ class Declaration(Generic[P, S]):
     corrected_start: bool = False
     orders: tuple[int, ...] = (1,)
     hybrid: bool = False
+    check_initial: Callable[[P, S, str], None] | None = None
 
     def averaged(
         self,
@@ -630,6 +638,7 @@ class Declaration(Generic[P, S]):
             time=self.time,
             full=full,
             check=self.check,
+            check_initial=self.check_initial,
             methods=self.methods,
             scenario=self.scenario,
             **capabilities,
@@ -650,6 +659,7 @@ class Declaration(Generic[P, S]):
             corrected_start=avg is not None and avg.corrected_start,
             orders=avg.orders if avg is not None else (1,),
             hybrid=avg is not None and avg.hybrid,
+            check_initial=model.check_initial,
         )
 
 

@@ -115,8 +115,9 @@ class Inputs(Protocol):
         ...
 
     def import_function(self, reference: str, where: str) -> Callable[..., Any]:
-        """The function named ``"file:function"``, loaded (once the scenario is valid) from the
-        Python file beside the scenario (:mod:`tumble.io.user_code`)."""
+        """The function named ``"file:function"`` in the Python file beside the scenario, not
+        yet loaded: it runs nothing until the whole scenario is valid (a build function must
+        not call it; :attr:`Built.user_checks`; :mod:`tumble.io.user_code`)."""
         ...
 
     def run_end(self) -> float:
@@ -157,13 +158,17 @@ class Built(Generic[P, S]):
     """What a build function makes of a scenario's values.
 
     ``scaling`` converts the ``[run]`` times of a physical-units scenario; ``methods`` are the
-    default methods when the file names none (None: all the model has).
+    default methods when the file names none (None: all the model has). ``user_checks`` call
+    the user's functions (a torque at the initial state): the loader runs them only once the
+    whole scenario is valid and the user has been told which files run
+    (:func:`tumble.io.scenario.load_user_code`); a build function itself never calls them.
     """
 
     params: P
     initial: S
     scaling: Scaling | None = None
     methods: tuple[str, ...] | None = None
+    user_checks: tuple[Callable[[], None], ...] = ()
 
 
 @dataclass(frozen=True)

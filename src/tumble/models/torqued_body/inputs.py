@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field, replace
-from functools import cached_property
+from functools import cached_property, partial
 from typing import Any
 
 import numpy as np
@@ -311,6 +311,15 @@ def _check_method(p: Params, method: str) -> None:
         )
 
 
+def _check_initial(p: Params, st: State, method: str) -> None:
+    """The averaged equations follow the angular momentum L = I ω: none at rest (refused
+    with the scenario, before a user's torque file loads or a run starts)."""
+    if method == "averaged" and not np.any(st.omega):
+        raise ParameterError(
+            "initial.omega = [0, 0, 0]: the averaged method needs a rotating body (|ω| > 0)"
+        )
+
+
 # ---------------------------------------------------------------------------------------------
 # Scenario keys.
 
@@ -451,7 +460,11 @@ def _term_tables(inputs: Inputs) -> list[dict[str, Any]]:
 
 def _check_user_torque(torque: Torque, st: State) -> None:
     """Call the torque once at the initial state: a broken user function fails here, in one
-    line, rather than deep inside an integration."""
+    line, rather than deep inside an integration. Run by the scenario loader once the whole
+    scenario is valid and the user has been told which file runs (:attr:`Built.user_checks`);
+    a numba function is checked when its compiled form is made (:attr:`Torque.program`)."""
+    if torque.program is not None:  # compiled: its own checks ran in making the program
+        return
     try:
         m = np.asarray(torque(0.0, st.q, st.omega), dtype=float)
     except UserCodeError:
@@ -470,8 +483,12 @@ def _check_user_torque(torque: Torque, st: State) -> None:
 def _build(inputs: Inputs) -> Built[Params, State]:
     par, ini = inputs["parameters"], inputs["initial"]
     assert par is not None and ini is not None  # required sections
-    p, st = _params_and_state(np.array(par["inertia"]), par["eps"], _term_tables(inputs), ini)
-    return Built(p, st)
+    terms = _term_tables(inputs)
+    p, st = _params_and_state(np.array(par["inertia"]), par["eps"], terms, ini)
+    if not any(term["kind"] == "user" for term in terms):
+        return Built(p, st)
+    # The user's file is loaded only after every key is checked: the call waits for the loader.
+    return Built(p, st, user_checks=(partial(_check_user_torque, p.torque, st),))
 
 
 def initial_attitude(ini: Mapping[str, Any]) -> FloatArray:
@@ -494,8 +511,6 @@ def _params_and_state(
     torque, period, label = torque_from_terms(inertia, terms)
     st = State(np.array(ini["omega"]), initial_attitude(ini))
     p = Params(np.asarray(inertia, dtype=float), eps, torque, period, label)
-    if p.torque.program is None:  # it holds Python: a user function
-        _check_user_torque(p.torque, st)
     return p, st
 
 
@@ -662,5 +677,6 @@ DECLARED: Declaration[Params, State] = Declaration(
     check=_check_method,
     scenario=SCENARIO,
     orders=(1, 2),
+    check_initial=_check_initial,
 )
 """What a scenario of the model may ask for."""

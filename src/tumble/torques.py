@@ -385,6 +385,11 @@ class CallableTorque(Torque):
         return np.asarray(self.function(t, q, omega), dtype=float)
 
 
+PYTHON_CALLS = [0, 0]
+"""Calls of Python user torques: begun, and in progress (the heartbeat and the state that
+:mod:`tumble.app.guard` watches)."""
+
+
 def _where(t: ArrayLike, q: ArrayLike | None, omega: ArrayLike) -> str:
     """Where a user's function was called, for a message: the state, or the size of the grid
     of states the averaging engine passed at once."""
@@ -432,6 +437,8 @@ class UserTorque(Torque):
             moment = super().__call__(t, q, omega)
             raise_fault()
             return moment
+        PYTHON_CALLS[0] += 1  # the heartbeat, and the call in progress (tumble.app.guard)
+        PYTHON_CALLS[1] += 1
         try:
             moment = np.asarray(self.function(t, q, omega, self.params), dtype=float)
         except TumbleError:
@@ -440,6 +447,8 @@ class UserTorque(Torque):
             raise UserCodeError(
                 f"{self.name} raised {type(exc).__name__}: {shorten(exc)} at {_where(t, q, omega)}"
             ) from None
+        finally:
+            PYTHON_CALLS[1] -= 1
         if moment.shape[-1:] != (3,) or (np.ndim(omega) == 1 and moment.shape != (3,)):
             raise UserCodeError(
                 f"{self.name}: a torque function must return the 3 body components of the "

@@ -243,3 +243,82 @@ def test_a_spent_step_budget_keeps_what_ran(tmp_path, capsys):
     err = capsys.readouterr().err
     summary = json.loads((tmp_path / "out" / "summary.json").read_text())
     assert stop.value.code == 3 and "run.max_steps" in summary["ended_early"]["reason"], err
+
+
+LOOPS = """
+import numba
+import numpy as np
+
+
+@numba.njit
+def nb_forever(t, q, omega, params):
+    x = 0.0
+    while t > 2.0 or x < 0.0:  # never ends once t > 2
+        x += 1.0
+        if x > 1e300:
+            x = 0.0
+    return np.array([1e-3, 0.0, 0.0])
+
+
+def py_forever(t, q, omega, params):
+    while float(np.max(t)) > 2.0:
+        pass
+    return 1e-3 * np.ones_like(omega)
+"""
+
+
+def _loop_scenario(tmp_path, name):
+    (tmp_path / "loops.py").write_text(LOOPS)
+    scenario = tmp_path / f"{name}.toml"
+    text = SCENARIO.format(name=name).replace("faults:", "loops:")
+    scenario.write_text(text + "user_code_timeout = 1.0\n")
+    return scenario
+
+
+def test_a_python_torque_that_never_returns_is_stopped(tmp_path, capsys):
+    scenario = _loop_scenario(tmp_path, "py_forever")
+    with pytest.raises(SystemExit) as stop:
+        app(["run", str(scenario), "--out", str(tmp_path / "out")])
+    err = " ".join(capsys.readouterr().err.split())
+    assert stop.value.code == 2, err
+    assert "loops:py_forever did not return within 1 s (run.user_code_timeout)" in err, err
+
+
+def _cli(*args, **kw):
+    import subprocess
+    import sys
+
+    return subprocess.Popen([sys.executable, "-m", "tumble.cli", *args], stderr=subprocess.PIPE,
+                            stdout=subprocess.DEVNULL, text=True, **kw)  # fmt: skip
+
+
+def test_a_compiled_torque_that_never_returns_is_stopped(tmp_path):
+    # In compiled code no exception reaches the function: the guard prints the line and ends
+    # the process (exit 2). A fresh process: the guard ends it.
+    scenario = _loop_scenario(tmp_path, "nb_forever")
+    run = _cli("run", str(scenario), "--out", str(tmp_path / "out"))
+    # (compiling the function and loading the kernels take a few seconds; then 1 s of guard)
+    _, err = run.communicate(timeout=120)
+    text = " ".join(err.split())
+    assert run.returncode == 2, err
+    assert "loops:nb_forever did not return within 1 s" in text and len(err.splitlines()) <= 5
+
+
+def test_ctrl_c_stops_a_compiled_torque_that_never_returns(tmp_path):
+    import signal
+    import time
+
+    scenario = _loop_scenario(tmp_path, "nb_forever")
+    scenario.write_text(scenario.read_text().replace("user_code_timeout = 1.0", ""))
+    run = _cli("run", str(scenario), "--out", str(tmp_path / "out"))
+    for _ in range(600):  # until the run has started ("runs user code from …")
+        line = run.stderr.readline()
+        if "runs user code" in line or not line:
+            break
+    time.sleep(3.0)  # in the loop by then (the guard's timeout is 60 s)
+    run.send_signal(signal.SIGINT)
+    start = time.monotonic()
+    _, err = run.communicate(timeout=30)
+    # The deferred Ctrl-C waits a second for the compiled call, then the guard ends it.
+    assert run.returncode == 130 and "interrupted" in err, err
+    assert time.monotonic() - start < 10.0

@@ -23,6 +23,7 @@ from tumble.analysis import RunResult, VerifyResult
 from tumble.analysis import run as run_request
 from tumble.analysis import verify as verify_request
 from tumble.analysis.run import si_dataset, si_time
+from tumble.app.guard import user_code_guard
 from tumble.errors import TumbleError
 from tumble.io.fileset import OutputSet, output_set
 from tumble.io.output import render_outputs, verify_outputs
@@ -134,9 +135,12 @@ def _loaded(
     scenario: str | Path | Scenario, out_dir: str | Path | None, command: str, overwrite: bool
 ) -> Iterator[tuple[Scenario, OutputSet | None]]:
     """The scenario (loaded unless given loaded) and its output directory held for the
-    whole of ``command`` (see :func:`_held`)."""
+    whole of ``command`` (see :func:`_held`); a scenario with user code runs under the guard
+    of :func:`tumble.app.guard.user_code_guard` (``run.user_code_timeout``)."""
     sc = scenario if isinstance(scenario, Scenario) else load_scenario(scenario)
-    with _held(out_dir, command, sc, overwrite) as out:
+    guard = (user_code_guard(sc.user_code_timeout, sc.user_functions) if sc.user_code
+             else contextlib.nullcontext())  # fmt: skip
+    with _held(out_dir, command, sc, overwrite) as out, guard:
         yield sc, out
 
 

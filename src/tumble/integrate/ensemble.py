@@ -22,7 +22,7 @@ from tumble.errors import IntegrationError, TumbleError
 from tumble.integrate import dop853
 from tumble.integrate.dop853.block import block_entry, empty_block
 from tumble.integrate.dop853.core import BAD_START, OK, RUNNING, STOPPED, Chunk
-from tumble.integrate.dop853.driver import _cut
+from tumble.integrate.dop853.driver import _cut, in_call
 from tumble.integrate.limits import FIRST_CHUNK, MAX_STEPS, pace_message
 from tumble.integrate.ode import compiled_breakpoints, joined_pieces, split_plan
 from tumble.integrate.simulate import each_on_threads, simulate, start_refusal
@@ -216,7 +216,9 @@ def _integrate_group(
                 arrays["Y"], arrays["F"], arrays["Y_eval"], arrays["status"],
                 arrays["nfev"])  # fmt: skip
         allowance *= 2
-        pieces = {int(pc[0]): pc[1:] for pc in block_entry(kind, event, args)(*args)}
+        entry = block_entry(kind, event, args)
+        with in_call():
+            pieces = {int(pc[0]): pc[1:] for pc in entry(*args)}
         raise_fault()  # a user's compiled torque that failed in the block: its own error
         going = []
         for r in active.tolist():

@@ -10,12 +10,24 @@ import numpy as np
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import ParameterError
 
-__all__ = ["BUDGET_MARGIN", "FIRST_CHUNK", "MAX_STEPS", "check_times", "pace_message"]
+__all__ = [
+    "BUDGET_MARGIN",
+    "FIRST_CHUNK",
+    "MAX_STEPS",
+    "USER_CODE_TIMEOUT_S",
+    "check_times",
+    "pace_message",
+]
 
 MAX_STEPS = 100_000_000
 """Default step budget of a full run (``[run] max_steps``): about a minute or two of the
 compiled integrator, beyond which a run is stopped with an error naming the key rather than
 left to run for hours (a stiff or mistyped input)."""
+
+USER_CODE_TIMEOUT_S = 60.0
+"""Default of ``[run] user_code_timeout`` [s]: how long a user's torque function may run
+without returning before the run is stopped (:mod:`tumble.app.guard`); the integrators call it
+thousands of times a second."""
 
 
 BUDGET_MARGIN = 100.0

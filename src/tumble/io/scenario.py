@@ -34,8 +34,8 @@ from pydantic import (
     model_validator,
 )
 
-from tumble.errors import ParameterError, ScenarioError, shorten
-from tumble.integrate.limits import MAX_STEPS, check_times
+from tumble.errors import ParameterError, ScenarioError, check_range, shorten
+from tumble.integrate.limits import MAX_STEPS, USER_CODE_TIMEOUT_S, check_times
 from tumble.io.toml import read_file, template
 from tumble.io.user_code import UserFunction, user_function
 from tumble.models import declaration, get_model, names
@@ -118,6 +118,8 @@ class Scenario:
     inputs: dict[str, Any]
     source: str
     user_code: tuple[str, ...] = ()  # the files (or allowed modules) whose code it runs
+    user_functions: tuple[str, ...] = ()  # the functions it names, as it names them
+    user_code_timeout: float = USER_CODE_TIMEOUT_S  # [s] (run.user_code_timeout)
     pending: _UserCode | None = field(default=None, repr=False, compare=False)
 
 
@@ -247,6 +249,9 @@ def run_keys(model: Declaration[Any, Any], variant: Variant[Any, Any]) -> tuple[
             doc="step budget of each integration: it stops with an error when spent, or at "
                 "once when its pace needs 100 times what is left (Python right-hand sides, "
                 "the averaged equations: at most 1e6)"),
+        Key("user_code_timeout", "number", "a time in (0, 1e6]", "s", default=USER_CODE_TIMEOUT_S,
+            doc="how long a user's torque function may run without returning: then the run "
+                "stops, with one line naming it"),
     ]  # fmt: skip
     if model.numeric:
         doc = "the paper's averaged equations, or the general engine's quadrature"
@@ -450,6 +455,8 @@ def _times(run: Any, end_key: str, list_key: str, days: bool = False) -> np.ndar
 
 
 def _tolerances(run: Any) -> tuple[float, float]:
+    check_range("run.user_code_timeout", run.user_code_timeout, low=0.0, high=1e6,
+                high_open=False)  # fmt: skip
     if not 1e-14 <= run.rtol <= 1e-3:
         raise ParameterError(f"run.rtol = {run.rtol:g} is outside the allowed range [1e-14, 1e-3]")
     if not 0.0 < run.atol <= 1e-3:
@@ -596,7 +603,11 @@ def parse_scenario(
     request = _request(model, sc.run, built, times)  # loads the model: the scenario is valid
     user_code = tuple(dict.fromkeys(f.origin for f in inputs.functions))
     pending = _UserCode(inputs.functions, built.user_checks) if inputs.functions else None
-    scenario = Scenario(request, sc.model_dump(), source, user_code, pending)
+    functions = tuple(dict.fromkeys(f.reference for f in inputs.functions))
+    scenario = Scenario(
+        request, sc.model_dump(), source, user_code, user_functions=functions,
+        user_code_timeout=float(sc.run.user_code_timeout), pending=pending,
+    )  # fmt: skip
     return load_user_code(scenario, consent) if load else scenario
 
 

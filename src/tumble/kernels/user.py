@@ -50,7 +50,9 @@ from tumble.errors import UserCodeError, shorten
 __all__ = [
     "RECORD_SIZE",
     "SIGNATURE",
+    "armed_names",
     "call_user",
+    "calls",
     "checked_function",
     "compiled_user_torque",
     "fault_record",
@@ -71,8 +73,9 @@ SIGNATURE = types.void(
 """The C signature of the callback: t, q (4), ω (3), the parameters and their number, the
 moment written to a buffer of 3, and the fault record."""
 
-RECORD_SIZE = 9
-"""A fault record: [fault (0: none), t, q0, q1, q2, q3, ω1, ω2, ω3]."""
+RECORD_SIZE = 10
+"""A fault record: [fault (0: none), t, q0, q1, q2, q3, ω1, ω2, ω3, calls]; ``calls`` counts
+the calls begun, the heartbeat a guard watches (:func:`calls`)."""
 _RAISED = 1.0  # the function raised (any exception, an index out of bounds included)
 _NOT_FINITE = 2.0  # it returned a moment that is not finite
 _CALL = (
@@ -122,6 +125,7 @@ def compiled_user_torque(function: Any) -> Any:
 
     @cast(Any, numba.cfunc)(SIGNATURE, boundscheck=True)
     def callback(t, q0, q1, q2, q3, w1, w2, w3, params, n, out, record):  # type: ignore[no-untyped-def]
+        numba.carray(record, RECORD_SIZE)[9] += 1.0  # the heartbeat
         try:
             moment = checked(
                 t, np.array([q0, q1, q2, q3]), np.array([w1, w2, w3]), numba.carray(params, n)
@@ -226,7 +230,7 @@ def raise_fault() -> None:
             continue
         code, t = record[0], float(record[1])
         q, w = record[2:6].copy(), record[6:9].copy()
-        record[:] = 0.0
+        record[:9] = 0.0
         where = _state(t, q, w)
         if code == _NOT_FINITE:
             value = checked_function(armed.function)(t, q, w, armed.params)
@@ -239,6 +243,16 @@ def raise_fault() -> None:
         except Exception as exc:
             raise UserCodeError(f"{armed.name} raised {_failure(exc)} at {where}") from None
         raise UserCodeError(f"{armed.name} raised an exception in compiled code at {where}")
+
+
+def calls() -> float:
+    """How many calls of the compiled user torques have begun, all together (a heartbeat)."""
+    return float(sum(armed.record[9] for armed in list(_ARMED.values())))
+
+
+def armed_names() -> list[str]:
+    """The names of the compiled user torques of this process."""
+    return sorted({armed.name for armed in list(_ARMED.values())})
 
 
 def any_armed() -> bool:

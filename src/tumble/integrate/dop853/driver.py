@@ -59,6 +59,21 @@ CHUNK_STEPS = 20_000
 an interrupt (Ctrl-C) stops a run within a fraction of a second."""
 
 
+IN_CALL = [0]
+"""Compiled runs in progress (not compiling): what a guard against user code that never
+returns watches (:mod:`tumble.app.guard`)."""
+
+
+@contextlib.contextmanager
+def in_call() -> Iterator[None]:
+    """Count a compiled run in progress (:data:`IN_CALL`)."""
+    IN_CALL[0] += 1
+    try:
+        yield
+    finally:
+        IN_CALL[0] -= 1
+
+
 @contextlib.contextmanager
 def _signals_held() -> Iterator[None]:
     """Defer Ctrl-C (SIGINT) during a compiled call: its handler runs once the call returned.
@@ -262,7 +277,8 @@ class Integration:
         with _signals_held():  # compiling, then the call: neither survives an interrupt
             if self._entry is None:
                 self._entry = _specialised(self.kernel.kind, self.options.event, args)
-            progress, chunk = self._entry(*args)
+            with in_call():
+                progress, chunk = self._entry(*args)
         self.progress = Progress(*progress)
         self._chunks.append(Chunk(*chunk))
         raise_fault()  # a user's compiled torque that failed in this chunk: its own error

@@ -29,11 +29,29 @@ quadratures), so a hopeless run is refused within a fraction of a second, not af
 whole budget."""
 
 
-def pace_message(t: float, t_end: float, h_abs: float, steps_left: int, max_steps: int) -> str:
+def pace_message(
+    t: float,
+    t_end: float,
+    h_abs: float,
+    steps_left: int,
+    max_steps: int,
+    *,
+    h_mean: float | None = None,
+) -> str:
     """Why a run at time t with step ``h_abs`` is refused, or "" if its pace can still reach
-    ``t_end`` within :data:`BUDGET_MARGIN` times the ``steps_left`` of its budget."""
+    ``t_end`` within a margin of the ``steps_left`` of its budget.
+
+    The margin is :data:`BUDGET_MARGIN` unless ``h_mean``, the mean step so far, is given:
+    then the run is credited only with the growth its steps have shown, a margin of
+    ``h_abs / h_mean`` clipped to 1 … :data:`BUDGET_MARGIN`. A motion that keeps its pace
+    (a fast spin) or speeds up (a body spun up by a torque) has no growth to come, and would
+    otherwise run its whole budget, minutes of an expensive right-hand side, before failing.
+    """
     ahead = (t_end - t) / max(h_abs, 1e-300)
-    if ahead <= BUDGET_MARGIN * steps_left:
+    margin = BUDGET_MARGIN
+    if h_mean is not None and h_mean > 0.0:
+        margin = min(max(h_abs / h_mean, 1.0), BUDGET_MARGIN)
+    if ahead <= margin * steps_left:
         return ""
     return (
         f"at t = {t:.6g} the step is {h_abs:.3g}, so the run to {t_end:.6g} needs about "

@@ -24,7 +24,7 @@ from tumble.analysis import run as run_request
 from tumble.analysis import verify as verify_request
 from tumble.analysis.run import si_dataset, si_time
 from tumble.io.fileset import OutputSet, output_set
-from tumble.io.output import render_outputs, verify_outputs
+from tumble.io.output import NonFiniteOutput, render_outputs, verify_outputs
 from tumble.io.scenario import Scenario, load_scenario
 from tumble.plot import (
     FigureSettings,
@@ -171,7 +171,11 @@ def run(
         result = run_request(sc.request)
         verification = verify_request(sc.request) if sc.request.verify else None
         if out is not None:
-            files = render_outputs(result, sc.inputs, sc.source, verification)
+            try:
+                files = render_outputs(result, sc.inputs, sc.source, verification)
+            except NonFiniteOutput as exc:
+                out.commit(exc.files)  # what it computed, marked failed; no figure of it
+                raise
             title = f"{sc.request.model.name}: {Path(sc.source).name}"
             files[_settings(result).file] = _figure_png(result, title)
             if verification is not None:

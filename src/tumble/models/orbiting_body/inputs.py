@@ -27,18 +27,19 @@ from tumble.models.schema import Built, Inputs, Key, KeyKind, ScenarioSchema, Se
 from tumble.models.torqued_body import inputs as tb
 from tumble.rotations import matrix_to_quat, quat_to_matrix
 from tumble.space import (
+    EARTH_ROTATION,
     Dipole,
     Igrf,
     Orbit,
     OrbitEddyTorque,
     OrbitGravityTorque,
     flat_plate,
+    greenwich_sidereal_angle,
     solid_sphere,
     sun_synchronous_inclination,
     thin_cylindrical_shell,
     thin_spherical_shell,
 )
-from tumble.space.geomagnetic import EARTH_ROTATION, greenwich_sidereal_angle
 from tumble.space.orbit import EARTH_RADIUS
 from tumble.torques import CompiledTorque, ConstantBodyTorque, Torque, TorqueSum
 

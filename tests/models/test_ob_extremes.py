@@ -331,3 +331,23 @@ def test_a_non_finite_output_fails_in_one_line_and_is_kept_marked(tmp_path, monk
     summary = json.loads((out / "summary.json").read_text(encoding="utf-8"))
     assert summary["failed"].startswith("averaged.csv: column L is inf")
     assert (out / "averaged.csv").exists() and not (out / "comparison.png").exists()
+
+
+@pytest.mark.parametrize("char", CONTROL)
+def test_a_control_character_in_a_reference_or_a_path_is_refused_in_one_line(char):
+    # A torque reference ("file:function") and a sweep's base path: before any import or
+    # file system call, where a NUL byte was an internal error.
+    from tumble.io.sweep import parse_sweep
+
+    data = tomllib.loads((EXAMPLES / "tb_inertial_torque.toml").read_text(encoding="utf-8"))
+    data["torque"] = f"user_torques{char}:spin_down"
+    with pytest.raises(TumbleError, match=r"^torque = .*: holds the control character U\+"):
+        parse_scenario(data, str(EXAMPLES / "tb.toml"))
+    data["torque"] = [{"kind": "user", "function": f"user_torques:spin{char}down"}]
+    with pytest.raises(TumbleError, match=r"^torque\[0\]\.function = .*control character"):
+        parse_scenario(data, str(EXAMPLES / "tb.toml"))
+    sweep = EXAMPLES / "sweeps" / "ob_envisat_monte_carlo.toml"
+    data = tomllib.loads(sweep.read_text(encoding="utf-8"))
+    data["base"] += char
+    with pytest.raises(TumbleError, match=r"^base = .*: holds the control character U\+"):
+        parse_sweep(data, sweep)

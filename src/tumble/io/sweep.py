@@ -44,7 +44,7 @@ from tumble._version import __version__
 from tumble.analysis.plan import Axis, Draw, Keep, Record, SweepPlan
 from tumble.errors import ParameterError, ScenarioError, shorten
 from tumble.io.fileset import atomic_write
-from tumble.io.scenario import _one_line, key_units, parse_scenario
+from tumble.io.scenario import _one_line, check_text, key_units, parse_scenario
 from tumble.io.toml import read_file, read_toml
 
 if TYPE_CHECKING:
@@ -345,6 +345,7 @@ def parse_sweep(
         With a one-line message naming the key (``axis[1].linspace``, ``base``, …).
     """
     path = Path(path)
+    check_text(data)  # a NUL byte in the base's path or a name: one line, before any file
     try:
         sf = SweepFile.model_validate(data)
     except ValidationError as exc:

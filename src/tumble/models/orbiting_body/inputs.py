@@ -320,7 +320,7 @@ _INITIAL = Section(
             None,
         ),
         Key("omega_rpm", "vector3", "body angular velocity, |ω| in [1e-9, 1e4] rad/s", "rpm", None),
-        Key("spin_period", "number", "a period in [6.3e-4, 6.3e9] (with spin_axis)", "s", None),
+        Key("spin_period", "number", "a period in [2π·1e-4, 2π·1e9] (with spin_axis)", "s", None),
         Key("spin_axis", "vector3", "a nonzero body vector (with spin_period)", "", None),
         Key(
             "quaternion",

@@ -221,8 +221,9 @@ def run_keys(model: Declaration[Any, Any], variant: Variant[Any, Any]) -> tuple[
             doc="absolute tolerance of the integrations"),
         Key("max_steps", "integer", "an integer in [1, 1e12]", default=MAX_STEPS,
             doc="step budget of each integration: it stops with an error when spent, or at "
-                "once when its pace needs 100 times what is left (Python right-hand sides, "
-                "the averaged equations: at most 1e6)"),
+                "once when its pace needs 100 times what is left (a compiled full run: as many "
+                "times as its steps have grown, and a run speeding up with its speed-up "
+                "carried on; Python right-hand sides, the averaged equations: at most 1e6)"),
     ]  # fmt: skip
     if model.numeric:
         doc = "the paper's averaged equations, or the general engine's quadrature"

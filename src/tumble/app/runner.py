@@ -26,7 +26,7 @@ from tumble.analysis.run import si_dataset, si_time
 from tumble.app.guard import user_code_guard
 from tumble.errors import TumbleError
 from tumble.io.fileset import OutputSet, output_set
-from tumble.io.output import render_outputs, verify_outputs
+from tumble.io.output import NonFiniteOutput, render_outputs, verify_outputs
 from tumble.io.scenario import Scenario, load_scenario
 from tumble.plot import (
     FigureSettings,
@@ -179,12 +179,20 @@ def run(
             if out is not None and isinstance(exc.partial, RunResult):
                 # What ran until the error: written, marked as ending early (summary.json's
                 # "ended_early"), then the error goes on to the caller.
-                out.commit(render_outputs(exc.partial, sc.inputs, sc.source, None))
+                try:
+                    files = render_outputs(exc.partial, sc.inputs, sc.source, None)
+                except NonFiniteOutput as bad:  # what it computed left the finite numbers
+                    files = bad.files
+                out.commit(files)
                 exc.written = str(out_dir)
             raise
         verification = verify_request(sc.request) if sc.request.verify else None
         if out is not None:
-            files = render_outputs(result, sc.inputs, sc.source, verification)
+            try:
+                files = render_outputs(result, sc.inputs, sc.source, verification)
+            except NonFiniteOutput as exc:
+                out.commit(exc.files)  # what it computed, marked failed; no figure of it
+                raise
             title = f"{sc.request.model.name}: {Path(sc.source).name}"
             files[_settings(result).file] = _figure_png(result, title)
             if verification is not None:

@@ -400,7 +400,12 @@ def _check_chunk(
             "input: a very fast or stiff motion)"
         )
     left = max_steps - progress.n_steps
-    refused = pace_message(piece.t, run.t_end, progress.h_abs, left, max_steps)
+    # The chunk's mean step, steadier than its last one (an orbit or a nutation makes the
+    # step breathe), against the mean step of the whole run so far: its growth.
+    taken = piece.ts.size - 1
+    h_chunk = (piece.ts[-1] - piece.ts[0]) / taken if taken > 0 else progress.h_abs
+    h_mean = piece.t / progress.n_steps if progress.n_steps else None
+    refused = pace_message(piece.t, run.t_end, h_chunk, left, max_steps, h_mean=h_mean)
     if not done and refused:
         raise IntegrationError(f"{what}: {refused}")
 

@@ -18,10 +18,12 @@ import xarray as xr
 from tumble._version import __version__
 from tumble.analysis import RunResult, VerifyResult
 from tumble.analysis.claims.base import plain  # numpy → JSON values, shared with the claims
+from tumble.errors import IntegrationError
 from tumble.io.fileset import atomic_write
 from tumble.models.schema import si_columns
 
 __all__ = [
+    "NonFiniteOutput",
     "atomic_write",
     "csv_text",
     "render_outputs",
@@ -34,6 +36,38 @@ __all__ = [
 def _time_name(ds: xr.Dataset) -> str:
     """The paper's name of the time coordinate (``tau`` or ``t``)."""
     return str(ds["tau"].attrs.get("name", "tau"))
+
+
+class NonFiniteOutput(IntegrationError):
+    """A run whose outputs hold a value that is not finite (an overflow, a NaN): it fails
+    with one line naming the file, the column and the first time, exit 3, instead of writing
+    ``inf`` with exit 0. ``files`` are its outputs, rendered all the same and marked as failed
+    in ``summary.json``, for the caller to keep."""
+
+    def __init__(self, message: str, files: dict[str, bytes]) -> None:
+        super().__init__(message)
+        self.files = files
+
+
+def first_non_finite(
+    file: str, names: list[str], cols: list[np.ndarray], times: np.ndarray
+) -> str | None:
+    """Where the first value that is not finite of an output's columns is, in words (the
+    file, the column, the value and the time [the first column's unit]); None if every value
+    is finite."""
+    for name, col in zip(names, cols, strict=True):
+        values = np.asarray(col)
+        if values.dtype.kind not in "fc":
+            continue
+        bad = ~np.isfinite(values)
+        if bad.any():
+            i = int(np.flatnonzero(bad)[0])
+            return (
+                f"{file}: column {name} is {values[i]} at {names[0]} = {float(times[i]):.6g} "
+                f"(row {i + 1} of {values.size}): the run overflowed; nothing is written with "
+                "a value that is not finite"
+            )
+    return None
 
 
 def csv_text(ds: xr.Dataset, extra: dict[str, np.ndarray] | None = None) -> str:
@@ -155,16 +189,31 @@ def render_outputs(
     verification: VerifyResult | None = None,
 ) -> dict[str, bytes]:
     """File name → content of every output of a run but its figure (per method CSV and NetCDF,
-    summary.json; with a verification, its files of :func:`verify_outputs` too)."""
+    summary.json; with a verification, its files of :func:`verify_outputs` too).
+
+    Raises
+    ------
+    NonFiniteOutput
+        If a column of a method's CSV holds a value that is not finite; its ``files`` are
+        the outputs all the same, ``summary.json`` marked with ``"failed"``.
+    """
     files: dict[str, bytes] = {}
     scaling = result.request.scaling
+    problems: list[str] = []
     for method, ds in result.datasets.items():
         files[f"{method}.csv"] = csv_text(ds).encode()
+        names = [_time_name(ds), *(str(v) for v in ds.data_vars)]
+        tau = ds["tau"].values
+        problems.append(first_non_finite(f"{method}.csv", names, [tau, *(ds[v].values
+                                         for v in ds.data_vars)], tau) or "")  # fmt: skip
         nc = ds
         if scaling is not None:
             cols = {str(v): ds[v].values for v in ds.data_vars}
             si = si_columns(scaling, cols, ds["tau"].values)
             files[f"{method}_si.csv"] = csv_text(ds, si).encode()
+            first = next(iter(si.values()))
+            problems.append(first_non_finite(f"{method}_si.csv", list(si), list(si.values()),
+                                             first) or "")  # fmt: skip
             nc = _with_si(ds, scaling, si)
         # The same columns with their units, long names and equations as attributes (NetCDF 3,
         # which needs no library beyond scipy); a physical run's SI columns beside them.
@@ -173,10 +222,16 @@ def render_outputs(
         files[f"{method}_diagnostics.csv"] = csv_text(ds).encode()
     for name, (header, rows) in result.report.tables.items():
         files[f"{name}.csv"] = table_text(header, rows).encode()
-    text = json.dumps(summary(result, inputs, source, verification), indent=2, ensure_ascii=False)
+    data = summary(result, inputs, source, verification)
+    problem = next((p for p in problems if p), None)
+    if problem is not None:
+        data["failed"] = problem  # the mark of outputs kept from a failed run
+    text = json.dumps(plain(data), indent=2, ensure_ascii=False)
     files["summary.json"] = (text + "\n").encode()
     if verification is not None:
         files.update(verify_outputs(verification, source))
+    if problem is not None:
+        raise NonFiniteOutput(problem, files)
     return files
 
 

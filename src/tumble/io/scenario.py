@@ -247,8 +247,9 @@ def run_keys(model: Declaration[Any, Any], variant: Variant[Any, Any]) -> tuple[
             doc="absolute tolerance of the integrations"),
         Key("max_steps", "integer", "an integer in [1, 1e12]", default=MAX_STEPS,
             doc="step budget of each integration: it stops with an error when spent, or at "
-                "once when its pace needs 100 times what is left (Python right-hand sides, "
-                "the averaged equations: at most 1e6)"),
+                "once when its pace needs 100 times what is left (a compiled full run: as many "
+                "times as its steps have grown, and a run speeding up with its speed-up "
+                "carried on; Python right-hand sides, the averaged equations: at most 1e6)"),
         Key("user_code_timeout", "number", "a time in (0, 1e6]", "s", default=USER_CODE_TIMEOUT_S,
             doc="how long a user's torque function may run without returning: then the run "
                 "stops, with one line naming it"),
@@ -416,6 +417,46 @@ def _one_line(exc: ValidationError, schema: type[BaseModel]) -> str:
     return f"{path} = {shown}: {msg}" + (f" (expected {hint})" if hint else "")
 
 
+def _control_character(text: str) -> str | None:
+    """The first control character of ``text`` (C0, DEL, C1), as U+XXXX; None if none."""
+    for ch in text:
+        if ord(ch) < 0x20 or 0x7F <= ord(ch) <= 0x9F:
+            return f"U+{ord(ch):04X}"
+    return None
+
+
+def check_text(data: Any, path: str = "") -> None:
+    """Refuse a control character (NUL, a line break, an escape, …) in any key or text of a
+    scenario: a name, a file reference, an epoch. One line naming the key; no such text
+    reaches a file system call or an import (where a NUL byte is an internal error).
+
+    Raises
+    ------
+    ScenarioError
+        Naming the key (``torque[0].function``) and the character.
+    """
+    if isinstance(data, str):
+        found = _control_character(data)
+        if found is not None:
+            raise ScenarioError(
+                f"{shorten(path or 'scenario')} = {shorten(ascii(data), 60)}: holds the "
+                f"control character {found} (allowed: printable text)"
+            )
+    elif isinstance(data, Mapping):
+        for key, value in data.items():
+            name = f"{path}.{key}" if path else str(key)
+            found = _control_character(str(key))
+            if found is not None:
+                raise ScenarioError(
+                    f"{shorten(ascii(name), 60)}: the key holds the control character {found} "
+                    "(allowed: printable text)"
+                )
+            check_text(value, name)
+    elif isinstance(data, list):
+        for i, value in enumerate(data):
+            check_text(value, f"{path}[{i}]")
+
+
 def _validated(schema: type[BaseModel], data: Mapping[str, Any]) -> Any:
     try:
         return schema.model_validate(data)
@@ -570,6 +611,7 @@ def parse_scenario(
         With a one-line message naming the key and its allowed range; also for a user
         function that fails its checks once loaded (called at the initial state).
     """
+    check_text(data)
     if "model" not in data:
         raise ScenarioError(
             "model: required key is missing (allowed: " + ", ".join(names(scenario=True)) + ")"

@@ -44,7 +44,14 @@ from tumble._version import __version__
 from tumble.analysis.plan import Axis, Draw, Keep, Record, SweepPlan
 from tumble.errors import ParameterError, ScenarioError, shorten
 from tumble.io.fileset import atomic_write
-from tumble.io.scenario import Consent, _one_line, key_units, load_user_code, parse_scenario
+from tumble.io.scenario import (
+    Consent,
+    _one_line,
+    check_text,
+    key_units,
+    load_user_code,
+    parse_scenario,
+)
 from tumble.io.toml import read_file, read_toml
 
 if TYPE_CHECKING:
@@ -353,6 +360,7 @@ def parse_sweep(
         With a one-line message naming the key (``axis[1].linspace``, ``base``, …).
     """
     path = Path(path)
+    check_text(data)  # a NUL byte in the base's path or a name: one line, before any file
     try:
         sf = SweepFile.model_validate(data)
     except ValidationError as exc:

@@ -16,6 +16,7 @@ from tumble.space.conductors import (
     torsion_constant_rectangle,
 )
 from tumble.space.geomagnetic import (
+    DIPOLE_EPOCHS,
     EARTH_ROTATION,
     IGRF13_DIPOLE,
     REFERENCE_RADIUS,
@@ -39,6 +40,7 @@ from tumble.space.torques import (
 )
 
 __all__ = [
+    "DIPOLE_EPOCHS",
     "EARTH_J2",
     "EARTH_MU",
     "EARTH_RADIUS",

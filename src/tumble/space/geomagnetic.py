@@ -31,6 +31,7 @@ from tumble.errors import ParameterError, check_range
 from tumble.space.orbit import Orbit
 
 __all__ = [
+    "DIPOLE_EPOCHS",
     "EARTH_ROTATION",
     "IGRF13_DIPOLE",
     "REFERENCE_RADIUS",
@@ -56,6 +57,11 @@ IGRF13_DIPOLE = {
 """IGRF-13 degree-1 coefficients at 2020.0 [nT] and their secular variation [nT/yr]."""
 
 _J2000 = datetime(2000, 1, 1, 12, 0, 0, tzinfo=UTC)
+
+DIPOLE_EPOCHS = (datetime(1900, 1, 1, tzinfo=UTC), datetime(2030, 1, 1, tzinfo=UTC))
+"""The epochs :meth:`Dipole.igrf` accepts, those of the IGRF's own table (:class:`Igrf`):
+beyond them the coefficients would be extrapolated by centuries (at year 1 the secular
+variation alone changes g10 by 40 %), so an epoch outside is refused, not clamped."""
 
 
 def _utc(epoch: datetime) -> datetime:
@@ -117,7 +123,20 @@ class Dipole:
     @classmethod
     def igrf(cls, epoch: datetime) -> Dipole:
         """The IGRF-13 dipole at ``epoch`` (its 2020–2025 secular variation carried on beyond
-        2025: the dipole changes by ~0.1 % a year), with θ0 the sidereal angle of the epoch."""
+        2025: the dipole changes by ~0.1 % a year), with θ0 the sidereal angle of the epoch.
+
+        Raises
+        ------
+        ParameterError
+            For an epoch outside :data:`DIPOLE_EPOCHS` (1900–2030).
+        """
+        first, last = DIPOLE_EPOCHS
+        if not first <= _utc(epoch) <= last:
+            raise ParameterError(
+                f"orbit.epoch = {_utc(epoch).date()} is outside the field's table "
+                f"{first.year}–{last.year} (the IGRF-13 dipole); give [field] g10, g11 and h11 "
+                'for another epoch, or model = "none"'
+            )
         years = _decimal_year(epoch) - IGRF13_DIPOLE["epoch"]
         c = {
             k: IGRF13_DIPOLE[k] + years * IGRF13_DIPOLE[f"{k}_rate"] for k in ("g10", "g11", "h11")

@@ -27,12 +27,14 @@ from tumble.models.schema import Built, Inputs, Key, KeyKind, ScenarioSchema, Se
 from tumble.models.torqued_body import inputs as tb
 from tumble.rotations import matrix_to_quat, quat_to_matrix
 from tumble.space import (
+    EARTH_ROTATION,
     Dipole,
     Igrf,
     Orbit,
     OrbitEddyTorque,
     OrbitGravityTorque,
     flat_plate,
+    greenwich_sidereal_angle,
     solid_sphere,
     sun_synchronous_inclination,
     thin_cylindrical_shell,
@@ -48,6 +50,34 @@ SHAPES = ("thin_spherical_shell", "solid_sphere", "thin_cylindrical_shell", "fla
 
 DAY = 86400.0  # [s]
 
+# Bounds of the physical inputs: each far beyond any body or orbit tumble is meant for, and
+# near enough that every product the model forms (I ω², M B² ω T0/I0, the moments over I0/T0²,
+# a³ of the orbit) stays finite in double precision. The scenario keys' allowed values state
+# them, so that the reference shows them too.
+MASS = 1e9
+"""Largest mass [kg]."""
+INERTIA = (1e-10, 1e12)
+"""Range of the principal moments [kg·m²]: from a gram-sized fragment to far beyond a space
+station (~1e8)."""
+MAGNETIC_TENSOR = 1e12
+"""Largest magnitude of an entry of the magnetic tensor [S·m⁴] (Envisat's shell: ~1e6)."""
+CONDUCTIVITY = 1e9
+"""Largest conductivity [S/m] (copper: 6e7)."""
+SIZE = 1e3
+"""Largest radius, length or width of a conductor [m]."""
+THICKNESS = 1.0
+"""Largest wall thickness of a conductor [m]."""
+ORBIT_SIZE = 1e6
+"""Largest altitude or semi-major axis [km] (the Moon's orbit: 3.8e5 km)."""
+GAUSS = 1e6
+"""Largest magnitude of a Gauss coefficient [nT] (the Earth's g10: −3e4)."""
+RESIDUAL_MOMENT = 1e3
+"""Largest magnitude of a component of the residual moment [N·m]."""
+RATE = (1e-9, 1e4)
+"""Range of the initial rate |ω| [rad/s]: a turn in two centuries to ~1e5 rpm."""
+SPIN_PERIOD = (2.0 * math.pi / RATE[1], 2.0 * math.pi / RATE[0])
+"""Range of the spin period [s], that of :data:`RATE`."""
+
 
 def principal_axes(inertia: Any, name: str = "body.inertia") -> tuple[FloatArray, FloatArray]:
     """Principal moments (ascending) [kg·m²] and the rotation R whose columns are the principal
@@ -56,8 +86,8 @@ def principal_axes(inertia: Any, name: str = "body.inertia") -> tuple[FloatArray
     Raises
     ------
     ParameterError
-        For a tensor that is not symmetric, not positive definite, or whose moments break the
-        triangle inequality.
+        For a tensor that is not symmetric, not positive definite, whose moments break the
+        triangle inequality, or whose entries or moments leave :data:`INERTIA`.
     """
     try:
         J = np.array(inertia, dtype=float)
@@ -69,6 +99,10 @@ def principal_axes(inertia: Any, name: str = "body.inertia") -> tuple[FloatArray
         J = np.diag(J)
     if J.shape != (3, 3) or not np.all(np.isfinite(J)):
         raise ParameterError(f"{name} must be 3 principal moments or a 3×3 tensor [kg m²]")
+    low, high = INERTIA
+    if np.max(np.abs(J)) > high:
+        raise ParameterError(f"{name}: an entry of magnitude {np.max(np.abs(J)):g} is outside "
+                             f"the allowed range [-{high:g}, {high:g}] [kg m²]")  # fmt: skip
     if not np.allclose(J, J.T, rtol=1e-12, atol=1e-12 * np.max(np.abs(J))):
         raise ParameterError(f"{name} must be symmetric (J = Jᵀ)")
     moments, R = np.linalg.eigh(J)
@@ -77,6 +111,9 @@ def principal_axes(inertia: Any, name: str = "body.inertia") -> tuple[FloatArray
             f"{name} is not positive definite (principal moments "
             f"{', '.join(f'{m:.6g}' for m in moments)} kg m²; allowed: all > 0)"
         )
+    if moments[0] < low:
+        raise ParameterError(f"{name}: the smallest principal moment {moments[0]:.6g} kg m² is "
+                             f"outside the allowed range [{low:g}, {high:g}]")  # fmt: skip
     RigidBody(*moments.tolist())  # the triangle inequality
     if np.linalg.det(R) < 0.0:
         R[:, 2] = -R[:, 2]
@@ -119,18 +156,19 @@ State = tb.State
 _BODY = Section(
     "body",
     (
-        Key("mass", "number", "a mass > 0", "kg", None, doc="for the record only"),
+        Key("mass", "number", "a mass in (0, 1e9]", "kg", None, doc="for the record only"),
         Key(
             "inertia",
             "any",
-            "3 principal moments or a 3×3 symmetric positive-definite tensor",
+            "3 principal moments or a 3×3 symmetric positive-definite tensor, principal "
+            "moments in [1e-10, 1e12] and entries at most 1e12 in magnitude",
             "kg m^2",
             doc="in the body axes every other body vector is given in",
         ),
         Key(
             "magnetic_tensor",
             "matrix3",
-            "a 3×3 matrix (S m⁴), or give [conductor]",
+            "a 3×3 matrix, entries at most 1e12 in magnitude (or give [conductor])",
             "S m^4",
             None,
             doc="eddy-current tensor M: induced dipole M x, x = −dB/dt in the body",
@@ -142,11 +180,11 @@ _CONDUCTOR = Section(
     "conductor",
     (
         Key("shape", "text", " or ".join(f'"{s}"' for s in SHAPES), choices=SHAPES),
-        Key("conductivity", "number", "a conductivity > 0", "S/m"),
-        Key("radius", "number", "a radius > 0 (sphere, shell, cylinder)", "m", None),
-        Key("thickness", "number", "a wall thickness > 0 (shells, plate)", "m", None),
-        Key("length", "number", "a length > 0 (cylinder; plate side)", "m", None),
-        Key("width", "number", "a width > 0 (plate side)", "m", None),
+        Key("conductivity", "number", "a conductivity in (0, 1e9]", "S/m"),
+        Key("radius", "number", "a radius in (0, 1e3] (sphere, shell, cylinder)", "m", None),
+        Key("thickness", "number", "a wall thickness in (0, 1] (shells, plate)", "m", None),
+        Key("length", "number", "a length in (0, 1e3] (cylinder; plate side)", "m", None),
+        Key("width", "number", "a width in (0, 1e3] (plate side)", "m", None),
         Key(
             "axis",
             "vector3",
@@ -162,8 +200,8 @@ _CONDUCTOR = Section(
 _ORBIT = Section(
     "orbit",
     (
-        Key("altitude", "number", "a circular orbit's altitude > 0", "km", None),
-        Key("semi_major_axis", "number", "a semi-major axis > the Earth's radius", "km", None),
+        Key("altitude", "number", "a circular orbit's altitude in (0, 1e6]", "km", None),
+        Key("semi_major_axis", "number", "a semi-major axis in (6378.137, 1e6]", "km", None),
         Key("eccentricity", "number", "a number in [0, 1)", "", None, doc="default 0"),
         Key("inclination", "number", "in [0, π]", "rad", None, angle=True),
         Key(
@@ -228,9 +266,16 @@ _FIELD = Section(
             choices=("dipole", "igrf", "none"),
             doc="igrf: the whole IGRF to `degree` (needs the space extra's ppigrf)",
         ),
-        Key("g10", "number", "Gauss coefficient", "nT", None, doc="default: IGRF-13 at epoch"),
-        Key("g11", "number", "Gauss coefficient", "nT", None),
-        Key("h11", "number", "Gauss coefficient", "nT", None),
+        Key(
+            "g10",
+            "number",
+            "Gauss coefficient in [-1e6, 1e6]",
+            "nT",
+            None,
+            doc="default: IGRF-13 at epoch",
+        ),
+        Key("g11", "number", "Gauss coefficient in [-1e6, 1e6]", "nT", None),
+        Key("h11", "number", "Gauss coefficient in [-1e6, 1e6]", "nT", None),
         Key("degree", "integer", "an integer in [1, 13]", "", None, doc="IGRF only; default 13"),
         Key(
             "rotating",
@@ -248,7 +293,13 @@ _TORQUES = Section(
     (
         Key("eddy_current", "boolean", "true or false", default=True),
         Key("gravity_gradient", "boolean", "true or false", default=True),
-        Key("residual_moment", "vector3", "3 numbers (body axes)", "N m", [0.0, 0.0, 0.0]),
+        Key(
+            "residual_moment",
+            "vector3",
+            "3 numbers in [-1e3, 1e3] (body axes)",
+            "N m",
+            [0.0, 0.0, 0.0],
+        ),
         *(
             Key(k.name, cast(KeyKind, k.kind), k.meaning, k.unit, k.default, doc=k.doc)
             for k in terms.orbit_key_specs()
@@ -260,10 +311,16 @@ _TORQUES = Section(
 _INITIAL = Section(
     "initial",
     (
-        Key("omega", "vector3", "body angular velocity", "rad/s", None),
-        Key("omega_deg_s", "vector3", "body angular velocity", "deg/s", None),
-        Key("omega_rpm", "vector3", "body angular velocity", "rpm", None),
-        Key("spin_period", "number", "a period > 0 (with spin_axis)", "s", None),
+        Key("omega", "vector3", "body angular velocity, |ω| in [1e-9, 1e4] rad/s", "rad/s", None),
+        Key(
+            "omega_deg_s",
+            "vector3",
+            "body angular velocity, |ω| in [1e-9, 1e4] rad/s",
+            "deg/s",
+            None,
+        ),
+        Key("omega_rpm", "vector3", "body angular velocity, |ω| in [1e-9, 1e4] rad/s", "rpm", None),
+        Key("spin_period", "number", "a period in [2π·1e-4, 2π·1e9] (with spin_axis)", "s", None),
         Key("spin_axis", "vector3", "a nonzero body vector (with spin_period)", "", None),
         Key(
             "quaternion",
@@ -283,11 +340,12 @@ _INITIAL = Section(
 def _epoch(text: str) -> datetime:
     try:
         when = datetime.fromisoformat(text.replace("Z", "+00:00"))
-    except ValueError:
+        return when.replace(tzinfo=UTC) if when.tzinfo is None else when.astimezone(UTC)
+    except (ValueError, OverflowError):  # OverflowError: an offset past year 1 or 9999
         raise ScenarioError(
-            f'orbit.epoch = {text!r} is not an ISO 8601 time (e.g. "2025-01-01T00:00:00Z")'
+            f"orbit.epoch = {text!r} is not an ISO 8601 time from year 1 to 9999 (e.g. "
+            '"2025-01-01T00:00:00Z")'
         ) from None
-    return when.replace(tzinfo=UTC) if when.tzinfo is None else when.astimezone(UTC)
 
 
 DEFAULT_EPOCH = "2025-01-01T00:00:00Z"
@@ -305,13 +363,19 @@ def _orbit(o: Mapping[str, Any]) -> tuple[Orbit, datetime]:
     e = 0.0 if o["eccentricity"] is None else o["eccentricity"]
     check_range("orbit.eccentricity", e, low=0.0, high=1.0, low_open=False)
     if given == ["altitude"]:
-        check_range("orbit.altitude [km]", o["altitude"], low=0.0)
+        check_range("orbit.altitude [km]", o["altitude"], low=0.0, high=ORBIT_SIZE, high_open=False)
         a = EARTH_RADIUS + 1e3 * o["altitude"]
         if e != 0.0:
             raise ScenarioError("orbit: altitude gives a circular orbit; with eccentricity give "
                                 "semi_major_axis")  # fmt: skip
     else:
-        check_range("orbit.semi_major_axis [km]", o["semi_major_axis"], low=EARTH_RADIUS / 1e3)
+        check_range(
+            "orbit.semi_major_axis [km]",
+            o["semi_major_axis"],
+            low=EARTH_RADIUS / 1e3,
+            high=ORBIT_SIZE,
+            high_open=False,
+        )
         a = 1e3 * o["semi_major_axis"]
     if o["sun_synchronous"]:
         if e != 0.0:
@@ -353,14 +417,23 @@ def _field(f: Mapping[str, Any] | None, epoch: datetime) -> Dipole | Igrf | None
             raise ScenarioError(
                 'field.model = "igrf" needs the package ppigrf: pip install "tumble[space]"'
             ) from None
+    if f is not None:
+        for k in ("g10", "g11", "h11"):
+            if f[k] is not None:
+                check_range(f"field.{k} [nT]", f[k], low=-GAUSS, high=GAUSS, low_open=False,
+                            high_open=False)  # fmt: skip
     if f is not None and f["degree"] is not None:
         raise ScenarioError('field.degree is for model = "igrf"; the dipole is degree 1')
-    reference = Dipole.igrf(epoch)
+    rotating = f is None or f["rotating"]
+    rotation = EARTH_ROTATION if rotating else 0.0
+    if f is not None and all(f[k] is not None for k in ("g10", "g11", "h11")):
+        # The user's coefficients: no table read, any epoch (it sets the Earth's angle only).
+        return Dipole(f["g10"], f["g11"], f["h11"], greenwich_sidereal_angle(epoch), rotation)
+    reference = Dipole.igrf(epoch)  # refuses an epoch outside the table
     if f is None:
         return reference
     values = {k: reference.__dict__[k] if f[k] is None else f[k] for k in ("g10", "g11", "h11")}
-    return Dipole(**values, theta0=reference.theta0,
-                  rotation=reference.rotation if f["rotating"] else 0.0)  # fmt: skip
+    return Dipole(**values, theta0=reference.theta0, rotation=rotation)
 
 
 def _direction(field: str, value: Any) -> FloatArray:
@@ -396,6 +469,11 @@ def _magnetic_tensor(body: Mapping[str, Any], c: Mapping[str, Any] | None) -> Fl
         raise ScenarioError("body.magnetic_tensor and [conductor]: give one of them")
     if given is not None:
         M = np.array(given, dtype=float)
+        if np.max(np.abs(M)) > MAGNETIC_TENSOR:
+            raise ParameterError(
+                f"body.magnetic_tensor: an entry of magnitude {np.max(np.abs(M)):g} is outside "
+                f"the allowed range [-{MAGNETIC_TENSOR:g}, {MAGNETIC_TENSOR:g}] [S m⁴]"
+            )
         if not np.allclose(M, M.T, rtol=1e-9, atol=1e-12 * max(np.max(np.abs(M)), 1e-300)):
             raise ParameterError("body.magnetic_tensor must be symmetric (M = Mᵀ)")
         if np.min(np.linalg.eigvalsh(M)) < -1e-12 * np.max(np.abs(M)):
@@ -415,9 +493,11 @@ def _magnetic_tensor(body: Mapping[str, Any], c: Mapping[str, Any] | None) -> Fl
     if missing:
         raise ScenarioError(f"conductor: a {shape} needs {', '.join(need)} (missing "
                             f"{', '.join(missing)})")  # fmt: skip
-    check_range("conductor.conductivity [S/m]", c["conductivity"], low=0.0)
+    check_range("conductor.conductivity [S/m]", c["conductivity"], low=0.0, high=CONDUCTIVITY,
+                high_open=False)  # fmt: skip
     for k in need:
-        check_range(f"conductor.{k} [m]", c[k], low=0.0)
+        high = THICKNESS if k == "thickness" else SIZE
+        check_range(f"conductor.{k} [m]", c[k], low=0.0, high=high, high_open=False)
     sigma = c["conductivity"]
     if shape == "thin_spherical_shell":
         own = thin_spherical_shell(sigma, c["radius"], c["thickness"])
@@ -442,7 +522,8 @@ def _omega(ini: Mapping[str, Any]) -> FloatArray:
     if (ini["spin_axis"] is not None) != (forms == ["spin_period"]):
         raise ScenarioError("initial: spin_axis goes with spin_period, and only with it")
     if forms == ["spin_period"]:
-        check_range("initial.spin_period [s]", ini["spin_period"], low=0.0)
+        check_range("initial.spin_period [s]", ini["spin_period"], low=SPIN_PERIOD[0],
+                    high=SPIN_PERIOD[1], low_open=False, high_open=False)  # fmt: skip
         axis = _direction("initial.spin_axis", ini["spin_axis"])
         return 2.0 * math.pi / ini["spin_period"] * axis / np.linalg.norm(axis)
     factor = {"omega": 1.0, "omega_deg_s": math.pi / 180.0, "omega_rpm": math.pi / 30.0}
@@ -450,6 +531,10 @@ def _omega(ini: Mapping[str, Any]) -> FloatArray:
     if not np.any(w):
         raise ScenarioError(f"initial.{forms[0]} = [0, 0, 0]: the body must rotate (|ω| > 0 "
                             "sets the time scale)")  # fmt: skip
+    rate = float(np.linalg.norm(w))
+    if not RATE[0] <= rate <= RATE[1]:
+        raise ParameterError(f"initial.{forms[0]}: |ω| = {rate:.6g} rad/s is outside the allowed "
+                             f"range [{RATE[0]:g}, {RATE[1]:g}] rad/s")  # fmt: skip
     return w
 
 
@@ -466,7 +551,7 @@ def _build(inputs: Inputs) -> Built[Params, State]:
     torques = inputs["torques"] or {key.name: key.default for key in _TORQUES.keys}
     assert body is not None and orbit_keys is not None and ini is not None  # required
     if body["mass"] is not None:
-        check_range("body.mass [kg]", body["mass"], low=0.0)
+        check_range("body.mass [kg]", body["mass"], low=0.0, high=MASS, high_open=False)
     moments, R = principal_axes(body["inertia"])
     orbit, epoch = _orbit(orbit_keys)
     field_model = _field(inputs["field"], epoch)
@@ -492,6 +577,11 @@ def _build(inputs: Inputs) -> Built[Params, State]:
         mean.append(gg.averaged())
         labels.append("gravity gradient")
     residual = np.asarray(torques["residual_moment"], dtype=float)
+    if np.max(np.abs(residual)) > RESIDUAL_MOMENT:
+        raise ParameterError(
+            f"torques.residual_moment = {residual.tolist()} [N m]: each component must be within "
+            f"±{RESIDUAL_MOMENT:g}"
+        )
     if np.any(residual):
         moment = ConstantBodyTorque(R.T @ residual * T0**2 / I0)
         full.append(moment)

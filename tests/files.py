@@ -24,3 +24,15 @@ def read_csv(path):
     with open(path) as fh:
         rows = list(csv.reader(fh))
     return rows[0], np.array(rows[1:], dtype=float)
+
+
+def leaves(d, path=()):
+    """The paths (tuples of keys and list indices) of every leaf of a nested scenario table."""
+    if isinstance(d, dict):
+        for k, v in d.items():
+            yield from leaves(v, (*path, k))
+    elif isinstance(d, list):
+        for i, v in enumerate(d):
+            yield from leaves(v, (*path, i))
+    else:
+        yield path

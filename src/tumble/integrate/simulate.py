@@ -25,7 +25,13 @@ from tumble.integrate.ode import (
     compiled_breakpoints,
     integrate,
 )
-from tumble.integrate.trajectory import RunSpec, Trajectory, integrated, unwrap_columns
+from tumble.integrate.trajectory import (
+    RunSpec,
+    Trajectory,
+    UnwrapStream,
+    integrated,
+    unwrap_columns,
+)
 from tumble.kernels import Kernel
 from tumble.models.base import (
     AveragedForm,
@@ -453,46 +459,48 @@ def _averaged_streamed(
 ) -> Trajectory:
     """The averaged equations on the compiled integrator, kept at the samples only
     (:func:`tumble.integrate.replay.stream`): the angle columns are unwrapped chunk by chunk
-    on the steps, which are then dropped, and ``Trajectory.slow`` replays the run from its
+    on the steps and samples, which the chunk's interpolants give as the whole dense output
+    would, and the steps are then dropped; ``Trajectory.slow`` replays the run from its
     checkpoints. Memory: the samples, one chunk and the checkpoints, whatever the span."""
     from tumble.integrate.replay import stream
 
     p, tau, initial = run.p, run.tau, run.initial
     angles = [c.name for c in run.model.columns(p, "averaged") if c.unwrap]
     parts: list[Columns] = []
-    carry: dict[str, float] = {}
+    unwrap = UnwrapStream(angles, initial)
 
     def to_columns(t: FloatArray, Y: FloatArray) -> Columns:
         return avg.to_columns(p, initial, t, Y)
 
-    def on_chunk(ts: FloatArray, ys: FloatArray, i0: int, i1: int, Y: FloatArray) -> None:
-        cols = to_columns(tau[i0:i1], Y) if i1 > i0 else {}
-        at_steps = to_columns(ts, ys)
-        names = [name for name in angles if name in at_steps]
-        if i1 == i0:  # no sample in this chunk: its steps still carry the turns of the angles
-            cols = {name: np.empty(0) for name in names}
-        _unwrap_streamed(cols, tau[i0:i1], {k: at_steps[k] for k in names}, ts, carry, initial)
-        if i1 > i0:
-            parts.append(cols)
+    def on_chunk(piece: dop853.Solution, steps: FloatArray, rows: FloatArray) -> None:
+        # The steps and the samples in one ascending grid (a step first where they meet), as
+        # the dense output's sampling merges them.
+        times = np.concatenate([steps, tau[rows]])
+        order = np.argsort(times, kind="stable")
+        cols = to_columns(times[order], piece(times[order]))
+        unwrap(cols)
+        where = np.empty(times.size, dtype=np.intp)
+        where[order] = np.arange(times.size)
+        at = where[steps.size :]
+        parts.append({name: cols[name][at] for name in angles if name in cols})
 
-    run_ = stream(kernel, y0, tau, avg.breakpoints, run.rtol, run.atol, run.what(avg),
+    kept = stream(kernel, y0, tau, avg.breakpoints, run.rtol, run.atol, run.what(avg),
                   run.max_steps, on_chunk if angles else None)  # fmt: skip
-    if angles:
-        cols = {name: np.concatenate([part[name] for part in parts]) for name in parts[0]}
-    else:
-        cols = to_columns(tau, run_.y_eval)
+    cols = to_columns(tau, kept.y_eval)
+    for name in parts[0] if parts else ():
+        cols[name] = np.concatenate([part[name] for part in parts])
     if avg.osculating is not None:
-        cols.update(avg.osculating(p, initial, tau, run_.y_eval))
-    replay = run_.replay
+        cols.update(avg.osculating(p, initial, tau, kept.y_eval))
+    replay = kept.replay
 
     def slow(t: FloatArray) -> Columns:
         t = np.atleast_1d(np.asarray(t, dtype=float))
         return to_columns(t, replay(t))
 
-    events = run_.events
-    event_columns = to_columns(events, run_.event_y) if events.size else {}
-    return Trajectory(tau, cols, "averaged", avg.name, time.perf_counter() - start, run_.nfev,
-                      slow, np.empty(0), "numba", events, run_.event_signs,
+    events = kept.events
+    event_columns = to_columns(events, kept.event_y) if events.size else {}
+    return Trajectory(tau, cols, "averaged", avg.name, time.perf_counter() - start, kept.nfev,
+                      slow, np.empty(0), "numba", events, kept.event_signs,
                       event_columns)  # fmt: skip
 
 

@@ -3,17 +3,17 @@ is evaluated anywhere by replaying it from the checkpoint before.
 
 A run of averaged equations may take millions of steps (the orbiting body's over centuries):
 its dense output, 7 interpolant rows of the state per step, grew with the span until the
-memory ran out. Here the run is consumed chunk by chunk (:class:`~.dop853.Integration`): the
-samples come from the integrator as it passes them, each chunk's steps are handed to the
-caller (to unwrap the angles on them) and dropped, and the state, time and next step size are
-kept at the end of every chunk. Between two checkpoints the compiled DOP853 takes exactly the
-steps the run took (the same state, step size and end point give the same arithmetic, and its
-step-size controller keeps no memory of earlier steps), so :class:`Replay` gives the states the
-dense output would have given, at the cost of re-running one stretch of
-:data:`CHECKPOINT_STEPS` steps (or a multiple of it, once the checkpoints are thinned). Each
-chunk keeps its interpolants while it is looked at, and a time is evaluated on the step the
-whole dense output would have chosen (a step's start on the step it begins, the run's end on
-its last step): the samples and the replayed states are the dense output's, bit for bit.
+memory ran out. Here the run is consumed chunk by chunk (:class:`~.dop853.Integration`): each
+chunk keeps its steps and interpolants while its samples are taken from them and the caller
+looks at them (to unwrap the angles on them), and is then dropped; the time, state and next
+step size are kept at the end of every chunk. From a checkpoint the compiled DOP853 takes
+exactly the steps the run took (the same state, step size, kernel and end point give the same
+arithmetic, and its step-size controller keeps no memory of earlier steps), so
+:class:`Replay` gives the states the dense output would have given, at the cost of re-running
+one stretch of :data:`CHECKPOINT_STEPS` steps (or a multiple of it, once the checkpoints are
+thinned). A time is evaluated on the step the whole dense output would have chosen (a step's
+start on the step it begins, the run's end on its last step): the samples and the replayed
+states are the dense output's, bit for bit.
 
 Memory: the samples, one chunk and at most :data:`MAX_CHECKPOINTS` states, whatever the span.
 """
@@ -46,17 +46,17 @@ between two doubles), so that their memory is bounded too (4096 states: under a 
 
 _REPLAY_STEPS = 250  # steps a replay advances by between two looks at where it stands
 
-OnChunk = Callable[[dop853.Solution, FloatArray, FloatArray], None]
+OnChunk = Callable[[dop853.Solution, FloatArray, slice], None]
 """``on_chunk(piece, steps, samples)``: one chunk of the run (its steps and interpolants,
-:class:`~.dop853.Solution`), the step times and the indices of the samples it covers (each
+:class:`~.dop853.Solution`), the step times and the slice of the samples it covers (each
 time of the run covered once, by the chunk whose interpolant the dense output would use)."""
 
 
-def _covered(times: FloatArray, lo: float, hi: float, closed: bool) -> FloatArray:
-    """Indices of the ascending ``times`` in [lo, hi) (or [lo, hi] when ``closed``)."""
+def _covered(times: FloatArray, lo: float, hi: float, closed: bool) -> slice:
+    """The ascending ``times`` in [lo, hi) (or [lo, hi] when ``closed``), as a slice."""
     i0 = int(np.searchsorted(times, lo, side="left"))
     i1 = int(np.searchsorted(times, hi, side="right" if closed else "left"))
-    return np.arange(i0, i1)
+    return slice(i0, i1)
 
 
 @dataclass(frozen=True)
@@ -132,9 +132,9 @@ class Replay:
                     f"{self.what}: replay failed at t = {piece.t:.6g}: {piece.message}"
                 )
             rows = _covered(t, float(piece.ts[0]), float(piece.ts[-1]), closed and done)
-            if rows.size:
+            if rows.stop > rows.start:
                 states[rows] = piece(t[rows])
-                filled = int(rows[-1]) + 1
+                filled = rows.stop
             if done:
                 break
         return states
@@ -259,7 +259,7 @@ def stream(
             closed = finished and progress.t >= t_end
             steps_t = piece.ts if closed else piece.ts[:-1]
             rows = _covered(tau, float(piece.ts[0]), float(piece.ts[-1]), closed)
-            if rows.size:
+            if rows.stop > rows.start:
                 y_eval[rows] = piece(tau[rows])
             if on_chunk is not None:
                 on_chunk(piece, steps_t, rows)

@@ -472,7 +472,7 @@ def _averaged_streamed(
     def to_columns(t: FloatArray, Y: FloatArray) -> Columns:
         return avg.to_columns(p, initial, t, Y)
 
-    def on_chunk(piece: dop853.Solution, steps: FloatArray, rows: FloatArray) -> None:
+    def on_chunk(piece: dop853.Solution, steps: FloatArray, rows: slice) -> None:
         # The steps and the samples in one ascending grid (a step first where they meet), as
         # the dense output's sampling merges them.
         times = np.concatenate([steps, tau[rows]])

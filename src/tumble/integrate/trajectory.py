@@ -39,10 +39,12 @@ class Trajectory:
     nfev : int
         Right-hand-side evaluations (0 for closed forms).
     slow : callable
-        ``slow(tau) -> columns`` anywhere in ``[0, tau[-1]]``, for validity checks.
+        ``slow(tau) -> columns`` anywhere in ``[0, tau[-1]]``, for validity checks (a compiled
+        averaged run replays itself from its checkpoints: :mod:`tumble.integrate.replay`).
     steps : ndarray
-        The integrator's step times (empty for closed forms): a grid that resolves every fast
-        oscillation, for locating extrema.
+        The integrator's step times: a grid that resolves every fast oscillation, for
+        locating extrema. Empty for closed forms and for the runs that keep their samples,
+        not their steps (compiled full runs without ``dense``, compiled averaged runs).
     integrator : str
         ``"numba"``, ``"scipy"`` or ``""`` (closed forms).
     events, event_signs : ndarray

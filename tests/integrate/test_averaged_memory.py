@@ -83,6 +83,10 @@ def test_streamed_states_are_the_dense_outputs(name, fraction, short_stretches):
     # Any order, repeated times, the ends, the samples themselves.
     mixed = np.concatenate([anywhere[::-1], [0.0, tau[-1], anywhere[3]], tau])
     assert np.array_equal(streamed.replay(mixed), dense(mixed))
+    # Asked again (a check scans its grid twice): the same states, from the last call's.
+    again = streamed.replay(mixed)
+    again[:] = np.nan
+    assert np.array_equal(streamed.replay(mixed), dense(mixed))
 
 
 def test_checkpoints_are_thinned_and_the_replay_still_exact(monkeypatch):
@@ -134,7 +138,7 @@ _PEAKS = textwrap.dedent(
     peaks = {}
     for years in (1, 100):
         tau = np.linspace(0.0, years * year, 366)
-        run(dataclasses.replace(request, tau=tau, rtol=1e-6, methods=("averaged",)))
+        run(dataclasses.replace(request, tau=tau, rtol=1e-4, methods=("averaged",)))
         peaks[years] = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
     print(json.dumps(peaks))
     """
@@ -144,9 +148,9 @@ _PEAKS = textwrap.dedent(
 def test_averaged_memory_does_not_grow_with_the_span():
     # The Envisat-like example's averaged run with its 366 samples, its validity checks
     # included (they replay the run), over 1 year and then 100 years in one process: a
-    # hundred times the steps (as from 10 to 1000 years). At a loose tolerance (1e-6: 3.4e5
-    # steps over 100 years) to keep it fast; the dense output held 0.5 kB a step, about
-    # 170 MB here (0.36 → 3.8 GB at the example's tolerance, 10 → 1000 years).
+    # hundred times the steps (as from 10 to 1000 years). At a loose tolerance (1e-4) to keep
+    # it fast: with the dense output the peak grew from 259 to 370 MB here (0.36 → 3.8 GB at
+    # the example's tolerance, 10 → 1000 years); without it, 259.5 to 260.2 MB.
     out = subprocess.run([sys.executable, "-c", _PEAKS, str(ENVISAT)], capture_output=True,
                          text=True, check=True, timeout=300)  # fmt: skip
     peaks = {int(k): v for k, v in json.loads(out.stdout).items()}

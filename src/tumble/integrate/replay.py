@@ -93,10 +93,21 @@ class Replay:
         self._points = list(checkpoints)
         self._times = np.array([c.t for c in self._points])
         self.rtol, self.atol, self.what = rtol, atol, what
+        # The last times asked for and their states: a validity check scans its grid more
+        # than once (the separatrix, then its crossing), each scan a pass over the whole span.
+        self._last: tuple[FloatArray, FloatArray] = (np.empty(0), np.empty((0, 0)))
 
     def __call__(self, t: FloatArray) -> FloatArray:
         """States at times ``t`` (any order, within the run's span), shape (m, n)."""
         t = np.atleast_1d(np.asarray(t, dtype=float))
+        if np.array_equal(t, self._last[0]):
+            return self._last[1].copy()
+        states = self._states(t)
+        if t.size > 1:
+            self._last = (t.copy(), states.copy())
+        return states
+
+    def _states(self, t: FloatArray) -> FloatArray:
         order = np.argsort(t, kind="stable")
         ordered = t[order]
         out = np.empty((t.size, self._points[0].y.size))

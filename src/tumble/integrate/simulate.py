@@ -25,7 +25,13 @@ from tumble.integrate.ode import (
     compiled_breakpoints,
     integrate,
 )
-from tumble.integrate.trajectory import RunSpec, Trajectory, integrated, unwrap_columns
+from tumble.integrate.trajectory import (
+    RunSpec,
+    Trajectory,
+    UnwrapStream,
+    integrated,
+    unwrap_columns,
+)
 from tumble.kernels import Kernel
 from tumble.models.base import (
     AveragedForm,
@@ -454,6 +460,8 @@ def _averaged(run: RunSpec[P, S], avg: AveragedForm[P, S], kernel: Kernel | None
     p = run.p
     y0 = avg.initial_state(p, run.initial)
     try:
+        if kernel is not None and run.t_end > 0.0 and np.all(np.isfinite(y0)):
+            return _averaged_streamed(run, avg, kernel, np.asarray(y0, dtype=float), start)
         sol = integrate(
             lambda t, y: avg.rhs(t, y, p),
             y0,
@@ -473,6 +481,56 @@ def _averaged(run: RunSpec[P, S], avg: AveragedForm[P, S], kernel: Kernel | None
             raise
         raise IntegrationError(f"{exc}; last refused state: {reason}") from None
     return integrated(run, "averaged", avg, sol, start)
+
+
+def _averaged_streamed(
+    run: RunSpec[P, S], avg: AveragedForm[P, S], kernel: Kernel, y0: FloatArray, start: float
+) -> Trajectory:
+    """The averaged equations on the compiled integrator, kept at the samples only
+    (:func:`tumble.integrate.replay.stream`): the angle columns are unwrapped chunk by chunk
+    on the steps and samples, which the chunk's interpolants give as the whole dense output
+    would, and the steps are then dropped; ``Trajectory.slow`` replays the run from its
+    checkpoints. Memory: the samples, one chunk and the checkpoints, whatever the span."""
+    from tumble.integrate.replay import stream
+
+    p, tau, initial = run.p, run.tau, run.initial
+    angles = [c.name for c in run.model.columns(p, "averaged") if c.unwrap]
+    parts: list[Columns] = []
+    unwrap = UnwrapStream(angles, initial)
+
+    def to_columns(t: FloatArray, Y: FloatArray) -> Columns:
+        return avg.to_columns(p, initial, t, Y)
+
+    def on_chunk(piece: dop853.Solution, steps: FloatArray, rows: slice) -> None:
+        # The steps and the samples in one ascending grid (a step first where they meet), as
+        # the dense output's sampling merges them.
+        times = np.concatenate([steps, tau[rows]])
+        order = np.argsort(times, kind="stable")
+        cols = to_columns(times[order], piece(times[order]))
+        unwrap(cols)
+        where = np.empty(times.size, dtype=np.intp)
+        where[order] = np.arange(times.size)
+        at = where[steps.size :]
+        parts.append({name: cols[name][at] for name in angles if name in cols})
+
+    kept = stream(kernel, y0, tau, avg.breakpoints, run.rtol, run.atol, run.what(avg),
+                  run.max_steps, on_chunk if angles else None)  # fmt: skip
+    cols = to_columns(tau, kept.y_eval)
+    for name in parts[0] if parts else ():
+        cols[name] = np.concatenate([part[name] for part in parts])
+    if avg.osculating is not None:
+        cols.update(avg.osculating(p, initial, tau, kept.y_eval))
+    replay = kept.replay
+
+    def slow(t: FloatArray) -> Columns:
+        t = np.atleast_1d(np.asarray(t, dtype=float))
+        return to_columns(t, replay(t))
+
+    events = kept.events
+    event_columns = to_columns(events, kept.event_y) if events.size else {}
+    return Trajectory(tau, cols, "averaged", avg.name, time.perf_counter() - start, kept.nfev,
+                      slow, np.empty(0), "numba", events, kept.event_signs,
+                      event_columns)  # fmt: skip
 
 
 def start_refusal(avg: AveragedForm[P, S], p: P, t: float, y: FloatArray) -> str | None:

@@ -16,7 +16,7 @@ from tumble.integrate.limits import MAX_STEPS
 from tumble.integrate.ode import DenseSolution
 from tumble.models.base import AveragedForm, Columns, FullForm, Model
 
-__all__ = ["RunSpec", "Trajectory", "integrated", "unwrap_columns"]
+__all__ = ["RunSpec", "Trajectory", "UnwrapStream", "integrated", "unwrap_columns"]
 
 P = TypeVar("P")
 S = TypeVar("S")
@@ -39,10 +39,12 @@ class Trajectory:
     nfev : int
         Right-hand-side evaluations (0 for closed forms).
     slow : callable
-        ``slow(tau) -> columns`` anywhere in ``[0, tau[-1]]``, for validity checks.
+        ``slow(tau) -> columns`` anywhere in ``[0, tau[-1]]``, for validity checks (a compiled
+        averaged run replays itself from its checkpoints: :mod:`tumble.integrate.replay`).
     steps : ndarray
-        The integrator's step times (empty for closed forms): a grid that resolves every fast
-        oscillation, for locating extrema.
+        The integrator's step times: a grid that resolves every fast oscillation, for
+        locating extrema. Empty for closed forms and for the runs that keep their samples,
+        not their steps (compiled full runs without ``dense``, compiled averaged runs).
     integrator : str
         ``"numba"``, ``"scipy"`` or ``""`` (closed forms).
     events, event_signs : ndarray
@@ -98,6 +100,39 @@ def unwrap_columns(model: Model[P, S], p: P, method: str, cols: Columns, initial
                 angle = np.unwrap(angle)
             start = getattr(initial, c.name, angle[0])
             cols[c.name] = angle + 2.0 * np.pi * np.round((start - angle[0]) / (2.0 * np.pi))
+
+
+class UnwrapStream:
+    """:func:`unwrap_columns` on a grid that comes in consecutive parts: each part's angles
+    unwrapped as numpy's ``unwrap`` does the whole grid (the same corrections, summed in the
+    same order), anchored at the initial value as :func:`unwrap_columns` anchors them, so that
+    a run consumed chunk by chunk gets the bits of one unwrapped at once."""
+
+    def __init__(self, names: list[str], initial: object) -> None:
+        self.names, self.initial = names, initial
+        self.last: dict[str, float] = {}  # the grid's value before this part
+        self.total: dict[str, float] = {}  # the corrections so far
+        self.shift: dict[str, float] = {}  # the anchor's whole turns
+
+    def __call__(self, cols: Columns) -> None:
+        """Unwrap the angle columns of the next part of the grid in place."""
+        for name in self.names:
+            p = cols[name]
+            if not p.size:
+                continue
+            if name not in self.last:  # the grid's first value: the anchor
+                first = float(p[0])
+                start = getattr(self.initial, name, first)
+                self.shift[name] = 2.0 * np.pi * np.round((start - first) / (2.0 * np.pi))
+                self.total[name], self.last[name] = 0.0, first
+            dd = np.diff(np.concatenate([[self.last[name]], p]))
+            ddmod = np.mod(dd + np.pi, 2.0 * np.pi) - np.pi
+            np.copyto(ddmod, np.pi, where=(ddmod == -np.pi) & (dd > 0))
+            correct = ddmod - dd
+            np.copyto(correct, 0, where=abs(dd) < np.pi)
+            sums = np.cumsum(np.concatenate([[self.total[name]], correct]))[1:]
+            self.total[name], self.last[name] = float(sums[-1]), float(p[-1])
+            cols[name] = (p + sums) + self.shift[name]
 
 
 def _sampled(

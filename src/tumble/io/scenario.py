@@ -238,7 +238,8 @@ def run_keys(model: Declaration[Any, Any], variant: Variant[Any, Any]) -> tuple[
         ]  # fmt: skip
     keys += [
         Key("samples", "integer", "an integer in [2, 1e7]", default=variant.samples,
-            doc="equally spaced samples from 0 to the end"),
+            doc="equally spaced samples from 0 to the end; samples × output columns at most "
+            "3.5e7 (a run's memory: at most about 4 GB, whatever its span)"),
         Key("methods", "any", f"a non-empty list of {allowed}", default=None,
             doc="default: every method the model has"),
         Key("rtol", "number", "a number in [1e-14, 1e-3]", default=1e-10,
@@ -396,6 +397,37 @@ def _field_hint(schema: type[BaseModel], loc: tuple[int | str, ...]) -> tuple[st
 
 MAX_SAMPLES = 10_000_000
 """Most samples a run may ask for (the outputs of every method hold them all in memory)."""
+
+MEMORY_BOUND_GB = 4.0
+"""The memory a run may need for its samples, as :func:`memory_estimate_gb` estimates it: a
+run asking for more samples (× output columns) is refused before it starts. Its steps cost no
+memory: full and averaged runs keep their samples, not their steps."""
+
+_BASE_GB = 0.5  # peak of a run with few samples: 0.32 GB (orbiting body), 0.57 GB (full run)
+_BYTES_PER_VALUE = 100.0  # per sample and output column: 50-95 B measured (columns, datasets,
+# the SI copy, the files' text) at 1e6 samples; 100 keeps the estimate above every measurement
+
+
+def memory_estimate_gb(samples: int, columns: int) -> float:
+    """Peak memory of a run of ``samples`` samples with ``columns`` output columns over all
+    its methods [GB]: a fixed part, and each value's copies (the columns, the datasets, the
+    SI columns, the text of the files); the span and the steps add nothing."""
+    return _BASE_GB + samples * columns * _BYTES_PER_VALUE / 1e9
+
+
+def _check_memory(request: RunRequest, key: str) -> None:
+    """Refuse a run whose samples would need more than :data:`MEMORY_BOUND_GB`."""
+    model, p = request.model, request.params
+    columns = sum(len(model.columns(p, m)) for m in request.methods)
+    samples = int(request.tau.size)
+    need = memory_estimate_gb(samples, columns)
+    if need > MEMORY_BOUND_GB:
+        most = int((MEMORY_BOUND_GB - _BASE_GB) * 1e9 / (columns * _BYTES_PER_VALUE))
+        raise ParameterError(
+            f"{key} = {samples} would need about {need:.3g} GB ({columns} output columns of "
+            f"{', '.join(request.methods)}), over the bound of {MEMORY_BOUND_GB:g} GB: "
+            f"allowed at most {most} samples for these methods"
+        )
 
 
 def _one_line(exc: ValidationError, schema: type[BaseModel]) -> str:
@@ -643,6 +675,8 @@ def parse_scenario(
     inputs = _Inputs(values, Path(source).resolve().parent, times, frozenset(allow_modules))
     built = variant.build(inputs)
     request = _request(model, sc.run, built, times)  # loads the model: the scenario is valid
+    given = next((k for k in (listed, "t_days") if getattr(sc.run, k, None) is not None), None)
+    _check_memory(request, f"run.{given}" if given else "run.samples")
     user_code = tuple(dict.fromkeys(f.origin for f in inputs.functions))
     pending = _UserCode(inputs.functions, built.user_checks) if inputs.functions else None
     functions = tuple(dict.fromkeys(f.reference for f in inputs.functions))

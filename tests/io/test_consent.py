@@ -65,7 +65,7 @@ REFUSED = {
     "method": ({"run": 'methods = ["closed_form"]'}, "run.methods"),
     "unknown key": ({"run": "sample = 3"}, "unknown key"),
     "no file": ({"reference": "absent:torque"}, "no file absent.py"),
-    "NUL byte": ({"reference": "pay\\u0000load:torque"}, "control characters"),
+    "NUL byte": ({"reference": "pay\\u0000load:torque"}, "control character"),
 }
 """Refusals before the model's keys (the run's tolerance), among them (a missing function,
 the methods) and after them (the steps, a body at rest for the averaged method)."""

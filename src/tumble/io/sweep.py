@@ -44,14 +44,8 @@ from tumble._version import __version__
 from tumble.analysis.plan import Axis, Draw, Keep, Record, SweepPlan
 from tumble.errors import ParameterError, ScenarioError, shorten
 from tumble.io.fileset import atomic_write
-from tumble.io.scenario import (
-    Consent,
-    _one_line,
-    check_text,
-    key_units,
-    load_user_code,
-    parse_scenario,
-)
+from tumble.io.scenario import Consent, _one_line, key_units, load_user_code, parse_scenario
+from tumble.io.text import check_text
 from tumble.io.toml import read_file, read_toml
 
 if TYPE_CHECKING:

@@ -358,14 +358,7 @@ def _integrate_compiled_split(
     at a surface by the kernel's event made terminal, then restarted past it through its map.
     Each piece starts with the step size the controller proposed at the end of the last one (as
     the ensembles of :mod:`tumble.integrate.ensemble` do); all share the budget."""
-    kernel.check_end(t_end)
-    surfaces = [b for b in breakpoints if b.time is None]
-    if not compiled_breakpoints(breakpoints) or (surfaces and kernel.event != EVENT_NONE):
-        raise ParameterError(
-            f"{what}: the compiled integrator takes breakpoints at known times and at most "
-            "one surface with a compiled event function"
-        )
-    stops, surface = split_plan(breakpoints, y0, t_end)
+    stops, surface = compiled_plan(kernel, breakpoints, y0, t_end, what)
     budget = MAX_STEPS if max_steps is None else int(max_steps)
     results: list[dop853.Solution] = []
     t0, y, first, steps = 0.0, y0, 0.0, 0
@@ -401,6 +394,23 @@ def _integrate_compiled_split(
                 y = np.asarray(surface.restart(t0, y), dtype=float)
             surface = None  # crossed at most once
     return joined_pieces(results, what)
+
+
+def compiled_plan(
+    kernel: Kernel, breakpoints: Sequence[Breakpoint], y0: FloatArray, t_end: float, what: str
+) -> tuple[list[float], Breakpoint | None]:
+    """:func:`split_plan` of a run of ``kernel`` on the compiled integrator, once the kernel
+    takes ``t_end`` and the compiled integrator the breakpoints (ParameterError if not: at
+    most one surface, with its compiled event function, and no event of the kernel's own
+    beside it)."""
+    kernel.check_end(t_end)
+    surfaces = [b for b in breakpoints if b.time is None]
+    if not compiled_breakpoints(breakpoints) or (surfaces and kernel.event != EVENT_NONE):
+        raise ParameterError(
+            f"{what}: the compiled integrator takes breakpoints at known times and at most "
+            "one surface with a compiled event function"
+        )
+    return split_plan(breakpoints, y0, t_end)
 
 
 def split_plan(

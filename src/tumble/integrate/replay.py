@@ -26,11 +26,11 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from tumble._typing import FloatArray
-from tumble.errors import IntegrationError, ParameterError
+from tumble.errors import IntegrationError
 from tumble.integrate import dop853
 from tumble.integrate.limits import FIRST_CHUNK, pace_message
-from tumble.integrate.ode import compiled_breakpoints, split_plan
-from tumble.kernels import EVENT_NONE, Kernel
+from tumble.integrate.ode import compiled_plan
+from tumble.kernels import Kernel
 from tumble.models.base import Breakpoint
 
 __all__ = ["CHECKPOINT_STEPS", "MAX_CHECKPOINTS", "Replay", "Streamed", "stream"]
@@ -235,14 +235,7 @@ def stream(
         what is left of it.
     """
     t_end = float(tau[-1])
-    kernel.check_end(t_end)
-    surfaces = [b for b in breakpoints if b.time is None]
-    if not compiled_breakpoints(breakpoints) or (surfaces and kernel.event != EVENT_NONE):
-        raise ParameterError(
-            f"{what}: the compiled integrator takes breakpoints at known times and at most "
-            "one surface with a compiled event function"
-        )
-    stops, surface = split_plan(breakpoints, y0, t_end)
+    stops, surface = compiled_plan(kernel, breakpoints, y0, t_end, what)
     n = y0.size
     y_eval = np.full((tau.size, n), np.nan)
     events: list[tuple[FloatArray, FloatArray, FloatArray]] = []

@@ -43,6 +43,9 @@ class TumbleError(Exception):
 
     exit_code = 2
     partial: Any = None
+    dense: Any = None
+    """On scipy's path: the dense output of the run up to the last step it took before the
+    error (from which :func:`tumble.integrate.simulate` makes ``partial``)."""
     written: str | None = None
     """The output directory that holds what the run computed before the error, if any."""
 

@@ -231,6 +231,18 @@ def test_what_ran_before_a_fault_is_written_and_marked(tmp_path, capsys):
     assert "ending early" in " ".join(err.split())
 
 
+def test_what_ran_before_a_python_torques_fault_is_written_too(tmp_path, capsys):
+    import json
+
+    code, err = _run(tmp_path, capsys, "py_raise_late")
+    out = tmp_path / "out_py_raise_late"
+    ended = json.loads((out / "summary.json").read_text())["ended_early"]
+    rows = (out / "full.csv").read_text().strip().splitlines()
+    # scipy's steps before the fault, retaken: the samples at t = 0 and 2.5 (the fault at 5.03)
+    assert code == 2 and ended["t"] == 2.5 and len(rows) == 3, err
+    assert "faults:py_raise_late raised RuntimeError" in ended["reason"]
+
+
 def test_a_spent_step_budget_keeps_what_ran(tmp_path, capsys):
     import json
 

@@ -7,10 +7,10 @@ from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
-from scipy.integrate import solve_ivp
+from scipy.integrate import DOP853, OdeSolution, solve_ivp
 
 from tumble._typing import ArrayLike, FloatArray
-from tumble.errors import IntegrationError, ParameterError
+from tumble.errors import IntegrationError, ParameterError, TumbleError
 from tumble.integrate import dop853
 from tumble.integrate.limits import FIRST_CHUNK, MAX_STEPS, check_times, pace_message
 from tumble.kernels import EVENT_NONE, Kernel
@@ -255,6 +255,9 @@ def _segment(
                 events=[*(_event(b.condition) for b in pending if b.condition), *recorders] or None,
                 first_step=first_step,
             )
+        except TumbleError as exc:  # a user's torque failed: keep the steps before it
+            exc.dense = _steps_before(f, t0, t1, y, rtol, atol, first_step)
+            raise
         except FloatingPointError as exc:
             raise IntegrationError(
                 f"{what}: arithmetic failure during integration ({exc})"
@@ -263,6 +266,30 @@ def _segment(
         t_fail = float(res.t[-1]) if res.t.size else t0
         raise IntegrationError(f"{what}: integration failed at t = {t_fail:.6g}: {res.message}")
     return res
+
+
+def _steps_before(
+    f: Callable[[float, FloatArray], FloatArray],
+    t0: float,
+    t1: float,
+    y: FloatArray,
+    rtol: float,
+    atol: float,
+    first_step: float | None,
+) -> Any:
+    """The dense output (an ``OdeSolution``) of the steps scipy's DOP853 takes from (t0, y)
+    towards t1 before ``f`` fails, retaken one by one (solve_ivp's steps: the same solver,
+    the same calls; events only read them); None if it fails before its first step."""
+    ts, pieces = [t0], []
+    try:
+        solver = DOP853(f, t0, y, t1, rtol=rtol, atol=atol,
+                        first_step=first_step if first_step else None)  # fmt: skip
+        while solver.status == "running" and solver.step() is None:
+            ts.append(solver.t)
+            pieces.append(solver.dense_output())
+    except Exception:  # the failure again (or the budget): the steps before it are kept
+        pass
+    return OdeSolution(ts, pieces) if pieces else None
 
 
 def _integrate_scipy(
@@ -284,7 +311,8 @@ def _integrate_scipy(
         for b in breakpoints
         if b.time is None and b.condition is not None and b.condition(0.0, y0) != 0.0
     ]
-    starts, sols, steps, nfev = [0.0], [], [np.array([0.0])], 0
+    starts, steps, nfev = [0.0], [np.array([0.0])], 0
+    sols: list[Any] = []  # the dense output of each segment
     t0, y = 0.0, y0
     first_step: float | None = None
     recorders = _recorders(event)
@@ -294,7 +322,14 @@ def _integrate_scipy(
         if first_step is not None:
             first_step = min(first_step, seg_end - t0)
         f = _inside(rhs, t0, seg_end) if stops[0] < t_end else rhs
-        res = _segment(f, t0, seg_end, y, rtol, atol, what, pending, first_step, recorders)
+        try:
+            res = _segment(f, t0, seg_end, y, rtol, atol, what, pending, first_step, recorders)
+        except TumbleError as exc:  # the segments before, and the steps of this one kept
+            if exc.dense is not None:
+                done = _Piecewise(starts, [*sols, exc.dense]) if sols else exc.dense
+                ts = np.concatenate([*steps, np.asarray(exc.dense.ts[1:])])
+                exc.dense = DenseSolution(ts, nfev, done, "scipy")
+            raise
         if recorders:
             rising, falling = res.t_events[-2], res.t_events[-1]
             found += [(float(t), -1.0) for t in rising] + [(float(t), 1.0) for t in falling]

@@ -7,6 +7,7 @@ closed form). Each returns the values at exactly the requested times.
 
 from __future__ import annotations
 
+import dataclasses
 import time
 from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
@@ -275,17 +276,25 @@ def _full(run: RunSpec[P, S], full: FullForm[P, S], kernel: Kernel | None) -> Tr
     """A full form integrated (compiled when ``kernel`` is given) and sampled at ``run.tau``."""
     start = time.perf_counter()
     p = run.p
-    sol = integrate(
-        lambda t, y: full.rhs(t, y, p),
-        full.initial_state(p, run.initial),
-        run.t_end,
-        rtol=run.rtol,
-        atol=run.atol,
-        what=run.what(full),
-        kernel=kernel,
-        event=None if full.event is None else _bind(full.event, p),
-        max_steps=run.max_steps,
-    )
+    try:
+        sol = integrate(
+            lambda t, y: full.rhs(t, y, p),
+            full.initial_state(p, run.initial),
+            run.t_end,
+            rtol=run.rtol,
+            atol=run.atol,
+            what=run.what(full),
+            kernel=kernel,
+            event=None if full.event is None else _bind(full.event, p),
+            max_steps=run.max_steps,
+        )
+    except TumbleError as exc:  # keep the samples before the failure (a user's torque)
+        if exc.dense is not None and exc.partial is None:
+            passed = run.tau[run.tau <= exc.dense.ts[-1]]
+            if passed.size:
+                cut = dataclasses.replace(run, tau=passed)
+                exc.partial = integrated(cut, "full", full, exc.dense, start)
+        raise
     return integrated(run, "full", full, sol, start)
 
 

@@ -225,3 +225,37 @@ def test_listed_times_are_bounded_by_the_same_estimate(tmp_path, monkeypatch):
     scenario.write_text(text)
     with pytest.raises(ParameterError, match=r"^run\.t_days = 5 would need about"):
         load_scenario(scenario)
+
+
+def test_a_stream_stopped_by_its_budget_keeps_the_samples_it_filled():
+    """A streamed run that an error stops (here its step budget) hands on the samples it had
+    filled (``TumbleError.partial``), equal to those of the whole run."""
+    from tumble.dynamics import rigid_body_kernel
+    from tumble.errors import IntegrationError
+
+    kernel = rigid_body_kernel([1.0, 1.6, 2.0], None)  # the free body: ~4 steps a time unit
+    y0 = np.array([0.3, 0.9, 0.4, 1.0, 0.0, 0.0, 0.0])
+    tau = np.linspace(0.0, 5000.0, 101)
+    with pytest.raises(IntegrationError, match="run.max_steps = 1500") as stopped:
+        replay.stream(kernel, y0, tau, (), 1e-10, 1e-12, "free body", 1500)
+    filled = stopped.value.partial
+    assert isinstance(filled, replay.Filled) and 0 < filled.rows < tau.size
+    whole = replay.stream(kernel, y0, tau, (), 1e-10, 1e-12, "free body", 10**8)
+    np.testing.assert_array_equal(filled.y_eval[: filled.rows], whole.y_eval[: filled.rows])
+
+
+def test_an_averaged_run_stopped_part_way_is_kept_as_a_run_cut_short(short_stretches):
+    """The Envisat-like example's averaged run (1311 steps), its budget cut to 400 steps: the
+    error carries the run up to its last filled sample, whose columns equal the whole run's."""
+    from tumble.errors import IntegrationError
+
+    request = _request("ob_envisat_like.toml")
+    model, p, st, tau = request.model, request.params, request.initial, request.tau
+    whole = simulate(model, p, st, tau, "averaged", rtol=request.rtol, atol=request.atol)
+    with pytest.raises(IntegrationError, match="run.max_steps = 400") as stopped:
+        simulate(model, p, st, tau, "averaged", rtol=request.rtol, atol=request.atol,
+                 max_steps=400)  # fmt: skip
+    cut = stopped.value.partial
+    assert cut is not None and 0 < cut.tau.size < tau.size
+    for name, values in cut.columns.items():
+        np.testing.assert_array_equal(values, whole.columns[name][: cut.tau.size], err_msg=name)

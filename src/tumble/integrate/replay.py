@@ -26,14 +26,14 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from tumble._typing import FloatArray
-from tumble.errors import IntegrationError
+from tumble.errors import IntegrationError, TumbleError
 from tumble.integrate import dop853
 from tumble.integrate.limits import FIRST_CHUNK, pace_message
 from tumble.integrate.ode import compiled_plan
 from tumble.kernels import Kernel
 from tumble.models.base import Breakpoint
 
-__all__ = ["CHECKPOINT_STEPS", "MAX_CHECKPOINTS", "Replay", "Streamed", "stream"]
+__all__ = ["CHECKPOINT_STEPS", "MAX_CHECKPOINTS", "Filled", "Replay", "Streamed", "stream"]
 
 CHECKPOINT_STEPS = 2000
 """Steps between two checkpoints of a streamed run (the chunks it advances by, after the
@@ -151,6 +151,16 @@ class Replay:
         return states
 
 
+class Filled:
+    """The samples a streamed run filled (the first ``rows`` of ``y_eval``) before an error
+    stopped it: ``TumbleError.partial`` of :func:`stream`, which the caller turns into the
+    run's trajectory up to there."""
+
+    def __init__(self) -> None:
+        self.rows = 0
+        self.y_eval: FloatArray = np.empty((0, 0))
+
+
 @dataclass(frozen=True)
 class Streamed:
     """What a streamed run kept: the states at the samples, the zeros of the kernel's own
@@ -234,6 +244,29 @@ def stream(
         The run failed, spent its budget, or goes at a pace that would need a hundred times
         what is left of it.
     """
+    filled = Filled()
+    try:
+        return _stream(kernel, y0, tau, breakpoints, rtol, atol, what, max_steps, on_chunk,
+                       filled)  # fmt: skip
+    except TumbleError as exc:  # what ran before: its samples (the caller makes them a run)
+        if exc.partial is None and filled.rows > 0:
+            exc.partial = filled
+        raise
+
+
+def _stream(
+    kernel: Kernel,
+    y0: FloatArray,
+    tau: FloatArray,
+    breakpoints: Sequence[Breakpoint],
+    rtol: float,
+    atol: float,
+    what: str,
+    max_steps: int,
+    on_chunk: OnChunk | None,
+    filled: Filled,
+) -> Streamed:
+    """:func:`stream`, keeping in ``filled`` the samples it has filled and handed on."""
     t_end = float(tau[-1])
     stops, surface = compiled_plan(kernel, breakpoints, y0, t_end, what)
     n = y0.size
@@ -267,6 +300,7 @@ def stream(
                 y_eval[rows] = piece(tau[rows])
             if on_chunk is not None:
                 on_chunk(piece, steps_t, rows)
+            filled.y_eval, filled.rows = y_eval, max(filled.rows, rows.stop)
             if not breakpoints and piece.event_t.size:  # the kernel's own event
                 events.append((piece.event_t, piece.event_signs, piece(piece.event_t)))
             if finished:

@@ -500,7 +500,7 @@ def _averaged_streamed(
     on the steps and samples, which the chunk's interpolants give as the whole dense output
     would, and the steps are then dropped; ``Trajectory.slow`` replays the run from its
     checkpoints. Memory: the samples, one chunk and the checkpoints, whatever the span."""
-    from tumble.integrate.replay import stream
+    from tumble.integrate.replay import Filled, stream
 
     p, tau, initial = run.p, run.tau, run.initial
     angles = [c.name for c in run.model.columns(p, "averaged") if c.unwrap]
@@ -522,13 +522,25 @@ def _averaged_streamed(
         at = where[steps.size :]
         parts.append({name: cols[name][at] for name in angles if name in cols})
 
-    kept = stream(kernel, y0, tau, avg.breakpoints, run.rtol, run.atol, run.what(avg),
-                  run.max_steps, on_chunk if angles else None)  # fmt: skip
-    cols = to_columns(tau, kept.y_eval)
-    for name in parts[0] if parts else ():
-        cols[name] = np.concatenate([part[name] for part in parts])
-    if avg.osculating is not None:
-        cols.update(avg.osculating(p, initial, tau, kept.y_eval))
+    def sampled(tau: FloatArray, y_eval: FloatArray) -> Columns:
+        cols = to_columns(tau, y_eval)
+        for name in parts[0] if parts else ():
+            cols[name] = np.concatenate([part[name] for part in parts])
+        if avg.osculating is not None:
+            cols.update(avg.osculating(p, initial, tau, y_eval))
+        return cols
+
+    try:
+        kept = stream(kernel, y0, tau, avg.breakpoints, run.rtol, run.atol, run.what(avg),
+                      run.max_steps, on_chunk if angles else None)  # fmt: skip
+    except TumbleError as exc:  # the samples before the failure, kept as a run cut short
+        if isinstance(exc.partial, Filled):
+            n = exc.partial.rows
+            cut = sampled(tau[:n], exc.partial.y_eval[:n])
+            exc.partial = Trajectory(tau[:n], cut, "averaged", avg.name,
+                                     time.perf_counter() - start, 0, _samples_only)  # fmt: skip
+        raise
+    cols = sampled(tau, kept.y_eval)
     replay = kept.replay
 
     def slow(t: FloatArray) -> Columns:

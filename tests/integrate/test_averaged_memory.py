@@ -236,7 +236,7 @@ def test_a_stream_stopped_by_its_budget_keeps_the_samples_it_filled():
     kernel = rigid_body_kernel([1.0, 1.6, 2.0], None)  # the free body: ~4 steps a time unit
     y0 = np.array([0.3, 0.9, 0.4, 1.0, 0.0, 0.0, 0.0])
     tau = np.linspace(0.0, 5000.0, 101)
-    with pytest.raises(IntegrationError, match="run.max_steps = 1500") as stopped:
+    with pytest.raises(IntegrationError, match=r"run\.max_steps = 1500") as stopped:
         replay.stream(kernel, y0, tau, (), 1e-10, 1e-12, "free body", 1500)
     filled = stopped.value.partial
     assert isinstance(filled, replay.Filled) and 0 < filled.rows < tau.size
@@ -252,7 +252,7 @@ def test_an_averaged_run_stopped_part_way_is_kept_as_a_run_cut_short(short_stret
     request = _request("ob_envisat_like.toml")
     model, p, st, tau = request.model, request.params, request.initial, request.tau
     whole = simulate(model, p, st, tau, "averaged", rtol=request.rtol, atol=request.atol)
-    with pytest.raises(IntegrationError, match="run.max_steps = 400") as stopped:
+    with pytest.raises(IntegrationError, match=r"run\.max_steps = 400") as stopped:
         simulate(model, p, st, tau, "averaged", rtol=request.rtol, atol=request.atol,
                  max_steps=400)  # fmt: skip
     cut = stopped.value.partial

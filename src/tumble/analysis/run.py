@@ -226,7 +226,7 @@ def run(request: RunRequest, precomputed: Mapping[str, Trajectory] | None = None
         try:
             trajectories[m] = done[m] if m in done else _simulated(request, m)
         except TumbleError as exc:
-            if exc.partial is None:
+            if not isinstance(exc.partial, Trajectory):  # nothing kept (or not a run)
                 raise
             # What the method computed before it stopped: kept, and the error raised again
             # with the whole result attached, for the runner to write (marked).

@@ -269,14 +269,9 @@ def _segment(
 
 
 def _steps_before(
-    f: Callable[[float, FloatArray], FloatArray],
-    t0: float,
-    t1: float,
-    y: FloatArray,
-    rtol: float,
-    atol: float,
-    first_step: float | None,
-) -> Any:
+    f: Callable[[float, FloatArray], FloatArray], t0: float, t1: float, y: FloatArray,
+    rtol: float, atol: float, first_step: float | None,
+) -> Any:  # fmt: skip
     """The dense output (an ``OdeSolution``) of the steps scipy's DOP853 takes from (t0, y)
     towards t1 before ``f`` fails, retaken one by one (solve_ivp's steps: the same solver,
     the same calls; events only read them); None if it fails before its first step."""

@@ -20,7 +20,8 @@ Memory: the samples, one chunk and at most :data:`MAX_CHECKPOINTS` states, whate
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+import contextlib
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -151,6 +152,17 @@ class Replay:
         return states
 
 
+@contextlib.contextmanager
+def _keeping(filled: Filled) -> Iterator[None]:
+    """Hand the samples ``filled`` on with an error that stops the run (module notes)."""
+    try:
+        yield
+    except TumbleError as exc:  # what ran before: its samples (the caller makes them a run)
+        if exc.partial is None and filled.rows > 0:
+            exc.partial = filled
+        raise
+
+
 class Filled:
     """The samples a streamed run filled (the first ``rows`` of ``y_eval``) before an error
     stopped it: ``TumbleError.partial`` of :func:`stream`, which the caller turns into the
@@ -245,89 +257,74 @@ def stream(
         what is left of it.
     """
     filled = Filled()
-    try:
-        return _stream(kernel, y0, tau, breakpoints, rtol, atol, what, max_steps, on_chunk,
-                       filled)  # fmt: skip
-    except TumbleError as exc:  # what ran before: its samples (the caller makes them a run)
-        if exc.partial is None and filled.rows > 0:
-            exc.partial = filled
-        raise
-
-
-def _stream(
-    kernel: Kernel,
-    y0: FloatArray,
-    tau: FloatArray,
-    breakpoints: Sequence[Breakpoint],
-    rtol: float,
-    atol: float,
-    what: str,
-    max_steps: int,
-    on_chunk: OnChunk | None,
-    filled: Filled,
-) -> Streamed:
-    """:func:`stream`, keeping in ``filled`` the samples it has filled and handed on."""
-    t_end = float(tau[-1])
-    stops, surface = compiled_plan(kernel, breakpoints, y0, t_end, what)
-    n = y0.size
-    y_eval = np.full((tau.size, n), np.nan)
-    events: list[tuple[FloatArray, FloatArray, FloatArray]] = []
-    checkpoints = _Checkpoints()
-    t0, y, first, steps, nfev = 0.0, y0, 0.0, 0, 0
-    chunk = FIRST_CHUNK
-    while True:
-        stop = next(s for s in stops if s > t0)
-        watched = replace(kernel, event=surface.event, terminal=True) if surface else kernel
-        options = dop853.Options(rtol, atol, min(first, stop - t0), True, True)
-        run = dop853.Integration(watched, y, stop, options, t0=t0)
-        checkpoints.add(_Checkpoint(t0, y.copy(), options.first_step, watched, stop), True)
+    with _keeping(filled):
+        t_end = float(tau[-1])
+        stops, surface = compiled_plan(kernel, breakpoints, y0, t_end, what)
+        n = y0.size
+        y_eval = np.full((tau.size, n), np.nan)
+        events: list[tuple[FloatArray, FloatArray, FloatArray]] = []
+        checkpoints = _Checkpoints()
+        t0, y, first, steps, nfev = 0.0, y0, 0.0, 0, 0
+        chunk = FIRST_CHUNK
         while True:
-            finished = run.advance(min(chunk, max(1, max_steps - steps - run.progress.n_steps)))
-            chunk = min(2 * chunk, CHECKPOINT_STEPS)
-            piece = run.take()
-            progress = run.progress
-            spent = steps + progress.n_steps
-            if finished and progress.status not in (0, dop853.STOPPED):
-                raise IntegrationError(
-                    f"{what}: integration failed at t = {progress.t:.6g}: {piece.message}"
+            stop = next(s for s in stops if s > t0)
+            watched = replace(kernel, event=surface.event, terminal=True) if surface else kernel
+            options = dop853.Options(rtol, atol, min(first, stop - t0), True, True)
+            run = dop853.Integration(watched, y, stop, options, t0=t0)
+            checkpoints.add(_Checkpoint(t0, y.copy(), options.first_step, watched, stop), True)
+            while True:
+                finished = run.advance(min(chunk, max(1, max_steps - steps - run.progress.n_steps)))
+                chunk = min(2 * chunk, CHECKPOINT_STEPS)
+                piece = run.take()
+                progress = run.progress
+                spent = steps + progress.n_steps
+                if finished and progress.status not in (0, dop853.STOPPED):
+                    raise IntegrationError(
+                        f"{what}: integration failed at t = {progress.t:.6g}: {piece.message}"
+                    )
+                # A time at a chunk's end is the next chunk's start (the next piece's, after the
+                # restart map); the run's end is on its last step.
+                closed = finished and progress.t >= t_end
+                steps_t = piece.ts if closed else piece.ts[:-1]
+                rows = _covered(tau, float(piece.ts[0]), float(piece.ts[-1]), closed)
+                if rows.stop > rows.start:
+                    y_eval[rows] = piece(tau[rows])
+                if on_chunk is not None:
+                    on_chunk(piece, steps_t, rows)
+                filled.y_eval, filled.rows = y_eval, max(filled.rows, rows.stop)
+                if not breakpoints and piece.event_t.size:  # the kernel's own event
+                    events.append((piece.event_t, piece.event_signs, piece(piece.event_t)))
+                if finished:
+                    break
+                if spent >= max_steps:
+                    raise IntegrationError(
+                        f"{what}: run.max_steps = {max_steps} steps spent at t = "
+                        f"{progress.t:.6g} of {t_end:.6g}"
+                    )
+                refused = pace_message(
+                    progress.t, t_end, progress.h_abs, max_steps - spent, max_steps
                 )
-            # A time at a chunk's end is the next chunk's start (the next piece's, after the
-            # restart map); the run's end is on its last step.
-            closed = finished and progress.t >= t_end
-            steps_t = piece.ts if closed else piece.ts[:-1]
-            rows = _covered(tau, float(piece.ts[0]), float(piece.ts[-1]), closed)
-            if rows.stop > rows.start:
-                y_eval[rows] = piece(tau[rows])
-            if on_chunk is not None:
-                on_chunk(piece, steps_t, rows)
-            filled.y_eval, filled.rows = y_eval, max(filled.rows, rows.stop)
-            if not breakpoints and piece.event_t.size:  # the kernel's own event
-                events.append((piece.event_t, piece.event_signs, piece(piece.event_t)))
-            if finished:
+                if refused:
+                    raise IntegrationError(f"{what}: {refused}")
+                here = _Checkpoint(progress.t, run.y.copy(), progress.h_abs, watched, stop)
+                checkpoints.add(here, fixed=False)
+            steps += progress.n_steps
+            nfev += progress.nfev
+            first = float(progress.h_abs)  # the step the controller would try next
+            t0, y = float(progress.t), run.y.copy()
+            checkpoints.add(_Checkpoint(t0, y.copy(), first, None, t0), fixed=True)
+            if progress.status == dop853.STOPPED:
+                assert surface is not None  # only a watched surface stops a run
+                if surface.restart is not None:
+                    y = np.asarray(surface.restart(t0, y), dtype=float)
+                surface = None  # crossed at most once
+            if t0 >= t_end:
                 break
-            if spent >= max_steps:
-                raise IntegrationError(f"{what}: run.max_steps = {max_steps} steps spent at t = "
-                                       f"{progress.t:.6g} of {t_end:.6g}")  # fmt: skip
-            refused = pace_message(progress.t, t_end, progress.h_abs, max_steps - spent, max_steps)
-            if refused:
-                raise IntegrationError(f"{what}: {refused}")
-            here = _Checkpoint(progress.t, run.y.copy(), progress.h_abs, watched, stop)
-            checkpoints.add(here, fixed=False)
-        steps += progress.n_steps
-        nfev += progress.nfev
-        first = float(progress.h_abs)  # the step the controller would try next
-        t0, y = float(progress.t), run.y.copy()
-        checkpoints.add(_Checkpoint(t0, y.copy(), first, None, t0), fixed=True)
-        if progress.status == dop853.STOPPED:
-            assert surface is not None  # only a watched surface stops a run
-            if surface.restart is not None:
-                y = np.asarray(surface.restart(t0, y), dtype=float)
-            surface = None  # crossed at most once
-        if t0 >= t_end:
-            break
-    ev_t, ev_s, ev_y = (
-        (np.concatenate([e[k] for e in events]) for k in range(3))
-        if events
-        else (np.empty(0), np.empty(0), np.empty((0, n)))
-    )
-    return Streamed(y_eval, nfev, Replay(checkpoints.points, rtol, atol, what), ev_t, ev_s, ev_y)
+        ev_t, ev_s, ev_y = (
+            (np.concatenate([e[k] for e in events]) for k in range(3))
+            if events
+            else (np.empty(0), np.empty(0), np.empty((0, n)))
+        )
+        return Streamed(
+            y_eval, nfev, Replay(checkpoints.points, rtol, atol, what), ev_t, ev_s, ev_y
+        )

@@ -224,7 +224,7 @@ def raise_fault() -> None:
     the last call (and clear it): the function's name, what it did, the time and the state;
     for an exception, the exception itself, reproduced by calling the function's Python source
     at that state."""
-    for armed in _ARMED.values():
+    for armed in list(_ARMED.values()):  # (another thread may arm one meanwhile)
         record = armed.record
         if record[0] == 0.0:
             continue

@@ -1,6 +1,6 @@
 """Errors and warnings of tumble, and the range checks that raise them.
 
-Two kinds of trouble get two responses (STYLE.md section 5): input that cannot describe a
+Two kinds of trouble get two responses (docs/reference/errors.md): input that cannot describe a
 valid run raises a :class:`TumbleError` subclass with a one-line message naming the field, the
 value and the allowed range; a valid run that enters a region where a method loses accuracy
 emits a :class:`TumbleWarning` and is never refused.
@@ -21,6 +21,7 @@ __all__ = [
     "check_finite",
     "check_range",
     "shorten",
+    "state_text",
 ]
 
 MAX_ECHO = 80
@@ -80,6 +81,15 @@ class TumbleWarning(UserWarning):
 
 def _fmt(x: float) -> str:
     return "inf" if x == math.inf else "-inf" if x == -math.inf else f"{x:g}"
+
+
+def state_text(t: Any, q: Any, omega: Any) -> str:
+    """``t = …, q = […], omega = […]``: where a user's function was called, for a message
+    (``q`` None: a torque of the rate alone)."""
+    fmt = ", ".join
+    attitude = "" if q is None else f", q = [{fmt(f'{float(x):.6g}' for x in q)}]"
+    rate = fmt(f"{float(x):.6g}" for x in omega)
+    return f"t = {float(t):.9g}{attitude}, omega = [{rate}]"
 
 
 def check_finite(field: str, value: float) -> None:

@@ -32,7 +32,14 @@ from typing import Any, ClassVar
 import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
-from tumble.errors import ParameterError, TumbleError, UserCodeError, check_range, shorten
+from tumble.errors import (
+    ParameterError,
+    TumbleError,
+    UserCodeError,
+    check_range,
+    shorten,
+    state_text,
+)
 from tumble.kernels import terms as registry
 from tumble.kernels.terms import CompiledTerm
 
@@ -395,11 +402,8 @@ def _where(t: ArrayLike, q: ArrayLike | None, omega: ArrayLike) -> str:
     of states the averaging engine passed at once."""
     if np.ndim(omega) > 1:
         return f"one of {int(np.prod(np.shape(omega)[:-1]))} states the averaging engine passed"
-    fmt = ", ".join
-    rate = fmt(f"{x:.6g}" for x in np.ravel(omega))
-    attitude = "" if q is None else f", q = [{fmt(f'{x:.6g}' for x in np.ravel(q))}]"
-    time = f"{float(t):.9g}" if np.ndim(t) == 0 else "…"
-    return f"t = {time}{attitude}, omega = [{rate}]"
+    time = float(np.ravel(t)[0])  # (one state: one time)
+    return state_text(time, None if q is None else np.ravel(q), np.ravel(omega))
 
 
 @dataclass(frozen=True, eq=False)

@@ -45,7 +45,7 @@ from llvmlite import ir
 from numba import types
 from numba.extending import intrinsic
 
-from tumble.errors import UserCodeError, shorten
+from tumble.errors import UserCodeError, shorten, state_text
 
 __all__ = [
     "RECORD_SIZE",
@@ -148,13 +148,6 @@ def _failure(exc: Exception) -> str:
     return f"{type(exc).__name__}: {shorten(text[0] if text else '')}".rstrip(": ")
 
 
-def _state(t: float, q: Any, omega: Any) -> str:
-    """``t = …, q = […], omega = […]`` for a message."""
-    fmt = ", ".join
-    return (f"t = {t:.9g}, q = [{fmt(f'{x:.6g}' for x in q)}], "
-            f"omega = [{fmt(f'{x:.6g}' for x in omega)}]")  # fmt: skip
-
-
 def probe(function: Any, name: str, params: Any) -> None:
     """Call the numba function ``function`` (bounds checked) at two states, as the run will:
     the rest attitude at rest, and a turned attitude turning; raise :class:`UserCodeError`
@@ -165,7 +158,7 @@ def probe(function: Any, name: str, params: Any) -> None:
     half = math.sqrt(0.5)
     for t, q, w in ((0.0, (1.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0)),
                     (1.0, (half, 0.0, half, 0.0), (0.1, -0.2, 0.3))):  # fmt: skip
-        where = _state(t, q, w)
+        where = state_text(t, q, w)
         try:
             value = checked(t, np.array(q), np.array(w), values)
         except (numba.core.errors.TypingError, TypeError) as exc:
@@ -231,7 +224,7 @@ def raise_fault() -> None:
         code, t = record[0], float(record[1])
         q, w = record[2:6].copy(), record[6:9].copy()
         record[:9] = 0.0
-        where = _state(t, q, w)
+        where = state_text(t, q, w)
         if code == _NOT_FINITE:
             value = checked_function(armed.function)(t, q, w, armed.params)
             raise UserCodeError(

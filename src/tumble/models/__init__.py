@@ -1,4 +1,4 @@
-"""Paper models, one package each, registered by name (STYLE.md section 2).
+"""Paper models, one package each, registered by name (docs/architecture.md, "Model packages").
 
 The registry loads on first use (:data:`MODELS`, :func:`get_model`): a scenario is validated
 against a model's :class:`~tumble.models.base.Declaration` (:func:`declaration`), which the

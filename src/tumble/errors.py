@@ -9,6 +9,7 @@ emits a :class:`TumbleWarning` and is never refused.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from typing import Any
 
 __all__ = [
@@ -18,6 +19,7 @@ __all__ = [
     "TumbleError",
     "TumbleWarning",
     "UserCodeError",
+    "UserCodeTimeout",
     "check_finite",
     "check_range",
     "shorten",
@@ -63,6 +65,24 @@ class UserCodeError(ScenarioError):
     """A user's function (a torque the scenario names) that failed: it raised, returned a
     moment that is not 3 finite numbers, or does not compile for the call tumble makes. A
     fault of the user's input, as a parameter out of range is (exit 2)."""
+
+
+class UserCodeTimeout(UserCodeError):
+    """A user's function that did not return within ``run.user_code_timeout``. Raised in the
+    main thread either by a watcher thread (which can only give a class, so the message is
+    set on the class first) or by the compiled driver that waited for it."""
+
+    message = "a user's function did not return"
+
+    def __init__(self, *args: object) -> None:
+        super().__init__(*(args or (type(self).message,)))
+
+    @staticmethod
+    def said(names: Sequence[str], seconds: float) -> str:
+        """The message: the functions ``names`` did not return within ``seconds``."""
+        named = ", ".join(names) or "the user's torque"
+        return (f"{named} did not return within {seconds:g} s (run.user_code_timeout): "
+                "the run is stopped")  # fmt: skip
 
 
 class OutputError(TumbleError):

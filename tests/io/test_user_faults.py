@@ -265,7 +265,7 @@ import numpy as np
 @numba.njit
 def nb_forever(t, q, omega, params):
     x = 0.0
-    while t > 2.0 or x < 0.0:  # never ends once t > 2
+    while t > 2.0 * params[0] or x < 0.0:  # never ends once t > 2a
         x += 1.0
         if x > 1e300:
             x = 0.0
@@ -305,8 +305,10 @@ def _cli(*args, **kw):
 
 
 def test_a_compiled_torque_that_never_returns_is_stopped(tmp_path):
-    # In compiled code no exception reaches the function: the guard prints the line and ends
-    # the process (exit 2). A fresh process: the guard ends it.
+    # In compiled code no exception reaches the function: its run is stopped from outside the
+    # compiled call, which is left behind (a fresh process, which the command line ends).
+    import json
+
     scenario = _loop_scenario(tmp_path, "nb_forever")
     run = _cli("run", str(scenario), "--out", str(tmp_path / "out"))
     # (compiling the function and loading the kernels take a few seconds; then 1 s of guard)
@@ -314,6 +316,32 @@ def test_a_compiled_torque_that_never_returns_is_stopped(tmp_path):
     text = " ".join(err.split())
     assert run.returncode == 2, err
     assert "loops:nb_forever did not return within 1 s" in text and len(err.splitlines()) <= 5
+    # What ran before the chunk that never ended is written and marked: the function loops
+    # from t = 2, the first sample is at t = 0.
+    ended = json.loads((tmp_path / "out" / "summary.json").read_text())["ended_early"]
+    rows = (tmp_path / "out" / "full.csv").read_text().strip().splitlines()
+    assert ended["method"] == "full" and "did not return" in ended["reason"]
+    assert ended["t"] == 0.0 and len(rows) == 2, rows
+    assert "ending early" in text
+
+
+def test_a_compiled_torque_that_never_returns_late_keeps_the_run_until_then(tmp_path):
+    # The same function looping from t = 2000 (a = 1000), reached after thousands of steps:
+    # the chunks before the one it hangs in are kept, the samples up to there.
+    import json
+
+    scenario = _loop_scenario(tmp_path, "nb_forever")
+    text = scenario.read_text().replace("a = 1.0", "a = 1000.0")
+    text = text.replace("samples = 5", "samples = 41").replace("t_end = 10.0", "t_end = 4000.0")
+    scenario.write_text(text)
+    run = _cli("run", str(scenario), "--out", str(tmp_path / "out"))
+    _, err = run.communicate(timeout=120)
+    assert run.returncode == 2, err
+    ended = json.loads((tmp_path / "out" / "summary.json").read_text())["ended_early"]
+    rows = (tmp_path / "out" / "full.csv").read_text().strip().splitlines()
+    # Samples every 100: those of every chunk before the last (at least half of the steps
+    # to t = 2000, as the chunks double), none past it.
+    assert 1000.0 <= ended["t"] <= 2000.0 and len(rows) == 1 + round(ended["t"] / 100) + 1, rows
 
 
 def test_ctrl_c_stops_a_compiled_torque_that_never_returns(tmp_path):

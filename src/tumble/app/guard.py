@@ -13,7 +13,10 @@ function did not return:
 * in a Python function, the watcher raises :class:`UserCodeTimeout` in the main thread, inside
   the function: the run ends as on any fault of the user's code (one line, exit 2);
 * in compiled code, which no exception reaches, it prints that line itself and ends the
-  process (exit 2); the outputs of the run are not written.
+  process (exit 2); the outputs of the run are not written. This is the ensembles' case
+  (:mod:`tumble.integrate.ensemble`): a single run calls its compiled code in a thread of its
+  own and is stopped from outside it, its outputs kept
+  (:meth:`tumble.integrate.dop853.Integration.advance`).
 
 Ctrl-C is deferred while a compiled call runs (its results would otherwise be half-built), so
 it would not stop a compiled function that never returns: the watcher also hears SIGINT (by
@@ -34,23 +37,13 @@ import threading
 import time
 from collections.abc import Iterator, Sequence
 
-from tumble.errors import UserCodeError
+from tumble.errors import UserCodeError, UserCodeTimeout
+from tumble.integrate.limits import user_code_timeout
 from tumble.torques import PYTHON_CALLS
 
 __all__ = ["UserCodeTimeout", "user_code_guard"]
 _POLL_S = 0.1  # how often the watcher looks [s]
 _INTERRUPT_GRACE_S = 1.0  # a deferred Ctrl-C's wait for the compiled call to return [s]
-
-
-class UserCodeTimeout(UserCodeError):
-    """A user's function that did not return within ``run.user_code_timeout``: raised in the
-    main thread by the watcher (which can only give a class, so the message is set on it
-    first)."""
-
-    message = "a user's function did not return"
-
-    def __init__(self, *args: object) -> None:
-        super().__init__(*(args or (type(self).message,)))
 
 
 def _compiled_calls() -> float:
@@ -84,9 +77,7 @@ class _Watcher(threading.Thread):
         self.done = threading.Event()
 
     def _said(self) -> str:
-        named = ", ".join(self.names) or "the user's torque"
-        return (f"{named} did not return within {self.timeout_s:g} s "
-                "(run.user_code_timeout): the run is stopped")  # fmt: skip
+        return UserCodeTimeout.said(self.names, self.timeout_s)
 
     def _interrupt_heard(self) -> bool:
         """Whether SIGINT arrived since the last look (read from the wakeup socket)."""
@@ -136,7 +127,8 @@ def user_code_guard(timeout_s: float, names: Sequence[str] = ()) -> Iterator[Non
     not return. ``names`` name the user's functions, for the message. From the main thread
     only (elsewhere, nothing is watched)."""
     if threading.current_thread() is not threading.main_thread():
-        yield
+        with user_code_timeout(timeout_s):
+            yield
         return
     reader: socket.socket | None = None
     writer: socket.socket | None = None
@@ -154,7 +146,8 @@ def user_code_guard(timeout_s: float, names: Sequence[str] = ()) -> Iterator[Non
     watcher = _Watcher(timeout_s, names, reader)
     watcher.start()
     try:
-        yield
+        with user_code_timeout(timeout_s):
+            yield
     finally:
         watcher.done.set()
         watcher.join()

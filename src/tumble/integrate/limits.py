@@ -3,7 +3,9 @@ table is validated with before any numerics load."""
 
 from __future__ import annotations
 
+import contextlib
 import math
+from collections.abc import Iterator
 
 import numpy as np
 
@@ -18,6 +20,8 @@ __all__ = [
     "USER_CODE_TIMEOUT_S",
     "check_times",
     "pace_message",
+    "user_code_timeout",
+    "user_code_wait",
 ]
 
 MAX_STEPS = 100_000_000
@@ -29,6 +33,27 @@ USER_CODE_TIMEOUT_S = 60.0
 """Default of ``[run] user_code_timeout`` [s]: how long a user's torque function may run
 without returning before the run is stopped (:mod:`tumble.app.guard`); the integrators call it
 thousands of times a second."""
+
+_USER_CODE_WAIT = [USER_CODE_TIMEOUT_S]
+
+
+def user_code_wait() -> float:
+    """How long a user's compiled torque may go without returning before the compiled run
+    that calls it is stopped [s] (:meth:`tumble.integrate.dop853.Integration.advance`):
+    ``run.user_code_timeout`` inside :func:`user_code_timeout`, its default elsewhere (a
+    notebook's :func:`~tumble.integrate.simulate`)."""
+    return _USER_CODE_WAIT[0]
+
+
+@contextlib.contextmanager
+def user_code_timeout(seconds: float) -> Iterator[None]:
+    """Set :func:`user_code_wait` to ``seconds`` for the block."""
+    previous = _USER_CODE_WAIT[0]
+    _USER_CODE_WAIT[0] = float(seconds)
+    try:
+        yield
+    finally:
+        _USER_CODE_WAIT[0] = previous
 
 
 BUDGET_MARGIN = 100.0

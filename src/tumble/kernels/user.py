@@ -28,8 +28,10 @@ step until it stops, and writes the first fault (its kind, t, q and ω) to the t
 record*, a small array kept here (:func:`fault_record`). The integrator's driver looks at the
 records after every compiled call (:func:`raise_fault`) and raises :class:`~tumble.errors.
 UserCodeError` naming the function, the time, the state and, reproduced in Python, the
-exception. What cannot be checked: a function that never returns (stopped by Ctrl-C), and the
-bounds inside other numba functions it calls, which keep their own options.
+exception. A function that never returns is stopped from outside the compiled call, by the
+heartbeat ``calls`` counts (:meth:`tumble.integrate.dop853.Integration.advance`,
+:mod:`tumble.app.guard`). What cannot be checked: the bounds inside other numba functions it
+calls, which keep their own options.
 """
 
 from __future__ import annotations
@@ -50,6 +52,7 @@ from tumble.errors import UserCodeError, shorten, state_text
 __all__ = [
     "RECORD_SIZE",
     "SIGNATURE",
+    "any_armed",
     "armed_names",
     "call_user",
     "calls",

@@ -18,16 +18,17 @@ import numba
 import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
-from tumble.errors import ParameterError
+from tumble.errors import ParameterError, UserCodeTimeout
 from tumble.integrate.dop853 import core
 from tumble.integrate.dop853.core import Chunk, Options, Progress
 from tumble.integrate.dop853.dense import evaluate_dense
 from tumble.integrate.dop853.functions import addresses
 from tumble.integrate.dop853.tableau import N_INTERPOLANT
+from tumble.integrate.limits import user_code_wait
 from tumble.kernels import Kernel
 from tumble.kernels.jit import compile_notice
 from tumble.kernels.kinds import KINDS
-from tumble.kernels.user import raise_fault
+from tumble.kernels.user import any_armed, armed_names, calls, raise_fault
 
 __all__ = [
     "CHUNK_STEPS",
@@ -62,6 +63,52 @@ an interrupt (Ctrl-C) stops a run within a fraction of a second."""
 IN_CALL = [0]
 """Compiled runs in progress (not compiling): what a guard against user code that never
 returns watches (:mod:`tumble.app.guard`)."""
+
+
+ABANDONED = [0]
+"""Compiled calls left running because the user's torque they call did not return
+(:meth:`Integration.advance`): nothing can stop them but the end of the process, which the
+command line brings about (``os._exit``) once it has written its outputs."""
+
+_WAIT_POLL_S = 0.05  # how often a watched compiled call's heartbeat is read [s]
+WATCHED_FIRST_STEPS = 250
+"""Steps of the first watched chunk (:meth:`Integration.advance` with a user's compiled
+torque): each next one twice as many, up to the caller's. A function that never returns loses
+the chunk it hangs in, what ran before is kept: at most half the run early on, and a chunk's
+worth (of many) later, for a thread started per chunk (~0.1 ms, under 1 % of a chunk of
+thousands of steps)."""
+
+
+def _watched(entry: Callable[..., tuple[Any, Any]], args: tuple[Any, ...]) -> tuple[Any, Any]:
+    """``entry(*args)`` run in a thread of its own while this one follows the heartbeat of
+    the user's compiled torques (:func:`tumble.kernels.user.calls`): a call in which no user
+    function began for :func:`~tumble.integrate.limits.user_code_wait` seconds is one that
+    never returns; it is left behind (:data:`ABANDONED`) and :class:`UserCodeTimeout` raised
+    here, where the caller can still keep what the run computed before that call. The
+    compiled code holds no lock, so the wait costs nothing but the thread's start (~0.1 ms a
+    chunk), and Ctrl-C reaches this thread at once."""
+    box: list[Any] = []
+
+    def work() -> None:
+        try:
+            box.append(entry(*args))
+        except BaseException as exc:  # handed to the caller's thread
+            box.append(exc)
+
+    worker = threading.Thread(target=work, name="tumble-compiled-call", daemon=True)
+    worker.start()
+    beat, since = calls(), time.monotonic()
+    while worker.is_alive():
+        worker.join(_WAIT_POLL_S)
+        now, seen = time.monotonic(), calls()
+        if seen != beat:
+            beat, since = seen, now
+        elif worker.is_alive() and now - since > user_code_wait():
+            ABANDONED[0] += 1
+            raise UserCodeTimeout(UserCodeTimeout.said(armed_names(), user_code_wait()))
+    if isinstance(box[0], BaseException):
+        raise box[0]
+    return cast(tuple[Any, Any], box[0])
 
 
 @contextlib.contextmanager
@@ -256,6 +303,8 @@ class Integration:
         self.progress = Progress(core.FRESH, float(t0), 0.0, 1.0, 0, 0, 0)
         self._chunks: list[Chunk] = []
         self._entry: Callable[..., tuple[Any, Any]] | None = None
+        self.abandoned = False  # a call that did not return (or was interrupted) ended it
+        self._watched_steps = WATCHED_FIRST_STEPS
 
     def _args(self, max_steps: int) -> tuple[Any, ...]:
         """The arguments of :func:`core.advance` after its compiled functions (the parameters
@@ -271,18 +320,55 @@ class Integration:
 
     def advance(self, max_steps: int | None = None) -> bool:
         """Take at most ``max_steps`` more steps (None: to the end); return :attr:`done`."""
-        if self.done:
+        if self.done or self.abandoned:
             return True
+        if any_armed():  # a user's compiled torque, which may never return
+            return self._advance_watched(max_steps)
         args = self._args(0 if max_steps is None else max(1, int(max_steps)))
         with _signals_held():  # compiling, then the call: neither survives an interrupt
-            if self._entry is None:
-                self._entry = _specialised(self.kernel.kind, self.options.event, args)
+            self._compiled(args)
             with in_call():
-                progress, chunk = self._entry(*args)
+                progress, chunk = self._entry(*args)  # type: ignore[misc]
+        return self._record(progress, chunk)
+
+    def _compiled(self, args: tuple[Any, ...]) -> None:
+        """The compiled entry for ``args``, looked up (or compiled) on first use."""
+        if self._entry is None:
+            self._entry = _specialised(self.kernel.kind, self.options.event, args)
+
+    def _record(self, progress: Any, chunk: Any) -> bool:
+        """A compiled call's results kept; a fault of a user's torque in it raised."""
         self.progress = Progress(*progress)
         self._chunks.append(Chunk(*chunk))
         raise_fault()  # a user's compiled torque that failed in this chunk: its own error
         return self.done
+
+    def _advance_watched(self, max_steps: int | None) -> bool:
+        """:meth:`advance` with each compiled call watched (:func:`_watched`), in chunks that
+        start at :data:`WATCHED_FIRST_STEPS` steps and double: a call that never returns is
+        left behind with the state, samples and chunks from before it kept."""
+        left = None if max_steps is None else max(1, int(max_steps))
+        while True:
+            n = self._watched_steps if left is None else min(self._watched_steps, left)
+            args = self._args(n)
+            with _signals_held():
+                self._compiled(args)
+            self._watched_steps = min(2 * self._watched_steps, CHUNK_STEPS)
+            y_before, steps_before = self.y.copy(), self.progress.n_steps
+            try:
+                progress, chunk = _watched(self._entry, args)  # type: ignore[arg-type]
+            except BaseException:
+                # The call may still be running and writing to the state and samples: they
+                # are set aside, the run is over, and what it computed before stays readable.
+                self.y, self._y_eval = y_before, self._y_eval.copy()
+                self.abandoned = True
+                raise
+            if self._record(progress, chunk):
+                return True
+            if left is not None:
+                left -= self.progress.n_steps - steps_before
+                if left <= 0:
+                    return False
 
     def take(self) -> Solution:
         """What the run computed since the last :meth:`take` (steps, events), and forget it;
@@ -295,7 +381,7 @@ class Integration:
     def solution(self) -> Solution:
         """What the run has computed so far."""
         n = self.y.size
-        pieces = [_cut(c, n, self.options.dense) for c in self._chunks]
+        pieces = [_cut(c, n, self.options.dense) for c in self._chunks] or [_nothing(n)]
         ts, ys, F, ev_t, ev_s, ev_y = (_join([pc[k] for pc in pieces], k < 2) for k in range(6))
         if ts.size == 0:
             ts, ys = np.array([self.progress.t]), self.y[None, :].copy()
@@ -328,6 +414,12 @@ def _cut(c: Chunk, n: int, dense: bool) -> tuple[FloatArray, ...]:
         c.event_signs[:m],
         c.event_y[: m * n].reshape(m, n),
     )
+
+
+def _nothing(n: int) -> tuple[FloatArray, ...]:
+    """The pieces of no chunk (a run whose call did not return before any other)."""
+    return (np.empty(0), np.empty((0, n)), np.empty((0, N_INTERPOLANT, n)), np.empty(0),
+            np.empty(0), np.empty((0, n)))  # fmt: skip
 
 
 def _join(parts: list[FloatArray], starts_with_point: bool) -> FloatArray:

@@ -188,6 +188,23 @@ def test_the_averaged_run_stops_on_a_fault_too(tmp_path, capsys, name):
     assert code == 2 and "internal error" not in err and f"faults:{name}" in err, err
 
 
+def test_what_an_averaged_run_computed_before_a_fault_is_written(tmp_path, capsys):
+    import json
+
+    # The compiled averaged run meets the fault (t > 5) in its first chunk of steps: the
+    # samples that chunk passed before it (every 1 time unit) are kept, none after it.
+    (tmp_path / "faults.py").write_text(FAULTS)
+    scenario = tmp_path / "avg.toml"
+    text = SCENARIO.format(name="nb_raise_late").replace('["full"]', '["averaged"]')
+    scenario.write_text(text.replace("t_end = 10.0", "t_end = 1000.0").replace("= 5\n", "= 1001\n"))
+    with pytest.raises(SystemExit) as stop:
+        app(["run", str(scenario), "--out", str(tmp_path / "out")])
+    ended = json.loads((tmp_path / "out" / "summary.json").read_text())["ended_early"]
+    rows = (tmp_path / "out" / "averaged.csv").read_text().strip().splitlines()
+    assert stop.value.code == 2 and ended["method"] == "averaged"
+    assert 1.0 <= ended["t"] <= 5.0 and len(rows) == 1 + int(ended["t"]) + 1, rows
+
+
 def test_the_reproduced_exception_is_the_users(tmp_path, capsys):
     _, err = _run(tmp_path, capsys, "nb_divide_late")
     assert "ZeroDivisionError" in err

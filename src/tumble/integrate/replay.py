@@ -257,11 +257,27 @@ def stream(
         what is left of it.
     """
     filled = Filled()
+    t_end = float(tau[-1])
+    y_eval = np.full((tau.size, y0.size), np.nan)
+
+    def fill(piece: dop853.Solution, finished: bool) -> None:
+        """The samples ``piece`` passed, and its steps handed to ``on_chunk``. A time at a
+        chunk's end is the next chunk's start (the next piece's, after the restart map); the
+        run's end is on its last step."""
+        if piece.ts.size < 2:  # no step taken
+            return
+        closed = finished and piece.t >= t_end
+        steps_t = piece.ts if closed else piece.ts[:-1]
+        rows = _covered(tau, float(piece.ts[0]), float(piece.ts[-1]), closed)
+        if rows.stop > rows.start:
+            y_eval[rows] = piece(tau[rows])
+        if on_chunk is not None:
+            on_chunk(piece, steps_t, rows)
+        filled.y_eval, filled.rows = y_eval, max(filled.rows, rows.stop)
+
     with _keeping(filled):
-        t_end = float(tau[-1])
         stops, surface = compiled_plan(kernel, breakpoints, y0, t_end, what)
         n = y0.size
-        y_eval = np.full((tau.size, n), np.nan)
         events: list[tuple[FloatArray, FloatArray, FloatArray]] = []
         checkpoints = _Checkpoints()
         t0, y, first, steps, nfev = 0.0, y0, 0.0, 0, 0
@@ -273,25 +289,23 @@ def stream(
             run = dop853.Integration(watched, y, stop, options, t0=t0)
             checkpoints.add(_Checkpoint(t0, y.copy(), options.first_step, watched, stop), True)
             while True:
-                finished = run.advance(min(chunk, max(1, max_steps - steps - run.progress.n_steps)))
+                try:
+                    finished = run.advance(
+                        min(chunk, max(1, max_steps - steps - run.progress.n_steps))
+                    )
+                except TumbleError:  # a user's torque: the steps before its fault are kept
+                    fill(run.take(), False)
+                    raise
                 chunk = min(2 * chunk, CHECKPOINT_STEPS)
                 piece = run.take()
                 progress = run.progress
                 spent = steps + progress.n_steps
                 if finished and progress.status not in (0, dop853.STOPPED):
+                    fill(piece, False)
                     raise IntegrationError(
                         f"{what}: integration failed at t = {progress.t:.6g}: {piece.message}"
                     )
-                # A time at a chunk's end is the next chunk's start (the next piece's, after the
-                # restart map); the run's end is on its last step.
-                closed = finished and progress.t >= t_end
-                steps_t = piece.ts if closed else piece.ts[:-1]
-                rows = _covered(tau, float(piece.ts[0]), float(piece.ts[-1]), closed)
-                if rows.stop > rows.start:
-                    y_eval[rows] = piece(tau[rows])
-                if on_chunk is not None:
-                    on_chunk(piece, steps_t, rows)
-                filled.y_eval, filled.rows = y_eval, max(filled.rows, rows.stop)
+                fill(piece, finished)
                 if not breakpoints and piece.event_t.size:  # the kernel's own event
                     events.append((piece.event_t, piece.event_signs, piece(piece.event_t)))
                 if finished:

@@ -288,14 +288,23 @@ def _full(run: RunSpec[P, S], full: FullForm[P, S], kernel: Kernel | None) -> Tr
             event=None if full.event is None else _bind(full.event, p),
             max_steps=run.max_steps,
         )
-    except TumbleError as exc:  # keep the samples before the failure (a user's torque)
-        if exc.dense is not None and exc.partial is None:
-            passed = run.tau[run.tau <= exc.dense.ts[-1]]
-            if passed.size:
-                cut = dataclasses.replace(run, tau=passed)
-                exc.partial = integrated(cut, "full", full, exc.dense, start)
+    except TumbleError as exc:
+        _keep_before(exc, run, "full", full, start)
         raise
     return integrated(run, "full", full, sol, start)
+
+
+def _keep_before(
+    exc: TumbleError, run: RunSpec[P, S], method: str, form: Any, start: float
+) -> None:
+    """The samples of ``run`` before the failure ``exc`` (a user's torque, a spent budget),
+    from the steps it carries (``exc.dense``), made its ``partial`` as a ``method`` run of
+    ``form`` cut short."""
+    if exc.dense is not None and exc.partial is None:
+        passed = run.tau[run.tau <= exc.dense.ts[-1]]
+        if passed.size:
+            cut = dataclasses.replace(run, tau=passed)
+            exc.partial = integrated(cut, method, form, exc.dense, start)
 
 
 def _streamed(run: RunSpec[P, S], full: FullForm[P, S]) -> Trajectory:
@@ -487,8 +496,14 @@ def _averaged(run: RunSpec[P, S], avg: AveragedForm[P, S], kernel: Kernel | None
         if reason is None and kernel is not None:
             reason = start_refusal(avg, p, 0.0, y0)
         if reason is None:
+            _keep_before(exc, run, "averaged", avg, start)
             raise
-        raise IntegrationError(f"{exc}; last refused state: {reason}") from None
+        said = IntegrationError(f"{exc}; last refused state: {reason}")
+        said.partial = exc.partial  # what ran before (a streamed run's samples)
+        raise said from None
+    except TumbleError as exc:  # a user's torque: the samples before its fault kept
+        _keep_before(exc, run, "averaged", avg, start)
+        raise
     return integrated(run, "averaged", avg, sol, start)
 
 

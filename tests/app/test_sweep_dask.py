@@ -380,3 +380,43 @@ def test_a_point_that_breaks_fails_alone_without_a_traceback(cluster, tmp_path):
     with open(cluster.root / "cluster.log", encoding="utf-8", errors="replace") as fh:
         fh.seek(seen)
         assert "Traceback" not in fh.read()
+
+
+_CHUNK = """
+import json, sys
+from tumble.app.sweep import compute_chunk
+from tumble.io.sweep import load_sweep
+
+plan = load_sweep(sys.argv[1])
+points = [{"torque_params.late": v} for v in (1e9, 2.0, 1e9)]
+records = compute_chunk(plan.base, plan.source, points, plan.keep)
+print(json.dumps([[r["status"], r["reason"]] for r in records]))
+"""
+
+
+def test_a_compiled_torque_that_never_returns_fails_its_point_alone(tmp_path):
+    """A point whose numba torque never returns (from t > 2 at that point) fails after the
+    scenario's run.user_code_timeout with that reason; the points before and after it in its
+    chunk complete (the user's code runs point by point, not in the batch, whose threads
+    nothing could stop). In a process of its own: the call left behind keeps a core busy
+    until the process ends."""
+    (tmp_path / "user_torques.py").write_text(
+        "import numba\nimport numpy as np\n\n\n@numba.njit\n"
+        "def stuck(t, q, omega, params):\n"
+        "    x = 0.0\n"
+        "    while t > params[0] or x < 0.0:\n"
+        "        x += 1.0\n"
+        "    return np.array([1e-3, 0.0, 0.0])\n"
+    )
+    base = USER_BASE.replace(":constant", ":stuck") + "user_code_timeout = 1.0\n"
+    (tmp_path / "base.toml").write_text(base + "[torque_params]\nlate = 1e9\n")
+    (tmp_path / "sweep.toml").write_text(
+        'base = "base.toml"\n[[axis]]\nkey = "torque_params.late"\nvalues = [1e9, 2.0]\n'
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", _CHUNK, str(tmp_path / "sweep.toml")],
+        capture_output=True, text=True, timeout=300, check=True,
+    )  # fmt: skip
+    records = json.loads(out.stdout)
+    assert [r[0] for r in records] == [0, 1, 0], records
+    assert "user_torques:stuck did not return within 1 s" in records[1][1], records

@@ -41,6 +41,7 @@ from tumble.analysis.sweep import (
 )
 from tumble.errors import ScenarioError, TumbleError, shorten
 from tumble.integrate import Trajectory, simulate_batch
+from tumble.integrate.limits import USER_CODE_TIMEOUT_S, user_code_timeout
 from tumble.io.scenario import parse_scenario
 from tumble.io.sweep import Sweep, SweepStore, load_sweep, point_scenario
 from tumble.plot.settings import figure_settings
@@ -173,23 +174,34 @@ def compute_chunk(
     """
     requests: list[RunRequest | None] = []
     invalid: dict[int, str] = {}
+    waits: dict[int, float] = {}  # the points that run a user's code: its timeout [s]
     for i, assignments in enumerate(points):
         try:
             point = point_scenario(base, assignments)
-            requests.append(parse_scenario(point, source, allow_modules=allow_modules).request)
+            scenario = parse_scenario(point, source, allow_modules=allow_modules)
+            requests.append(scenario.request)
+            if scenario.user_code:
+                waits[i] = scenario.user_code_timeout
         except TumbleError as exc:
             requests.append(None)
             invalid[i] = f"invalid input: {shorten(str(exc))}"
         except Exception as exc:  # a defect met by this point alone: never its chunk's
             requests.append(None)
             invalid[i] = internal_reason(exc)
-    pre = _batched(requests) if batch else [{} for _ in requests]
+    # A user's code runs point by point, where a compiled function that never returns is
+    # stopped after its timeout (the batch's threads could not be).
+    pre = (
+        _batched([None if i in waits else r for i, r in enumerate(requests)])
+        if batch
+        else [{} for _ in requests]
+    )
     records = []
     for i, req in enumerate(requests):
         if req is None:
             records.append(failed_record(invalid[i]))
         else:
-            rec = run_point(req, keep, pre[i])
+            with user_code_timeout(waits.get(i, USER_CODE_TIMEOUT_S)):
+                rec = run_point(req, keep, pre[i])
             if pre[i]:  # its full or averaged run went through the compiled batch
                 rec["batch"] = 1
             records.append(rec)

@@ -285,8 +285,10 @@ def _goes_on(
             raise IntegrationError(
                 f"{what}: run.max_steps = {max_steps} steps spent at t = {t:.6g}"
             )
+        # Against the run's mean step so far, as a single run's pace (a run speeding up).
         refused = pace_message(t, float(pt.tau[-1]), float(arrays["first"][r]),
-                               max_steps - spent, max_steps)  # fmt: skip
+                               max_steps - spent, max_steps,
+                               h_mean=t / spent if spent else None)  # fmt: skip
         if refused:
             raise IntegrationError(f"{what}: {refused}")
         return True  # the same piece, on from where it stopped

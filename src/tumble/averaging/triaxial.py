@@ -71,7 +71,6 @@ from tumble.kernels import (
     KIND_TRIAXIAL_PHASE_MEANS,
     Kernel,
 )
-from tumble.kernels.codes import DEGENERATE_RTOL
 from tumble.kernels.limits import (
     AVERAGE_RTOL,
     MAX_GRID,
@@ -651,9 +650,9 @@ def triaxial_kernel(
     Returns
     -------
     Kernel or None
-        None for a Python torque, a body with two equal moments (within DEGENERATE_RTOL·I3:
-        the Python engine's symmetric formulas), a time-dependent term without a forcing
-        period, or one whose period does not divide it.
+        None for a Python torque, a time-dependent term without a forcing period, or one
+        whose period does not divide it. Symmetric bodies and the sphere are compiled too
+        (:func:`tumble.kernels.triaxial._polhode`: the polhode at m = 0).
     """
     terms = torque.compiled_terms() if hasattr(torque, "compiled_terms") else None
     program = getattr(torque, "program", None)
@@ -661,8 +660,6 @@ def triaxial_kernel(
         return None
     I_user = np.asarray(inertia, dtype=float).reshape(3)
     I1, I2, I3 = sorted(I_user.tolist())
-    if min(I2 - I1, I3 - I2) <= DEGENERATE_RTOL * I3:
-        return None
     exact = True  # terms averaged at t or over their own phase: the kernel's reductions apply
     for code, _, payload in terms:
         term = term_of(code)

@@ -56,7 +56,7 @@ import numpy as np
 from numba.cpython.unsafe.tuple import tuple_setitem as _tuple_setitem
 
 from tumble._typing import FloatArray
-from tumble.kernels.codes import MC_FLOOR, REACHED_MARGIN, SEPARATRIX_RTOL
+from tumble.kernels.codes import DEGENERATE_RTOL, MC_FLOOR, REACHED_MARGIN, SEPARATRIX_RTOL
 from tumble.kernels.frames import to_body, to_inertial
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
 from tumble.kernels.layout import Mat3, Vec3, mat3, vec3
@@ -450,7 +450,16 @@ def _polhode(y: FloatArray, p: FloatArray) -> tuple[bool, float, float, bool, fl
     """(valid, |L|, r, regime x3, the complementary parameter mc, the amplitudes of cn, sn,
     dn, the frame F of L) of the state y = [L_ξ, r]; not valid where the Python engine
     refuses the state: r beyond a pure rotation by more than the margin, L at or below the
-    floor, the separatrix band, mc below its floor."""
+    floor, the separatrix band, mc below its floor.
+
+    A body with two equal moments (within ``DEGENERATE_RTOL·I3``) has no separatrix: its
+    polhodes are circles about the third axis, at m = 0 (mc = 1), where sn and cn are the sine
+    and cosine of a phase uniform in time (the k → 0 limit of eq. (3.1)), in regime x3 when
+    I1 = I2, x1 when I2 = I3, whatever r; the amplitudes stay finite (their differences of
+    moments are the unequal ones). The flat spin about the equal axes is a circle of pure
+    rotations, not a separatrix: it is averaged over that circle, as any polhode. For the
+    sphere, ω = L/I along the third sorted axis (dn = 1, the other amplitudes 0), as the Python
+    engine puts it: every body direction of L is the same to an isotropic body."""
     i1, i2, i3 = vec3(p, _AT.inertia)
     lo, hi = 1.0 / i3, 1.0 / i1
     r = y[3]
@@ -459,18 +468,27 @@ def _polhode(y: FloatArray, p: FloatArray) -> tuple[bool, float, float, bool, fl
     r = min(max(r, lo), hi)
     L = math.sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2])
     d1, d2, d3 = max(1.0 - r * i1, 0.0), 1.0 - r * i2, max(r * i3 - 1.0, 0.0)
-    if not L > p[_AT.floor] or abs(d2) <= SEPARATRIX_RTOL:
+    tol = DEGENERATE_RTOL * i3
+    low, high = i2 - i1 <= tol, i3 - i2 <= tol  # I1 = I2, I2 = I3
+    if not L > p[_AT.floor] or (abs(d2) <= SEPARATRIX_RTOL and not (low or high)):
         return False, L, r, True, 0.0, (0.0, 0.0, 0.0), _NO_FRAME
-    x3 = d2 > 0.0
-    if x3:
+    frame = _frame(y[0] / L, y[1] / L, y[2] / L)
+    if low and high:  # a sphere
+        return True, L, r, True, 1.0, (0.0, 0.0, L / i3), frame
+    x3 = low or (d2 > 0.0 and not high)
+    if low or high:
+        mc = 1.0
+    elif x3:
         mc = (i3 - i1) * d2 / ((i3 - i2) * d1)
+    else:
+        mc = -(i3 - i1) * d2 / ((i2 - i1) * d3)
+    if x3:
         amp = (
             L * math.sqrt(d3 / (i1 * (i3 - i1))),  # cn
             L * math.sqrt(d3 / (i2 * (i3 - i2))),  # sn
             L * math.sqrt(d1 / (i3 * (i3 - i1))),  # dn
         )
     else:
-        mc = -(i3 - i1) * d2 / ((i2 - i1) * d3)
         amp = (
             L * math.sqrt(d1 / (i3 * (i3 - i1))),
             L * math.sqrt(d1 / (i2 * (i2 - i1))),
@@ -478,7 +496,7 @@ def _polhode(y: FloatArray, p: FloatArray) -> tuple[bool, float, float, bool, fl
         )
     if not mc >= MC_FLOOR:
         return False, L, r, x3, mc, amp, _NO_FRAME
-    return True, L, r, x3, min(mc, 1.0), amp, _frame(y[0] / L, y[1] / L, y[2] / L)
+    return True, L, r, x3, min(mc, 1.0), amp, frame
 
 
 @jit(INLINE)

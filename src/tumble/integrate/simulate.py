@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import dataclasses
 import time
+import warnings
 from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from typing import Any, Literal, TypeVar
@@ -16,7 +17,7 @@ from typing import Any, Literal, TypeVar
 import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
-from tumble.errors import IntegrationError, ParameterError, TumbleError
+from tumble.errors import IntegrationError, ParameterError, TumbleError, TumbleWarning
 from tumble.integrate import dop853
 from tumble.integrate.limits import MAX_STEPS, pace_message
 from tumble.integrate.ode import (
@@ -172,17 +173,53 @@ class Integrator:
             return None
         return avg.kernel(p)
 
+    def scipy_reason(
+        self, model: Model[P, S], form: FullForm[P, S] | AveragedForm[P, S], p: P
+    ) -> str:
+        """Why ``form`` (a full or an averaged one) would run on scipy's DOP853 although the
+        compiled integrator was not refused by the user (this integrator "auto"); "" where
+        it runs compiled, or where the user asked for scipy."""
+        if self.name == "scipy":
+            return ""
+        if isinstance(form, AveragedForm):
+            if self.averaged_kernel(form, p) is not None:
+                return ""
+            if form.kernel is None:
+                return f"the averaged form {form.name} of {model.name} has no compiled form"
+            if not compiled_breakpoints(form.breakpoints):
+                return "its breakpoints are more than the compiled integrator can watch"
+            return ("its parameters hold a Python function, or time-dependent terms without "
+                    "a common period")  # fmt: skip
+        if self.full_kernel(model, form, p) is not None:
+            return ""
+        if form.kernel is None:
+            return f"the {form.name} form of {model.name} has no compiled form"
+        return "its parameters hold a Python function (a numba function runs compiled)"
+
+    def _say_scipy(self, run: RunSpec[P, S], form: FullForm[P, S] | AveragedForm[P, S],
+                   method: str) -> None:  # fmt: skip
+        """The one-line warning of a run that goes to scipy's integrator (module notes)."""
+        reason = self.scipy_reason(run.model, form, run.p)
+        if reason:
+            warnings.warn(f"the {method} run is integrated by scipy's DOP853 in Python, not "
+                          f"compiled: {reason}", TumbleWarning, stacklevel=4)  # fmt: skip
+
     def run_full(self, run: RunSpec[P, S], full: FullForm[P, S], dense: bool) -> Trajectory:
         """A full form integrated and sampled at ``run.tau``: compiled, chunk by chunk
         (unless ``dense``), where this integrator has a kernel for it."""
         kernel = self.full_kernel(run.model, full, run.p)
         if kernel is not None and not dense:
             return _streamed(run, full)
+        if kernel is None:
+            self._say_scipy(run, full, "full")
         return _full(run, full, kernel)
 
     def run_averaged(self, run: RunSpec[P, S], avg: AveragedForm[P, S]) -> Trajectory:
         """The averaged equations integrated and sampled at ``run.tau``."""
-        return _averaged(run, avg, self.averaged_kernel(avg, run.p))
+        kernel = self.averaged_kernel(avg, run.p)
+        if kernel is None:
+            self._say_scipy(run, avg, "averaged")
+        return _averaged(run, avg, kernel)
 
     def run_hybrid(self, run: RunSpec[P, S], avg: AveragedForm[P, S]) -> Trajectory:
         """The averaged form with its band crossed on the full equations

@@ -20,7 +20,7 @@ from tumble.analysis import RunResult, VerifyResult
 from tumble.analysis.claims.base import plain  # numpy → JSON values, shared with the claims
 from tumble.errors import IntegrationError
 from tumble.io.fileset import atomic_write
-from tumble.models.schema import si_columns
+from tumble.models.schema import si_column, si_columns
 
 __all__ = [
     "NonFiniteOutput",
@@ -166,20 +166,23 @@ def summary(
 
 def _with_si(ds: xr.Dataset, scaling: Any, si: dict[str, Any]) -> xr.Dataset:
     """``ds`` with the SI columns of a physical run beside the normalised ones: ``t_s`` [s],
-    ``t_days`` [d] and each converted column under its SI name, with its unit
-    (:meth:`Scaling.si`)."""
+    ``t_days`` [d] and each column under its SI names, with its unit (:func:`si_column`)."""
     extra = {
         "t_s": xr.DataArray(si["t_s"], dims=("tau",), attrs={"units": "s", "long_name": "time t"}),
         "t_days": xr.DataArray(si["t_days"], dims=("tau",),
                                attrs={"units": "d", "long_name": "time t in days"}),
     }  # fmt: skip
     for name in ds.data_vars:
-        conv = scaling.si(str(name))
-        if conv is not None:
-            _, unit, si_name = conv
-            attrs = {**ds[name].attrs, "units": unit}
-            extra[si_name] = xr.DataArray(si[si_name], dims=("tau",), attrs=attrs)
+        for si_name, _factor, unit in si_column(scaling, str(name), _units(ds, name)):
+            if si_name not in ds:
+                attrs = {**ds[name].attrs, "units": unit}
+                extra[si_name] = xr.DataArray(si[si_name], dims=("tau",), attrs=attrs)
     return ds.assign(extra)
+
+
+def _units(ds: xr.Dataset, name: Any) -> str:
+    """The unit of the column ``name`` of ``ds`` ("" for none)."""
+    return str(ds[name].attrs.get("units", ""))
 
 
 def render_outputs(
@@ -209,7 +212,8 @@ def render_outputs(
         nc = ds
         if scaling is not None:
             cols = {str(v): ds[v].values for v in ds.data_vars}
-            si = si_columns(scaling, cols, ds["tau"].values)
+            units = {str(v): _units(ds, v) for v in ds.data_vars}
+            si = si_columns(scaling, cols, ds["tau"].values, units)
             files[f"{method}_si.csv"] = csv_text(ds, si).encode()
             first = next(iter(si.values()))
             problems.append(first_non_finite(f"{method}_si.csv", list(si), list(si.values()),

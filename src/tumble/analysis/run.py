@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import itertools
+import re
 import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -172,6 +173,19 @@ def to_dataset(model: AnyModel, traj: Trajectory, p: Any) -> xr.Dataset:
     return ds
 
 
+def issue_in_si(issue: dict[str, Any], scaling: Scaling, t_end: float) -> dict[str, Any]:
+    """A merged warning of a physical run (:func:`_merge_issues`) with its time in SI: the
+    message's "t = …" or "τ ≈ …" at the issue's time written in seconds or in days as the run
+    shows its time (:func:`si_time`), and ``t_s`` [s] beside ``tau`` (the model's time). The
+    numerics keep the model's time; this converts at the edge, for the user."""
+    tau = float(issue["tau"])
+    t_s = float(np.asarray(scaling.time_from_tau(np.array([tau])))[0])
+    t, unit = si_time(scaling, np.array([tau]), t_end)
+    pattern = rf"\b[tτ] ([=≈]) {re.escape(f'{tau:.6g}')}(?![\d.e])"
+    text = re.sub(pattern, lambda m: f"t {m.group(1)} {float(t[0]):.6g} {unit}", issue["message"])
+    return {**issue, "message": text, "t_s": t_s}
+
+
 def _merge_issues(found: dict[str, list[ValidityIssue]]) -> list[dict[str, Any]]:
     """One entry per condition: its earliest time, and the methods that entered it."""
     merged: dict[str, dict[str, Any]] = {}
@@ -278,6 +292,8 @@ def _result(
         if m in ("averaged", "closed_form") and validity is not None
     }
     issues = _merge_issues(found)
+    if request.scaling is not None:  # a physical run's warnings give their time in SI
+        issues = [issue_in_si(issue, request.scaling, tau_end) for issue in issues]
     for issue in issues:
         warnings.warn(issue["message"], TumbleWarning, stacklevel=2)
     limits = validity.limits(p, st) if validity is not None and validity.limits else {}

@@ -15,6 +15,7 @@ from rich.table import Table
 from tumble.analysis import RunResult
 from tumble.app.runner import in_si
 from tumble.models.display import summary_lines
+from tumble.models.schema import si_column
 from tumble.plot.labels import with_units
 
 __all__ = ["run_lines", "run_table"]
@@ -46,11 +47,18 @@ def run_lines(result: RunResult, shown: tuple[str, ...]) -> list[str]:
     predicted limits of the variables in ``shown``, and the model's own summary figures (the
     lines its package declares)."""
     scaling = result.request.scaling
+    first = next(iter(result.datasets.values()), None)
 
     def value(name: str, x: Any, fmt: str) -> str:
-        # In SI, with its unit, for a scenario given in SI.
-        conv = scaling.si(name) if scaling is not None else None
-        return f"{x:{fmt}}" if conv is None else f"{x * conv[0]:{fmt}} {conv[1]}"
+        # In SI, with its unit (an angle's: rad), for a scenario given in SI: the value
+        # summary.json gives under the column's SI name (si_column).
+        if scaling is None:
+            return f"{x:{fmt}}"
+        units = (
+            str(first[name].attrs.get("units", "")) if first is not None and name in first else ""
+        )
+        _, factor, unit = si_column(scaling, name, units)[0]
+        return f"{x * factor:{fmt}}" + (f" {unit}" if unit not in ("", "1") else "")
 
     lines = []
     for pair, diffs in result.differences.items():

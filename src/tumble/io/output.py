@@ -20,7 +20,7 @@ from tumble.analysis import RunResult, VerifyResult
 from tumble.analysis.claims.base import plain  # numpy → JSON values, shared with the claims
 from tumble.errors import IntegrationError
 from tumble.io.fileset import atomic_write
-from tumble.models.schema import si_columns
+from tumble.models.schema import si_column, si_columns
 
 __all__ = [
     "NonFiniteOutput",
@@ -161,25 +161,150 @@ def summary(
     out.update(result.report.summary)
     if verification is not None:
         out["verify"] = verification.summary()
+    if req.scaling is not None:
+        out = _in_si(out, result)
     return plain(out)
+
+
+UNIT_SUFFIXES = (
+    ("_kgm2_s", "kg m²/s"),
+    ("_rad_s", "rad/s"),
+    ("_deg_s", "deg/s"),
+    ("_kgm2", "kg m²"),
+    ("_days", "d"),
+    ("_rad", "rad"),
+    ("_deg", "deg"),
+    ("_Nms", "N m s"),
+    ("_Nm", "N m"),
+    ("_J", "J"),
+    ("_s", "s"),
+)
+"""The unit a key's name ends with, longest first: ``T0_s`` is in seconds, ``L_kgm2_s`` in
+kg m²/s."""
+
+_COUNTS = {"nfev": "1", "averaging_order": "1", "eps": "1"}  # numbers without a unit
+
+
+def _si_final(ds: xr.Dataset, scaling: Any) -> tuple[dict[str, float], dict[str, str]]:
+    """The last sample of a run in SI, under the SI files' column names, and their units."""
+    cols = {str(v): ds[v].values[-1:] for v in ds.data_vars}
+    units = {str(v): _units(ds, v) for v in ds.data_vars}
+    si = si_columns(scaling, cols, ds["tau"].values[-1:], units)
+    names = {n: u or "1" for v in ds.data_vars
+             for n, _, u in si_column(scaling, str(v), units[str(v)])}  # fmt: skip
+    return {k: float(v[0]) for k, v in si.items()}, {"t_s": "s", "t_days": "d", **names}
+
+
+def _in_si(out: dict[str, Any], result: RunResult) -> dict[str, Any]:
+    """A physical run's summary in its scenario's units: the final states, the differences,
+    the predicted limits and the warnings' times in SI under the SI files' column names (the
+    normalised values stay in the ``.csv`` and ``.nc`` files), each input's unit under
+    ``input_units``, and the unit of every other number under ``units``, by its key."""
+    scaling = result.request.scaling
+    units: dict[str, str] = {}
+    for m, ds in result.datasets.items():
+        out["methods"][m]["final"], found = _si_final(ds, scaling)
+        units.update(found)
+    first = next(iter(result.datasets.values()))
+
+    def si(name: str, value: Any) -> tuple[str, Any]:
+        unit = _units(first, name) if name in first else ""
+        si_name, factor, si_unit = si_column(scaling, name, unit)[0]
+        units[si_name] = si_unit or "1"
+        return si_name, value * factor if isinstance(value, float | int) else value
+
+    out["max_differences"] = {
+        pair: dict(si(k, v) for k, v in diffs.items()) for pair, diffs in result.differences.items()
+    }
+    out["predicted_limits"] = dict(
+        si(k, v) if isinstance(v, float) else (k, v) for k, v in result.limits.items()
+    )
+    out["warnings"] = [
+        {**{k: v for k, v in w.items() if k != "tau"}, "t_s": w["t_s"], "t_days": w["t_s"] / DAY}
+        for w in result.issues
+    ]
+    if "ended_early" in out:
+        stop = dict(out["ended_early"])
+        t_s = float(np.asarray(scaling.time_from_tau(np.array([stop.pop("t")])))[0])
+        out["ended_early"] = {**stop, "t_s": t_s, "t_days": t_s / DAY}
+    out["input_units"] = _input_units(result, out["inputs"])
+    units.update({k: u for k, u in _COUNTS.items()})
+    for key in _number_keys({k: v for k, v in out.items() if k not in ("inputs", "input_units")}):
+        if key not in units:
+            unit = next((u for suffix, u in UNIT_SUFFIXES if key.endswith(suffix)), None)
+            if unit is not None:
+                units[key] = unit
+    out["units"] = dict(sorted(units.items()))
+    return out
+
+
+DAY = 86400.0  # [s]
+
+
+def _number_keys(data: Any) -> set[str]:
+    """The keys of ``data`` (nested tables and lists) whose values are numbers or lists of
+    numbers."""
+    found: set[str] = set()
+    if isinstance(data, dict):
+        for k, v in data.items():
+            if _is_number(v) or (isinstance(v, list) and v and all(map(_is_number, v))):
+                found.add(str(k))
+            else:
+                found |= _number_keys(v)
+    elif isinstance(data, list):
+        for v in data:
+            found |= _number_keys(v)
+    return found
+
+
+def _is_number(v: Any) -> bool:
+    return isinstance(v, int | float | np.number) and not isinstance(v, bool)
+
+
+def _input_units(result: RunResult, inputs: dict[str, Any]) -> dict[str, dict[str, str]]:
+    """The unit of each number of a physical scenario's inputs, by table and key, from its
+    schema (an angle given in degrees is echoed in radians; "1" for a number without one)."""
+    from tumble.io.scenario import run_keys  # the scenario's [run] keys, by its declaration
+    from tumble.models.base import Declaration
+
+    model = result.request.model
+    schema = model.scenario
+    if schema is None:
+        return {}
+    variant = next((v for v in schema.variants if v.physical), schema.variants[0])
+    tables = {s.name: s.keys for s in variant.sections}
+    tables["run"] = run_keys(Declaration.of(model), variant)
+    found: dict[str, dict[str, str]] = {}
+    for name, keys in tables.items():
+        values = inputs.get(name) if name else inputs
+        if not isinstance(values, dict):
+            continue
+        numbers = _number_keys(values)
+        table = {k.name: ("rad" if k.angle else k.units or "1") for k in keys if k.name in numbers}
+        if table:
+            found[name] = table
+    return found
 
 
 def _with_si(ds: xr.Dataset, scaling: Any, si: dict[str, Any]) -> xr.Dataset:
     """``ds`` with the SI columns of a physical run beside the normalised ones: ``t_s`` [s],
-    ``t_days`` [d] and each converted column under its SI name, with its unit
-    (:meth:`Scaling.si`)."""
+    ``t_days`` [d] and each column under its SI names, with its unit (:func:`si_column`)."""
     extra = {
         "t_s": xr.DataArray(si["t_s"], dims=("tau",), attrs={"units": "s", "long_name": "time t"}),
         "t_days": xr.DataArray(si["t_days"], dims=("tau",),
                                attrs={"units": "d", "long_name": "time t in days"}),
     }  # fmt: skip
     for name in ds.data_vars:
-        conv = scaling.si(str(name))
-        if conv is not None:
-            _, unit, si_name = conv
-            attrs = {**ds[name].attrs, "units": unit}
-            extra[si_name] = xr.DataArray(si[si_name], dims=("tau",), attrs=attrs)
+        for si_name, _factor, unit in si_column(scaling, str(name), _units(ds, name)):
+            if si_name not in ds:
+                attrs = {**ds[name].attrs, "units": unit}
+                extra[si_name] = xr.DataArray(si[si_name], dims=("tau",), attrs=attrs)
     return ds.assign(extra)
+
+
+def _units(ds: xr.Dataset, name: Any) -> str:
+    """The unit of the column ``name`` of ``ds`` ("" for none)."""
+    return str(ds[name].attrs.get("units", ""))
 
 
 def render_outputs(
@@ -209,7 +334,8 @@ def render_outputs(
         nc = ds
         if scaling is not None:
             cols = {str(v): ds[v].values for v in ds.data_vars}
-            si = si_columns(scaling, cols, ds["tau"].values)
+            units = {str(v): _units(ds, v) for v in ds.data_vars}
+            si = si_columns(scaling, cols, ds["tau"].values, units)
             files[f"{method}_si.csv"] = csv_text(ds, si).encode()
             first = next(iter(si.values()))
             problems.append(first_non_finite(f"{method}_si.csv", list(si), list(si.values()),

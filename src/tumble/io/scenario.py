@@ -694,7 +694,8 @@ def _request(model: Declaration[Any, Any], run: Any, built: Any, times: np.ndarr
             model.check_initial(built.params, built.initial, m)
     rtol, atol = _tolerances(run)
     averaging = AveragingOptions(
-        averaging=getattr(run, "averaging", "closed_form"),
+        # A model whose averaged equations are the general engine's alone runs "numeric".
+        averaging=getattr(run, "averaging", "numeric" if model.engine else "closed_form"),
         coordinates=getattr(run, "averaged_form", ""),
         start=getattr(run, "averaged_init", "exact"),
         order=getattr(run, "averaging_order", 1),

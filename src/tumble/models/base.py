@@ -362,6 +362,7 @@ class Averaged(Generic[P, S]):
     numeric: bool = False  # whether the general engine can replace the paper's right-hand side
     orders: tuple[int, ...] = (1,)  # orders of averaging it offers (AveragingOptions.order)
     hybrid: bool = False  # whether its forms have bands a hybrid run crosses (Crossing)
+    engine: bool = False  # whether its only averaged equations are the general engine's
     errors: Callable[[P, Sampled, Sampled], Mapping[str, tuple[FloatArray, FloatArray]]] | None = (
         None
     )
@@ -586,9 +587,11 @@ class Declaration(Generic[P, S]):
         As the :class:`Model` fields of those names.
     check_initial
         As the :class:`Model` field of that name.
-    numeric, coordinates, corrected_start, orders, hybrid
-        As the :class:`Averaged` fields of those names (False, (), False, (1,), False without
-        averaged equations).
+    numeric, coordinates, corrected_start, orders, hybrid, engine
+        As the :class:`Averaged` fields of those names (False, (), False, (1,), False, False
+        without averaged equations). ``engine``: the averaged equations are the general
+        engine's quadrature alone, with no paper right-hand side, so that a run's
+        ``averaging`` is "numeric" whatever the default.
     """
 
     name: str
@@ -602,6 +605,7 @@ class Declaration(Generic[P, S]):
     orders: tuple[int, ...] = (1,)
     hybrid: bool = False
     check_initial: Callable[[P, S, str], None] | None = None
+    engine: bool = False
 
     def averaged(
         self,
@@ -621,6 +625,7 @@ class Declaration(Generic[P, S]):
             numeric=self.numeric,
             orders=self.orders,
             hybrid=self.hybrid,
+            engine=self.engine,
             **details,
         )
 
@@ -660,6 +665,7 @@ class Declaration(Generic[P, S]):
             orders=avg.orders if avg is not None else (1,),
             hybrid=avg is not None and avg.hybrid,
             check_initial=model.check_initial,
+            engine=avg is not None and avg.engine,
         )
 
 

@@ -10,6 +10,7 @@ generated from them. Plain dataclasses only: the models import no validation lib
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any, Generic, Literal, Protocol, TypeVar
@@ -27,6 +28,7 @@ __all__ = [
     "Section",
     "Variant",
     "required",
+    "si_column",
     "si_columns",
 ]
 
@@ -206,19 +208,35 @@ class ScenarioSchema(Generic[P, S]):
         return next((v for v in self.variants if v.physical == physical), None)
 
 
+def si_column(scaling: Scaling, name: str, units: str = "") -> tuple[tuple[str, float, str], ...]:
+    """The SI columns of the output column ``name`` whose unit is ``units``: (SI name, factor
+    from the normalised value, SI unit) of each.
+
+    A column :meth:`Scaling.si` converts is written under its SI name; an angle (unit
+    ``rad``) under ``<name>_rad`` [rad] and ``<name>_deg`` [deg]; any other (k², q, a
+    direction) under its own name, unchanged.
+    """
+    conv = scaling.si(name)
+    if conv is not None:
+        factor, unit, si_name = conv
+        return ((si_name, factor, unit),)
+    if units == "rad":
+        return ((f"{name}_rad", 1.0, "rad"), (f"{name}_deg", 180.0 / math.pi, "deg"))
+    return ((name, 1.0, units),)
+
+
 def si_columns(
-    scaling: Scaling, cols: Mapping[str, FloatArray], tau: FloatArray
+    scaling: Scaling,
+    cols: Mapping[str, FloatArray],
+    tau: FloatArray,
+    units: Mapping[str, str] | None = None,
 ) -> dict[str, FloatArray]:
-    """A run's columns in SI (:meth:`Scaling.si`): the time ``t_s`` [s] and ``t_days`` [d],
-    each convertible
-    column under its SI name, the others (angles, k², q) as they are."""
+    """A run's columns in SI (:func:`si_column`): the time ``t_s`` [s] and ``t_days`` [d],
+    then each column under its SI name or names; ``units`` are the columns' units (an angle's
+    is ``rad``)."""
     t_s = scaling.time_from_tau(tau)
     out = {"t_s": t_s, "t_days": t_s / 86400.0}
     for name, values in cols.items():
-        conv = scaling.si(name)
-        if conv is None:
-            out[name] = values
-        else:
-            factor, _unit, si_name = conv
-            out[si_name] = factor * values
+        for si_name, factor, _unit in si_column(scaling, name, (units or {}).get(name, "")):
+            out[si_name] = values if factor == 1.0 else factor * values
     return out

@@ -636,5 +636,6 @@ DECLARED: Declaration[Params, State] = Declaration(
     check=tb.DECLARED.check,
     scenario=SCENARIO,
     orders=(1,),
+    engine=True,
 )
 """What a scenario of the model may ask for."""

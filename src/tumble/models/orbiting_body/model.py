@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from typing import Any, cast
 
 import numpy as np
@@ -47,7 +47,7 @@ from tumble.models.base import (
 from tumble.models.inputs.orbiting_body import DAY, DECLARED, Params, State
 from tumble.rotations import matrix_to_quat, quat_normalize, quat_to_matrix
 
-__all__ = ["MODEL", "Params", "State", "efolding_time"]
+__all__ = ["FLOOR_FACTOR", "MODEL", "Decay", "Params", "State", "efolding_time", "spin_decay"]
 
 _THEORY = "docs/theory/orbiting-body.md"
 
@@ -99,11 +99,99 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
     )
 
 
+FLOOR_FACTOR = 10.0
+"""The rate is at its floor where its local e-folding time exceeds this many first e-folding
+times (:func:`spin_decay`)."""
+
+
+@dataclass(frozen=True, slots=True)
+class Decay:
+    """How a rate decays along a run (:func:`spin_decay`); times in the units of its ``t``,
+    the rate in its own.
+
+    Attributes
+    ----------
+    efolding : float
+        The e-folding time τ1 of the first e-fold (inf when the rate does not decay).
+    fit_end : float
+        The end of the window τ1 is fitted over: the first time the rate is down by a factor
+        e, or the end of the run when it never is.
+    floor_time : float or None
+        When the rate has reached its floor; None when it does not within the run.
+    floor_rate : float or None
+        The rate's median from ``floor_time`` to the end of the run; None without a floor.
+    """
+
+    efolding: float
+    fit_end: float
+    floor_time: float | None = None
+    floor_rate: float | None = None
+
+
+def _slope(t: FloatArray, y: FloatArray) -> float:
+    """The slope of the least-squares line through (t, y)."""
+    return float(np.polyfit(t - t[0], y, 1)[0])
+
+
+def _window_slopes(t: FloatArray, y: FloatArray, width: float) -> FloatArray:
+    """The least-squares slope of y over each window [t_i, t_i + width] that ends within the
+    samples, from cumulative sums (one pass, whatever the number of windows)."""
+    x = (t - t[0]) / width  # in widths: the sums stay of order n, not n t²
+    ends = np.searchsorted(x, x + 1.0 + 1e-12, side="right")  # 1e-12: a sample on the edge
+    starts = np.flatnonzero(x + 1.0 <= x[-1] + 1e-12)
+    sums = [np.concatenate(([0.0], np.cumsum(v))) for v in (np.ones_like(x), x, y, x * y, x * x)]
+    n, sx, sy, sxy, sxx = (c[ends[starts]] - c[starts] for c in sums)
+    return np.asarray((n * sxy - sx * sy) / (n * sxx - sx * sx) / width, dtype=float)
+
+
+def spin_decay(t: FloatArray, rate: FloatArray, factor: float = FLOOR_FACTOR) -> Decay:
+    """The e-folding time of a decaying rate where its decay is exponential, and its floor.
+
+    τ1 is −1/slope of the least-squares line through ln(rate) against t over the first e-fold:
+    from the start to the first sample where the rate is down by a factor e (over the whole
+    run where it never is). It is exact for a rate exp(−t/τ) until then, whatever follows.
+    The local e-folding time at t_i is −1/slope of the same line over the window
+    [t_i, t_i + τ1]. The rate has reached its floor at the first t_i from which every window
+    (to the last that ends within the run) has a local e-folding time above ``factor`` × τ1,
+    or a rate that does not decay; the floor rate is the rate's median from there on (the
+    level it keeps, whatever the oscillation about it).
+
+    Parameters
+    ----------
+    t : array
+        Sample times, ascending [any unit of time].
+    rate : array
+        The rate at those times, > 0 [any unit].
+    factor : float
+        How many first e-folding times the local one must exceed at the floor.
+
+    Returns
+    -------
+    Decay
+        In the units of ``t`` and ``rate``.
+    """
+    t = np.asarray(t, dtype=float)
+    rate = np.asarray(rate, dtype=float)
+    y = np.log(rate)
+    down = np.flatnonzero(y <= y[0] - 1.0)
+    last = max(int(down[0]), 1) if down.size else t.size - 1
+    slope = _slope(t[: last + 1], y[: last + 1])
+    if slope >= 0.0:
+        return Decay(math.inf, float(t[last]))
+    tau = -1.0 / slope
+    if t[-1] - t[0] < tau:  # no window of one e-folding time fits: no floor to tell
+        return Decay(tau, float(t[last]))
+    flat = _window_slopes(t, y, tau) > -1.0 / (factor * tau)
+    if not flat[-1]:
+        return Decay(tau, float(t[last]))
+    first = int(flat.size - np.argmin(flat[::-1])) if not flat.all() else 0
+    return Decay(tau, float(t[last]), float(t[first]), float(np.median(rate[first:])))
+
+
 def efolding_time(t: FloatArray, rate: FloatArray) -> float:
-    """The e-folding time of the rate [units of t]: −1/slope of a least-squares line through
-    ln(rate) against t; inf when the rate does not decay."""
-    slope = float(np.polyfit(np.asarray(t, float), np.log(np.asarray(rate, float)), 1)[0])
-    return math.inf if slope >= 0.0 else -1.0 / slope
+    """The e-folding time of the rate [units of t] over its first e-fold (:func:`spin_decay`);
+    inf when the rate does not decay."""
+    return spin_decay(t, rate).efolding
 
 
 def _report(p: Params, st: State, trajectories: Mapping[str, Sampled]) -> Report:
@@ -114,8 +202,12 @@ def _report(p: Params, st: State, trajectories: Mapping[str, Sampled]) -> Report
         cols = run.columns
         if "rate" not in cols or run.tau.size < 2:
             continue
-        days = efolding_time(run.tau * p.T0 / DAY, cols["rate"])
-        summary[f"{method}_efolding_days"] = days
+        decay = spin_decay(run.tau * p.T0 / DAY, cols["rate"] / p.T0)  # days, rad/s
+        floor = decay.floor_rate
+        summary[f"{method}_efolding_days"] = decay.efolding
+        summary[f"{method}_efolding_fit_end_days"] = decay.fit_end
+        summary[f"{method}_floor_days"] = decay.floor_time
+        summary[f"{method}_floor_rate_deg_s"] = None if floor is None else math.degrees(floor)
         summary[f"{method}_final_period_s"] = float(cols["period"][-1] * p.T0)
     return Report(summary=summary)  # type: ignore[arg-type]
 

@@ -678,5 +678,6 @@ DECLARED: Declaration[Params, State] = Declaration(
     scenario=SCENARIO,
     orders=(1, 2),
     check_initial=_check_initial,
+    engine=True,
 )
 """What a scenario of the model may ask for."""

@@ -107,14 +107,18 @@ def test_slow_of_an_ensemble_member_integrates_it_again():
 
 
 def test_a_python_right_hand_side_runs_point_by_point():
-    # A symmetric body's triaxial average is the Python engine's: each point goes through
-    # simulate().
-    reqs = _ensemble("torqued_body", {}, 2, run={"t_end": 20.0, "samples": 5},
-                     parameters={"inertia": [1.0, 1.0, 2.0]})  # fmt: skip
-    out = simulate_batch(reqs[0].model, [r.params for r in reqs], [r.initial for r in reqs],
-                         reqs[0].tau, method="averaged", averaging=reqs[0].averaging)  # fmt: skip
-    for req, got in zip(reqs, out, strict=True):
-        single = simulate(req.model, req.params, req.initial, req.tau, "averaged",
+    # A torque given as a Python function (the scenario's own, wrapped): its triaxial average
+    # is the Python engine's, and each point goes through simulate().
+    import dataclasses
+
+    from tumble.torques import CallableTorque
+
+    reqs = _ensemble("torqued_body", {}, 2, run={"t_end": 20.0, "samples": 5})
+    params = [dataclasses.replace(r.params, torque=CallableTorque(r.params.torque)) for r in reqs]
+    out = simulate_batch(reqs[0].model, params, [r.initial for r in reqs], reqs[0].tau,
+                         method="averaged", averaging=reqs[0].averaging)  # fmt: skip
+    for req, p, got in zip(reqs, params, out, strict=True):
+        single = simulate(req.model, p, req.initial, req.tau, "averaged",
                           averaging=req.averaging)  # fmt: skip
         assert got.integrator == single.integrator == "scipy"
         for name, values in single.columns.items():

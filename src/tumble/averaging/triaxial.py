@@ -19,8 +19,8 @@ time dependence (the rotating field, (1.1)) adds a third independent phase: the 
 ``t + s`` over one forcing period. That is how (3.5)–(3.7) average the field independently
 of the body's phases (§10, "Field-phase average").
 
-This is the engine for any torque (a user's function, a body with two equal moments); a sum of
-built-in torques on a triaxial body runs the compiled twin, :mod:`tumble.kernels.triaxial`
+This is the engine for any torque (a user's Python function among them); a sum of built-in
+torques or a numba function, on a triaxial or a symmetric body, runs the compiled twin, :mod:`tumble.kernels.triaxial`
 (:func:`triaxial_kernel`), which refines its quadratures from the same grids to the same limits
 (:mod:`tumble.kernels.limits`) and is tested against this one.
 

@@ -285,8 +285,8 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
 
 
 def numeric_kernel(p: Params) -> Kernel | None:
-    """:func:`averaged_rhs_numeric` compiled (:func:`tumble.averaging.triaxial_kernel`);
-    None for a body with two equal moments (the Python engine's symmetric formulas)."""
+    """:func:`averaged_rhs_numeric` compiled (:func:`tumble.averaging.triaxial_kernel`), for
+    triaxial and symmetric bodies alike."""
     return triaxial_kernel(p.torque, p.inertia, 2.0 * math.pi)
 
 

@@ -162,7 +162,7 @@ def averaged_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
 
     ε ⟨A M⟩ and 2ε⟨(ω − r Iω)·M⟩/L² over the polhode, the precession about L and the forcing
     period: for a sum of built-in torques the compiled engine the integrator runs
-    (:func:`averaged_kernel`); for a user torque, a body with two equal moments, or where the
+    (:func:`averaged_kernel`); for a torque given as a Python function, or where the
     compiled engine refuses the state (NaN), the Python engine
     (:func:`tumble.averaging.triaxial_average_vector`), which raises with the reason. The two
     agree to the averages' tolerance (AVERAGE_RTOL).
@@ -251,8 +251,8 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
 
 def averaged_kernel(p: Params) -> Kernel | None:
     """:func:`averaged_rhs` compiled when the torque is a sum of built-in terms
-    (:func:`tumble.averaging.triaxial_kernel`); None for a user torque or a body with two
-    equal moments (the Python engine)."""
+    (:func:`tumble.averaging.triaxial_kernel`), for triaxial and symmetric bodies alike;
+    None for a torque given as a Python function (the Python engine)."""
     torque, period = p.averaging
     return triaxial_kernel(torque, p.inertia, period, factor=p.eps)
 

@@ -21,8 +21,9 @@ of the body's phases (§10, "Field-phase average").
 
 This is the engine for any torque (a user's Python function among them); a sum of built-in
 torques or a numba function, on a triaxial or a symmetric body, runs the compiled twin,
-:mod:`tumble.kernels.triaxial` (:func:`triaxial_kernel`), which refines its quadratures from the same grids to the same limits
-(:mod:`tumble.kernels.limits`) and is tested against this one.
+:mod:`tumble.kernels.triaxial` (:func:`triaxial_kernel`), which refines its quadratures from
+the same grids to the same limits (:mod:`tumble.kernels.limits`) and is tested against this
+one.
 
 Quadrature. A product periodic trapezoidal rule over the 2 or 3 phases, refined axis by
 axis: each axis is doubled (the new nodes are the midpoints, so every value is computed

@@ -48,9 +48,9 @@ VERIFY_FACTORS = (1.0, 0.5, 0.25)
 """ε of the three runs, as fractions of the scenario's ε (ε, ε/2, ε/4)."""
 
 FIRST_ORDER = 0.75
-"""A fitted order at or above this is first order: the band ±0.25 of the error studies of
-issues 2–4 (three points of an O(ε) error with an O(ε²) term and the phase of the O(ε)
-oscillation at the sampled maxima scatter by up to ±0.2)."""
+"""A fitted order at or above this is first order: the band ±0.25 of the three paper models'
+error studies (docs/accuracy.md: three points of an O(ε) error with an O(ε²) term and the
+phase of the O(ε) oscillation at the sampled maxima scatter by up to ±0.2)."""
 
 SECOND_ORDER = 1.75
 """A fitted order at or above this is second order (the same band, 2 − 0.25), for runs of

@@ -118,9 +118,10 @@ def test_full_against_averaged_is_first_order(example, t_end):
     """The averaged model of each new torque is O(ε)-accurate on εt = O(1).
 
     Orders are fitted from ε, ε/2, ε/4; the band [0.75, 1.25] is the one of the paper
-    models' error studies (docs/accuracy.md: an O(ε²) term and the phase of the O(ε) oscillation at the
-    sampled maxima scatter a three-point slope by up to ±0.2). ε alone scales: the orbital
-    rate of the gravity gradient stays (its physical family is the next test)."""
+    models' error studies (docs/accuracy.md: an O(ε²) term and the phase of the O(ε)
+    oscillation at the sampled maxima scatter a three-point slope by up to ±0.2). ε alone
+    scales: the orbital rate of the gravity gradient stays (its physical family is the next
+    test)."""
     result = verify(replace(_example_request(example, t_end), family={"eps": 1.0}))
     assert result.status == "first-order", result.verdict
     fitted = {v: o for v, o in result.orders.items() if o is not None}

@@ -28,6 +28,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.spatial.transform import Rotation
 
 from tumble._typing import BoolArray, FloatArray
 from tumble.averaging import nearest_resonances, triaxial_kernel
@@ -64,7 +65,7 @@ from tumble.models.inputs.torqued_body import (
     torque_from_terms,
 )
 from tumble.models.triaxial_mean import MEAN_SLOW, triaxial_mean_form
-from tumble.rotations import quat_normalize, quat_to_matrix
+from tumble.rotations import matrix_to_quat, quat_normalize, quat_to_matrix
 from tumble.unperturbed.euler_poinsot import (
     EulerPoinsot,
     fast_frequencies,
@@ -322,15 +323,50 @@ class _Scales:
         L, T = cols["L"], cols["T"]
         nu = np.array([fast_frequencies(I1, I2, I3, Li, Ti) for Li, Ti in zip(L, T, strict=True)])
         forcing = 0.0 if p.forcing_period is None else 2.0 * math.pi / p.forcing_period
-        slowest = np.minimum(nu[:, 0], np.abs(nu[:, 1]))
-        if I1 == I3:  # a sphere: the rotation about L is its only phase (ν1 = 0)
+        if I1 == I3 or _spin_free(p):
+            # A sphere: the rotation about L is its only phase. A symmetric body under a
+            # torque symmetric about its axis: the spin about the axis (ν1) does not enter
+            # the averages, which hold however slow it is (at the flat spin, ν1 = 0).
+            nu[:, 0] = 0.0
             slowest = np.abs(nu[:, 1])
+        else:
+            slowest = np.minimum(nu[:, 0], np.abs(nu[:, 1]))
         if forcing > 0.0:
             slowest = np.minimum(slowest, forcing)
         away = cols["k2"] < 1.0 - 1e-3  # the separatrix band is reported as such
         if I1 in (I2, I3):  # symmetric body: ν1 is the relative spin, no separatrix
             away[:] = True
         return cls(_slow_rate(grid, cols), slowest, away, forcing, nu)
+
+
+_AXISYMMETRIC_RTOL = 1e-9  # of the moment's size: round-off of a rotated evaluation
+
+
+def _spin_free(p: Params) -> bool:
+    """Whether the body is symmetric (two equal moments) and its torque symmetric about its
+    axis e: M(t, A Rᵀ, R ω) = R M(t, A, ω) for the rotations R about e (in body axes), tested
+    at a few seeded states and angles. Then the spin phase about e drops out of the torque,
+    and of its averages."""
+    inertia = np.asarray(p.inertia, dtype=float)
+    I1, I2, I3 = p.sorted_inertia
+    if not I1 < I3 or I1 < I2 < I3:
+        return False
+    e = np.zeros(3)
+    e[int(np.argmin(inertia) if I2 == I3 else np.argmax(inertia))] = 1.0  # the unequal axis
+    rng = np.random.default_rng(1979)
+    period = 1.0 if p.forcing_period is None else float(p.forcing_period)
+    for _ in range(4):
+        t = float(rng.uniform(0.0, period))
+        a = quat_to_matrix(quat_normalize(rng.normal(size=4)))
+        omega = rng.normal(size=3)
+        moment = np.asarray(p.torque(t, matrix_to_quat(a), omega), dtype=float)
+        size = max(float(np.linalg.norm(moment)), 1e-300)
+        for angle in (0.7, 2.3):
+            r = Rotation.from_rotvec(angle * e).as_matrix()
+            turned = np.asarray(p.torque(t, matrix_to_quat(a @ r.T), r @ omega), dtype=float)
+            if np.linalg.norm(turned - r @ moment) > _AXISYMMETRIC_RTOL * size:
+                return False
+    return True
 
 
 def _not_fast_issue(grid: FloatArray, sc: _Scales) -> ValidityIssue | None:

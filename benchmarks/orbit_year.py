@@ -1,6 +1,6 @@
 """The orbiting body's benchmark alone: a year of a LEO object averaged against full, and 1000
-averaged years against full 30-day runs (:mod:`tumble.app.bench_orbit`; also part of
-``tumble bench``).
+averaged years against full 30-day runs, and a rocket body's averaged year
+(:mod:`tumble.app.bench_orbit`; also part of ``tumble bench``).
 
     .venv/bin/python benchmarks/orbit_year.py [-o benchmarks/orbit_year.json]
     .venv/bin/python benchmarks/orbit_year.py --from benchmarks/orbit_year.json
@@ -39,6 +39,11 @@ def main() -> int:
     runs = mc.get("in_full_30_day_runs", float("inf"))
     met = result.get("speedup", 0.0) >= TARGETS["orbit_year_speedup"]
     met = met and runs <= TARGETS["orbit_monte_carlo_full_runs"]
+    rocket = result.get("rocket_body") or {}
+    for key, target in (("integration_s", "rocket_year_integration_s"),
+                        ("year_over_one_day", "rocket_year_over_one_day"),
+                        ("twin_final_period_difference", "rocket_twin_agreement")):  # fmt: skip
+        met = met and rocket.get(key, float("inf")) <= TARGETS[target]
     return 0 if met else 1
 
 

@@ -235,6 +235,17 @@ def _orbit_table(r: dict[str, Any]) -> Table | None:
         t.add_row(f"{mc['samples']} averaged years (1 core)", "", f"{mc['time_s']:.4g}",
                   f"= {mc['in_full_30_day_runs']:.3g} full 30-day runs "
                   f"(≤ {tg['orbit_monte_carlo_full_runs']:g}: {_yes(met)})", "")  # fmt: skip
+    rocket = o.get("rocket_body")
+    if rocket:
+        fast = rocket["integration_s"] <= tg["rocket_year_integration_s"]
+        warm = rocket["year_over_one_day"] <= tg["rocket_year_over_one_day"]
+        twin = rocket["twin_final_period_difference"] <= tg["rocket_twin_agreement"]
+        t.add_row("rocket body (I2 = I3), averaged year", "",
+                  f"{rocket['integration_s']:.3g} (≤ {tg['rocket_year_integration_s']:g}: "
+                  f"{_yes(fast)}); end to end × {rocket['year_over_one_day']:.2f} of a day's "
+                  f"(≤ {tg['rocket_year_over_one_day']:g}: {_yes(warm)})", "",
+                  f"{rocket['twin_final_period_difference']:.2e} vs a triaxial twin "
+                  f"(≤ {tg['rocket_twin_agreement']:g}: {_yes(twin)})")  # fmt: skip
     return t
 
 

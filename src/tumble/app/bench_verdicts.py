@@ -29,6 +29,9 @@ TARGETS: dict[str, float] = {
     "orbit_year_speedup": 1000.0,  # an averaged year of a LEO object over the full one, at least
     "orbit_monte_carlo_full_runs": 5.0,  # 1000 averaged years in full 30-day runs ("a handful")
     "orbit_period_agreement": 0.01,  # the averaged year's spin period against the full one
+    "rocket_year_integration_s": 0.1,  # a symmetric rocket body's averaged year, at most
+    "rocket_year_over_one_day": 1.1,  # its run end to end (a warm process) over one day's
+    "rocket_twin_agreement": 1e-3,  # its final spin period against a slightly triaxial twin's
 }
 """The targets, printed beside the measurements."""
 
@@ -136,6 +139,19 @@ def _orbit_rows(rows: _Rows, orbit: dict[str, Any]) -> None:
     rows.add("orbiting body: 1000 averaged years, in full 30-day runs",
              mc["in_full_30_day_runs"] if mc else math.inf,
              TARGETS["orbit_monte_carlo_full_runs"], False)  # fmt: skip
+    rocket = orbit.get("rocket_body")
+    if rocket:
+        rows.add("rocket body, an averaged year: integration [s]", rocket["integration_s"],
+                 TARGETS["rocket_year_integration_s"], False)  # fmt: skip
+        rows.add(
+            "rocket body, an averaged year end to end, in warm one-day runs",
+            rocket["year_over_one_day"],
+            TARGETS["rocket_year_over_one_day"],
+            False,
+        )
+        rows.add("rocket body, a year: final spin period against a slightly triaxial twin",
+                 rocket["twin_final_period_difference"], TARGETS["rocket_twin_agreement"],
+                 False)  # fmt: skip
 
 
 def _machine_rows(rows: _Rows, result: dict[str, Any]) -> None:

@@ -23,8 +23,9 @@ from scipy.optimize import brentq
 
 from tumble._typing import FloatArray
 from tumble.errors import IntegrationError
+from tumble.integrate import dop853
 from tumble.integrate.limits import MAX_STEPS
-from tumble.integrate.ode import DenseSolution, integrate
+from tumble.integrate.ode import DenseSolution, compiled_dense, integrate
 from tumble.kernels import Kernel
 from tumble.models.base import AveragedForm, Columns, Crossing, FullForm
 
@@ -209,19 +210,25 @@ def _full_leg(
         span = min(crossing.chunk, t_end - t)
         start = t
 
-        def rhs(s: float, x: FloatArray, start: float = start) -> FloatArray:
-            return full.rhs(start + s, x, p)
+        what = f"hybrid run: the full equations {full.equation}"
+        if kernel is not None:  # at the leg's own times: a torque may depend on the time
+            sol = compiled_dense(dop853.solve(kernel, y, start + span, t0=start, rtol=rtol,
+                                              atol=atol), what)  # fmt: skip
+            shift = 0.0
+        else:
 
-        sol: DenseSolution = integrate(rhs, y, span, rtol=rtol, atol=atol, kernel=kernel,
-                                       what=f"hybrid run: the full equations {full.equation}",
-                                       max_steps=max_steps)  # fmt: skip
+            def rhs(s: float, x: FloatArray, start: float = start) -> FloatArray:
+                return full.rhs(start + s, x, p)
 
-        def states(s: FloatArray, sol: DenseSolution = sol, start: float = start) -> FloatArray:
-            return sol(np.asarray(s) - start)
+            sol = integrate(rhs, y, span, rtol=rtol, atol=atol, what=what, max_steps=max_steps)
+            shift = start
 
-        legs.append(_Leg("full", start, start + span, states, start + sol.ts[1:]))
+        def states(s: FloatArray, sol: DenseSolution = sol, shift: float = shift) -> FloatArray:
+            return sol(np.asarray(s) - shift)
+
+        legs.append(_Leg("full", start, start + span, states, shift + sol.ts[1:]))
         nfev += sol.nfev
-        y = sol(np.array([span]))[0]
+        y = states(np.array([start + span]))[0]
         t = start + span
         if crossing.band_full(y) >= crossing.LEAVE:
             break

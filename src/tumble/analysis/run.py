@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import itertools
+import json
 import re
 import warnings
 from collections.abc import Mapping
@@ -170,6 +171,8 @@ def to_dataset(model: AnyModel, traj: Trajectory, p: Any) -> xr.Dataset:
         nfev=traj.nfev,
         integrator=traj.integrator or "closed form",
     )
+    if traj.legs:  # a hybrid run's legs (kind, start, end), as text: a NetCDF attribute
+        ds.attrs["legs"] = json.dumps([list(leg) for leg in traj.legs])
     return ds
 
 

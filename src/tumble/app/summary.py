@@ -7,12 +7,15 @@ A scenario given in SI is shown in SI (the files hold both).
 
 from __future__ import annotations
 
+import json
 from typing import Any
 
+import numpy as np
 from rich.markup import escape
 from rich.table import Table
 
 from tumble.analysis import RunResult
+from tumble.analysis.run import si_time
 from tumble.app.runner import in_si
 from tumble.models.display import summary_lines
 from tumble.models.schema import si_column
@@ -73,6 +76,18 @@ def run_lines(result: RunResult, shown: tuple[str, ...]) -> list[str]:
         )
         note = lim.get("statement") or lim.get("end_state")
         lines.append(f"predicted limits: {text}" + (f" ({note})" if note else ""))
+    for method, ds in result.datasets.items():
+        if "legs" in ds.attrs:  # a hybrid run: its legs, at the times summary.json gives
+            legs = json.loads(ds.attrs["legs"])
+            ends = np.array([t for _, a, b in legs for t in (a, b)])
+            if scaling is not None:
+                times, unit = si_time(scaling, ends, float(ds["tau"].values[-1]))
+                unit = " " + unit
+            else:
+                times, unit = ends, ""
+            text = ", ".join(f"{kind} {times[2 * i]:.6g}–{times[2 * i + 1]:.6g}{unit}"
+                             for i, (kind, _, _) in enumerate(legs))  # fmt: skip
+            lines.append(f"{method}: legs {text}")
     summary = result.report.summary
     declared = (line.render(summary) for line in summary_lines(result.request.model.name))
     return lines + [text for text in declared if text is not None]

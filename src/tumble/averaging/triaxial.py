@@ -89,6 +89,7 @@ from tumble.unperturbed._checks import finite_vector, moments
 from tumble.unperturbed.euler_poinsot import (
     SEPARATRIX_RTOL,
     EulerPoinsot,
+    polhode_point,
     reached_ratio,
     regime,
 )
@@ -279,15 +280,11 @@ def _polhode(
 
         return jacobi, True
 
-    if reg == "sphere":
-        zs = np.array([0.0, 0.0, L / I3])
-    else:
-        zs = L * np.array([math.sqrt(d3 / (I1 * (I3 - I1))), 0.0, math.sqrt(d1 / (I3 * (I3 - I1)))])
     with warnings.catch_warnings():
         # The band test above is on (L, T); the state rounds L² − 2T·I2 anew.
         warnings.simplefilter("error", TumbleWarning)
         try:
-            ep = EulerPoinsot.from_state(I_user, Q.T @ zs)
+            ep = EulerPoinsot.from_state(I_user, polhode_point(I_user, L, T))
         except TumbleWarning as w:
             raise AveragingError(f"{w} (state L = {L:g}, T = {T:g})") from None
     if not math.isfinite(ep.period):  # the sphere: uniform rotation about L

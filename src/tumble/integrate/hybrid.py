@@ -69,6 +69,18 @@ class HybridRun(Generic[P, S]):
     handovers: list[tuple[float, float]]
 
     @property
+    def spans(self) -> tuple[tuple[str, float, float], ...]:
+        """The legs as (kind, start, end), consecutive legs of one kind (a full crossing
+        taken in chunks) merged."""
+        out: list[tuple[str, float, float]] = []
+        for leg in self.legs:
+            if out and out[-1][0] == leg.kind:
+                out[-1] = (leg.kind, out[-1][1], leg.t1)
+            else:
+                out.append((leg.kind, leg.t0, leg.t1))
+        return tuple(out)
+
+    @property
     def steps(self) -> FloatArray:
         """Step times of every leg."""
         return np.concatenate([leg.steps for leg in self.legs])

@@ -245,7 +245,8 @@ class Integrator:
 
         wall = time.perf_counter() - start
         return Trajectory(tau, cols, "averaged", f"{avg.name} hybrid", wall, legs.nfev, slow,
-                          legs.steps, "numba" if kernel is not None else "scipy")  # fmt: skip
+                          legs.steps, "numba" if kernel is not None else "scipy",
+                          legs=legs.spans)  # fmt: skip
 
 
 class _Compiled(Integrator):

@@ -52,6 +52,9 @@ class Trajectory:
         extrema of θ), and the sign of the event function before each.
     event_columns : dict
         The columns at ``events``.
+    legs : tuple
+        A hybrid run's legs, ``(kind, start, end)`` with kind "averaged" or "full" [model
+        time unit]; empty for any other run.
     """
 
     tau: FloatArray
@@ -66,6 +69,7 @@ class Trajectory:
     events: FloatArray = field(default_factory=lambda: np.empty(0), repr=False)
     event_signs: FloatArray = field(default_factory=lambda: np.empty(0), repr=False)
     event_columns: Columns = field(default_factory=dict, repr=False)
+    legs: tuple[tuple[str, float, float], ...] = ()
 
     def attitude(self) -> Any:
         """The attitude at the samples, body → inertial, from the columns q0 … q3 of a full

@@ -95,6 +95,14 @@ def table_text(header: tuple[str, ...], rows: list[tuple[Any, ...]]) -> str:
     return "\n".join(lines) + "\n"
 
 
+def _legs(ds: xr.Dataset) -> dict[str, Any]:
+    """A hybrid run's legs for its summary: each leg's kind, start and end (model time)."""
+    if "legs" not in ds.attrs:
+        return {}
+    legs = json.loads(ds.attrs["legs"])
+    return {"legs": [{"kind": k, "start": a, "end": b} for k, a, b in legs]}
+
+
 def _final_state(ds: xr.Dataset) -> dict[str, float]:
     return {
         _time_name(ds): float(ds["tau"].values[-1]),
@@ -126,6 +134,7 @@ def summary(
                 "nfev": ds.attrs["nfev"],
                 "integrator": ds.attrs["integrator"],
                 "final": _final_state(ds),
+                **_legs(ds),
             }
             for m, ds in result.datasets.items()
         },
@@ -205,6 +214,10 @@ def _in_si(out: dict[str, Any], result: RunResult) -> dict[str, Any]:
     for m, ds in result.datasets.items():
         out["methods"][m]["final"], found = _si_final(ds, scaling)
         units.update(found)
+        for leg in out["methods"][m].get("legs", ()):  # the legs' times in SI
+            for key in ("start", "end"):
+                t_s = float(np.asarray(scaling.time_from_tau(np.array([leg.pop(key)])))[0])
+                leg[f"{key}_s"], leg[f"{key}_days"] = t_s, t_s / DAY
     first = next(iter(result.datasets.values()))
 
     def si(name: str, value: Any) -> tuple[str, Any]:

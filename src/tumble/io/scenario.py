@@ -279,8 +279,9 @@ def run_keys(model: Declaration[Any, Any], variant: Variant[Any, Any]) -> tuple[
     if model.hybrid:
         keys.append(_choice("averaged_method", ("plain", "hybrid"),
                             "hybrid: the bands where averaging fails (ϑ = π/2 for the "
-                            "resisting medium) are crossed on the full equations, re-entered "
-                            "through the osculating → mean map"))  # fmt: skip
+                            "resisting medium, the gravity gradient's capture for an orbiting "
+                            "body) are crossed on the full equations, re-entered through the "
+                            "osculating → mean map"))  # fmt: skip
     keys += [
         Key("verify", "boolean", "true or false", default=False,
             doc="also measure the averaging error at ε, ε/2, ε/4"),

@@ -637,5 +637,6 @@ DECLARED: Declaration[Params, State] = Declaration(
     scenario=SCENARIO,
     orders=(1,),
     engine=True,
+    hybrid=True,  # through the gravity gradient's capture (tumble.models.orbiting_body.capture)
 )
 """What a scenario of the model may ask for."""

@@ -45,6 +45,7 @@ from tumble.models.base import (
     fixed_columns,
 )
 from tumble.models.inputs.orbiting_body import DAY, DECLARED, Params, State
+from tumble.models.orbiting_body.capture import capture_band
 from tumble.rotations import matrix_to_quat, quat_normalize, quat_to_matrix
 
 __all__ = ["FLOOR_FACTOR", "MODEL", "Decay", "Params", "State", "efolding_time", "spin_decay"]
@@ -96,6 +97,7 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
         equation="Euler–Poinsot averaging of the orbit-averaged eddy-current and gravity-"
         "gradient torques",
         to_columns=to_columns,
+        crossing=capture_band(p) if options.hybrid else None,
     )
 
 

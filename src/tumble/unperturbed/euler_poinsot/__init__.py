@@ -46,6 +46,7 @@ from tumble.unperturbed.euler_poinsot.regimes import (
     modulus_squared,
     modulus_squared_of_ratio,
     modulus_squared_of_states,
+    polhode_point,
     reached_ratio,
     regime,
 )
@@ -62,6 +63,7 @@ __all__ = [
     "modulus_squared",
     "modulus_squared_of_ratio",
     "modulus_squared_of_states",
+    "polhode_point",
     "proper_sorting",
     "reached_ratio",
     "regime",

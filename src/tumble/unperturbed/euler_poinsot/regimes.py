@@ -12,6 +12,7 @@ from scipy import special
 
 from tumble._docstrings import DocSections
 from tumble._typing import ArrayLike, FloatArray
+from tumble.bodies import proper_sorting
 from tumble.errors import ParameterError, check_finite
 from tumble.kernels.codes import DEGENERATE_RTOL, REACHED_MARGIN, SEPARATRIX_RTOL
 from tumble.kernels.codes import MC_FLOOR as _MC_FLOOR
@@ -433,3 +434,37 @@ def fast_frequencies(I1: float, I2: float, I3: float, L: float, T: float) -> tup
     _, mc = _side_modulus(side, I1, I2, I3, d1, d2, d3)
     nu1 = 0.0 if mc == 0.0 else 0.5 * math.pi * nu / float(special.elliprf(0.0, mc, 1.0))
     return nu1, _mean_precession(side, I1, I2, I3, L, mc)
+
+
+def polhode_point(inertia: ArrayLike, L: float, T: float) -> FloatArray:
+    """The body rate, in the axes of ``inertia``, where the Euler–Poinsot polhode of momentum
+    L and energy T crosses the plane of the smallest and the largest moments (z2 = 0 in
+    sorted axes, which every polhode of either regime does; Martynenko (1979), eq. (3.1) at
+    sn = 0): z1² = (2T·I3 − L²)/(I1(I3 − I1)), z3² = (L² − 2T·I1)/(I3(I3 − I1)), both ≥ 0.
+    For the sphere, L/I along the third sorted axis.
+
+    Parameters
+    ----------
+    inertia : array_like, shape (3,)
+        Principal moments, any order [inertia unit].
+    L : float
+        |L| > 0 [inertia unit · rad/τ].
+    T : float
+        Kinetic energy, 2T/L² within [1/I3, 1/I1] [inertia unit · (rad/τ)²].
+
+    Returns
+    -------
+    ndarray, shape (3,)
+        The body rate [rad/τ].
+    """
+    moments = np.asarray(inertia, dtype=float).reshape(3)
+    I1, _, I3 = (float(v) for v in np.sort(moments))
+    if I3 - I1 <= 2.0 * DEGENERATE_RTOL * I3:
+        sorted_rate = np.array([0.0, 0.0, L / I3])
+    else:
+        sorted_rate = np.array([
+            math.sqrt(max(2.0 * T * I3 - L * L, 0.0) / (I1 * (I3 - I1))),
+            0.0,
+            math.sqrt(max(L * L - 2.0 * T * I1, 0.0) / (I3 * (I3 - I1))),
+        ])  # fmt: skip
+    return np.asarray(proper_sorting(moments).T @ sorted_rate, dtype=float)

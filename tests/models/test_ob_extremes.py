@@ -334,3 +334,63 @@ def test_a_control_character_in_a_reference_or_a_path_is_refused_in_one_line(cha
     data["base"] += char
     with pytest.raises(TumbleError, match=r"^base = .*: holds the control character U\+"):
         parse_sweep(data, sweep)
+
+
+def _plausible(base, rng):
+    """A mutation of ``base`` within every range: the shapes debris has (symmetric bodies,
+    spheres, boxes), spins from near the orbital rate to fast, LEO to GEO-like altitudes, and
+    the averaged run plain or hybrid."""
+    d = copy.deepcopy(base)
+    shape = rng.choice(["triaxial", "prolate", "oblate", "sphere"])
+    a, b, c = sorted(rng.uniform(0.5, 1.0) for _ in range(3))
+    a = max(a, c - b + 0.01)  # the triangle inequality
+    inertia = {"triaxial": [a, b, c], "prolate": [a, c, c], "oblate": [a, a, min(c, 2 * a)],
+               "sphere": [b, b, b]}[shape]  # fmt: skip
+    scale = 10.0 ** rng.uniform(-2, 5)
+    d["body"]["inertia"] = [scale * x for x in inertia]
+    for form in ("omega", "omega_deg_s", "omega_rpm", "spin_period", "spin_axis"):
+        d["initial"].pop(form, None)
+    size = 10.0 ** rng.uniform(-1.5, 1.5)
+    d["initial"]["omega_deg_s"] = [size * rng.uniform(-1, 1), size * rng.uniform(-1, 1), size]
+    d["orbit"] = {"altitude": rng.choice([300.0, 550.0, 800.0, 1400.0, 20000.0, 35786.0]),
+                  "inclination_deg": rng.uniform(0.0, 180.0),
+                  "epoch": "2024-06-01T00:00:00Z"}  # fmt: skip
+    d["run"] = {"t_end_s": SPAN_S, "samples": SAMPLES, "max_steps": STEPS,
+                "methods": rng.choice([["full"], ["averaged"], ["full", "averaged"]])}  # fmt: skip
+    if rng.random() < 0.3:
+        d["run"]["averaged_method"] = "hybrid"
+    return d
+
+
+PLAUSIBLE = 200
+
+
+def test_plausible_objects_run_to_their_end_or_keep_what_they_computed(tmp_path):
+    # 200 objects within every range, run: each ends with its outputs, or stops in one line
+    # with what it computed kept (an error's partial result); never an internal error.
+    source = str(tmp_path / "ob.toml")
+    rng = random.Random("orbiting-body-plausible")
+    names = sorted(BASES)
+    outcomes = {"ran": 0, "kept": 0}
+    for i in range(PLAUSIBLE):
+        name = rng.choice(names)
+        data = _plausible(BASES[name], rng)
+        what = f"object {i} from {name}"
+        try:
+            request = parse_scenario(data, source).request
+        except Exception as exc:  # every input is within its range
+            pytest.fail(f"{what}: {type(exc).__name__}: {str(exc)[:200]}")
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", TumbleWarning)
+                render_outputs(run(request), data, source)
+        except TumbleError as exc:
+            _one_line(str(exc), what)
+            assert exc.partial is not None, (what, str(exc)[:200])  # never nothing
+            outcomes["kept"] += 1
+            continue
+        except Exception as exc:
+            pytest.fail(f"run of {what}: {type(exc).__name__}: {str(exc)[:200]}")
+        outcomes["ran"] += 1
+    print(outcomes)
+    assert outcomes["ran"] + outcomes["kept"] == PLAUSIBLE

@@ -143,7 +143,10 @@ def _window_slopes(t: FloatArray, y: FloatArray, width: float) -> FloatArray:
     starts = np.flatnonzero(x + 1.0 <= x[-1] + 1e-12)
     sums = [np.concatenate(([0.0], np.cumsum(v))) for v in (np.ones_like(x), x, y, x * y, x * x)]
     n, sx, sy, sxy, sxx = (c[ends[starts]] - c[starts] for c in sums)
-    return np.asarray((n * sxy - sx * sy) / (n * sxx - sx * sx) / width, dtype=float)
+    spread = n * sxx - sx * sx  # 0 for a window of one sample: no slope (NaN)
+    slopes = np.full(spread.shape, math.nan)
+    np.divide(n * sxy - sx * sy, spread * width, out=slopes, where=spread > 0.0)
+    return slopes
 
 
 def spin_decay(t: FloatArray, rate: FloatArray, factor: float = FLOOR_FACTOR) -> Decay:

@@ -101,6 +101,23 @@ FIGURES: tuple[Figure, ...] = (
         "spin.png",
     ),
     Figure(
+        "ob_rocket_spin.png",
+        "A rocket body's year",
+        "A spent upper stage (two equal moments) tumbling at 10 °/s: its year, averaged.",
+        "tutorials/orbiting-body",
+        (f"{TUMBLE} run examples/ob_rocket_body.toml -o $OUT",),
+        "spin.png",
+    ),
+    Figure(
+        "ob_small_box_capture.png",
+        "Through the floor to capture",
+        "A 4 kg box spun down by eddy currents and captured by the gravity gradient: full "
+        "against hybrid.",
+        "tutorials/orbiting-body",
+        (f"{TUMBLE} run examples/ob_small_box.toml -o $OUT",),
+        "spin.png",
+    ),
+    Figure(
         "ob_envisat_monte_carlo.png",
         "A year ahead, with uncertainty",
         "200 averaged years of the same satellite: the spin period's median and bands.",

@@ -135,3 +135,43 @@ def test_the_summary_says_what_the_table_prints(sphere_run):
         text = next(x for x in output.splitlines() if x.startswith(f"{method}: e-folding time"))
         printed = text.split("rate ", 1)[1].split(" d", 1)[0]
         assert _close(printed, data[f"{method}_efolding_days"], 4), text
+
+
+def _without_unit(data):
+    """The paths of the numbers of a physical summary that have no unit."""
+    units, inputs = data["units"], data["input_units"]
+    missing = []
+    for path in _numbers({k: v for k, v in data.items() if k not in ("units", "input_units")}):
+        if path[0] == "inputs":
+            table, key = (path[1], path[2]) if len(path) == 3 else ("", path[1])
+            if key not in inputs.get(table, {}):
+                missing.append(path)
+        elif path[-1] not in units:
+            missing.append(path)
+    return missing
+
+
+@pytest.mark.parametrize(
+    "example", ["rf_physical.toml", "physical_units.toml", "tb_gravity_gradient_leo.toml"]
+)
+def test_every_model_speaks_si_in_its_physical_summary(tmp_path, example):
+    # The other models' physical scenarios: their derived parameters (pure numbers), the
+    # rotating field's fast frequencies along the run (rad/s), ranges of predicted limits, a
+    # forcing period (s) all carry their units.
+    res = CliRunner().invoke(app, ["run", str(EXAMPLES / example), "-o", str(tmp_path / "out")])
+    assert res.exit_code == 0, res.output
+    data = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert _without_unit(data) == []
+
+
+def test_a_verified_hybrid_summary_speaks_si_too(tmp_path):
+    # [run] verify's errors, slopes, horizon and issues, and a hybrid run's legs.
+    text = SPHERE.read_text().replace("t_end_days = 30.0", "t_end_days = 0.05")
+    text = text.replace("samples = 301", "samples = 11")
+    text = text.replace("[run]", '[run]\nverify = true\naveraged_method = "hybrid"')
+    scenario = write(tmp_path, text, "sphere.toml")
+    res = CliRunner().invoke(app, ["run", str(scenario), "-o", str(tmp_path / "out")])
+    assert res.exit_code == 0, res.output
+    data = json.loads((tmp_path / "out" / "summary.json").read_text())
+    assert _without_unit(data) == []
+    assert "slow_horizon_s" in data["verify"] and "legs" in data["methods"]["averaged"]

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import io
 import json
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -101,6 +102,47 @@ def _legs(ds: xr.Dataset) -> dict[str, Any]:
         return {}
     legs = json.loads(ds.attrs["legs"])
     return {"legs": [{"kind": k, "start": a, "end": b} for k, a, b in legs]}
+
+
+def _verify_in_si(
+    block: dict[str, Any], si: Callable[[str, Any], tuple[str, Any]], scaling: Any,
+    units: dict[str, str],
+) -> dict[str, Any]:  # fmt: skip
+    """``[run] verify``'s figures of a physical run in SI: each variable's errors under its SI
+    column name (``si``, which records the unit), its fitted slopes as ``<name>_slope`` (no
+    unit), each variable's verdict under its SI name with its errors' keys carrying the
+    unit's suffix, times (the horizon, the issues') in seconds and days."""
+
+    def seconds(tau: float) -> float:
+        return float(np.asarray(scaling.time_from_tau(np.array([tau])))[0])
+
+    out = dict(block)
+    t_s = seconds(out.pop("slow_horizon"))
+    out["slow_horizon_s"], out["slow_horizon_days"] = t_s, t_s / DAY
+    out["max_errors"] = {}
+    per: dict[str, Any] = {}
+    for v, errors in block["max_errors"].items():
+        si_name, factor = si(v, 1.0)
+        out["max_errors"][si_name] = [None if e is None else e * factor for e in errors]
+    for v, figures in block["per_variable"].items():
+        si_name, factor = si(v, 1.0)
+        per[si_name] = {}
+        for key, x in figures.items():
+            if key.startswith("error"):
+                per[si_name][key + si_name[len(v) :]] = None if x is None else x * factor
+            else:
+                per[si_name][key] = x
+                units[key] = "1"
+    out["per_variable"] = per
+    out["orders"] = {f"{v}_slope": slope for v, slope in block["orders"].items()}
+    units.update({f"{v}_slope": "1" for v in block["orders"]})
+
+    def timed(issue: dict[str, Any]) -> dict[str, Any]:
+        t = seconds(issue["tau"])
+        return {**{k: x for k, x in issue.items() if k != "tau"}, "t_s": t, "t_days": t / DAY}
+
+    out["issues"] = [[timed(i) for i in run] for run in block["issues"]]
+    return out
 
 
 def _final_state(ds: xr.Dataset) -> dict[str, float]:
@@ -229,9 +271,32 @@ def _in_si(out: dict[str, Any], result: RunResult) -> dict[str, Any]:
     out["max_differences"] = {
         pair: dict(si(k, v) for k, v in diffs.items()) for pair, diffs in result.differences.items()
     }
-    out["predicted_limits"] = dict(
-        si(k, v) if isinstance(v, float) else (k, v) for k, v in result.limits.items()
-    )
+
+    def limit(k: str, v: Any) -> tuple[str, Any]:
+        if isinstance(v, float):
+            return si(k, v)
+        if isinstance(v, list | tuple) and v and all(isinstance(x, float) for x in v):
+            name, factor = si(k, 1.0)  # a range: both ends in the same unit
+            return name, [x * factor for x in v]
+        return k, v
+
+    out["predicted_limits"] = dict(limit(k, v) for k, v in result.limits.items())
+    for m, diag in result.diagnostics.items():  # e.g. the fast frequencies along the run
+        figures: dict[str, Any] = {"long_names": {}}
+        for v in diag.data_vars:
+            name, factor, si_unit = si_column(scaling, str(v), _units(diag, v))[0]
+            values = diag[v].values * factor
+            for end, x in (("min", np.min(values)), ("max", np.max(values))):
+                figures[f"{end}_{name}"] = float(x)
+                units[f"{end}_{name}"] = si_unit or "1"
+            figures["long_names"][name] = diag[v].attrs.get("long_name", "")
+        out["diagnostics"][m] = figures
+    if out.get("forcing_period") is not None:  # a model time
+        t = out.pop("forcing_period")
+        out["forcing_period_s"] = float(np.asarray(scaling.time_from_tau(np.array([t])))[0])
+    # The derived parameters are the model's normalised ones (t = T0 τ, inertia over I0):
+    # pure numbers.
+    units.update({k: "1" for k, v in out.get("derived", {}).items() if isinstance(v, float | int)})
     out["warnings"] = [
         {**{k: v for k, v in w.items() if k != "tau"}, "t_s": w["t_s"], "t_days": w["t_s"] / DAY}
         for w in result.issues
@@ -240,6 +305,8 @@ def _in_si(out: dict[str, Any], result: RunResult) -> dict[str, Any]:
         stop = dict(out["ended_early"])
         t_s = float(np.asarray(scaling.time_from_tau(np.array([stop.pop("t")])))[0])
         out["ended_early"] = {**stop, "t_s": t_s, "t_days": t_s / DAY}
+    if "verify" in out:
+        out["verify"] = _verify_in_si(out["verify"], si, scaling, units)
     out["input_units"] = _input_units(result, out["inputs"])
     units.update({k: u for k, u in _COUNTS.items()})
     for key in _number_keys({k: v for k, v in out.items() if k not in ("inputs", "input_units")}):
@@ -254,13 +321,18 @@ def _in_si(out: dict[str, Any], result: RunResult) -> dict[str, Any]:
 DAY = 86400.0  # [s]
 
 
+def _numeric(v: Any) -> bool:
+    """A number, or a non-empty list (of lists) of numbers: a vector, a matrix."""
+    return _is_number(v) or (isinstance(v, list) and bool(v) and all(map(_numeric, v)))
+
+
 def _number_keys(data: Any) -> set[str]:
     """The keys of ``data`` (nested tables and lists) whose values are numbers or lists of
     numbers."""
     found: set[str] = set()
     if isinstance(data, dict):
         for k, v in data.items():
-            if _is_number(v) or (isinstance(v, list) and v and all(map(_is_number, v))):
+            if _numeric(v):
                 found.add(str(k))
             else:
                 found |= _number_keys(v)
@@ -296,6 +368,19 @@ def _input_units(result: RunResult, inputs: dict[str, Any]) -> dict[str, dict[st
         table = {k.name: ("rad" if k.angle else k.units or "1") for k in keys if k.name in numbers}
         if table:
             found[name] = table
+    terms = inputs.get("torque")
+    if isinstance(terms, list) and model.name in ("torqued_body",):  # its [[torque]] tables
+        from tumble.models.torqued_body.inputs import PHYSICAL_TERMS
+
+        table = {}
+        for term in terms:
+            section = PHYSICAL_TERMS.get(term.get("kind", "")) if isinstance(term, dict) else None
+            for k in section.keys if section is not None else ():
+                table[k.name] = "rad" if k.angle else k.units or "1"
+                if k.angle:
+                    table[f"{k.name}_deg"] = "deg"
+        if table:
+            found["torque"] = table
     return found
 
 

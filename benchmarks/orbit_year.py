@@ -44,7 +44,9 @@ def main() -> int:
                         ("year_over_one_day", "rocket_year_over_one_day"),
                         ("twin_final_period_difference", "rocket_twin_agreement")):  # fmt: skip
         met = met and rocket.get(key, float("inf")) <= TARGETS[target]
-    return 0 if met else 1
+    shell = result.get("shell") or {}
+    met = met and shell.get("rate_difference", float("inf")) <= TARGETS["shell_rate_agreement"]
+    return 0 if met and shell.get("speedup", 0.0) >= TARGETS["shell_year_speedup"] else 1
 
 
 if __name__ == "__main__":

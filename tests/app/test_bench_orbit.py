@@ -6,7 +6,7 @@ import tomllib
 
 from files import EXAMPLES
 
-from tumble.app.bench_orbit import ROCKET_CASE, YEAR_CASE
+from tumble.app.bench_orbit import ROCKET_CASE, SHELL_CASE, YEAR_CASE
 
 
 def test_the_benchmark_case_is_the_example():
@@ -19,3 +19,10 @@ def test_the_rocket_case_is_the_example():
     with open(EXAMPLES / "ob_rocket_body.toml", "rb") as f:
         example = tomllib.load(f)
     assert example == ROCKET_CASE
+
+
+def test_the_shell_case_is_the_example_over_a_year():
+    with open(EXAMPLES / "ob_aluminium_sphere.toml", "rb") as f:
+        example = tomllib.load(f)
+    example["run"] = {**example["run"], "t_end_days": 365.0, "samples": 366}
+    assert example == SHELL_CASE

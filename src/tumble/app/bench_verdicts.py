@@ -32,6 +32,8 @@ TARGETS: dict[str, float] = {
     "rocket_year_integration_s": 0.1,  # a symmetric rocket body's averaged year, at most
     "rocket_year_over_one_day": 1.1,  # its run end to end (a warm process) over one day's
     "rocket_twin_agreement": 1e-3,  # its final spin period against a slightly triaxial twin's
+    "shell_rate_agreement": 0.01,  # a shell's averaged year through its floor: rate vs full
+    "shell_year_speedup": 100.0,  # the same year, averaged over full, at least
 }
 """The targets, printed beside the measurements."""
 
@@ -139,6 +141,12 @@ def _orbit_rows(rows: _Rows, orbit: dict[str, Any]) -> None:
     rows.add("orbiting body: 1000 averaged years, in full 30-day runs",
              mc["in_full_30_day_runs"] if mc else math.inf,
              TARGETS["orbit_monte_carlo_full_runs"], False)  # fmt: skip
+    shell = orbit.get("shell")
+    if shell:
+        rows.add("shell, a year through its floor: averaged spin rate against the full one",
+                 shell["rate_difference"], TARGETS["shell_rate_agreement"], False)  # fmt: skip
+        rows.add("shell, a year through its floor: averaged speed-up over the full run",
+                 shell["speedup"], TARGETS["shell_year_speedup"], True)  # fmt: skip
     rocket = orbit.get("rocket_body")
     if rocket:
         rows.add("rocket body, an averaged year: integration [s]", rocket["integration_s"],

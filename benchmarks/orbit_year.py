@@ -46,7 +46,12 @@ def main() -> int:
         met = met and rocket.get(key, float("inf")) <= TARGETS[target]
     shell = result.get("shell") or {}
     met = met and shell.get("rate_difference", float("inf")) <= TARGETS["shell_rate_agreement"]
-    return 0 if met and shell.get("speedup", 0.0) >= TARGETS["shell_year_speedup"] else 1
+    met = met and shell.get("speedup", 0.0) >= TARGETS["shell_year_speedup"]
+    box = result.get("capture") or {}
+    for run in ("full", "hybrid"):
+        off = abs(box.get(f"{run}_rate_over_n", float("inf")) - 1.0)
+        met = met and off <= TARGETS["capture_rate_agreement"]
+    return 0 if met else 1
 
 
 if __name__ == "__main__":

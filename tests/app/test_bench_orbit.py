@@ -6,7 +6,7 @@ import tomllib
 
 from files import EXAMPLES
 
-from tumble.app.bench_orbit import ROCKET_CASE, SHELL_CASE, YEAR_CASE
+from tumble.app.bench_orbit import BOX_CASE, ROCKET_CASE, SHELL_CASE, YEAR_CASE
 
 
 def test_the_benchmark_case_is_the_example():
@@ -26,3 +26,8 @@ def test_the_shell_case_is_the_example_over_a_year():
         example = tomllib.load(f)
     example["run"] = {**example["run"], "t_end_days": 365.0, "samples": 366}
     assert example == SHELL_CASE
+
+
+def test_the_capture_case_is_the_example():
+    with open(EXAMPLES / "ob_small_box.toml", "rb") as f:
+        assert tomllib.load(f) == BOX_CASE

@@ -104,6 +104,24 @@ SHELL_CASE: dict[str, Any] = {
 """The 20 kg aluminium shell of examples/ob_aluminium_sphere.toml, over a year: through its
 floor near twice the orbital rate."""
 
+BOX_CASE: dict[str, Any] = {
+    "model": "orbiting_body",
+    "body": {"mass": 4.2, "inertia": [0.09, 0.12, 0.15]},
+    "conductor": {"shape": "thin_cylindrical_shell", "axis": [1.0, 0.0, 0.0],
+                  "conductivity": 2.5e7, "radius": 0.15, "length": 0.4, "thickness": 0.003},
+    "orbit": {"altitude": 700.0, "sun_synchronous": True, "epoch": "2025-03-20T00:00:00Z"},
+    "initial": {"omega_rpm": [2.0, 3.0, 9.3], "psi_deg": 30.0, "theta_deg": 60.0,
+                "phi_deg": 0.0},
+    "run": {"t_end_days": 365.0, "samples": 3651, "methods": ["full", "averaged"],
+            "averaged_method": "hybrid"},
+}  # fmt: skip
+"""The 4 kg box of examples/ob_small_box.toml: spun down and captured by the gravity
+gradient."""
+
+CAPTURED = 0.01
+"""A body turning at the orbital rate to within this fraction over its last 30 days is locked
+to the orbit (captured)."""
+
 ROCKET_TWIN = [2160.0, 5500.0, 5580.0]
 """The rocket body's slightly triaxial twin (I2 1.4 % below I3)."""
 
@@ -186,6 +204,7 @@ def orbiting_study(repeat: int, log: Callable[[str], None]) -> dict[str, Any]:
         "rtol": chosen,
         "rocket_body": rocket_study(repeat, log),
         "shell": shell_study(log),
+        "capture": capture_study(log),
     }
     if chosen is None:
         return out
@@ -264,6 +283,40 @@ def shell_study(log: Callable[[str], None]) -> dict[str, Any]:
     }
 
 
+def capture_study(log: Callable[[str], None]) -> dict[str, Any]:
+    """The small box's year, full and hybrid, once each: their rates over the last 30 days
+    against the orbital rate, and the full run's angle between the axis of least inertia and
+    the local vertical over those days (its libration). JSON-ready."""
+    from tumble.rotations import quat_to_matrix
+
+    data = copy.deepcopy(BOX_CASE)
+    year = parse_scenario(data, "orbiting_body.toml").request
+    p = year.params
+    n = p.orbit.mean_motion * p.T0
+    last = year.tau > year.tau[-1] - 30.0 * DAY / p.T0
+    log("small box: a full year and a hybrid one")
+    full = _timed(year, "full", year.rtol, 1)[1]
+    hybrid = simulate(year.model, p, year.initial, year.tau, "averaged", rtol=year.rtol,
+                      atol=year.atol, averaging=year.averaging)  # fmt: skip
+    axis = int(np.argmin(BOX_CASE["body"]["inertia"]))
+    t_s = year.tau[last] * p.T0
+    up = p.orbit.states(t_s)[:, :3]
+    up /= np.linalg.norm(up, axis=1, keepdims=True)
+    q = np.stack([full.columns[f"q{i}"][last] for i in range(4)], axis=1)
+    tilt = [math.degrees(math.acos(min(1.0, abs(float(quat_to_matrix(qi)[:, axis] @ u)))))
+            for qi, u in zip(q, up, strict=True)]  # fmt: skip
+    return {
+        "case": "examples/ob_small_box.toml: a 4 kg aluminium box, moments 0.09 / 0.12 / "
+        "0.15 kg m², 700 km sun-synchronous, 10 rpm, 365 days",
+        "full_s": full.wall_time,
+        "hybrid_s": hybrid.wall_time,
+        "full_rate_over_n": float(np.median(full.columns["rate"][last]) / n),
+        "hybrid_rate_over_n": float(np.median(hybrid.columns["rate"][last]) / n),
+        "full_vertical_tilt_max_deg": max(tilt),
+        "hybrid_legs": [list(leg) for leg in hybrid.legs],
+    }
+
+
 def rocket_study(repeat: int, log: Callable[[str], None]) -> dict[str, Any]:
     """A rocket body's averaged year: the integration's wall time (the run table's, best of
     ``repeat``), the run end to end in a fresh process (load, run, checks, outputs) against
@@ -330,4 +383,12 @@ def markdown(orbit: dict[str, Any]) -> str:
                   f"(≤ 1 %), {shell['speedup']:.0f}× faster (≥ 100×; {shell['full_s']:.3g} s "
                   f"against {shell['averaged_s']:.3g} s); it ends at "
                   f"{shell['final_over_orbital_rate']:.2f} times the orbital rate."]  # fmt: skip
+    box = orbit.get("capture")
+    if box:
+        lines += ["", f"Through the floor to capture ({box['case']}): over the last 30 days the "
+                  f"full run turns at {box['full_rate_over_n']:.4f} n, its axis of least "
+                  f"inertia within {box['full_vertical_tilt_max_deg']:.1f}° of the local "
+                  f"vertical (captured), the hybrid run at {box['hybrid_rate_over_n']:.4f} n "
+                  f"(the same end state); {box['full_s']:.3g} s against "
+                  f"{box['hybrid_s']:.3g} s."]  # fmt: skip
     return "\n".join(lines)

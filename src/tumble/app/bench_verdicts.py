@@ -34,6 +34,7 @@ TARGETS: dict[str, float] = {
     "rocket_twin_agreement": 1e-3,  # its final spin period against a slightly triaxial twin's
     "shell_rate_agreement": 0.01,  # a shell's averaged year through its floor: rate vs full
     "shell_year_speedup": 100.0,  # the same year, averaged over full, at least
+    "capture_rate_agreement": 0.01,  # a captured box's rate against n, full and hybrid alike
 }
 """The targets, printed beside the measurements."""
 
@@ -141,6 +142,12 @@ def _orbit_rows(rows: _Rows, orbit: dict[str, Any]) -> None:
     rows.add("orbiting body: 1000 averaged years, in full 30-day runs",
              mc["in_full_30_day_runs"] if mc else math.inf,
              TARGETS["orbit_monte_carlo_full_runs"], False)  # fmt: skip
+    box = orbit.get("capture")
+    if box:
+        for run in ("full", "hybrid"):
+            rows.add(f"small box, a year to capture: the {run} run's rate against n, less 1",
+                     abs(box[f"{run}_rate_over_n"] - 1.0), TARGETS["capture_rate_agreement"],
+                     False)  # fmt: skip
     shell = orbit.get("shell")
     if shell:
         rows.add("shell, a year through its floor: averaged spin rate against the full one",

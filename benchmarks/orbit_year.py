@@ -6,7 +6,7 @@ averaged years against full 30-day runs, and a rocket body's averaged year
     .venv/bin/python benchmarks/orbit_year.py --from benchmarks/orbit_year.json
 
 Prints the table of docs/orbit-year-table.md (included by the performance page) as Markdown;
-about 3 minutes on 2 cores. The exit status is 1 if a target is missed.
+about 4 minutes on 2 cores. The exit status is 1 if a target is missed.
 """
 
 from __future__ import annotations

@@ -129,8 +129,9 @@ class BenchSettings:
     engine : bool
         Time the general averaging engine against the full runs (:data:`ENGINE_CASES`).
     orbit : bool
-        Time a year of an orbiting body and a Monte Carlo of them
-        (:mod:`tumble.app.bench_orbit`; about 2 minutes).
+        Time a year of an orbiting body and a Monte Carlo of them, a rocket body's year, a
+        shell's through its floor and a box's to its capture (:mod:`tumble.app.bench_orbit`;
+        about 3 minutes).
     """
 
     horizon: float = 1e5

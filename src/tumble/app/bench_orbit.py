@@ -1,5 +1,8 @@
 """The orbiting body's benchmark: one simulated year of a LEO object, averaged against full,
-and a 1000-sample Monte Carlo of averaged years against full 30-day runs.
+and a 1000-sample Monte Carlo of averaged years against full 30-day runs; then three objects
+of other shapes (:func:`rocket_study`: a rocket body with two equal moments; :func:`shell_study`:
+a shell's year through its floor; :func:`capture_study`: a box to its capture by the gravity
+gradient), each held equal to its example by a test.
 
 The object is the example ``examples/ob_envisat_like.toml`` (a test holds :data:`YEAR_CASE`
 equal to it): a large defunct triaxial satellite (I ~ 1e5 kg m²) spinning at 2.9°/s in a

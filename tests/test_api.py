@@ -57,3 +57,13 @@ def test_version_option():
     res = CliRunner().invoke(app, ["--version"])
     assert res.exit_code == 0
     assert res.output.strip() == f"tumble {tumble.__version__}"
+
+
+def test_dir_of_the_package_shows_its_public_names_only():
+    # Not what the package imports for its own use (TYPE_CHECKING, annotations, the lazy
+    # loader): its exports, its loaded public submodules and the dunders.
+    import tumble
+
+    shown = {n for n in dir(tumble) if not n.startswith("__")}
+    assert set(tumble.__all__) - {"__version__"} <= shown
+    assert not shown & {"TYPE_CHECKING", "annotations", "lazy_exports", "_lazy", "_EXPORTS"}

@@ -47,6 +47,14 @@ def lazy_exports(
         return value
 
     def __dir__() -> list[str]:
-        return sorted({*namespace, *exports})
+        # The public names (the exports and the loaded submodules) and the dunders, not what
+        # the package imported for its own use (TYPE_CHECKING, annotations, this function).
+        submodules = {
+            n
+            for n, v in namespace.items()
+            if not n.startswith("_") and getattr(v, "__name__", None) == f"{package}.{n}"
+        }
+        dunders = {n for n in namespace if n.startswith("__") and n.endswith("__")}
+        return sorted({*exports, *namespace.get("__all__", ()), *submodules, *dunders})
 
     return __getattr__, __dir__

@@ -447,6 +447,10 @@ def _one_line(exc: ValidationError, schema: type[BaseModel]) -> str:
         guess = f"did you mean {close[0]}? " if close else ""
         return f"{path}: unknown key ({guess}allowed here: {', '.join(siblings)})"
     msg = str(err["msg"]).removeprefix("Value error, ")
+    if kind == "literal_error" and hint:  # pydantic's list of the values is the hint's
+        msg = "not one of the allowed values"
+    elif kind in ("list_type", "tuple_type"):  # a number where a vector or matrix belongs
+        msg = "should be a list, e.g. [x, y, z] for a vector"
     shown = shorten(repr(err.get("input")), 60)
     return f"{path} = {shown}: {msg}" + (f" (expected {hint})" if hint else "")
 

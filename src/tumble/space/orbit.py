@@ -207,5 +207,10 @@ def sun_synchronous_inclination(altitude_km: float) -> float:
     n = math.sqrt(EARTH_MU / a**3)
     c = -_SUN_RATE / (1.5 * n * EARTH_J2 * (EARTH_RADIUS / a) ** 2)
     if not -1.0 <= c <= 1.0:
-        raise ParameterError(f"no sun-synchronous circular orbit at {altitude_km:g} km")
+        # |c| grows as a^(7/2): the highest sun-synchronous circular orbit has |c| = 1.
+        highest = (a * abs(c) ** (-1.0 / 3.5) - EARTH_RADIUS) / 1e3
+        raise ParameterError(
+            f"orbit.altitude = {altitude_km:g} km with sun_synchronous = true: no "
+            f"sun-synchronous circular orbit above {highest:.0f} km (the altitude is in km)"
+        )
     return math.acos(c)

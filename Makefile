@@ -28,6 +28,7 @@ $(BIN)/python:
 
 $(TEST_STAMP): pyproject.toml | $(BIN)/python
 	$(BIN)/python -m pip install -e ".[test]"
+	@echo "tumble is installed in $(VENV): 'source $(BIN)/activate' puts it on your PATH"
 	touch $@
 
 $(DEV_STAMP): pyproject.toml $(TEST_STAMP)

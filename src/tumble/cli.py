@@ -184,7 +184,7 @@ def run_cmd(
 
     model = result.request.model
     shown = figure_settings(model.name).variables
-    out.print(run_table(result, shown, escape(f"{model.name} — {scenario}")))
+    out.print(run_table(result, shown, escape(f"{model.name} — {scenario}"), out.width))
     for line in run_lines(result, shown):
         _say(out, line)
     if result.verification is not None:

@@ -99,17 +99,33 @@ def test_every_number_of_a_physical_summary_has_its_unit(sphere_run):
     assert data["input_units"]["initial"]["psi"] == "rad"  # psi_deg echoed in radians
 
 
+def _table_rows(output: str) -> dict[str, list[str]]:
+    """Method → its cells (method, form, integrator, wall time, finals) of the run table as
+    printed: one row per method, or transposed (one column per method) where that is too
+    wide for the terminal."""
+    head = next(line for line in output.splitlines() if line.startswith("┃") and "┃ " in line)
+    body = [[c.strip() for c in line.split("│")[1:-1]] for line in output.splitlines()
+            if line.startswith("│")]  # fmt: skip
+    names = [c.strip() for c in head.split("┃")[1:-1]]
+    if names[0] == "method":
+        return {cells[0]: cells for cells in body}
+    return {m: [m, *(cells[j] for cells in body)] for j, m in enumerate(names) if j > 0}
+
+
+def test_the_run_table_fits_the_terminal(sphere_run):
+    # CliRunner's terminal is 80 columns: the table is transposed, nothing is cut.
+    _, output = sphere_run
+    assert "…" not in output and all(len(line) <= 80 for line in output.splitlines()
+                                     if line.startswith(("┃", "│")))  # fmt: skip
+
+
 def test_the_summary_says_what_the_table_prints(sphere_run):
     data, output = sphere_run
     from tumble.models.orbiting_body.display import FIGURE
 
     shown = {"period": "period_s", "rate_deg_s": "rate_deg_s", "orbit_angle": "orbit_angle_rad"}
     assert tuple(shown) == FIGURE.variables  # the table's columns, in its order
-    rows = {}
-    for line in output.splitlines():
-        cells = [c.strip() for c in line.split("│")[1:-1]]
-        if cells and cells[0] in ("full", "averaged"):
-            rows[cells[0]] = cells
+    rows = _table_rows(output)
     assert set(rows) == {"full", "averaged"}
     for method, cells in rows.items():
         final = data["methods"][method]["final"]

@@ -24,24 +24,35 @@ from tumble.plot.labels import with_units
 __all__ = ["run_lines", "run_table"]
 
 
-def run_table(result: RunResult, shown: tuple[str, ...], title: str) -> Table:
+def run_table(
+    result: RunResult, shown: tuple[str, ...], title: str, width: int | None = None
+) -> Table:
     """One row per method: form, integrator, wall time [s] and the final value of each
-    variable in ``shown`` (in SI for a scenario given in SI)."""
-    table = Table(title=title, title_justify="left")
+    variable in ``shown`` (in SI for a scenario given in SI). Where that is wider than
+    ``width`` (a terminal's columns), the same table transposed, one column per method, so
+    that no heading or number is cut."""
     datasets = in_si(result).datasets
     first = next(iter(datasets.values()))
     finals = [with_units(f"final {v}", first[v].attrs.get("units", "")) if v in first
               else f"final {v}" for v in shown]  # fmt: skip
-    for col in ("method", "form", "integrator", "wall time [s]", *finals):
-        table.add_column(escape(col))  # "[s]" is a unit, not rich markup
-    for m, ds in datasets.items():
-        table.add_row(
-            m,
-            ds.attrs["form"],
-            ds.attrs["integrator"],
-            f"{ds.attrs['wall_time_s']:.3g}",
-            *(f"{ds[v].values[-1]:.6g}" if v in ds else "—" for v in shown),
+    heads = ["method", "form", "integrator", "wall time [s]", *finals]
+    rows = [
+        [m, ds.attrs["form"], ds.attrs["integrator"], f"{ds.attrs['wall_time_s']:.3g}",
+         *(f"{ds[v].values[-1]:.6g}" if v in ds else "—" for v in shown)]
+        for m, ds in datasets.items()
+    ]  # fmt: skip
+    # Each column as wide as its longest cell or heading, with the borders and padding.
+    natural = sum(max(len(h), *(len(r[i]) for r in rows)) + 3 for i, h in enumerate(heads)) + 1
+    if width is not None and natural > width:
+        heads, rows = (
+            ["", *(r[0] for r in rows)],
+            [[h, *(r[i] for r in rows)] for i, h in enumerate(heads) if i > 0],
         )
+    table = Table(title=title, title_justify="left")
+    for col in heads:
+        table.add_column(escape(col), no_wrap=True)  # "[s]" is a unit, not rich markup
+    for row in rows:
+        table.add_row(*(escape(cell) for cell in row))  # a unit in a row's label too
     return table
 
 

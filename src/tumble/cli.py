@@ -161,6 +161,15 @@ def run_cmd(
     ] = None,
     allow_module: AllowModule = None,
     overwrite: Overwrite = False,
+    aem: Annotated[
+        bool,
+        typer.Option(
+            "--aem",
+            help="also write the attitude as CCSDS messages: METHOD.aem (Attitude Ephemeris) "
+            "and initial.apm (Attitude Parameter); needs an orbiting body in SI units (its "
+            "orbit.epoch) and a full run",
+        ),
+    ] = False,
 ) -> None:
     """Run a scenario: CSV per method, summary.json, a figure and manifest.json in OUT.
 
@@ -176,7 +185,7 @@ def run_cmd(
         from tumble.app.runner import run
 
         out_dir = out_dir or Path("out") / scenario.stem
-        result = _guarded(lambda: run(sc, out_dir, overwrite=overwrite))
+        result = _guarded(lambda: run(sc, out_dir, overwrite=overwrite, aem=aem))
     from tumble.app.summary import run_lines, run_table
     from tumble.plot.settings import figure_settings
 

@@ -25,6 +25,7 @@ from tumble.analysis import verify as verify_request
 from tumble.analysis.run import si_dataset, si_time
 from tumble.app.guard import user_code_guard
 from tumble.errors import TumbleError
+from tumble.io.ccsds import ccsds_outputs, check_ccsds
 from tumble.io.fileset import OutputSet, output_set
 from tumble.io.output import NonFiniteOutput, render_outputs, verify_outputs
 from tumble.io.scenario import Scenario, load_scenario
@@ -145,7 +146,11 @@ def _loaded(
 
 
 def run(
-    scenario: str | Path | Scenario, out_dir: str | Path | None = None, *, overwrite: bool = False
+    scenario: str | Path | Scenario,
+    out_dir: str | Path | None = None,
+    *,
+    overwrite: bool = False,
+    aem: bool = False,
 ) -> RunResult:
     """Run a scenario, and write its outputs to ``out_dir`` if one is given.
 
@@ -157,7 +162,9 @@ def run(
     ``[run] verify = true`` also the files of :func:`verify` and the verdict in
     ``summary.json``, and ``manifest.json`` (inputs, file sizes and hashes). The directory is
     checked before the computation and its files replaced as one set once the whole run has
-    succeeded (:func:`tumble.io.fileset.output_set`).
+    succeeded (:func:`tumble.io.fileset.output_set`). With ``aem``, the attitude as CCSDS
+    Attitude Data Messages too (:mod:`tumble.io.ccsds`): ``<method>.aem`` of every method
+    that carries it and ``initial.apm``.
 
     Parameters
     ----------
@@ -167,12 +174,22 @@ def run(
         Output directory (created if needed); None writes nothing.
     overwrite : bool
         Replace the directory's contents even when they are another run's results.
+    aem : bool
+        Write the CCSDS AEM and APM files; a run without an absolute epoch (an orbiting body
+        in SI units) or without a full method is refused before the computation.
 
     Returns
     -------
     RunResult
+
+    Raises
+    ------
+    ScenarioError
+        With ``aem``, if the run has no epoch or no method carrying the attitude.
     """
     with _loaded(scenario, out_dir, "run", overwrite) as (sc, out):
+        if aem:
+            check_ccsds(sc.request)
         try:
             result = run_request(sc.request)
         except TumbleError as exc:
@@ -193,6 +210,8 @@ def run(
             except NonFiniteOutput as exc:
                 out.commit(exc.files)  # what it computed, marked failed; no figure of it
                 raise
+            if aem:
+                files.update(ccsds_outputs(result, sc.source))
             title = f"{sc.request.model.name}: {Path(sc.source).name}"
             files[_settings(result).file] = _figure_png(result, title)
             if verification is not None:

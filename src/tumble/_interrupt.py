@@ -118,7 +118,7 @@ def _watcher(fd: int) -> None:
             data = os.read(fd, 64)
         except OSError:
             return
-        if signal.SIGINT in data and not _TAKEN.wait(GRACE):
+        if (signal.SIGINT in data or signal.SIGTERM in data) and not _TAKEN.wait(GRACE):
             for action in list(_CLEANUPS):
                 with contextlib.suppress(Exception):
                     action()
@@ -126,12 +126,13 @@ def _watcher(fd: int) -> None:
 
 
 def watch() -> None:
-    """Take SIGINT with a handler that marks it taken, and start the watcher (main thread,
-    before any work)."""
+    """Take SIGINT, and SIGTERM alike, with a handler that marks it taken, and start the
+    watcher (main thread, before any work)."""
     read, write = os.pipe()
     os.set_blocking(write, False)
     signal.set_wakeup_fd(write, warn_on_full_buffer=False)
     signal.signal(signal.SIGINT, _on_sigint)
+    signal.signal(signal.SIGTERM, _on_sigint)  # a termination is answered as an interrupt
     _PREVIOUS_HOOK[0] = sys.unraisablehook
     sys.unraisablehook = _unraisable
     threading.Thread(target=_watcher, args=(read,), name="tumble-sigint", daemon=True).start()

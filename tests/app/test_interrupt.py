@@ -49,10 +49,33 @@ def test_sigint_during_a_long_run_exits_cleanly(tmp_path):
         _, stderr = proc.communicate(timeout=30)
         assert proc.returncode == 130, (proc.returncode, stderr)
         assert stderr.strip() == "interrupted", stderr
-        # The directory (checked and locked before the run, if start-up got that far) is
-        # empty: no output written.
-        assert not out.exists() or not any(out.iterdir()), list(out.iterdir())
+        # The directory (made and locked before the run, if start-up got that far) is gone
+        # again: no output written, no empty directory left.
+        assert not out.exists(), list(out.iterdir())
         assert not list(tmp_path.glob(f".{out.name}.tumble-*"))  # nor a temporary set
+
+
+def test_sigterm_is_answered_as_an_interrupt(tmp_path):
+    # A termination (a job scheduler's, a container's stop) ends the run as Ctrl-C does: one
+    # line, exit 130, no temporaries, no empty directory.
+    text = (
+        (EXAMPLES / "tb_gravity_gradient.toml").read_text().replace("t_end = 200.0", "t_end = 2e5")
+    )
+    scenario = tmp_path / "long.toml"
+    scenario.write_text(text)
+    warm = tmp_path / "warm.toml"
+    warm.write_text(text.replace("t_end = 2e5", "t_end = 1.0"))
+    subprocess.run([TUMBLE, "run", str(warm), "-o", str(tmp_path / "warm")], check=True,
+                   capture_output=True)  # fmt: skip
+    for trial, moment in enumerate((0.3, 3.0)):  # while it starts up, while it integrates
+        out = tmp_path / f"out{trial}"
+        command = [TUMBLE, "run", str(scenario), "-o", str(out)]
+        proc = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        time.sleep(moment)
+        proc.send_signal(signal.SIGTERM)
+        _, stderr = proc.communicate(timeout=30)
+        assert (proc.returncode, stderr.strip()) == (130, "interrupted"), (moment, stderr)
+        assert not out.exists() and not list(tmp_path.glob(f".{out.name}.tumble-*"))
 
 
 def test_sigint_during_a_cold_compile_exits_cleanly(tmp_path):
@@ -79,7 +102,7 @@ def test_sigint_during_a_cold_compile_exits_cleanly(tmp_path):
         proc.send_signal(signal.SIGINT)
         _, stderr = proc.communicate(timeout=60)
         assert (proc.returncode, stderr.strip()) == (130, "interrupted"), (moment, stderr)
-        assert not out.exists() or not any(out.iterdir()), list(out.iterdir())
+        assert not out.exists(), list(out.iterdir())
         assert not list(tmp_path.glob(f".{out.name}.tumble-*"))
 
 

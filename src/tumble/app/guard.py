@@ -87,7 +87,7 @@ class _Watcher(threading.Thread):
             data = self.wakeup.recv(64)
         except (BlockingIOError, OSError):
             return False
-        return signal.SIGINT in data
+        return signal.SIGINT in data or signal.SIGTERM in data
 
     def run(self) -> None:
         beats = (PYTHON_CALLS[0], _compiled_calls())

@@ -9,7 +9,8 @@ methods leaves no file of the run before it. A run killed between the two rename
 target but the old set aside: the next run into that directory puts it back before anything
 else, then removes every temporary a killed run left.
 
-The directory is checked before the computation (created, its parent writable), locked for
+The directory is checked before the computation (created, its parent writable; removed again
+if the run ends, interrupted or failed, without writing into the directory it made), locked for
 the run (``flock`` on the directory itself; a second run into it is refused while the first
 holds it), and a directory holding another run's results, or files tumble did not write, is
 replaced only when the caller says so (``overwrite``, the command line's ``--overwrite``).
@@ -90,10 +91,19 @@ def _remove(path: Path) -> None:
         shutil.rmtree(path, ignore_errors=True)
 
 
-def _abandon(staging: Path, out: Path) -> None:
-    """Drop an unfinished set: its temporary directory, and the previous set put back."""
+def _abandon(staging: Path, out: Path, created: bool = False) -> None:
+    """Drop an unfinished set: its temporary directory, the previous set put back, and the
+    directory itself when this run ``created`` it and wrote nothing there."""
     _remove(staging)
     _restore(out)
+    if created:
+        _drop_if_empty(out)
+
+
+def _drop_if_empty(out: Path) -> None:
+    """Remove the directory ``out`` if it is empty (a run that made it and wrote nothing)."""
+    with contextlib.suppress(OSError):
+        out.rmdir()  # refused (OSError) when anything is in it
 
 
 def _restore(out: Path) -> None:
@@ -282,7 +292,8 @@ def output_set(
     try:
         out.parent.mkdir(parents=True, exist_ok=True)
         _restore(out)
-        if not out.exists():
+        created = not out.exists()
+        if created:
             out.mkdir()
         fd = _lock(out)
     except OSError as exc:
@@ -305,10 +316,12 @@ def output_set(
                 f"-o {shorten(str(out_dir))}: cannot write beside it ({exc.strerror})"
             ) from None
         held = OutputSet(out, staging, identity)
-        with emergency_cleanup(functools.partial(_abandon, staging, out)):
+        with emergency_cleanup(functools.partial(_abandon, staging, out, created)):
             yield held
     finally:
         if staging is not None and staging.exists():
             _remove(staging)
         _restore(out)  # an interrupt between the commit's two renames: the previous set back
         os.close(fd)
+        if created:  # nothing committed into the directory this run made: no empty one left
+            _drop_if_empty(out)

@@ -67,3 +67,22 @@ def test_dir_of_the_package_shows_its_public_names_only():
     shown = {n for n in dir(tumble) if not n.startswith("__")}
     assert set(tumble.__all__) - {"__version__"} <= shown
     assert not shown & {"TYPE_CHECKING", "annotations", "lazy_exports", "_lazy", "_EXPORTS"}
+
+
+def test_a_warning_points_at_the_users_call_not_inside_tumble():
+    # Python prints a warning's file and line: the user's own call, never a line of tumble.
+    import warnings
+
+    import numpy as np
+
+    from tumble.integrate import simulate
+    from tumble.models import torqued_body as tb
+    from tumble.torques import CallableTorque
+
+    p = tb.Params(np.array([1.0, 1.6, 2.0]), 0.01, CallableTorque(lambda t, q, w: 0.0 * w))
+    st = tb.State(np.array([0.3, 0.9, 0.4]), np.array([1.0, 0.0, 0.0, 0.0]))
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        simulate(tb.MODEL, p, st, np.linspace(0.0, 1.0, 3), "averaged")
+    ours = [w for w in seen if issubclass(w.category, tumble.TumbleWarning)]
+    assert ours and all(w.filename == __file__ for w in ours), [w.filename for w in ours]

@@ -9,7 +9,11 @@ emits a :class:`TumbleWarning` and is never refused.
 from __future__ import annotations
 
 import math
+import os
+import sys
+import warnings
 from collections.abc import Sequence
+from types import FrameType
 from typing import Any
 
 __all__ = [
@@ -24,6 +28,7 @@ __all__ = [
     "check_range",
     "shorten",
     "state_text",
+    "warn",
 ]
 
 MAX_ECHO = 80
@@ -97,6 +102,18 @@ class IntegrationError(TumbleError, RuntimeError):
 
 class TumbleWarning(UserWarning):
     """A valid run entered a region where a method is known to lose accuracy."""
+
+
+def warn(message: str) -> None:
+    """Emit ``message`` as a :class:`TumbleWarning` attributed to the first caller outside
+    tumble (a user's script or notebook cell), not to the line of tumble that noticed it: the
+    place Python prints beside a warning is then the user's own call."""
+    package = os.path.dirname(os.path.abspath(__file__))
+    level = 2  # stacklevel 2: warn's caller
+    frame: FrameType | None = sys._getframe(1)
+    while frame is not None and os.path.abspath(frame.f_code.co_filename).startswith(package):
+        frame, level = frame.f_back, level + 1
+    warnings.warn(message, TumbleWarning, stacklevel=level)
 
 
 def _fmt(x: float) -> str:

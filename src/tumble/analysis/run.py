@@ -5,7 +5,6 @@ from __future__ import annotations
 import itertools
 import json
 import re
-import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
@@ -15,7 +14,7 @@ import xarray as xr
 
 from tumble._typing import FloatArray
 from tumble.analysis.compare import max_differences
-from tumble.errors import TumbleError, TumbleWarning
+from tumble.errors import TumbleError, warn
 from tumble.integrate import DEFAULT_ATOL, DEFAULT_RTOL, MAX_STEPS, Trajectory, simulate
 from tumble.models import AnyModel
 from tumble.models.base import AveragingOptions, Column, Json, Report, ValidityIssue
@@ -298,7 +297,7 @@ def _result(
     if request.scaling is not None:  # a physical run's warnings give their time in SI
         issues = [issue_in_si(issue, request.scaling, tau_end) for issue in issues]
     for issue in issues:
-        warnings.warn(issue["message"], TumbleWarning, stacklevel=2)
+        warn(issue["message"])
     limits = validity.limits(p, st) if validity is not None and validity.limits else {}
     diagnostics = {}
     extra = model.averaged.diagnostics if model.averaged is not None else None

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import dataclasses
 import time
-import warnings
 from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from typing import Any, Literal, TypeVar
@@ -17,7 +16,7 @@ from typing import Any, Literal, TypeVar
 import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
-from tumble.errors import IntegrationError, ParameterError, TumbleError, TumbleWarning
+from tumble.errors import IntegrationError, ParameterError, TumbleError, warn
 from tumble.integrate import dop853
 from tumble.integrate.limits import MAX_STEPS, pace_message
 from tumble.integrate.ode import (
@@ -201,8 +200,10 @@ class Integrator:
         """The one-line warning of a run that goes to scipy's integrator (module notes)."""
         reason = self.scipy_reason(run.model, form, run.p)
         if reason:
-            warnings.warn(f"the {method} run is integrated by scipy's DOP853 in Python, not "
-                          f"compiled: {reason}", TumbleWarning, stacklevel=4)  # fmt: skip
+            warn(
+                f"the {method} run is integrated by scipy's DOP853 in Python, not compiled: "
+                f"{reason}"
+            )
 
     def run_full(self, run: RunSpec[P, S], full: FullForm[P, S], dense: bool) -> Trajectory:
         """A full form integrated and sampled at ``run.tau``: compiled, chunk by chunk

@@ -5,7 +5,6 @@ docs/theory/rotating-field.md). Conventions: :mod:`tumble.unperturbed.euler_poin
 from __future__ import annotations
 
 import math
-import warnings
 from dataclasses import dataclass, field
 from typing import Literal
 
@@ -15,7 +14,7 @@ from scipy import special
 from tumble._docstrings import DocSections
 from tumble._typing import ArrayLike, FloatArray
 from tumble.bodies import RigidBody, proper_sorting
-from tumble.errors import ParameterError, TumbleWarning
+from tumble.errors import ParameterError, warn
 from tumble.kernels.codes import SEPARATRIX_RTOL
 from tumble.rotations import (
     matrix_to_quat,
@@ -482,12 +481,10 @@ class EulerPoinsot:
         T = 0.5 * float(zs @ Lvec)
         reg, k2, nu, period, nu1, nu2, kern, P_sorted = _build_kernel(Is, zs, L, T)
         if reg == "separatrix":
-            warnings.warn(
+            warn(
                 f"the motion is on the separatrix L² = 2T·I2 (|L² − 2T·I2| ≤ "
                 f"{SEPARATRIX_RTOL:g}·L²): it is asymptotic to the rotation about the middle "
-                "axis and its period is infinite (ν1 = 0: averaging is invalid, §12)",
-                TumbleWarning,
-                stacklevel=2,
+                "axis and its period is infinite (ν1 = 0: averaging is invalid, §12)"
             )
         P = P_sorted @ Q
         q_polar = matrix_to_quat(P)

@@ -658,7 +658,8 @@ def reproduce_cmd(
         task = bar.add_task("claims", total=None)
 
         def progress(done: int, total: int, cid: str) -> None:
-            bar.update(task, completed=done, total=total, description=f"claims ({cid})")
+            label = f"claims ({cid})" if cid else "claims"
+            bar.update(task, completed=done, total=total, description=label)
 
         result = _guarded(
             lambda: reproduce(papers or ["all"], out_dir, progress=progress, overwrite=overwrite)

@@ -120,6 +120,13 @@ def test_reproduce_one_claim_by_name_labels_it_with_its_id(fake_claims, tmp_path
     assert "<code>tumble reproduce rf-2</code>" in page
 
 
+def test_the_number_of_claims_is_known_before_the_first_runs(fake_claims, tmp_path):
+    # The progress bar shows "0/3", not "0/?", while the first claim runs.
+    calls = []
+    rep.reproduce(["rotating_field"], tmp_path, progress=lambda *a: calls.append(a))
+    assert calls[0] == (0, 3, "") and [c[:2] for c in calls[1:]] == [(1, 3), (2, 3), (3, 3)]
+
+
 def test_registry_names_every_paper():
     assert list(CLAIMS) == list(rep.PAPER_NAMES)
     ids = [c.__name__ for p in CLAIMS.values() for c in p]

@@ -151,7 +151,8 @@ def reproduce(
     out_dir : str or Path
         Output directory (created if needed).
     progress : callable, optional
-        ``progress(done, total, claim_id)`` after each claim (the id, its short alias).
+        ``progress(done, total, claim_id)`` before the first claim (0, the total, "") and
+        after each claim (the id, its short alias).
     overwrite : bool
         Replace the directory's contents even when they are another run's results.
 
@@ -167,6 +168,8 @@ def reproduce(
     ) as out:
         start = time.perf_counter()
         runs = []
+        if progress is not None:  # the number of claims known before the first one runs
+            progress(0, len(checks), "")
         for i, (paper, check) in enumerate(checks):
             runs.append(check_claim(paper, check))
             if progress is not None:

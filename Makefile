@@ -5,7 +5,10 @@
 #   make test    the test suite without the slow studies (what CI runs: .ci/run)
 #   make bench   the slow studies only (pytest -m slow), with heyoka.py (the bench extra)
 #   make lint    ruff (lint and format), mypy and the import-layer contract (CI runs it)
-#   make docs    the documentation site → out/docs/index.html (warnings are errors; CI runs it)
+#   make docs    the documentation site → out/docs/index.html (warnings are errors, then the
+#                site's checks: no outside resources, no untypeset maths; CI runs it)
+#   make docs-check  make docs, then the same pages in headless Chromium: every equation
+#                typeset, no request off the site, screenshots in out/docs/_check
 #   make clean   remove outputs and caches (keeps .venv; `make distclean` removes it too)
 
 PYTHON ?= python3
@@ -20,7 +23,7 @@ DOCS_STAMP := $(VENV)/.installed-docs
 
 EXAMPLES := $(wildcard examples/*.toml)
 
-.PHONY: reproduce demo test bench lint docs clean distclean
+.PHONY: reproduce demo test bench lint docs docs-check clean distclean
 .DELETE_ON_ERROR:
 
 $(BIN)/python:
@@ -65,6 +68,11 @@ lint: $(DEV_STAMP)
 
 docs: $(DOCS_STAMP)
 	$(BIN)/sphinx-build -W --keep-going -q -b html docs out/docs
+	$(BIN)/python docs/check_site.py out/docs
+
+docs-check: docs
+	@command -v chromium >/dev/null || { echo "make docs-check: needs Debian's chromium (apt-get install chromium)"; exit 1; }
+	$(BIN)/python docs/check_site.py out/docs --browser
 
 clean:
 	rm -rf out build dist docs/reference/generated .pytest_cache .hypothesis .mypy_cache .ruff_cache .import_linter_cache

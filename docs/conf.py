@@ -2,7 +2,12 @@
 
 from __future__ import annotations
 
+import sys
+from pathlib import Path
+
 import tumble
+
+sys.path.insert(0, str(Path(__file__).parent / "_ext"))
 
 project = "tumble"
 author = "tumble developers"
@@ -16,13 +21,18 @@ extensions = [
     "sphinx.ext.autodoc",
     "sphinx.ext.autosummary",
     "sphinx.ext.mathjax",
-    "sphinxcontrib.typer",
+    # MathJax 3 copied into the site's own _static: the equations render offline.
+    "sphinx-mathjax-offline",
+    "tumble_docs",
 ]
 
 source_suffix = {".md": "markdown", ".rst": "restructuredtext"}
 root_doc = "index"
 # The tables included by performance.md are not pages of their own.
 exclude_patterns = ["_build", "performance-tables.md", "orbit-year-table.md"]
+
+# Equations: $…$ and $$…$$ in Markdown; \\tag{1.1} keeps a paper's own equation number.
+mathjax3_config = {"tex": {"tags": "none"}}
 
 # Markdown: $…$ maths, ::: fences, anchors for the ## and ### headings (links within a page).
 myst_enable_extensions = ["dollarmath", "colon_fence", "deflist"]
@@ -41,4 +51,4 @@ html_theme_options = {
     "show_toc_level": 2,
     "secondary_sidebar_items": ["page-toc"],
 }
-html_static_path: list[str] = []
+html_static_path = ["_static"]

@@ -149,7 +149,7 @@ def _chromium(args: list[str], profile: Path) -> str:
     return done.stdout
 
 
-def browser_failures(site: Path) -> list[str]:
+def browser_failures(site: Path, only: str = "") -> list[str]:
     """Every failure Chromium finds: untypeset or unparsed equations, requests off the site."""
     failures = []
     shots = site / "_check"
@@ -158,6 +158,7 @@ def browser_failures(site: Path) -> list[str]:
         profile = Path(tmp) / "profile"
         pages = sorted(p for p in site.rglob("*.html") if "_static" not in p.parts)
         pages = [p for p in pages if "_sources" not in p.parts and "_check" not in p.parts]
+        pages = [p for p in pages if p.relative_to(site).as_posix().startswith(only)]
         for path in pages:
             rel = path.relative_to(site).as_posix()
             page = _Page()
@@ -192,13 +193,14 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("site", type=Path, help="the built site, e.g. out/docs")
     parser.add_argument("--browser", action="store_true", help="also check in headless Chromium")
+    parser.add_argument("--only", default="", help="browser check of the pages under this path")
     args = parser.parse_args()
     if not (args.site / "index.html").is_file():
         print(f"check_site: no built site at {args.site} (make docs builds it)", file=sys.stderr)
         return 2
     failures = static_failures(args.site)
     if args.browser:
-        failures += browser_failures(args.site)
+        failures += browser_failures(args.site, args.only)
     for line in failures:
         print(line)
     summary = {"site": str(args.site), "failures": len(failures), "browser": args.browser}

@@ -99,7 +99,7 @@ class CliReference(SphinxDirective):
                 + [p.name.upper() + (" …" if p.nargs == -1 else "") for p in positional]
             )
             lines += [f"## `tumble {name}`", "", "```console", f"$ {usage}", "```", ""]
-            lines += _prose(command.help or "").splitlines() + [""]
+            lines += [*_prose(command.help or "").splitlines(), ""]
             rows = _parameter_rows(command)
             if rows:
                 lines += [

@@ -79,8 +79,9 @@ def thin_cylindrical_shell(
 
 
 def torsion_constant_rectangle(a: float, b: float, terms: int = 50) -> float:
-    """Saint-Venant's torsion constant J of an a × b rectangle [m⁴]:
-    J = a b³ [1/3 − (64/π⁵)(b/a) Σ_{n odd} tanh(nπa/(2b))/n⁵] for a ≥ b (Timoshenko and
+    r"""Saint-Venant's torsion constant J of an a × b rectangle [m⁴]:
+    :math:`J = a b^3 \left[\tfrac13 - \tfrac{64}{\pi^5}\tfrac{b}{a}\sum_{n\ \mathrm{odd}}
+    \tanh(n\pi a/2b)/n^5\right]` for a ≥ b (Timoshenko and
     Goodier, *Theory of Elasticity*, torsion of rectangular bars); 0.1406 a⁴ for a square."""
     a, b = max(a, b), min(a, b)
     n = np.arange(1, 2 * terms, 2, dtype=float)

@@ -1,4 +1,4 @@
-"""The field moments of the orbit-averaged torques on an orbiting body.
+r"""The field moments of the orbit-averaged torques on an orbiting body.
 
 Both torques on a conductor in orbit are quadratic in what the orbit brings: the eddy-current
 moment (M x) × B, x = ω × B − Aᵀ dB/dt, is bilinear in B and (B, dB/dt), and the gravity
@@ -11,8 +11,8 @@ replaced by their means:
   a uniform grid doubled to convergence; the Earth angle on max(8, 2N + 2) points, exact: the
   field of degree N holds harmonics up to N of the Earth angle, the products up to 2N; a
   field that does not turn is taken at its angle);
-* ⟨3μ r̂ r̂ᵀ/r³⟩ = c (1 − ĥ ĥᵀ) with c = 3μ/(2a³(1 − e²)^{3/2}), exactly (r⁻¹ is linear in
-  cos ν and r̂ r̂ᵀ holds harmonics 0 and 2 of ν only).
+* ⟨3μ r̂ r̂ᵀ/r³⟩ = c (1 − ĥ ĥᵀ) with :math:`c = 3\mu/(2a^3(1 - e^2)^{3/2})`, exactly (r⁻¹
+  is linear in cos ν and r̂ r̂ᵀ holds harmonics 0 and 2 of ν only).
 
 After the average over the Earth's rotation the field's distribution is symmetric about ξ3, so
 that S and D turn with the orbit's node, Ω̇ t, and nothing else changes on a circular orbit. On
@@ -89,5 +89,5 @@ def field_moments(
 
 
 def gravity_factor(orbit: Orbit) -> float:
-    """c = 3μ/(2a³(1 − e²)^{3/2}) [1/s²], with ⟨3μ r̂ r̂ᵀ/r³⟩ = c (1 − ĥ ĥᵀ)."""
+    r""":math:`c = 3\mu/(2a^3(1 - e^2)^{3/2})` [1/s²], with ⟨3μ r̂ r̂ᵀ/r³⟩ = c (1 − ĥ ĥᵀ)."""
     return 3.0 * orbit.mu / (2.0 * orbit.a**3 * (1.0 - orbit.e**2) ** 1.5)

@@ -169,7 +169,7 @@ class FieldMomentsTorque(Torque):
 
 @dataclass(frozen=True, eq=False)
 class GravityMomentsTorque(Torque):
-    """The gravity gradient averaged over the orbit, −c ĥ × (I ĥ), with the orbit normal ĥ
+    r"""The gravity gradient averaged over the orbit, −c ĥ × (I ĥ), with the orbit normal ĥ
     turned about ξ3 by Ω̇ t.
 
     Parameters
@@ -177,7 +177,7 @@ class GravityMomentsTorque(Torque):
     inertia : array_like, shape (3,)
         Principal moments.
     c : float
-        3μ/(2a³(1 − e²)^{3/2}) [per unit of time squared].
+        :math:`3\mu/(2a^3(1 - e^2)^{3/2})` [per unit of time squared].
     normal : array_like, shape (3,)
         Orbit normal at t = 0 (normalised here).
     node_rate : float

@@ -39,7 +39,10 @@ def interrupted(message: str = "interrupted") -> None:
     """Say so (one line) and exit 130 at once: the work's own clean-up has run (or the
     emergency ones), and skipping the interpreter's teardown of numba and scipy makes the
     exit immediate."""
+    from tumble._progress import close
+
     with contextlib.suppress(Exception):
+        close()  # a progress display leaves the terminal as it found it
         sys.stdout.flush()
     os.write(2, (message + "\n").encode())
     os._exit(130)

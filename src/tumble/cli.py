@@ -127,6 +127,82 @@ AllowModule = Annotated[
 ]
 
 
+Quiet = Annotated[
+    bool,
+    typer.Option(
+        "-q", "--quiet", help="no progress display (shown only on a terminal, after 1 s of work)"
+    ),
+]
+
+PROGRESS_AFTER_S = 1.0
+"""The progress display appears once a command has worked this long [s]: a quick command
+prints its results without it."""
+
+
+@contextlib.contextmanager
+def _working(quiet: bool, first: str) -> Iterator[None]:
+    """A progress display on stderr while the command works: a spinner, the stage
+    (``first``, then "averaged", "drawing the figure", the compile notice, …), how far an
+    integration has got and the time spent. It appears after :data:`PROGRESS_AFTER_S`, on a
+    terminal only, not with ``--quiet``, and is gone when the command prints its results."""
+    if quiet or not err.is_terminal:
+        yield
+        return
+    import threading
+
+    from rich.progress import (
+        BarColumn,
+        Progress,
+        SpinnerColumn,
+        TaskProgressColumn,
+        TextColumn,
+        TimeElapsedColumn,
+    )
+
+    from tumble import _progress
+
+    bar = Progress(
+        SpinnerColumn(),
+        TextColumn("{task.description}"),
+        BarColumn(),
+        TaskProgressColumn(),
+        TimeElapsedColumn(),
+        console=err,
+        transient=True,
+    )
+    task = bar.add_task(first, total=None)
+    lock = threading.Lock()
+    ended = False
+
+    def show(stage: str, fraction: float | None) -> None:
+        if fraction is None:
+            bar.update(task, description=stage, total=None, completed=0)
+        else:
+            bar.update(task, description=stage, total=1.0, completed=fraction)
+
+    def start() -> None:
+        with lock:
+            if not ended:
+                bar.start()
+
+    def stop() -> None:
+        nonlocal ended
+        with lock:
+            ended = True
+            bar.stop()
+
+    timer = threading.Timer(PROGRESS_AFTER_S, start)
+    timer.daemon = True
+    previous = _progress.set_display(show, stop)
+    timer.start()
+    try:
+        yield
+    finally:
+        timer.cancel()
+        stop()
+        _progress.set_display(*previous)
+
+
 def _consent(origins: tuple[str, ...]) -> None:
     """Name every file of user code a valid scenario runs, before the first is loaded."""
     for origin in origins:
@@ -170,6 +246,7 @@ def run_cmd(
             "orbit.epoch) and a full run",
         ),
     ] = False,
+    quiet: Quiet = False,
 ) -> None:
     """Run a scenario: CSV per method, summary.json, a figure and manifest.json in OUT.
 
@@ -179,7 +256,7 @@ def run_cmd(
     A scenario that names a torque function (torque = "file:function") runs that code: it
     is loaded from the Python file beside the scenario, and tumble prints which.
     """
-    with warnings.catch_warnings(record=True) as caught:
+    with warnings.catch_warnings(record=True) as caught, _working(quiet, "reading the scenario"):
         warnings.simplefilter("always", TumbleWarning)
         sc = _guarded(lambda: _load(scenario, allow_module))
         from tumble.app.runner import run
@@ -220,6 +297,7 @@ def verify_cmd(
     ] = False,
     allow_module: AllowModule = None,
     overwrite: Overwrite = False,
+    quiet: Quiet = False,
 ) -> None:
     """Measure the averaging error: full and averaged at ε, ε/2, ε/4 over one slow horizon.
 
@@ -227,7 +305,7 @@ def verify_cmd(
     errors, the fitted orders and the verdict. A torque function the scenario names runs, as
     with run.
     """
-    with warnings.catch_warnings(record=True) as caught:
+    with warnings.catch_warnings(record=True) as caught, _working(quiet, "reading the scenario"):
         warnings.simplefilter("always", TumbleWarning)
         sc = _guarded(lambda: _load(scenario, allow_module))
         from tumble.app.runner import verify
@@ -637,6 +715,7 @@ def reproduce_cmd(
         "out/reproduce"
     ),
     overwrite: Overwrite = False,
+    quiet: Quiet = False,
 ) -> None:
     """Check the claims of the papers: report.html (figures embedded), claims.json,
     claims.md, figures/.
@@ -648,22 +727,50 @@ def reproduce_cmd(
     qualification (as tumble's theory pages correct or restrict it), or refuted. Exits 1 if a
     check could not run (the report says which and why).
     """
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn
+    from rich.progress import (
+        BarColumn,
+        MofNCompleteColumn,
+        Progress,
+        SpinnerColumn,
+        TextColumn,
+        TimeElapsedColumn,
+    )
 
+    from tumble import _progress
     from tumble.app.reproduce import reproduce
     from tumble.io.report import measured_text
 
-    columns = (TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn())
-    with Progress(*columns, console=err, transient=True, disable=not err.is_terminal) as bar:
+    columns = (
+        SpinnerColumn(),
+        TextColumn("{task.description}"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeElapsedColumn(),
+    )
+    shown = not quiet and err.is_terminal
+    with Progress(*columns, console=err, transient=True, disable=not shown) as bar:
         task = bar.add_task("claims", total=None)
+        label = "claims"
 
         def progress(done: int, total: int, cid: str) -> None:
+            nonlocal label
             label = f"claims ({cid})" if cid else "claims"
             bar.update(task, completed=done, total=total, description=label)
 
-        result = _guarded(
-            lambda: reproduce(papers or ["all"], out_dir, progress=progress, overwrite=overwrite)
-        )
+        def show(stage: str, fraction: float | None) -> None:
+            if stage.startswith("compiling"):  # the claims' own stages would only flicker
+                bar.update(task, description=f"{label}: {stage}")
+
+        previous = _progress.set_display(show, bar.stop) if shown else None
+        try:
+            result = _guarded(
+                lambda: reproduce(
+                    papers or ["all"], out_dir, progress=progress, overwrite=overwrite
+                )
+            )
+        finally:
+            if previous is not None:
+                _progress.set_display(*previous)
     colour = {"confirmed": "green", "confirmed with qualification": "yellow", "refuted": "red"}
     table = Table(title=f"claims of the papers ({result.wall_time:.0f} s)", title_justify="left")
     table.add_column("name (id)", overflow="fold")  # a name wraps, never cut: it selects

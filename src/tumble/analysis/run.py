@@ -12,6 +12,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
+from tumble._progress import stage
 from tumble._typing import FloatArray
 from tumble.analysis.compare import max_differences
 from tumble.errors import TumbleError, warn
@@ -259,18 +260,19 @@ def run(request: RunRequest, precomputed: Mapping[str, Trajectory] | None = None
 
 def _simulated(request: RunRequest, method: str) -> Trajectory:
     """One method of the request, run."""
-    return simulate(
-        request.model,
-        request.params,
-        request.initial,
-        request.tau,
-        method,
-        rtol=request.rtol,
-        atol=request.atol,
-        integrator=request.integrator,
-        averaging=request.averaging,
-        max_steps=request.max_steps,
-    )
+    with stage(method):
+        return simulate(
+            request.model,
+            request.params,
+            request.initial,
+            request.tau,
+            method,
+            rtol=request.rtol,
+            atol=request.atol,
+            integrator=request.integrator,
+            averaging=request.averaging,
+            max_steps=request.max_steps,
+        )
 
 
 def _result(

@@ -26,6 +26,7 @@ from typing import Any
 
 import numpy as np
 
+from tumble._progress import stage
 from tumble._typing import FloatArray
 from tumble.analysis.compare import angle_difference, fitted_order
 from tumble.analysis.run import RunRequest, _merge_issues
@@ -488,7 +489,7 @@ def _one_epsilon(
     for order in orders:
         options = replace(request.averaging, order=order)
         try:
-            with warnings.catch_warnings():
+            with warnings.catch_warnings(), stage(f"ε = {e:.3g}: averaged (order {order})"):
                 warnings.simplefilter("ignore", TumbleWarning)
                 averaged[order] = simulate(model, pe, st, tau, "averaged", rtol=request.rtol,
                                            atol=request.atol, averaging=options)  # fmt: skip
@@ -501,7 +502,8 @@ def _one_epsilon(
             failures[order] = str(exc)
     if not averaged:
         return _Run({}, [], failures, {})
-    full = _full(request, pe, tau)
+    with stage(f"ε = {e:.3g}: full"):
+        full = _full(request, pe, tau)
     curves: dict[int, dict[str, tuple[FloatArray, FloatArray]]] = {}
     scales: dict[str, float] = {}
     for order, avg in averaged.items():

@@ -19,6 +19,7 @@ from typing import Any
 
 import numpy as np
 
+from tumble._progress import stage
 from tumble.analysis import RunResult, VerifyResult
 from tumble.analysis import run as run_request
 from tumble.analysis import verify as verify_request
@@ -203,19 +204,24 @@ def run(
                 out.commit(files)
                 exc.written = str(out_dir)
             raise
-        verification = verify_request(sc.request) if sc.request.verify else None
+        verification = None
+        if sc.request.verify:
+            with stage("verifying"):
+                verification = verify_request(sc.request)
         if out is not None:
             try:
-                files = render_outputs(result, sc.inputs, sc.source, verification)
+                with stage("writing the outputs"):
+                    files = render_outputs(result, sc.inputs, sc.source, verification)
             except NonFiniteOutput as exc:
                 out.commit(exc.files)  # what it computed, marked failed; no figure of it
                 raise
             if aem:
                 files.update(ccsds_outputs(result, sc.source))
             title = f"{sc.request.model.name}: {Path(sc.source).name}"
-            files[_settings(result).file] = _figure_png(result, title)
-            if verification is not None:
-                files["verify.png"] = _png(plot_verify(verification, title=f"verify {title}"))
+            with stage("drawing the figure"):
+                files[_settings(result).file] = _figure_png(result, title)
+                if verification is not None:
+                    files["verify.png"] = _png(plot_verify(verification, title=f"verify {title}"))
             out.commit(files)
     return replace(result, verification=verification)
 
@@ -248,8 +254,9 @@ def verify(
     with _loaded(scenario, out_dir, "verify", overwrite) as (sc, out):
         result = verify_request(sc.request)
         if out is not None:
-            files = verify_outputs(result, sc.source)
-            title = f"verify {sc.request.model.name}: {Path(sc.source).name}"
-            files["verify.png"] = _png(plot_verify(result, title=title))
+            with stage("writing the outputs"):
+                files = verify_outputs(result, sc.source)
+                title = f"verify {sc.request.model.name}: {Path(sc.source).name}"
+                files["verify.png"] = _png(plot_verify(result, title=title))
             out.commit(files)
     return result

@@ -7,8 +7,8 @@ from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
-from scipy.integrate import DOP853, OdeSolution, solve_ivp
 
+from tumble._progress import advanced
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import IntegrationError, ParameterError, TumbleError
 from tumble.integrate import dop853
@@ -242,6 +242,8 @@ def _segment(
     """scipy's DOP853 from (t0, y) to t1, stopping at the first surface of ``pending`` (the
     first events) and recording the zeros of ``recorders`` (the last ones); IntegrationError
     on failure, on a non-finite state or on an arithmetic exception."""
+    from scipy.integrate import solve_ivp  # only here: a compiled run never loads scipy's ODEs
+
     with np.errstate(divide="raise", over="raise", invalid="raise"):
         try:
             res = solve_ivp(
@@ -275,6 +277,8 @@ def _steps_before(
     """The dense output (an ``OdeSolution``) of the steps scipy's DOP853 takes from (t0, y)
     towards t1 before ``f`` fails, retaken one by one (solve_ivp's steps: the same solver,
     the same calls; events only read them); None if it fails before its first step."""
+    from scipy.integrate import DOP853, OdeSolution
+
     ts, pieces = [t0], []
     try:
         solver = DOP853(f, t0, y, t1, rtol=rtol, atol=atol,
@@ -401,6 +405,7 @@ def _integrate_compiled_split(
         # small budget is kept exactly and a hopeless pace is seen early.
         chunk = FIRST_CHUNK
         while not run.advance(min(chunk, max(1, budget - steps - run.progress.n_steps))):
+            advanced(run.progress.t, t_end)
             spent = run.progress.n_steps + steps
             if spent >= budget:
                 raise IntegrationError(f"{what}: run.max_steps = {budget} steps spent at t = "
@@ -411,6 +416,7 @@ def _integrate_compiled_split(
             if refused:
                 raise IntegrationError(f"{what}: {refused}")
             chunk = min(2 * chunk, dop853.CHUNK_STEPS)
+        advanced(run.progress.t, t_end)
         res = run.solution()
         if res.status not in (0, dop853.STOPPED):
             compiled_dense(res, what)  # raises: the piece failed

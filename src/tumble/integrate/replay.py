@@ -26,6 +26,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from tumble._progress import advanced
 from tumble._typing import FloatArray
 from tumble.errors import IntegrationError, TumbleError
 from tumble.integrate import dop853
@@ -299,6 +300,7 @@ def stream(
                 chunk = min(2 * chunk, CHECKPOINT_STEPS)
                 piece = run.take()
                 progress = run.progress
+                advanced(progress.t, t_end)
                 spent = steps + progress.n_steps
                 if finished and progress.status not in (0, dop853.STOPPED):
                     fill(piece, False)

@@ -15,6 +15,7 @@ from typing import Any, Literal, TypeVar
 
 import numpy as np
 
+from tumble._progress import advanced
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import IntegrationError, ParameterError, TumbleError, warn
 from tumble.integrate import dop853
@@ -427,6 +428,7 @@ def _consume(
         try:
             done = integration.advance(min(dop853.CHUNK_STEPS, left))
             piece = integration.take()
+            advanced(integration.progress.t, run.t_end)
             _check_chunk(run, run.what(full), integration.progress, piece, done)
         except TumbleError as exc:
             if piece is None:  # what the failed chunk computed before it stopped

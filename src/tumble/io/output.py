@@ -18,7 +18,7 @@ import xarray as xr
 
 from tumble._version import __version__
 from tumble.analysis import RunResult, VerifyResult
-from tumble.analysis.claims.base import plain  # numpy → JSON values, shared with the claims
+from tumble.analysis.json_values import plain  # numpy → JSON values, shared with the claims
 from tumble.errors import IntegrationError
 from tumble.io.fileset import atomic_write
 from tumble.models.schema import si_column, si_columns

@@ -21,6 +21,8 @@ from typing import Any, TypeVar
 
 import numba
 
+from tumble._progress import notice
+
 __all__ = [
     "COMPILED_SOURCES",
     "ENTRY",
@@ -108,6 +110,8 @@ NOTICE_AFTER_S = 1.0
 def _to_terminal(message: str) -> None:
     """The default notifier: one line on stderr, and only when it is a terminal (a pipe or a
     log file gets nothing)."""
+    if notice(message):  # a progress display is shown: the notice is its stage
+        return
     stream = sys.stderr
     if stream is not None and stream.isatty():
         print(message, file=stream, flush=True)

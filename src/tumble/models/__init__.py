@@ -78,6 +78,13 @@ def names(*, scenario: bool = False) -> list[str]:
 
 def get_model(name: str) -> AnyModel:
     """The registered model called ``name``; :class:`ScenarioError` if there is none."""
+    if isinstance(name, str) and name in _MODELS:
+        return _MODELS[name]
+    if not _LOADED and isinstance(name, str) and name in CATALOGUE:
+        # Only this model's numerics are loaded: a run of one model does not pay for the others
+        # (the full registry, in its order, is built when it is listed).
+        model: AnyModel = importlib.import_module(f"tumble.models.{name}").MODEL
+        return model
     try:
         return _registry()[name]
     except (KeyError, TypeError):

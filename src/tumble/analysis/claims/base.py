@@ -9,7 +9,6 @@ no matplotlib; :mod:`tumble.plot.claims` draws it.
 from __future__ import annotations
 
 import functools
-import math
 import re
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -18,6 +17,7 @@ from typing import Any, Literal
 import numpy as np
 
 from tumble._typing import FloatArray
+from tumble.analysis.json_values import plain
 from tumble.errors import ParameterError
 
 __all__ = [
@@ -271,22 +271,3 @@ def verdict(holds: bool, qualified: bool) -> str:
     if not holds:
         return REFUTED
     return QUALIFIED if qualified else CONFIRMED
-
-
-def plain(x: Any) -> Any:
-    """numpy scalars and arrays (recursively) as plain JSON values; non-finite floats as
-    strings ("nan", "inf")."""
-    if isinstance(x, Mapping):
-        return {str(k): plain(v) for k, v in x.items()}
-    if isinstance(x, list | tuple):
-        return [plain(v) for v in x]
-    if isinstance(x, np.ndarray):
-        return plain(x.tolist())
-    if isinstance(x, np.bool_ | bool):
-        return bool(x)
-    if isinstance(x, np.integer):
-        return int(x)
-    if isinstance(x, np.floating | float):
-        v = float(x)
-        return v if math.isfinite(v) else str(v)
-    return x

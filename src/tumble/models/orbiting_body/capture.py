@@ -30,7 +30,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
 from tumble._typing import FloatArray
 from tumble.models.base import Crossing
@@ -76,6 +75,8 @@ def capture_band(p: Params) -> Crossing:
         L = float(np.linalg.norm(L_xi))
         omega = polhode_point(inertia, L, 0.5 * float(z[3]) * L * L)
         # The smallest rotation taking the body direction of L to L_ξ.
+        from scipy.spatial.transform import Rotation  # only at a hand-over
+
         turn, _ = Rotation.align_vectors([L_xi], [inertia * omega])
         return np.concatenate([omega, matrix_to_quat(turn.as_matrix())])
 

@@ -72,7 +72,7 @@ def _parameter_rows(command: Any) -> list[tuple[str, str, str, str]]:
         help_text = re.sub(r"\s*\[default: ([^\]]+)\]", "", help_text)
         m = re.search(r"\[default: ([^\]]+)\]", p.help or "")
         if m:
-            default = m.group(1)
+            default = f"`{m.group(1)}`"
         rows.append((names, kind, default, help_text))
     return rows
 

@@ -58,6 +58,16 @@ def test_an_output_path_that_is_a_file_fails_before_the_run(tmp_path):
     assert target.read_text() == "keep me"
 
 
+def test_a_mount_point_is_refused_before_the_run(tmp_path):
+    # A set is replaced by renaming the directory, which a mount point refuses (EBUSY): said
+    # before the computation, in one line, instead of an internal error after it.
+    mount = next((p for p in ("/proc", "/sys", "/dev") if os.path.ismount(p)), None)
+    assert mount is not None, "no mount point to try on this machine"
+    res = _run(SCENARIO, "-o", mount)
+    assert res.exit_code == 2
+    assert "is a mount point" in res.output and len(res.output.strip().splitlines()) == 1
+
+
 def test_a_second_run_into_a_held_directory_is_refused(tmp_path):
     out = tmp_path / "out"
     out.mkdir()

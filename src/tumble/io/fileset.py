@@ -125,6 +125,11 @@ def _refuse_dangerous(out: Path) -> None:
             f"-o {shorten(str(out))}: will not replace the current, home or a parent "
             "directory; name a directory of its own (e.g. out/run1)"
         )
+    if os.path.ismount(target):  # replaced by a rename, which a mount point refuses (EBUSY)
+        raise OutputError(
+            f"-o {shorten(str(out))}: is a mount point, which tumble cannot replace as one set; "
+            f"name a directory inside it (e.g. {shorten(str(out))}/run1)"
+        )
 
 
 _LEGACY = {"summary.json": "run", "verify.json": "verify", "claims.json": "reproduce"}

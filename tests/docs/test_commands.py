@@ -2,7 +2,8 @@
 written, from a directory holding the repository's ``examples/`` (as on a fresh clone, once
 ``source .venv/bin/activate`` has put ``tumble`` on the PATH), and ends with exit 0.
 
-A command is taken from a shell block or an inline code span when it is complete: a
+A command is taken from a shell block, an indented block or an inline code span when it is
+complete: a
 sub-command and arguments with no placeholder (``tumble run SCENARIO -o DIR`` is a pattern,
 not a command) and every scenario it names present in ``examples/``.
 """
@@ -25,9 +26,13 @@ PAGES = [
     *sorted((ROOT / "docs" / "tutorials").glob("*.md")),
 ]
 TUMBLE = Path(sys.executable).with_name("tumble")
-# Verification of a year of the Envisat-like object: three full runs at ε, ε/2, ε/4 (~2 min).
-SLOW = {"tumble verify examples/ob_envisat_like.toml"}
-_CODE = re.compile(r"`(tumble [^`\n]+)`|^(?:\$ )?(tumble [^\n#`]+)", re.M)
+# Verification of a year of the Envisat-like object: three full runs at ε, ε/2, ε/4 (~2 min);
+# the Monte Carlo of 200 objects over a year on Dask (~2 min).
+SLOW = {
+    "tumble verify examples/ob_envisat_like.toml",
+    "tumble sweep examples/sweeps/ob_envisat_monte_carlo.toml -o out/envisat_mc",
+}
+_CODE = re.compile(r"`(tumble [^`\n]+)`|^(?: {4}|\$ )?(tumble [^\n#`]+)", re.M)
 
 
 def _complete(command: str) -> bool:

@@ -52,7 +52,8 @@ def test_a_run_on_a_terminal_shows_its_stages(monkeypatch, tmp_path, heard):
         assert fractions, method  # the integration reported where it had got to
         assert fractions == sorted(fractions) and 0.0 <= fractions[0]
         assert fractions[-1] == pytest.approx(1.0)  # it reached the horizon
-    assert "averaged" in result.stderr  # drawn on the terminal
+    # Drawn on the terminal (at least its first frame: how many more depends on the speed).
+    assert any(stage in result.stderr for stage in {*stages, "reading the scenario"})
 
 
 @pytest.mark.parametrize("quiet", [True, False])

@@ -1,0 +1,134 @@
+"""A newcomer's first hour, timed: how long each step of the README takes on this machine and
+the longest stretch in which it printed nothing.
+
+    .venv/bin/python benchmarks/first_hour.py CLONE [-o benchmarks/first_hour.json]
+
+CLONE is a fresh clone of the repository (no ``.venv``, no ``out``): the script runs
+``make reproduce`` then ``make test`` in it, each on a pseudo-terminal as a user at a terminal
+sees them (progress displays on), and times every chunk of output as it arrives. Then, with
+the clone's environment now installed and its kernels compiled, it times a warm
+``tumble run examples/ob_envisat_like.toml`` (best and median of 5, each a fresh process)
+and ``python -c "import tumble"`` (best of 5). About 10 minutes on 2 cores. Prints the
+figures and writes them as JSON; the exit status is 1 if a target is missed (a silence
+longer than 5 s, a warm run over 2 s, an import over 0.3 s).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import platform
+import pty
+import select
+import statistics
+import subprocess
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+SILENCE_S = 5.0
+WARM_RUN_S = 2.0
+IMPORT_S = 0.3
+
+
+def on_terminal(command: list[str], cwd: Path) -> dict[str, Any]:
+    """Run ``command`` on a pseudo-terminal; its wall time, exit status and the longest gap
+    between two chunks of its output (from its start to its end)."""
+    start = time.perf_counter()
+    leader, follower = pty.openpty()
+    env = {**os.environ, "COLUMNS": "100", "LINES": "40", "TERM": "xterm-256color"}
+    proc = subprocess.Popen(command, cwd=cwd, stdin=follower, stdout=follower, stderr=follower,
+                            env=env, close_fds=True)  # fmt: skip
+    os.close(follower)
+    last, longest, at, size = start, 0.0, 0.0, 0
+    while True:
+        ready, _, _ = select.select([leader], [], [], 1.0)
+        if ready:
+            try:
+                chunk = os.read(leader, 65536)
+            except OSError:  # the terminal closed with the process
+                break
+            if not chunk:
+                break
+            now = time.perf_counter()
+            if now - last > longest:
+                longest, at = now - last, last - start
+            last, size = now, size + len(chunk)
+        elif proc.poll() is not None:
+            break
+    proc.wait()
+    end = time.perf_counter()
+    if end - last > longest:
+        longest, at = end - last, last - start
+    os.close(leader)
+    return {
+        "command": " ".join(command),
+        "exit": proc.returncode,
+        "wall_s": round(end - start, 2),
+        "longest_silence_s": round(longest, 2),
+        "silence_starts_at_s": round(at, 2),
+        "output_bytes": size,
+    }
+
+
+def timed(command: list[str], cwd: Path, times: int) -> list[float]:
+    """Wall times of ``command`` run ``times`` times, each a fresh process (output discarded)."""
+    walls = []
+    for _ in range(times):
+        start = time.perf_counter()
+        subprocess.run(command, cwd=cwd, check=True, capture_output=True)
+        walls.append(time.perf_counter() - start)
+    return walls
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("clone", type=Path, help="a fresh clone of the repository")
+    ap.add_argument("-o", "--output", type=Path, default=Path("benchmarks/first_hour.json"))
+    args = ap.parse_args()
+    clone = args.clone.resolve()
+    if (clone / ".venv").exists():
+        print(f"{clone} has a .venv already: give a fresh clone", file=sys.stderr)
+        return 2
+    steps = []
+    for target in ("reproduce", "test"):
+        step = on_terminal(["make", target], clone)
+        print(json.dumps(step))
+        steps.append(step)
+    bin_dir = clone / ".venv" / "bin"
+    scenario = "examples/ob_envisat_like.toml"
+    run = [str(bin_dir / "tumble"), "run", scenario, "-o", "out/first_hour", "--overwrite"]
+    timed(run, clone, 1)  # the scenario's own first run (its field model) is not warm
+    runs = timed(run, clone, 5)
+    imports = timed([str(bin_dir / "python"), "-c", "import tumble"], clone, 5)
+    result = {
+        "machine": {
+            "cores": os.cpu_count(),
+            "python": platform.python_version(),
+            "platform": platform.platform(),
+        },
+        "steps": steps,
+        "warm_run_s": {
+            "command": " ".join(run[1:]),
+            "best": round(min(runs), 2),
+            "median": round(statistics.median(runs), 2),
+        },
+        "import_s": {"best": round(min(imports), 3)},
+        "targets": {"longest_silence_s": SILENCE_S, "warm_run_s": WARM_RUN_S, "import_s": IMPORT_S},
+    }
+    met = {
+        "silence": all(s["longest_silence_s"] <= SILENCE_S for s in steps),
+        "steps succeed": all(s["exit"] == 0 for s in steps),
+        "warm run": result["warm_run_s"]["median"] <= WARM_RUN_S,
+        "import": result["import_s"]["best"] <= IMPORT_S,
+    }
+    result["met"] = met
+    args.output.write_text(json.dumps(result, indent=1, ensure_ascii=False) + "\n")
+    print(json.dumps(result, indent=1, ensure_ascii=False))
+    return 0 if all(met.values()) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

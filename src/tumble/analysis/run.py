@@ -21,7 +21,7 @@ from tumble.models import AnyModel
 from tumble.models.base import AveragingOptions, Column, Json, Report, ValidityIssue
 from tumble.models.schema import Scaling
 
-__all__ = ["RunRequest", "RunResult", "run", "si_dataset", "si_time", "to_dataset"]
+__all__ = ["RunRequest", "RunResult", "on_tau", "run", "si_dataset", "si_time", "to_dataset"]
 
 
 @dataclass(frozen=True)
@@ -108,7 +108,7 @@ def _columns_dataset(
     (a declared column the run did not produce, such as the mean variables of a run of order
     1, is left out)."""
     data_vars = {
-        col.name: _on_tau(
+        col.name: on_tau(
             values[col.name],
             {
                 "units": col.units,
@@ -123,10 +123,10 @@ def _columns_dataset(
     # The coordinate is "tau" for every model; its attrs carry the paper's own time name.
     symbol = {"tau": "τ"}.get(time_name, time_name)
     time_attrs = {"units": time_units, "long_name": f"time {symbol}", "name": time_name}
-    return xr.Dataset(data_vars, coords={"tau": _on_tau(tau, time_attrs)})
+    return xr.Dataset(data_vars, coords={"tau": on_tau(tau, time_attrs)})
 
 
-def _on_tau(values: ArrayLike, attrs: dict[str, Any]) -> xr.Variable:
+def on_tau(values: ArrayLike, attrs: dict[str, Any]) -> xr.Variable:
     """A column on the time axis, as an xarray Variable of a float array made here. (Built
     directly: xarray's general constructor asks whether the data is a dask array, which
     imports dask.array, 0.4 s of a run that never uses it.)"""
@@ -156,11 +156,11 @@ def si_dataset(ds: xr.Dataset, scaling: Scaling) -> xr.Dataset:
     for name, da in ds.data_vars.items():
         conv = scaling.si(str(name))
         if conv is None:
-            data[name] = _on_tau(da.values, dict(da.attrs))
+            data[name] = on_tau(da.values, dict(da.attrs))
         else:
             factor, si_unit, _ = conv
-            data[name] = _on_tau(da.values * factor, {**da.attrs, "units": si_unit})
-    coord = _on_tau(t, {"units": unit, "long_name": "time t", "name": "t"})
+            data[name] = on_tau(da.values * factor, {**da.attrs, "units": si_unit})
+    coord = on_tau(t, {"units": unit, "long_name": "time t", "name": "t"})
     return xr.Dataset(data, coords={"tau": coord}, attrs=ds.attrs)
 
 

@@ -19,6 +19,7 @@ import xarray as xr
 from tumble._version import __version__
 from tumble.analysis import RunResult, VerifyResult
 from tumble.analysis.json_values import plain  # numpy → JSON values, shared with the claims
+from tumble.analysis.run import on_tau
 from tumble.errors import IntegrationError
 from tumble.io.fileset import atomic_write
 from tumble.models.schema import si_column, si_columns
@@ -388,15 +389,13 @@ def _with_si(ds: xr.Dataset, scaling: Any, si: dict[str, Any]) -> xr.Dataset:
     """``ds`` with the SI columns of a physical run beside the normalised ones: ``t_s`` [s],
     ``t_days`` [d] and each column under its SI names, with its unit (:func:`si_column`)."""
     extra = {
-        "t_s": xr.DataArray(si["t_s"], dims=("tau",), attrs={"units": "s", "long_name": "time t"}),
-        "t_days": xr.DataArray(si["t_days"], dims=("tau",),
-                               attrs={"units": "d", "long_name": "time t in days"}),
-    }  # fmt: skip
+        "t_s": on_tau(si["t_s"], {"units": "s", "long_name": "time t"}),
+        "t_days": on_tau(si["t_days"], {"units": "d", "long_name": "time t in days"}),
+    }
     for name in ds.data_vars:
         for si_name, _factor, unit in si_column(scaling, str(name), _units(ds, name)):
             if si_name not in ds:
-                attrs = {**ds[name].attrs, "units": unit}
-                extra[si_name] = xr.DataArray(si[si_name], dims=("tau",), attrs=attrs)
+                extra[si_name] = on_tau(si[si_name], {**ds[name].attrs, "units": unit})
     return ds.assign(extra)
 
 

@@ -28,7 +28,6 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
 from tumble._typing import BoolArray, FloatArray
 from tumble.averaging import nearest_resonances, triaxial_kernel
@@ -351,6 +350,8 @@ def _spin_free(p: Params) -> bool:
     I1, I2, I3 = p.sorted_inertia
     if not I1 < I3 or I1 < I2 < I3:
         return False
+    from scipy.spatial.transform import Rotation  # only for a symmetric body's torque
+
     e = np.zeros(3)
     e[int(np.argmin(inertia) if I2 == I3 else np.argmax(inertia))] = 1.0  # the unequal axis
     rng = np.random.default_rng(1979)

@@ -29,17 +29,21 @@ EXAMPLES := $(wildcard examples/*.toml)
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
 
+# pip says nothing while it installs the wheels it fetched (tens of seconds): tools/heartbeat.py
+# says that it is still working, on a terminal.
+PIP := $(PYTHON) tools/heartbeat.py "pip is installing" -- $(BIN)/python -m pip
+
 $(TEST_STAMP): pyproject.toml | $(BIN)/python
-	$(BIN)/python -m pip install -e ".[test]"
+	$(PIP) install -e ".[test]"
 	@echo "tumble is installed in $(VENV): 'source $(BIN)/activate' puts it on your PATH"
 	touch $@
 
 $(DEV_STAMP): pyproject.toml $(TEST_STAMP)
-	$(BIN)/python -m pip install -e ".[test,dev]"
+	$(PIP) install -e ".[test,dev]"
 	touch $@
 
 $(DOCS_STAMP): pyproject.toml $(TEST_STAMP)
-	$(BIN)/python -m pip install -e ".[test,docs]"
+	$(PIP) install -e ".[test,docs]"
 	touch $@
 
 reproduce: $(TEST_STAMP)
@@ -57,12 +61,12 @@ test: $(TEST_STAMP)
 
 bench: $(TEST_STAMP)
 	@command -v chromium >/dev/null || { echo "make bench: the report test needs Debian's chromium (apt-get install chromium)"; exit 1; }
-	$(BIN)/python -m pip install -e ".[test,bench]"
+	$(PIP) install -e ".[test,bench]"
 	$(BIN)/python -m pytest -m slow -q
 
 lint: $(DEV_STAMP)
-	$(BIN)/ruff check src tests benchmarks examples
-	$(BIN)/ruff format --check src tests benchmarks examples
+	$(BIN)/ruff check src tests benchmarks examples tools docs/_ext docs/check_site.py
+	$(BIN)/ruff format --check src tests benchmarks examples tools docs/_ext docs/check_site.py
 	$(BIN)/mypy src examples/models
 	$(BIN)/lint-imports
 

@@ -115,6 +115,9 @@ def test_unperturbed_scenario_verifies_its_closed_form():
     assert max(float(e[0]) for e in result.errors.values()) < 1e-6
 
 
+FULL_RUNS_BEYOND_THE_BUDGET = {"ob_small_box.toml"}
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize(
     "example",
@@ -123,9 +126,17 @@ def test_unperturbed_scenario_verifies_its_closed_form():
 def test_verify_works_on_every_example(example):
     """`tumble verify` gives a verdict on every example (the verdicts are listed in
     the README); none may crash."""
+    from tumble.errors import IntegrationError
     from tumble.io import load_scenario as load
 
-    result = verify(load(EXAMPLES / example).request)
+    try:
+        result = verify(load(EXAMPLES / example).request)
+    except IntegrationError as exc:
+        # ob_small_box spins at 10 rpm for a year: its full runs (a year and more in steps of
+        # 0.5 s, 10⁸ of them) are refused by their pace, early and in one line.
+        assert example in FULL_RUNS_BEYOND_THE_BUDGET, exc
+        assert "run.max_steps" in str(exc)
+        return
     assert result.status in ("first-order", "degraded", "invalid", "exact")
     # nm_unperturbed (ε = 0) verifies its closed form instead of an averaging.
     assert (result.status == "exact") == (example == "nm_unperturbed.toml"), result.verdict

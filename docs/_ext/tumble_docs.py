@@ -38,6 +38,8 @@ def _type_name(annotation: Any) -> str:
         return _type_name(args[0])
     if origin is list:
         return _type_name(args[0]) + ", repeatable"
+    if origin is tuple and args and all(a is float for a in args):
+        return f"{len(args)} numbers"
     if origin is typing.Literal:
         return "one of: " + ", ".join(f"`{a}`" for a in args)
     return _TYPE_NAMES.get(annotation, getattr(annotation, "__name__", str(annotation)))
@@ -68,13 +70,19 @@ def _parameter_rows(command: Any) -> list[tuple[str, str, str, str]]:
             default = "—"
         else:
             default = f"`{p.default}`"
-        help_text = _prose(_cell(p.help or ""))
+        raw = _unescaped(p.help or "")
+        help_text = _prose(_cell(raw))
         help_text = re.sub(r"\s*\[default: ([^\]]+)\]", "", help_text)
-        m = re.search(r"\[default: ([^\]]+)\]", p.help or "")
+        m = re.search(r"\[default: ([^\]]+)\]", raw)
         if m:
             default = f"`{m.group(1)}`"
         rows.append((names, kind, default, help_text))
     return rows
+
+
+def _unescaped(text: str) -> str:
+    """A help text as written: the command line escapes its brackets from rich's markup."""
+    return text.replace("\\[", "[")
 
 
 def _prose(text: str) -> str:
@@ -88,6 +96,7 @@ class CliReference(SphinxDirective):
     Markdown, so the directive writes Markdown for MyST to parse)."""
 
     def run(self) -> list[nodes.Node]:
+        self.env.note_dependency(tumble.cli.__file__)  # rebuilt when the commands change
         group = typer.main.get_command(tumble.cli.app)
         lines: list[str] = []
         for name, command in group.commands.items():
@@ -99,7 +108,7 @@ class CliReference(SphinxDirective):
                 + [p.name.upper() + (" …" if p.nargs == -1 else "") for p in positional]
             )
             lines += [f"## `tumble {name}`", "", "```console", f"$ {usage}", "```", ""]
-            lines += [*_prose(command.help or "").splitlines(), ""]
+            lines += [*_prose(_unescaped(command.help or "")).splitlines(), ""]
             rows = _parameter_rows(command)
             if rows:
                 lines += [

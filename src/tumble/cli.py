@@ -13,9 +13,11 @@ from __future__ import annotations
 
 import collections
 import contextlib
+import inspect
 import os
 import re
 import sys
+import typing
 import warnings
 from collections.abc import Callable, Iterator
 from pathlib import Path
@@ -107,7 +109,7 @@ def _guarded(work: Callable[[], Any], interrupted: str = "interrupted") -> Any:
         raise typer.Exit(1) from None
 
 
-ScenarioFile = Annotated[Path, typer.Argument(help="TOML scenario file")]
+ScenarioFile = Annotated[Path, typer.Argument(help="TOML scenario file", metavar="SCENARIO")]
 
 Overwrite = Annotated[
     bool,
@@ -121,6 +123,7 @@ AllowModule = Annotated[
     list[str] | None,
     typer.Option(
         "--allow-module",
+        metavar="MODULE",
         help="let the scenario name functions of this installed module (repeatable); by "
         "default a torque function is loaded only from a Python file beside the scenario",
     ),
@@ -797,3 +800,37 @@ if __name__ == "__main__":  # pragma: no cover
     from tumble._entry import main
 
     main()
+
+
+def _one_line_paragraphs(text: str) -> str:
+    """A docstring with each paragraph on one line: the terminal wraps it at its own width
+    (kept as written, its lines would be wrapped again where the terminal is narrower)."""
+    paragraphs = inspect.cleandoc(text).split("\n\n")
+    return "\n\n".join(" ".join(p.split()) for p in paragraphs)
+
+
+def _polish_help() -> None:
+    """Every command's help in paragraphs the terminal wraps, read as written (a unit such as
+    ``[rad]`` is not rich markup, which would drop it), and no ``<bool>`` beside a flag (a flag
+    takes no value)."""
+    for info in app.registered_commands:
+        if info.callback is None:
+            continue
+        if info.callback.__doc__:
+            info.help = escape(_one_line_paragraphs(info.callback.__doc__))
+        # The annotations evaluated once and kept (each evaluation of a written one makes new
+        # OptionInfo objects), so that typer reads the ones changed here.
+        hints = typing.get_type_hints(info.callback, include_extras=True)
+        info.callback.__annotations__ = hints
+        for hint in hints.values():
+            if typing.get_origin(hint) is not Annotated:
+                continue
+            kind, *metadata = typing.get_args(hint)
+            for meta in metadata:
+                if isinstance(meta, typer.models.ParameterInfo) and meta.help:
+                    meta.help = escape(meta.help)
+                if kind is bool and isinstance(meta, typer.models.OptionInfo) and not meta.metavar:
+                    meta.metavar = " "
+
+
+_polish_help()

@@ -8,8 +8,9 @@ CLONE is a fresh clone of the repository (no ``.venv``, no ``out``): the script 
 sees them (progress displays on), and times every chunk of output as it arrives. Then, with
 the clone's environment now installed and its kernels compiled, it times a warm
 ``tumble run examples/ob_envisat_like.toml`` (best and median of 5, each a fresh process)
-and ``python -c "import tumble"`` (best of 5). About 10 minutes on 2 cores. Prints the
-figures and writes them as JSON; the exit status is 1 if a target is missed (a silence
+beside the floor under it (``benchmarks/warm_floor.py``: the libraries it uses doing the same
+kinds of work with no tumble code) and ``python -c "import tumble"`` (best of 5). About 10
+minutes on 2 cores. Prints the figures and writes them as JSON; the exit status is 1 if a target is missed (a silence
 longer than 5 s, a warm run over 2 s, an import over 0.3 s).
 """
 
@@ -102,6 +103,9 @@ def main() -> int:
     run = [str(bin_dir / "tumble"), "run", scenario, "-o", "out/first_hour", "--overwrite"]
     timed(run, clone, 1)  # the scenario's own first run (its field model) is not warm
     runs = timed(run, clone, 5)
+    floor_script = [str(bin_dir / "python"), str(clone / "benchmarks" / "warm_floor.py")]
+    timed(floor_script, clone, 1)  # its numba function into the cache
+    floor = timed(floor_script, clone, 5)
     imports = timed([str(bin_dir / "python"), "-c", "import tumble"], clone, 5)
     result = {
         "machine": {
@@ -115,6 +119,9 @@ def main() -> int:
             "best": round(min(runs), 2),
             "median": round(statistics.median(runs), 2),
         },
+        "warm_floor_s": {"what": "benchmarks/warm_floor.py: the libraries alone",
+                         "best": round(min(floor), 2),
+                         "median": round(statistics.median(floor), 2)},
         "import_s": {"best": round(min(imports), 3)},
         "targets": {"longest_silence_s": SILENCE_S, "warm_run_s": WARM_RUN_S, "import_s": IMPORT_S},
     }

@@ -13,6 +13,7 @@ import sys
 import time
 from pathlib import Path
 
+import pytest
 from files import EXAMPLES
 
 TUMBLE = str(Path(sys.executable).with_name("tumble"))
@@ -58,6 +59,17 @@ def test_sigint_during_a_long_run_exits_cleanly(tmp_path):
 def test_sigterm_is_answered_as_an_interrupt(tmp_path):
     # A termination (a job scheduler's, a container's stop) ends the run as Ctrl-C does: one
     # line, exit 130, no temporaries, no empty directory.
+    _sigterm_trials(tmp_path, (0.3, 3.0))  # while it starts up, while it integrates
+
+
+@pytest.mark.slow
+def test_twenty_sigterms_at_random_moments(tmp_path):
+    # Seeded moments from the start-up to the integration (the run takes 4-6 s warm).
+    rng = random.Random(36)
+    _sigterm_trials(tmp_path, tuple(rng.uniform(0.05, 4.0) for _ in range(20)))
+
+
+def _sigterm_trials(tmp_path, moments):
     text = (
         (EXAMPLES / "tb_gravity_gradient.toml").read_text().replace("t_end = 200.0", "t_end = 2e5")
     )
@@ -67,7 +79,7 @@ def test_sigterm_is_answered_as_an_interrupt(tmp_path):
     warm.write_text(text.replace("t_end = 2e5", "t_end = 1.0"))
     subprocess.run([TUMBLE, "run", str(warm), "-o", str(tmp_path / "warm")], check=True,
                    capture_output=True)  # fmt: skip
-    for trial, moment in enumerate((0.3, 3.0)):  # while it starts up, while it integrates
+    for trial, moment in enumerate(moments):
         out = tmp_path / f"out{trial}"
         command = [TUMBLE, "run", str(scenario), "-o", str(out)]
         proc = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)

@@ -10,8 +10,8 @@ the clone's environment now installed and its kernels compiled, it times a warm
 ``tumble run examples/ob_envisat_like.toml`` (best and median of 5, each a fresh process)
 beside the floor under it (``benchmarks/warm_floor.py``: the libraries it uses doing the same
 kinds of work with no tumble code) and ``python -c "import tumble"`` (best of 5). About 10
-minutes on 2 cores. Prints the figures and writes them as JSON; the exit status is 1 if a target is missed (a silence
-longer than 5 s, a warm run over 2 s, an import over 0.3 s).
+minutes on 2 cores. Prints the figures and writes them as JSON; the exit status is 1 if a
+target is missed (a silence longer than 5 s, a warm run over 2 s, an import over 0.3 s).
 """
 
 from __future__ import annotations

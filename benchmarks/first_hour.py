@@ -119,9 +119,11 @@ def main() -> int:
             "best": round(min(runs), 2),
             "median": round(statistics.median(runs), 2),
         },
-        "warm_floor_s": {"what": "benchmarks/warm_floor.py: the libraries alone",
-                         "best": round(min(floor), 2),
-                         "median": round(statistics.median(floor), 2)},
+        "warm_floor_s": {
+            "what": "benchmarks/warm_floor.py: the libraries alone",
+            "best": round(min(floor), 2),
+            "median": round(statistics.median(floor), 2),
+        },
         "import_s": {"best": round(min(imports), 3)},
         "targets": {"longest_silence_s": SILENCE_S, "warm_run_s": WARM_RUN_S, "import_s": IMPORT_S},
     }

@@ -133,13 +133,21 @@ class CliReference(SphinxDirective):
 _BREAKABLE = re.compile(r"\S*\d\S*[-−‐]\S*|\S*[-−‐]\S*\d\S*")
 
 
+SHORT_CELL = 14
+"""A table cell this short (characters) is never wrapped: a number and its unit stay together."""
+
+
 class _NumbersDoNotWrap(SphinxTransform):
-    """Wrap every number-like token with a hyphen in a table cell in ``<span class="nowrap">``."""
+    """Keep numbers in table cells whole: a short cell does not wrap at all, and in a longer
+    one every number-like token with a hyphen is set in ``<span class="nowrap">``."""
 
     default_priority = 700
 
     def apply(self, **kwargs: Any) -> None:
         for entry in list(self.document.findall(nodes.entry)):
+            if len(entry.astext()) <= SHORT_CELL:  # a number with its unit: "1.02 %", "15.7×"
+                entry["classes"].append("nowrap")
+                continue
             for text in list(entry.findall(nodes.Text)):
                 parent = text.parent
                 if isinstance(parent, (nodes.literal, nodes.math, nodes.inline)):

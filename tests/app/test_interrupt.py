@@ -59,17 +59,22 @@ def test_sigint_during_a_long_run_exits_cleanly(tmp_path):
 def test_sigterm_is_answered_as_an_interrupt(tmp_path):
     # A termination (a job scheduler's, a container's stop) ends the run as Ctrl-C does: one
     # line, exit 130, no temporaries, no empty directory.
-    _sigterm_trials(tmp_path, (0.3, 3.0))  # while it starts up, while it integrates
+    assert _sigterm_trials(tmp_path, (0.3, 3.0)) == [130, 130]  # starting up; integrating
 
 
 @pytest.mark.slow
 def test_twenty_sigterms_at_random_moments(tmp_path):
     # Seeded moments from the start-up to the integration (the run takes 4-6 s warm).
     rng = random.Random(36)
-    _sigterm_trials(tmp_path, tuple(rng.uniform(0.05, 4.0) for _ in range(20)))
+    codes = _sigterm_trials(tmp_path, tuple(rng.uniform(0.05, 4.0) for _ in range(20)))
+    assert codes.count(130) >= 15, codes  # seeded: all but the one at 0.05 s
 
 
 def _sigterm_trials(tmp_path, moments):
+    """Exit codes of runs sent SIGTERM ``moments`` [s] after their start: each says
+    "interrupted" and exits 130, or, terminated before Python has loaded tumble's handler (the
+    first tens of milliseconds), dies of the signal (the shell's 143) having printed and made
+    nothing; either way no temporaries and no directory are left."""
     text = (
         (EXAMPLES / "tb_gravity_gradient.toml").read_text().replace("t_end = 200.0", "t_end = 2e5")
     )
@@ -79,6 +84,7 @@ def _sigterm_trials(tmp_path, moments):
     warm.write_text(text.replace("t_end = 2e5", "t_end = 1.0"))
     subprocess.run([TUMBLE, "run", str(warm), "-o", str(tmp_path / "warm")], check=True,
                    capture_output=True)  # fmt: skip
+    codes: list[int] = []
     for trial, moment in enumerate(moments):
         out = tmp_path / f"out{trial}"
         command = [TUMBLE, "run", str(scenario), "-o", str(out)]
@@ -86,8 +92,11 @@ def _sigterm_trials(tmp_path, moments):
         time.sleep(moment)
         proc.send_signal(signal.SIGTERM)
         _, stderr = proc.communicate(timeout=30)
-        assert (proc.returncode, stderr.strip()) == (130, "interrupted"), (moment, stderr)
+        outcome = (proc.returncode, stderr.strip())
+        assert outcome in {(130, "interrupted"), (-signal.SIGTERM, "")}, (moment, stderr)
         assert not out.exists() and not list(tmp_path.glob(f".{out.name}.tumble-*"))
+        codes.append(proc.returncode)
+    return codes
 
 
 def test_sigint_during_a_cold_compile_exits_cleanly(tmp_path):

@@ -27,7 +27,7 @@ EXAMPLES := $(wildcard examples/*.toml)
 .DELETE_ON_ERROR:
 
 $(BIN)/python:
-	$(PYTHON) -m venv $(VENV)
+	$(PYTHON) tools/heartbeat.py "creating $(VENV)" -- $(PYTHON) -m venv $(VENV)
 
 # pip says nothing while it installs the wheels it fetched (tens of seconds): tools/heartbeat.py
 # says that it is still working, on a terminal.

@@ -1,7 +1,7 @@
 """A body in Earth orbit: orbits with J2 drift, the geomagnetic field (a dipole or the IGRF), the
-magnetic tensors of
-conducting shapes, and the eddy-current and gravity-gradient torques along the orbit and
-averaged over it.
+magnetic tensors of conducting shapes, the eddy-current and gravity-gradient torques along the
+orbit and averaged over it, and sunlight: the Sun's direction, the Earth's shadow, a body's
+surface as facets and the force and moment of the light on them.
 
 Numerics in SI units; the orbit and the field are evaluated in compiled code
 (:mod:`tumble.kernels.space`). From tumble it imports the torques' base, the kernels and its
@@ -15,6 +15,7 @@ from tumble.space.conductors import (
     thin_spherical_shell,
     torsion_constant_rectangle,
 )
+from tumble.space.facets import Facets, Optics, box, box_wing, cylinder, from_mesh, plate
 from tumble.space.geomagnetic import (
     DIPOLE_EPOCHS,
     EARTH_ROTATION,
@@ -32,6 +33,8 @@ from tumble.space.orbit import (
     Orbit,
     sun_synchronous_inclination,
 )
+from tumble.space.radiation import pressure, radiation_force_and_moment
+from tumble.space.sun import shadow, sun_direction
 from tumble.space.torques import (
     FieldMomentsTorque,
     GravityMomentsTorque,
@@ -48,17 +51,28 @@ __all__ = [
     "IGRF13_DIPOLE",
     "REFERENCE_RADIUS",
     "Dipole",
+    "Facets",
     "FieldMomentsTorque",
     "GravityMomentsTorque",
     "Igrf",
+    "Optics",
     "Orbit",
     "OrbitEddyTorque",
     "OrbitGravityTorque",
+    "box",
+    "box_wing",
+    "cylinder",
     "field_moments",
     "flat_plate",
+    "from_mesh",
     "gravity_factor",
     "greenwich_sidereal_angle",
+    "plate",
+    "pressure",
+    "radiation_force_and_moment",
+    "shadow",
     "solid_sphere",
+    "sun_direction",
     "sun_synchronous_inclination",
     "thin_cylindrical_shell",
     "thin_spherical_shell",

@@ -24,7 +24,8 @@ class _Heartbeat:
     def __init__(self, config: pytest.Config) -> None:
         self.config = config
         self.running: dict[str, float] = {}
-        self.last = time.monotonic()
+        self.begun = self.last = time.monotonic()
+        self.collecting = True  # until the first test starts
         self.lock = threading.Lock()
         self.done = threading.Event()
         threading.Thread(target=self._beat, name="test heartbeat", daemon=True).start()
@@ -32,6 +33,7 @@ class _Heartbeat:
     def started(self, nodeid: str) -> None:
         with self.lock:
             self.running[nodeid] = time.monotonic()
+            self.collecting = False
 
     def finished(self, nodeid: str) -> None:
         with self.lock:
@@ -42,13 +44,18 @@ class _Heartbeat:
         while not self.done.wait(0.5):
             with self.lock:
                 now = time.monotonic()
-                if now - self.last < HEARTBEAT_S or not self.running:
+                if now - self.last < HEARTBEAT_S or not (self.running or self.collecting):
                     continue
-                nodeid, since = min(self.running.items(), key=lambda item: item[1])
+                if self.running:
+                    nodeid, since = min(self.running.items(), key=lambda item: item[1])
+                    line = f"  … {nodeid} running for {now - since:.0f} s"
+                else:
+                    waited = now - self.begun
+                    line = f"  … starting the workers and collecting the tests ({waited:.0f} s)"
                 self.last = now
             reporter = self.config.pluginmanager.get_plugin("terminalreporter")
             if reporter is not None:
-                reporter.write_line(f"  … {nodeid} running for {now - since:.0f} s")
+                reporter.write_line(line)
 
 
 def pytest_configure(config: pytest.Config) -> None:

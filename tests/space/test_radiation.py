@@ -60,6 +60,8 @@ def test_a_tessellated_plate_is_its_closed_form_at_its_centre_of_pressure(
     turn = trimesh.geometry.align_vectors([0.0, 0.0, 1.0], n)
     top.apply_transform(turn)
     top.apply_translation(offset)
+    n = top.face_normals.mean(axis=0)  # the plate as meshed (trimesh snaps tiny turns)
+    n /= np.linalg.norm(n)
     optic = Optics(o[0], o[1], o[2])
     facets = from_mesh(top, optic)
     assert len(facets) >= 100

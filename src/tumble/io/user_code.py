@@ -40,7 +40,8 @@ __all__ = ["UserFunction", "check_defines", "user_function"]
 
 
 def _module_from_file(path: Path, where: str) -> ModuleType:
-    """The module of ``path`` under its unique name (loaded once per path and contents)."""
+    """The module of ``path`` under its unique name (loaded once per path and contents, from
+    exactly the contents read)."""
     data = path.read_bytes()
     digest = hashlib.sha256(str(path).encode() + b"\0" + data).hexdigest()[:16]
     name = f"tumble_user_{digest}_{path.stem.replace('-', '_')}"
@@ -55,7 +56,10 @@ def _module_from_file(path: Path, where: str) -> ModuleType:
     # The file's own imports of its neighbours (``import helpers``) resolve in its folder.
     sys.path.insert(0, str(path.parent))
     try:
-        found.loader.exec_module(module)
+        # The bytes read above, compiled here: the loader would take a cached .pyc instead when
+        # the file was rewritten within the same second at the same size (an edited value), and
+        # run the old code; nothing is written into the user's folder either.
+        exec(compile(data, str(path), "exec"), module.__dict__)
     except BaseException as exc:
         del sys.modules[name]
         if not isinstance(exc, Exception):

@@ -34,7 +34,7 @@ from tumble.space.orbit import (
     sun_synchronous_inclination,
 )
 from tumble.space.radiation import pressure, radiation_force_and_moment
-from tumble.space.sun import shadow, sun_direction
+from tumble.space.sun import eclipse_fraction, shadow, sun_direction
 from tumble.space.torques import (
     FieldMomentsTorque,
     GravityMomentsTorque,
@@ -62,6 +62,7 @@ __all__ = [
     "box",
     "box_wing",
     "cylinder",
+    "eclipse_fraction",
     "field_moments",
     "flat_plate",
     "from_mesh",

@@ -8,7 +8,10 @@
   is 0.014° a year, below the formula's own accuracy for a decade.
 * :func:`shadow`: the fraction of the Sun's disc seen from a point near the Earth: the
   cylindrical shadow (0 or 1) or the conical one, umbra and penumbra, with the Sun and the
-  Earth as spheres (Montenbruck and Gill, *Satellite Orbits*, Springer 2000, §3.4.2).
+  Earth as spheres (Montenbruck and Gill, *Satellite Orbits*, Springer 2000, §3.4.2);
+* :func:`eclipse_fraction`: the fraction of a circular orbit spent in the cylindrical shadow,
+  from the Sun's elevation β above the orbit's plane: what sunlight averaged over an orbit
+  is weighted by.
 """
 
 from __future__ import annotations
@@ -26,6 +29,7 @@ __all__ = [
     "J2000",
     "SOLAR_FLUX",
     "SUN_RADIUS",
+    "eclipse_fraction",
     "shadow",
     "sun_direction",
 ]
@@ -132,3 +136,21 @@ def shadow(
     annular = 1.0 - (b * b) / (a * a)  # the Earth's disc inside the Sun's
     inside = c <= a - b
     return np.where(full, 1.0, np.where(umbra, 0.0, np.where(inside, annular, partial)))
+
+
+def eclipse_fraction(radius: ArrayLike, beta: ArrayLike) -> FloatArray:
+    """The fraction of a circular orbit of ``radius`` [m] spent in the Earth's cylindrical
+    shadow, the Sun at the elevation ``beta`` [rad] above the orbit's plane.
+
+    Notes
+    -----
+    At the angle u from the Sun's projection on the plane the body is at a cos β cos u along
+    the Sun and a (1 − cos²β cos²u)^½ from the shadow's axis: it is in shadow where cos u < 0
+    and cos² u > (1 − R²/a²)/cos² β, so that the fraction is arccos(c*)/π with
+    c* = (1 − R²/a²)^½ / cos β, and 0 where c* ≥ 1 (|β| beyond the critical elevation).
+    """
+    a = np.asarray(radius, dtype=float)
+    cos_beta = np.abs(np.cos(np.asarray(beta, dtype=float)))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        c = np.sqrt(np.clip(1.0 - (EARTH_RADIUS / a) ** 2, 0.0, None)) / cos_beta
+    return np.where(c < 1.0, np.arccos(np.clip(c, -1.0, 1.0)) / math.pi, 0.0)

@@ -147,7 +147,7 @@ def eclipse_fraction(radius: ArrayLike, beta: ArrayLike) -> FloatArray:
     At the angle u from the Sun's projection on the plane the body is at a cos β cos u along
     the Sun and a (1 − cos²β cos²u)^½ from the shadow's axis: it is in shadow where cos u < 0
     and cos² u > (1 − R²/a²)/cos² β, so that the fraction is arccos(c*)/π with
-    c* = (1 − R²/a²)^½ / cos β, and 0 where c* ≥ 1 (|β| beyond the critical elevation).
+    c* = (1 − R²/a²)^½ / cos β, and 0 where c* ≥ 1 (the Sun beyond the critical elevation).
     """
     a = np.asarray(radius, dtype=float)
     cos_beta = np.abs(np.cos(np.asarray(beta, dtype=float)))

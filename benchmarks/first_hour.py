@@ -17,11 +17,10 @@ target is missed (a silence longer than 5 s, a warm run over 2 s, an import over
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import json
 import os
 import platform
-import pty
-import select
 import statistics
 import subprocess
 import sys
@@ -38,39 +37,39 @@ WARM_RUN_S = 2.0
 IMPORT_S = 0.3
 
 
+def _heartbeat() -> Any:
+    """tools/heartbeat.py, whose :func:`on_pty` runs a command on a pseudo-terminal."""
+    path = Path(__file__).resolve().parents[1] / "tools" / "heartbeat.py"
+    spec = importlib.util.spec_from_file_location("heartbeat", path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
 def on_terminal(command: list[str], cwd: Path) -> dict[str, Any]:
     """Run ``command`` on a pseudo-terminal; its wall time, exit status and the longest gap
     between two chunks of its output (from its start to its end)."""
-    start = time.perf_counter()
-    leader, follower = pty.openpty()
     env = {**_NEWCOMER, "COLUMNS": "100", "LINES": "40", "TERM": "xterm-256color"}
-    proc = subprocess.Popen(command, cwd=cwd, stdin=follower, stdout=follower, stderr=follower,
-                            env=env, close_fds=True)  # fmt: skip
-    os.close(follower)
-    last, longest, at, size = start, 0.0, 0.0, 0
+    relay = _heartbeat().on_pty(command, cwd=str(cwd), env=env)
+    start = last = time.monotonic()
+    longest, at, size = 0.0, 0.0, 0
     while True:
-        ready, _, _ = select.select([leader], [], [], 1.0)
-        if ready:
-            try:
-                chunk = os.read(leader, 65536)
-            except OSError:  # the terminal closed with the process
-                break
-            if not chunk:
-                break
-            now = time.perf_counter()
+        try:
+            now, chunk = next(relay)
+        except StopIteration as done:
+            status = int(done.value)
+            break
+        if chunk:
             if now - last > longest:
                 longest, at = now - last, last - start
             last, size = now, size + len(chunk)
-        elif proc.poll() is not None:
-            break
-    proc.wait()
-    end = time.perf_counter()
+    end = time.monotonic()
     if end - last > longest:
         longest, at = end - last, last - start
-    os.close(leader)
     return {
         "command": " ".join(command),
-        "exit": proc.returncode,
+        "exit": status,
         "wall_s": round(end - start, 2),
         "longest_silence_s": round(longest, 2),
         "silence_starts_at_s": round(at, 2),

@@ -221,3 +221,23 @@ def test_the_eclipse_fraction_of_a_circular_orbit(beta_deg):
         assert closed == pytest.approx(math.asin(EARTH_RADIUS / a) / math.pi, rel=1e-12)
     if beta_deg >= 66.0:  # beyond the critical elevation, asin(R/a) = 65.7°: no eclipse
         assert closed == 0.0
+
+
+def test_a_mesh_file_is_read_as_its_triangles(tmp_path):
+    # A cube written as STL and read back: twelve triangles of the six faces, a closed surface
+    # (its normals weighted by area sum to zero), and centred on the origin: no moment.
+    cube = trimesh.creation.box(extents=[1.0, 2.0, 3.0])
+    path = tmp_path / "cube.stl"
+    cube.export(path)
+    facets = from_mesh(path, Optics(0.2, 0.3))
+    assert len(facets) == 12
+    assert facets.area.sum() == pytest.approx(2 * (2 + 3 + 6), rel=1e-6)  # STL's float32
+    assert np.allclose((facets.area[:, None] * facets.normal).sum(axis=0), 0.0, atol=1e-5)
+    _, moment = radiation_force_and_moment(facets, [0.3, -0.4, 0.866], P)
+    assert np.linalg.norm(moment) < 1e-6 * P
+    with pytest.raises(ParameterError, match="no mesh file"):
+        from_mesh(tmp_path / "missing.stl", Optics())
+    bad = tmp_path / "bad.stl"
+    bad.write_text("this is not a mesh")
+    with pytest.raises(ParameterError, match="facets"):
+        from_mesh(bad, Optics())

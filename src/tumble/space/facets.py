@@ -241,8 +241,15 @@ def from_mesh(mesh: Any, optics: Optics) -> Facets:
     import trimesh
 
     if isinstance(mesh, (str, Path)):
-        loaded = trimesh.load(str(mesh), force="mesh")
-        mesh = loaded
+        path = Path(mesh)
+        if not path.is_file():
+            raise ParameterError(f"facets: no mesh file {path}")
+        try:
+            mesh = trimesh.load(str(path), force="mesh")
+        except Exception as exc:  # trimesh's own errors, one line
+            raise ParameterError(
+                f"facets: cannot read {path} as a mesh ({type(exc).__name__}: {exc})"
+            ) from None
     if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
         raise ParameterError("facets: the mesh holds no triangles")
     keep = mesh.area_faces > 0.0

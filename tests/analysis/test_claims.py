@@ -196,7 +196,7 @@ FAST: list[tuple[Callable[[], Claim], str]] = [
     (rm_claims.rm_7, QUALIFIED),  # E7
     (rf_claims.rf_11, CONFIRMED),
     (rf_claims.rf_16, QUALIFIED),  # identification with Chernousko's body not checked
-    (nm_claims.nm_3, QUALIFIED),  # errata 5, 6
+    (nm_claims.nm_3, QUALIFIED),  # corrections S5, S6 (theory of the nonlinear moment)
     (nm_claims.nm_6, CONFIRMED),
 ]
 

@@ -19,18 +19,27 @@ from files import EXAMPLES
 TUMBLE = str(Path(sys.executable).with_name("tumble"))
 
 
-def test_sigint_during_a_long_run_exits_cleanly(tmp_path):
+def _long_run(tmp_path, samples=801, warm=True):
+    """The gravity-gradient example over t = 2e5 (seconds of integration), written to
+    ``long.toml``; with ``warm``, its kernels compiled first by a run to t = 1 (a fresh clone
+    has no cache: the trials interrupt the integration, not numba's first compilation, which
+    takes longer than their window)."""
     text = (EXAMPLES / "tb_gravity_gradient.toml").read_text()
-    text = text.replace("t_end = 200.0", "t_end = 2e5").replace("samples = 801", "samples = 1001")
+    text = text.replace("t_end = 200.0", "t_end = 2e5")
+    text = text.replace("samples = 801", f"samples = {samples}")
     assert "t_end = 2e5" in text  # the example's horizon as written there
     scenario = tmp_path / "long.toml"
     scenario.write_text(text)
-    # Compile first (a fresh clone has no cache): the trials below interrupt the integration,
-    # not numba's first compilation, which takes longer than their window.
-    warm = tmp_path / "warm.toml"
-    warm.write_text(text.replace("t_end = 2e5", "t_end = 1.0"))
-    subprocess.run([TUMBLE, "run", str(warm), "-o", str(tmp_path / "warm")], check=True,
-                   capture_output=True)  # fmt: skip
+    if warm:
+        short = tmp_path / "warm.toml"
+        short.write_text(text.replace("t_end = 2e5", "t_end = 1.0"))
+        subprocess.run([TUMBLE, "run", str(short), "-o", str(tmp_path / "warm")], check=True,
+                       capture_output=True)  # fmt: skip
+    return scenario
+
+
+def test_sigint_during_a_long_run_exits_cleanly(tmp_path):
+    scenario = _long_run(tmp_path, samples=1001)
     rng = random.Random(7)  # seeded moments, each well inside the integration
     for trial in range(3):
         out = tmp_path / f"out{trial}"
@@ -75,15 +84,7 @@ def _sigterm_trials(tmp_path, moments):
     "interrupted" and exits 130, or, terminated before Python has loaded tumble's handler (the
     first tens of milliseconds), dies of the signal (the shell's 143) having printed and made
     nothing; either way no temporaries and no directory are left."""
-    text = (
-        (EXAMPLES / "tb_gravity_gradient.toml").read_text().replace("t_end = 200.0", "t_end = 2e5")
-    )
-    scenario = tmp_path / "long.toml"
-    scenario.write_text(text)
-    warm = tmp_path / "warm.toml"
-    warm.write_text(text.replace("t_end = 2e5", "t_end = 1.0"))
-    subprocess.run([TUMBLE, "run", str(warm), "-o", str(tmp_path / "warm")], check=True,
-                   capture_output=True)  # fmt: skip
+    scenario = _long_run(tmp_path)
     codes: list[int] = []
     for trial, moment in enumerate(moments):
         out = tmp_path / f"out{trial}"
@@ -103,11 +104,7 @@ def test_sigint_during_a_cold_compile_exits_cleanly(tmp_path):
     """From an empty numba cache the first seconds of a run compile kernels through LLVM, where
     Python cannot take a signal (and numba's compiler would swallow a KeyboardInterrupt): the
     watcher ends the run with the same line and code, and the output set's temporaries go."""
-    text = (
-        (EXAMPLES / "tb_gravity_gradient.toml").read_text().replace("t_end = 200.0", "t_end = 2e5")
-    )
-    scenario = tmp_path / "long.toml"
-    scenario.write_text(text)
+    scenario = _long_run(tmp_path, warm=False)  # each trial with an empty cache of its own
     for trial, moment in enumerate((1.5, 3.0, 4.5)):  # start-up, validation, compiling
         cache = tmp_path / f"cache{trial}"
         out = tmp_path / f"out{trial}"

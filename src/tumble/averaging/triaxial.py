@@ -628,7 +628,9 @@ def triaxial_kernel(
     averages each time-dependent term over its own phase in closed form and the precession
     on four nodes, which is exact for them, and refines the polhode phase with the Python
     engine's test; a user's numba function
-    (:mod:`tumble.kernels.user`) gets the Python engine's product rule on all phases.
+    (:mod:`tumble.kernels.user`), or a term of higher degree in the precession
+    (:attr:`~tumble.kernels.terms.base.Term.precession_degree`) without its closed form, gets
+    the Python engine's product rule on all phases.
 
     Parameters
     ----------
@@ -659,11 +661,13 @@ def triaxial_kernel(
     I_user = np.asarray(inertia, dtype=float).reshape(3)
     I1, I2, I3 = sorted(I_user.tolist())
     exact = True  # terms averaged at t or over their own phase: the kernel's reductions apply
+    four = True  # every term's precession on four nodes (phase means) exactly
     for code, _, payload in terms:
         term = term_of(code)
         if term.quadrature_only:
             exact = False  # a user's numba function: the general product rule
             continue
+        four = four and term.precession_degree <= 3
         rate = 0.0 if term.forcing_rate is None else term.forcing_rate(term.values(payload))
         if rate == 0.0:
             continue
@@ -685,6 +689,6 @@ def triaxial_kernel(
             "period": 0.0 if forcing_period is None else float(forcing_period),
         }
     )
-    kind = KIND_TRIAXIAL_CLOSED if closed else (KIND_TRIAXIAL_PHASE_MEANS if exact else
+    kind = KIND_TRIAXIAL_CLOSED if closed else (KIND_TRIAXIAL_PHASE_MEANS if exact and four else
                                                 KIND_TRIAXIAL_AVERAGED)  # fmt: skip
     return Kernel(kind, np.concatenate([head, program]))

@@ -551,6 +551,12 @@ class _Inputs:
         self.functions.append(function)
         return function
 
+    def path(self, name: str, where: str) -> Path:
+        found = (self.base / Path(name).expanduser()).resolve()
+        if not found.is_file():
+            raise ScenarioError(f"{where} = {name!r}: no such file (looked for {found})")
+        return found
+
     def run_end(self) -> float:
         return float(self.times[-1])
 

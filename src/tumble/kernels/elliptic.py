@@ -1,5 +1,6 @@
-"""Carlson's symmetric elliptic integrals R_F, R_D, R_J (and R_C), compiled, and the complete
-Legendre integrals K, E, Π built from them, for right-hand sides the compiled integrator runs.
+"""Carlson's symmetric elliptic integrals R_F, R_D, R_J (and R_C), compiled, the complete
+Legendre integrals K, E, Π built from them, and the Jacobi functions sn, cn, dn by the
+arithmetic-geometric mean, for right-hand sides the compiled integrator runs.
 
 The definitions are scipy's (``scipy.special.elliprf``, ``elliprd``, ``elliprj``,
 ``elliprc``; DLMF §19.16), and so is the method: Carlson's duplication theorem until the
@@ -21,13 +22,18 @@ their complements mc = 1 − m ∈ (0, 1], 1 − n > 0.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import cast
 
 import numpy as np
+from numba.cpython.unsafe.tuple import tuple_setitem as _tuple_setitem
 
 from tumble._typing import FloatArray
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
 
 __all__ = [
+    "Table",
+    "agm",
     "ellipe_mc",
     "ellipk_mc",
     "ellippi_mc",
@@ -36,6 +42,8 @@ __all__ = [
     "elliprf",
     "elliprj",
     "evaluate_carlson",
+    "jacobi",
+    "jacobi_quarter",
 ]
 
 _AGREE = 1e-3
@@ -207,3 +215,59 @@ def evaluate_carlson(which: int, args: FloatArray) -> FloatArray:
         else:
             out[i] = ellippi_mc(r[0], r[1])
     return out
+
+
+# ---------------------------------------------------------------------------------------------
+# Jacobi elliptic functions by the arithmetic-geometric mean.
+
+AGM_STEPS = 24  # more than the AGM needs down to mc = MC_FLOOR (about 13 steps)
+
+Table = tuple[float, ...]
+"""The AGM's ratios c_n/a_n (:func:`agm`), a fixed-size tuple: no allocation, which the
+right-hand sides may not make."""
+_EMPTY = (0.0,) * AGM_STEPS
+# numba's tuple "assignment" (a new tuple with one entry replaced).
+tuple_setitem = cast(Callable[[Table, int, float], Table], _tuple_setitem)
+
+
+@jit(KERNEL)
+def agm(mc: float) -> tuple[Table, int, float]:
+    """The AGM of 1 and √mc with c_n = (a_{n−1} − b_{n−1})/2 (DLMF 22.20.1): the ratios
+    c_n/a_n (n = 1 … N), N, and a_N; K = π/(2 a_N) (DLMF 19.8.5)."""
+    ratios = _EMPTY
+    a, b = 1.0, math.sqrt(mc)
+    n = 0
+    while n < AGM_STEPS - 1 and a - b > 1e-16 * a:
+        c = 0.5 * (a - b)
+        a, b = 0.5 * (a + b), math.sqrt(a * b)
+        n += 1
+        ratios = tuple_setitem(ratios, n, c / a)
+    return ratios, n, a
+
+
+@jit(KERNEL)
+def jacobi(u: float, ratios: Table, n: int, a: float) -> tuple[float, float, float]:
+    """sn, cn, dn of u by the descending recurrence of the AGM's phases (DLMF 22.20.ii):
+    φ_N = 2ᴺ a_N u, φ_{n−1} = (φ_n + arcsin((c_n/a_n) sin φ_n))/2, then sn = sin φ₀,
+    cn = cos φ₀, dn = cos φ₀ / cos(φ₁ − φ₀)."""
+    phi = u * a * 2.0**n
+    before = phi
+    for j in range(n, 0, -1):
+        before = phi
+        phi = 0.5 * (phi + math.asin(ratios[j] * math.sin(phi)))
+    c = math.cos(phi)
+    dn = c / math.cos(before - phi) if n > 0 else 1.0
+    return math.sin(phi), c, dn
+
+
+@jit(KERNEL)
+def jacobi_quarter(
+    v: float, big_k: float, kc: float, ratios: Table, n: int, a: float
+) -> tuple[float, float, float]:
+    """sn, cn, dn of v ∈ [0, K] (k′ = kc): directly up to K/2, beyond it from w = K − v by
+    sn(K − w) = cn w/dn w, cn(K − w) = k′ sn w/dn w, dn(K − w) = k′/dn w (DLMF 22.4.iii):
+    dn is then never formed below √k′ (its value at K/2), where it would lose digits."""
+    if v <= 0.5 * big_k:
+        return jacobi(v, ratios, n, a)
+    s, c, d = jacobi(big_k - v, ratios, n, a)
+    return c / d, kc * s / d, kc / d

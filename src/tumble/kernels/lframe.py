@@ -4,8 +4,9 @@ that the torque terms' ``closed`` averages share: the sorted principal axes and 
 ``p`` is the parameter array of the ``KIND_TRIAXIAL_*`` kinds (:data:`~tumble.kernels.params.
 TRIAXIAL_AVERAGED`), whose ``sorting`` Q takes the user's body axes to the sorted ones; ``F`` is
 a frame (by rows) whose third column is L̂. The context ``ctx`` a term's ``closed`` receives is
-``(L, r, inv, sq, pairs, odd, first, a, F)``: |L|, 2T/L², the inverse sorted moments, the
-polhode means ⟨ℓᵢ²⟩, ⟨ℓⱼ²ℓₖ²⟩ and ⟨ℓ_a ℓᵢ²⟩, ⟨ℓ_a⟩, the encircled axis a and F.
+``(L, r, inv, sq, pairs, odd, first, a, F, polhode)``: |L|, 2T/L², the inverse sorted
+moments, the polhode means ⟨ℓᵢ²⟩, ⟨ℓⱼ²ℓₖ²⟩ and ⟨ℓ_a ℓᵢ²⟩, ⟨ℓ_a⟩, the encircled axis a, F,
+and the polhode itself (:data:`Polhode`) for a term that forms other means of it.
 """
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ from tumble.kernels.params import TRIAXIAL_AVERAGED
 __all__ = [
     "Context",
     "Parts",
+    "Polhode",
     "column_dot",
     "quadratic",
     "sorted_diagonal",
@@ -34,7 +36,11 @@ _Q = TRIAXIAL_AVERAGED.at.sorting
 
 Parts = tuple[float, float, float, float]
 """A term's averaged moment in the L-frame (across L: two; along L) and its power ω·M."""
-Context = tuple[float, float, Vec3, Vec3, Vec3, Vec3, float, int, Mat3]
+Polhode = tuple[float, float, float, float, float, float, float]
+"""(A_c, A_s, A_d, m, ⟨sn²⟩, ⟨sn⁴⟩, ⟨dn⟩): ℓ = (A_c cn u, A_s sn u, A_d dn u) in the sorted axes
+(c, s, d) = (1, 2, 3) about the third axis, (3, 2, 1) about the first, at the parameter m, and
+the means over u of sn², sn⁴ and dn (:mod:`tumble.kernels.triaxial_closed`)."""
+Context = tuple[float, float, Vec3, Vec3, Vec3, Vec3, float, int, Mat3, Polhode]
 
 
 @jit(INLINE)

@@ -29,7 +29,8 @@ size of their integrands (|M| for ⟨A M⟩, |Ω||M| for the power), or by √(r
 changes square from one doubling to the next. Its nodes are uniform in the argument u of the
 Jacobi functions over one period 4K; those of the first quarter give the other three by the
 shifts u + K, u + 2K, u + 3K, and within the quarter the points beyond K/2 come from K − u
-(DLMF 22.4.iii), so that dn is only ever formed where it is at least √k′ (:func:`_quarter`).
+(DLMF 22.4.iii), so that dn is only ever formed where it is at least √k′
+(:func:`tumble.kernels.elliptic.jacobi_quarter`).
 
 A program whose every term is polynomial in the attitude (constant moments, linear drag, the
 gravity gradient, an orbiting body's orbit-averaged moments) skips the quadrature: its average has a
@@ -50,13 +51,14 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from typing import cast
 
 import numpy as np
-from numba.cpython.unsafe.tuple import tuple_setitem as _tuple_setitem
 
 from tumble._typing import FloatArray
 from tumble.kernels.codes import DEGENERATE_RTOL, MC_FLOOR, REACHED_MARGIN, SEPARATRIX_RTOL
+from tumble.kernels.elliptic import Table as _Table
+from tumble.kernels.elliptic import agm as _agm
+from tumble.kernels.elliptic import jacobi_quarter as _quarter
 from tumble.kernels.frames import to_body, to_inertial
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
 from tumble.kernels.layout import Mat3, Vec3, mat3, vec3
@@ -88,62 +90,7 @@ PERIOD = _AT.period
 PROGRAM_START = TRIAXIAL_AVERAGED.size
 """Index of the torque program in the parameters."""
 _Q = _AT.sorting
-
-_AGM_STEPS = 24  # more than the AGM needs down to mc = MC_FLOOR (about 13 steps)
-
-_Table = tuple[float, ...]
-_EMPTY = (0.0,) * _AGM_STEPS
 _NO_FRAME = (0.0,) * 9  # the frame of a refused state (never used)
-# numba's tuple "assignment" (a new tuple with one entry replaced): fixed-size tables without
-# an allocation, which the right-hand sides may not make.
-tuple_setitem = cast(Callable[[_Table, int, float], _Table], _tuple_setitem)
-
-
-# ---------------------------------------------------------------------------------------------
-# Jacobi elliptic functions by the arithmetic-geometric mean.
-
-
-@jit(KERNEL)
-def _agm(mc: float) -> tuple[_Table, int, float]:
-    """The AGM of 1 and √mc with c_n = (a_{n−1} − b_{n−1})/2 (DLMF 22.20.1): the ratios
-    c_n/a_n (n = 1 … N), N, and a_N; K = π/(2 a_N) (DLMF 19.8.5)."""
-    ratios = _EMPTY
-    a, b = 1.0, math.sqrt(mc)
-    n = 0
-    while n < _AGM_STEPS - 1 and a - b > 1e-16 * a:
-        c = 0.5 * (a - b)
-        a, b = 0.5 * (a + b), math.sqrt(a * b)
-        n += 1
-        ratios = tuple_setitem(ratios, n, c / a)
-    return ratios, n, a
-
-
-@jit(KERNEL)
-def _jacobi(u: float, ratios: _Table, n: int, a: float) -> tuple[float, float, float]:
-    """sn, cn, dn of u by the descending recurrence of the AGM's phases (DLMF 22.20.ii):
-    φ_N = 2ᴺ a_N u, φ_{n−1} = (φ_n + arcsin((c_n/a_n) sin φ_n))/2, then sn = sin φ₀,
-    cn = cos φ₀, dn = cos φ₀ / cos(φ₁ − φ₀)."""
-    phi = u * a * 2.0**n
-    before = phi
-    for j in range(n, 0, -1):
-        before = phi
-        phi = 0.5 * (phi + math.asin(ratios[j] * math.sin(phi)))
-    c = math.cos(phi)
-    dn = c / math.cos(before - phi) if n > 0 else 1.0
-    return math.sin(phi), c, dn
-
-
-@jit(KERNEL)
-def _quarter(
-    v: float, big_k: float, kc: float, ratios: _Table, n: int, a: float
-) -> tuple[float, float, float]:
-    """sn, cn, dn of v ∈ [0, K]: directly up to K/2, beyond it from w = K − v by
-    sn(K − w) = cn w/dn w, cn(K − w) = k′ sn w/dn w, dn(K − w) = k′/dn w (DLMF 22.4.iii):
-    dn is then never formed below √k′ (its value at K/2), where it would lose digits."""
-    if v <= 0.5 * big_k:
-        return _jacobi(v, ratios, n, a)
-    s, c, d = _jacobi(big_k - v, ratios, n, a)
-    return c / d, kc * s / d, kc / d
 
 
 @jit(ENTRY)

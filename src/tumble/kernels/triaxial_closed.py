@@ -45,6 +45,7 @@ import math
 from tumble._typing import FloatArray
 from tumble.kernels.jit import ENTRY, KERNEL, jit
 from tumble.kernels.layout import Mat3, Vec3, vec3
+from tumble.kernels.lframe import Polhode
 from tumble.kernels.params import TRIAXIAL_AVERAGED
 from tumble.kernels.terms import HEAD_SIZE, HEADER, closed_of, next_term
 
@@ -52,7 +53,7 @@ __all__ = ["closed_mean", "polhode_moments", "sn_means"]
 
 _HEAD = HEADER.at
 _INERTIA = TRIAXIAL_AVERAGED.at.inertia
-_Moments = tuple[Vec3, Vec3, Vec3, float, int]
+_Moments = tuple[Vec3, Vec3, Vec3, float, int, Polhode]
 
 
 @jit(KERNEL)
@@ -86,7 +87,8 @@ def sn_means(mc: float) -> tuple[float, float, float]:
 @jit(KERNEL)
 def _moments(i1: float, i2: float, i3: float, L: float, x3: bool, mc: float, amp: Vec3) -> _Moments:
     """The polhode means (sorted axes) of ℓ = L_body/L: ⟨ℓᵢ²⟩, ⟨ℓⱼ²ℓₖ²⟩ (i, j, k cyclic, by
-    i), ⟨ℓ_a ℓᵢ²⟩, ⟨ℓ_a⟩ and the encircled axis a (0 or 2). ``amp`` are the body rate's
+    i), ⟨ℓ_a ℓᵢ²⟩, ⟨ℓ_a⟩, the encircled axis a (0 or 2) and the polhode
+    (:data:`~tumble.kernels.lframe.Polhode`). ``amp`` are the body rate's
     amplitudes of cn, sn, dn as :func:`tumble.kernels.triaxial._polhode` forms them
     (Martynenko (1979), eq. (3.1))."""
     big_k, x1, x2 = _sn_means(mc)
@@ -107,9 +109,10 @@ def _moments(i1: float, i2: float, i3: float, L: float, x3: bool, mc: float, amp
     dn1 = 0.5 * math.pi / big_k  # ⟨dn⟩; ⟨dn sn²⟩ = ⟨dn cn²⟩ = ⟨dn⟩/2
     odd_d = ad * ad2 * dn1 * (1.0 - 0.5 * m)
     odd_c, odd_s = ad * ac2 * 0.5 * dn1, ad * as2 * 0.5 * dn1
+    polhode = (ac, as_, ad, m, x1, x2, dn1)
     if x3:
-        return ((sq_c, sq_s, sq_d), (sd, cd, cs), (odd_c, odd_s, odd_d), ad * dn1, a)
-    return ((sq_d, sq_s, sq_c), (cs, cd, sd), (odd_d, odd_s, odd_c), ad * dn1, a)
+        return ((sq_c, sq_s, sq_d), (sd, cd, cs), (odd_c, odd_s, odd_d), ad * dn1, a, polhode)
+    return ((sq_d, sq_s, sq_c), (cs, cd, sd), (odd_d, odd_s, odd_c), ad * dn1, a, polhode)
 
 
 @jit(ENTRY)
@@ -118,7 +121,7 @@ def polhode_moments(
     a2: float,
 ) -> tuple[float, float, float, float, float, float, float, float, float, float, int]:  # fmt: skip
     """:func:`_moments` flattened, for tests against quadrature over the polhode."""
-    sq, pairs, odd, first, a = _moments(i1, i2, i3, L, x3, mc, (a0, a1, a2))
+    sq, pairs, odd, first, a, _ = _moments(i1, i2, i3, L, x3, mc, (a0, a1, a2))
     return (*sq, *pairs, *odd, first, a)
 
 
@@ -133,8 +136,8 @@ def closed_mean(
     third column is L̂."""
     i1, i2, i3 = vec3(p, _INERTIA)
     inv = (1.0 / i1, 1.0 / i2, 1.0 / i3)
-    sq, pairs, odd, first, a = _moments(i1, i2, i3, L, x3, mc, amp)
-    ctx = (L, r, inv, sq, pairs, odd, first, a, F)
+    sq, pairs, odd, first, a, polhode = _moments(i1, i2, i3, L, x3, mc, amp)
+    ctx = (L, r, inv, sq, pairs, odd, first, a, F, polhode)
     tx = ty = tz = power = 0.0
     i = start + 1
     for _ in range(int(p[start])):

@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any, Generic, Literal, Protocol, TypeVar
 
 from tumble._typing import FloatArray, Json
@@ -120,6 +121,11 @@ class Inputs(Protocol):
         """The function named ``"file:function"`` in the Python file beside the scenario, not
         yet loaded: it runs nothing until the whole scenario is valid (a build function must
         not call it; :attr:`Built.user_checks`; :mod:`tumble.io.user_code`)."""
+        ...
+
+    def path(self, name: str, where: str) -> Path:
+        """The file ``name`` (relative to the scenario's folder, or absolute), which must exist:
+        a data file the scenario reads (a mesh); ``where`` names the key in the error."""
         ...
 
     def run_end(self) -> float:

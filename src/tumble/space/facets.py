@@ -134,6 +134,20 @@ class Facets:
     def __len__(self) -> int:
         return int(self.area.shape[0])
 
+    def table(self) -> FloatArray:
+        """One row per facet, as the compiled solar term reads it
+        (:data:`tumble.kernels.terms.solar_radiation.FACET`): the normal n, the centre r [m],
+        the areas ks = A (1 − ρs), kp = 2 A ρs, kd = ⅔ A (ρd + α κ) [m²] of the force
+        −P ĉ [ks s + (kp ĉ + kd) n] on a facet lit at ĉ = n·s > 0, and the arm r × n [m]."""
+        return np.column_stack([
+            self.normal,
+            self.centre,
+            self.area * (1.0 - self.specular),
+            2.0 * self.area * self.specular,
+            (2.0 / 3.0) * self.area * (self.diffuse + self.absorbed * self.thermal),
+            np.cross(self.centre, self.normal),
+        ])  # fmt: skip
+
     @staticmethod
     def of(
         area: ArrayLike, normal: ArrayLike, centre: ArrayLike, optics: Optics | list[Optics]

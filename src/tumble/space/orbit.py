@@ -16,6 +16,7 @@ import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import ParameterError, check_range
+from tumble.kernels.astro import EARTH_RADIUS  # a circular orbit's altitude is above it
 
 __all__ = [
     "EARTH_J2",
@@ -27,8 +28,6 @@ __all__ = [
 
 EARTH_MU = 3.986004418e14
 """The Earth's gravitational parameter GM [m³/s²] (WGS 84)."""
-EARTH_RADIUS = 6378137.0
-"""The Earth's equatorial radius [m] (WGS 84): a circular orbit's altitude is above it."""
 EARTH_J2 = 1.08262668e-3
 """The Earth's second zonal harmonic J2 (EGM2008), for the secular drift of the elements."""
 

@@ -17,6 +17,22 @@ perturbations and satellite geodesy*, 1987); the last is the instantaneous re-em
 the YORP effect (Rubincam, *Icarus* 148, 2000; Scheeres, *Icarus* 188, 2007). A facet facing
 away from the Sun feels nothing; one facet shading another is ignored. The moment about the
 centre of mass is Σ r × f over the facets, r their centres.
+
+**The expanded illumination.** The factor max(0, cos θ) is what makes the moment a kinked
+function of the attitude. Expanded in a Fourier series of θ to second order (Benson and
+Scheeres, *J. Guid. Control Dyn.* 44(4), 2021),
+
+    max(0, cos θ) ≈ 1/(3π) + ½ cos θ + 4/(3π) cos² θ
+
+(the series 1/π + ½ cos θ + 2/(3π) cos 2θ written in c = cos θ), the moment becomes a cubic
+polynomial of the Sun's body direction s,
+
+    M(s) = P (C⁰ + C¹ s + C² s s + C³ s s s),
+
+whose coefficient tensors are sums over the facets (:func:`expanded_coefficients`) formed once:
+the moment's averages over any motion are then those of a few monomials of s, whatever the
+number of facets. It is exact for a body whose every facet sees the Sun half the time
+symmetrically, and otherwise an approximation whose error the theory page measures.
 """
 
 from __future__ import annotations
@@ -24,13 +40,17 @@ from __future__ import annotations
 import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
+from tumble.kernels.astro import AU, SOLAR_FLUX, SPEED_OF_LIGHT
 from tumble.space.facets import Facets
-from tumble.space.sun import AU, SOLAR_FLUX
 
-__all__ = ["SPEED_OF_LIGHT", "facet_forces", "pressure", "radiation_force_and_moment"]
-
-SPEED_OF_LIGHT = 299_792_458.0
-"""[m/s], exact."""
+__all__ = [
+    "SPEED_OF_LIGHT",
+    "expanded_coefficients",
+    "expanded_moment",
+    "facet_forces",
+    "pressure",
+    "radiation_force_and_moment",
+]
 
 
 def pressure(sun_distance: ArrayLike = AU) -> FloatArray:
@@ -45,16 +65,11 @@ def facet_forces(facets: Facets, sun: ArrayLike, p: float) -> FloatArray:
     under the pressure ``p`` [N/m²] (shape (n, 3); zero for a facet facing away)."""
     s = np.asarray(sun, dtype=float)
     s = s / np.linalg.norm(s)
+    t = facets.table()
     cos = facets.normal @ s
     lit = np.where(cos > 0.0, cos, 0.0)
-    along_n = (
-        2.0 * facets.specular * lit
-        + (2.0 / 3.0) * facets.diffuse
-        + (2.0 / 3.0) * facets.absorbed * facets.thermal
-    )
-    scale = -p * facets.area * lit
-    along_s = 1.0 - facets.specular
-    return scale[:, None] * (along_s[:, None] * s + along_n[:, None] * facets.normal)
+    along_n = t[:, 7] * lit + t[:, 8]  # kp ĉ + kd
+    return -p * lit[:, None] * (t[:, 6, None] * s + along_n[:, None] * facets.normal)
 
 
 def radiation_force_and_moment(
@@ -64,3 +79,34 @@ def radiation_force_and_moment(
     sunlight from the unit body direction ``sun`` under the pressure ``p`` [N/m²]."""
     f = facet_forces(facets, sun, p)
     return f.sum(axis=0), np.cross(facets.centre, f).sum(axis=0)
+
+
+def expanded_coefficients(
+    facets: Facets,
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """The tensors C⁰ (3,), C¹ (3, 3), C² (3, 3, 3), C³ (3, 3, 3, 3) of the moment with the
+    expanded illumination, M(s) = P (C⁰ + C¹ s + C² s s + C³ s s s) [N·m per N/m² = m³], body
+    axes, symmetric in their last indices (module notes): those the orbit-averaged solar term
+    evaluates (:func:`tumble.kernels.terms.solar_radiation.expanded_tensors`)."""
+    from tumble.kernels.terms.solar_radiation import expanded_tensors  # loads numba
+
+    return expanded_tensors(facets.table())
+
+
+def expanded_moment(
+    coefficients: tuple[FloatArray, FloatArray, FloatArray, FloatArray], sun: ArrayLike, p: float
+) -> FloatArray:
+    """The moment [N·m], body axes, with the expanded illumination (:func:`expanded_coefficients`)
+    for the unit body direction ``sun`` under the pressure ``p`` [N/m²]."""
+    c0, c1, c2, c3 = coefficients
+    s = np.asarray(sun, dtype=float)
+    s = s / np.linalg.norm(s)
+    return np.asarray(
+        p
+        * (
+            c0
+            + c1 @ s
+            + np.einsum("ijk,j,k->i", c2, s, s)
+            + np.einsum("ijkl,j,k,l->i", c3, s, s, s)
+        )
+    )

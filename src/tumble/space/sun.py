@@ -9,41 +9,49 @@
 * :func:`shadow`: the fraction of the Sun's disc seen from a point near the Earth: the
   cylindrical shadow (0 or 1) or the conical one, umbra and penumbra, with the Sun and the
   Earth as spheres (Montenbruck and Gill, *Satellite Orbits*, Springer 2000, §3.4.2);
-* :func:`eclipse_fraction`: the fraction of a circular orbit spent in the cylindrical shadow,
-  from the Sun's elevation β above the orbit's plane: what sunlight averaged over an orbit
-  is weighted by.
+* :func:`eclipse_fraction`: the fraction of an orbit's time spent in the cylindrical shadow,
+  from the Sun's place relative to the orbit's plane and perigee: what sunlight averaged over
+  an orbit is weighted by.
+
+Each calls the compiled definition the torque terms evaluate (:mod:`tumble.kernels.sun`),
+loaded on first use.
 """
 
 from __future__ import annotations
 
-import math
+from datetime import UTC, datetime
 
 import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import ParameterError
-from tumble.space.orbit import EARTH_RADIUS  # the radius of the shadow's cylinder and cone
+from tumble.kernels.astro import AU, J2000, SOLAR_FLUX, SUN_RADIUS
 
 __all__ = [
     "AU",
     "J2000",
+    "SHADOWS",
     "SOLAR_FLUX",
     "SUN_RADIUS",
     "eclipse_fraction",
+    "julian_date",
     "shadow",
     "sun_direction",
 ]
 
-AU = 149_597_870_700.0
-"""The astronomical unit [m] (IAU 2012, Resolution B2)."""
-SOLAR_FLUX = 1361.0
-"""The total solar irradiance at 1 AU [W/m²] (IAU 2015, Resolution B3, nominal value)."""
-SUN_RADIUS = 695_700_000.0
-"""The nominal solar radius [m] (IAU 2015, Resolution B3)."""
-J2000 = 2451545.0
-"""The Julian date of J2000.0 (2000 January 1, 12 h TT)."""
-
 SHADOWS = ("cylindrical", "conical")
+"""The Earth's shadow models: a cylinder of the Earth's radius, or the cones of umbra and
+penumbra."""
+
+
+_J2000_UTC = datetime(2000, 1, 1, 12, tzinfo=UTC)
+
+
+def julian_date(when: datetime) -> float:
+    """The Julian date of ``when`` (UTC, taken for the time scale of the solar formulas: the
+    minute between UTC and TT moves the Sun by 0.0008°; a naive time is UTC)."""
+    utc = when.replace(tzinfo=UTC) if when.tzinfo is None else when.astimezone(UTC)
+    return J2000 + (utc - _J2000_UTC).total_seconds() / 86400.0
 
 
 def sun_direction(jd: ArrayLike) -> tuple[FloatArray, FloatArray]:
@@ -63,27 +71,13 @@ def sun_direction(jd: ArrayLike) -> tuple[FloatArray, FloatArray]:
 
     Notes
     -----
-    With n = jd − 2451545.0 days, the mean longitude L = 280.460° + 0.9856474° n and the mean
-    anomaly g = 357.528° + 0.9856003° n, the ecliptic longitude is
-    λ = L + 1.915° sin g + 0.020° sin 2g, the obliquity ε = 23.439° − 0.0000004° n and the
-    distance R = 1.00014 − 0.01671 cos g − 0.00014 cos 2g [AU]; the direction is
-    (cos λ, cos ε sin λ, sin ε sin λ).
+    The compiled :func:`tumble.kernels.sun.sun_at`, which states the formulas.
     """
-    n = np.asarray(jd, dtype=float) - J2000
-    mean_longitude = np.radians(280.460 + 0.9856474 * n)
-    g = np.radians(357.528 + 0.9856003 * n)
-    longitude = mean_longitude + np.radians(1.915 * np.sin(g) + 0.020 * np.sin(2.0 * g))
-    obliquity = np.radians(23.439 - 0.0000004 * n)
-    direction = np.stack(
-        [
-            np.cos(longitude),
-            np.cos(obliquity) * np.sin(longitude),
-            np.sin(obliquity) * np.sin(longitude),
-        ],
-        axis=-1,
-    )
-    distance = (1.00014 - 0.01671 * np.cos(g) - 0.00014 * np.cos(2.0 * g)) * AU
-    return direction, distance
+    from tumble.kernels.sun import sun_samples  # compiled: loaded on first use
+
+    n = np.asarray(jd, dtype=float)
+    out = sun_samples(np.ascontiguousarray(n.ravel()))
+    return out[:, :3].reshape(*n.shape, 3), out[:, 3].reshape(n.shape)
 
 
 def shadow(
@@ -101,7 +95,9 @@ def shadow(
         The Earth–Sun distance [m].
     model : {"conical", "cylindrical"}
         The conical shadow (umbra and penumbra: the overlap of the two discs, Montenbruck and
-        Gill §3.4.2), or the cylinder of the Earth's radius behind it along ``sun``.
+        Gill §3.4.2), or the cylinder of the Earth's radius behind it along ``sun``
+        (:func:`tumble.kernels.sun.conical_shadow`, :func:`~tumble.kernels.sun.
+        cylindrical_shadow`).
 
     Returns
     -------
@@ -110,47 +106,49 @@ def shadow(
     """
     if model not in SHADOWS:
         raise ParameterError(f"shadow = {model!r} must be one of {', '.join(SHADOWS)}")
+    from tumble.kernels.sun import shadow_samples
+
     r = np.asarray(position, dtype=float)
     s = np.asarray(sun, dtype=float)
-    along = np.sum(r * s, axis=-1)
-    if model == "cylindrical":
-        across = np.linalg.norm(r - along[..., None] * s, axis=-1)
-        return np.where((along < 0.0) & (across < EARTH_RADIUS), 0.0, 1.0)
-    d = np.asarray(sun_distance, dtype=float)[..., None] * s - r  # body → Sun
-    dist_sun = np.linalg.norm(d, axis=-1)
-    dist_earth = np.linalg.norm(r, axis=-1)
-    a = np.arcsin(np.clip(SUN_RADIUS / dist_sun, -1.0, 1.0))  # apparent radii
-    b = np.arcsin(np.clip(EARTH_RADIUS / dist_earth, -1.0, 1.0))
-    cos_c = -np.sum(r * d, axis=-1) / (dist_earth * dist_sun)
-    c = np.arccos(np.clip(cos_c, -1.0, 1.0))  # apart
-    full = c >= a + b
-    umbra = c <= b - a
-    x = (c * c + a * a - b * b) / (2.0 * c + (c == 0.0))
-    y = np.sqrt(np.clip(a * a - x * x, 0.0, None))
-    overlap = (
-        a * a * np.arccos(np.clip(x / a, -1.0, 1.0))
-        + b * b * np.arccos(np.clip((c - x) / b, -1.0, 1.0))
-        - c * y
-    )
-    partial = 1.0 - overlap / (math.pi * a * a)
-    annular = 1.0 - (b * b) / (a * a)  # the Earth's disc inside the Sun's
-    inside = c <= a - b
-    return np.where(full, 1.0, np.where(umbra, 0.0, np.where(inside, annular, partial)))
+    shape = np.broadcast_shapes(r.shape, s.shape)[:-1]
+    d = np.broadcast_to(np.asarray(sun_distance, dtype=float), shape)
+    flat = [np.ascontiguousarray(np.broadcast_to(x, (*shape, 3)).reshape(-1, 3)) for x in (r, s)]
+    out = shadow_samples(flat[0], flat[1], np.ascontiguousarray(d.ravel()), model == "conical")
+    return out.reshape(shape)
 
 
-def eclipse_fraction(radius: ArrayLike, beta: ArrayLike) -> FloatArray:
-    """The fraction of a circular orbit of ``radius`` [m] spent in the Earth's cylindrical
-    shadow, the Sun at the elevation ``beta`` [rad] above the orbit's plane.
+def eclipse_fraction(
+    radius: ArrayLike, beta: ArrayLike, eccentricity: ArrayLike = 0.0, sun_perigee: ArrayLike = 0.0
+) -> FloatArray:
+    """The fraction of an orbit's time spent in the Earth's cylindrical shadow.
+
+    Parameters
+    ----------
+    radius : array_like
+        The semi-major axis [m] (a circular orbit's radius).
+    beta : array_like
+        The Sun's elevation above the orbit's plane [rad].
+    eccentricity : array_like
+        The orbit's eccentricity.
+    sun_perigee : array_like
+        The angle in the orbit's plane from the perigee to the Sun's projection [rad] (an
+        eccentric orbit only).
+
+    Returns
+    -------
+    ndarray
 
     Notes
     -----
-    At the angle u from the Sun's projection on the plane the body is at a cos β cos u along
-    the Sun and a (1 − cos²β cos²u)^½ from the shadow's axis: it is in shadow where cos u < 0
-    and cos² u > (1 − R²/a²)/cos² β, so that the fraction is arccos(c*)/π with
-    c* = (1 − R²/a²)^½ / cos β, and 0 where c* ≥ 1 (the Sun beyond the critical elevation).
+    The compiled :func:`tumble.kernels.sun.eclipse_fraction`: for a circular orbit the fraction
+    is arccos(c*)/π with c* = (1 − R²/a²)^½/cos β, and 0 where c* ≥ 1 (the Sun beyond the
+    critical elevation); for an eccentric one the shadow's arc is located on the orbit.
     """
-    a = np.asarray(radius, dtype=float)
-    cos_beta = np.abs(np.cos(np.asarray(beta, dtype=float)))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        c = np.sqrt(np.clip(1.0 - (EARTH_RADIUS / a) ** 2, 0.0, None)) / cos_beta
-    return np.where(c < 1.0, np.arccos(np.clip(c, -1.0, 1.0)) / math.pi, 0.0)
+    from tumble.kernels.sun import eclipse_samples
+
+    given = (radius, beta, eccentricity, sun_perigee)
+    a, b, e, w = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in given))
+    cb = np.cos(b)
+    s = np.stack([cb * np.cos(w), cb * np.sin(w), np.sin(b)], axis=-1).reshape(-1, 3)
+    out = eclipse_samples(np.ascontiguousarray(a.ravel()), np.ascontiguousarray(e.ravel()), s)
+    return out.reshape(a.shape)

@@ -37,6 +37,7 @@ NAMES: tuple[str, ...] = (
     "gravity_moments",
     "orbit_eddy_harmonic",
     "residual_dipole",
+    "solar_radiation",
 )
 """The registered term modules of this package. Append, never reorder: a program stores codes
 (a term's place in the registry)."""

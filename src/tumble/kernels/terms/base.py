@@ -113,6 +113,11 @@ class Term:
         Whether its average needs the general product rule on every phase (an arbitrary
         function of the time and the attitude, such as a user's), rather than its value at the
         time t or its ``phase_mean`` (a slowly varying term, or one with a forcing phase).
+    precession_degree : int
+        The degree of its inertial moment and power as trigonometric polynomials of the
+        precession angle χ about L: the phase-means kind integrates χ on four nodes, exact to
+        degree 3; a term of higher degree without its closed form is averaged by the product
+        rule, χ refined (:func:`tumble.averaging.triaxial_kernel`).
     peer : callable or None
         The independent transcription for the heyoka comparison:
         ``peer(values, f, t, w, frame, hy) -> [M1, M2, M3]`` on heyoka expressions (``w`` the
@@ -133,6 +138,7 @@ class Term:
     closed_if: Callable[[dict[str, Any]], bool] | None = None
     calls_out: bool = False
     quadrature_only: bool = False
+    precession_degree: int = 3
     peer: Callable[..., Any] | None = None
 
     def __post_init__(self) -> None:
@@ -189,6 +195,15 @@ class OrbitContext:
         The model's unit of time [s].
     I0 : float
         The model's unit of inertia [kg·m²]; a moment in N·m is M T0²/I0 in model units.
+    jd : float
+        The Julian date of t = 0 (the epoch).
+    facets : ndarray or None
+        The body's surface, one row per facet
+        (:data:`tumble.kernels.terms.solar_radiation.FACET`), the user's body axes from the
+        centre of mass [m, m²]; None without a ``[surface]``.
+    illumination : str
+        How the averaged equations light the facets: "exact" or "expanded"
+        (:mod:`tumble.kernels.terms.solar_radiation`).
     """
 
     orbit: FloatArray
@@ -196,6 +211,9 @@ class OrbitContext:
     axes: FloatArray
     T0: float
     I0: float
+    jd: float = 2451545.0
+    facets: FloatArray | None = None
+    illumination: str = "exact"
 
 
 @dataclass(frozen=True)

@@ -40,7 +40,9 @@ from tumble.space import (
     thin_cylindrical_shell,
     thin_spherical_shell,
 )
+from tumble.space.facets import Facets, Optics, box, box_wing, cylinder, from_mesh
 from tumble.space.orbit import EARTH_RADIUS
+from tumble.space.sun import julian_date
 from tumble.torques import CompiledTorque, ConstantBodyTorque, Torque, TorqueSum
 
 __all__ = ["DAY", "DECLARED", "SHAPES", "Params", "Scaling", "State", "principal_axes"]
@@ -288,6 +290,154 @@ _FIELD = Section(
     required=False,
     doc="the geomagnetic field (default: the IGRF-13 tilted dipole at the epoch)",
 )
+SURFACE_SHAPES = ("box", "box_wing", "cylinder", "mesh", "facets")
+"""The shapes of a ``[surface]``: a cuboid, a bus with a solar array, a closed cylinder (a rocket
+body), a mesh file, or facets listed one by one."""
+AREA = 1e6
+"""Largest facet or solar-array area [m²]."""
+
+
+def _optics_keys(prefix: str, what: str) -> tuple[Key, ...]:
+    """The optical keys of a surface, ``prefix`` before each name (:class:`tumble.space.
+    facets.Optics`)."""
+    return (
+        Key(
+            f"{prefix}specular",
+            "number",
+            "a fraction in [0, 1]",
+            "",
+            0.0,
+            doc=f"{what}: the fraction of light reflected specularly",
+        ),
+        Key(
+            f"{prefix}diffuse",
+            "number",
+            "a fraction in [0, 1], with specular at most 1",
+            "",
+            0.0,
+            doc=f"{what}: the fraction reflected diffusely (the rest is absorbed)",
+        ),
+        Key(
+            f"{prefix}emissivity",
+            "number",
+            "in (0, 1]",
+            "",
+            1.0,
+            doc=f"{what}: the emissivity of the outer face",
+        ),
+    )
+
+
+_SURFACE = Section(
+    "surface",
+    (
+        Key("shape", "text", " or ".join(f'"{s}"' for s in SURFACE_SHAPES), choices=SURFACE_SHAPES),
+        Key(
+            "size",
+            "vector3",
+            "3 edges in (0, 1e3] along the body axes",
+            "m",
+            None,
+            doc="box; box_wing: the bus",
+        ),
+        Key("radius", "number", "a radius in (0, 1e3]", "m", None, doc="cylinder"),
+        Key(
+            "length", "number", "a length in (0, 1e3] along body axis x", "m", None, doc="cylinder"
+        ),
+        Key(
+            "sides",
+            "integer",
+            "an integer in [3, 4096]",
+            "",
+            64,
+            doc="cylinder: the flat strips around it",
+        ),
+        Key(
+            "mesh",
+            "text",
+            "a mesh file trimesh reads (STL, OBJ, PLY, …), beside the scenario",
+            default=None,
+            doc="mesh: in metres, body axes; needs the space extra's trimesh",
+        ),
+        Key(
+            "facet",
+            "any",
+            "a list of tables [[surface.facet]] (area, normal, centre, optics)",
+            default=None,
+            doc="facets: one table per facet",
+        ),
+        *_optics_keys("", "the shape (box_wing: the bus)"),
+        Key(
+            "back_emissivity",
+            "number",
+            "in [0, 1]",
+            "",
+            0.0,
+            doc="the inner face's emissivity (0: a closed body's surface)",
+        ),
+        Key(
+            "array_area",
+            "number",
+            "an area in (0, 1e6]",
+            "m^2",
+            None,
+            doc="box_wing: the solar array (a thin panel)",
+        ),
+        Key(
+            "array_normal",
+            "vector3",
+            "a nonzero body vector",
+            "",
+            [0.0, 0.0, 1.0],
+            doc="box_wing: the array's front face",
+        ),
+        Key(
+            "array_centre", "vector3", "a body point", "m", None, doc="box_wing: the array's centre"
+        ),
+        *_optics_keys("array_", "box_wing: the array's front"),
+        Key(
+            "array_back_emissivity",
+            "number",
+            "in [0, 1]",
+            "",
+            None,
+            doc="box_wing: the array's back (default its front's)",
+        ),
+        Key(
+            "averaged_illumination",
+            "text",
+            '"exact" or "expanded"',
+            default="exact",
+            choices=("exact", "expanded"),
+            doc="the averaged equations' sunlit share of each facet: exact (the lit arcs) or "
+            "its Fourier series to second order (Benson and Scheeres 2021; faster, approximate)",
+        ),
+        Key(
+            "centre_of_mass",
+            "vector3",
+            "a point in the shape's coordinates",
+            "m",
+            [0.0, 0.0, 0.0],
+            doc="the facets are taken about it",
+        ),
+    ),
+    required=False,
+    doc="the body's outer surface as flat facets, for sunlight (one facet shading another is "
+    "ignored)",
+)
+_FACET = Section(
+    "facet",
+    (
+        Key("area", "number", "an area in (0, 1e6]", "m^2"),
+        Key("normal", "vector3", "a nonzero body vector (outward)", ""),
+        Key("centre", "vector3", "a body point", "m"),
+        *_optics_keys("", "the facet"),
+        Key("back_emissivity", "number", "in [0, 1]", "", 0.0),
+    ),
+    doc='one facet of [surface] with shape = "facets"',
+)
+
+
 _TORQUES = Section(
     "torques",
     (
@@ -546,6 +696,99 @@ def _attitude(ini: Mapping[str, Any]) -> FloatArray:
     return q / np.linalg.norm(q)
 
 
+def _positive(name: str, value: Any, high: float) -> float:
+    """A required positive length or area of the surface, at most ``high``."""
+    if value is None:
+        raise ScenarioError(f"surface.{name} is missing (the shape needs it)")
+    check_range(f"surface.{name}", value, low=0.0, high=high, high_open=False)
+    return float(value)
+
+
+def _optics(values: Mapping[str, Any], prefix: str, where: str, back: float) -> Optics:
+    """The :class:`Optics` of a surface's ``prefix``-ed keys, errors naming ``where``."""
+    try:
+        return Optics(
+            values[f"{prefix}specular"],
+            values[f"{prefix}diffuse"],
+            values[f"{prefix}emissivity"],
+            back,
+        )
+    except ParameterError as exc:
+        raise ParameterError(f"{where}.{prefix}{exc}") from None
+
+
+def _surface(inputs: Inputs) -> FloatArray | None:
+    """The facets of ``[surface]`` about the centre of mass, the user's body axes, as the solar
+    term reads them (:meth:`tumble.space.facets.Facets.table`); None without the table."""
+    s = inputs["surface"]
+    if s is None:
+        return None
+    shape = s["shape"]
+    optics = _optics(s, "", "surface", s["back_emissivity"])
+    if shape == "box":
+        facets = box(_checked_size(s["size"]), optics)
+    elif shape == "box_wing":
+        front = _optics(s, "array_", "surface", 0.0)
+        rear = (
+            front.emissivity if s["array_back_emissivity"] is None else s["array_back_emissivity"]
+        )
+        if s["array_centre"] is None:
+            raise ScenarioError("surface.array_centre is missing (the shape needs it)")
+        facets = box_wing(
+            _checked_size(s["size"]), optics, _positive("array_area", s["array_area"], AREA),
+            _direction("surface.array_normal", s["array_normal"]), s["array_centre"],
+            Optics(front.specular, front.diffuse, front.emissivity, 0.0),
+            Optics(front.specular, front.diffuse, rear, 0.0),
+        )  # fmt: skip
+    elif shape == "cylinder":
+        sides = s["sides"]
+        if not 3 <= sides <= 4096:
+            raise ParameterError(f"surface.sides = {sides} is outside the allowed range [3, 4096]")
+        facets = cylinder(
+            _positive("radius", s["radius"], SIZE),
+            _positive("length", s["length"], SIZE),
+            optics,
+            sides,
+        )
+    elif shape == "mesh":
+        if s["mesh"] is None:
+            raise ScenarioError("surface.mesh is missing: the mesh file, beside the scenario")
+        facets = from_mesh(inputs.path(s["mesh"], "surface.mesh"), optics)
+    else:
+        listed = s["facet"]
+        if not isinstance(listed, list) or not listed:
+            raise ScenarioError('surface: shape = "facets" needs a list [[surface.facet]]')
+        rows = []
+        for i, raw in enumerate(listed):
+            where = f"surface.facet[{i}]"
+            if not isinstance(raw, Mapping):
+                raise ScenarioError(f"{where} must be a table (area, normal, centre, optics)")
+            f = inputs.validate(_FACET, raw, where)
+            check_range(f"{where}.area [m²]", f["area"], low=0.0, high=AREA, high_open=False)
+            normal = _direction(f"{where}.normal", f["normal"])
+            rows.append(
+                Facets.of(
+                    f["area"],
+                    normal / np.linalg.norm(normal),
+                    f["centre"],
+                    _optics(f, "", where, f["back_emissivity"]),
+                )
+            )
+        facets = rows[0]
+        for more in rows[1:]:
+            facets = facets + more
+    return facets.shifted(-np.asarray(s["centre_of_mass"], dtype=float)).table()
+
+
+def _checked_size(size: Any) -> FloatArray:
+    if size is None:
+        raise ScenarioError("surface.size is missing (the shape needs it)")
+    a = np.asarray(size, dtype=float)
+    if np.any(a <= 0.0) or np.any(a > SIZE):
+        raise ParameterError(f"surface.size = {a.tolist()} [m]: each edge must be in (0, {SIZE:g}]")
+    return a
+
+
 def _build(inputs: Inputs) -> Built[Params, State]:
     body, orbit_keys, ini = inputs["body"], inputs["orbit"], inputs["initial"]
     torques = inputs["torques"] or {key.name: key.default for key in _TORQUES.keys}
@@ -588,7 +831,14 @@ def _build(inputs: Inputs) -> Built[Params, State]:
         mean.append(moment)
         labels.append("residual moment")
     context = terms.OrbitContext(
-        orbit.payload(T0), None if field_model is None else field_model.payload(T0), R, T0, I0
+        orbit.payload(T0),
+        None if field_model is None else field_model.payload(T0),
+        R,
+        T0,
+        I0,
+        julian_date(epoch),
+        _surface(inputs),
+        "exact" if inputs["surface"] is None else inputs["surface"]["averaged_illumination"],
     )
     for key in terms.ORBIT_KEYS:
         built = key.build(torques[key.name], context)
@@ -621,7 +871,7 @@ def _build(inputs: Inputs) -> Built[Params, State]:
 SCENARIO: ScenarioSchema[Params, State] = ScenarioSchema(
     variants=(
         Variant(
-            (_BODY, _CONDUCTOR, _ORBIT, _FIELD, _TORQUES, _INITIAL),
+            (_BODY, _CONDUCTOR, _SURFACE, _ORBIT, _FIELD, _TORQUES, _INITIAL),
             _build,
             physical=True,
             doc="tumble normalises t = T0 τ with T0 = 1/|ω(0)| inside",

@@ -438,7 +438,9 @@ def _lit_about_l(
 
 
 _PURE = 1e-6  # polhode amplitudes below which ℓ is the encircled axis (an error ~1e-12)
-_POLHODE_NODES = 8  # intervals of the quarter period [0, K]: the trapezoidal rule (module notes)
+_POLHODE_NODES = 8  # intervals of the quarter period [0, K] up to K(m = ½) (module notes)
+_K_HALF = 1.8540746773013719  # K(m = ½): beyond it, 8 more intervals for each K(½) of K
+_MAX_NODES = 64
 
 
 @jit(KERNEL)
@@ -463,11 +465,12 @@ def _exact_closed(p: FloatArray, v: int, t: float, ctx: Context) -> Parts:
     big_k = 0.5 * math.pi / a_agm
     kc = math.sqrt(1.0 - m)
     total = (0.0, 0.0, 0.0, 0.0)
-    for j in range(_POLHODE_NODES + 1):
-        sn, cn, dn = jacobi_quarter(j * big_k / _POLHODE_NODES, big_k, kc, ratios, n_agm, a_agm)
-        weight = 0.5 if j == 0 or j == _POLHODE_NODES else 1.0
+    nodes = min(_POLHODE_NODES * math.ceil(big_k / _K_HALF), _MAX_NODES)
+    for j in range(nodes + 1):
+        sn, cn, dn = jacobi_quarter(j * big_k / nodes, big_k, kc, ratios, n_agm, a_agm)
+        weight = 0.5 if j == 0 or j == nodes else 1.0
         n_c, n_s = (2 if cn > 0.0 else 1), (2 if sn > 0.0 else 1)
-        w = weight / (n_c * n_s * _POLHODE_NODES)
+        w = weight / (n_c * n_s * nodes)
         for i_c in range(n_c):
             for i_s in range(n_s):
                 c_ = (1.0 - 2.0 * i_c) * ac * cn

@@ -94,8 +94,7 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
 
     return replace(
         form,
-        equation="Euler–Poinsot averaging of the orbit-averaged eddy-current and gravity-"
-        "gradient torques",
+        equation=f"Euler–Poinsot averaging of the orbit-averaged torques ({p.label})",
         to_columns=to_columns,
         crossing=capture_band(p) if options.hybrid else None,
     )

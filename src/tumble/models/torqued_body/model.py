@@ -33,7 +33,7 @@ from tumble._typing import BoolArray, FloatArray
 from tumble.averaging import nearest_resonances, triaxial_kernel
 from tumble.averaging.triaxial import triaxial_average_stage
 from tumble.dynamics import rigid_body_rhs
-from tumble.errors import ParameterError
+from tumble.errors import ParameterError, TumbleError
 from tumble.kernels import EVENT_TRIAXIAL_SEPARATRIX, Kernel, evaluate_rhs
 from tumble.kernels.rhs import rigid_body
 from tumble.models.base import (
@@ -300,8 +300,50 @@ def validity(p: Params, st: State, slow: SlowPath, tau_end: float) -> list[Valid
         separatrix_issue(slow, grid, I2) if I1 < I2 < I3 else None,
         _not_fast_issue(grid, scales),
         _resonance_issue(p, grid, scales) if p.attitude_dependent else None,
+        _unstable_rotation_issue(p, st, cols, tau_end) if I1 < I2 < I3 else None,
     ]
     return sorted((i for i in found if i is not None), key=lambda i: i.tau)
+
+
+_PURE_K2 = 1e-9  # k² below this along the whole run: the averaged motion never left the axis
+_TRIAL = 1e-4  # the trial departure of r towards 1/I2, in units of the gap |1/I2 − r|
+
+
+def _unstable_rotation_issue(
+    p: Params, st: State, cols: dict[str, FloatArray], tau_end: float
+) -> ValidityIssue | None:
+    """A run that starts and stays in a pure rotation about the major or the minor axis,
+    which the averaged equations hold exactly (the polhode is a point: no rate moves r off
+    1/I3 or 1/I1), while the torque drives r away from it: the rotation is unstable, and the
+    full motion, seeded by its oscillations of order ε, leaves it at a time the averaged run
+    cannot give. Tested by the averaged rate of r at a trial departure towards the
+    separatrix: an e-folding time shorter than the run is reported."""
+    if float(np.max(cols["k2"])) > _PURE_K2:
+        return None
+    I1, I2, I3 = p.sorted_inertia
+    y = _vector_from_slow(p, st)
+    r0 = float(y[3])
+    pure = 1.0 / I3 if abs(r0 - 1.0 / I3) < abs(r0 - 1.0 / I1) else 1.0 / I1
+    trial = np.array(y, dtype=float)
+    trial[3] = pure + _TRIAL * (1.0 / I2 - pure)
+    try:
+        rate = float(averaged_rhs(0.0, trial, p)[3])
+    except (ArithmeticError, ValueError, TumbleError):
+        return None
+    growth = rate / (trial[3] - pure)  # > 0: r moves away from the pure rotation
+    if not math.isfinite(growth) or growth <= 0.0 or 1.0 / growth >= tau_end:
+        return None
+    axis = "major" if pure == 1.0 / I3 else "minor"
+    return ValidityIssue(
+        "unstable_rotation",
+        0.0,
+        f"the averaged motion stays in the pure rotation about the {axis} axis, which the "
+        "averaged equations hold exactly, but the torque makes it unstable: a tumble grows "
+        f"from any departure by e^{growth * tau_end:.3g} over the run, so the full motion "
+        "leaves it (seeded by its own oscillations of order ε) at a time the averaged run "
+        "cannot give; compare with the full run, or start off the axis",
+        label=f"unstable rotation about the {axis} axis",
+    )
 
 
 @dataclass(frozen=True)

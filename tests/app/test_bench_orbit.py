@@ -31,3 +31,14 @@ def test_the_shell_case_is_the_example_over_a_year():
 def test_the_capture_case_is_the_example():
     with open(EXAMPLES / "ob_small_box.toml", "rb") as f:
         assert tomllib.load(f) == BOX_CASE
+
+
+def test_the_sunlight_cases_are_the_examples():
+    from tumble.app.bench_sunlight import CASES
+
+    for name, file in (
+        ("spin", "ob_geo_box_wing.toml"),
+        ("tumble", "ob_geo_box_wing_tumbling.toml"),
+    ):
+        with open(EXAMPLES / file, "rb") as f:
+            assert tomllib.load(f) == CASES[name], name

@@ -23,7 +23,11 @@ from tumble.kernels.terms.solar_radiation import coefficients
 from tumble.kernels.torque import moments
 from tumble.rotations import quat_to_matrix
 from tumble.space import facets as F
-from tumble.space.radiation import expanded_coefficients, expanded_moment, radiation_force_and_moment
+from tumble.space.radiation import (
+    expanded_coefficients,
+    expanded_moment,
+    radiation_force_and_moment,
+)
 from tumble.space.sun import eclipse_fraction, shadow
 from tumble.torques import CompiledTorque, ConstantBodyTorque, QuadraticDrag
 

@@ -54,9 +54,15 @@ def test_facets_listed_one_by_one(tmp_path):
         "shape": "facets",
         "facet": [
             {"area": 2.0, "normal": [0.0, 0.0, 2.0], "centre": [0.0, 0.0, 1.0], "specular": 0.2},
-            {"area": 1.0, "normal": [1.0, 0.0, 0.0], "centre": [0.5, 0.0, 0.0],
-             "diffuse": 0.4, "emissivity": 0.9, "back_emissivity": 0.9},
-        ],  # fmt: skip
+            {
+                "area": 1.0,
+                "normal": [1.0, 0.0, 0.0],
+                "centre": [0.5, 0.0, 0.0],
+                "diffuse": 0.4,
+                "emissivity": 0.9,
+                "back_emissivity": 0.9,
+            },
+        ],
         "centre_of_mass": [0.0, 0.0, 0.1],
     }
     got = _table(tmp_path, surface)

@@ -130,7 +130,8 @@ class BenchSettings:
         Time the general averaging engine against the full runs (:data:`ENGINE_CASES`).
     orbit : bool
         Time a year of an orbiting body and a Monte Carlo of them, a rocket body's year, a
-        shell's through its floor and a box's to its capture (:mod:`tumble.app.bench_orbit`;
+        shell's through its floor, a box's to its capture and two years of a box-wing
+        satellite in sunlight (:mod:`tumble.app.bench_orbit`, :mod:`tumble.app.bench_sunlight`;
         about 3 minutes).
     """
 
@@ -746,5 +747,8 @@ def run_benchmark(
         from tumble.app.bench_orbit import orbiting_study
 
         result["orbiting_body"] = orbiting_study(s.repeat, say)
+        from tumble.app.bench_sunlight import sunlight_study
+
+        result["orbiting_body"]["sunlight"] = sunlight_study(s.repeat, say)
     result["verdicts"] = verdicts(result)
     return result

@@ -35,6 +35,10 @@ TARGETS: dict[str, float] = {
     "shell_rate_agreement": 0.01,  # a shell's averaged year through its floor: rate vs full
     "shell_year_speedup": 100.0,  # the same year, averaged over full, at least
     "capture_rate_agreement": 0.01,  # a captured box's rate against n, full and hybrid alike
+    "sunlight_period_agreement": 0.02,  # a GEO box-wing's averaged year: spin period vs full
+    "sunlight_direction_deg": 5.0,  # the same: the direction of L against the full run's
+    "sunlight_year_speedup": 1000.0,  # the same year, averaged over full, at least
+    "sunlight_eval_us": 20.0,  # one evaluation of its averaged equations, at most
 }
 """The targets, printed beside the measurements."""
 
@@ -154,6 +158,8 @@ def _orbit_rows(rows: _Rows, orbit: dict[str, Any]) -> None:
                  shell["rate_difference"], TARGETS["shell_rate_agreement"], False)  # fmt: skip
         rows.add("shell, a year through its floor: averaged speed-up over the full run",
                  shell["speedup"], TARGETS["shell_year_speedup"], True)  # fmt: skip
+    for name, sun in (orbit.get("sunlight") or {}).items():
+        _sunlight_rows(rows, name, sun)
     rocket = orbit.get("rocket_body")
     if rocket:
         rows.add("rocket body, an averaged year: integration [s]", rocket["integration_s"],
@@ -167,6 +173,25 @@ def _orbit_rows(rows: _Rows, orbit: dict[str, Any]) -> None:
         rows.add("rocket body, a year: final spin period against a slightly triaxial twin",
                  rocket["twin_final_period_difference"], TARGETS["rocket_twin_agreement"],
                  False)  # fmt: skip
+
+
+def _sunlight_rows(rows: _Rows, name: str, sun: dict[str, Any]) -> None:
+    """A GEO box-wing's year in sunlight (:mod:`tumble.app.bench_sunlight`)."""
+    where = f"box-wing in GEO ({name}), a year"
+    chosen = sun["averaged"].get(f"{sun['rtol']:g}") if sun["rtol"] else None
+    rows.add(f"{where}: averaged spin period against the full one",
+             chosen["period_error"] if chosen else math.inf,
+             TARGETS["sunlight_period_agreement"], False)  # fmt: skip
+    rows.add(f"{where}: averaged direction of L against the full one [deg]",
+             chosen["direction_deg"] if chosen else math.inf,
+             TARGETS["sunlight_direction_deg"], False)  # fmt: skip
+    rows.add(f"{where}: averaged speed-up over the full run", sun["speedup"],
+             TARGETS["sunlight_year_speedup"], True)  # fmt: skip
+    rows.add(f"{where}: one averaged evaluation [µs]", sun["eval_us"],
+             TARGETS["sunlight_eval_us"], False)  # fmt: skip
+    if "expanded_eval_us" in sun:
+        rows.add(f"{where}: one averaged evaluation, expanded illumination [µs]",
+                 sun["expanded_eval_us"], TARGETS["sunlight_eval_us"], False)  # fmt: skip
 
 
 def _machine_rows(rows: _Rows, result: dict[str, Any]) -> None:

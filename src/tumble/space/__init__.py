@@ -33,8 +33,8 @@ from tumble.space.orbit import (
     Orbit,
     sun_synchronous_inclination,
 )
-from tumble.space.radiation import pressure, radiation_force_and_moment
-from tumble.space.sun import eclipse_fraction, shadow, sun_direction
+from tumble.space.radiation import expanded_coefficients, pressure, radiation_force_and_moment
+from tumble.space.sun import eclipse_fraction, julian_date, shadow, sun_direction
 from tumble.space.torques import (
     FieldMomentsTorque,
     GravityMomentsTorque,
@@ -63,11 +63,13 @@ __all__ = [
     "box_wing",
     "cylinder",
     "eclipse_fraction",
+    "expanded_coefficients",
     "field_moments",
     "flat_plate",
     "from_mesh",
     "gravity_factor",
     "greenwich_sidereal_angle",
+    "julian_date",
     "plate",
     "pressure",
     "radiation_force_and_moment",

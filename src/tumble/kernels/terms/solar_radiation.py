@@ -376,8 +376,8 @@ def _lit_about_l(
         ks, kp, kd = p[k + _F.ks], p[k + _F.kp], p[k + _F.kd]
         k += _FACET
         if size > 0.0:
-            inv = 1.0 / size
-            cb, sb = n1 * inv, n2 * inv  # e^{iβ0}
+            across_n = 1.0 / size
+            cb, sb = n1 * across_n, n2 * across_n  # e^{iβ0}
         else:
             cb, sb = 1.0, 0.0
         c2, s2 = cb * cb - sb * sb, 2.0 * cb * sb
@@ -573,7 +573,8 @@ def coefficients(table: FloatArray) -> FloatArray:
         count = math.factorial(len(index)) // (
             math.factorial(e1) * math.factorial(e2) * math.factorial(e3)
         )
-        out[:, j] = count * tensors[len(index)][(slice(None), *index)]
+        where: tuple[Any, ...] = (slice(None), *index)
+        out[:, j] = count * tensors[len(index)][where]
     return out.ravel()
 
 

@@ -8,6 +8,13 @@ Numerics in SI units; the orbit and the field are evaluated in compiled code
 errors.
 """
 
+from tumble.space.aerodynamics import (
+    Accommodation,
+    aerodynamic_force_and_moment,
+    air_table,
+    air_velocity,
+    exponential_density,
+)
 from tumble.space.conductors import (
     flat_plate,
     solid_sphere,
@@ -50,6 +57,7 @@ __all__ = [
     "EARTH_ROTATION",
     "IGRF13_DIPOLE",
     "REFERENCE_RADIUS",
+    "Accommodation",
     "Dipole",
     "Facets",
     "FieldMomentsTorque",
@@ -59,11 +67,15 @@ __all__ = [
     "Orbit",
     "OrbitEddyTorque",
     "OrbitGravityTorque",
+    "aerodynamic_force_and_moment",
+    "air_table",
+    "air_velocity",
     "box",
     "box_wing",
     "cylinder",
     "eclipse_fraction",
     "expanded_coefficients",
+    "exponential_density",
     "field_moments",
     "flat_plate",
     "from_mesh",

@@ -438,8 +438,8 @@ def _lit_about_l(
 
 
 _PURE = 1e-6  # polhode amplitudes below which ℓ is the encircled axis (an error ~1e-12)
-_POLHODE_NODES = 8  # intervals of the quarter period [0, K] up to K(m = ½) (module notes)
-_K_HALF = 1.8540746773013719  # K(m = ½): beyond it, 8 more intervals for each K(½) of K
+_POLHODE_NODES = 8  # intervals of the quarter period [0, K] up to K(m = 0.9) (module notes)
+_K_STEP = 2.5780921133481733  # K(m = 0.9): beyond it, 8 more intervals for each such step of K
 _MAX_NODES = 64
 
 
@@ -465,7 +465,7 @@ def _exact_closed(p: FloatArray, v: int, t: float, ctx: Context) -> Parts:
     big_k = 0.5 * math.pi / a_agm
     kc = math.sqrt(1.0 - m)
     total = (0.0, 0.0, 0.0, 0.0)
-    nodes = min(_POLHODE_NODES * math.ceil(big_k / _K_HALF), _MAX_NODES)
+    nodes = min(_POLHODE_NODES * math.ceil(big_k / _K_STEP), _MAX_NODES)
     for j in range(nodes + 1):
         sn, cn, dn = jacobi_quarter(j * big_k / nodes, big_k, kc, ratios, n_agm, a_agm)
         weight = 0.5 if j == 0 or j == nodes else 1.0

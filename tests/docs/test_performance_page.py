@@ -35,3 +35,15 @@ def test_the_orbit_table_is_the_committed_runs():
         "docs/orbit-year-table.md is stale: python benchmarks/orbit_year.py --from "
         "benchmarks/orbit_year.json > docs/orbit-year-table.md"
     )
+
+
+def test_the_sunlight_table_is_the_committed_runs():
+    from tumble.app.bench_sunlight import markdown
+
+    run = json.loads((ROOT / "benchmarks" / "geo_sunlight.json").read_text(encoding="utf-8"))
+    runs = {k: v for k, v in run.items() if k != "machine"}
+    page = (ROOT / "docs" / "sunlight-year-table.md").read_text(encoding="utf-8")
+    assert page.rstrip("\n") == markdown(runs).rstrip("\n"), (
+        "docs/sunlight-year-table.md is stale: python benchmarks/geo_sunlight.py --from "
+        "benchmarks/geo_sunlight.json > docs/sunlight-year-table.md"
+    )

@@ -19,6 +19,23 @@ def write(tmp_path, text, name="s.toml"):
     return path
 
 
+def one_line_error(tmp_path, example, old, new):
+    """``tumble run`` on the example file with ``old`` replaced by ``new``: it must exit 2 with
+    one line, which is returned."""
+    from typer.testing import CliRunner
+
+    from tumble.cli import app
+
+    text = example.read_text(encoding="utf-8")
+    assert old in text
+    path = write(tmp_path, text.replace(old, new))
+    result = CliRunner().invoke(app, ["run", str(path), "-o", str(tmp_path / "out")])
+    assert result.exit_code == 2, result.output
+    lines = [line for line in result.output.strip().splitlines() if line.strip()]
+    assert len(lines) == 1, result.output
+    return lines[0]
+
+
 def read_csv(path):
     """Header and float rows of an output CSV."""
     with open(path) as fh:

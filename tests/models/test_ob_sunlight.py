@@ -8,10 +8,8 @@ import tomllib
 
 import numpy as np
 import pytest
-from files import EXAMPLES, write
-from typer.testing import CliRunner
+from files import EXAMPLES, one_line_error
 
-from tumble.cli import app
 from tumble.errors import ParameterError
 from tumble.integrate import simulate
 from tumble.io import parse_scenario
@@ -116,13 +114,7 @@ BAD = [
 
 @pytest.mark.parametrize(("old", "new", "needle"), BAD)
 def test_bad_input_gets_one_clear_line(tmp_path, old, new, needle):
-    text = BOX_WING.read_text(encoding="utf-8")
-    assert old in text
-    path = write(tmp_path, text.replace(old, new))
-    result = CliRunner().invoke(app, ["run", str(path), "-o", str(tmp_path / "out")])
-    assert result.exit_code == 2, result.output
-    lines = [line for line in result.output.strip().splitlines() if line.strip()]
-    assert len(lines) == 1 and needle in lines[0], result.output
+    assert needle in one_line_error(tmp_path, BOX_WING, old, new)
 
 
 def test_sunlight_needs_a_surface():

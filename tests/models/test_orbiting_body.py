@@ -11,7 +11,7 @@ import tomllib
 
 import numpy as np
 import pytest
-from files import EXAMPLES, write
+from files import EXAMPLES, one_line_error, write
 from scipy.linalg import expm
 from typer.testing import CliRunner
 
@@ -217,13 +217,7 @@ BAD = [
 
 @pytest.mark.parametrize(("old", "new", "needle"), BAD)
 def test_bad_input_gets_one_clear_line(tmp_path, old, new, needle):
-    text = ENVISAT.read_text(encoding="utf-8")
-    assert old in text
-    path = write(tmp_path, text.replace(old, new))
-    result = CliRunner().invoke(app, ["run", str(path), "-o", str(tmp_path / "out")])
-    assert result.exit_code == 2, result.output
-    lines = [line for line in result.output.strip().splitlines() if line.strip()]
-    assert len(lines) == 1 and needle in lines[0], result.output
+    assert needle in one_line_error(tmp_path, ENVISAT, old, new)
 
 
 def test_a_scenario_from_a_two_line_element_set(tmp_path):

@@ -443,6 +443,28 @@ _K_STEP = 2.5780921133481733  # K(m = 0.9): beyond it, 8 more intervals for each
 _MAX_NODES = 64
 
 
+@jit(INLINE)
+def _on_polhode(
+    a: int, ac: float, as_: float, ad: float, cn: float, sn: float, dn: float, i_c: int,
+    i_s: int, sd: float,
+) -> Vec3:  # fmt: skip
+    """ℓ in the sorted axes at (cn, sn, dn) with the signs of cn and sn flipped by i_c, i_s and
+    dn's times sd: (A_c cn, A_s sn, A_d dn) about the third axis (a = 2), reversed about the
+    first."""
+    c_ = (1.0 - 2.0 * i_c) * ac * cn
+    s_ = (1.0 - 2.0 * i_s) * as_ * sn
+    d_ = sd * ad * dn
+    return (c_, s_, d_) if a == 2 else (d_, s_, c_)
+
+
+@jit(INLINE)
+def _plus4(
+    x: tuple[float, float, float, float], w: float, y: tuple[float, float, float, float]
+) -> tuple[float, float, float, float]:
+    """x + w y."""
+    return x[0] + w * y[0], x[1] + w * y[1], x[2] + w * y[2], x[3] + w * y[3]
+
+
 @jit(KERNEL)
 def _exact_closed(p: FloatArray, v: int, t: float, ctx: Context) -> Parts:
     """The Euler–Poinsot average of the exact illumination: exact over χ (the lit arcs), the
@@ -473,17 +495,8 @@ def _exact_closed(p: FloatArray, v: int, t: float, ctx: Context) -> Parts:
         w = weight / (n_c * n_s * nodes)
         for i_c in range(n_c):
             for i_s in range(n_s):
-                c_ = (1.0 - 2.0 * i_c) * ac * cn
-                s_ = (1.0 - 2.0 * i_s) * as_ * sn
-                d_ = ad * dn
-                ls = (c_, s_, d_) if a == 2 else (d_, s_, c_)
-                parts = _lit_about_l(p, k, count, ls, L, inv, sl)
-                total = (
-                    total[0] + w * parts[0],
-                    total[1] + w * parts[1],
-                    total[2] + w * parts[2],
-                    total[3] + w * parts[3],
-                )
+                ls = _on_polhode(a, ac, as_, ad, cn, sn, dn, i_c, i_s, 1.0)
+                total = _plus4(total, w, _lit_about_l(p, k, count, ls, L, inv, sl))
     return scale * total[0], scale * total[1], scale * total[2], scale * total[3]
 
 
@@ -511,17 +524,8 @@ def closed(p: FloatArray, v: int, t: float, ctx: Context) -> Parts:
             w = share * (weight + sd * odd)
             for i_c in range(n_c):
                 for i_s in range(n_s):
-                    c_ = (1.0 - 2.0 * i_c) * ac * cn
-                    s_ = (1.0 - 2.0 * i_s) * as_ * sn
-                    d_ = sd * ad * dn
-                    ls = (c_, s_, d_) if a == 2 else (d_, s_, c_)
-                    parts = _about_l(p, k, ls, L, inv, sl)
-                    total = (
-                        total[0] + w * parts[0],
-                        total[1] + w * parts[1],
-                        total[2] + w * parts[2],
-                        total[3] + w * parts[3],
-                    )
+                    ls = _on_polhode(a, ac, as_, ad, cn, sn, dn, i_c, i_s, sd)
+                    total = _plus4(total, w, _about_l(p, k, ls, L, inv, sl))
     return scale * total[0], scale * total[1], scale * total[2], scale * total[3]
 
 

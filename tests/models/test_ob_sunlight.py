@@ -81,24 +81,24 @@ def test_a_mesh_file_beside_the_scenario(tmp_path):
 
 
 def test_averaged_against_full_for_a_tumbling_box_wing_in_geo():
-    # Twenty days of the tumbling example (its period and the direction of L): the averaged
+    # Ten days of the tumbling example (its period and the direction of L): the averaged
     # equations average the exact illumination over the precession and take 8 intervals of the
     # polhode (an error of at most a few 1e-3 of the moment), the orbit with its eclipse
-    # fraction (the full run has the conical shadow). The period falls by 2.3 %; the averaged
-    # run's period is off by 1.35e-4 at the end (0.6 % of the change), L by 0.010° (measured).
+    # fraction (the full run has the conical shadow). The period falls by 1.2 %; the averaged
+    # run's period is off by 6.5e-5 at most (0.5 % of the change), L by 0.0066° (measured).
     data = tomllib.loads(TUMBLING.read_text(encoding="utf-8"))
-    data["run"] = {"t_end_days": 20.0, "samples": 21, "methods": ["full", "averaged"]}
+    data["run"] = {"t_end_days": 10.0, "samples": 11, "methods": ["full", "averaged"]}
     request = parse_scenario(data, str(TUMBLING)).request
     runs = {m: simulate(request.model, request.params, request.initial, request.tau, m).columns
             for m in ("full", "averaged")}  # fmt: skip
     f, a = runs["full"], runs["averaged"]
     assert 0.0 < f["k2"][0] < 1.0  # a tumble
-    assert abs(f["period"][-1] / f["period"][0] - 1.0) > 0.02  # the period moves
-    assert np.max(np.abs(a["period"] / f["period"] - 1.0)) <= 3e-4
+    assert abs(f["period"][-1] / f["period"][0] - 1.0) > 0.01  # the period moves
+    assert np.max(np.abs(a["period"] / f["period"] - 1.0)) <= 2e-4
     Lf = np.stack([f[f"L{i}"] for i in (1, 2, 3)], axis=1)
     La = np.stack([a[f"L{i}"] for i in (1, 2, 3)], axis=1)
     cos = np.sum(Lf * La, axis=1) / np.linalg.norm(Lf, axis=1) / np.linalg.norm(La, axis=1)
-    assert np.degrees(np.max(np.arccos(np.clip(cos, -1.0, 1.0)))) <= 0.05
+    assert np.degrees(np.max(np.arccos(np.clip(cos, -1.0, 1.0)))) <= 0.02
 
 
 BAD = [

@@ -50,6 +50,7 @@ __all__ = [
     "orbit_at",
     "orbit_state",
     "orbit_states",
+    "perifocal",
 ]
 
 ORBIT = Layout(
@@ -114,6 +115,20 @@ def _eccentric_anomaly(mean: float, e: float) -> float:
 
 
 @jit(INLINE)
+def perifocal(raan: float, argp: float, inc: float) -> tuple[Vec3, Vec3, Vec3]:
+    """The perifocal axes P (to the perigee), Q and W (the orbit normal) in inertial axes, the
+    columns of R3(−Ω) R1(−i) R3(−ω), for the node Ω, perigee ω and inclination i [rad]."""
+    cO, sO = math.cos(raan), math.sin(raan)
+    cw, sw = math.cos(argp), math.sin(argp)
+    ci, si = math.cos(inc), math.sin(inc)
+    return (
+        (cO * cw - sO * sw * ci, sO * cw + cO * sw * ci, sw * si),
+        (-cO * sw - sO * cw * ci, -sO * sw + cO * cw * ci, cw * si),
+        (sO * si, -cO * si, ci),
+    )
+
+
+@jit(INLINE)
 def orbit_state(
     orbit: FloatArray, v: int, mean: float, raan: float, argp: float
 ) -> tuple[Vec3, Vec3]:
@@ -128,12 +143,7 @@ def orbit_state(
     x, y = a * (ce - e), a * eta * se
     edot = orbit[v + _O.mean_rate] / (1.0 - e * ce)
     vx, vy = -a * se * edot, a * eta * ce * edot
-    cO, sO = math.cos(raan), math.sin(raan)
-    cw, sw = math.cos(argp), math.sin(argp)
-    ci, si = math.cos(inc), math.sin(inc)
-    # Columns P, Q of the perifocal frame in inertial axes: R3(−Ω) R1(−i) R3(−ω).
-    p1, p2, p3 = cO * cw - sO * sw * ci, sO * cw + cO * sw * ci, sw * si
-    q1, q2, q3 = -cO * sw - sO * cw * ci, -sO * sw + cO * cw * ci, cw * si
+    (p1, p2, p3), (q1, q2, q3), _ = perifocal(raan, argp, inc)
     r1, r2, r3 = x * p1 + y * q1, x * p2 + y * q2, x * p3 + y * q3
     # dω/dt ĥ × r with ĥ × P = Q, ĥ × Q = −P; dΩ/dt ξ3 × r.
     wd, od = orbit[v + _O.argp_rate], orbit[v + _O.raan_rate]

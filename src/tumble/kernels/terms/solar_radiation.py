@@ -54,7 +54,7 @@ from tumble.kernels.jit import INLINE, KERNEL, jit
 from tumble.kernels.layout import Field, Layout, Mat3, Vec3, mat3
 from tumble.kernels.lframe import Context, Parts, column_dot
 from tumble.kernels.params import TRIAXIAL_AVERAGED
-from tumble.kernels.space import ORBIT, orbit_at
+from tumble.kernels.space import ORBIT, orbit_at, perifocal
 from tumble.kernels.sun import conical_shadow, cylindrical_shadow, eclipse_fraction, sun_at
 from tumble.kernels.terms.base import ORBIT_FIELD, OrbitContext, OrbitKey, Term
 
@@ -221,12 +221,10 @@ def _sun_mean(prog: FloatArray, v: int, t: float) -> tuple[float, float, float, 
         o = v + _MEAN.orbit
         raan = prog[o + _O.raan] + prog[o + _O.raan_rate] * t
         argp = prog[o + _O.argp] + prog[o + _O.argp_rate] * t
-        cO, sO = math.cos(raan), math.sin(raan)
-        cw, sw = math.cos(argp), math.sin(argp)
-        ci, si = math.cos(prog[o + _O.i]), math.sin(prog[o + _O.i])
-        sp = (cO * cw - sO * sw * ci) * s1 + (sO * cw + cO * sw * ci) * s2 + sw * si * s3
-        sq = (-cO * sw - sO * cw * ci) * s1 + (-sO * sw + cO * cw * ci) * s2 + cw * si * s3
-        sn = sO * si * s1 - cO * si * s2 + ci * s3
+        P, Q, W = perifocal(raan, argp, prog[o + _O.i])
+        sp = P[0] * s1 + P[1] * s2 + P[2] * s3
+        sq = Q[0] * s1 + Q[1] * s2 + Q[2] * s3
+        sn = W[0] * s1 + W[1] * s2 + W[2] * s3
         scale *= 1.0 - eclipse_fraction(prog[o + _O.a], prog[o + _O.e], sp, sq, sn)
     return s1, s2, s3, scale
 

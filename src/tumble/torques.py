@@ -51,6 +51,7 @@ __all__ = [
     "ConstantInertialTorque",
     "EddyCurrentTorque",
     "GravityGradientTorque",
+    "InternalDissipation",
     "LinearDrag",
     "QuadraticDrag",
     "ScaledTorque",
@@ -633,3 +634,55 @@ class GravityGradientTorque(Torque):
     def compiled_terms(self) -> tuple[CompiledTerm, ...]:
         values = {"inertia": self.inertia, "n": self.n, "u0": self.u0, "basis": self.basis}
         return (registry.compiled_term("gravity_gradient", values),)
+
+
+@dataclass(frozen=True, eq=False)
+class InternalDissipation(Torque):
+    """Internal energy dissipation: a viscous damper whose contents turn at the body's mean
+    rate about L, M = −c (ω − (2T/|L|²) L) in body axes
+    (:mod:`tumble.kernels.terms.internal_dissipation`).
+
+    |L| is kept and the kinetic energy falls at the rate c |ω⊥|² (ω⊥ the body rate across L)
+    until the body turns about its axis of largest inertia. The coefficient c is set by the
+    time constant: near that axis the energy above it decays as e^(−t/τ),
+    c = 1 / (τ (Σ 1/Iᵢ − 3/I_max)).
+
+    Parameters
+    ----------
+    inertia : array_like, shape (3,)
+        The body's principal moments (I1, I2, I3), in the body axes of the state; not all
+        equal [inertia unit].
+    tau : float
+        The time constant τ > 0 of the energy near major-axis rotation [time].
+
+    References
+    ----------
+    The energy-sink view of a quasi-rigid body with a damper (e.g. Hughes, *Spacecraft
+    Attitude Dynamics*, 1986, on internal energy dissipation); the coefficient from the mean
+    of |ω⊥|² over the small Euler–Poinsot oscillation about the major axis (derived on the
+    theory page).
+    """
+
+    inertia: FloatArray
+    tau: float
+    c: float = field(init=False)
+
+    def __post_init__(self) -> None:
+        inertia = _vector("inertia", self.inertia)
+        if np.any(inertia <= 0.0):
+            raise ParameterError(f"inertia must be positive, got {inertia.tolist()}")
+        check_range("tau", self.tau, low=0.0)
+        spread = float(np.sum(1.0 / inertia) - 3.0 / np.max(inertia))
+        # Equal moments (to 1e-12) have no axis to settle on: every rotation is one.
+        if spread <= 1e-12 * float(np.sum(1.0 / inertia)):
+            raise ParameterError(
+                f"inertia = {inertia.tolist()}: internal dissipation needs a largest moment "
+                "above the others (a sphere has no axis to settle on)"
+            )
+        object.__setattr__(self, "inertia", inertia)
+        object.__setattr__(self, "tau", float(self.tau))
+        object.__setattr__(self, "c", 1.0 / (float(self.tau) * spread))
+
+    def compiled_terms(self) -> tuple[CompiledTerm, ...]:
+        values = {"inertia": self.inertia, "c": self.c}
+        return (registry.compiled_term("internal_dissipation", values),)

@@ -19,6 +19,7 @@ from tumble.torques import (
     ConstantBodyTorque,
     ConstantInertialTorque,
     GravityGradientTorque,
+    InternalDissipation,
     LinearDrag,
     QuadraticDrag,
 )
@@ -98,11 +99,13 @@ def _torques(rng: np.random.Generator) -> dict[str, object]:
         "constant moments": ConstantBodyTorque(rng.normal(size=3))
         + ConstantInertialTorque(rng.normal(size=3)),
         "linear drag": LinearDrag(rng.normal(size=(3, 3))),
+        "internal dissipation": InternalDissipation(INERTIA, 0.8),
     }
 
 
 @pytest.mark.parametrize("name", ["field moments", "gravity moments", "gravity gradient",
-                                  "constant moments", "linear drag", "all"])  # fmt: skip
+                                  "constant moments", "linear drag", "internal dissipation",
+                                  "all"])  # fmt: skip
 def test_closed_form_equals_the_quadrature(name):
     rng = np.random.default_rng(5)
     torques = _torques(rng)

@@ -188,9 +188,17 @@ def test_what_the_compiled_engine_refuses():
     kernel = triaxial_kernel(gg, INERTIA, 2.0 * gg.period)  # two orbits a period: fine
     assert kernel is not None
     I1, I2, _ = sorted(INERTIA)
-    for y in ([1.0, 0.0, 0.0, 1.2 / I1], [0.0, 0.0, 0.0, 1.0 / I2], [1.0, 0.0, 0.0, 1.0 / I2]):
-        # beyond a pure rotation, L = 0, on the separatrix: the step is rejected
+    for y in ([1.0, 0.0, 0.0, 1.2 / I1], [0.0, 0.0, 0.0, 1.0 / I2]):
+        # beyond a pure rotation, L = 0: the step is rejected
         assert np.all(np.isnan(evaluate(kernel.kind, 0.0, np.array(y), kernel.params)))
+    # On the separatrix, where the Python engine refuses the state, the compiled one takes the
+    # motion at the edge of the band |1 − r I2| ≤ 1e-12 on the state's side (the one-sided
+    # limit), so that a run creeping onto it steps across to its event instead of stalling.
+    on = evaluate(kernel.kind, 0.0, np.array([1.0, 0.0, 0.0, 1.0 / I2]), kernel.params)
+    edge = evaluate(kernel.kind, 0.0, np.array([1.0, 0.0, 0.0, (1.0 - 1e-12) / I2]), kernel.params)
+    assert np.all(np.isfinite(on))
+    # The same polhode but for r itself, which the rates read apart from it: ~1e-12 apart.
+    np.testing.assert_allclose(on, edge, rtol=1e-9, atol=1e-15)
 
 
 NUMERIC = AveragingOptions(averaging="numeric")
@@ -228,8 +236,9 @@ def test_torqued_body_runs_compiled():
 
 
 def test_a_run_refused_at_its_start_says_why():
-    # A spin about the intermediate axis sits on the separatrix: the kernel's rates are NaN
-    # there, and the failed run carries the Python engine's reason, alone and in an ensemble.
+    # A spin about the intermediate axis sits on the separatrix, where the averaged equations
+    # have no regime to take: the run is refused with the Python engine's reason, alone and in
+    # an ensemble.
     from tumble.errors import IntegrationError
     from tumble.integrate import simulate_batch
 
@@ -237,7 +246,7 @@ def test_a_run_refused_at_its_start_says_why():
     p = tb.Params(inertia=INERTIA, eps=0.02, torque=torque, forcing_period=period)
     st = tb.State(omega=np.array([1.0, 0.0, 0.0]))  # the first moment, 1.5, is the middle one
     tau = np.linspace(0.0, 10.0, 3)
-    with pytest.raises(IntegrationError, match=r"initial state; last refused state: .*separatrix"):
+    with pytest.raises(IntegrationError, match=r"refuse the initial state: .*separatrix"):
         simulate(tb.MODEL, p, st, tau, "averaged")
     (got,) = simulate_batch(tb.MODEL, [p], [st], tau, method="averaged")
     assert isinstance(got, IntegrationError) and "separatrix" in str(got)

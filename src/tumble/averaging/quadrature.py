@@ -29,6 +29,7 @@ from tumble.errors import IntegrationError, ParameterError
 from tumble.kernels.limits import AVERAGE_RTOL
 from tumble.torques import (
     ConstantBodyTorque,
+    InternalDissipation,
     LinearDrag,
     QuadraticDrag,
     ScaledTorque,
@@ -364,7 +365,7 @@ class BatchedTorque:
         return m
 
 
-_RATE_TORQUES = (ConstantBodyTorque, LinearDrag, QuadraticDrag, ZeroTorque)
+_RATE_TORQUES = (ConstantBodyTorque, LinearDrag, QuadraticDrag, InternalDissipation, ZeroTorque)
 """Built-in torques that are functions of the body rate alone (exact types: a subclass may
 override ``__call__``)."""
 
@@ -373,8 +374,9 @@ def rate_only(torque: Any) -> bool:
     """Whether ``torque`` is a function of the body rate alone, known from its type.
 
     True for the built-in :class:`~tumble.torques.ConstantBodyTorque`,
-    :class:`~tumble.torques.LinearDrag`, :class:`~tumble.torques.QuadraticDrag` and
-    :class:`~tumble.torques.ZeroTorque` (exact types) and for sums and multiples of them. Such
+    :class:`~tumble.torques.LinearDrag`, :class:`~tumble.torques.QuadraticDrag`,
+    :class:`~tumble.torques.InternalDissipation` and :class:`~tumble.torques.ZeroTorque` (exact
+    types) and for sums and multiples of them. Such
     a torque reads neither the attitude nor the time: the engines call it with ``q = None``
     and skip the averages over phases that enter only through the attitude.
     """

@@ -25,6 +25,7 @@ from tumble.torques import (
     ConstantInertialTorque,
     EddyCurrentTorque,
     GravityGradientTorque,
+    InternalDissipation,
     LinearDrag,
     QuadraticDrag,
     ScaledTorque,
@@ -119,7 +120,7 @@ class _Moment:
     def _body(self, torque: Any, t: FloatArray, g: _Grid) -> FloatArray:
         kind = type(torque)
         w = g.omega
-        if kind in (ConstantBodyTorque, LinearDrag, QuadraticDrag):
+        if kind in (ConstantBodyTorque, LinearDrag, QuadraticDrag, InternalDissipation):
             # Time-independent and batch-aware: one call on the grid's body rates.
             return np.asarray(torque(0.0, None, w), dtype=float)
         if kind in (ZeroTorque, ConstantInertialTorque, EddyCurrentTorque):

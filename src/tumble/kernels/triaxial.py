@@ -397,7 +397,8 @@ def _polhode(y: FloatArray, p: FloatArray) -> tuple[bool, float, float, bool, fl
     """(valid, |L|, r, regime x3, the complementary parameter mc, the amplitudes of cn, sn,
     dn, the frame F of L) of the state y = [L_ξ, r]; not valid where the Python engine
     refuses the state: r beyond a pure rotation by more than the margin, L at or below the
-    floor, the separatrix band, mc below its floor.
+    floor, mc below its floor. In the separatrix band, which the Python engine refuses, the
+    polhode at the band's edge on the state's side.
 
     A body with two equal moments (within ``DEGENERATE_RTOL·I3``) has no separatrix: its
     polhodes are circles about the third axis, at m = 0 (mc = 1), where sn and cn are the sine
@@ -417,8 +418,15 @@ def _polhode(y: FloatArray, p: FloatArray) -> tuple[bool, float, float, bool, fl
     d1, d2, d3 = max(1.0 - r * i1, 0.0), 1.0 - r * i2, max(r * i3 - 1.0, 0.0)
     tol = DEGENERATE_RTOL * i3
     low, high = i2 - i1 <= tol, i3 - i2 <= tol  # I1 = I2, I2 = I3
-    if not L > p[_AT.floor] or (abs(d2) <= SEPARATRIX_RTOL and not (low or high)):
+    if not L > p[_AT.floor]:
         return False, L, r, True, 0.0, (0.0, 0.0, 0.0), _NO_FRAME
+    if abs(d2) <= SEPARATRIX_RTOL and not (low or high):
+        # Inside the band the regime is not known from the state: the polhode at the band's
+        # edge on d2's side (its one-sided limit; the rates tend to finite limits there as
+        # 1/ln(1/d2)). A run creeping onto the separatrix (its rates' derivatives grow like
+        # 1/(d2 ln² d2), so the steps shrink with d2) then steps across it, where the
+        # separatrix event restarts it beyond, instead of stalling on refused stages.
+        d2 = SEPARATRIX_RTOL if d2 >= 0.0 else -SEPARATRIX_RTOL
     frame = _frame(y[0] / L, y[1] / L, y[2] / L)
     if low and high:  # a sphere
         return True, L, r, True, 1.0, (0.0, 0.0, L / i3), frame
@@ -450,7 +458,7 @@ def _polhode(y: FloatArray, p: FloatArray) -> tuple[bool, float, float, bool, fl
 def triaxial_closed(t: float, y: FloatArray, p: FloatArray, out: FloatArray) -> None:
     """``KIND_TRIAXIAL_CLOSED``: ε⟨A M⟩ and ε·2⟨(Ω − r L_ξ)·M⟩/L² for y = [L_ξ, r] of a
     program whose every term has a closed-form average (:mod:`tumble.kernels.
-    triaxial_closed`); NaN where the Python engine refuses the state (:func:`_polhode`), so
+    triaxial_closed`); NaN where :func:`_polhode` refuses the state, so
     that the step is rejected."""
     valid, L, r, x3, mc, amp, F = _polhode(y, p)
     if not valid:

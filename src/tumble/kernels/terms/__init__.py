@@ -38,6 +38,7 @@ NAMES: tuple[str, ...] = (
     "orbit_eddy_harmonic",
     "residual_dipole",
     "solar_radiation",
+    "internal_dissipation",
 )
 """The registered term modules of this package. Append, never reorder: a program stores codes
 (a term's place in the registry)."""

@@ -43,7 +43,13 @@ from tumble.space import (
 from tumble.space.facets import Facets, Optics, box, box_wing, cylinder, from_mesh
 from tumble.space.orbit import EARTH_RADIUS
 from tumble.space.sun import julian_date
-from tumble.torques import CompiledTorque, ConstantBodyTorque, Torque, TorqueSum
+from tumble.torques import (
+    CompiledTorque,
+    ConstantBodyTorque,
+    InternalDissipation,
+    Torque,
+    TorqueSum,
+)
 
 __all__ = ["DAY", "DECLARED", "SHAPES", "Params", "Scaling", "State", "principal_axes"]
 
@@ -450,6 +456,15 @@ _TORQUES = Section(
             "N m",
             [0.0, 0.0, 0.0],
         ),
+        Key(
+            "dissipation_days",
+            "number",
+            "a time constant ≥ 0 (0: none)",
+            "days",
+            0.0,
+            doc="internal energy dissipation: the energy above major-axis rotation decays "
+            "with this time constant",
+        ),
         *(
             Key(k.name, cast(KeyKind, k.kind), k.meaning, k.unit, k.default, doc=k.doc)
             for k in terms.orbit_key_specs()
@@ -830,6 +845,12 @@ def _build(inputs: Inputs) -> Built[Params, State]:
         full.append(moment)
         mean.append(moment)
         labels.append("residual moment")
+    check_range("torques.dissipation_days", torques["dissipation_days"], low=0.0, low_open=False)
+    if torques["dissipation_days"] > 0.0:
+        damper = InternalDissipation(moments / I0, torques["dissipation_days"] * DAY / T0)
+        full.append(damper)
+        mean.append(damper)
+        labels.append("internal dissipation")
     context = terms.OrbitContext(
         orbit.payload(T0),
         None if field_model is None else field_model.payload(T0),

@@ -27,6 +27,7 @@ from tumble.torques import (
     ConstantBodyTorque,
     ConstantInertialTorque,
     GravityGradientTorque,
+    InternalDissipation,
     LinearDrag,
     QuadraticDrag,
     ScaledTorque,
@@ -52,7 +53,7 @@ __all__ = [
     "torque_from_terms",
 ]
 
-_BODY_ONLY = (ConstantBodyTorque, LinearDrag, QuadraticDrag, ZeroTorque)
+_BODY_ONLY = (ConstantBodyTorque, LinearDrag, QuadraticDrag, InternalDissipation, ZeroTorque)
 """Torques that depend on the body angular velocity only: the body's phases enter them only
 through ω, so commensurabilities of the free motion (m = 0 resonances) do not matter."""
 
@@ -83,6 +84,7 @@ TORQUE_KINDS = (
     "body_constant",
     "linear_drag",
     "quadratic_drag",
+    "internal_dissipation",
     "user",
 )
 """The ``kind`` of a torque term in a scenario."""
@@ -109,6 +111,9 @@ def _term_torque(i: int, term: dict[str, Any], inertia: Any) -> tuple[Torque, st
         return LinearDrag(term["B"]), "linear drag", None
     if kind == "quadratic_drag":
         return QuadraticDrag(term["S"]), "quadratic drag", None
+    if kind == "internal_dissipation":
+        damper = InternalDissipation(inertia, term["tau"])
+        return damper, f"internal dissipation (τ = {damper.tau:g})", None
     if kind == "user":
         period = term.get("period")
         if period is not None:
@@ -134,6 +139,8 @@ def torque_from_terms(
         ``gravity_gradient``: ``n`` [rad/t], ``normal`` (3), ``u0`` [rad];
         ``inertial_constant``, ``body_constant``: ``moment`` (3) [moment unit];
         ``linear_drag``: ``B`` (3×3); ``quadratic_drag``: ``S`` (3×3);
+        ``internal_dissipation``: ``tau`` [t], the energy's time constant near major-axis
+        rotation;
         ``user``: ``function`` (callable ``f(t, q, omega, params)``), ``name``, ``params``,
         ``period`` [t] or None.
 
@@ -369,6 +376,8 @@ def _term(kind: str, *keys: Key) -> Section:
 
 
 _MOMENT = Key("moment", "vector3", "3 components of the moment")
+_TAU_MEANING = "time constant > 0 of the energy above major-axis rotation"
+_TAU = Key("tau", "number", _TAU_MEANING, "t")
 TERMS: dict[str, Section] = {
     "gravity_gradient": _term(
         "gravity_gradient",
@@ -387,6 +396,7 @@ TERMS: dict[str, Section] = {
     "body_constant": _term("body_constant", _MOMENT),
     "linear_drag": _term("linear_drag", Key("B", "matrix3", "3×3 damping matrix, M = −B ω")),
     "quadratic_drag": _term("quadratic_drag", Key("S", "matrix3", "3×3 matrix, M = −S (ω ∘ |ω|)")),
+    "internal_dissipation": _term("internal_dissipation", _TAU),
     "user": _term(
         "user",
         Key("function", "text", '"file:function", f(t, q, omega, params) -> body moment'),
@@ -605,6 +615,7 @@ PHYSICAL_TERMS: dict[str, Section] = {
     "quadratic_drag": _term(
         "quadratic_drag", Key("S", "matrix3", "3×3, M = −S (ω ∘ |ω|)", "N m s^2")
     ),
+    "internal_dissipation": _term("internal_dissipation", Key("tau", "number", _TAU_MEANING, "s")),
 }
 """The [[torque]] tables of a physical scenario by kind, in SI units."""
 
@@ -628,6 +639,9 @@ def _physical_term(i: int, term: dict[str, Any], T0: float, I0: float) -> dict[s
         out["B"] = np.asarray(term["B"], dtype=float) * T0 / I0
     elif kind == "quadratic_drag":
         out["S"] = np.asarray(term["S"], dtype=float) / I0
+    elif kind == "internal_dissipation":
+        check_range(f"torque[{i}].tau [s]", term["tau"], low=0.0)
+        out["tau"] = float(term["tau"]) / T0
     return out
 
 

@@ -33,8 +33,9 @@ from tumble._typing import BoolArray, FloatArray
 from tumble.averaging import nearest_resonances, triaxial_kernel
 from tumble.averaging.triaxial import triaxial_average_stage
 from tumble.dynamics import rigid_body_rhs
-from tumble.errors import ParameterError, TumbleError
+from tumble.errors import IntegrationError, ParameterError, TumbleError
 from tumble.kernels import EVENT_TRIAXIAL_SEPARATRIX, Kernel, evaluate_rhs
+from tumble.kernels.codes import SEPARATRIX_RTOL
 from tumble.kernels.rhs import rigid_body
 from tumble.models.base import (
     AveragedForm,
@@ -219,6 +220,21 @@ def _mean_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[
                               "Euler's equations")  # fmt: skip
 
 
+def _averaged_start(p: Params, st: State) -> FloatArray:
+    """The averaged run's initial state [L_ξ, r], refused on the separatrix with the Python
+    engine's reason: the compiled engine takes the edge of the separatrix band on a state's
+    side, for a run that creeps onto it, but a run that starts inside the band has no side."""
+    y = _vector_from_slow(p, st)
+    if abs(1.0 - float(y[3]) * p.sorted_inertia[1]) <= SEPARATRIX_RTOL:
+        torque, period = p.averaging
+        try:
+            triaxial_average_stage(torque, p.inertia, y, 0.0, period)
+        except TumbleError as exc:
+            said = f"the averaged equations refuse the initial state: {exc}"
+            raise IntegrationError(said) from None
+    return y
+
+
 def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:
     """The general engine: the only averaged form of any torque (``averaging`` is moot); of
     order 2 in mean variables (:func:`_mean_form`)."""
@@ -242,7 +258,7 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
         equation="the triaxial averaging (3.5)-(3.7) with the scenario's torque, by quadrature",
         slow=("L1", "L2", "L3", "r"),
         rhs=averaged_rhs,
-        initial_state=_vector_from_slow,
+        initial_state=_averaged_start,
         to_columns=_vector_columns,
         breakpoints=breakpoints,
         kernel=averaged_kernel,

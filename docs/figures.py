@@ -118,6 +118,15 @@ FIGURES: tuple[Figure, ...] = (
         "spin.png",
     ),
     Figure(
+        "ob_geo_decade_spin.png",
+        "A dead GEO satellite over ten years",
+        "A GOES-class box-wing tumbling under sunlight, the gravity gradient and a one-year "
+        "damper: ten years of spin period, rate and axis, averaged, in two seconds.",
+        "tutorials/dead-geo-satellite",
+        (f"{TUMBLE} run examples/ob_geo_decade.toml -o $OUT",),
+        "spin.png",
+    ),
+    Figure(
         "ob_envisat_monte_carlo.png",
         "A year ahead, with uncertainty",
         "200 averaged years of the same satellite: the spin period's median and bands.",

@@ -639,12 +639,12 @@ class GravityGradientTorque(Torque):
 @dataclass(frozen=True, eq=False)
 class InternalDissipation(Torque):
     """Internal energy dissipation: a viscous damper whose contents turn at the body's mean
-    rate about L, M = −c (ω − (2T/|L|²) L) in body axes
+    rate about L, ``M = −c (ω − (2T/L²) L)`` in body axes, L² = L·L
     (:mod:`tumble.kernels.terms.internal_dissipation`).
 
-    |L| is kept and the kinetic energy falls at the rate c |ω⊥|² (ω⊥ the body rate across L)
-    until the body turns about its axis of largest inertia. The coefficient c is set by the
-    time constant: near that axis the energy above it decays as e^(−t/τ),
+    The size of L is kept and the kinetic energy falls at the rate ``c ω⊥·ω⊥`` (ω⊥ the body
+    rate across L) until the body turns about its axis of largest inertia. The coefficient c
+    is set by the time constant: near that axis the energy above it decays as e^(−t/τ),
     c = 1 / (τ (Σ 1/Iᵢ − 3/I_max)).
 
     Parameters
@@ -659,7 +659,7 @@ class InternalDissipation(Torque):
     ----------
     The energy-sink view of a quasi-rigid body with a damper (e.g. Hughes, *Spacecraft
     Attitude Dynamics*, 1986, on internal energy dissipation); the coefficient from the mean
-    of |ω⊥|² over the small Euler–Poinsot oscillation about the major axis (derived on the
+    of ω⊥·ω⊥ over the small Euler–Poinsot oscillation about the major axis (derived on the
     theory page).
     """
 

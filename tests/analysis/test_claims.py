@@ -1,7 +1,7 @@
 """The papers' claims (tumble.analysis.claims) and the drawing of their figures (plot.claims).
 
 Fast tests run a few claims that take well under 0.3 s each and check the record, the verdict
-and the figure helpers; the slow test runs all 45 claims once (~45 s with figures) and checks
+and the figure helpers; the slow test runs all 50 claims once (~45 s with figures) and checks
 the interface of every record and that every figure renders.
 """
 
@@ -19,8 +19,11 @@ import numpy as np
 import pytest
 
 from tumble.analysis.claims import (
+    AGREES,
     CLAIMS,
     CONFIRMED,
+    DISAGREES,
+    EXPLAINS,
     PAPERS,
     QUALIFIED,
     REFUTED,
@@ -42,13 +45,26 @@ from tumble.errors import ParameterError
 from tumble.plot import claim_figure, claim_png
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
-PREFIX = {"resisting_medium": "rm", "rotating_field": "rf", "nonlinear_moment": "nm"}
+PREFIX = {
+    "resisting_medium": "rm",
+    "rotating_field": "rf",
+    "nonlinear_moment": "nm",
+    "observations": "obs",
+}
 MEASURED_KEYS = {"value", "units", "what", "threshold", "criterion"}
 
 CONFIRMED_IDS = {"rm-2", "rm-4", "rm-5", "rf-3", "rf-6", "rf-7", "rf-11", "nm-5", "nm-6", "nm-9"}
 REFUTED_IDS = {"rm-12", "rm-15", "rf-17"}
 """The verdicts of the first full run (the README's table): these confirmed, these refuted, the
 other 32 qualified. A change of verdict must be a deliberate one, seen in this test."""
+OBSERVED = {
+    "obs-1": EXPLAINS,
+    "obs-2": DISAGREES,
+    "obs-3": EXPLAINS,
+    "obs-4": EXPLAINS,
+    "obs-5": AGREES,
+}
+"""The verdicts of the observations' first run (docs/theory/observations.md)."""
 
 
 # ---------------------------------------------------------------------------------------------
@@ -61,7 +77,11 @@ def test_verdict_from_holds_and_qualified():
     # A claim that does not hold is refuted whatever the theory page qualifies.
     assert verdict(False, False) == REFUTED
     assert verdict(False, True) == REFUTED
-    assert VERDICTS == (CONFIRMED, QUALIFIED, REFUTED)
+    assert VERDICTS == (CONFIRMED, QUALIFIED, REFUTED, AGREES, EXPLAINS, DISAGREES)
+    # An observation: explained at least qualitatively or not, and within its band or not.
+    assert verdict(True, False, "observations") == AGREES
+    assert verdict(True, True, "observations") == EXPLAINS
+    assert verdict(False, True, "observations") == DISAGREES
 
 
 def test_plain_converts_numpy_and_non_finite_values():
@@ -231,12 +251,12 @@ def test_registry_is_ordered_and_named_for_the_papers():
     for paper, fns in CLAIMS.items():
         names = [fn.__name__ for fn in fns]
         assert names == [f"{PREFIX[paper]}_{i}" for i in range(1, len(fns) + 1)]
-    assert [len(fns) for fns in CLAIMS.values()] == [16, 18, 11]
+    assert [len(fns) for fns in CLAIMS.values()] == [16, 18, 11, 5]
 
 
 def test_every_claim_has_a_unique_snake_case_name():
     names = [c.name for c in DECLARED.values()]
-    assert len(names) == len(set(names)) == 45
+    assert len(names) == len(set(names)) == 50
     assert all(re.fullmatch(r"[a-z][a-z0-9]*(_[a-z0-9]+)+", n) for n in names), names
 
 
@@ -287,7 +307,7 @@ def test_every_claim_keeps_the_interface(all_claims):
             assert c.figure.title.startswith(f"{c.name} ({c.id}): ")
             assert claim_png(c.figure).startswith(PNG_MAGIC), c.id
         seen += ids
-    assert len(seen) == len(set(seen)) == 45
+    assert len(seen) == len(set(seen)) == 50
 
 
 # In the fast set: a refactoring that moves one verdict fails CI (about 20 s of claims).
@@ -299,7 +319,9 @@ def test_every_verdict_is_the_recorded_one(all_claims):
                 # machine it may differ, so it is not compared.
                 continue
             expected = (
-                CONFIRMED
+                OBSERVED[c.id]
+                if c.id in OBSERVED
+                else CONFIRMED
                 if c.id in CONFIRMED_IDS
                 else REFUTED
                 if c.id in REFUTED_IDS

@@ -27,12 +27,14 @@ PAGES = [
 ]
 TUMBLE = Path(sys.executable).with_name("tumble")
 # Verification of a year of the Envisat-like object: three full runs at ε, ε/2, ε/4 (~2 min);
-# the Monte Carlo of 200 objects over a year on Dask (~2 min); the B-dot law's verification
+# the Monte Carlo of 200 objects over a year on Dask (~2 min); four GEO decades on Dask (~40 s);
+# the B-dot law's verification
 # (11-15 s, the default suite's longest command: verify itself is tested on other scenarios).
 SLOW = {
     "tumble verify examples/ob_envisat_like.toml",
     "tumble verify examples/tb_bdot.toml -o out/tb_bdot_verify",
     "tumble sweep examples/sweeps/ob_envisat_monte_carlo.toml -o out/envisat_mc",
+    "tumble sweep examples/sweeps/ob_geo_decade_damper.toml -o out/geo_damper",
 }
 _CODE = re.compile(r"`(tumble [^`\n]+)`|^(?: {4}|\$ )?(tumble [^\n#`]+)", re.M)
 

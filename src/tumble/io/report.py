@@ -27,6 +27,9 @@ _COLOURS = {
     "confirmed": "#1a7f37",
     "confirmed with qualification": "#9a6700",
     "refuted": "#cf222e",
+    "agrees": "#1a7f37",
+    "explains qualitatively": "#9a6700",
+    "does not agree": "#cf222e",
     "error": "#6e7781",
 }
 
@@ -142,10 +145,13 @@ def claims_markdown(doc: Mapping[str, Any]) -> str:
     lines = [
         "# The papers' claims, checked",
         "",
-        f"Every claim of the three papers, as `tumble reproduce all` checked it (tumble "
+        f"Every claim of the three papers and every published observation of the set "
+        f"`observations`, as `tumble reproduce all` checked them (tumble "
         f"{doc['tumble_version']}, {len(doc['claims'])} claims: {counts}; "
         f'{doc["wall_time_s"]:.0f} s). *qualified* is "confirmed with qualification": the '
-        "claim holds in the form the theory page gives it. Each figure is measured against "
+        "claim holds in the form the theory page gives it. An observation agrees with tumble "
+        "within the band its record states, is explained qualitatively (its form, its size "
+        "within a wider factor), or does not agree. Each figure is measured against "
         "the criterion in `claims.json`; the report (`report.html`) draws every check. Each "
         "claim is listed by its name, with its id beside it as its alias; `tumble reproduce` "
         "selects a claim by either.",
@@ -157,8 +163,8 @@ def claims_markdown(doc: Mapping[str, Any]) -> str:
             if c.get("paper") != paper:
                 continue
             verdict = c["verdict"].replace("confirmed with qualification", "qualified")
-            if verdict == "refuted":
-                verdict = "**refuted**"
+            if verdict in ("refuted", "does not agree"):
+                verdict = f"**{verdict}**"
             m = c.get("measured", {})
             label = f"`{c['name']}` ({c['id']})" if c.get("name") else c["id"]
             lines.append(
@@ -268,7 +274,9 @@ def report_html(
         "measured figure against the criterion shown: <i>confirmed</i> (holds as the paper "
         "states it), <i>confirmed with qualification</i> (holds in the form the theory page "
         "gives it), "
-        "<i>refuted</i> (the measurement contradicts the paper).</p>",
+        "<i>refuted</i> (the measurement contradicts the paper). A published observation "
+        "<i>agrees</i> (within the band its record states), is <i>explained qualitatively</i> "
+        "(the observed form, its size within a wider factor) or <i>does not agree</i>.</p>",
     ]
     for paper in papers:
         mine = [r for r in runs if r.paper == paper]

@@ -462,7 +462,8 @@ def _keep(sf: SweepFile, request: RunRequest) -> Keep:
     for name in sf.keep.series:
         if name not in slow:
             raise ScenarioError(
-                f"keep.series: {name!r} is not a variable of {model.name} (allowed: "
+                f"keep.series: {shorten(repr(name), 60)} is not a variable of {model.name} "
+                "(allowed: "
                 + ", ".join(sorted(slow))
                 + ")"
             )

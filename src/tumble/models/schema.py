@@ -21,6 +21,7 @@ from tumble._typing import FloatArray, Json
 __all__ = [
     "REQUIRED",
     "Built",
+    "GivenInputs",
     "Inputs",
     "Key",
     "KeyKind",
@@ -131,6 +132,56 @@ class Inputs(Protocol):
     def run_end(self) -> float:
         """The last time the run asks for, in the units of its ``[run]`` table."""
         ...
+
+
+@dataclass(frozen=True)
+class GivenInputs:
+    """:class:`Inputs` of tables that tumble writes itself, for its own checks of published
+    cases (:mod:`tumble.analysis.claims.observations`): each section's keys with their defaults
+    where a table leaves them out, angles in radians under their plain names (``theta``), no
+    file beside a scenario and no user code. A key a section does not declare, or a required
+    key left out, raises ValueError: the tables are tumble's, so that is tumble's error.
+
+    An absent optional section is its defaults when every key has one (``[torques]``), else
+    None (``[surface]``), as a scenario file's is.
+    """
+
+    tables: Mapping[str, Mapping[str, Any]]
+    sections: tuple[Section, ...]
+
+    def __getitem__(self, section: str) -> Mapping[str, Any] | None:
+        declared = next((s for s in self.sections if s.name == section), None)
+        if declared is None:
+            return None
+        given = self.tables.get(section)
+        if given is None and (
+            declared.required or any(k.default is REQUIRED for k in declared.keys)
+        ):
+            if declared.required:
+                raise ValueError(f"[{section}] is required")
+            return None
+        return self.validate(declared, given or {}, section)
+
+    def validate(self, section: Section, raw: Mapping[str, Any], where: str) -> dict[str, Any]:
+        names = {k.name for k in section.keys}
+        unknown = sorted(set(raw) - names)
+        if unknown:
+            raise ValueError(f"{where}: keys {unknown} are not declared")
+        out = {}
+        for k in section.keys:
+            if k.name not in raw and k.default is REQUIRED:
+                raise ValueError(f"{where}.{k.name} is required")
+            out[k.name] = raw.get(k.name, k.default)
+        return out
+
+    def import_function(self, reference: str, where: str) -> Callable[..., Any]:
+        raise ValueError(f"{where}: tumble's own tables call no user code")
+
+    def path(self, name: str, where: str) -> Path:
+        raise ValueError(f"{where}: tumble's own tables read no file")
+
+    def run_end(self) -> float:
+        raise ValueError("tumble's own tables have no [run]")
 
 
 def required(inputs: Inputs, *names: str) -> tuple[Mapping[str, Any], ...]:

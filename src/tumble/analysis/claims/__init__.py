@@ -5,8 +5,10 @@ One function per claim (``rm_1`` … in :mod:`~tumble.analysis.claims.resisting_
 :mod:`~tumble.analysis.claims.nonlinear_moment`) returns a :class:`Claim`: the paper's
 statement with its equation numbers, the theory sections that qualify it, one measured figure
 against a justified threshold, the verdict computed from it, and its figure as a
-:class:`FigureSpec` (drawn by :func:`tumble.plot.claim_figure`). Importing this package runs
-nothing; call the functions of :data:`CLAIMS`.
+:class:`FigureSpec` (drawn by :func:`tumble.plot.claim_figure`). Beside the papers, the set
+``observations`` (``obs_1`` … in :mod:`~tumble.analysis.claims.observations`) checks published
+observations of objects in orbit the same way, with the verdicts agrees, explains qualitatively
+or does not agree. Importing this package runs nothing; call the functions of :data:`CLAIMS`.
 
 Each claim also has a name that states it (``rotation_about_middle_axis_is_unstable``), declared
 in its registration beside its id (``rf-6``), which stays as the name's short alias;
@@ -25,10 +27,14 @@ from collections.abc import Callable
 
 # Importing the paper modules registers their claims.
 from tumble.analysis.claims import nonlinear_moment as nonlinear_moment
+from tumble.analysis.claims import observations as observations
 from tumble.analysis.claims import resisting_medium as resisting_medium
 from tumble.analysis.claims import rotating_field as rotating_field
 from tumble.analysis.claims.base import (
+    AGREES,
     CONFIRMED,
+    DISAGREES,
+    EXPLAINS,
     PAPERS,
     QUALIFIED,
     REFUTED,
@@ -43,8 +49,11 @@ from tumble.analysis.claims.base import (
 )
 
 __all__ = [
+    "AGREES",
     "CLAIMS",
     "CONFIRMED",
+    "DISAGREES",
+    "EXPLAINS",
     "PAPERS",
     "QUALIFIED",
     "REFUTED",

@@ -21,8 +21,12 @@ from tumble.analysis.json_values import plain
 from tumble.errors import ParameterError
 
 __all__ = [
+    "AGREES",
     "CONFIRMED",
     "DECLARED",
+    "DISAGREES",
+    "EXPLAINS",
+    "OBSERVATIONS",
     "PAPERS",
     "QUALIFIED",
     "REFUTED",
@@ -43,12 +47,23 @@ __all__ = [
 CONFIRMED = "confirmed"
 QUALIFIED = "confirmed with qualification"
 REFUTED = "refuted"
-VERDICTS = (CONFIRMED, QUALIFIED, REFUTED)
+AGREES = "agrees"
+EXPLAINS = "explains qualitatively"
+DISAGREES = "does not agree"
+VERDICTS = (CONFIRMED, QUALIFIED, REFUTED, AGREES, EXPLAINS, DISAGREES)
+"""A paper's claim is confirmed, confirmed with qualification or refuted; a published
+observation agrees with tumble within the band its record states, is explained qualitatively
+(the form of the observed behaviour and its size within a factor the record states), or does
+not agree."""
+
+OBSERVATIONS = "observations"
+"""The set of published observations of real objects, checked as the papers' claims are."""
 
 PAPERS = {
     "resisting_medium": "A. V. Medvedev (1987); docs/theory/resisting-medium.md",
     "rotating_field": "Yu. G. Martynenko (1979); docs/theory/rotating-field.md",
     "nonlinear_moment": "V. M. Serov (1991); docs/theory/nonlinear-moment.md",
+    OBSERVATIONS: "Published observations of objects in orbit; docs/theory/observations.md",
 }
 
 Style = Literal["line", "dashed", "dotted", "markers", "line+markers", "bar"]
@@ -234,7 +249,7 @@ def claim(
                 ncols=len(got.panels) if got.ncols is None else got.ncols,
                 title=f"{name} ({cid}): {title}",
             )
-            found = verdict(bool(got.holds), bool(got.qualified))
+            found = verdict(bool(got.holds), bool(got.qualified), paper)
             return Claim(
                 cid, paper, title, statement, theory_ref, found, got.measured, figure, name=name
             )
@@ -265,9 +280,15 @@ def claim_id(selector: str) -> str:
     raise ParameterError(f"claim {selector!r} is not declared (allowed: {allowed})")
 
 
-def verdict(holds: bool, qualified: bool) -> str:
+def verdict(holds: bool, qualified: bool, paper: str = "") -> str:
     """The verdict from a measurement: whether the claim holds (as the theory page qualifies
-    it), and whether the theory page qualifies the paper's statement."""
+    it), and whether the theory page qualifies the paper's statement. For an observation
+    (``paper`` :data:`OBSERVATIONS`): whether tumble explains it at least qualitatively, and
+    whether only qualitatively (outside the record's band of agreement)."""
+    if paper == OBSERVATIONS:
+        if not holds:
+            return DISAGREES
+        return EXPLAINS if qualified else AGREES
     if not holds:
         return REFUTED
     return QUALIFIED if qualified else CONFIRMED

@@ -15,7 +15,7 @@ from tumble.models.schema import GivenInputs
 
 TABLES = {
     "box-wing tumbling": {
-        **obs._BOX_WING,
+        **obs.GEO_BOX_WING,
         "initial": {"spin_period": 60.0, "spin_axis": [1.0, 0.6, 0.4], **obs._euler(0.1, 0.5)},
     },
     "envisat": {

@@ -27,6 +27,7 @@ from typing import Any
 
 import numpy as np
 
+from tumble.analysis.claims.observations import GEO_BOX_WING
 from tumble.io.scenario import parse_scenario
 
 __all__ = ["CASES", "DIRECTION_AGREEMENT_DEG", "PERIOD_AGREEMENT", "markdown", "sunlight_study"]
@@ -38,25 +39,7 @@ _EVALUATIONS = 20_000
 
 _BOX_WING: dict[str, Any] = {
     "model": "orbiting_body",
-    "body": {"mass": 950.0, "inertia": [1750.0, 720.0, 1680.0]},
-    "surface": {
-        "shape": "box_wing",
-        "size": [2.0, 2.0, 2.3],
-        "specular": 0.1,
-        "diffuse": 0.3,
-        "emissivity": 0.8,
-        "array_area": 12.0,
-        "array_centre": [0.0, 4.5, 0.0],
-        "array_normal": [0.2588, 0.0, 0.9659],
-        "array_specular": 0.05,
-        "array_diffuse": 0.05,
-        "array_emissivity": 0.8,
-        "array_back_emissivity": 0.8,
-        "centre_of_mass": [0.0, 0.24, 0.0],
-    },
-    "orbit": {"altitude": 35786.0, "inclination_deg": 1.0, "epoch": "2025-03-01T00:00:00Z"},
-    "field": {"model": "none"},
-    "torques": {"eddy_current": False, "gravity_gradient": True, "solar_radiation": "conical"},
+    **copy.deepcopy(GEO_BOX_WING),
     "initial": {
         "spin_period": 60.0,
         "spin_axis": [0.0, 1.0, 0.0],

@@ -138,9 +138,10 @@ class Inputs(Protocol):
 class GivenInputs:
     """:class:`Inputs` of tables that tumble writes itself, for its own checks of published
     cases (:mod:`tumble.analysis.claims.observations`): each section's keys with their defaults
-    where a table leaves them out, angles in radians under their plain names (``theta``), no
-    file beside a scenario and no user code. A key a section does not declare, or a required
-    key left out, raises ValueError: the tables are tumble's, so that is tumble's error.
+    where a table leaves them out, an angle in radians under its name (``theta``) or in degrees
+    (``theta_deg``), no file beside a scenario and no user code. A key a section does not
+    declare, or a required key left out, raises ValueError: the tables are tumble's, so that
+    is tumble's error.
 
     An absent optional section is its defaults when every key has one (``[torques]``), else
     None (``[surface]``), as a scenario file's is.
@@ -163,12 +164,18 @@ class GivenInputs:
         return self.validate(declared, given or {}, section)
 
     def validate(self, section: Section, raw: Mapping[str, Any], where: str) -> dict[str, Any]:
-        names = {k.name for k in section.keys}
+        names = {k.name for k in section.keys} | {f"{k.name}_deg" for k in section.keys if k.angle}
         unknown = sorted(set(raw) - names)
         if unknown:
             raise ValueError(f"{where}: keys {unknown} are not declared")
         out = {}
         for k in section.keys:
+            degrees = raw.get(f"{k.name}_deg") if k.angle else None
+            if degrees is not None:  # an angle in degrees, as a scenario file may give it
+                if k.name in raw:
+                    raise ValueError(f"{where}: give {k.name} or {k.name}_deg, not both")
+                out[k.name] = math.radians(float(degrees))
+                continue
             if k.name not in raw and k.default is REQUIRED:
                 raise ValueError(f"{where}.{k.name} is required")
             out[k.name] = raw.get(k.name, k.default)

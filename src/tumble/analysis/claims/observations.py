@@ -38,7 +38,7 @@ from tumble.models import orbiting_body as ob
 from tumble.models.orbiting_body.inputs import SCENARIO as ORBITING_BODY
 from tumble.models.schema import GivenInputs
 
-__all__ = ["AGREEMENT", "QUALITATIVE", "obs_1", "obs_2", "obs_3", "obs_4", "obs_5"]
+__all__ = ["AGREEMENT", "GEO_BOX_WING", "QUALITATIVE", "obs_1", "obs_2", "obs_3", "obs_4", "obs_5"]
 
 AGREEMENT = 1.25
 """tumble agrees with an observed rate within this factor either way (±25 %): about the spread
@@ -270,15 +270,18 @@ def _sphere_claim(
     name: str,
     fit: tuple[float, float],
     start: float,
-    times: Sequence[float],
-    days: FloatArray,
-    periods: Sequence[FloatArray],
+    sphere: tuple[float, float, float, float, str, float],
     what: str,
     qualification: str,
-    **details: Any,
 ) -> Measurement:
-    """The measurement of a sphere's spin-down: tumble's e-folding times against the
-    observed one, 1/k of the fit T = T0 exp(k D)."""
+    """The measurement of a sphere's spin-down: tumble's e-folding times of a solid sphere of
+    radius 0.12 m, ``sphere`` = (mass [kg], conductivity [S/m], altitude [km], inclination
+    [deg], epoch, days run), spinning at ``start`` [s], against the observed one, 1/k of the
+    fit T = T0 exp(k D)."""
+    mass, sigma, altitude, inclination, epoch, span = sphere
+    times, days, periods = _sphere_efolding(
+        mass, 0.12, sigma, altitude, inclination, epoch, start, span
+    )
     observed = 1.0 / fit[1]
     ratios = [t / observed for t in times]
     holds, qualified = _ratio_verdict(ratios)
@@ -306,7 +309,7 @@ def _sphere_claim(
         qualified=qualified,
         efolding_by_axis={lab: t for lab, t in zip(labels, times, strict=True)},
         ratios=ratios,
-        **details,
+        skin_depth_m=_skin_depth(sigma, start),
     )
 
 
@@ -342,24 +345,18 @@ def obs_2() -> Measurement:
         judged against 1/0.0197066 = 50.7 days.
     """
     period = 0.8239
-    times, days, periods = _sphere_efolding(
-        23.28, 0.12, ALUMINIUM, 691.0, 98.204, "2003-10-12T00:00:00Z", period, 60.0
-    )
     skin = _skin_depth(ALUMINIUM, period)
     return _sphere_claim(
         "Larets",
         LARETS_FIT,
         period,
-        times,
-        days,
-        periods,
+        (23.28, ALUMINIUM, 691.0, 98.204, "2003-10-12T00:00:00Z", 60.0),
         "e-folding time of the spin period of a uniform solid aluminium sphere (σ = 2.5e7 S/m, "
         "radius 0.12 m, 23.28 kg) spinning at 0.8239 s in a 691 km orbit inclined 98.2°, tilted "
         "dipole, eddy currents (averaged equations), 60 days",
         "the low-frequency eddy model needs a skin depth well above the radius: at 0.82 s it "
         f"is {skin * 100:.1f} cm against 12 cm, so the model overestimates the torque; the "
         "body's material and construction are assumed",
-        skin_depth_m=skin,
     )
 
 
@@ -383,30 +380,23 @@ def obs_3() -> Measurement:
         Measured: the median over three spin axes of the e-folding time of the period [days];
         judged against 1/0.00431232 = 232 days.
     """
-    period = 13.2048
-    times, days, periods = _sphere_efolding(
-        48.0, 0.12, URANIUM, 800.0, 98.6, "1993-10-11T00:00:00Z", period, 300.0
-    )
     return _sphere_claim(
         "Stella",
         STELLA_FIT,
-        period,
-        times,
-        days,
-        periods,
+        13.2048,
+        (48.0, URANIUM, 800.0, 98.6, "1993-10-11T00:00:00Z", 300.0),
         "e-folding time of the spin period of a uniform solid sphere of uranium alloy (σ = "
         "3.6e6 S/m, radius 0.12 m, 48 kg) spinning at 13.2 s in an 800 km orbit inclined 98.6°, "
         "tilted dipole, eddy currents (averaged equations), 300 days",
         "the conductivity and the uniform inertia are assumed (a dense core makes the inertia "
         "smaller and the spin-down faster; an outer shell of better conductor, faster too)",
-        skin_depth_m=_skin_depth(URANIUM, period),
     )
 
 
 # ---------------------------------------------------------------------------------------------
 # GOES 8 and the averaged solar torque.
 
-_BOX_WING: dict[str, Any] = {
+GEO_BOX_WING: dict[str, Any] = {
     "body": {"mass": 950.0, "inertia": [1750.0, 720.0, 1680.0]},
     "surface": {
         "shape": "box_wing",
@@ -423,15 +413,12 @@ _BOX_WING: dict[str, Any] = {
         "array_back_emissivity": 0.8,
         "centre_of_mass": [0.0, 0.24, 0.0],
     },
-    "orbit": {
-        "altitude": 35786.0,
-        "inclination": math.radians(1.0),
-        "epoch": "2025-03-01T00:00:00Z",
-    },
+    "orbit": {"altitude": 35786.0, "inclination_deg": 1.0, "epoch": "2025-03-01T00:00:00Z"},
     "field": {"model": "none"},
     "torques": {"eddy_current": False, "gravity_gradient": True, "solar_radiation": "conical"},
 }
-"""A GOES-class box-wing in GEO: the body of examples/ob_geo_box_wing.toml."""
+"""A GOES-class box-wing in GEO: the body, surface, orbit and torques of
+examples/ob_geo_box_wing.toml (the sunlight benchmark's cases add their spin and run)."""
 
 
 @claim(
@@ -459,7 +446,7 @@ def obs_4() -> Measurement:
         history is in the sources used: the verdict is at most qualitative.
     """
     data = {
-        **_BOX_WING,
+        **GEO_BOX_WING,
         "initial": {
             "spin_period": 60.0,
             "spin_axis": [1.0, 0.0, 0.0],
@@ -538,7 +525,7 @@ def obs_5() -> Measurement:
         (the ratio grows with the span: the benchmark's year is faster still).
     """
     base = {
-        **_BOX_WING,
+        **GEO_BOX_WING,
         "initial": {
             "spin_period": 60.0,
             "spin_axis": [1.0, 0.6, 0.4],
@@ -550,7 +537,10 @@ def obs_5() -> Measurement:
     full_s = time.perf_counter() - start
     errors, angles, walls, periods = {}, {}, {}, {}
     for illumination in ("exact", "expanded"):
-        data = {**base, "surface": {**_BOX_WING["surface"], "averaged_illumination": illumination}}
+        data = {
+            **base,
+            "surface": {**GEO_BOX_WING["surface"], "averaged_illumination": illumination},
+        }
         start = time.perf_counter()
         _, avg = _run(data, 10.0, 11)
         walls[illumination] = time.perf_counter() - start

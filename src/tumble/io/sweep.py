@@ -463,9 +463,7 @@ def _keep(sf: SweepFile, request: RunRequest) -> Keep:
         if name not in slow:
             raise ScenarioError(
                 f"keep.series: {shorten(repr(name), 60)} is not a variable of {model.name} "
-                "(allowed: "
-                + ", ".join(sorted(slow))
-                + ")"
+                "(allowed: " + ", ".join(sorted(slow)) + ")"
             )
     return Keep(
         final=sf.keep.final,

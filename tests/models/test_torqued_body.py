@@ -326,3 +326,42 @@ def test_the_torqued_body_is_second_order_accurate_at_order_2():
     # Measured over t = 100: 1.01 and 2.03, errors 1.9e-4 and 7.9e-8 at ε = 0.01.
     assert abs(row["slope_order1"] - 1.0) <= 0.25 and abs(row["slope_order2"] - 2.0) <= 0.25
     assert row["error_order2"] < 0.01 * row["error_order1"]
+
+
+def _unstable(B, k2):
+    """The unstable-rotation check on an averaged run's samples that sit on the major axis
+    (I3 = 2, |ω| = 1) where k2 is 0, under linear drag B, ε = 0.01, over t = 1000."""
+    from tumble.models.torqued_body.model import _unstable_rotation_issue
+    from tumble.torques import LinearDrag
+
+    p = tb.Params(INERTIA, 0.01, LinearDrag(B))
+    grid = np.linspace(0.0, 1000.0, 11)
+    cols = {"k2": np.asarray(k2, dtype=float), "L1": np.zeros(11), "L2": np.zeros(11),
+            "L3": np.full(11, 2.0), "T": np.full(11, 1.0)}  # fmt: skip
+    return _unstable_rotation_issue(p, grid, cols, 1000.0)
+
+
+def test_a_pure_rotation_the_torque_makes_unstable_is_reported_from_where_it_starts():
+    # Anti-damping across the major axis pumps a tumble at ε(1/I1 + 1/I2) = 0.0167 per unit
+    # time (the linearised Euler equations): e^16.7 over the run, e^11.7 over the last 700.
+    pump = np.diag([-1.0, -1.0, 0.0])
+    issue = _unstable(pump, np.zeros(11))
+    assert issue is not None and issue.tau == 0.0 and "e^16.7" in issue.message
+    # A run that settles on the axis at t = 300 (a damper, say) is judged from there.
+    settles = _unstable(pump, [0.3, 0.2, 0.1] + [0.0] * 8)
+    assert settles is not None and settles.tau == 300.0
+    assert "settles at t = 300" in settles.message and "e^11.7" in settles.message
+    # Damping across the axis makes it stable: nothing to report; nor for a run not on it.
+    assert _unstable(-pump, np.zeros(11)) is None
+    assert _unstable(pump, [0.0] * 10 + [0.1]) is None
+
+
+def test_an_averaged_run_held_on_an_unstable_axis_warns():
+    from tumble.torques import LinearDrag
+
+    p = tb.Params(INERTIA, 0.01, LinearDrag(np.diag([-1.0, -1.0, 0.0])))
+    st_ = tb.State([0.0, 0.0, 1.0])
+    tr = simulate(tb.MODEL, p, st_, np.linspace(0.0, 1000.0, 11), "averaged")
+    assert np.max(tr.columns["k2"]) == 0.0  # the averaged equations hold the pure rotation
+    issues = tb.MODEL.validity.check(p, st_, tr.slow, 1000.0)
+    assert [i.condition for i in issues] == ["unstable_rotation"], issues

@@ -316,7 +316,7 @@ def validity(p: Params, st: State, slow: SlowPath, tau_end: float) -> list[Valid
         separatrix_issue(slow, grid, I2) if I1 < I2 < I3 else None,
         _not_fast_issue(grid, scales),
         _resonance_issue(p, grid, scales) if p.attitude_dependent else None,
-        _unstable_rotation_issue(p, st, cols, tau_end) if I1 < I2 < I3 else None,
+        _unstable_rotation_issue(p, grid, cols, tau_end) if I1 < I2 < I3 else None,
     ]
     return sorted((i for i in found if i is not None), key=lambda i: i.tau)
 
@@ -326,38 +326,44 @@ _TRIAL = 1e-4  # the trial departure of r towards 1/I2, in units of the gap |1/I
 
 
 def _unstable_rotation_issue(
-    p: Params, st: State, cols: dict[str, FloatArray], tau_end: float
+    p: Params, grid: FloatArray, cols: dict[str, FloatArray], tau_end: float
 ) -> ValidityIssue | None:
-    """A run that starts and stays in a pure rotation about the major or the minor axis,
-    which the averaged equations hold exactly (the polhode is a point: no rate moves r off
-    1/I3 or 1/I1), while the torque drives r away from it: the rotation is unstable, and the
-    full motion, seeded by its oscillations of order ε, leaves it at a time the averaged run
-    cannot give. Tested by the averaged rate of r at a trial departure towards the
-    separatrix: an e-folding time shorter than the run is reported."""
-    if float(np.max(cols["k2"])) > _PURE_K2:
+    """A run that stays in a pure rotation about the major or the minor axis from some time to
+    its end (from the start, or once a dissipative torque has settled it there), which the
+    averaged equations hold exactly (the polhode is a point: no rate moves r off 1/I3 or
+    1/I1), while the torque drives r away from it: the rotation is unstable, and the full
+    motion, seeded by its oscillations of order ε, leaves it at a time the averaged run cannot
+    give. Tested by the averaged rate of r at a trial departure towards the separatrix, at the
+    first sample of that stretch: an e-folding time shorter than the rest of the run is
+    reported."""
+    pure_k2 = np.asarray(cols["k2"]) <= _PURE_K2
+    if not pure_k2[-1]:
         return None
+    moving = np.flatnonzero(~pure_k2)
+    j = int(moving[-1]) + 1 if moving.size else 0  # the stretch that stays pure to the end
+    span = tau_end - float(grid[j])
     I1, I2, I3 = p.sorted_inertia
-    y = _vector_from_slow(p, st)
-    r0 = float(y[3])
+    L_xi = np.array([cols["L1"][j], cols["L2"][j], cols["L3"][j]], dtype=float)
+    r0 = 2.0 * float(cols["T"][j]) / float(L_xi @ L_xi)
     pure = 1.0 / I3 if abs(r0 - 1.0 / I3) < abs(r0 - 1.0 / I1) else 1.0 / I1
-    trial = np.array(y, dtype=float)
-    trial[3] = pure + _TRIAL * (1.0 / I2 - pure)
+    trial = np.array([*L_xi, pure + _TRIAL * (1.0 / I2 - pure)])
     try:
-        rate = float(averaged_rhs(0.0, trial, p)[3])
+        rate = float(averaged_rhs(float(grid[j]), trial, p)[3])
     except (ArithmeticError, ValueError, TumbleError):
         return None
     growth = rate / (trial[3] - pure)  # > 0: r moves away from the pure rotation
-    if not math.isfinite(growth) or growth <= 0.0 or 1.0 / growth >= tau_end:
+    if not math.isfinite(growth) or growth <= 0.0 or 1.0 / growth >= span:
         return None
     axis = "major" if pure == 1.0 / I3 else "minor"
+    since = "stays" if j == 0 else f"settles at t = {float(grid[j]):.6g} and stays"
     return ValidityIssue(
         "unstable_rotation",
-        0.0,
-        f"the averaged motion stays in the pure rotation about the {axis} axis, which the "
+        float(grid[j]),
+        f"the averaged motion {since} in the pure rotation about the {axis} axis, which the "
         "averaged equations hold exactly, but the torque makes it unstable: a tumble grows "
-        f"from any departure by e^{growth * tau_end:.3g} over the run, so the full motion "
-        "leaves it (seeded by its own oscillations of order ε) at a time the averaged run "
-        "cannot give; compare with the full run, or start off the axis",
+        f"from any departure by e^{growth * span:.3g} over the rest of the run, so the full "
+        "motion leaves it (seeded by its own oscillations of order ε) at a time the averaged "
+        "run cannot give; compare with the full run, or start off the axis",
         label=f"unstable rotation about the {axis} axis",
     )
 

@@ -55,18 +55,18 @@ _THEORY = "docs/theory/observations.md"
 
 def _built(tables: Mapping[str, Any]) -> Any:
     """The orbiting body's :class:`~tumble.models.schema.Built` of SI tables (angles in
-    radians), as a scenario file of them would build it."""
+    radians, or in degrees under ``*_deg``), as a scenario file of them would build it."""
     variant = ORBITING_BODY.variant(True)
     assert variant is not None  # the orbiting body is a physical-units model
     return variant.build(GivenInputs(tables, variant.sections))
 
 
 def _run(
-    tables: Mapping[str, Any], days: float, samples: int, method: str = "averaged"
+    tables: Mapping[str, Any] | Any, days: float, samples: int, method: str = "averaged"
 ) -> tuple[FloatArray, dict[str, Any]]:
-    """The days and the columns of one run of an orbiting body given as SI tables, with
-    ``period_s`` the spin period in seconds."""
-    built = _built(tables)
+    """The days and the columns of one run of an orbiting body given as SI tables (or as
+    their :func:`_built`), with ``period_s`` the spin period in seconds."""
+    built = _built(tables) if isinstance(tables, Mapping) else tables
     T0 = built.scaling.T0
     d = np.linspace(0.0, days, samples)
     cols = quiet(simulate, ob.MODEL, built.params, built.initial, d * DAY / T0, method)
@@ -453,8 +453,8 @@ def obs_4() -> Measurement:
             **_euler(0.0, math.radians(30.0)),
         },
     }
-    days, cols = _run(data, 120.0, 121)
     built = _built(data)
+    days, cols = _run(built, 120.0, 121)
     efolding = _departure_efolding(built) * built.scaling.T0 / DAY
     slows = bool(cols["period_s"][-1] > 1.1 * cols["period_s"][0])
     holds = slows and efolding < 365.0

@@ -39,6 +39,7 @@ NAMES: tuple[str, ...] = (
     "residual_dipole",
     "solar_radiation",
     "internal_dissipation",
+    "aerodynamic",
 )
 """The registered term modules of this package. Append, never reorder: a program stores codes
 (a term's place in the registry)."""

@@ -204,6 +204,11 @@ class OrbitContext:
     illumination : str
         How the averaged equations light the facets: "exact" or "expanded"
         (:mod:`tumble.kernels.terms.solar_radiation`).
+    air : ndarray or None
+        The same facets with the air's areas (:func:`tumble.space.aerodynamics.air_table`);
+        None without a ``[surface]``.
+    earth_rate : float
+        The Earth's rotation rate [rad per unit of model time]: the atmosphere's.
     """
 
     orbit: FloatArray
@@ -214,6 +219,8 @@ class OrbitContext:
     jd: float = 2451545.0
     facets: FloatArray | None = None
     illumination: str = "exact"
+    air: FloatArray | None = None
+    earth_rate: float = 0.0
 
 
 @dataclass(frozen=True)

@@ -68,7 +68,12 @@ __all__ = [
     "TERMS",
     "build",
     "coefficients",
+    "cubic",
+    "exact_illumination",
+    "expanded_average",
     "expanded_tensors",
+    "lit_average",
+    "lit_facets",
     "monomials",
     "principal",
 ]
@@ -130,7 +135,7 @@ _Q = TRIAXIAL_AVERAGED.at.sorting
 
 def monomials() -> tuple[tuple[int, ...], ...]:
     """The exponents (of s1, s2, s3) of the 20 monomials the mean term's coefficients multiply,
-    in the order of :func:`_cubic`."""
+    in the order of :func:`cubic`."""
     return (
         (0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1),
         (2, 0, 0), (0, 2, 0), (0, 0, 2), (1, 1, 0), (1, 0, 1), (0, 1, 1),
@@ -155,7 +160,7 @@ def _axis(c: FloatArray, k: int, s1: float, s2: float, s3: float, q: Vec3, r: Ve
 
 
 @jit(INLINE)
-def _cubic(c: FloatArray, k: int, s1: float, s2: float, s3: float) -> Vec3:
+def cubic(c: FloatArray, k: int, s1: float, s2: float, s3: float) -> Vec3:
     """M(s)/P: the three axes' cubics at c[k:] (:func:`monomials`)."""
     q = (s1 * s1, s2 * s2, s3 * s3)
     r = (s1 * s2, s1 * s3, s2 * s3)
@@ -167,7 +172,7 @@ def _cubic(c: FloatArray, k: int, s1: float, s2: float, s3: float) -> Vec3:
 
 
 @jit(INLINE)
-def _lit_facets(
+def lit_facets(
     prog: FloatArray, k: int, count: int, p: float, b1: float, b2: float, b3: float
 ) -> Vec3:
     """Σ r × f over the ``count`` facets at prog[k:] (:data:`FACET`) lit from the body direction
@@ -208,7 +213,7 @@ def moment(
     d = math.sqrt(d1 * d1 + d2 * d2 + d3 * d3)
     p = f * prog[v + _AT.pressure] * (AU / d) ** 2 * light
     b1, b2, b3 = to_body(a, d1 / d, d2 / d, d3 / d)
-    return _lit_facets(prog, v + _FACETS, int(prog[v + _AT.count]), p, b1, b2, b3)
+    return lit_facets(prog, v + _FACETS, int(prog[v + _AT.count]), p, b1, b2, b3)
 
 
 @jit(INLINE)
@@ -239,8 +244,8 @@ def mean_moment(
     b1, b2, b3 = to_body(a, s1, s2, s3)
     if prog[v + _MEAN.exact] == 1.0:
         count = int(prog[v + _MEAN.count])
-        return _lit_facets(prog, v + _MEAN_FACETS, count, f * scale, b1, b2, b3)
-    m1, m2, m3 = _cubic(prog, v + _MEAN.coefficients, b1, b2, b3)
+        return lit_facets(prog, v + _MEAN_FACETS, count, f * scale, b1, b2, b3)
+    m1, m2, m3 = cubic(prog, v + _MEAN.coefficients, b1, b2, b3)
     g = f * scale
     return g * m1, g * m2, g * m3
 
@@ -294,7 +299,7 @@ def _about_l(
         b1 = u1 * e1[0] + u2 * e2[0] + sl[2] * l1
         b2 = u1 * e1[1] + u2 * e2[1] + sl[2] * l2
         b3 = u1 * e1[2] + u2 * e2[2] + sl[2] * l3
-        m1, m2, m3 = _cubic(p, k, b1, b2, b3)
+        m1, m2, m3 = cubic(p, k, b1, b2, b3)
         g1 = e1[0] * m1 + e1[1] * m2 + e1[2] * m3
         g2 = e2[0] * m1 + e2[1] * m2 + e2[2] * m3
         t1 += c * g1 - s * g2
@@ -465,22 +470,31 @@ def _plus4(
 
 @jit(KERNEL)
 def _exact_closed(p: FloatArray, v: int, t: float, ctx: Context) -> Parts:
-    """The Euler–Poinsot average of the exact illumination: exact over χ (the lit arcs), the
-    trapezoidal rule over the polhode (module notes)."""
+    """The Euler–Poinsot average of the exact illumination (:func:`lit_average`)."""
+    s1, s2, s3, scale = _sun_mean(p, v, t)
+    parts = lit_average(p, v + _MEAN_FACETS, int(p[v + _MEAN.count]), s1, s2, s3, ctx)
+    return scale * parts[0], scale * parts[1], scale * parts[2], scale * parts[3]
+
+
+@jit(KERNEL)
+def lit_average(
+    p: FloatArray, k: int, count: int, s1: float, s2: float, s3: float, ctx: Context
+) -> Parts:
+    """The Euler–Poinsot average, L-frame, and the power of the ``count`` facets at p[k:]
+    (:data:`FACET`) lit from the inertial direction ŝ = (s1, s2, s3) under a unit pressure:
+    exact over χ (the lit arcs), the trapezoidal rule over the polhode (module notes).
+    Sunlight's and the air's (:mod:`tumble.kernels.terms.aerodynamic`) exact averages alike."""
     L, inv, a = ctx[0], ctx[2], ctx[7]
     F = ctx[8]
     ac, as_, ad, m, _, _, _ = ctx[9]
-    s1, s2, s3, scale = _sun_mean(p, v, t)
     sl = (
         column_dot(F, 0, s1, s2, s3),
         column_dot(F, 1, s1, s2, s3),
         column_dot(F, 2, s1, s2, s3),
     )
-    k, count = v + _MEAN_FACETS, int(p[v + _MEAN.count])
     if ac < _PURE and as_ < _PURE:  # a pure rotation: ℓ along the encircled axis
         ls = (0.0, 0.0, ad) if a == 2 else (ad, 0.0, 0.0)
-        parts = _lit_about_l(p, k, count, ls, L, inv, sl)
-        return scale * parts[0], scale * parts[1], scale * parts[2], scale * parts[3]
+        return _lit_about_l(p, k, count, ls, L, inv, sl)
     ratios, n_agm, a_agm = agm(1.0 - m)
     big_k = 0.5 * math.pi / a_agm
     kc = math.sqrt(1.0 - m)
@@ -495,7 +509,7 @@ def _exact_closed(p: FloatArray, v: int, t: float, ctx: Context) -> Parts:
             for i_s in range(n_s):
                 ls = _on_polhode(a, ac, as_, ad, cn, sn, dn, i_c, i_s, 1.0)
                 total = _plus4(total, w, _lit_about_l(p, k, count, ls, L, inv, sl))
-    return scale * total[0], scale * total[1], scale * total[2], scale * total[3]
+    return total
 
 
 @jit(INLINE)
@@ -504,11 +518,20 @@ def closed(p: FloatArray, v: int, t: float, ctx: Context) -> Parts:
     :func:`_exact_closed` for the exact illumination."""
     if p[v + _MEAN.exact] == 1.0:
         return _exact_closed(p, v, t, ctx)
+    s1, s2, s3, scale = _sun_mean(p, v, t)
+    total = expanded_average(p, v + _MEAN.coefficients, s1, s2, s3, ctx)
+    return scale * total[0], scale * total[1], scale * total[2], scale * total[3]
+
+
+@jit(KERNEL)
+def expanded_average(p: FloatArray, k: int, s1: float, s2: float, s3: float, ctx: Context) -> Parts:
+    """The Euler–Poinsot average, L-frame, and the power of the cubic M(s)/P at p[k:]
+    (:func:`cubic`) lit from the inertial direction ŝ = (s1, s2, s3) under a unit pressure:
+    exact (module notes, the closed form). Sunlight's and the air's
+    (:mod:`tumble.kernels.terms.aerodynamic`) expanded averages alike."""
     L, inv, a, F = ctx[0], ctx[2], ctx[7], ctx[8]
     ac, as_, ad, m, x1, x2, dn1 = ctx[9]
-    s1, s2, s3, scale = _sun_mean(p, v, t)
     sl = (column_dot(F, 0, s1, s2, s3), column_dot(F, 1, s1, s2, s3), column_dot(F, 2, s1, s2, s3))
-    k = v + _MEAN.coefficients
     total = (0.0, 0.0, 0.0, 0.0)
     for node in range(3):  # x = sn² = 0, ½, 1
         x = 0.5 * node
@@ -524,7 +547,7 @@ def closed(p: FloatArray, v: int, t: float, ctx: Context) -> Parts:
                 for i_s in range(n_s):
                     ls = _on_polhode(a, ac, as_, ad, cn, sn, dn, i_c, i_s, sd)
                     total = _plus4(total, w, _about_l(p, k, ls, L, inv, sl))
-    return scale * total[0], scale * total[1], scale * total[2], scale * total[3]
+    return total
 
 
 ILLUMINATION = (1.0 / (3.0 * math.pi), 0.5, 4.0 / (3.0 * math.pi))
@@ -589,6 +612,17 @@ def principal(table: FloatArray, axes: FloatArray) -> FloatArray:
     return out
 
 
+def exact_illumination(context: OrbitContext) -> float:
+    """The ``exact`` field of the averaged terms: 1.0 for ``surface.averaged_illumination =
+    "exact"``, 0.0 for "expanded"."""
+    if context.illumination not in ILLUMINATIONS:
+        raise ParameterError(
+            f"surface.averaged_illumination = {context.illumination!r} must be one of "
+            + ", ".join(f'"{k}"' for k in ILLUMINATIONS)
+        )
+    return float(context.illumination == "exact")
+
+
 def build(value: Any, context: OrbitContext) -> tuple[str, list[Any], list[Any]] | None:
     """The terms of ``[torques] solar_radiation = shadow`` on the ``[surface]`` facets, in the
     model's units (pressure times T0²/I0, facets in the principal axes)."""
@@ -615,18 +649,13 @@ def build(value: Any, context: OrbitContext) -> tuple[str, list[Any], list[Any]]
         {**sun, "shadow": SHADOWS[value], "count": float(table.shape[0])},
         tail=table.ravel(),
     )
-    if context.illumination not in ILLUMINATIONS:
-        raise ParameterError(
-            f"surface.averaged_illumination = {context.illumination!r} must be one of "
-            + ", ".join(f'"{k}"' for k in ILLUMINATIONS)
-        )
     mean = compiled_term(
         "solar_radiation_mean",
         {
             **sun,
             "shadow": 1.0,
             "coefficients": coefficients(table),
-            "exact": float(context.illumination == "exact"),
+            "exact": exact_illumination(context),
             "count": float(table.shape[0]),
         },
         tail=table.ravel(),

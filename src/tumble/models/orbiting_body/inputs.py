@@ -40,6 +40,7 @@ from tumble.space import (
     thin_cylindrical_shell,
     thin_spherical_shell,
 )
+from tumble.space.aerodynamics import Accommodation, air_table
 from tumble.space.facets import Facets, Optics, box, box_wing, cylinder, from_mesh
 from tumble.space.orbit import EARTH_RADIUS
 from tumble.space.sun import julian_date
@@ -410,6 +411,30 @@ _SURFACE = Section(
             doc="box_wing: the array's back (default its front's)",
         ),
         Key(
+            "accommodation_normal",
+            "number",
+            "a fraction in [0, 1]",
+            "",
+            1.0,
+            doc="the air: the share of the normal momentum accommodated (0 specular, 1 diffuse)",
+        ),
+        Key(
+            "accommodation_tangential",
+            "number",
+            "a fraction in [0, 1]",
+            "",
+            1.0,
+            doc="the air: the share of the tangential momentum accommodated",
+        ),
+        Key(
+            "wall_speed_ratio",
+            "number",
+            "a number in [0, 1)",
+            "",
+            0.05,
+            doc="the air: the re-emitted molecules' mean speed over the flow's",
+        ),
+        Key(
             "averaged_illumination",
             "text",
             '"exact" or "expanded"',
@@ -732,12 +757,13 @@ def _optics(values: Mapping[str, Any], prefix: str, where: str, back: float) -> 
         raise ParameterError(f"{where}.{prefix}{exc}") from None
 
 
-def _surface(inputs: Inputs) -> FloatArray | None:
-    """The facets of ``[surface]`` about the centre of mass, the user's body axes, as the solar
-    term reads them (:meth:`tumble.space.facets.Facets.table`); None without the table."""
+def _surface(inputs: Inputs) -> tuple[FloatArray | None, FloatArray | None]:
+    """The facets of ``[surface]`` about the centre of mass, the user's body axes, as sunlight
+    and the air read them (:meth:`tumble.space.facets.Facets.table`,
+    :func:`tumble.space.aerodynamics.air_table`); None, None without the table."""
     s = inputs["surface"]
     if s is None:
-        return None
+        return None, None
     shape = s["shape"]
     optics = _optics(s, "", "surface", s["back_emissivity"])
     if shape == "box":
@@ -792,7 +818,14 @@ def _surface(inputs: Inputs) -> FloatArray | None:
         facets = rows[0]
         for more in rows[1:]:
             facets = facets + more
-    return facets.shifted(-np.asarray(s["centre_of_mass"], dtype=float)).table()
+    about = facets.shifted(-np.asarray(s["centre_of_mass"], dtype=float))
+    try:
+        air = Accommodation(
+            s["accommodation_normal"], s["accommodation_tangential"], s["wall_speed_ratio"]
+        )
+    except ParameterError as exc:
+        raise ParameterError(f"surface: {exc}") from None
+    return about.table(), air_table(about, air)
 
 
 def _checked_size(size: Any) -> FloatArray:
@@ -851,6 +884,7 @@ def _build(inputs: Inputs) -> Built[Params, State]:
         full.append(damper)
         mean.append(damper)
         labels.append("internal dissipation")
+    light, air = _surface(inputs)
     context = terms.OrbitContext(
         orbit.payload(T0),
         None if field_model is None else field_model.payload(T0),
@@ -858,8 +892,10 @@ def _build(inputs: Inputs) -> Built[Params, State]:
         T0,
         I0,
         julian_date(epoch),
-        _surface(inputs),
+        light,
         "exact" if inputs["surface"] is None else inputs["surface"]["averaged_illumination"],
+        air,
+        EARTH_ROTATION * T0,
     )
     for key in terms.ORBIT_KEYS:
         built = key.build(torques[key.name], context)

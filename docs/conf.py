@@ -29,7 +29,13 @@ extensions = [
 source_suffix = {".md": "markdown", ".rst": "restructuredtext"}
 root_doc = "index"
 # The tables included by performance.md are not pages of their own.
-exclude_patterns = ["_build", "performance-tables.md", "orbit-year-table.md", "sunlight-year-table.md"]
+exclude_patterns = [
+    "_build",
+    "performance-tables.md",
+    "orbit-year-table.md",
+    "sunlight-year-table.md",
+    "crossings-table.md",
+]
 
 # Equations: $…$ and $$…$$ in Markdown; \\tag{1.1} keeps a paper's own equation number.
 mathjax3_config = {"tex": {"tags": "none"}}

@@ -520,7 +520,8 @@ def bench_cmd(
         bool,
         typer.Option(
             "--quick",
-            help="horizon 1e3, one repeat, no compile, start-up, engine or orbit study (a check)",
+            help="horizon 1e3, one repeat, no compile, start-up, engine, orbit or crossings study "
+            "(a check)",
         ),
     ] = False,
     horizon: Annotated[
@@ -552,6 +553,7 @@ def bench_cmd(
             startup=not quick,
             engine=not quick,
             orbit=not quick,
+            crossings=not quick,
         )
         with Status("benchmark", console=err) as status:
             return run_benchmark(settings, log=lambda msg: status.update(escape(msg)))

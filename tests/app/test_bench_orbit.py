@@ -42,3 +42,14 @@ def test_the_sunlight_cases_are_the_examples():
     ):
         with open(EXAMPLES / file, "rb") as f:
             assert tomllib.load(f) == CASES[name], name
+
+
+def test_the_crossing_cases_are_the_examples():
+    from tumble.app.bench_crossings import CASES
+
+    for name, case in CASES.items():
+        with open(EXAMPLES / f"{name}.toml", "rb") as f:
+            data = tomllib.load(f)
+        # The study keeps what sets the motion (samples, methods and tolerances are its own).
+        data["run"] = {"tau_end": data["run"]["tau_end"]}
+        assert data == case, name

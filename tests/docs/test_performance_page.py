@@ -47,3 +47,15 @@ def test_the_sunlight_table_is_the_committed_runs():
         "docs/sunlight-year-table.md is stale: python benchmarks/geo_sunlight.py --from "
         "benchmarks/geo_sunlight.json > docs/sunlight-year-table.md"
     )
+
+
+def test_the_crossings_table_is_the_committed_runs():
+    from tumble.app.bench_crossings import markdown
+
+    run = json.loads((ROOT / "benchmarks" / "crossings.json").read_text(encoding="utf-8"))
+    runs = {k: v for k, v in run.items() if k != "machine"}
+    page = (ROOT / "docs" / "crossings-table.md").read_text(encoding="utf-8")
+    assert page.rstrip("\n") == markdown(runs).rstrip("\n"), (
+        "docs/crossings-table.md is stale: python benchmarks/crossings.py --from "
+        "benchmarks/crossings.json > docs/crossings-table.md"
+    )

@@ -30,6 +30,10 @@ Four studies, each with its error figures and its target beside it:
     A year of a large defunct satellite in LEO, averaged against full, and 1000 averaged years
     of it with uncertain conductor, inertia and spin against one full 30-day run
     (:mod:`tumble.app.bench_orbit`).
+``crossings``
+    The examples whose slow motion crosses a separatrix or a resonance at ε = 1e-3 and 1e-4:
+    the default averaged method's largest slow error over the run, in units of ε, and its
+    speed-up over the full run (:mod:`tumble.app.bench_crossings`).
 
 ``compile`` times the first call of each kernel kind from an empty disk cache, in a fresh
 process (numba's compile, once per installation), and the load from the cache.
@@ -133,6 +137,9 @@ class BenchSettings:
         shell's through its floor, a box's to its capture and two years of a box-wing
         satellite in sunlight (:mod:`tumble.app.bench_orbit`, :mod:`tumble.app.bench_sunlight`;
         about 3 minutes).
+    crossings : bool
+        Time the examples whose slow motion crosses a separatrix or a resonance, averaged
+        against full at ε = 1e-3 and 1e-4 (:mod:`tumble.app.bench_crossings`; about 3 minutes).
     """
 
     horizon: float = 1e5
@@ -146,6 +153,7 @@ class BenchSettings:
     startup: bool = True
     engine: bool = True
     orbit: bool = True
+    crossings: bool = True
 
     def __post_init__(self) -> None:
         if not (self.horizon > 0.0 and math.isfinite(self.horizon)):
@@ -750,5 +758,9 @@ def run_benchmark(
         from tumble.app.bench_sunlight import sunlight_study
 
         result["orbiting_body"]["sunlight"] = sunlight_study(s.repeat, say)
+    if s.crossings:
+        from tumble.app.bench_crossings import crossing_study
+
+        result["crossings"] = crossing_study(s.repeat, say)
     result["verdicts"] = verdicts(result)
     return result

@@ -249,9 +249,34 @@ def _orbit_table(r: dict[str, Any]) -> Table | None:
     return t
 
 
+def _crossings_table(r: dict[str, Any]) -> Table | None:
+    """The examples through a separatrix or a resonance, averaged against full."""
+    c = r.get("crossings")
+    if not c:
+        return None
+    tg = r["targets"]
+    t = Table(title="Through a separatrix or a resonance: the default averaged run",
+              title_justify="left")  # fmt: skip
+    for col in ("example", "ε", "full [s]", "averaged [s]", "speed-up", "slow error / ε"):
+        t.add_column(escape(col), justify="left" if col == "example" else "right")
+    for name, by_eps in c.items():
+        for eps, v in by_eps.items():
+            fast = v["speedup"] >= tg["crossing_speedup_1e-4"]
+            speed = f"{v['speedup']:.0f}×" + (
+                f" (≥ {tg['crossing_speedup_1e-4']:g}: {_yes(fast)})" if float(eps) <= 1e-4 else ""
+            )
+            near = v["error_in_eps"] <= tg["crossing_error_in_eps"]
+            t.add_row(escape(f"{name} ({v['method']})"), eps, f"{v['full_s']:.3g}",
+                      f"{v['averaged_s']:.3g}", speed,
+                      f"{v['error_in_eps']:.3g} (≤ {tg['crossing_error_in_eps']:g}: "
+                      f"{_yes(near)})")  # fmt: skip
+    return t
+
+
 def bench_tables(r: dict[str, Any]) -> list[Table]:
     """The benchmark's figures as tables, each target beside its figure."""
     tables = (_full_table(r), _heyoka_table(r), _averaged_table(r),
               _averaged_table(r, "engine_speedup"), _batch_table(r), _ensemble_table(r),
-              _orbit_table(r), _compile_table(r), _startup_table(r))  # fmt: skip
+              _orbit_table(r), _crossings_table(r), _compile_table(r),
+              _startup_table(r))  # fmt: skip
     return [t for t in tables if t is not None]

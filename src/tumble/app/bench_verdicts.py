@@ -39,6 +39,8 @@ TARGETS: dict[str, float] = {
     "sunlight_direction_deg": 5.0,  # the same: the direction of L against the full run's
     "sunlight_year_speedup": 1000.0,  # the same year, averaged over full, at least
     "sunlight_eval_us": 20.0,  # one evaluation of its averaged equations, at most
+    "crossing_error_in_eps": 10.0,  # through a separatrix or resonance: slow error / ε, at most
+    "crossing_speedup_1e-4": 300.0,  # the same runs at ε = 1e-4, averaged over full, at least
 }
 """The targets, printed beside the measurements."""
 
@@ -80,8 +82,22 @@ def verdicts(result: dict[str, Any]) -> list[dict[str, Any]]:
     orbit = result.get("orbiting_body")
     if orbit is not None:
         _orbit_rows(rows, orbit)
+    for name, by_eps in (result.get("crossings") or {}).items():
+        _crossing_rows(rows, name, by_eps)
     _machine_rows(rows, result)
     return list(rows)
+
+
+def _crossing_rows(rows: _Rows, name: str, by_eps: dict[str, Any]) -> None:
+    """An example through a separatrix or a resonance (:mod:`tumble.app.bench_crossings`): its
+    slow error in units of ε at each ε, its speed-up at 1e-4."""
+    for eps, v in by_eps.items():
+        where = f"crossing {name} ε = {eps} ({v['method']})"
+        rows.add(f"{where}: largest slow error over the run / ε", v["error_in_eps"],
+                 TARGETS["crossing_error_in_eps"], False)  # fmt: skip
+        if float(eps) <= 1e-4:
+            rows.add(f"{where}: speed-up vs full", v["speedup"],
+                     TARGETS["crossing_speedup_1e-4"], True)  # fmt: skip
 
 
 def _equal_accuracy(figures: dict[str, Any]) -> tuple[float, str]:

@@ -1,0 +1,47 @@
+"""The crossings benchmark alone: the examples whose slow motion crosses a separatrix or a
+resonance, at ε = 1e-3 and 1e-4, the default averaged method against the full equations over
+the whole run (:mod:`tumble.app.bench_crossings`; also part of ``tumble bench``).
+
+    .venv/bin/python benchmarks/crossings.py [-o benchmarks/crossings.json]
+    .venv/bin/python benchmarks/crossings.py --from benchmarks/crossings.json
+
+Prints the table of the performance page as Markdown; about 3 minutes on one core. The exit
+status is 1 if a target is missed.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import platform
+import sys
+from pathlib import Path
+
+from tumble.app.bench_crossings import ERROR_IN_EPS, SPEEDUP, crossing_study, markdown
+from tumble.io.output import atomic_write
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("-o", "--output", type=Path, default=Path("benchmarks/crossings.json"))
+    ap.add_argument("--from", dest="source", type=Path, help="print the table of a JSON file")
+    args = ap.parse_args()
+    if args.source is not None:
+        result = json.loads(args.source.read_text(encoding="utf-8"))
+    else:
+        result = crossing_study(3, lambda msg: print(msg, file=sys.stderr, flush=True))
+        result["machine"] = {"cpu": platform.processor() or platform.machine(),
+                             "python": platform.python_version()}  # fmt: skip
+        atomic_write(args.output, (json.dumps(result, indent=1) + "\n").encode())
+    runs = {k: v for k, v in result.items() if k != "machine"}
+    print(markdown(runs))
+    met = all(
+        r["error_in_eps"] <= ERROR_IN_EPS and (r["eps"] > 1e-4 or r["speedup"] >= SPEEDUP)
+        for by_eps in runs.values()
+        for r in by_eps.values()
+    )
+    return 0 if met else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,137 @@
+"""The benchmark of runs whose slow motion crosses a separatrix or a resonance: the examples
+that do, at ε = 1e-3 and 1e-4, the default averaged method (what ``tumble run`` does with the
+example's ``[run]``) against the full equations over the whole run.
+
+* ``a3_negative`` (resisting medium): the nutation angle ϑ passes π/2, where the proper
+  rotation stops (theory of the resisting medium, §10.2);
+* ``rf_transient_x1`` and ``rf_counter_rotating`` (rotating field): the polhode crosses its
+  separatrix, and in the second the spin passes through L = 0.
+
+Each example runs with ε scaled and its end time with 1/ε, so that its slow horizon ε·t_end is
+the example's; :data:`SAMPLES` samples. For each: the full run at rtol 1e-10 (the benchmark's
+best of ``repeat``), a reference full run at rtol 1e-12, and the averaged run at rtol 1e-10.
+The error is the largest difference of each slow variable from the reference over the whole
+run (:func:`tumble.analysis.verify.slow_errors`), relative to the variable's largest value
+(at least 1), the largest over the variables, and is judged in units of ε: the target is
+:data:`ERROR_IN_EPS` ε, and :data:`SPEEDUP` times the full run's speed at ε = 1e-4.
+"""
+
+from __future__ import annotations
+
+import copy
+import time
+from collections.abc import Callable
+from typing import Any
+
+from tumble.analysis.verify import slow_errors
+from tumble.io.scenario import parse_scenario
+
+__all__ = ["CASES", "EPS", "ERROR_IN_EPS", "SAMPLES", "SPEEDUP", "crossing_study", "markdown"]
+
+CASES: dict[str, dict[str, Any]] = {
+    "a3_negative": {
+        "model": "resisting_medium",
+        "parameters": {"eps": 0.01, "kappa": 0.5, "a": [0.2, 0.0, -0.6],
+                       "b": [[0.6, 0.0, 0.0], [0.0, 0.6, 0.0], [0.0, 0.0, 0.2]],
+                       "s": [[0.1, 0.0, 0.0], [0.0, 0.1, 0.0], [0.0, 0.0, 0.1]]},
+        "initial": {"k": 1.0, "rho": 0.8, "sigma": 0.0, "psi": 0.0, "theta": 0.8, "phi": 0.0},
+        "run": {"tau_end": 300.0},
+    },
+    "rf_transient_x1": {
+        "model": "rotating_field",
+        "parameters": {"inertia": [1.0, 2.0, 2.5], "beta": 1.5707963267948966, "eps": 0.01},
+        "initial": {"L": 1.5, "rho": 0.6, "sigma": 0.0, "k2": 0.5, "regime": "x1", "u0": 0.0,
+                    "psi0": 0.0},
+        "run": {"tau_end": 300.0},
+    },
+    "rf_counter_rotating": {
+        "model": "rotating_field",
+        "parameters": {"inertia": [1.0, 1.6, 2.2], "beta_deg": 17.0, "eps": 0.02},
+        "initial": {"L": 0.6, "rho_deg": 149.0, "sigma": 0.0, "k2": 0.3, "regime": "x3"},
+        "run": {"tau_end": 600.0},
+    },
+}  # fmt: skip
+"""The examples (``examples/<name>.toml``, a test holds them equal) whose slow motion crosses
+a band: the model, its parameters, the initial state and the end time."""
+EPS = (1e-3, 1e-4)
+ERROR_IN_EPS = 10.0
+"""The largest slow error over the run, in units of ε, that meets the target."""
+SPEEDUP = 300.0
+"""The averaged run's speed-up over the full one that meets the target at ε = 1e-4."""
+SAMPLES = 401
+
+
+def request_at(name: str, eps: float) -> Any:
+    """The example ``name`` at ``eps``, its end time scaled to keep its slow horizon."""
+    data = copy.deepcopy(CASES[name])
+    section = data["perturbation"] if data["model"] == "nonlinear_moment" else data["parameters"]
+    key = "t_end" if "t_end" in data["run"] else "tau_end"
+    slow = section["eps"] * data["run"][key]
+    section["eps"] = eps
+    data["run"][key] = slow / eps
+    data["run"]["samples"] = SAMPLES
+    return parse_scenario(data, f"examples/{name}.toml at eps = {eps:g}").request
+
+
+def _timed(fn: Callable[[], Any], repeat: int) -> tuple[float, Any]:
+    best, out = float("inf"), None
+    for _ in range(repeat):
+        start = time.perf_counter()
+        out = fn()
+        best = min(best, time.perf_counter() - start)
+    return best, out
+
+
+def _case(name: str, eps: float, repeat: int, log: Callable[[str], None]) -> dict[str, Any]:
+    from tumble.integrate import simulate
+
+    req = request_at(name, eps)
+    model, p, ini, tau = req.model, req.params, req.initial, req.tau
+
+    def run(method: str, rtol: float, atol: float) -> Any:
+        return simulate(model, p, ini, tau, method, rtol=rtol, atol=atol, averaging=req.averaging)
+
+    log(f"crossings: {name} at ε = {eps:g}, the reference full run")
+    ref = run("full", 1e-12, 1e-14)
+    log(f"crossings: {name} at ε = {eps:g}, full and averaged")
+    full_s, _ = _timed(lambda: run("full", 1e-10, 1e-12), repeat)
+    avg_s, avg = _timed(lambda: run("averaged", 1e-10, 1e-12), repeat)
+    errors = {}
+    for v, (_, e) in slow_errors(model, p, ref, avg).items():
+        column = ref.columns.get(v)
+        scale = max(1.0, float(abs(column).max())) if column is not None else 1.0
+        errors[v] = float(e.max()) / scale if e.size else 0.0
+    error = max(errors.values())
+    return {
+        "eps": eps,
+        "t_end": float(tau[-1]),
+        "method": avg.form + (" (hybrid)" if avg.legs else ""),
+        "full_s": full_s,
+        "full_nfev": int(ref.nfev),
+        "averaged_s": avg_s,
+        "averaged_nfev": int(avg.nfev),
+        "speedup": full_s / avg_s,
+        "error": error,
+        "error_in_eps": error / eps,
+        "errors": errors,
+    }
+
+
+def crossing_study(repeat: int, log: Callable[[str], None]) -> dict[str, Any]:
+    """Every case at every ε (module notes); JSON-ready."""
+    return {name: {f"{eps:g}": _case(name, eps, repeat, log) for eps in EPS} for name in CASES}
+
+
+def markdown(result: dict[str, Any]) -> str:
+    """The study as a Markdown table."""
+    lines = [
+        "| example | ε | full [s] | averaged [s] | speed-up | largest slow error | in ε |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for name, by_eps in result.items():
+        for key, r in by_eps.items():
+            lines.append(
+                f"| {name} ({r['method']}) | {key} | {r['full_s']:.3f} | {r['averaged_s']:.4f} "
+                f"| {r['speedup']:.0f}× | {r['error']:.2e} | {r['error_in_eps']:.0f} |"
+            )
+    return "\n".join(lines)

@@ -198,6 +198,30 @@ def test_the_summary_gives_the_efolding_time(tmp_path):
     assert ob.efolding_time(t, np.ones_like(t)) == math.inf
 
 
+def test_the_summary_line_of_a_rate_that_does_not_decay():
+    # A decaying rate gets its e-folding time; one whose trend over the run rises (a rate that
+    # climbs, then falls below its start) gets its end over its start instead of "inf d".
+    from tumble.models.orbiting_body.display import SUMMARY
+
+    def lines(rate: np.ndarray) -> list[str]:
+        decay = ob.spin_decay(t, rate)
+        decays = math.isfinite(decay.efolding)
+        summary = {"averaged_efolding_days": decay.efolding,
+                   "averaged_efolding_fit_end_days": decay.fit_end,
+                   "averaged_decays": True if decays else None,
+                   "averaged_rate_ratio": None if decays else float(rate[-1] / rate[0]),
+                   "averaged_floor_days": None}  # fmt: skip
+        return [x for line in SUMMARY if "averaged" in line.text
+                if (x := line.render(summary)) is not None]  # fmt: skip
+
+    t = np.linspace(0.0, 100.0, 101)
+    (decaying,) = lines(np.exp(-t / 50.0))
+    assert decaying.startswith("averaged: e-folding time of the rate 50 d")
+    (rising,) = lines(np.where(t < 95.0, 1.0 + 0.5 * np.minimum(t / 30.0, 1.0), 0.8))
+    assert rising == ("averaged: no e-folding time (the trend of ln rate over 0–100 d does not "
+                      "fall); the rate's end over its start 0.8")  # fmt: skip
+
+
 BAD = [
     ("conductivity = 2.5e7", "conductivity = -1.0", "conductor.conductivity"),
     ("inertia = [17023.0, 124826.0, 129112.0]", "inertia = [[1.0, 0.0, 0.0], [0.0, -2.0, 0.0], "

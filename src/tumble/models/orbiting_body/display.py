@@ -14,7 +14,14 @@ SUMMARY = tuple(
     for line in (
         SummaryLine(
             f"{m}: e-folding time of the rate {{{m}_efolding_days:.4g}} d (fitted over its first "
-            f"e-fold, 0–{{{m}_efolding_fit_end_days:.4g}} d)"
+            f"e-fold, 0–{{{m}_efolding_fit_end_days:.4g}} d)",
+            when=f"{m}_decays",
+        ),
+        SummaryLine(
+            f"{m}: no e-folding time (the trend of ln rate over 0–"
+            f"{{{m}_efolding_fit_end_days:.4g}} d does not fall); the rate's end over its start "
+            f"{{{m}_rate_ratio:.4g}}",
+            when=f"{m}_rate_ratio",
         ),
         SummaryLine(
             f"{m}: floor of the rate {{{m}_floor_rate_deg_s:.4g}} deg/s, reached at "
@@ -24,4 +31,5 @@ SUMMARY = tuple(
     )
 )
 """The lines of the spin decay (:func:`tumble.models.orbiting_body.spin_decay`): per method,
-the e-folding time of the rate over its first e-fold, and its floor where it has one."""
+the e-folding time of the rate over its first e-fold (or, for a rate that does not decay, its
+end over its start), and its floor where it has one."""

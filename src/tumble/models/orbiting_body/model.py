@@ -210,6 +210,12 @@ def _report(p: Params, st: State, trajectories: Mapping[str, Sampled]) -> Report
         floor = decay.floor_rate
         summary[f"{method}_efolding_days"] = decay.efolding
         summary[f"{method}_efolding_fit_end_days"] = decay.fit_end
+        # The line the summary prints: the e-folding time of a decaying rate, or how the rate
+        # of one that does not decay has changed from the start to the end.
+        decays = math.isfinite(decay.efolding)
+        summary[f"{method}_decays"] = True if decays else None
+        ratio = float(cols["rate"][-1] / cols["rate"][0])
+        summary[f"{method}_rate_ratio"] = None if decays else ratio
         summary[f"{method}_floor_days"] = decay.floor_time
         summary[f"{method}_floor_rate_deg_s"] = None if floor is None else math.degrees(floor)
         summary[f"{method}_final_period_s"] = float(cols["period"][-1] * p.T0)

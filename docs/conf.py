@@ -35,6 +35,7 @@ exclude_patterns = [
     "orbit-year-table.md",
     "sunlight-year-table.md",
     "crossings-table.md",
+    "capture-table.md",
 ]
 
 # Equations: $…$ and $$…$$ in Markdown; \\tag{1.1} keeps a paper's own equation number.

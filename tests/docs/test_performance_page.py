@@ -53,9 +53,20 @@ def test_the_crossings_table_is_the_committed_runs():
     from tumble.app.bench_crossings import markdown
 
     run = json.loads((ROOT / "benchmarks" / "crossings.json").read_text(encoding="utf-8"))
-    runs = {k: v for k, v in run.items() if k != "machine"}
+    runs = {k: v for k, v in run.items() if k not in ("machine", "capture")}
     page = (ROOT / "docs" / "crossings-table.md").read_text(encoding="utf-8")
     assert page.rstrip("\n") == markdown(runs).rstrip("\n"), (
         "docs/crossings-table.md is stale: python benchmarks/crossings.py --from "
         "benchmarks/crossings.json > docs/crossings-table.md"
+    )
+
+
+def test_the_capture_table_is_the_committed_runs():
+    from tumble.app.bench_crossings import capture_markdown
+
+    run = json.loads((ROOT / "benchmarks" / "crossings.json").read_text(encoding="utf-8"))
+    page = (ROOT / "docs" / "capture-table.md").read_text(encoding="utf-8")
+    assert page.rstrip("\n") == capture_markdown(run["capture"]).rstrip("\n"), (
+        "docs/capture-table.md is stale: python benchmarks/crossings.py --from "
+        "benchmarks/crossings.json --capture > docs/capture-table.md"
     )

@@ -34,6 +34,10 @@ Four studies, each with its error figures and its target beside it:
     The examples whose slow motion crosses a separatrix or a resonance at ε = 1e-3 and 1e-4:
     the default averaged method's largest slow error over the run, in units of ε, and its
     speed-up over the full run (:mod:`tumble.app.bench_crossings`).
+``capture``
+    Ensembles of 1000 full runs of a triaxial body driven across the separatrix of the free
+    motion: the frequency of each rotation it passes into against the predicted probability
+    (:func:`tumble.averaging.separatrix_crossing`).
 
 ``compile`` times the first call of each kernel kind from an empty disk cache, in a fresh
 process (numba's compile, once per installation), and the load from the cache.
@@ -759,8 +763,9 @@ def run_benchmark(
 
         result["orbiting_body"]["sunlight"] = sunlight_study(s.repeat, say)
     if s.crossings:
-        from tumble.app.bench_crossings import crossing_study
+        from tumble.app.bench_crossings import capture_study, crossing_study
 
         result["crossings"] = crossing_study(s.repeat, say)
+        result["capture"] = capture_study(say)
     result["verdicts"] = verdicts(result)
     return result

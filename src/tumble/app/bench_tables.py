@@ -270,6 +270,13 @@ def _crossings_table(r: dict[str, Any]) -> Table | None:
                       f"{v['averaged_s']:.3g}", speed,
                       f"{v['error_in_eps']:.3g} (≤ {tg['crossing_error_in_eps']:g}: "
                       f"{_yes(near)})")  # fmt: skip
+    capture = r.get("capture") or {}
+    for name, e in capture.items():
+        near = e["difference"] <= tg["capture_probability"]
+        t.add_row(escape(f"capture, {name}"), "", f"{e['full_s']:.3g}", "",
+                  f"{e['crossed']} crossings", f"x3+: {e['frequency']:.3f} against "
+                  f"{e['predicted']:.3f} (≤ {tg['capture_probability']:g} apart: "
+                  f"{_yes(near)})")  # fmt: skip
     return t
 
 

@@ -41,6 +41,7 @@ TARGETS: dict[str, float] = {
     "sunlight_eval_us": 20.0,  # one evaluation of its averaged equations, at most
     "crossing_error_in_eps": 10.0,  # through a separatrix or resonance: slow error / ε, at most
     "crossing_speedup_1e-4": 300.0,  # the same runs at ε = 1e-4, averaged over full, at least
+    "capture_probability": 0.03,  # 1000 crossings: |frequency − predicted probability|, at most
 }
 """The targets, printed beside the measurements."""
 
@@ -84,6 +85,9 @@ def verdicts(result: dict[str, Any]) -> list[dict[str, Any]]:
         _orbit_rows(rows, orbit)
     for name, by_eps in (result.get("crossings") or {}).items():
         _crossing_rows(rows, name, by_eps)
+    for name, ensemble in (result.get("capture") or {}).items():
+        rows.add(f"capture, {name}: |frequency − predicted| over {ensemble['crossed']} crossings",
+                 ensemble["difference"], TARGETS["capture_probability"], False)  # fmt: skip
     _machine_rows(rows, result)
     return list(rows)
 

@@ -16,8 +16,11 @@
 * :mod:`~tumble.averaging.second_order`: the averaged equations to second order and the
   mean ↔ osculating map for any fast system, with
   :mod:`~tumble.averaging.resonance_widths` (the distance of its phases from a resonance).
+* :mod:`~tumble.averaging.crossing`: a triaxial body crossing the separatrix of the free
+  motion: the probability of each rotation it passes into.
 """
 
+from tumble.averaging.crossing import Crossing, separatrix_crossing, separatrix_motion
 from tumble.averaging.generator import SmallDivisorError, zero_mean_antiderivative
 from tumble.averaging.quadrature import AVERAGE_RTOL, AveragingError, torus_mean
 from tumble.averaging.spinner import spinner_average
@@ -32,9 +35,12 @@ from tumble.averaging.triaxial import (
 __all__ = [
     "AVERAGE_RTOL",
     "AveragingError",
+    "Crossing",
     "SmallDivisorError",
     "nearest_resonance",
     "nearest_resonances",
+    "separatrix_crossing",
+    "separatrix_motion",
     "spinner_average",
     "torus_mean",
     "triaxial_average",

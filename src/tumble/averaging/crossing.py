@@ -1,0 +1,233 @@
+"""Crossing the separatrix of the Euler–Poinsot motion under a small torque: into which rotation
+a triaxial body passes.
+
+On the sphere ‖L‖ = const the free motion circulates about the axis of least inertia (x1,
+regions "x1+" and "x1−" by the sign of its component) when h = T − L²/(2 I2) > 0, and about
+the axis of largest inertia (x3, "x3+" and "x3−") when h < 0 (I1 < I2 < I3, sorted axes).
+The four regions are bounded by four separatrix arcs joining the saddles ±L x̂2/I2 (the
+intermediate axis); the arc (s1, s3) lies where sign ω1 = s1 and sign ω3 = s3 and separates
+"x1 s1" from "x3 s3". On it (2T I2 = L²)
+
+    ω1 = s1 a sech λt,  ω3 = s3 b sech λt,  ω2 = s1 s3 (L/I2) tanh λt,
+    a² = L² (I3 − I2) / (I1 I2 (I3 − I1)),  b² = L² (I2 − I1) / (I3 I2 (I3 − I1)),
+    λ = (I3 − I1) a b / L.
+
+A small torque M(ω) changes h at ḣ = Σᵢ ωᵢ Mᵢ (1 − Iᵢ/I2) (h is a first integral of the free
+motion, zero on the separatrix). The body leaves its region through one of the region's two
+arcs; which one depends on its phase when it reaches the separatrix, and over phases spread
+uniformly (what any slight uncertainty of the initial state or of the torque makes them after
+a slow evolution of 1/ε) the probability of each arc is its share of the flux out of the
+region (Neishtadt, *Prikl. Mat. Mekh.* 51(5), 1987; Cary, Escande and Tennyson, *Phys. Rev. A*
+34, 1986): with Θ = −∫ ḣ dt along the arc's whole motion (for a region with h > 0; +∫ ḣ dt for
+h < 0), P = max(Θ, 0) / (Θ_first + Θ_second) over the region's arcs with Θ > 0.
+
+The torque must depend on the body rate alone (a damper, drag, a body-fixed moment); ḣ vanishes
+at the saddles and the integrand decays like sech λt, which the trapezoidal rule in λt
+integrates to round-off (the integrand is analytic in a strip of half-width π/2).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from tumble._typing import ArrayLike, FloatArray
+from tumble.bodies import proper_sorting
+from tumble.errors import ParameterError
+from tumble.torques import Torque
+
+__all__ = ["REGIONS", "Crossing", "first_crossing", "separatrix_crossing", "separatrix_motion"]
+
+REGIONS = ("x1+", "x1-", "x3+", "x3-")
+"""The regions of the Euler–Poinsot motion on the sphere ‖L‖ = const (sorted axes): rotation
+about the axis of least inertia with ω1 of either sign, about the axis of largest with ω3 of
+either sign."""
+
+_SPAN = 40.0  # λt from −40 to 40: sech 40 = 8.5e-18
+_STEP = 0.125  # the trapezoidal rule's error ~ exp(−π²/step) for a pole at iπ/2
+
+
+def _sorted(inertia: ArrayLike) -> tuple[FloatArray, FloatArray]:
+    moments = np.asarray(inertia, dtype=float)
+    if moments.shape != (3,) or not np.all(moments > 0.0):
+        raise ParameterError(f"inertia = {moments.tolist()} must be three positive moments")
+    Q = proper_sorting(moments)
+    i1, i2, i3 = Q @ moments
+    if not (i1 < i2 < i3) or min(i2 - i1, i3 - i2) <= 1e-12 * i3:
+        raise ParameterError(
+            f"inertia = {moments.tolist()}: a separatrix needs three different moments"
+        )
+    return Q, np.array([i1, i2, i3])
+
+
+def separatrix_motion(inertia: ArrayLike, L: float, s1: int, s3: int, t: ArrayLike) -> FloatArray:
+    """The body rate ω(t) [rad/time, the user's body axes] on the separatrix arc (s1, s3) of
+    the free motion with ‖L‖ = ``L``, t = 0 midway between the saddles (module notes).
+
+    Parameters
+    ----------
+    inertia : array_like, shape (3,)
+        Principal moments, three different ones, in the user's body axes [inertia unit].
+    L : float
+        ‖L‖ > 0 [inertia unit · rad/time].
+    s1, s3 : {1, -1}
+        The signs of ω1 and ω3 (sorted axes) on the arc.
+    t : array_like
+        Times [time].
+
+    Returns
+    -------
+    ndarray, shape (n, 3)
+    """
+    Q, (i1, i2, i3) = _sorted(inertia)
+    u = np.atleast_1d(np.asarray(t, dtype=float)) * _rate(i1, i2, i3, L)
+    return _arc(i1, i2, i3, L, s1, s3, u) @ Q
+
+
+def _amplitudes(i1: float, i2: float, i3: float, L: float) -> tuple[float, float]:
+    a = L * math.sqrt((i3 - i2) / (i1 * i2 * (i3 - i1)))
+    b = L * math.sqrt((i2 - i1) / (i3 * i2 * (i3 - i1)))
+    return a, b
+
+
+def _rate(i1: float, i2: float, i3: float, L: float) -> float:
+    a, b = _amplitudes(i1, i2, i3, L)
+    return (i3 - i1) * a * b / L
+
+
+def _arc(i1: float, i2: float, i3: float, L: float, s1: int, s3: int, u: FloatArray) -> FloatArray:
+    """ω in the sorted axes on the arc (s1, s3) at λt = u."""
+    a, b = _amplitudes(i1, i2, i3, L)
+    sech = 1.0 / np.cosh(u)
+    return np.stack([s1 * a * sech, s1 * s3 * (L / i2) * np.tanh(u), s3 * b * sech], axis=1)
+
+
+@dataclass(frozen=True)
+class Crossing:
+    """Where a body that reaches the separatrix from one region goes.
+
+    Attributes
+    ----------
+    start : str
+        The region it leaves (:data:`REGIONS`).
+    probabilities : dict
+        Each region it may enter → its probability (summing to 1).
+    fluxes : dict
+        Each of the two arcs out of ``start``, by the region beyond it → Θ, how much the motion
+        along the arc changes h = T − L²/(2 I2), counted positive where the torque drives the
+        body across it [energy unit].
+    """
+
+    start: str
+    probabilities: dict[str, float]
+    fluxes: dict[str, float]
+
+
+def separatrix_crossing(torque: Torque, inertia: ArrayLike, L: float, start: str) -> Crossing:
+    """The probability of each rotation a body leaving region ``start`` passes into, under a
+    small ``torque`` depending on the body rate alone (module notes).
+
+    Parameters
+    ----------
+    torque : Torque
+        The moment in body axes (the user's), evaluated at the separatrix motion; its size
+        sets the fluxes, not the probabilities.
+    inertia : array_like, shape (3,)
+        Principal moments in the user's body axes, three different ones [inertia unit].
+    L : float
+        ‖L‖ at the crossing [inertia unit · rad/time].
+    start : str
+        The region the body leaves, one of :data:`REGIONS` (sorted axes: x1 is the axis of
+        least inertia).
+
+    Returns
+    -------
+    Crossing
+
+    Raises
+    ------
+    ParameterError
+        An unknown region, two equal moments, a torque that reads the attitude or the time,
+        or a torque that does not drive the body out of ``start`` (both fluxes ≤ 0).
+    """
+    if start not in REGIONS:
+        raise ParameterError(f"start = {start!r} must be one of " + ", ".join(REGIONS))
+    if not (L > 0.0 and math.isfinite(L)):
+        raise ParameterError(f"L = {L!r} must be a positive number")
+    if not torque.rate_only:
+        raise ParameterError(
+            "separatrix_crossing: the torque must depend on the body rate alone (it reads the "
+            "attitude or the time)"
+        )
+    Q, (i1, i2, i3) = _sorted(inertia)
+    sign = 1 if start.endswith("+") else -1
+    # The two arcs out of the region, each by the region beyond it.
+    if start.startswith("x1"):
+        arcs = {"x3+": (sign, 1), "x3-": (sign, -1)}
+        out_of = -1.0  # h > 0 in x1: leaving means h falls
+    else:
+        arcs = {"x1+": (1, sign), "x1-": (-1, sign)}
+        out_of = 1.0
+    u = np.arange(-_SPAN, _SPAN + 0.5 * _STEP, _STEP)
+    factors = 1.0 - np.array([i1, i2, i3]) / i2
+    fluxes = {}
+    for beyond, (s1, s3) in arcs.items():
+        omega = _arc(i1, i2, i3, L, s1, s3, u)  # sorted axes
+        moment = np.asarray(torque(0.0, None, omega @ Q), dtype=float) @ Q.T  # sorted axes
+        h_rate = np.sum(omega * moment * factors, axis=1)
+        fluxes[beyond] = out_of * float(np.sum(h_rate)) * _STEP / _rate(i1, i2, i3, L)
+    driving = {k: max(v, 0.0) for k, v in fluxes.items()}
+    total = sum(driving.values())
+    if not total > 0.0:
+        raise ParameterError(
+            f"separatrix_crossing: the torque does not drive the body out of {start} (its "
+            f"fluxes through the two arcs are {fluxes['x3+' if 'x3+' in fluxes else 'x1+']:.3g} "
+            f"and {fluxes['x3-' if 'x3-' in fluxes else 'x1-']:.3g})"
+        )
+    return Crossing(start, {k: v / total for k, v in driving.items()}, fluxes)
+
+
+def first_crossing(
+    inertia: ArrayLike, t: ArrayLike, omega: ArrayLike, depth: float = 0.0
+) -> tuple[float, float, str, str] | None:
+    """The first crossing of the separatrix in samples of a motion: its time, ‖L‖ there, the
+    region left and the region entered (:data:`REGIONS`); None if the samples never cross.
+
+    Under a torque h = T − L²/(2 I2) oscillates about its slow course by about the flux Θ of a
+    passage (:func:`separatrix_crossing`), so a motion near the separatrix may cross it and
+    come back within a lap. A region counts as entered once h is past the separatrix by
+    ``depth``; the crossing's time and ‖L‖ are those of the last change of sign of h before.
+    The region entered is told by the sign of its axis's rate there (fixed within a region).
+
+    Parameters
+    ----------
+    inertia : array_like, shape (3,)
+        Principal moments, the user's body axes, three different ones [inertia unit].
+    t : array_like, shape (n,)
+        Sample times [time].
+    omega : array_like, shape (n, 3)
+        The body rate at those times, the user's body axes [rad/time].
+    depth : float
+        How far past the separatrix, in h [energy unit], the motion must go: above the
+        oscillation of h (the flux Θ of a passage, of the torque's size), below the depth the
+        motion reaches within the samples.
+    """
+    Q, (i1, i2, i3) = _sorted(inertia)
+    times = np.asarray(t, dtype=float)
+    w = np.asarray(omega, dtype=float) @ Q.T  # sorted axes
+    moments = np.array([i1, i2, i3])
+    L = np.linalg.norm(w * moments, axis=1)
+    h = 0.5 * np.sum(moments * w * w, axis=1) - L * L / (2.0 * i2)
+    side = math.copysign(1.0, float(h[0]))
+    past = np.flatnonzero(side * h < -depth) if h[0] != 0.0 else np.empty(0, dtype=int)
+    if not past.size:
+        return None
+    k = int(past[0])
+    before = np.flatnonzero(side * h[:k] > 0.0)
+    at = int(before[-1]) + 1 if before.size else 0  # the last change of sign before k
+    left_axis, entered_axis = (0, 2) if side > 0.0 else (2, 0)
+    left = ("x1" if left_axis == 0 else "x3") + ("+" if np.median(w[:at, left_axis]) > 0 else "-")
+    entered = ("x3" if entered_axis == 2 else "x1") + ("+" if w[k, entered_axis] > 0 else "-")
+    return float(times[at]), float(L[at]), left, entered

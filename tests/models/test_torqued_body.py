@@ -365,3 +365,31 @@ def test_an_averaged_run_held_on_an_unstable_axis_warns():
     assert np.max(tr.columns["k2"]) == 0.0  # the averaged equations hold the pure rotation
     issues = tb.MODEL.validity.check(p, st_, tr.slow, 1000.0)
     assert [i.condition for i in issues] == ["unstable_rotation"], issues
+
+
+def test_the_separatrix_warning_gives_the_odds_of_the_rotation_beyond():
+    # A damper and a body moment along the axis of largest inertia drive a body turning about
+    # x1 across the separatrix: the averaged run cannot tell into which sense of rotation about
+    # x3 it passes, and says with which probabilities (separatrix_crossing at ‖L‖ there).
+    from tumble.averaging import separatrix_crossing
+    from tumble.torques import ConstantBodyTorque, InternalDissipation
+
+    inertia = np.array([1.0, 2.0, 3.0])
+    torque = InternalDissipation(inertia, 300.0) + ConstantBodyTorque([0.0, 0.0, 1.2e-3])
+    p = tb.Params(inertia, 1.0, torque)
+    st = tb.State(np.array([1.0, 0.25, 0.0]))
+    run = simulate(tb.MODEL, p, st, np.linspace(0.0, 1500.0, 1501), "averaged")
+    (issue,) = [i for i in tb.validity(p, st, run.slow, 1500.0) if i.condition == "separatrix"]
+    L = float(run.slow(np.array([issue.tau]))["L"][0])
+    odds = separatrix_crossing(torque, inertia, L, "x1+").probabilities
+    assert odds["x3+"] > 0.8  # the push along +x3 favours that sense
+    assert (
+        f"From x1+ (sorted axes) the body passes into x3+ with probability "
+        f"{odds['x3+']:.3g} and x3- with probability {odds['x3-']:.3g}"
+    ) in issue.message
+    # A torque that reads the attitude: no odds, the plain warning.
+    tilted = tb.Params(inertia, 1.0, torque + ConstantInertialTorque([0.0, 0.0, 1e-5]))
+    run = simulate(tb.MODEL, tilted, st, np.linspace(0.0, 1500.0, 1501), "averaged")
+    (issue,) = [i for i in tb.validity(tilted, st, run.slow, 1500.0)
+                if i.condition == "separatrix"]  # fmt: skip
+    assert "probability" not in issue.message

@@ -313,12 +313,45 @@ def validity(p: Params, st: State, slow: SlowPath, tau_end: float) -> list[Valid
     I1, I2, I3 = p.sorted_inertia
     scales = _Scales.along(p, grid, cols)
     found = [
-        separatrix_issue(slow, grid, I2) if I1 < I2 < I3 else None,
+        _crossing_issue(p, st, slow, grid) if I1 < I2 < I3 else None,
         _not_fast_issue(grid, scales),
         _resonance_issue(p, grid, scales) if p.attitude_dependent else None,
         _unstable_rotation_issue(p, grid, cols, tau_end) if I1 < I2 < I3 else None,
     ]
     return sorted((i for i in found if i is not None), key=lambda i: i.tau)
+
+
+def _crossing_issue(p: Params, st: State, slow: SlowPath, grid: FloatArray) -> ValidityIssue | None:
+    """The separatrix issue, with the odds of the rotation the body passes into at the first
+    crossing where the torque depends on the body rate alone
+    (:func:`tumble.averaging.separatrix_crossing`): the averaged state [L_ξ, r] does not carry
+    the sense of the rotation, the phase at the crossing decides it."""
+    issue = separatrix_issue(slow, grid, p.sorted_inertia[1])
+    if issue is None or not p.torque.rate_only:
+        return issue
+    from dataclasses import replace as changed
+
+    from tumble.averaging import separatrix_crossing
+    from tumble.bodies import proper_sorting
+
+    omega = proper_sorting(p.inertia) @ st.omega  # sorted axes: the region it starts in
+    r = float(st.omega @ (p.inertia * st.omega)) / float(np.sum((p.inertia * st.omega) ** 2))
+    axis = 0 if r > 1.0 / p.sorted_inertia[1] else 2
+    if omega[axis] == 0.0:
+        return issue
+    start = ("x1" if axis == 0 else "x3") + ("+" if omega[axis] > 0.0 else "-")
+    L = float(slow(np.array([issue.tau]))["L"][0])
+    try:
+        odds = separatrix_crossing(p.torque, p.inertia, L, start).probabilities
+    except TumbleError:
+        return issue  # a torque that does not drive it out: the crossing is the averaging's
+    said = " and ".join(f"{region} with probability {q:.3g}" for region, q in odds.items())
+    return changed(
+        issue,
+        message=f"{issue.message}. From {start} (sorted axes) the body passes into {said}: "
+        "which one depends on the phase at the crossing, which the averaged run does not "
+        "follow (theory of separatrix crossing)",
+    )
 
 
 _PURE_K2 = 1e-9  # k² below this along the whole run: the averaged motion never left the axis

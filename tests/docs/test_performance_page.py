@@ -4,9 +4,12 @@ its tables cannot drift apart."""
 
 from __future__ import annotations
 
+import importlib
 import importlib.util
 import json
 from pathlib import Path
+
+import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -26,47 +29,31 @@ def test_the_tables_are_the_committed_runs():
     )
 
 
-def test_the_orbit_table_is_the_committed_runs():
-    from tumble.app.bench_orbit import markdown
-
-    run = json.loads((ROOT / "benchmarks" / "orbit_year.json").read_text(encoding="utf-8"))
-    page = (ROOT / "docs" / "orbit-year-table.md").read_text(encoding="utf-8")
-    assert page.rstrip("\n") == markdown(run).rstrip("\n"), (
-        "docs/orbit-year-table.md is stale: python benchmarks/orbit_year.py --from "
-        "benchmarks/orbit_year.json > docs/orbit-year-table.md"
-    )
+def _runs(run: dict) -> dict:
+    """A study's runs: its JSON without the machine and the capture ensembles."""
+    return {k: v for k, v in run.items() if k not in ("machine", "capture")}
 
 
-def test_the_sunlight_table_is_the_committed_runs():
-    from tumble.app.bench_sunlight import markdown
-
-    run = json.loads((ROOT / "benchmarks" / "geo_sunlight.json").read_text(encoding="utf-8"))
-    runs = {k: v for k, v in run.items() if k != "machine"}
-    page = (ROOT / "docs" / "sunlight-year-table.md").read_text(encoding="utf-8")
-    assert page.rstrip("\n") == markdown(runs).rstrip("\n"), (
-        "docs/sunlight-year-table.md is stale: python benchmarks/geo_sunlight.py --from "
-        "benchmarks/geo_sunlight.json > docs/sunlight-year-table.md"
-    )
-
-
-def test_the_crossings_table_is_the_committed_runs():
-    from tumble.app.bench_crossings import markdown
-
-    run = json.loads((ROOT / "benchmarks" / "crossings.json").read_text(encoding="utf-8"))
-    runs = {k: v for k, v in run.items() if k not in ("machine", "capture")}
-    page = (ROOT / "docs" / "crossings-table.md").read_text(encoding="utf-8")
-    assert page.rstrip("\n") == markdown(runs).rstrip("\n"), (
-        "docs/crossings-table.md is stale: python benchmarks/crossings.py --from "
-        "benchmarks/crossings.json > docs/crossings-table.md"
-    )
+TABLES = [
+    # (page, JSON, the study's Markdown of the JSON, the command that writes the page)
+    ("orbit-year-table.md", "orbit_year.json", "bench_orbit.markdown", lambda r: r,
+     "benchmarks/orbit_year.py"),
+    ("sunlight-year-table.md", "geo_sunlight.json", "bench_sunlight.markdown", _runs,
+     "benchmarks/geo_sunlight.py"),
+    ("crossings-table.md", "crossings.json", "bench_crossings.markdown", _runs,
+     "benchmarks/crossings.py"),
+    ("capture-table.md", "crossings.json", "bench_crossings.capture_markdown",
+     lambda r: r["capture"], "benchmarks/crossings.py --capture"),
+]  # fmt: skip
 
 
-def test_the_capture_table_is_the_committed_runs():
-    from tumble.app.bench_crossings import capture_markdown
-
-    run = json.loads((ROOT / "benchmarks" / "crossings.json").read_text(encoding="utf-8"))
-    page = (ROOT / "docs" / "capture-table.md").read_text(encoding="utf-8")
-    assert page.rstrip("\n") == capture_markdown(run["capture"]).rstrip("\n"), (
-        "docs/capture-table.md is stale: python benchmarks/crossings.py --from "
-        "benchmarks/crossings.json --capture > docs/capture-table.md"
+@pytest.mark.parametrize(("page", "source", "writer", "part", "command"), TABLES)
+def test_a_studys_table_is_the_committed_runs(page, source, writer, part, command):
+    module, name = writer.split(".")
+    markdown = getattr(importlib.import_module(f"tumble.app.{module}"), name)
+    run = json.loads((ROOT / "benchmarks" / source).read_text(encoding="utf-8"))
+    text = (ROOT / "docs" / page).read_text(encoding="utf-8")
+    assert text.rstrip("\n") == markdown(part(run)).rstrip("\n"), (
+        f"docs/{page} is stale: python {command.split()[0]} --from benchmarks/{source}"
+        f"{command.removeprefix(command.split()[0])} > docs/{page}"
     )

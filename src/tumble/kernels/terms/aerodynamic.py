@@ -23,14 +23,16 @@ and its sources): the form of sunlight's, so that both read the same facet rows
   exact for the cubic: the orbit and the free rotation averaged independently.
 
 **The number of nodes.** Over a circular orbit q ŝ⊗ᵏ is a trigonometric polynomial of degree
-≤ 3 in the argument of latitude but for the small turn of the air (ω⊕ r/v ≈ 0.07 in LEO), so
-eight nodes hold it to ~1e-7. On an eccentric orbit the density varies as exp(κ cos E) about
+≤ 3 in the argument of latitude but for the small turn of the air (ω⊕ r/v ≈ 0.07 in LEO), which
+eight nodes hold closely. On an eccentric orbit the density varies as exp(κ cos E) about
 the perigee, κ = a e/H with H the scale height at the perigee: its harmonic n is I_n(κ)/I_0(κ),
 and :func:`orbit_nodes` takes the fewest N ≥ 8 (a multiple of 4) with I_(N−3)(κ)/I_0(κ) ≤ 1e-8
-(N grows like √κ: 8 in LEO at e ≤ 0.01, ~130 for a transfer orbit with its perigee at 250 km).
-The bands of the atmosphere (:data:`tumble.kernels.astro.ATMOSPHERE_BANDS`, continuous) meet
-with a kink in the slope of ln ρ: an eccentric orbit that crosses a band's base converges more
-slowly there.
+(N grows like √κ: 8 on a circular orbit, 16 at e = 0.01 in LEO, 140 for a transfer orbit
+with its perigee at 250 km); against eight times as many nodes it is within 1e-8 on an orbit
+inside one band (tests/kernels/test_aerodynamic.py). The bands of the atmosphere
+(:data:`tumble.kernels.astro.ATMOSPHERE_BANDS`, continuous) meet with a kink in the slope of
+ln ρ: an eccentric orbit that crosses a band's base converges more slowly there (1e-3 of the
+moment from 250 to 2000 km).
 
 The orbiting body's scenario switches it on with ``[torques] aerodynamic = true`` on the facets of
 its ``[surface]``, whose accommodation it reads there.

@@ -58,9 +58,9 @@ def test_no_secular_air_on_a_circular_orbit():
     ("old", "new", "needle"),
     [
         ("accommodation_normal = 0.9", "accommodation_normal = 1.5",
-         "accommodation normal = 1.5 must be in [0, 1]"),
+         "surface.accommodation_normal = 1.5 is outside the allowed range [0, 1]"),
         ("accommodation_tangential = 0.9", "wall_speed_ratio = 1.0",
-         "wall_speed_ratio = 1 must be in [0, 1)"),
+         "surface.wall_speed_ratio = 1 is outside the allowed range [0, 1)"),
         ('averaged_illumination = "expanded"', 'averaged_illumination = "sharp"',
          "surface.averaged_illumination"),
     ],

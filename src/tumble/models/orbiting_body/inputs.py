@@ -819,12 +819,13 @@ def _surface(inputs: Inputs) -> tuple[FloatArray | None, FloatArray | None]:
         for more in rows[1:]:
             facets = facets + more
     about = facets.shifted(-np.asarray(s["centre_of_mass"], dtype=float))
-    try:
-        air = Accommodation(
-            s["accommodation_normal"], s["accommodation_tangential"], s["wall_speed_ratio"]
-        )
-    except ParameterError as exc:
-        raise ParameterError(f"surface: {exc}") from None
+    for key in ("accommodation_normal", "accommodation_tangential"):
+        check_range(f"surface.{key}", s[key], low=0.0, high=1.0, low_open=False, high_open=False)
+    check_range("surface.wall_speed_ratio", s["wall_speed_ratio"], low=0.0, high=1.0,
+                low_open=False)  # fmt: skip
+    air = Accommodation(
+        s["accommodation_normal"], s["accommodation_tangential"], s["wall_speed_ratio"]
+    )
     return about.table(), air_table(about, air)
 
 

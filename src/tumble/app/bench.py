@@ -79,6 +79,7 @@ __all__ = [
     "TARGETS",
     "BenchSettings",
     "FullCase",
+    "at_eps",
     "full_cases",
     "run_benchmark",
 ]
@@ -216,6 +217,15 @@ def _scenario_at(
     ``initial`` overrides keys of its ``[initial]``."""
     data = _template(name)
     data["initial"].update(initial or {})
+    return parse_scenario(at_eps(data, eps, t_end, samples), f"<{name} template>").request
+
+
+def at_eps(
+    data: dict[str, Any], eps: float | None, t_end: float | None, samples: int
+) -> dict[str, Any]:
+    """The scenario ``data`` (changed in place and returned) at ``eps`` over its slow horizon
+    (``t_end`` = its ε·t_end / eps), or over ``t_end`` with ε scaled to keep that horizon, with
+    ``samples`` samples."""
     sec, key = _eps_section(data), _end_key(data)
     slow = sec["eps"] * data["run"][key]
     if eps is None:
@@ -224,7 +234,7 @@ def _scenario_at(
     sec["eps"] = eps
     data["run"][key] = slow / eps if t_end is None else t_end
     data["run"]["samples"] = samples
-    return parse_scenario(data, f"<{name} template>").request
+    return data
 
 
 # The rotating-field template's transient (regime x1, k² = 0.5) nears the separatrix within

@@ -75,26 +75,14 @@ SAMPLES = 401
 
 def request_at(name: str, eps: float) -> Any:
     """The example ``name`` at ``eps``, its end time scaled to keep its slow horizon."""
-    data = copy.deepcopy(CASES[name])
-    section = data["perturbation"] if data["model"] == "nonlinear_moment" else data["parameters"]
-    key = "t_end" if "t_end" in data["run"] else "tau_end"
-    slow = section["eps"] * data["run"][key]
-    section["eps"] = eps
-    data["run"][key] = slow / eps
-    data["run"]["samples"] = SAMPLES
+    from tumble.app.bench import at_eps
+
+    data = at_eps(copy.deepcopy(CASES[name]), eps, None, SAMPLES)
     return parse_scenario(data, f"examples/{name}.toml at eps = {eps:g}").request
 
 
-def _timed(fn: Callable[[], Any], repeat: int) -> tuple[float, Any]:
-    best, out = float("inf"), None
-    for _ in range(repeat):
-        start = time.perf_counter()
-        out = fn()
-        best = min(best, time.perf_counter() - start)
-    return best, out
-
-
 def _case(name: str, eps: float, repeat: int, log: Callable[[str], None]) -> dict[str, Any]:
+    from tumble.app.bench import _best  # short calls repeated until they add up
     from tumble.integrate import simulate
 
     req = request_at(name, eps)
@@ -106,8 +94,8 @@ def _case(name: str, eps: float, repeat: int, log: Callable[[str], None]) -> dic
     log(f"crossings: {name} at ε = {eps:g}, the reference full run")
     ref = run("full", 1e-12, 1e-14)
     log(f"crossings: {name} at ε = {eps:g}, full and averaged")
-    full_s, _ = _timed(lambda: run("full", 1e-10, 1e-12), repeat)
-    avg_s, avg = _timed(lambda: run("averaged", 1e-10, 1e-12), repeat)
+    full_s, _ = _best(lambda: run("full", 1e-10, 1e-12), repeat)
+    avg_s, avg = _best(lambda: run("averaged", 1e-10, 1e-12), repeat)
     errors = {}
     for v, (_, e) in slow_errors(model, p, ref, avg).items():
         column = ref.columns.get(v)

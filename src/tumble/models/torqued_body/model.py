@@ -335,8 +335,7 @@ def _crossing_issue(p: Params, st: State, slow: SlowPath, grid: FloatArray) -> V
     from tumble.bodies import proper_sorting
 
     omega = proper_sorting(p.inertia) @ st.omega  # sorted axes: the region it starts in
-    r = float(st.omega @ (p.inertia * st.omega)) / float(np.sum((p.inertia * st.omega) ** 2))
-    axis = 0 if r > 1.0 / p.sorted_inertia[1] else 2
+    axis = 0 if _vector_from_slow(p, st)[3] > 1.0 / p.sorted_inertia[1] else 2
     if omega[axis] == 0.0:
         return issue
     start = ("x1" if axis == 0 else "x3") + ("+" if omega[axis] > 0.0 else "-")

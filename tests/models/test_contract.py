@@ -112,3 +112,26 @@ def test_declaration_is_the_models_own(name):
     from tumble.models.base import Declaration
 
     assert declaration(name) == Declaration.of(MODELS[name])
+
+
+@pytest.mark.parametrize("name", ["rotating_field", "torqued_body", "orbiting_body"])
+def test_the_angles_alone_are_those_of_the_columns(name):
+    # A form's ``angles`` replaces ``to_columns`` on every step of a run: the same values,
+    # bit for bit, on states spread around its start (the azimuth's whole circle, and the
+    # ξ3 axis, where a vector form has no azimuth and keeps the initial one). The models
+    # whose averaged form has them: the vector forms [L_ξ, r].
+    model = MODELS[name]
+    assert model.averaged is not None
+    sc = parse_scenario(tomllib.loads(template(name)), f"<{name} template>")
+    p, st = sc.request.params, sc.request.initial
+    avg = model.averaged.form(p, st, AveragingOptions())
+    assert avg.angles is not None
+    y0 = np.asarray(avg.initial_state(p, st), dtype=float)
+    turn = np.linspace(0.0, 2.0 * np.pi, 9)
+    Y = np.repeat(y0[None, :], turn.size + 1, axis=0)
+    size = np.hypot(y0[0], y0[1])
+    Y[:-1, 0], Y[:-1, 1] = size * np.cos(turn), size * np.sin(turn)
+    Y[-1, :2] = 0.0
+    t = np.zeros(len(Y))
+    angles, cols = avg.angles(p, st, t, Y), avg.to_columns(p, st, t, Y)
+    assert angles and all(np.array_equal(angles[k], cols[k]) for k in angles)

@@ -5,10 +5,16 @@ example's ``[run]``) against the full equations over the whole run.
 * ``a3_negative`` (resisting medium): the nutation angle ϑ passes π/2, where the proper
   rotation stops (theory of the resisting medium, §10.2);
 * ``rf_transient_x1`` and ``rf_counter_rotating`` (rotating field): the polhode crosses its
-  separatrix, and in the second the spin passes through L = 0.
+  separatrix, and in the second the spin passes through L = 0;
+* ``tb_damper_crossing`` (torqued body): a damper and a linear drag take a spin about the
+  least axis through the separatrix to the largest;
+* ``ob_upper_stage_flat_spin`` (orbiting body): a spent stage's liquid takes its spin about the
+  long axis through the separatrix to a flat spin.
 
 Each example runs with ε scaled and its end time with 1/ε, so that its slow horizon ε·t_end is
-the example's; :data:`SAMPLES` samples. For each: the full run at rtol 1e-10 (the benchmark's
+the example's; :data:`SAMPLES` samples. The orbiting body has no ε key: its ε is the spin period
+over the time constant of its internal dissipation (the one slow process that matters to it;
+its gravity gradient is 1e-7 of the spin's scale), and the time constant is what is scaled. For each: the full run at rtol 1e-10 (the benchmark's
 best of ``repeat``), a reference full run at rtol 1e-12, and the averaged run at rtol 1e-10.
 The error is the largest difference of each slow variable from the reference over the whole
 run (:func:`tumble.analysis.verify.slow_errors`), relative to the variable's largest value
@@ -62,6 +68,25 @@ CASES: dict[str, dict[str, Any]] = {
         "initial": {"L": 0.6, "rho_deg": 149.0, "sigma": 0.0, "k2": 0.3, "regime": "x3"},
         "run": {"tau_end": 600.0},
     },
+    "tb_damper_crossing": {
+        "model": "torqued_body",
+        "parameters": {"inertia": [1.0, 2.0, 3.0], "eps": 0.01},
+        "torque": [{"kind": "internal_dissipation", "tau": 1.0},
+                   {"kind": "linear_drag",
+                    "B": [[0.3, 0.0, 0.0], [0.0, 0.2, 0.0], [0.0, 0.0, 0.1]]}],
+        "initial": {"omega": [1.0, 0.25, 0.0], "psi_deg": 0.0, "theta_deg": 50.0,
+                    "phi_deg": 0.0},
+        "run": {"t_end": 400.0},
+    },
+    "ob_upper_stage_flat_spin": {
+        "model": "orbiting_body",
+        "body": {"mass": 1000.0, "inertia": [300.0, 1400.0, 1500.0]},
+        "orbit": {"altitude": 500.0, "inclination_deg": 28.5, "epoch": "2025-03-01T00:00:00Z"},
+        "torques": {"eddy_current": False, "gravity_gradient": True, "dissipation_days": 0.05},
+        "initial": {"spin_period": 1.0, "spin_axis": [1.0, 0.15, 0.0], "psi_deg": 0.0,
+                    "theta_deg": 40.0, "phi_deg": 0.0},
+        "run": {"t_end_days": 0.3},
+    },
 }  # fmt: skip
 """The examples (``examples/<name>.toml``, a test holds them equal) whose slow motion crosses
 a band: the model, its parameters, the initial state and the end time."""
@@ -76,8 +101,17 @@ SAMPLES = 401
 def request_at(name: str, eps: float) -> Any:
     """The example ``name`` at ``eps``, its end time scaled to keep its slow horizon."""
     from tumble.app.bench import at_eps
+    from tumble.models.orbiting_body.inputs import DAY
 
-    data = at_eps(copy.deepcopy(CASES[name]), eps, None, SAMPLES)
+    data = copy.deepcopy(CASES[name])
+    if data["model"] == "orbiting_body":  # ε = spin period / dissipation time (module notes)
+        days = data["torques"]["dissipation_days"]
+        horizon = data["run"]["t_end_days"] / days
+        days = data["initial"]["spin_period"] / (eps * DAY)
+        data["torques"]["dissipation_days"] = days
+        data["run"] = {"t_end_days": horizon * days, "samples": SAMPLES}
+    else:
+        data = at_eps(data, eps, None, SAMPLES)
     return parse_scenario(data, f"examples/{name}.toml at eps = {eps:g}").request
 
 

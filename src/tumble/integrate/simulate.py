@@ -566,12 +566,17 @@ def _averaged_streamed(
     def to_columns(t: FloatArray, Y: FloatArray) -> Columns:
         return avg.to_columns(p, initial, t, Y)
 
+    def angle_columns(t: FloatArray, Y: FloatArray) -> Columns:
+        if avg.angles is not None:
+            return avg.angles(p, initial, t, Y)
+        return to_columns(t, Y)
+
     def on_chunk(piece: dop853.Solution, steps: FloatArray, rows: slice) -> None:
         # The steps and the samples in one ascending grid (a step first where they meet), as
         # the dense output's sampling merges them.
         times = np.concatenate([steps, tau[rows]])
         order = np.argsort(times, kind="stable")
-        cols = to_columns(times[order], piece(times[order]))
+        cols = angle_columns(times[order], piece(times[order]))
         unwrap(cols)
         where = np.empty(times.size, dtype=np.intp)
         where[order] = np.arange(times.size)

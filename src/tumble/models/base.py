@@ -266,6 +266,10 @@ class AveragedForm(Generic[P, S]):
     osculating: Callable[[P, S, FloatArray, FloatArray], Columns] | None = None
     # The band a hybrid run hands to the full equations (AveragingOptions.hybrid).
     crossing: Crossing | None = None
+    # Its unwrapped angle columns alone, equal to those of ``to_columns``, where that is
+    # costly: a compiled run evaluates them on every step (to count the turns between samples)
+    # and the other columns at the samples only, as FullForm.angles.
+    angles: Callable[[P, S, FloatArray, FloatArray], Columns] | None = None
 
 
 @dataclass(frozen=True, slots=True)

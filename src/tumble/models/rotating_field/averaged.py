@@ -191,15 +191,21 @@ def _r_to_k2(p: Params, r: ArrayLike) -> FloatArray:
     return modulus_squared_of_ratio(*p.sorted_inertia, np.ravel(r))
 
 
+def _vector_angles(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
+    """σ of :func:`_vector_columns` alone (the column unwrapped on every step); on the ξ3
+    axis, where L has no azimuth, the initial one."""
+    perp = np.hypot(Y[:, 0], Y[:, 1])
+    return {"sigma": np.where(perp > 0.0, np.arctan2(Y[:, 1], Y[:, 0]), _initial_sigma(p, st))}
+
+
 def _vector_columns(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
     L_xi, r = Y[:, :3], Y[:, 3]
     L = np.linalg.norm(L_xi, axis=1)
     perp = np.hypot(L_xi[:, 0], L_xi[:, 1])
-    sigma = np.where(perp > 0.0, np.arctan2(L_xi[:, 1], L_xi[:, 0]), _initial_sigma(p, st))
     return {
         "L": L,
         "rho": np.arctan2(perp, L_xi[:, 2]),
-        "sigma": sigma,
+        **_vector_angles(p, st, t, Y),
         "T": 0.5 * r * L * L,
         "k2": _r_to_k2(p, r),
     }
@@ -281,6 +287,7 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
         to_columns=_vector_columns,
         breakpoints=breakpoints,
         kernel=numeric_kernel if numeric else averaged_kernel,
+        angles=_vector_angles,
     )
 
 

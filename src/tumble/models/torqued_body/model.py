@@ -207,6 +207,11 @@ def _vector_columns(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[
     return _momentum_columns(L_xi, 0.5 * Y[:, 3] * L * L, p)
 
 
+def _vector_angles(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
+    """σ of :func:`_vector_columns` alone (the column unwrapped on every step)."""
+    return {"sigma": np.arctan2(Y[:, 1], Y[:, 0])}
+
+
 def _mean_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:
     """The averaged equations of order 2 in mean variables (L̄_ξ, T̄) and the mean angle
     variables of the Euler–Poinsot motion (and the forcing phase)
@@ -262,6 +267,7 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
         to_columns=_vector_columns,
         breakpoints=breakpoints,
         kernel=averaged_kernel,
+        angles=_vector_angles,
     )
 
 

@@ -51,5 +51,7 @@ def test_the_crossing_cases_are_the_examples():
         with open(EXAMPLES / f"{name}.toml", "rb") as f:
             data = tomllib.load(f)
         # The study keeps what sets the motion (samples, methods and tolerances are its own).
-        data["run"] = {k: v for k, v in data["run"].items() if k in ("tau_end", "t_end", "t_end_days")}
+        data["run"] = {
+            k: v for k, v in data["run"].items() if k in ("tau_end", "t_end", "t_end_days")
+        }
         assert data == case, name

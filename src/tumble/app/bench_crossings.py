@@ -12,13 +12,14 @@ example's ``[run]``) against the full equations over the whole run.
   long axis through the separatrix to a flat spin.
 
 Each example runs with ε scaled and its end time with 1/ε, so that its slow horizon ε·t_end is
-the example's; :data:`SAMPLES` samples. The orbiting body has no ε key: its ε is the spin period
-over the time constant of its internal dissipation (the one slow process that matters to it;
-its gravity gradient is 1e-7 of the spin's scale), and the time constant is what is scaled. For each: the full run at rtol 1e-10 (the benchmark's
-best of ``repeat``), a reference full run at rtol 1e-12, and the averaged run at rtol 1e-10.
-The error is the largest difference of each slow variable from the reference over the whole
-run (:func:`tumble.analysis.verify.slow_errors`), relative to the variable's largest value
-(at least 1), the largest over the variables, and is judged in units of ε: the target is
+the example's; :data:`SAMPLES` samples. The orbiting body has no ε key: its ε is the spin
+period over the time constant of its internal dissipation (the one slow process that matters
+to it; its gravity gradient is 4e-7 of the spin's scale Iω²), and the time constant is what
+is scaled. For each: the full run at rtol 1e-10 (the benchmark's best of ``repeat``), a
+reference full run at rtol 1e-12, and the averaged run at rtol 1e-10. The error is the
+largest difference of each slow variable from the reference over the whole run
+(:func:`tumble.analysis.verify.slow_errors`), relative to the variable's largest value (at
+least 1), the largest over the variables, and is judged in units of ε: the target is
 :data:`ERROR_IN_EPS` ε, and :data:`SPEEDUP` times the full run's speed at ε = 1e-4.
 """
 

@@ -54,8 +54,10 @@ __all__ = [
 ]
 
 _BODY_ONLY = (ConstantBodyTorque, LinearDrag, QuadraticDrag, InternalDissipation, ZeroTorque)
-"""Torques that depend on the body angular velocity only: the body's phases enter them only
-through ω, so commensurabilities of the free motion (m = 0 resonances) do not matter."""
+"""Torques that depend on the body angular velocity only: the body's phases enter the rates of
+|L| and T only through ω, so commensurabilities of the free motion (m = 0 resonances) do not
+move them, and none is reported. The direction of L, whose rate turns with the precession
+angle, does feel the resonances ν2 = kν1 (theory of separatrix crossing, §5)."""
 
 
 def _terms(torque: Torque) -> tuple[Torque, ...]:

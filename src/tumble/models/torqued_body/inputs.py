@@ -244,10 +244,23 @@ class Params:
 
         return rigid_body_kernel(self.inertia, self.scaled)
 
+    @cached_property
+    def averaged_kernel(self) -> Kernel | None:
+        """The averaged equations compiled (the triaxial engine's kernel of the torque it
+        averages, :attr:`averaging`); None for a torque given as a Python function. Built on
+        first use and kept: its program is packed from every term (~0.2 ms), as much as a
+        short averaged run's integration."""
+        from tumble.averaging.triaxial import triaxial_kernel  # compiled code
+
+        torque, period = self.averaging
+        return triaxial_kernel(torque, self.inertia, period, factor=self.eps)
+
     def __getstate__(self) -> dict[str, Any]:
-        # Without the compiled kernel: it may hold a user callback's address in this process.
+        # Without the compiled kernels: they may hold a user callback's address in this
+        # process.
         state = dict(self.__dict__)
         state.pop("kernel", None)
+        state.pop("averaged_kernel", None)
         return state
 
     @property

@@ -30,7 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from tumble._typing import BoolArray, FloatArray
-from tumble.averaging import nearest_resonances, triaxial_kernel
+from tumble.averaging import nearest_resonances
 from tumble.averaging.triaxial import triaxial_average_stage
 from tumble.dynamics import rigid_body_rhs
 from tumble.errors import IntegrationError, ParameterError, TumbleError
@@ -274,9 +274,9 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
 def averaged_kernel(p: Params) -> Kernel | None:
     """:func:`averaged_rhs` compiled when the torque is a sum of built-in terms
     (:func:`tumble.averaging.triaxial_kernel`), for triaxial and symmetric bodies alike;
-    None for a torque given as a Python function (the Python engine)."""
-    torque, period = p.averaging
-    return triaxial_kernel(torque, p.inertia, period, factor=p.eps)
+    None for a torque given as a Python function (the Python engine). Built once per
+    parameter set (:attr:`Params.averaged_kernel`)."""
+    return p.averaged_kernel
 
 
 # ---------------------------------------------------------------------------------------------

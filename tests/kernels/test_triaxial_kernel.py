@@ -81,10 +81,13 @@ def _torques():
     }
 
 
+@pytest.mark.parametrize("branch", [1.0, -1.0])
 @pytest.mark.parametrize("name", sorted(_torques()))
-def test_compiled_average_equals_the_python_engine(name):
+def test_compiled_average_equals_the_python_engine(name, branch):
+    # In both senses of rotation: the body moment and the drags of "all terms" tell them
+    # apart (a test below holds them to the full equations).
     torque, period = _torques()[name]
-    kernel = triaxial_kernel(torque, INERTIA, period)
+    kernel = triaxial_kernel(torque, INERTIA, period, branch=branch)
     triaxial = (KIND_TRIAXIAL_CLOSED, KIND_TRIAXIAL_PHASE_MEANS, KIND_TRIAXIAL_AVERAGED)
     assert kernel is not None and kernel.kind in triaxial
     rng = np.random.default_rng(11)
@@ -97,7 +100,8 @@ def test_compiled_average_equals_the_python_engine(name):
             continue
         y = np.array([*L_xi, r])
         got = evaluate(kernel.kind, 0.0, y, kernel.params)
-        ref = triaxial_average_vector(torque, INERTIA, y, 0.0, forcing_period=period)
+        ref = triaxial_average_vector(torque, INERTIA, y, 0.0, forcing_period=period,
+                                      branch=branch)  # fmt: skip
         # Both stop refining the polhode when two levels agree to 1e-12 of the torque's size;
         # the forcing phase (closed form here) and the precession (exact on 4 nodes here, 8
         # there) add round-off only: agreement to 1e-10 of the largest rate (measured 2e-14).
@@ -132,8 +136,9 @@ def _flat_spin(I1, I2, I3):
     return 1.0 / I3 if I3 - I2 < I2 - I1 else 1.0 / I1
 
 
+@pytest.mark.parametrize("branch", [1.0, -1.0])
 @pytest.mark.parametrize("body", sorted(SYMMETRIC))
-def test_symmetric_bodies_average_compiled_as_the_python_engine(body):
+def test_symmetric_bodies_average_compiled_as_the_python_engine(body, branch):
     # A rocket body, a disc and a sphere run the compiled engine (the polhode at m = 0) and
     # agree with the Python engine's symmetric Euler–Poinsot motion at every r, except on
     # the flat spin about the equal axes (below).
@@ -141,7 +146,7 @@ def test_symmetric_bodies_average_compiled_as_the_python_engine(body):
     I1, I2, I3 = sorted(inertia)
     rng = np.random.default_rng(5)
     for name, (torque, period) in _symmetric_torques(inertia).items():
-        kernel = triaxial_kernel(torque, inertia, period)
+        kernel = triaxial_kernel(torque, inertia, period, branch=branch)
         assert kernel is not None, name
         rs = [*rng.uniform(1.0 / I3, 1.0 / I1, 8), 1.0 / I3, 1.0 / I1]
         for r in rs:
@@ -154,7 +159,8 @@ def test_symmetric_bodies_average_compiled_as_the_python_engine(body):
                 # cannot converge on an integrand of round-off): zero to round-off.
                 assert np.max(np.abs(got)) < 1e-15, got
                 continue
-            ref = triaxial_average_vector(torque, inertia, y, 0.0, forcing_period=period)
+            ref = triaxial_average_vector(torque, inertia, y, 0.0, forcing_period=period,
+                                          branch=branch)  # fmt: skip
             # As for the triaxial body above: 1e-10 of the largest rate (measured ≤ 5e-15).
             scale = max(float(np.max(np.abs(ref))), 1e-300)
             assert np.max(np.abs(got - ref)) <= 1e-10 * scale, (name, y, got, ref)

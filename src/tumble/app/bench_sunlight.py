@@ -94,9 +94,9 @@ def _averaged(request: Any, full: Any, rtol: float, repeat: int) -> dict[str, An
 def _eval_us(request: Any) -> float:
     """One evaluation of the compiled averaged right-hand side at the initial state [µs]."""
     from tumble.kernels.rhs import evaluate_repeatedly
-    from tumble.models.torqued_body.model import _vector_from_slow, averaged_kernel
+    from tumble.models.torqued_body.model import _sense, _vector_from_slow, averaged_kernel
 
-    kernel = averaged_kernel(request.params)
+    kernel = averaged_kernel(request.params, _sense(request.params, request.initial))
     assert kernel is not None  # built-in terms only
     y = _vector_from_slow(request.params, request.initial)
     evaluate_repeatedly(kernel.kind, 0.0, y, kernel.params, 10, 0.0)  # compiled, warm

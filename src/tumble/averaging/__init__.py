@@ -25,8 +25,11 @@ from tumble.averaging.generator import SmallDivisorError, zero_mean_antiderivati
 from tumble.averaging.quadrature import AVERAGE_RTOL, AveragingError, torus_mean
 from tumble.averaging.spinner import spinner_average
 from tumble.averaging.triaxial import (
+    branch_kernel,
     nearest_resonance,
     nearest_resonances,
+    rotation_sense,
+    sense_turn,
     triaxial_average,
     triaxial_average_vector,
     triaxial_kernel,
@@ -37,8 +40,11 @@ __all__ = [
     "AveragingError",
     "Crossing",
     "SmallDivisorError",
+    "branch_kernel",
     "nearest_resonance",
     "nearest_resonances",
+    "rotation_sense",
+    "sense_turn",
     "separatrix_crossing",
     "separatrix_motion",
     "spinner_average",

@@ -50,7 +50,7 @@ from __future__ import annotations
 import math
 import warnings
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -72,6 +72,7 @@ from tumble.kernels import (
     KIND_TRIAXIAL_PHASE_MEANS,
     Kernel,
 )
+from tumble.kernels.codes import DEGENERATE_RTOL
 from tumble.kernels.limits import (
     AVERAGE_RTOL,
     MAX_GRID,
@@ -100,8 +101,11 @@ __all__ = [
     "MAX_GRID",
     "MOMENTUM_FLOOR",
     "Resonance",
+    "branch_kernel",
     "nearest_resonance",
     "nearest_resonances",
+    "rotation_sense",
+    "sense_turn",
     "triaxial_average",
     "triaxial_average_stage",
     "triaxial_average_vector",
@@ -218,9 +222,11 @@ functions are Newton-polished (§8, accurate for any 1 − k² > 0)."""
 
 
 def _polhode(
-    I_user: FloatArray, L: float, T: float
+    I_user: FloatArray, L: float, T: float, branch: float = 1.0
 ) -> tuple[Callable[[FloatArray], FloatArray], bool]:
-    """Body angular velocity (3.1) over one polhode period, as a function of the phase.
+    """Body angular velocity (3.1) over one polhode period, as a function of the phase, in
+    the sense of rotation ``branch`` (+1: its component along the encircled sorted axis
+    positive; −1: the image with the sn and dn components negated, :func:`_branched`).
 
     Returns ``(rates, periodic)``: ``rates(phases)`` gives z (user axes, shape (n, 3)) at
     τ = phase·period/2π, and ``periodic`` is False for the sphere (z constant; the polhode
@@ -274,6 +280,9 @@ def _polhode(
         for row, (col, a) in enumerate(zip(cols, (a_cn, a_sn, a_dn), strict=True)):
             amp[row, col] = L * a
 
+        if branch < 0.0:
+            amp[1:] *= -1.0  # the rows of sn and dn
+
         def jacobi(phases: FloatArray) -> FloatArray:
             sn, cn, dn, _ = special.ellipj(phases * to_u, m)
             return np.asarray(np.stack([cn, sn, dn], -1) @ amp @ Q, dtype=float)
@@ -290,7 +299,40 @@ def _polhode(
     if not math.isfinite(ep.period):  # the sphere: uniform rotation about L
         return (lambda phases: np.broadcast_to(ep.z0, (len(phases), 3)).copy()), False
     to_tau = ep.period / (2.0 * math.pi)
-    return (lambda phases: ep.omega(phases * to_tau)), True
+    flip = sense_turn(I_user, L, T, branch)
+    return (lambda phases: ep.omega(phases * to_tau) @ flip), True
+
+
+def sense_turn(inertia: ArrayLike, L: float, T: float, branch: float) -> FloatArray:
+    """The rotation (user axes; symmetric, so it acts on rows as on columns) that takes a
+    motion of the sense +1 at momentum L and energy T (such as that through
+    :func:`~tumble.unperturbed.euler_poinsot.polhode_point`) to the one of sense ``branch``
+    (:func:`rotation_sense`): the identity, or the turn by π about the sorted axis across
+    the encircled one and the sn component (the third in regime x1, the first in x3; a
+    symmetric body encircles its symmetry axis).
+
+    Parameters
+    ----------
+    inertia : array_like, shape (3,)
+        Principal moments in the user's order [inertia unit].
+    L, T : float
+        |L| [inertia unit · rad/τ] and the kinetic energy [inertia unit · (rad/τ)²].
+    branch : {1.0, -1.0}
+
+    Returns
+    -------
+    ndarray, shape (3, 3)
+    """
+    if _sense(branch) > 0.0:
+        return np.eye(3)
+    I_user = np.asarray(inertia, dtype=float).reshape(3)
+    Q = proper_sorting(I_user)
+    I1, I2, I3 = sorted(I_user.tolist())
+    tol = DEGENERATE_RTOL * I3
+    low, high = I2 - I1 <= tol, I3 - I2 <= tol
+    x3 = low or (L * L - 2.0 * T * I2 > 0.0 and not high)
+    signs = np.array([1.0, -1.0, -1.0] if x3 else [-1.0, -1.0, 1.0])
+    return np.asarray(Q.T @ np.diag(signs) @ Q, dtype=float)
 
 
 def _frame_with_third_column(v: FloatArray) -> FloatArray:
@@ -328,6 +370,7 @@ def _means(
     rtol: float,
     groups: Sequence[tuple[slice, int]],
     batched: bool | None,
+    branch: float = 1.0,
 ) -> tuple[FloatArray, tuple[int, ...]]:
     """Means of [A M (3), ω·M, (ω − r Iω)·M] over the fast phases; nodes per phase.
 
@@ -340,7 +383,7 @@ def _means(
     In inertial axes ω − r Iω is Ω_ξ − r L_ξ (A Iω = L_ξ), so inertial-form torques need no A.
     """
     check_finite("t", t)
-    rates, periodic = _polhode(I_user, L, T)
+    rates, periodic = _polhode(I_user, L, T, branch)
     r = 2.0 * T / (L * L)
     forced = forcing_period is not None
     F = _frame_with_third_column(Lv)
@@ -465,6 +508,7 @@ def triaxial_average(
     forcing_period: float | None = None,
     rtol: float = AVERAGE_RTOL,
     batched: bool | None = None,
+    branch: float = 1.0,
 ) -> FloatArray:
     """Averaged rates (dL_ξ/dτ, dT/dτ) of a triaxial body under any small torque, §10.
 
@@ -504,6 +548,12 @@ def triaxial_average(
         q of shape (N, 4) and omega of shape (N, 3) for N attitudes at one time, returning
         (N, 3) or (3,) (no check); None (default), the same checked against one-state calls at
         two nodes, else one state at a time; False, one state at a time, the built-ins too.
+    branch : {1.0, -1.0}
+        The sense of rotation about the axis the polhode encircles: +1, the body rate's
+        component along it positive in the sorted axes of :func:`tumble.bodies.proper_sorting`
+        (eq. (3.1) as written); −1, the other sense (:mod:`tumble.kernels.triaxial`, "the
+        sense of rotation"). The state (L_ξ, T) is the same for both; a torque fixed in the
+        body is not.
 
     Returns
     -------
@@ -525,10 +575,64 @@ def triaxial_average(
     """
     I_user, Lv, L = _check_inputs(inertia, L_xi, forcing_period, rtol)
     check_finite("T", float(T))
-    mean, _ = _means(
-        torque, I_user, Lv, L, float(T), float(t), forcing_period, rtol, _GROUPS_T, batched
-    )
+    mean, _ = _means(torque, I_user, Lv, L, float(T), float(t), forcing_period, rtol, _GROUPS_T,
+                     batched, _sense(branch))  # fmt: skip
     return np.asarray(mean[:4], dtype=float)
+
+
+def rotation_sense(inertia: ArrayLike, omega: ArrayLike) -> float:
+    """The sense of rotation (``branch``) of the body rate ``omega`` about the axis its
+    polhode encircles: the sign of its component along that axis in the sorted axes of
+    :func:`tumble.bodies.proper_sorting` (the largest moment's in regime x3, the smallest's in
+    x1; the symmetry axis of a symmetric body), +1 where it is zero or undefined (the
+    separatrix, the sphere, rest).
+
+    Parameters
+    ----------
+    inertia : array_like, shape (3,)
+        Principal moments in the user's order [inertia unit].
+    omega : array_like, shape (3,)
+        Body angular velocity in the same axes [rad/τ].
+
+    Returns
+    -------
+    float
+        +1.0 or −1.0.
+    """
+    I_user = np.asarray(inertia, dtype=float).reshape(3)
+    w = proper_sorting(I_user) @ np.asarray(omega, dtype=float).reshape(3)
+    I1, I2, I3 = sorted(I_user.tolist())
+    tol = DEGENERATE_RTOL * I3
+    low, high = I2 - I1 <= tol, I3 - I2 <= tol
+    if low and high:
+        return 1.0
+    Is = np.array([I1, I2, I3])
+    L2 = float(np.sum((Is * w) ** 2))
+    T2 = float(np.sum(Is * w * w))
+    x3 = low or (L2 - T2 * I2 > 0.0 and not high)
+    component = float(w[2] if x3 else w[0])
+    return -1.0 if component < 0.0 else 1.0
+
+
+def branch_kernel(kernel: Kernel | None, branch: float) -> Kernel | None:
+    """``kernel`` (of :func:`triaxial_kernel`) with its sense of rotation set to ``branch``:
+    the same program, one parameter changed (no packing)."""
+    sense = _sense(branch)
+    if kernel is None or kernel.params[_BRANCH] == sense:
+        return kernel
+    params = kernel.params.copy()
+    params[_BRANCH] = sense
+    return replace(kernel, params=params)
+
+
+_BRANCH = TRIAXIAL_AVERAGED.at.branch
+
+
+def _sense(branch: float) -> float:
+    """``branch`` checked: +1 or −1."""
+    if branch not in (1.0, -1.0):
+        raise ParameterError(f"branch = {branch!r} is not a sense of rotation (allowed: 1, -1)")
+    return float(branch)
 
 
 def triaxial_average_vector(
@@ -540,6 +644,7 @@ def triaxial_average_vector(
     forcing_period: float | None = None,
     rtol: float = AVERAGE_RTOL,
     batched: bool | None = None,
+    branch: float = 1.0,
 ) -> FloatArray:
     """:func:`triaxial_average` in the state ``[L_ξ, r = 2T/L²]`` of the vector form, §10.
 
@@ -564,6 +669,8 @@ def triaxial_average_vector(
         As in :func:`triaxial_average`; the magnitude for dr/dτ is |ω||M| [1].
     batched : bool or None
         As in :func:`triaxial_average`.
+    branch : {1.0, -1.0}
+        As in :func:`triaxial_average`.
 
     Returns
     -------
@@ -582,12 +689,18 @@ def triaxial_average_vector(
     r = float(yv[3])
     check_finite("r", r)
     T = 0.5 * r * L * L
-    mean, _ = _means(torque, I_user, Lv, L, T, float(t), forcing_period, rtol, _GROUPS_R, batched)
+    mean, _ = _means(torque, I_user, Lv, L, T, float(t), forcing_period, rtol, _GROUPS_R, batched,
+                     _sense(branch))  # fmt: skip
     return np.array([*mean[:3], 2.0 * mean[4] / (L * L)])
 
 
 def triaxial_average_stage(
-    torque: Any, inertia: ArrayLike, y: FloatArray, t: float, forcing_period: float | None
+    torque: Any,
+    inertia: ArrayLike,
+    y: FloatArray,
+    t: float,
+    forcing_period: float | None,
+    branch: float = 1.0,
 ) -> FloatArray:
     """:func:`triaxial_average_vector` at a stage of an integrator, ``y = [L_ξ, r]``: an r past
     the range [1/I3, 1/I1] a rigid body reaches by no more than the solver's local error is
@@ -595,14 +708,16 @@ def triaxial_average_stage(
     beyond gives NaN rates, so that the solver rejects the step.
 
     The parameters and the rates returned are those of :func:`triaxial_average_vector`
-    (``forcing_period`` None: no explicit time dependence), or NaN.
+    (``forcing_period`` None: no explicit time dependence; ``branch`` the sense of
+    rotation), or NaN.
     """
     I1, I2, I3 = sorted(float(v) for v in np.asarray(inertia, dtype=float).reshape(3))
     r = reached_ratio(I1, I2, I3, float(y[3]))
     if math.isnan(r):
         return np.full(4, math.nan)  # past a pure rotation: the solver rejects the step
     state = np.array([y[0], y[1], y[2], r])
-    return triaxial_average_vector(torque, inertia, state, t, forcing_period=forcing_period)
+    return triaxial_average_vector(torque, inertia, state, t, forcing_period=forcing_period,
+                                   branch=branch)  # fmt: skip
 
 
 _PERIOD_RTOL = 1e-9
@@ -617,6 +732,7 @@ def triaxial_kernel(
     *,
     factor: float = 1.0,
     rtol: float = AVERAGE_RTOL,
+    branch: float = 1.0,
 ) -> Kernel | None:
     """:func:`triaxial_average_vector` compiled (:mod:`tumble.kernels.triaxial`), times
     ``factor``; None where only the Python engine applies. Its separatrix r = 1/I2 is the
@@ -646,6 +762,8 @@ def triaxial_kernel(
         Multiplies the rates (the ε of a model whose torque is given without it) [1].
     rtol : float
         As in :func:`triaxial_average` [1].
+    branch : {1.0, -1.0}
+        The sense of rotation, as in :func:`triaxial_average`.
 
     Returns
     -------
@@ -687,6 +805,7 @@ def triaxial_kernel(
             "sorting": proper_sorting(I_user),
             "user_inertia": I_user,
             "period": 0.0 if forcing_period is None else float(forcing_period),
+            "branch": _sense(branch),
         }
     )
     kind = KIND_TRIAXIAL_CLOSED if closed else (KIND_TRIAXIAL_PHASE_MEANS if exact and four else

@@ -104,6 +104,7 @@ TRIAXIAL_AVERAGED = Layout(
         Field("sorting", 9, "1", "Q: sorted axes ← user axes, by rows"),
         Field("user_inertia", 3, "inertia unit", "principal moments in the user's order", 0.0),
         Field("period", 1, "time", "forcing period (0: none)", 0.0),
+        Field("branch", 1, "1", "sense of rotation about the encircled axis (±1)", -1.0, 1.0),
     ),
     tail="program",
 )

@@ -43,8 +43,19 @@ The three ways are three kinds, so that a run compiles the one it uses:
 ``KIND_TRIAXIAL_CLOSED`` (:func:`triaxial_closed`), ``KIND_TRIAXIAL_PHASE_MEANS``
 (:func:`triaxial_phase_means`) and ``KIND_TRIAXIAL_AVERAGED`` (:func:`triaxial_averaged`, the
 product rule). Their parameters: ``[ε, rtol, L_floor, I1, I2, I3 (ascending), Q (sorted ←
-user, by rows, 9), I_user (3), forcing period (0: none), torque program]``; state
-``[L_ξ1, L_ξ2, L_ξ3, r]``.
+user, by rows, 9), I_user (3), forcing period (0: none), branch (±1), torque program]``;
+state ``[L_ξ1, L_ξ2, L_ξ3, r]``.
+
+**The sense of rotation.** ``[L_ξ, r]`` does not say in which sense the body turns about the
+axis its polhode encircles. The motions of the two senses are images of each other under a
+rotation by π about a principal axis across that one: a proper rotation, which carries
+motions to motions and keeps L_ξ and T. A torque that is not itself symmetric under it (a
+moment fixed in the body, sunlight or air on facets) has different averages on the two.
+``branch`` picks one: +1 the body rate's component along the encircled sorted axis positive
+(the polhodes of Martynenko (1979), eq. (3.1), as written), −1 the image, its sn and dn
+components negated. A run takes it from its initial state and keeps it across a separatrix,
+where the sense on the far side is a matter of probability
+(:func:`tumble.averaging.separatrix_crossing`).
 """
 
 from __future__ import annotations
@@ -451,6 +462,11 @@ def _polhode(y: FloatArray, p: FloatArray) -> tuple[bool, float, float, bool, fl
         )
     if not mc >= MC_FLOOR:
         return False, L, r, x3, mc, amp, _NO_FRAME
+    # The other sense of rotation about the encircled axis: the polhode turned by π about
+    # the third sorted axis (x1) or the first (x3), which flips the sn and dn components; a
+    # proper rotation, so it is again a motion, the same [L_ξ, r] (module notes).
+    branch = p[_AT.branch]
+    amp = (amp[0], branch * amp[1], branch * amp[2])
     return True, L, r, x3, min(mc, 1.0), amp, frame
 
 

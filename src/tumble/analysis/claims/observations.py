@@ -495,7 +495,7 @@ def _departure_efolding(built: Any) -> float:
     y = tb._vector_from_slow(p, built.initial)
     trial = np.array(y, dtype=float)
     trial[3] = 1.0 / I3 + 1e-4 * (1.0 / I2 - 1.0 / I3)
-    rate = float(tb.averaged_rhs(0.0, trial, p)[3])
+    rate = float(tb.averaged_rhs(0.0, trial, p, tb.model._sense(p, built.initial))[3])
     growth = rate / (trial[3] - 1.0 / I3)
     return 1.0 / growth if growth > 0.0 else math.inf
 

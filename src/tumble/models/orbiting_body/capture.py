@@ -32,6 +32,7 @@ import math
 import numpy as np
 
 from tumble._typing import FloatArray
+from tumble.averaging.triaxial import sense_turn
 from tumble.models.base import Crossing
 from tumble.models.orbiting_body.inputs import Params
 from tumble.rotations import matrix_to_quat, quat_normalize, quat_to_matrix
@@ -53,8 +54,10 @@ def _rate(inertia: FloatArray, omega: FloatArray) -> float:
     return float(omega @ h) / float(np.linalg.norm(h))
 
 
-def capture_band(p: Params) -> Crossing:
-    """The band of an orbiting body's hybrid run (module notes); in model time units."""
+def capture_band(p: Params, sense: float = 1.0) -> Crossing:
+    """The band of an orbiting body's hybrid run (module notes); in model time units. A full
+    leg starts in the sense of rotation ``sense`` (:func:`tumble.averaging.rotation_sense`),
+    the averaged run's."""
     assert p.orbit is not None  # an orbiting body has one
     inertia = np.asarray(p.inertia, dtype=float)
     i1, i2, i3 = sorted(inertia.tolist())
@@ -73,7 +76,8 @@ def capture_band(p: Params) -> Crossing:
     def to_full(t: float, z: FloatArray) -> FloatArray:
         L_xi = np.asarray(z[:3], dtype=float)
         L = float(np.linalg.norm(L_xi))
-        omega = polhode_point(inertia, L, 0.5 * float(z[3]) * L * L)
+        T = 0.5 * float(z[3]) * L * L
+        omega = polhode_point(inertia, L, T) @ sense_turn(inertia, L, T, sense)
         # The smallest rotation taking the body direction of L to L_ξ.
         from scipy.spatial.transform import Rotation  # only at a hand-over
 

@@ -28,6 +28,7 @@ from typing import Any, cast
 import numpy as np
 
 from tumble._typing import FloatArray
+from tumble.averaging import rotation_sense
 from tumble.models import torqued_body as tb
 from tumble.models.base import (
     AveragedForm,
@@ -96,7 +97,7 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
         form,
         equation=f"Euler–Poinsot averaging of the orbit-averaged torques ({p.label})",
         to_columns=to_columns,
-        crossing=capture_band(p) if options.hybrid else None,
+        crossing=capture_band(p, rotation_sense(p.inertia, st.omega)) if options.hybrid else None,
     )
 
 

@@ -30,7 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from tumble._typing import BoolArray, FloatArray
-from tumble.averaging import nearest_resonances
+from tumble.averaging import branch_kernel, nearest_resonances, rotation_sense
 from tumble.averaging.triaxial import triaxial_average_stage
 from tumble.dynamics import rigid_body_rhs
 from tumble.errors import IntegrationError, ParameterError, TumbleError
@@ -158,7 +158,7 @@ def _full_columns(p: Params, t: FloatArray, Y: FloatArray) -> dict[str, FloatArr
 # Averaged equations: the engine.
 
 
-def averaged_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
+def averaged_rhs(t: float, y: FloatArray, p: Params, branch: float = 1.0) -> FloatArray:
     """Averaged rates of ``y = [L_ξ1, L_ξ2, L_ξ3, r]``, r = 2T/L², by quadrature.
 
     ε ⟨A M⟩ and 2ε⟨(ω − r Iω)·M⟩/L² over the polhode, the precession about L and the forcing
@@ -176,19 +176,23 @@ def averaged_rhs(t: float, y: FloatArray, p: Params) -> FloatArray:
     y : ndarray, shape (4,)
         [inertia unit · rad/t, 1/inertia unit].
     p : Params
+    branch : {1.0, -1.0}
+        The sense of rotation about the axis the polhode encircles
+        (:func:`tumble.averaging.rotation_sense` of the initial state): the state does not
+        hold it, and a torque fixed in the body turns the two senses differently.
 
     Returns
     -------
     ndarray, shape (4,)
         dy/dt [moment unit, 1/(inertia unit · t)].
     """
-    kernel = averaged_kernel(p)
+    kernel = averaged_kernel(p, branch)
     if kernel is not None:
         rates = evaluate_rhs(kernel, t, y)
         if not np.isnan(rates).any():
             return rates
     torque, period = p.averaging
-    return p.eps * triaxial_average_stage(torque, p.inertia, y, t, period)
+    return p.eps * triaxial_average_stage(torque, p.inertia, y, t, period, branch)
 
 
 def _vector_from_slow(p: Params, st: State) -> FloatArray:
@@ -233,7 +237,7 @@ def _averaged_start(p: Params, st: State) -> FloatArray:
     if abs(1.0 - float(y[3]) * p.sorted_inertia[1]) <= SEPARATRIX_RTOL:
         torque, period = p.averaging
         try:
-            triaxial_average_stage(torque, p.inertia, y, 0.0, period)
+            triaxial_average_stage(torque, p.inertia, y, 0.0, period, _sense(p, st))
         except TumbleError as exc:
             said = f"the averaged equations refuse the initial state: {exc}"
             raise IntegrationError(said) from None
@@ -246,6 +250,7 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
     if options.order == 2:
         return _mean_form(p, st, options)
     I1, I2, I3 = p.sorted_inertia
+    sense = _sense(p, st)
     breakpoints: tuple[Breakpoint, ...] = ()
     if I1 < I2 < I3:
         side = math.copysign(1.0, float(_vector_from_slow(p, st)[3]) - 1.0 / I2)
@@ -262,21 +267,28 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
         name="numeric",
         equation="the triaxial averaging (3.5)-(3.7) with the scenario's torque, by quadrature",
         slow=("L1", "L2", "L3", "r"),
-        rhs=averaged_rhs,
+        rhs=lambda t, y, p: averaged_rhs(t, y, p, sense),
         initial_state=_averaged_start,
         to_columns=_vector_columns,
         breakpoints=breakpoints,
-        kernel=averaged_kernel,
+        kernel=lambda p: averaged_kernel(p, sense),
         angles=_vector_angles,
     )
 
 
-def averaged_kernel(p: Params) -> Kernel | None:
+def _sense(p: Params, st: State) -> float:
+    """The sense of rotation of the initial state about the axis its polhode encircles,
+    which the averaged run keeps (:func:`tumble.averaging.rotation_sense`)."""
+    return rotation_sense(p.inertia, st.omega)
+
+
+def averaged_kernel(p: Params, branch: float = 1.0) -> Kernel | None:
     """:func:`averaged_rhs` compiled when the torque is a sum of built-in terms
-    (:func:`tumble.averaging.triaxial_kernel`), for triaxial and symmetric bodies alike;
-    None for a torque given as a Python function (the Python engine). Built once per
-    parameter set (:attr:`Params.averaged_kernel`)."""
-    return p.averaged_kernel
+    (:func:`tumble.averaging.triaxial_kernel`), for triaxial and symmetric bodies alike,
+    in the sense of rotation ``branch``; None for a torque given as a Python function (the
+    Python engine). Its program is packed once per parameter set
+    (:attr:`Params.averaged_kernel`)."""
+    return branch_kernel(p.averaged_kernel, branch)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -322,7 +334,7 @@ def validity(p: Params, st: State, slow: SlowPath, tau_end: float) -> list[Valid
         _crossing_issue(p, st, slow, grid) if I1 < I2 < I3 else None,
         _not_fast_issue(grid, scales),
         _resonance_issue(p, grid, scales) if p.attitude_dependent else None,
-        _unstable_rotation_issue(p, grid, cols, tau_end) if I1 < I2 < I3 else None,
+        _unstable_rotation_issue(p, grid, cols, tau_end, _sense(p, st)) if I1 < I2 < I3 else None,
     ]
     return sorted((i for i in found if i is not None), key=lambda i: i.tau)
 
@@ -351,11 +363,12 @@ def _crossing_issue(p: Params, st: State, slow: SlowPath, grid: FloatArray) -> V
     except TumbleError:
         return issue  # a torque that does not drive it out: the crossing is the averaging's
     said = " and ".join(f"{region} with probability {q:.3g}" for region, q in odds.items())
+    kept = ("x3" if axis == 0 else "x1") + start[-1]  # the run keeps its sense
     return changed(
         issue,
         message=f"{issue.message}. From {start} (sorted axes) the body passes into {said}: "
         "which one depends on the phase at the crossing, which the averaged run does not "
-        "follow (theory of separatrix crossing)",
+        f"follow; it goes on in {kept} (theory of separatrix crossing)",
     )
 
 
@@ -364,7 +377,7 @@ _TRIAL = 1e-4  # the trial departure of r towards 1/I2, in units of the gap |1/I
 
 
 def _unstable_rotation_issue(
-    p: Params, grid: FloatArray, cols: dict[str, FloatArray], tau_end: float
+    p: Params, grid: FloatArray, cols: dict[str, FloatArray], tau_end: float, sense: float
 ) -> ValidityIssue | None:
     """A run that stays in a pure rotation about the major or the minor axis from some time to
     its end (from the start, or once a dissipative torque has settled it there), which the
@@ -386,7 +399,7 @@ def _unstable_rotation_issue(
     pure = 1.0 / I3 if abs(r0 - 1.0 / I3) < abs(r0 - 1.0 / I1) else 1.0 / I1
     trial = np.array([*L_xi, pure + _TRIAL * (1.0 / I2 - pure)])
     try:
-        rate = float(averaged_rhs(float(grid[j]), trial, p)[3])
+        rate = float(averaged_rhs(float(grid[j]), trial, p, sense)[3])
     except (ArithmeticError, ValueError, TumbleError):
         return None
     growth = rate / (trial[3] - pure)  # > 0: r moves away from the pure rotation

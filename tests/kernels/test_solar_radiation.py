@@ -138,10 +138,12 @@ def _states(rng: np.random.Generator, r_values) -> list[tuple[float, np.ndarray]
     return out
 
 
-def test_the_expanded_closed_form_equals_the_product_rule():
+@pytest.mark.parametrize("branch", [1.0, -1.0])
+def test_the_expanded_closed_form_equals_the_product_rule(branch):
     # Both exact for the cubic: the closed form by its polhode cubature and five precession
-    # angles, the product rule refined on every phase to rtol 1e-13.
-    kernel = triaxial_kernel(_mean_torque(exact=False), INERTIA, rtol=1e-13)
+    # angles, the product rule refined on every phase to rtol 1e-13; in both senses of
+    # rotation, which a box-wing's sunlight tells apart.
+    kernel = triaxial_kernel(_mean_torque(exact=False), INERTIA, rtol=1e-13, branch=branch)
     assert kernel is not None and kernel.kind == KIND_TRIAXIAL_CLOSED
     i1, i2, i3 = np.sort(INERTIA)
     rng = np.random.default_rng(11)
@@ -166,9 +168,12 @@ def test_without_its_closed_form_the_sunlight_average_refines_the_precession():
     assert kernel is not None and kernel.kind == KIND_TRIAXIAL_CLOSED
 
 
-def _brute_force(y: np.ndarray, t: float, polhode: int, angles: int) -> tuple[np.ndarray, float]:
+def _brute_force(
+    y: np.ndarray, t: float, polhode: int, angles: int, branch: float = 1.0
+) -> tuple[np.ndarray, float]:
     """(⟨A M⟩ inertial, ⟨ω·M⟩ − r L ⟨ℓ·M⟩) of the exact illumination without its shadow, on a
-    grid: the polhode uniform in u (scipy's Jacobi functions), the precession angle uniform."""
+    grid: the polhode uniform in u (scipy's Jacobi functions), the precession angle uniform;
+    ``branch`` −1: the other sense of rotation, the sn and dn components negated."""
     facets = _box_wing()
     L, r = float(np.linalg.norm(y[:3])), float(y[3])
     Q, (i1, i2, i3) = proper_sorting(INERTIA), np.sort(INERTIA)
@@ -185,7 +190,7 @@ def _brute_force(y: np.ndarray, t: float, polhode: int, angles: int) -> tuple[np
     sn, cn, dn, _ = special.ellipj(u, m)
     w = np.zeros((polhode, 3))
     for row, (col, a) in enumerate(zip(cols, amp, strict=True)):
-        w[:, col] = L * math.sqrt(a) * (cn, sn, dn)[row]
+        w[:, col] = L * math.sqrt(a) * (cn, sn, dn)[row] * (branch if row else 1.0)
     ell = (w * np.sort(INERTIA) / L) @ Q  # the user's axes
     omega = w @ Q
     sun = sun_samples(np.array([JD0 + t / DAY]))[0]
@@ -222,6 +227,7 @@ def _moments(facets: F.Facets, sb: np.ndarray) -> np.ndarray:
     return np.cross(facets.centre[None, :, :], f).sum(axis=1)
 
 
+@pytest.mark.parametrize("branch", [1.0, pytest.param(-1.0, marks=pytest.mark.slow)])
 @pytest.mark.parametrize(
     "r",
     [
@@ -235,7 +241,7 @@ def _moments(facets: F.Facets, sb: np.ndarray) -> np.ndarray:
         pytest.param(1.388, marks=pytest.mark.slow),
     ],
 )  # the default suite: next to the major axis, and the worst two states (2.4 s each)
-def test_the_exact_closed_form_against_a_fine_grid(r):
+def test_the_exact_closed_form_against_a_fine_grid(r, branch):
     # r = 2T/L² [1/(1000 kg m²)] across both regimes: 1/I3 = 0.5714 (the major axis), the
     # separatrix 1/I2 = 0.5952, 1/I1 = 1.3889 (the minor axis).
     r = r * 1e-3
@@ -243,12 +249,12 @@ def test_the_exact_closed_form_against_a_fine_grid(r):
     values = {**_sun(True), "shadow": 0.0}
     torque = CompiledTorque((compiled_term("solar_radiation_mean", values, tail=table.ravel()),),
                             "sunlight")  # fmt: skip
-    kernel = triaxial_kernel(torque, INERTIA)
+    kernel = triaxial_kernel(torque, INERTIA, branch=branch)
     assert kernel is not None and kernel.kind == KIND_TRIAXIAL_CLOSED
     rng = np.random.default_rng(int(r * 1e7))
     for t, y in _states(rng, [r, r]):
         got = evaluate(KIND_TRIAXIAL_CLOSED, t, y, kernel.params)
-        want, m4 = _brute_force(y, t, 1024, 1440)
+        want, m4 = _brute_force(y, t, 1024, 1440, branch)
         size = float(np.linalg.norm(want))
         # The closed form is exact over the precession and takes the trapezoidal rule on 8
         # intervals of the quarter polhode, whose error comes from the kinks where a facet's lit

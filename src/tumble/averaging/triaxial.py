@@ -226,7 +226,7 @@ def _polhode(
 ) -> tuple[Callable[[FloatArray], FloatArray], bool]:
     """Body angular velocity (3.1) over one polhode period, as a function of the phase, in
     the sense of rotation ``branch`` (+1: its component along the encircled sorted axis
-    positive; −1: the image with the sn and dn components negated, :func:`_branched`).
+    positive; −1: the image with the sn and dn components negated, :func:`sense_turn`).
 
     Returns ``(rates, periodic)``: ``rates(phases)`` gives z (user axes, shape (n, 3)) at
     τ = phase·period/2π, and ``periodic`` is False for the sphere (z constant; the polhode
@@ -327,12 +327,18 @@ def sense_turn(inertia: ArrayLike, L: float, T: float, branch: float) -> FloatAr
         return np.eye(3)
     I_user = np.asarray(inertia, dtype=float).reshape(3)
     Q = proper_sorting(I_user)
+    signs = [1.0, -1.0, -1.0] if _encircles_third(I_user, L * L, 2.0 * T) else [-1.0, -1.0, 1.0]
+    return np.asarray(Q.T @ np.diag(signs) @ Q, dtype=float)
+
+
+def _encircles_third(I_user: FloatArray, L2: float, T2: float) -> bool:
+    """Whether the polhode of L² = ``L2``, 2T = ``T2`` encircles the third sorted axis (regime
+    x3, or a body with I1 = I2) rather than the first, as :func:`tumble.kernels.triaxial.
+    _polhode` decides it (the sphere: the third)."""
     I1, I2, I3 = sorted(I_user.tolist())
     tol = DEGENERATE_RTOL * I3
     low, high = I2 - I1 <= tol, I3 - I2 <= tol
-    x3 = low or (L * L - 2.0 * T * I2 > 0.0 and not high)
-    signs = np.array([1.0, -1.0, -1.0] if x3 else [-1.0, -1.0, 1.0])
-    return np.asarray(Q.T @ np.diag(signs) @ Q, dtype=float)
+    return low or (L2 - T2 * I2 > 0.0 and not high)
 
 
 def _frame_with_third_column(v: FloatArray) -> FloatArray:
@@ -601,16 +607,12 @@ def rotation_sense(inertia: ArrayLike, omega: ArrayLike) -> float:
     """
     I_user = np.asarray(inertia, dtype=float).reshape(3)
     w = proper_sorting(I_user) @ np.asarray(omega, dtype=float).reshape(3)
-    I1, I2, I3 = sorted(I_user.tolist())
-    tol = DEGENERATE_RTOL * I3
-    low, high = I2 - I1 <= tol, I3 - I2 <= tol
-    if low and high:
-        return 1.0
-    Is = np.array([I1, I2, I3])
-    L2 = float(np.sum((Is * w) ** 2))
-    T2 = float(np.sum(Is * w * w))
-    x3 = low or (L2 - T2 * I2 > 0.0 and not high)
-    component = float(w[2] if x3 else w[0])
+    Is = np.sort(I_user)
+    tol = DEGENERATE_RTOL * Is[2]
+    if Is[1] - Is[0] <= tol and Is[2] - Is[1] <= tol:
+        return 1.0  # the sphere (as the kernel tells it): no axis to turn about
+    L2, T2 = float(np.sum((Is * w) ** 2)), float(np.sum(Is * w * w))
+    component = float(w[2] if _encircles_third(I_user, L2, T2) else w[0])
     return -1.0 if component < 0.0 else 1.0
 
 

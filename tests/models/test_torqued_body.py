@@ -387,12 +387,21 @@ def test_the_separatrix_warning_gives_the_odds_of_the_rotation_beyond():
         f"From x1+ (sorted axes) the body passes into x3+ with probability "
         f"{odds['x3+']:.3g} and x3- with probability {odds['x3-']:.3g}"
     ) in issue.message
-    # A torque that reads the attitude: no odds, the plain warning.
+    # A torque that reads the attitude: its odds at the direction of L at the crossing,
+    # averaged over the precession. A moment fixed in space adds no flux on the separatrix
+    # (theory of separatrix crossing, §3): the odds of the rest at that ‖L‖, to the rule's
+    # settling (1e-5 of the flux).
     tilted = tb.Params(inertia, 1.0, torque + ConstantInertialTorque([0.0, 0.0, 1e-5]))
     run = simulate(tb.MODEL, tilted, st, np.linspace(0.0, 1500.0, 1501), "averaged")
     (issue,) = [i for i in tb.validity(tilted, st, run.slow, 1500.0)
                 if i.condition == "separatrix"]  # fmt: skip
-    assert "probability" not in issue.message
+    at = run.slow(np.array([issue.tau]))
+    L_xi = np.array([at["L1"][0], at["L2"][0], at["L3"][0]])
+    odds = separatrix_crossing(tilted.torque, inertia, float(np.linalg.norm(L_xi)), "x1+",
+                               direction=L_xi).probabilities  # fmt: skip
+    rest = separatrix_crossing(torque, inertia, float(np.linalg.norm(L_xi)), "x1+").probabilities
+    assert odds["x3+"] == pytest.approx(rest["x3+"], abs=1e-5)
+    assert f"x3+ with probability {odds['x3+']:.3g}" in issue.message
 
 
 @pytest.mark.parametrize(

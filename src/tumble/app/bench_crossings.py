@@ -172,36 +172,69 @@ def markdown(result: dict[str, Any]) -> str:
     return "\n".join(lines)
 
 
-CAPTURE: dict[str, tuple[float, float]] = {
-    "damper, body torque 4.5e-4": (300.0, 4.5e-4),
-    "damper, body torque 1.2e-3": (300.0, 1.2e-3),
+CAPTURE: dict[str, tuple[float, float, float]] = {
+    "damper, body torque 4.5e-4": (300.0, 4.5e-4, 0.0),
+    "damper, body torque 1.2e-3": (300.0, 1.2e-3, 0.0),
+    "damper, dipole 6e-4 in a field along L": (300.0, 0.0, 6e-4),
 }
 """The capture ensembles: a triaxial body (moments 1, 2, 3) turning about its axis of least
-inertia, a damper of time constant τ (:class:`~tumble.torques.InternalDissipation`) and a
-constant body moment along the axis of largest inertia; (τ, moment) in model units."""
+inertia, a damper of time constant τ (:class:`~tumble.torques.InternalDissipation`), and a
+constant body moment along the axis of largest inertia, or a body-fixed magnetic dipole along
+the intermediate axis in a constant unit field along inertial ξ3, the body's least axis turned
+onto it (so that L̂·B > 0 at every crossing): a torque of the attitude, whose odds need its
+average over the precession; (τ, moment, dipole) in model units."""
 CAPTURE_SIZE = 1000
 CAPTURE_AGREEMENT = 0.03
 """The largest |frequency − predicted probability| that meets the target (absolute)."""
 
 
-def _capture(tau: float, moment: float, log: Callable[[str], None]) -> dict[str, Any]:
+def _dipole(m2: float) -> Any:
+    """M = m × Aᵀ B for m = (0, m2, 0) in the body and B = ξ3, as a user's numba torque (the
+    compiled full runs call it)."""
+    import numba
+    import numpy as np
+
+    from tumble.torques import UserTorque
+
+    @numba.njit
+    def dipole(t, q, omega, params):  # type: ignore[no-untyped-def]
+        q0, q1, q2, q3 = q[0], q[1], q[2], q[3]
+        # B in the body, Aᵀ ξ3, is the third row of A (body → inertial): its components 1, 3.
+        b1, b3 = 2.0 * (q1 * q3 - q0 * q2), 1.0 - 2.0 * (q1 * q1 + q2 * q2)
+        return np.array([params[0] * b3, 0.0, -params[0] * b1])  # (0, m2, 0) × B
+
+    return UserTorque(dipole, {"m2": m2}, "bench:dipole")
+
+
+def _capture(
+    tau: float, moment: float, dipole: float, log: Callable[[str], None]
+) -> dict[str, Any]:
     """One ensemble: CAPTURE_SIZE full runs from random phases about x1 until past the
-    separatrix; the frequency of entering x3+ against the mean predicted probability."""
+    separatrix; the frequency of entering x3+ against the mean predicted probability, each
+    at its run's ‖L‖ and direction of L at the crossing."""
     import numpy as np
 
     from tumble.averaging.crossing import first_crossing, separatrix_crossing
     from tumble.errors import TumbleError
     from tumble.integrate import dop853, simulate_batch
     from tumble.models import torqued_body as tb
-    from tumble.torques import ConstantBodyTorque, InternalDissipation
+    from tumble.rotations import matrix_to_quat
+    from tumble.torques import ConstantBodyTorque, InternalDissipation, Torque
 
     inertia = np.array([1.0, 2.0, 3.0])
-    torque = InternalDissipation(inertia, tau) + ConstantBodyTorque(np.array([0.0, 0.0, moment]))
+    torque: Torque = InternalDissipation(inertia, tau)
+    if moment:
+        torque = torque + ConstantBodyTorque(np.array([0.0, 0.0, moment]))
+    if dipole:
+        torque = torque + _dipole(dipole)
     p = tb.Params(inertia, 1.0, torque)
     rng = np.random.default_rng(1)
     phase = rng.uniform(0.0, 2.0 * np.pi, CAPTURE_SIZE)
-    # |ω| ≈ 1 about x1, the transverse rate 0.25 at a random phase: h = T − L²/(2 I2) > 0.
-    initials = [tb.State(np.array([1.0, 0.25 * np.cos(f), 0.25 * np.sin(f)])) for f in phase]
+    # |ω| ≈ 1 about x1, the transverse rate 0.25 at a random phase: h = T − L²/(2 I2) > 0;
+    # with the dipole, the body's x1 on ξ3 (A's columns: x1 → ξ3, x3 → −ξ1).
+    turned = np.array([[0.0, 0.0, -1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]])
+    q0 = matrix_to_quat(turned if dipole else np.eye(3))
+    initials = [tb.State(np.array([1.0, 0.25 * np.cos(f), 0.25 * np.sin(f)]), q0) for f in phase]
     tau_samples = np.linspace(0.0, 5.0 * tau, 5001)  # ~40 samples a polhode period
     start = time.perf_counter()
     runs = simulate_batch(tb.MODEL, [p] * CAPTURE_SIZE, initials, tau_samples,
@@ -211,7 +244,8 @@ def _capture(tau: float, moment: float, log: Callable[[str], None]) -> dict[str,
     # A region is entered once h is past the separatrix by the larger flux of a passage at
     # the start's ‖L‖ (h oscillates by about that much within a lap).
     L0 = float(np.linalg.norm(inertia * initials[0].omega))
-    depth = max(separatrix_crossing(torque, inertia, L0, "x1+").fluxes.values())
+    L_start = turned @ (inertia * initials[0].omega) if dipole else inertia * initials[0].omega
+    depth = max(separatrix_crossing(torque, inertia, L0, "x1+", direction=L_start).fluxes.values())
     failed = 0
     for run in runs:
         if isinstance(run, TumbleError):  # counted, not hidden: the table shows the crossings
@@ -222,11 +256,15 @@ def _capture(tau: float, moment: float, log: Callable[[str], None]) -> dict[str,
         found = first_crossing(inertia, run.tau, omega, depth)
         if found is None:
             continue
-        _, L, left, region = found
+        at, L, left, region = found
+        k = int(np.searchsorted(run.tau, at))
+        L_xi = np.array([c["L1"][k], c["L2"][k], c["L3"][k]])
         entered.append(region == "x3+")
-        predicted.append(separatrix_crossing(torque, inertia, L, left).probabilities["x3+"])
+        odds = separatrix_crossing(torque, inertia, L, left, direction=L_xi).probabilities
+        predicted.append(odds["x3+"])
     frequency, probability = float(np.mean(entered)), float(np.mean(predicted))
-    log(f"capture: τ = {tau:g}, moment {moment:g}: {frequency:.3f} against {probability:.3f}")
+    log(f"capture: τ = {tau:g}, moment {moment:g}, dipole {dipole:g}: {frequency:.3f} against "
+        f"{probability:.3f}")  # fmt: skip
     return {
         "size": CAPTURE_SIZE,
         "crossed": len(entered),
@@ -240,7 +278,7 @@ def _capture(tau: float, moment: float, log: Callable[[str], None]) -> dict[str,
 
 def capture_study(log: Callable[[str], None]) -> dict[str, Any]:
     """Every capture ensemble (:data:`CAPTURE`); JSON-ready."""
-    return {name: _capture(tau, moment, log) for name, (tau, moment) in CAPTURE.items()}
+    return {name: _capture(*case, log) for name, case in CAPTURE.items()}
 
 
 def capture_markdown(result: dict[str, Any]) -> str:

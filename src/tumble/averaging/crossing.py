@@ -21,9 +21,16 @@ region (Neishtadt, *Prikl. Mat. Mekh.* 51(5), 1987; Cary, Escande and Tennyson, 
 34, 1986): with Θ = −∫ ḣ dt along the arc's whole motion (for a region with h > 0; +∫ ḣ dt for
 h < 0), P = max(Θ, 0) / (Θ_first + Θ_second) over the region's arcs with Θ > 0.
 
-The torque must depend on the body rate alone (a damper, drag, a body-fixed moment); ḣ vanishes
-at the saddles and the integrand decays like sech λt, which the trapezoidal rule in λt
-integrates to round-off (the integrand is analytic in a strip of half-width π/2).
+A torque of the body rate alone (a damper, drag, a body-fixed moment) gives ḣ along the arc
+directly; ḣ vanishes at the saddles and the integrand decays like sech λt, which the
+trapezoidal rule in λt integrates to round-off (the integrand is analytic in a strip of
+half-width π/2). A torque that reads the attitude (or the time) also depends on the
+precession angle χ about L, a third phase spread as uniformly as the polhode's: the fluxes are
+then those of the phase volume, averaged over χ (and over the forcing phase of an explicit
+periodic time dependence), at the direction of L and the time of the crossing. In inertial
+axes ḣ = (Ω − L_ξ/I2)·M_ξ, the integrand of the triaxial engine's dr/dτ at r = 1/I2, on the
+engine's grid A = F Rz(χ) G(t) (:mod:`tumble.averaging.triaxial`), refined in χ and the
+forcing phase until the fluxes settle.
 """
 
 from __future__ import annotations
@@ -125,9 +132,18 @@ class Crossing:
     fluxes: dict[str, float]
 
 
-def separatrix_crossing(torque: Torque, inertia: ArrayLike, L: float, start: str) -> Crossing:
+def separatrix_crossing(
+    torque: Torque,
+    inertia: ArrayLike,
+    L: float,
+    start: str,
+    *,
+    direction: ArrayLike | None = None,
+    t: float = 0.0,
+    forcing_period: float | None = None,
+) -> Crossing:
     """The probability of each rotation a body leaving region ``start`` passes into, under a
-    small ``torque`` depending on the body rate alone (module notes).
+    small ``torque`` (module notes).
 
     Parameters
     ----------
@@ -141,6 +157,15 @@ def separatrix_crossing(torque: Torque, inertia: ArrayLike, L: float, start: str
     start : str
         The region the body leaves, one of :data:`REGIONS` (sorted axes: x1 is the axis of
         least inertia).
+    direction : array_like, shape (3,), optional
+        The inertial direction of L at the crossing (any length), for a torque that reads the
+        attitude or the time; unused for one of the body rate alone.
+    t : float
+        The time of the crossing [time]: the one at which a slowly varying torque (an
+        orbiting body's orbit-averaged terms) is evaluated, and the origin of the forcing
+        phase.
+    forcing_period : float, optional
+        The period of the torque's explicit time dependence [time], averaged over.
 
     Returns
     -------
@@ -149,17 +174,18 @@ def separatrix_crossing(torque: Torque, inertia: ArrayLike, L: float, start: str
     Raises
     ------
     ParameterError
-        An unknown region, two equal moments, a torque that reads the attitude or the time,
-        or a torque that does not drive the body out of ``start`` (both fluxes ≤ 0).
+        An unknown region, two equal moments, a torque that reads the attitude or the time
+        without ``direction``, or a torque that does not drive the body out of ``start`` (both
+        fluxes ≤ 0).
     """
     if start not in REGIONS:
         raise ParameterError(f"start = {start!r} must be one of " + ", ".join(REGIONS))
     if not (L > 0.0 and math.isfinite(L)):
         raise ParameterError(f"L = {L!r} must be a positive number")
-    if not torque.rate_only:
+    if not torque.rate_only and direction is None:
         raise ParameterError(
-            "separatrix_crossing: the torque must depend on the body rate alone (it reads the "
-            "attitude or the time)"
+            "separatrix_crossing: the torque reads the attitude or the time: give the "
+            "direction of L at the crossing (direction = L_xi)"
         )
     Q, (i1, i2, i3) = _sorted(inertia)
     sign = 1 if start.endswith("+") else -1
@@ -175,8 +201,13 @@ def separatrix_crossing(torque: Torque, inertia: ArrayLike, L: float, start: str
     fluxes = {}
     for beyond, (s1, s3) in arcs.items():
         omega = _arc(i1, i2, i3, L, s1, s3, u)  # sorted axes
-        moment = np.asarray(torque(0.0, None, omega @ Q), dtype=float) @ Q.T  # sorted axes
-        h_rate = np.sum(omega * moment * factors, axis=1)
+        if torque.rate_only:
+            moment = np.asarray(torque(0.0, None, omega @ Q), dtype=float) @ Q.T  # sorted axes
+            h_rate = np.sum(omega * moment * factors, axis=1)
+        else:
+            assert direction is not None  # required above
+            h_rate = _attitude_h_rate(torque, np.asarray(inertia, dtype=float), omega @ Q,
+                                      i2, L, direction, t, forcing_period)  # fmt: skip
         fluxes[beyond] = out_of * float(np.sum(h_rate)) * _STEP / _rate(i1, i2, i3, L)
     driving = {k: max(v, 0.0) for k, v in fluxes.items()}
     total = sum(driving.values())
@@ -187,6 +218,78 @@ def separatrix_crossing(torque: Torque, inertia: ArrayLike, L: float, start: str
             f"and {fluxes['x3-' if 'x3-' in fluxes else 'x1-']:.3g})"
         )
     return Crossing(start, {k: v / total for k, v in driving.items()}, fluxes)
+
+
+_CHI_START, _CHI_MAX = 8, 4096  # precession nodes: doubled until the flux settles
+_SETTLED = 1e-5  # … to this part of ∫|⟨ḣ⟩| dt along the arc (a torque with kinks in the
+# attitude, sunlight's lit facets, converges algebraically; the probabilities need far less)
+
+
+def _attitude_h_rate(
+    torque: Torque,
+    I_user: FloatArray,
+    omega: FloatArray,
+    i2: float,
+    L: float,
+    direction: ArrayLike,
+    t: float,
+    forcing_period: float | None,
+) -> FloatArray:
+    """⟨ḣ⟩ over the precession angle χ (and the forcing phase) at each body rate ``omega``
+    (user axes, shape (n, 3)) of an arc: ḣ = (Ω − L_ξ/I2)·M_ξ on the triaxial engine's grid
+    A = F Rz(χ) G, F the frame of L_ξ = L·direction, G taking the body direction of L to the
+    third axis (module notes). The nodes of χ (and of the forcing phase, as many) are doubled
+    from :data:`_CHI_START` until the flux (their sum along the arc) settles to
+    :data:`_SETTLED` of the sum of their sizes."""
+    from tumble.averaging.triaxial import (
+        _frame_with_third_column,
+        _polhode_attitudes,
+        _precessions,
+    )
+    from tumble.averaging.triaxial_grid import _Grid, _Moment
+    from tumble.rotations import matrix_to_quat
+
+    d = np.asarray(direction, dtype=float).reshape(3)
+    size = float(np.linalg.norm(d))
+    if not (size > 0.0 and math.isfinite(size)):
+        raise ParameterError(f"direction = {d.tolist()} must be a finite nonzero vector")
+    L_xi = L * d / size
+    F = _frame_with_third_column(L_xi)
+    q_F = matrix_to_quat(F)
+    w, G, Gw, q_G = _polhode_attitudes(lambda _: omega, I_user)(np.zeros(len(omega)))
+    moment = _Moment(torque, None)
+    forced = forcing_period is not None
+
+    def means(n: int) -> FloatArray:
+        FRz, q_z = _precessions(F)(2.0 * math.pi * np.arange(n) / n)
+        Omega = np.matmul(FRz[None], Gw[:, None, :, None])[..., 0]  # (n0, n, 3)
+        rates = w[:, None, :]
+        if forced:
+            assert forcing_period is not None
+            tt = (t + forcing_period * np.arange(n) / n)[None, None, :]
+            Omega, rates = Omega[:, :, None], rates[:, :, None]
+        else:
+            tt = np.asarray(t)
+        grid = _Grid(FRz, G, rates, Omega, (lambda: q_F, q_z, q_G), forced)
+        shape = np.broadcast_shapes(np.shape(tt), Omega.shape[:-1])
+        M = np.broadcast_to(moment.inertial(tt, grid), (*shape, 3))
+        h = np.sum((Omega - L_xi / i2) * M, axis=-1)
+        return np.asarray(h.reshape(len(omega), -1).mean(axis=1), dtype=float)
+
+    n = _CHI_START
+    h = means(n)
+    while n < _CHI_MAX:
+        n *= 2
+        finer = means(n)
+        size = max(float(np.sum(np.abs(finer))), 1e-300)
+        settled = abs(float(np.sum(finer - h))) <= _SETTLED * size
+        h = finer
+        if settled:
+            return h
+    raise ParameterError(
+        f"separatrix_crossing: the torque's average over the precession does not settle on "
+        f"{_CHI_MAX} nodes"
+    )
 
 
 def first_crossing(

@@ -341,11 +341,12 @@ def validity(p: Params, st: State, slow: SlowPath, tau_end: float) -> list[Valid
 
 def _crossing_issue(p: Params, st: State, slow: SlowPath, grid: FloatArray) -> ValidityIssue | None:
     """The separatrix issue, with the odds of the rotation the body passes into at the first
-    crossing where the torque depends on the body rate alone
-    (:func:`tumble.averaging.separatrix_crossing`): the averaged state [L_ξ, r] does not carry
-    the sense of the rotation, the phase at the crossing decides it."""
+    crossing (:func:`tumble.averaging.separatrix_crossing`, for a torque that reads the
+    attitude at the direction of L and the time of the crossing, averaged over the precession
+    and the forcing phase): the averaged state [L_ξ, r] does not carry the sense of the
+    rotation, the phase at the crossing decides it."""
     issue = separatrix_issue(slow, grid, p.sorted_inertia[1])
-    if issue is None or not p.torque.rate_only:
+    if issue is None:
         return issue
     from dataclasses import replace as changed
 
@@ -357,9 +358,13 @@ def _crossing_issue(p: Params, st: State, slow: SlowPath, grid: FloatArray) -> V
     if omega[axis] == 0.0:
         return issue
     start = ("x1" if axis == 0 else "x3") + ("+" if omega[axis] > 0.0 else "-")
-    L = float(slow(np.array([issue.tau]))["L"][0])
+    at = slow(np.array([issue.tau]))
+    L_xi = np.array([at["L1"][0], at["L2"][0], at["L3"][0]], dtype=float)
+    torque, period = p.averaging
     try:
-        odds = separatrix_crossing(p.torque, p.inertia, L, start).probabilities
+        odds = separatrix_crossing(torque, p.inertia, float(np.linalg.norm(L_xi)), start,
+                                   direction=L_xi, t=issue.tau,
+                                   forcing_period=period).probabilities  # fmt: skip
     except TumbleError:
         return issue  # a torque that does not drive it out: the crossing is the averaging's
     said = " and ".join(f"{region} with probability {q:.3g}" for region, q in odds.items())

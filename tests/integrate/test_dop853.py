@@ -130,7 +130,8 @@ def _compiles(path: Path) -> bool:
 
 def test_every_compiled_module_is_stamped():
     """A module that defines compiled code must be in COMPILED_SOURCES, or an edit to it would
-    leave the integrator's cached machine code stale."""
+    leave the integrator's cached machine code stale. (A user's torque compiled at run time by
+    a call, as the crossings study's dipole, is never cached and needs no stamp.)"""
     stamped = {entry for entry, _mtime, _size in jit.source_stamp()}
     compiled = {f.relative_to(PACKAGE).as_posix() for f in PACKAGE.rglob("*.py") if _compiles(f)}
     assert {"kernels/rhs.py", "integrate/dop853/core.py"} <= compiled  # the scan finds them

@@ -30,6 +30,8 @@ import time
 from collections.abc import Callable
 from typing import Any
 
+import numpy as np
+
 from tumble.analysis.verify import slow_errors
 from tumble.io.scenario import parse_scenario
 
@@ -188,22 +190,23 @@ CAPTURE_AGREEMENT = 0.03
 """The largest |frequency − predicted probability| that meets the target (absolute)."""
 
 
+def _dipole_moment(t: float, q: Any, omega: Any, params: Any) -> Any:
+    """M = m × Aᵀ B for m = (0, m2, 0) in the body (``params[0]`` = m2) and B = ξ3: B in the
+    body, Aᵀ ξ3, is the third row of A (body → inertial), of which components 1 and 3 count."""
+    q0, q1, q2, q3 = q[0], q[1], q[2], q[3]
+    b1, b3 = 2.0 * (q1 * q3 - q0 * q2), 1.0 - 2.0 * (q1 * q1 + q2 * q2)
+    return np.array([params[0] * b3, 0.0, -params[0] * b1])
+
+
 def _dipole(m2: float) -> Any:
-    """M = m × Aᵀ B for m = (0, m2, 0) in the body and B = ξ3, as a user's numba torque (the
-    compiled full runs call it)."""
+    """:func:`_dipole_moment` as a user's numba torque, compiled when the study runs (as a
+    scenario's ``torque = "file:function"`` is) and never cached, so that the compiled full
+    runs call it."""
     import numba
-    import numpy as np
 
     from tumble.torques import UserTorque
 
-    @numba.njit
-    def dipole(t, q, omega, params):  # type: ignore[no-untyped-def]
-        q0, q1, q2, q3 = q[0], q[1], q[2], q[3]
-        # B in the body, Aᵀ ξ3, is the third row of A (body → inertial): its components 1, 3.
-        b1, b3 = 2.0 * (q1 * q3 - q0 * q2), 1.0 - 2.0 * (q1 * q1 + q2 * q2)
-        return np.array([params[0] * b3, 0.0, -params[0] * b1])  # (0, m2, 0) × B
-
-    return UserTorque(dipole, {"m2": m2}, "bench:dipole")
+    return UserTorque(numba.njit(_dipole_moment), {"m2": m2}, "bench:dipole")
 
 
 def _capture(
@@ -212,8 +215,6 @@ def _capture(
     """One ensemble: CAPTURE_SIZE full runs from random phases about x1 until past the
     separatrix; the frequency of entering x3+ against the mean predicted probability, each
     at its run's ‖L‖ and direction of L at the crossing."""
-    import numpy as np
-
     from tumble.averaging.crossing import first_crossing, separatrix_crossing
     from tumble.errors import TumbleError
     from tumble.integrate import dop853, simulate_batch

@@ -316,7 +316,7 @@ def sense_turn(inertia: ArrayLike, L: float, T: float, branch: float) -> FloatAr
     inertia : array_like, shape (3,)
         Principal moments in the user's order [inertia unit].
     L, T : float
-        |L| [inertia unit · rad/τ] and the kinetic energy [inertia unit · (rad/τ)²].
+        ‖L‖ [inertia unit · rad/τ] and the kinetic energy [inertia unit · (rad/τ)²].
     branch : {1.0, -1.0}
 
     Returns

@@ -272,9 +272,11 @@ def modulus_squared_of_ratio(I1: float, I2: float, I3: float, r: ArrayLike) -> F
     d2 = 1.0 - r * I2
     d3 = np.maximum(r * I3 - 1.0, 0.0)
     x3 = d2 > 0.0
-    with np.errstate(divide="ignore", invalid="ignore"):
-        m = np.where(x3, (I2 - I1) * d3 / ((I3 - I2) * d1), (I3 - I2) * d1 / ((I2 - I1) * d3))
-        mc = np.where(x3, (I3 - I1) * d2 / ((I3 - I2) * d1), -(I3 - I1) * d2 / ((I2 - I1) * d3))
+    # Each regime's m and mc over one denominator, positive on its side of the separatrix
+    # (d1 > 0 where d2 > 0, d3 > 0 where d2 ≤ 0): no division by zero, one division each.
+    den = np.where(x3, (I3 - I2) * d1, (I2 - I1) * d3)
+    m = np.where(x3, (I2 - I1) * d3, (I3 - I2) * d1) / den
+    mc = (I3 - I1) * np.abs(d2) / den
     k2 = np.clip(m, 0.0, 1.0)
     return np.where((np.abs(d2) <= SEPARATRIX_RTOL) | ~(mc >= _MC_FLOOR), 1.0, k2)
 

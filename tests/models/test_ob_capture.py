@@ -66,6 +66,25 @@ def test_the_hand_over_keeps_the_averaged_state(tmp_path, example):
         assert np.allclose(back, z, rtol=1e-12, atol=1e-12 * np.max(np.abs(z))), (z, back)
 
 
+def test_the_hand_over_keeps_the_sense_of_rotation(tmp_path):
+    # A box run in the − sense hands over a full state of that sense, with the averaged
+    # state's L_ξ and 2T/L² (to round-off, as above); a full state of the other sense counts
+    # as inside the band, so that the run stays on the full equations with it.
+    from tumble.averaging import rotation_sense
+
+    r = _request(tmp_path, BOX.format(psi=30.0))
+    inertia = np.asarray(r.params.inertia)
+    band = capture_band(r.params, -1.0)
+    i1, _, i3 = np.sort(inertia)
+    for ratio in (0.9 / i1 + 0.1 / i3, 0.1 / i1 + 0.9 / i3):  # each regime
+        z = np.array([0.3, -0.2, 0.5, ratio])
+        y = band.to_full(0.0, z)
+        assert rotation_sense(inertia, y[:3]) == -1.0
+        assert np.allclose(band.to_mean(0.0, y, z), z, rtol=1e-12, atol=1e-12)
+        assert band.band_full(y) != -1.0
+        assert capture_band(r.params, 1.0).band_full(y) == -1.0
+
+
 def test_a_sphere_is_never_handed_over(tmp_path):
     # No gravity-gradient well for a sphere: its edge is the orbital rate itself, below the
     # rate its eddy currents leave it with (about 1.8 n), so the hybrid year is averaged alone.

@@ -20,9 +20,15 @@ is n itself, below any rate its eddy currents leave it with.
 The state handed over is a point of the Euler–Poinsot motion with the averaged state's L_ξ
 and T: the body rate where the polhode crosses the plane of the largest and the smallest
 moments (:func:`tumble.unperturbed.euler_poinsot.polhode_point`), and the attitude the
-smallest rotation taking the body direction of L to L_ξ. The averaged state has no
-phases (first order), so they are chosen, not known: an outcome that depends on them (a
-capture decided within one libration) is one draw of that dependence.
+smallest rotation taking the body direction of L to L_ξ, turned into the averaged run's sense
+of rotation about the axis its polhode encircles (:func:`tumble.averaging.sense_turn`). The
+averaged state has no phases (first order), so they are chosen, not known: an outcome that
+depends on them (a capture decided within one libration) is one draw of that dependence.
+
+The averaged equations hold that sense (a torque fixed in the body, sunlight on facets, turns
+the two differently). A full leg that leaves the band turning in the other sense (a capture
+and an escape may reverse it) stays on the full equations, which need no sense: the band's
+measure counts it inside.
 """
 
 from __future__ import annotations
@@ -32,7 +38,7 @@ import math
 import numpy as np
 
 from tumble._typing import FloatArray
-from tumble.averaging.triaxial import sense_turn
+from tumble.averaging.triaxial import rotation_sense, sense_turn
 from tumble.models.base import Crossing
 from tumble.models.orbiting_body.inputs import Params
 from tumble.rotations import matrix_to_quat, quat_normalize, quat_to_matrix
@@ -71,7 +77,10 @@ def capture_band(p: Params, sense: float = 1.0) -> Crossing:
         return (rate - edge) / width
 
     def band_full(y: FloatArray) -> float:
-        return (_rate(inertia, np.asarray(y[:3], dtype=float)) - edge) / width
+        omega = np.asarray(y[:3], dtype=float)
+        if rotation_sense(inertia, omega) != sense:
+            return -1.0  # the other sense: not one the averaged equations hold (module notes)
+        return (_rate(inertia, omega) - edge) / width
 
     def to_full(t: float, z: FloatArray) -> FloatArray:
         L_xi = np.asarray(z[:3], dtype=float)

@@ -673,7 +673,12 @@ class Declaration(Generic[P, S]):
         )
 
 
-def first_time(condition: Callable[[FloatArray], FloatArray], grid: FloatArray) -> float | None:
+def first_time(
+    condition: Callable[[FloatArray], FloatArray],
+    grid: FloatArray,
+    values: FloatArray | None = None,
+    xtol: float = 1e-12,
+) -> float | None:
     """First τ on ``grid`` where ``condition(τ) > 0``, refined by root finding; None if never.
 
     Parameters
@@ -682,8 +687,13 @@ def first_time(condition: Callable[[FloatArray], FloatArray], grid: FloatArray) 
         Vectorized ``condition(tau) -> values``; the region is where the values are positive.
     grid : ndarray
         Ascending times to scan [model time unit]; the first crossing is then bracketed.
+    values : ndarray, optional
+        ``condition(grid)``, where the caller has it (a streamed run's ``slow`` replays the
+        run at every call).
+    xtol : float
+        How closely the root is found [model time unit].
     """
-    values = condition(grid)
+    values = condition(grid) if values is None else values
     hits = np.flatnonzero(values > 0.0)
     if hits.size == 0:
         return None
@@ -693,11 +703,13 @@ def first_time(condition: Callable[[FloatArray], FloatArray], grid: FloatArray) 
     from scipy.optimize import brentq  # loaded where a run is checked, not where it is read
 
     return float(
-        brentq(lambda t: float(condition(np.array([t]))[0]), grid[i - 1], grid[i], xtol=1e-12)
+        brentq(lambda t: float(condition(np.array([t]))[0]), grid[i - 1], grid[i], xtol=xtol)
     )
 
 
-def separatrix_time(slow: SlowPath, grid: FloatArray, I2: float) -> float | None:
+def separatrix_time(
+    slow: SlowPath, grid: FloatArray, I2: float, cols: Columns | None = None
+) -> float | None:
     """First time a triaxial body's averaged motion crosses the separatrix L² = 2T·I2 (where
     the polhode frequency vanishes), refined by root finding; None if it never does.
 
@@ -709,8 +721,11 @@ def separatrix_time(slow: SlowPath, grid: FloatArray, I2: float) -> float | None
         Ascending times to scan [model time unit].
     I2 : float
         The middle principal moment [inertia unit].
+    cols : dict, optional
+        ``slow(grid)``, where the caller has it: a streamed run's ``slow`` integrates the run
+        again at every call, which over a long run costs more than the run's own samples.
     """
-    cols = slow(grid)
+    cols = slow(grid) if cols is None else cols
     gap = cols["L"] ** 2 - 2.0 * cols["T"] * I2
     flips = np.flatnonzero(np.sign(gap[1:]) * np.sign(gap[:-1]) < 0.0)
     if not flips.size:
@@ -721,17 +736,21 @@ def separatrix_time(slow: SlowPath, grid: FloatArray, I2: float) -> float | None
         c = slow(t)
         return -s0 * (c["L"] ** 2 - 2.0 * c["T"] * I2)
 
-    found = first_time(other_side, grid)
+    # To 1e-7 of the span, finer than the message's six digits: near the separatrix the gap
+    # falls to zero like 1/ln, which slows the root finder to bisection, and each evaluation
+    # of a streamed run's ``slow`` integrates a stretch of the run again (0.1 s on a decade).
+    found = first_time(other_side, grid, -s0 * gap, 1e-7 * float(grid[-1] - grid[0]))
     return float(found if found is not None else grid[flips[0] + 1])
 
 
 def separatrix_issue(
-    slow: SlowPath, grid: FloatArray, I2: float, time: str = "t"
+    slow: SlowPath, grid: FloatArray, I2: float, time: str = "t", cols: Columns | None = None
 ) -> ValidityIssue | None:
     """The first crossing of the separatrix L² = 2T·I2 by a triaxial body's averaged motion
-    (:func:`separatrix_time`) as a validity issue; ``time`` is the model's name for its time
-    column (``"t"``, ``"τ"``) in the message."""
-    tau_s = separatrix_time(slow, grid, I2)
+    (:func:`separatrix_time`; ``cols``, ``slow(grid)`` if the caller has it) as a validity
+    issue; ``time`` is the model's name for its time column (``"t"``, ``"τ"``) in the
+    message."""
+    tau_s = separatrix_time(slow, grid, I2, cols)
     if tau_s is None:
         return None
     return ValidityIssue(

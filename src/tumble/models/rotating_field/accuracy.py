@@ -109,20 +109,23 @@ def validity(p: Params, st: State, slow: SlowPath, tau_end: float) -> list[Valid
     I1, I2, I3 = p.sorted_inertia
     L_small = I3 * small / VALIDITY_RATIO
     found = (
-        separatrix_issue(slow, grid, I2, time="τ") if I1 < I2 < I3 else None,
-        _momentum_issue(slow, grid, L_small),
+        separatrix_issue(slow, grid, I2, time="τ", cols=cols) if I1 < I2 < I3 else None,
+        _momentum_issue(slow, grid, L_small, cols),
         *_frequency_issues(p, grid, cols, L_small),
     )
     return issues + [issue for issue in found if issue is not None]
 
 
-def _momentum_issue(slow: SlowPath, grid: FloatArray, L_small: float) -> ValidityIssue | None:
-    """The first time L falls below ``L_small``, where the fast frequencies stop being fast."""
+def _momentum_issue(
+    slow: SlowPath, grid: FloatArray, L_small: float, cols: dict[str, FloatArray]
+) -> ValidityIssue | None:
+    """The first time L falls below ``L_small``, where the fast frequencies stop being fast
+    (``cols``: ``slow(grid)``)."""
 
     def momentum_small(t: FloatArray) -> FloatArray:
         return L_small - slow(t)["L"]
 
-    tau_l = first_time(momentum_small, grid)
+    tau_l = first_time(momentum_small, grid, L_small - cols["L"])
     if tau_l is None:
         return None
     return ValidityIssue(

@@ -331,7 +331,7 @@ def validity(p: Params, st: State, slow: SlowPath, tau_end: float) -> list[Valid
     I1, I2, I3 = p.sorted_inertia
     scales = _Scales.along(p, grid, cols)
     found = [
-        _crossing_issue(p, st, slow, grid) if I1 < I2 < I3 else None,
+        _crossing_issue(p, st, slow, grid, cols) if I1 < I2 < I3 else None,
         _not_fast_issue(grid, scales),
         _resonance_issue(p, grid, scales) if p.attitude_dependent else None,
         _unstable_rotation_issue(p, grid, cols, tau_end, _sense(p, st)) if I1 < I2 < I3 else None,
@@ -339,13 +339,15 @@ def validity(p: Params, st: State, slow: SlowPath, tau_end: float) -> list[Valid
     return sorted((i for i in found if i is not None), key=lambda i: i.tau)
 
 
-def _crossing_issue(p: Params, st: State, slow: SlowPath, grid: FloatArray) -> ValidityIssue | None:
+def _crossing_issue(
+    p: Params, st: State, slow: SlowPath, grid: FloatArray, cols: dict[str, FloatArray]
+) -> ValidityIssue | None:
     """The separatrix issue, with the odds of the rotation the body passes into at the first
     crossing (:func:`tumble.averaging.separatrix_crossing`, for a torque that reads the
     attitude at the direction of L and the time of the crossing, averaged over the precession
     and the forcing phase): the averaged state [L_ξ, r] does not carry the sense of the
     rotation, the phase at the crossing decides it."""
-    issue = separatrix_issue(slow, grid, p.sorted_inertia[1])
+    issue = separatrix_issue(slow, grid, p.sorted_inertia[1], cols=cols)
     if issue is None:
         return issue
     from dataclasses import replace as changed

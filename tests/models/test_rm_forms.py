@@ -10,6 +10,7 @@ from strategies import kappa, matrices, rho_regular, theta_regular, vectors
 
 from tumble.integrate import integrate, simulate
 from tumble.models import resisting_medium as rm
+from tumble.models.base import AveragingOptions
 from tumble.models.resisting_medium import averaged as rm_averaged
 
 M = rm.MODEL
@@ -190,8 +191,10 @@ def test_compiled_averaged_run_equals_scipys_across_the_equator(theta0):
                   b=np.diag([0.1, 0.1, 0.2]), s=np.diag([0.05, 0.05, 0.1]))  # fmt: skip
     st_ = rm.State(1.0, 0.4, 0.2, 0.0, theta0, 0.0)
     tau = np.linspace(0.0, 300.0, 301)
-    compiled = simulate(M, p, st_, tau, "averaged", rtol=1e-11, atol=1e-13)
-    scipy = simulate(M, p, st_, tau, "averaged", rtol=1e-11, atol=1e-13, integrator="scipy")
+    alone = AveragingOptions(averaged_only=True)  # (2.2) itself, no step at the passage
+    compiled = simulate(M, p, st_, tau, "averaged", rtol=1e-11, atol=1e-13, averaging=alone)
+    scipy = simulate(M, p, st_, tau, "averaged", rtol=1e-11, atol=1e-13, integrator="scipy",
+                     averaging=alone)  # fmt: skip
     closed = simulate(M, p, st_, tau, "closed_form")
     assert compiled.integrator == "numba" and scipy.integrator == "scipy"
     if theta0 != 0.0:

@@ -195,6 +195,16 @@ def issue_in_si(issue: dict[str, Any], scaling: Scaling, t_end: float) -> dict[s
     return {**issue, "message": text, "t_s": t_s}
 
 
+def unbridged(
+    issues: list[ValidityIssue], legs: tuple[tuple[str, float, float], ...]
+) -> list[ValidityIssue]:
+    """``issues`` less those that begin inside an asymptotic leg of the run (kind
+    "asymptotic"): the band where averaging fails that the step's theory bridges, its inner
+    solution in the run's columns."""
+    spans = [(a, b) for kind, a, b in legs if kind == "asymptotic"]
+    return [i for i in issues if not any(a <= i.tau <= b for a, b in spans)]
+
+
 def _merge_issues(found: dict[str, list[ValidityIssue]]) -> list[dict[str, Any]]:
     """One entry per condition: its earliest time, and the methods that entered it."""
     merged: dict[str, dict[str, Any]] = {}
@@ -297,7 +307,7 @@ def _result(
     tau_end = float(request.tau[-1])
     validity = model.validity
     found = {
-        m: validity.check(p, st, trajectories[m].slow, tau_end)
+        m: unbridged(validity.check(p, st, trajectories[m].slow, tau_end), trajectories[m].legs)
         for m in whole
         if m in ("averaged", "closed_form") and validity is not None
     }

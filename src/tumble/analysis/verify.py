@@ -29,7 +29,7 @@ import numpy as np
 from tumble._progress import stage
 from tumble._typing import FloatArray
 from tumble.analysis.compare import angle_difference, fitted_order
-from tumble.analysis.run import RunRequest, _merge_issues
+from tumble.analysis.run import RunRequest, _merge_issues, unbridged
 from tumble.errors import IntegrationError, ParameterError, TumbleError, TumbleWarning
 from tumble.integrate import Trajectory, simulate
 from tumble.models import AnyModel
@@ -511,5 +511,9 @@ def _one_epsilon(
         scales |= {v: float(np.max(np.abs(full.columns[v]))) for v in errs if v in full.columns}
         curves[order] = {v: (e * t, d) for v, (t, d) in errs.items()}
     own = averaged.get(request.averaging.order, next(iter(averaged.values())))
-    found = model.validity.check(pe, st, own.slow, tau[-1]) if model.validity else []
+    found = (
+        unbridged(model.validity.check(pe, st, own.slow, tau[-1]), own.legs)
+        if model.validity
+        else []
+    )
     return _Run(curves, _merge_issues({"averaged": found}), failures, scales)

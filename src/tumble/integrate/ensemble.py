@@ -24,9 +24,15 @@ from tumble.integrate.dop853.block import block_entry, empty_block
 from tumble.integrate.dop853.core import BAD_START, OK, RUNNING, STOPPED, Chunk
 from tumble.integrate.dop853.driver import _cut, in_call
 from tumble.integrate.limits import FIRST_CHUNK, MAX_STEPS, pace_message
-from tumble.integrate.ode import compiled_breakpoints, joined_pieces, split_plan
+from tumble.integrate.ode import compiled_breakpoints, joined_pieces, restart_at, split_plan
 from tumble.integrate.simulate import each_on_threads, simulate, start_refusal
-from tumble.integrate.trajectory import RunSpec, Trajectory, integrated, unwrap_columns
+from tumble.integrate.trajectory import (
+    RunSpec,
+    Trajectory,
+    integrated,
+    step_legs,
+    unwrap_columns,
+)
 from tumble.kernels import EVENT_NONE, Kernel
 from tumble.kernels.user import raise_fault
 from tumble.models.base import AveragedForm, AveragingOptions, Breakpoint, Model
@@ -277,6 +283,7 @@ def _goes_on(
         return True
     if status == OK:
         if piece[r] + 1 < len(pt.stops):
+            arrays["Y"][r] = restart_at(pt.form.breakpoints, t, arrays["Y"][r].copy())
             piece[r] += 1
             return True
         return False
@@ -336,4 +343,5 @@ def _trajectory(
         slow,
         np.empty(0),
         "numba",
+        legs=step_legs(pt.form, float(pt.tau[-1])),
     )

@@ -346,7 +346,7 @@ def _integrate_scipy(
             if restart is not None:
                 y = np.asarray(restart(t0, y), dtype=float)
         elif seg_end < t_end:
-            t0, y = seg_end, np.asarray(res.y[:, -1])
+            t0, y = seg_end, restart_at(breakpoints, seg_end, np.asarray(res.y[:, -1]))
         else:
             break
         if t0 >= t_end:
@@ -429,6 +429,8 @@ def _integrate_compiled_split(
             if surface.restart is not None:
                 y = np.asarray(surface.restart(t0, y), dtype=float)
             surface = None  # crossed at most once
+        elif t0 < t_end:
+            y = restart_at(breakpoints, t0, y)
     return joined_pieces(results, what)
 
 
@@ -463,6 +465,17 @@ def split_plan(
     slack = 1e-12 * max(1.0, t_end)
     times = sorted({float(b.time) for b in breakpoints if b.time is not None})
     return [t for t in times if slack < t < t_end - slack] + [t_end], surface
+
+
+def restart_at(breakpoints: Sequence[Breakpoint], t: float, y: FloatArray) -> FloatArray:
+    """The state a run split at the known time ``t`` goes on from: the restart map of the
+    breakpoint at that time (a jump the theory gives there), or ``y``. Every path that splits
+    a run (scipy's, the compiled one, the streamed one, the ensembles) restarts alike."""
+    slack = 1e-12 * max(1.0, abs(t))  # the stop is the breakpoint's time, to round-off
+    for b in breakpoints:
+        if b.time is not None and b.restart is not None and abs(float(b.time) - t) <= slack:
+            return np.asarray(b.restart(t, y), dtype=float)
+    return y
 
 
 def joined_pieces(results: Sequence[dop853.Solution], what: str) -> DenseSolution:

@@ -31,7 +31,7 @@ from tumble._typing import FloatArray
 from tumble.errors import IntegrationError, TumbleError
 from tumble.integrate import dop853
 from tumble.integrate.limits import FIRST_CHUNK, pace_message
-from tumble.integrate.ode import compiled_plan
+from tumble.integrate.ode import compiled_plan, restart_at
 from tumble.kernels import Kernel
 from tumble.models.base import Breakpoint
 
@@ -336,6 +336,7 @@ def stream(
                 surface = None  # crossed at most once
             if t0 >= t_end:
                 break
+            y = restart_at(breakpoints, t0, y)
         ev_t, ev_s, ev_y = (
             (np.concatenate([e[k] for e in events]) for k in range(3))
             if events

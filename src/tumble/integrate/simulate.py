@@ -32,6 +32,7 @@ from tumble.integrate.trajectory import (
     Trajectory,
     UnwrapStream,
     integrated,
+    step_legs,
     unwrap_columns,
 )
 from tumble.kernels import Kernel
@@ -612,7 +613,7 @@ def _averaged_streamed(
     event_columns = to_columns(events, kept.event_y) if events.size else {}
     return Trajectory(tau, cols, "averaged", avg.name, time.perf_counter() - start, kept.nfev,
                       slow, np.empty(0), "numba", events, kept.event_signs,
-                      event_columns)  # fmt: skip
+                      event_columns, step_legs(avg, run.t_end))  # fmt: skip
 
 
 def start_refusal(avg: AveragedForm[P, S], p: P, t: float, y: FloatArray) -> str | None:

@@ -54,7 +54,8 @@ class Trajectory:
         The columns at ``events``.
     legs : tuple
         A hybrid run's legs, ``(kind, start, end)`` with kind "averaged" or "full" [model
-        time unit]; empty for any other run.
+        time unit], or an averaged run's around its asymptotic crossing steps (kind
+        "asymptotic": the inner region the step's theory describes); empty for any other run.
     """
 
     tau: FloatArray
@@ -233,4 +234,24 @@ def integrated(
         events,
         sol.event_signs,
         event_columns,
+        legs=step_legs(eq, float(tau[-1])) if isinstance(eq, AveragedForm) else (),
     )
+
+
+def step_legs(form: AveragedForm[Any, Any], t_end: float) -> tuple[tuple[str, float, float], ...]:
+    """The legs of an averaged run of ``form`` to ``t_end`` around the asymptotic crossing
+    steps it takes (``AveragedForm.steps``): ("averaged", start, end) and ("asymptotic", start,
+    end) in time order, the inner regions cut to [0, t_end]; empty without a step."""
+    legs: list[tuple[str, float, float]] = []
+    t = 0.0
+    for a, b in sorted(form.steps):
+        a, b = max(a, t), min(b, t_end)
+        if b <= a:
+            continue
+        if a > t:
+            legs.append(("averaged", t, a))
+        legs.append(("asymptotic", a, b))
+        t = b
+    if legs and t < t_end:
+        legs.append(("averaged", t, t_end))
+    return tuple(legs)

@@ -210,6 +210,7 @@ def summary(
         out["averaging_order"] = opts.order
         out["initial"] = opts.initial if opts.order == 2 else None
         out["averaged_method"] = "hybrid" if opts.hybrid else "plain"
+        out["averaged_only"] = opts.averaged_only
     out.update(result.report.summary)
     if verification is not None:
         out["verify"] = verification.summary()

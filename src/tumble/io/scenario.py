@@ -282,6 +282,10 @@ def run_keys(model: Declaration[Any, Any], variant: Variant[Any, Any]) -> tuple[
                             "resisting medium, the gravity gradient's capture for an orbiting "
                             "body) are crossed on the full equations, re-entered through the "
                             "osculating → mean map"))  # fmt: skip
+    if model.steps:
+        doc = ("the averaged equations alone: no asymptotic step across the crossings "
+               "theory bridges (ϑ = π/2 of the resisting medium)")  # fmt: skip
+        keys.append(Key("averaged_only", "boolean", "true or false", default=False, doc=doc))
     keys += [
         Key("verify", "boolean", "true or false", default=False,
             doc="also measure the averaging error at ε, ε/2, ε/4"),
@@ -712,6 +716,7 @@ def _request(model: Declaration[Any, Any], run: Any, built: Any, times: np.ndarr
         order=getattr(run, "averaging_order", 1),
         initial=getattr(run, "initial", "osculating"),
         hybrid=getattr(run, "averaged_method", "plain") == "hybrid",
+        averaged_only=getattr(run, "averaged_only", False),
     )
     family = getattr(run, "verify_scaling", None)
     if family is not None:

@@ -93,7 +93,7 @@ KINDS: dict[int, Kind] = {
         frozenset({codes.EVENT_THETA_DOT}),
     ),
     codes.KIND_MEDIUM_AVERAGED: Kind(
-        "the averaged equations (2.2)/(2.3)", ("k", "theta"), MEDIUM_AVERAGED
+        "the averaged equations (2.2)/(2.3)", ("k", "theta", "phi"), MEDIUM_AVERAGED
     ),
     codes.KIND_FIELD_AVERAGED: Kind(
         "the rotating field's averaged vector form",

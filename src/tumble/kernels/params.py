@@ -69,9 +69,13 @@ MEDIUM_AVERAGED = Layout(
         Field("gamma", 1, "1", "γ: quadratic drag across the axis"),
         Field("delta", 1, "1", "δ: quadratic drag along the axis"),
         Field("form", 1, "1", "0: (2.2) in [k, ϑ]; 1: (2.3) in [W, V]", 0.0, 1.0),
+        Field("kappa", 1, "1", "κ = I3/I1 − 1: the mean proper rotation's rate −κW/(1+κ)"),
+        Field("phase_b", 1, "1", "(b21 − b12)/2: the linear drag's mean turn of φ"),
+        Field("phase_s", 1, "1", "4(s21 − s12)/(3π): the quadratic drag's, per unit V"),
     ),
 )
-"""``KIND_MEDIUM_AVERAGED``: Medvedev (1987), eqs. (2.2)–(2.3)."""
+"""``KIND_MEDIUM_AVERAGED``: Medvedev (1987), eqs. (2.2)–(2.3); a third state component, if
+present, is the mean proper rotation φ̄ (the passage of ϑ = π/2 needs its phase)."""
 
 FIELD_AVERAGED = Layout(
     "field averaged",

@@ -224,7 +224,9 @@ def symmetric_body(
 @jit(INLINE)
 def _medium_averaged(y: FloatArray, p: FloatArray, out: FloatArray) -> None:
     """Averaged equations of Medvedev (1987) in τ: (2.2) for y = [k, ϑ] (the a3 term of the
-    ϑ-equation as a3 sin ϑ / k, regular at ϑ = π/2), or (2.3) for y = [W, V]."""
+    ϑ-equation as a3 sin ϑ / k, regular at ϑ = π/2), or (2.3) for y = [W, V]; a third
+    component is the mean proper rotation φ̄, dφ̄/dτ = −κW/(1+κ) + ε⟨m1 cos φ − m2 sin φ⟩/V
+    (the mean of (1.3)'s φ-equation)."""
     eps, a3, al = p[_MA.eps], p[_MA.a3], p[_MA.alpha]
     be, ga, de = p[_MA.beta], p[_MA.gamma], p[_MA.delta]
     if p[_MA.form] == 0.0:
@@ -235,10 +237,14 @@ def _medium_averaged(y: FloatArray, p: FloatArray, out: FloatArray) -> None:
             a3 * c - k * (al * s * s + be * c * c + k * (ga * s * s * as_ + de * c * c * ac))
         )
         out[1] = -eps * (a3 * s / k + (al - be + k * (ga * as_ - de * ac)) * s * c)
+        W, V = k * c, k * s
     else:
         W, V = y[0], y[1]
         out[0] = eps * (a3 - be * W - de * W * abs(W))
         out[1] = -eps * (al * V + ga * V * V)
+    if y.shape[0] == 3:
+        kappa = p[_MA.kappa]
+        out[2] = -kappa * W / (1.0 + kappa) + eps * (p[_MA.phase_b] + p[_MA.phase_s] * V)
 
 
 @jit(KERNEL)

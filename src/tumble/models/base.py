@@ -119,6 +119,9 @@ class AveragingOptions:
         full equations and re-enter the averaged ones through the osculating → mean map
         (``[run] averaged_method = "hybrid"``), where the averaged form has such a band
         (``AveragedForm.crossing``).
+    averaged_only : bool
+        The averaged equations alone: no asymptotic crossing step where the model's theory
+        gives one (``[run] averaged_only``; ``AveragedForm.steps``).
     """
 
     averaging: Literal["closed_form", "numeric"] = "closed_form"
@@ -127,6 +130,7 @@ class AveragingOptions:
     order: int = 1
     initial: Literal["osculating", "mean"] = "osculating"
     hybrid: bool = False
+    averaged_only: bool = False
 
     def __post_init__(self) -> None:
         if self.averaging not in AVERAGING_METHODS:
@@ -147,6 +151,11 @@ class AveragingOptions:
             raise ParameterError(
                 f"run.initial = {self.initial!r} is not a meaning of the initial state "
                 '(allowed: "osculating", "mean")'
+            )
+        if self.averaged_only and self.hybrid:
+            raise ParameterError(
+                'run.averaged_only = true excludes run.averaged_method = "hybrid" (allowed: '
+                "one of them)"
             )
 
 
@@ -193,9 +202,11 @@ class Breakpoint:
     state). A restart map lets a solution leave a non-Lipschitz point it would otherwise stick
     to (e.g. the spurious k² ≡ 1 solution on a separatrix); one that raises stops the run
     there. A breakpoint at a known time (``Breakpoint.at_time``) splits the integration
-    interval there instead, so that no step ever straddles it. ``event``, an ``EVENT_*`` code
-    of :mod:`tumble.kernels`, is the same surface as a compiled event function of the form's
-    kernel: with it the compiled integrator stops there too (0: scipy's path only).
+    interval there instead, so that no step ever straddles it, and its restart map, if any, is
+    a jump the theory gives at that time (an asymptotic crossing step). ``event``, an
+    ``EVENT_*`` code of :mod:`tumble.kernels`, is the same surface as a compiled event function
+    of the form's kernel: with it the compiled integrator stops there too (0: scipy's path
+    only).
     """
 
     condition: Callable[[float, FloatArray], float] | None
@@ -204,9 +215,12 @@ class Breakpoint:
     event: int = 0  # the condition compiled (an EVENT_* code of the form's kernel)
 
     @classmethod
-    def at_time(cls, t: float) -> Breakpoint:
-        """A breakpoint at a fixed time ``t`` (the integration is split there)."""
-        return cls(None, None, float(t))
+    def at_time(
+        cls, t: float, restart: Callable[[float, FloatArray], FloatArray] | None = None
+    ) -> Breakpoint:
+        """A breakpoint at a fixed time ``t`` (the integration is split there and goes on from
+        ``restart(t, y)``, by default the same state)."""
+        return cls(None, restart, float(t))
 
 
 @dataclass(frozen=True)
@@ -270,6 +284,10 @@ class AveragedForm(Generic[P, S]):
     # costly: a compiled run evaluates them on every step (to count the turns between samples)
     # and the other columns at the samples only, as FullForm.angles.
     angles: Callable[[P, S, FloatArray, FloatArray], Columns] | None = None
+    # The inner regions (start, end) of the crossings the form takes by an asymptotic step (a
+    # jump its theory gives, through a breakpoint's restart map, and the inner solution in its
+    # columns): a run reports them as legs of kind "asymptotic".
+    steps: tuple[tuple[float, float], ...] = ()
 
 
 @dataclass(frozen=True, slots=True)
@@ -366,6 +384,7 @@ class Averaged(Generic[P, S]):
     numeric: bool = False  # whether the general engine can replace the paper's right-hand side
     orders: tuple[int, ...] = (1,)  # orders of averaging it offers (AveragingOptions.order)
     hybrid: bool = False  # whether its forms have bands a hybrid run crosses (Crossing)
+    steps: bool = False  # whether its forms take asymptotic crossing steps (AveragedForm.steps)
     engine: bool = False  # whether its only averaged equations are the general engine's
     errors: Callable[[P, Sampled, Sampled], Mapping[str, tuple[FloatArray, FloatArray]]] | None = (
         None
@@ -388,6 +407,11 @@ class Averaged(Generic[P, S]):
         if options.hybrid and not self.hybrid:
             raise ParameterError(
                 'run.averaged_method = "hybrid" is not available for this model (allowed: "plain")'
+            )
+        if options.averaged_only and not self.steps:
+            raise ParameterError(
+                "run.averaged_only is not available for this model: its averaged runs take "
+                "no asymptotic crossing step"
             )
         if options.order not in self.orders:
             allowed = ", ".join(map(str, self.orders))
@@ -591,9 +615,9 @@ class Declaration(Generic[P, S]):
         As the :class:`Model` fields of those names.
     check_initial
         As the :class:`Model` field of that name.
-    numeric, coordinates, corrected_start, orders, hybrid, engine
-        As the :class:`Averaged` fields of those names (False, (), False, (1,), False, False
-        without averaged equations). ``engine``: the averaged equations are the general
+    numeric, coordinates, corrected_start, orders, hybrid, steps, engine
+        As the :class:`Averaged` fields of those names (False, (), False, (1,), False, False,
+        False without averaged equations). ``engine``: the averaged equations are the general
         engine's quadrature alone, with no paper right-hand side, so that a run's
         ``averaging`` is "numeric" whatever the default.
     """
@@ -610,6 +634,7 @@ class Declaration(Generic[P, S]):
     hybrid: bool = False
     check_initial: Callable[[P, S, str], None] | None = None
     engine: bool = False
+    steps: bool = False
 
     def averaged(
         self,
@@ -619,7 +644,7 @@ class Declaration(Generic[P, S]):
     ) -> Averaged[P, S]:
         """The model's averaged equations ``form`` with output ``columns``, offering exactly
         the choices declared here (``numeric``, ``coordinates``, ``corrected_start``,
-        ``orders``, ``hybrid``); ``details`` are the other :class:`Averaged` fields
+        ``orders``, ``hybrid``, ``steps``); ``details`` are the other :class:`Averaged` fields
         (``compare``, ``errors``, ``diagnostics``)."""
         return Averaged(
             form,
@@ -629,6 +654,7 @@ class Declaration(Generic[P, S]):
             numeric=self.numeric,
             orders=self.orders,
             hybrid=self.hybrid,
+            steps=self.steps,
             engine=self.engine,
             **details,
         )
@@ -670,6 +696,7 @@ class Declaration(Generic[P, S]):
             hybrid=avg is not None and avg.hybrid,
             check_initial=model.check_initial,
             engine=avg is not None and avg.engine,
+            steps=avg is not None and avg.steps,
         )
 
 

@@ -43,6 +43,13 @@ def moment_depends_on_phi(p: Params) -> bool:
     )
 
 
+def axial_depends_on_phi(p: Params) -> bool:
+    """True if the axial moment m3 of (1.2) depends on φ (b31, b32, s31 or s32 non-zero): then
+    W oscillates with φ and its O(ε²) drift moves the phase at the passage by O(1), which the
+    first-order run does not know."""
+    return bool(np.any(p.b[2, :2] != 0.0) or np.any(p.s[2, :2] != 0.0))
+
+
 def _slow_rate_per_k(p: Params, k: FloatArray) -> FloatArray:
     """Slow rate per unit k, ε(|a|/k² + c|b|/k + c²|s|), §6.
 
@@ -119,12 +126,22 @@ def _crossing_issue(
             "validity of averaging (docs/theory/resisting-medium.md §11)",
         )
     if crosses and phi_dependent:
+        if axial_depends_on_phi(p):
+            why = (
+                "; the axial moment depends on φ (b31, b32, s31 or s32 ≠ 0), so the phase of "
+                "φ there is not known to first order and the averaged run takes no step"
+            )
+        else:
+            why = (
+                "; an averaged run steps across it by stationary phase (O(ε)) unless "
+                "run.averaged_only, and this warning is then the closed form's"
+            )
         return ValidityIssue(
             "theta_crossing",
             tau1,
             f"the averaged trajectory crosses ϑ = π/2 at τ = {tau1:.6g}: φ stops rotating "
-            "there and, with a φ-dependent moment, the averaged model is only O(√ε) "
-            "accurate after the passage (docs/theory/resisting-medium.md §10.2)",
+            "there and, with a φ-dependent moment, the averaged equations alone are only "
+            f"O(√ε) accurate after the passage{why} (docs/theory/resisting-medium.md §10.2)",
             label="ϑ = π/2",
         )
     return None

@@ -28,6 +28,7 @@ from tumble.models.base import AveragedForm, AveragingOptions, Breakpoint, Cross
 from tumble.models.inputs.resisting_medium import Params, State
 from tumble.models.resisting_medium.closed_forms import crossing_time, plane_columns
 from tumble.models.resisting_medium.full import full_from_slow, slow_from_full
+from tumble.models.resisting_medium.passage import Passage, passage
 
 # ---------------------------------------------------------------------------------------------
 # Averaged system (2.2) and its W, V form (2.3).
@@ -45,7 +46,11 @@ def plane_kernel(p: Params, form: int) -> Kernel:
     form : int
         0 for (2.2) in ``[k, ϑ]``, 1 for (2.3) in ``[W, V]``.
     """
-    packed = [p.eps, float(p.a[2]), p.alpha, p.beta, p.gamma, p.delta, float(form)]
+    b, s = p.b, p.s
+    phase_b = 0.5 * float(b[1, 0] - b[0, 1])
+    phase_s = 4.0 * float(s[1, 0] - s[0, 1]) / (3.0 * math.pi)
+    packed = [p.eps, float(p.a[2]), p.alpha, p.beta, p.gamma, p.delta, float(form), p.kappa,
+              phase_b, phase_s]  # fmt: skip
     return Kernel(KIND_MEDIUM_AVERAGED, np.array(packed))
 
 
@@ -278,7 +283,9 @@ def _resonance_band(p: Params, st: State, system: MeanSystem) -> Crossing:
 def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:
     """(2.2), its W, V form (2.3), the general engine (``averaging = "numeric"``,
     :func:`tumble.averaging.spinner_average`: the moment (1.2) averaged over ψ and φ), or the
-    equations of order 2 in mean variables (:func:`_mean_form`)."""
+    equations of order 2 in mean variables (:func:`_mean_form`). (2.2) and (2.3) cross a
+    passage of ϑ = π/2 by the asymptotic step
+    (:mod:`~tumble.models.resisting_medium.passage`) unless ``options.averaged_only``."""
     if options.order == 2 or options.hybrid:
         return _mean_form(p, st, options)
     if options.averaging == "numeric":
@@ -286,4 +293,52 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
     # (2.2) is written in polar coordinates (k, ϑ): at V0 = 0 (ϑ0 = 0 or π) the solution may
     # pass through k = 0, the polar singularity; (2.3) is the same system and regular there.
     form = _AVERAGED_WV if abs(math.sin(st.theta)) < 1e-12 else _AVERAGED_KTHETA
-    return replace(form, breakpoints=_equator(p, st))
+    crossing = None if options.averaged_only else passage(p, st)
+    if crossing is None:
+        return replace(form, breakpoints=_equator(p, st))
+    return _stepped_form(p, crossing, 1 if form is _AVERAGED_WV else 0, form)
+
+
+def _stepped_form(
+    p: Params, crossing: Passage, form: int, plain: AveragedForm[Params, State]
+) -> AveragedForm[Params, State]:
+    """(2.2) (``form`` 0) or (2.3) (1) with the mean phase φ̄ as a third variable, stepped
+    across the passage ``crossing`` at its stationary time and split at τ1 (the kink), its
+    columns with the inner solution added (:class:`~tumble.models.resisting_medium.passage.
+    Passage`)."""
+    kappa, eps = p.kappa, p.eps
+    phase_b = 0.5 * float(p.b[1, 0] - p.b[0, 1])
+    phase_s = 4.0 * float(p.s[1, 0] - p.s[0, 1]) / (3.0 * math.pi)
+
+    def plane(Y: FloatArray) -> tuple[FloatArray, FloatArray]:
+        if form == 1:
+            return Y[:, 0], Y[:, 1]
+        return Y[:, 0] * np.cos(Y[:, 1]), Y[:, 0] * np.sin(Y[:, 1])
+
+    def to_columns(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
+        Y = np.atleast_2d(Y)
+        W, V = plane(Y)
+        omega = -kappa * W / (1.0 + kappa) + eps * (phase_b + phase_s * V)
+        V = np.abs(V + crossing.correction(t, Y[:, 2], omega))
+        return plane_columns(st, np.hypot(W, V), np.arctan2(V, W))
+
+    def angles(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
+        return {"sigma": np.full(np.shape(t), st.sigma)}  # σ constant, as (2.2) has it
+
+    def initial_state(p: Params, st: State) -> FloatArray:
+        return np.append(plain.initial_state(p, st), st.phi)
+
+    return replace(
+        plain,
+        name=plain.name,
+        equation=f"{plain.equation} with the passage of ϑ = π/2 stepped (stationary phase)",
+        slow=(*plain.slow, "phi"),
+        initial_state=initial_state,
+        to_columns=to_columns,
+        angles=angles,
+        breakpoints=(
+            Breakpoint.at_time(crossing.tau1),
+            Breakpoint.at_time(crossing.tau_s, crossing.restart(form)),
+        ),
+        steps=(crossing.span,),
+    )

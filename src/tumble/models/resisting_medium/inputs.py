@@ -384,5 +384,6 @@ DECLARED: Declaration[Params, State] = Declaration(
     numeric=True,
     orders=(1, 2),
     hybrid=True,
+    steps=True,
 )
 """What a scenario of the model may ask for."""

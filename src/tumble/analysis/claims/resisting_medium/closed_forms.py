@@ -24,12 +24,16 @@ from tumble.analysis.claims.common import (
 from tumble.analysis.claims.resisting_medium.cases import RM, RM_AXIAL_CASES, medium, state
 from tumble.integrate import simulate
 from tumble.models import resisting_medium as rm
+from tumble.models.base import AveragingOptions
 
 
 def averaged_run(p: rm.Params, st: rm.State, tau: np.ndarray, tol: Tolerances | None = None) -> Any:
     """Averaged system (2.2) integrated tightly (the reference for the closed forms): the
-    trajectory (``columns``, ``nfev``), at ``tol`` or the reference tolerances."""
-    return quiet(simulate, rm.MODEL, p, st, tau, "averaged", **(tol or tolerances()))
+    trajectory (``columns``, ``nfev``), at ``tol`` or the reference tolerances. The equations
+    alone: no step across ϑ = π/2, which the closed forms do not take either."""
+    alone = AveragingOptions(averaged_only=True)
+    return quiet(simulate, rm.MODEL, p, st, tau, "averaged", averaging=alone,
+                 **(tol or tolerances()))  # fmt: skip
 
 
 Prediction = Callable[

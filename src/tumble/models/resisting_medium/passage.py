@@ -1,0 +1,203 @@
+"""The passage of ϑ = π/2 as an asymptotic step of the averaged run (§10.2 of
+``docs/theory/resisting-medium.md``).
+
+At ϑ = π/2 the proper rotation stops (Ω_φ = −κW/(1+κ) with W = k cos ϑ), so the part of the
+moment that turns with φ is not averaged while the body passes: V = k sin ϑ jumps by O(√ε),
+by an amount that depends on the phase of φ there. In the body frame, with ζ = q + ip =
+V e^{iφ}, (1.3) reads
+
+    dW/dτ = ε m3,    dζ/dτ = iΩ_φ ζ + ε (m2 + i m1),
+
+with (m1, m2, m3) the moment on the body axes; in the frame turning with φ, ζ e^{−iφ} = V + η
+and dη/dτ = Σ h_n e^{inφ}, the harmonics of ε e^{−iφ}(m2 + i m1) (n = 0 is the averaged
+rate). When m3 does not depend on φ (b31 = b32 = 0 and s31 = s32 = 0 in (1.2)), W follows its
+averaged equation exactly and φ its mean rate to O(ε) over the whole run, so the phase at the
+passage is known from the averaged run. Near the stationary time τs of φ the phase is
+φ* + ½φ̈(τ − τs)², and stationary phase gives the jump
+
+    Δη = Σ_{n≠0} h_n e^{inφ*} √(2π/|nφ̈|) e^{i(π/4) sgn(nφ̈)},   φ̈ = −κ ε a3/(1+κ),
+
+with h_n at W = 0, V = V* (the averaged V there): V* becomes |V* + Δη|. The neglected terms
+(the cubic term of the phase, the change of V across the inner region, the phase's own
+O(ε/V) wobble) change Δη by O(ε).
+
+The averaged run carries the mean phase φ̄ beside (k, ϑ) and restarts at τs from |V* + Δη|;
+its columns take the inner solution, the Fresnel integrals of the same harmonics, written
+uniformly in the phase of the run (its tail is the first-order oscillation
+h_n e^{inφ̄}/(inΩ_φ) of the outer solution), so that they stay O(ε) from the full motion
+through the passage too. V is the modulus |V + η|, which stays right where V itself falls
+below the forced oscillation (a spin that has died out).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.special import fresnel
+
+from tumble._typing import ComplexArray, FloatArray
+from tumble.models.inputs.resisting_medium import Params, State
+from tumble.models.resisting_medium.accuracy import axial_depends_on_phi, moment_depends_on_phi
+from tumble.models.resisting_medium.closed_forms import (
+    axial_momentum,
+    crossing_time,
+    equatorial_momentum,
+)
+
+__all__ = ["INNER", "PHASE_NODES", "Passage", "passage"]
+
+PHASE_NODES = 64
+"""Gauss–Legendre nodes of the mean phase's integral from τ = 0 to the passage, on the closed
+forms of W and V (analytic there: the quadrature is exact to round-off; a test doubles it)."""
+_GRID = 256
+"""Points of φ for the harmonics of the equatorial moment at ϑ = π/2: the law (1.2)'s
+harmonics fall as n⁻³ (w|w| has a kink), far below round-off by n = 128."""
+_DROPPED = 1e-3
+"""The harmonics left out add at most this fraction of ε to the jump (the tail of the sum)."""
+INNER = 3.0
+"""Half-width of the inner region in Fresnel units x = s √(|φ̈|/π) of the first harmonic: the
+span a run reports as its asymptotic leg."""
+
+
+@dataclass(frozen=True)
+class Passage:
+    """The passage of ϑ = π/2 of one averaged run (module notes).
+
+    Attributes
+    ----------
+    tau1 : float
+        When the averaged W reaches 0 [1] (§8.4).
+    tau_s : float
+        When the mean phase stands still, Ω_φ = 0 [1]: τ1 shifted by the drag's mean turn of
+        φ (zero for a symmetric b and s).
+    phase : float
+        The mean phase φ* at ``tau_s`` [rad].
+    accel : float
+        φ̈ = −κ ε a3/(1+κ) [1].
+    orders : ndarray of int
+        The harmonics n kept, ±1, ±2, … [1].
+    harmonics : ndarray of complex
+        h_n of ε e^{−iφ}(m2 + i m1) at W = 0, V = V*, for each of ``orders`` [1].
+    v_star : float
+        The averaged V at the passage [1].
+    jump : complex
+        Δη: V* becomes |V* + Δη| across the passage [1].
+    """
+
+    tau1: float
+    tau_s: float
+    phase: float
+    accel: float
+    orders: FloatArray
+    harmonics: ComplexArray
+    v_star: float
+    jump: complex
+
+    @property
+    def span(self) -> tuple[float, float]:
+        """The inner region, ``tau_s`` ± :data:`INNER` Fresnel units [1]."""
+        half = INNER * math.sqrt(math.pi / abs(self.accel))
+        return self.tau_s - half, self.tau_s + half
+
+    def restart(self, form: int) -> Callable[[float, FloatArray], FloatArray]:
+        """The step at ``tau_s``: V → |V + Δη|, W and φ̄ unchanged, on the state
+        ``[k, ϑ, φ̄]`` (``form`` 0) or ``[W, V, φ̄]`` (1)."""
+        jump = self.jump
+
+        def step(t: float, y: FloatArray) -> FloatArray:
+            out = np.array(y, dtype=float)
+            if form == 1:
+                out[1] = abs(y[1] + jump)
+                return out
+            W, V = y[0] * math.cos(y[1]), abs(y[0] * math.sin(y[1]) + jump)
+            out[0], out[1] = math.hypot(W, V), math.atan2(V, W)
+            return out
+
+        return step
+
+    def correction(self, t: FloatArray, phase: FloatArray, omega: FloatArray) -> ComplexArray:
+        """The inner solution η at times ``t`` [1], in the frame turning with φ̄ (its real
+        part along V), given the run's mean phase φ̄ and its rate Ω_φ there:
+        Σ h_n e^{inφ*} ∫_{−∞}^{τ} e^{in(φ̄ − φ*)} dτ', less the jump past ``tau_s``, by Fresnel
+        integrals in u (½φ̈u² = φ̄ − φ*) with the uniform tail term
+        (1/Ω_φ − 1/(φ̈u)) e^{in(φ̄ − φ*)}/(in). The body's V is then |V + η|."""
+        t = np.asarray(t, dtype=float)
+        acc = self.accel
+        rel = np.asarray(phase, dtype=float) - self.phase
+        u = np.sign(t - self.tau_s) * np.sqrt(np.maximum(2.0 * rel / acc, 0.0))
+        after = u >= 0.0
+        n = self.orders[:, None]
+        sign = np.sign(n * acc)
+        scale = np.sqrt(math.pi / np.abs(n * acc))
+        s_int, c_int = fresnel(u[None, :] / scale)
+        inner = scale * ((0.5 + c_int) + 1j * sign * (0.5 + s_int) - after * (1.0 + 1j * sign))
+        # The tail term is finite at u = 0 (both rates vanish there together); within 1e-6 of
+        # the inner scale it is left out, an error of that order relative to the oscillation.
+        near = np.abs(u) * math.sqrt(abs(acc)) < 1e-6
+        with np.errstate(divide="ignore", invalid="ignore"):
+            tail = np.where(near, 0.0, 1.0 / omega - 1.0 / (acc * u))
+        inner = inner + tail * np.exp(1j * n * rel) / (1j * n)
+        weights = self.harmonics[:, None] * np.exp(1j * n * self.phase)
+        return np.sum(weights * inner, axis=0)  # type: ignore[no-any-return]
+
+
+def _harmonics(p: Params, v: float) -> tuple[FloatArray, ComplexArray]:
+    """The orders n = ±1 … ±(_GRID/2 − 1) and the harmonics h_n of ε e^{−iφ}(m2 + i m1), the
+    moment across the axis in the frame turning with φ, on the law (1.2) at W = 0, V = v."""
+    phi = 2.0 * math.pi * np.arange(_GRID) / _GRID
+    w = np.stack([v * np.sin(phi), v * np.cos(phi), np.zeros(_GRID)])
+    m = p.a[:, None] - p.b @ w - p.s @ (w * np.abs(w))
+    h = np.fft.fft(p.eps * np.exp(-1j * phi) * (m[1] + 1j * m[0])) / _GRID
+    n = np.fft.fftfreq(_GRID, 1.0 / _GRID)
+    keep = (n != 0) & (np.abs(n) < _GRID // 2)
+    return n[keep], h[keep]
+
+
+def passage(p: Params, st: State) -> Passage | None:
+    """The passage of ϑ = π/2 of the averaged run from ``st``, or None if it has none that
+    theory bridges: W does not reach 0, the moment does not depend on φ (then (2.2) is exact
+    through it), ϑ0 ∈ {0, π} (k passes through 0), or the axial moment depends on φ
+    (:func:`~tumble.models.resisting_medium.accuracy.axial_depends_on_phi`: the run warns
+    instead, §10.2).
+
+    Parameters
+    ----------
+    p : Params
+        The body, the moment and the medium, and ε.
+    st : State
+        The initial state (k, ϑ, φ).
+    """
+    a3, kappa = float(p.a[2]), p.kappa
+    W0, V0 = st.W, st.k * math.sin(st.theta)
+    tau1 = crossing_time(W0, p)
+    if not 0.0 < tau1 < math.inf or a3 == 0.0 or kappa == 0.0 or V0 <= 0.0:
+        return None
+    if not moment_depends_on_phi(p) or axial_depends_on_phi(p):
+        return None
+    phase_b = 0.5 * float(p.b[1, 0] - p.b[0, 1])
+    phase_s = 4.0 * float(p.s[1, 0] - p.s[0, 1]) / (3.0 * math.pi)
+    x, w = np.polynomial.legendre.leggauss(PHASE_NODES)
+    nodes = 0.5 * tau1 * (x + 1.0)
+    W = axial_momentum(nodes, W0, p)
+    V = equatorial_momentum(nodes, V0, p)
+    rate = -kappa * W / (1.0 + kappa) + p.eps * (phase_b + phase_s * V)
+    phase1 = st.phi + 0.5 * tau1 * float(np.dot(w, rate))
+    v_star = float(equatorial_momentum(np.array([tau1]), V0, p)[0])
+    accel = -kappa * p.eps * a3 / (1.0 + kappa)
+    # Ω_φ at τ1 is the drag's mean turn; it vanishes a time Ω/|φ̈| later or earlier (W is
+    # linear there to O(ε) over that time).
+    omega1 = p.eps * (phase_b + phase_s * v_star)
+    shift = -omega1 / accel
+    phase = phase1 + omega1 * shift + 0.5 * accel * shift**2
+    n, h = _harmonics(p, v_star)
+    size = np.abs(h) * np.sqrt(2.0 * math.pi / np.abs(n * accel))
+    order = np.argsort(np.abs(n), kind="stable")
+    tail = np.cumsum(size[order][::-1])[::-1]  # what the harmonics from each on add at most
+    keep = order[: max(1, int(np.count_nonzero(tail > _DROPPED * p.eps)))]
+    n, h = n[keep], h[keep]
+    turn = np.exp(1j * (n * phase + 0.25 * math.pi * np.sign(n * accel)))
+    jump = complex(np.sum(h * turn * np.sqrt(2.0 * math.pi / np.abs(n * accel))))
+    return Passage(tau1, tau1 + shift, phase, accel, n, h, v_star, jump)

@@ -142,7 +142,7 @@ def _case(name: str, eps: float, repeat: int, log: Callable[[str], None]) -> dic
     return {
         "eps": eps,
         "t_end": float(tau[-1]),
-        "method": avg.form + (" (hybrid)" if avg.legs else ""),
+        "method": avg.form + _how(avg.legs),
         "full_s": full_s,
         "full_nfev": int(ref.nfev),
         "averaged_s": avg_s,
@@ -152,6 +152,15 @@ def _case(name: str, eps: float, repeat: int, log: Callable[[str], None]) -> dic
         "error_in_eps": error / eps,
         "errors": errors,
     }
+
+
+def _how(legs: tuple[tuple[str, float, float], ...]) -> str:
+    """How an averaged run crossed its bands, for the table: by full legs (a hybrid run), by
+    an asymptotic step, or not at all ("")."""
+    kinds = {kind for kind, _, _ in legs}
+    if "full" in kinds:
+        return " (hybrid)"
+    return " (asymptotic step)" if "asymptotic" in kinds else ""
 
 
 def crossing_study(repeat: int, log: Callable[[str], None]) -> dict[str, Any]:

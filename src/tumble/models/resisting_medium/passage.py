@@ -31,6 +31,7 @@ below the forced oscillation (a spin that has died out).
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -47,7 +48,7 @@ from tumble.models.resisting_medium.closed_forms import (
     equatorial_momentum,
 )
 
-__all__ = ["INNER", "PHASE_NODES", "Passage", "passage"]
+__all__ = ["INNER", "PHASE_NODES", "SWITCH", "Passage", "passage"]
 
 PHASE_NODES = 64
 """Gauss–Legendre nodes of the mean phase's integral from τ = 0 to the passage, on the closed
@@ -57,6 +58,13 @@ _GRID = 256
 harmonics fall as n⁻³ (w|w| has a kink), far below round-off by n = 128."""
 _DROPPED = 1e-3
 """The harmonics left out add at most this fraction of ε to the jump (the tail of the sum)."""
+SWITCH = 4.0
+"""Beyond this many Fresnel units x = |u| √(|φ̈|/π) the inner solution is evaluated by its
+expansion (:meth:`Passage.outer`) rather than the Fresnel integrals of each harmonic."""
+_TABLE = 1024
+"""Points of φ of the outer solution's tables: linear interpolation errs by (2π/_TABLE)²/8
+times n² of the harmonic, 5e-6·n², below 4e-3 for every harmonic the law (1.2) keeps
+(|n| ≤ 28 at ε = 1e-4), whose outer part is itself O(ε)."""
 INNER = 3.0
 """Half-width of the inner region in Fresnel units x = s √(|φ̈|/π) of the first harmonic: the
 span a run reports as its asymptotic leg."""
@@ -121,18 +129,29 @@ class Passage:
     def correction(self, t: FloatArray, phase: FloatArray, omega: FloatArray) -> ComplexArray:
         """The inner solution η at times ``t`` [1], in the frame turning with φ̄ (its real
         part along V), given the run's mean phase φ̄ and its rate Ω_φ there:
-        Σ h_n e^{inφ*} ∫_{−∞}^{τ} e^{in(φ̄ − φ*)} dτ', less the jump past ``tau_s``, by Fresnel
-        integrals in u (½φ̈u² = φ̄ − φ*) with the uniform tail term
-        (1/Ω_φ − 1/(φ̈u)) e^{in(φ̄ − φ*)}/(in). The body's V is then |V + η|."""
+        Σ h_n e^{inφ*} ∫_{−∞}^{τ} e^{in(φ̄ − φ*)} dτ', less the jump past ``tau_s``. Within
+        :data:`SWITCH` Fresnel units of the passage by Fresnel integrals in u
+        (½φ̈u² = φ̄ − φ*) with the uniform tail term (1/Ω_φ − 1/(φ̈u)) e^{in(φ̄ − φ*)}/(in);
+        beyond, by their expansion (:meth:`outer`). The body's V is then |V + η|."""
         t = np.asarray(t, dtype=float)
+        phase = np.asarray(phase, dtype=float)
+        omega = np.asarray(omega, dtype=float)
+        rel = phase - self.phase
+        u = np.sign(t - self.tau_s) * np.sqrt(np.maximum(2.0 * rel / self.accel, 0.0))
+        inner = np.abs(u) * math.sqrt(abs(self.accel) / math.pi) < SWITCH
+        out = np.empty(t.shape, dtype=complex)
+        out[~inner] = self.outer(phase[~inner], omega[~inner], u[~inner])
+        out[inner] = self.inner(u[inner], rel[inner], omega[inner])
+        return out
+
+    def inner(self, u: FloatArray, rel: FloatArray, omega: FloatArray) -> ComplexArray:
+        """η by the Fresnel integrals of each harmonic (see :meth:`correction`)."""
         acc = self.accel
-        rel = np.asarray(phase, dtype=float) - self.phase
-        u = np.sign(t - self.tau_s) * np.sqrt(np.maximum(2.0 * rel / acc, 0.0))
-        after = u >= 0.0
         n = self.orders[:, None]
         sign = np.sign(n * acc)
         scale = np.sqrt(math.pi / np.abs(n * acc))
         s_int, c_int = fresnel(u[None, :] / scale)
+        after = u >= 0.0
         inner = scale * ((0.5 + c_int) + 1j * sign * (0.5 + s_int) - after * (1.0 + 1j * sign))
         # The tail term is finite at u = 0 (both rates vanish there together); within 1e-6 of
         # the inner scale it is left out, an error of that order relative to the oscillation.
@@ -142,6 +161,38 @@ class Passage:
         inner = inner + tail * np.exp(1j * n * rel) / (1j * n)
         weights = self.harmonics[:, None] * np.exp(1j * n * self.phase)
         return np.sum(weights * inner, axis=0)  # type: ignore[no-any-return]
+
+    def outer(self, phase: FloatArray, omega: FloatArray, u: FloatArray) -> ComplexArray:
+        """η away from the passage: the Fresnel integrals' expansion in 1/(φ̈u²),
+        Σ h_n e^{inφ̄} [1/(inΩ_φ) − 1/(n²φ̈²u³)], whose next term is 3/(n²φ̈²u⁴) times the
+        last, below 1e-3 of the first beyond :data:`SWITCH` units; the two sums are
+        periodic in φ̄ and tabulated once (:attr:`_tables`)."""
+        q, r = self._tables
+        at = np.mod(phase, 2.0 * math.pi) * (_TABLE / (2.0 * math.pi))
+        lo = np.minimum(at.astype(np.intp), _TABLE - 1)
+        frac = at - lo
+        first = q[lo] + frac * (q[lo + 1] - q[lo])
+        second = r[lo] + frac * (r[lo + 1] - r[lo])
+        return first / omega - second / (self.accel**2 * u**3)  # type: ignore[no-any-return]
+
+    @functools.cached_property
+    def _tables(self) -> tuple[ComplexArray, ComplexArray]:
+        """Σ h_n e^{inφ}/(in) and Σ h_n e^{inφ}/n² on _TABLE + 1 points of φ ∈ [0, 2π], by
+        an inverse FFT of the kept harmonics."""
+        n = self.orders.astype(np.intp)
+        first = np.zeros(_TABLE, dtype=complex)
+        second = np.zeros(_TABLE, dtype=complex)
+        first[n % _TABLE] = self.harmonics / (1j * n)
+        second[n % _TABLE] = self.harmonics / n**2
+        q = np.fft.ifft(first) * _TABLE
+        r = np.fft.ifft(second) * _TABLE
+        return np.append(q, q[0]), np.append(r, r[0])
+
+
+@functools.cache
+def _gauss(nodes: int) -> tuple[FloatArray, FloatArray]:
+    """Gauss–Legendre nodes and weights on [−1, 1] (an eigenproblem: built once)."""
+    return np.polynomial.legendre.leggauss(nodes)  # type: ignore[no-any-return]
 
 
 def _harmonics(p: Params, v: float) -> tuple[FloatArray, ComplexArray]:
@@ -179,7 +230,7 @@ def passage(p: Params, st: State) -> Passage | None:
         return None
     phase_b = 0.5 * float(p.b[1, 0] - p.b[0, 1])
     phase_s = 4.0 * float(p.s[1, 0] - p.s[0, 1]) / (3.0 * math.pi)
-    x, w = np.polynomial.legendre.leggauss(PHASE_NODES)
+    x, w = _gauss(PHASE_NODES)
     nodes = 0.5 * tau1 * (x + 1.0)
     W = axial_momentum(nodes, W0, p)
     V = equatorial_momentum(nodes, V0, p)
@@ -193,10 +244,11 @@ def passage(p: Params, st: State) -> Passage | None:
     shift = -omega1 / accel
     phase = phase1 + omega1 * shift + 0.5 * accel * shift**2
     n, h = _harmonics(p, v_star)
+    # The smallest harmonics whose jumps add up to at most _DROPPED·ε are left out.
     size = np.abs(h) * np.sqrt(2.0 * math.pi / np.abs(n * accel))
-    order = np.argsort(np.abs(n), kind="stable")
-    tail = np.cumsum(size[order][::-1])[::-1]  # what the harmonics from each on add at most
-    keep = order[: max(1, int(np.count_nonzero(tail > _DROPPED * p.eps)))]
+    order = np.argsort(size, kind="stable")
+    dropped = np.cumsum(size[order]) <= _DROPPED * p.eps
+    keep = np.sort(order[~dropped]) if not dropped.all() else order[-1:]
     n, h = n[keep], h[keep]
     turn = np.exp(1j * (n * phase + 0.25 * math.pi * np.sign(n * accel)))
     jump = complex(np.sum(h * turn * np.sqrt(2.0 * math.pi / np.abs(n * accel))))

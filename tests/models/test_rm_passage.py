@@ -79,7 +79,7 @@ def test_the_phase_at_the_passage_is_converged(monkeypatch):
 @pytest.mark.parametrize("eps", [1e-3, 2.5e-4])
 def test_the_stepped_run_follows_the_full_one_through_the_passage(eps):
     """Against the full equations over the whole run, the passage included: O(ε) (the
-    averaged equations alone err by O(√ε) after it). Measured 1.6 ε and 2.0 ε; 5 ε bounds
+    averaged equations alone err by O(√ε) after it). Measured 2.2 ε and 2.3 ε; 5 ε bounds
     the O(1) constant, which oscillates with the phase at the passage."""
     p = SKEW.with_eps(eps)
     tau = _through(p, START)
@@ -95,7 +95,7 @@ def test_the_stepped_run_follows_the_full_one_through_the_passage(eps):
         return max(float(np.max(np.abs(full.columns[v] - run.columns[v]))) for v in ("k", "theta"))
 
     assert error(stepped) < 5.0 * eps, error(stepped) / eps
-    assert error(alone) > 10.0 * eps, error(alone) / eps  # measured 14 ε and 28 ε
+    assert error(alone) > 10.0 * eps, error(alone) / eps  # measured 18 ε and 73 ε
 
 
 def test_every_path_takes_the_step_alike():

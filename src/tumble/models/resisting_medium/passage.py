@@ -195,15 +195,27 @@ def _gauss(nodes: int) -> tuple[FloatArray, FloatArray]:
     return np.polynomial.legendre.leggauss(nodes)  # type: ignore[no-any-return]
 
 
-def _harmonics(p: Params, v: float) -> tuple[FloatArray, ComplexArray]:
-    """The orders n = ±1 … ±(_GRID/2 − 1) and the harmonics h_n of ε e^{−iφ}(m2 + i m1), the
-    moment across the axis in the frame turning with φ, on the law (1.2) at W = 0, V = v."""
+@functools.cache
+def _grid() -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, ComplexArray, FloatArray]:
+    """The φ grid's sin φ, cos φ, sin φ|sin φ|, cos φ|cos φ|, e^{−iφ}, and the orders n = ±1 …
+    ±(_GRID/2 − 1) of the FFT's bins kept (with their mask): built once."""
     phi = 2.0 * math.pi * np.arange(_GRID) / _GRID
-    w = np.stack([v * np.sin(phi), v * np.cos(phi), np.zeros(_GRID)])
-    m = p.a[:, None] - p.b @ w - p.s @ (w * np.abs(w))
-    h = np.fft.fft(p.eps * np.exp(-1j * phi) * (m[1] + 1j * m[0])) / _GRID
+    sin, cos = np.sin(phi), np.cos(phi)
     n = np.fft.fftfreq(_GRID, 1.0 / _GRID)
     keep = (n != 0) & (np.abs(n) < _GRID // 2)
+    return sin, cos, sin * np.abs(sin), cos * np.abs(cos), np.exp(-1j * phi), keep
+
+
+def _harmonics(p: Params, v: float) -> tuple[FloatArray, ComplexArray]:
+    """The orders n = ±1 … ±(_GRID/2 − 1) and the harmonics h_n of ε e^{−iφ}(m2 + i m1), the
+    moment across the axis in the frame turning with φ, on the law (1.2) at W = 0, V = v
+    (body rates w = (v sin φ, v cos φ, 0))."""
+    sin, cos, sin2, cos2, turn, keep = _grid()
+    a, b, s = p.a, p.b, p.s
+    m1 = a[0] - v * (b[0, 0] * sin + b[0, 1] * cos) - v * v * (s[0, 0] * sin2 + s[0, 1] * cos2)
+    m2 = a[1] - v * (b[1, 0] * sin + b[1, 1] * cos) - v * v * (s[1, 0] * sin2 + s[1, 1] * cos2)
+    h = np.fft.fft(p.eps * turn * (m2 + 1j * m1)) / _GRID
+    n = np.fft.fftfreq(_GRID, 1.0 / _GRID)
     return n[keep], h[keep]
 
 

@@ -126,6 +126,11 @@ def _crossing_issue(
             "validity of averaging (docs/theory/resisting-medium.md §11)",
         )
     if crosses and phi_dependent:
+        from tumble.models.resisting_medium.passage import NEGLIGIBLE, jump_bound
+
+        bound = None if axial_depends_on_phi(p) else jump_bound(p, st)
+        if bound is not None and bound <= NEGLIGIBLE * p.eps:
+            return None  # the passage moves V by less than averaging errs anyway
         if axial_depends_on_phi(p):
             why = (
                 "; the axial moment depends on φ (b31, b32, s31 or s32 ≠ 0), so the phase of "

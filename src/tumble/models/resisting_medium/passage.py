@@ -40,6 +40,7 @@ import numpy as np
 from scipy.special import fresnel
 
 from tumble._typing import ComplexArray, FloatArray
+from tumble.kernels.fresnel import BLEND, fresnel_table, passage_sum
 from tumble.models.inputs.resisting_medium import Params, State
 from tumble.models.resisting_medium.accuracy import axial_depends_on_phi, moment_depends_on_phi
 from tumble.models.resisting_medium.closed_forms import (
@@ -48,7 +49,7 @@ from tumble.models.resisting_medium.closed_forms import (
     equatorial_momentum,
 )
 
-__all__ = ["INNER", "PHASE_NODES", "SWITCH", "Passage", "passage"]
+__all__ = ["INNER", "NEGLIGIBLE", "PHASE_NODES", "SWITCH", "Passage", "jump_bound", "passage"]
 
 PHASE_NODES = 64
 """Gauss–Legendre nodes of the mean phase's integral from τ = 0 to the passage, on the closed
@@ -56,15 +57,16 @@ forms of W and V (analytic there: the quadrature is exact to round-off; a test d
 _GRID = 256
 """Points of φ for the harmonics of the equatorial moment at ϑ = π/2: the law (1.2)'s
 harmonics fall as n⁻³ (w|w| has a kink), far below round-off by n = 128."""
-_DROPPED = 1e-3
+_DROPPED = 1e-2
 """The harmonics left out add at most this fraction of ε to the jump (the tail of the sum)."""
 SWITCH = 4.0
-"""Beyond this many Fresnel units x = |u| √(|φ̈|/π) the inner solution is evaluated by its
-expansion (:meth:`Passage.outer`) rather than the Fresnel integrals of each harmonic."""
-_TABLE = 1024
-"""Points of φ of the outer solution's tables: linear interpolation errs by (2π/_TABLE)²/8
-times n² of the harmonic, 5e-6·n², below 4e-3 for every harmonic the law (1.2) keeps
-(|n| ≤ 28 at ε = 1e-4), whose outer part is itself O(ε)."""
+"""Beyond this many Fresnel units x = |u| √(|nφ̈|/π) a harmonic's inner solution is evaluated
+by its expansion rather than its Fresnel integrals (:meth:`Passage.correction`); at most
+:data:`tumble.kernels.fresnel.TABLE_END`."""
+NEGLIGIBLE = 1.0
+"""A passage whose :func:`jump_bound` is at most this many ε moves V by no more than
+first-order averaging errs anyway (the quadratic law's weak harmonics at moderate ε): the run
+takes no step there, and no method is warned of it."""
 INNER = 3.0
 """Half-width of the inner region in Fresnel units x = s √(|φ̈|/π) of the first harmonic: the
 span a run reports as its asymptotic leg."""
@@ -80,7 +82,7 @@ class Passage:
         When the averaged W reaches 0 [1] (§8.4).
     tau_s : float
         When the mean phase stands still, Ω_φ = 0 [1]: τ1 shifted by the drag's mean turn of
-        φ (zero for a symmetric b and s).
+        φ (zero for a symmetric b and s), found on the closed forms.
     phase : float
         The mean phase φ* at ``tau_s`` [rad].
     accel : float
@@ -130,22 +132,28 @@ class Passage:
         """The inner solution η at times ``t`` [1], in the frame turning with φ̄ (its real
         part along V), given the run's mean phase φ̄ and its rate Ω_φ there:
         Σ h_n e^{inφ*} ∫_{−∞}^{τ} e^{in(φ̄ − φ*)} dτ', less the jump past ``tau_s``. Within
-        :data:`SWITCH` Fresnel units of the passage by Fresnel integrals in u
-        (½φ̈u² = φ̄ − φ*) with the uniform tail term (1/Ω_φ − 1/(φ̈u)) e^{in(φ̄ − φ*)}/(in);
-        beyond, by their expansion (:meth:`outer`). The body's V is then |V + η|."""
-        t = np.asarray(t, dtype=float)
-        phase = np.asarray(phase, dtype=float)
-        omega = np.asarray(omega, dtype=float)
-        rel = phase - self.phase
-        u = np.sign(t - self.tau_s) * np.sqrt(np.maximum(2.0 * rel / self.accel, 0.0))
-        inner = np.abs(u) * math.sqrt(abs(self.accel) / math.pi) < SWITCH
-        out = np.empty(t.shape, dtype=complex)
-        out[~inner] = self.outer(phase[~inner], omega[~inner], u[~inner])
-        out[inner] = self.inner(u[inner], rel[inner], omega[inner])
-        return out
+        :data:`SWITCH` Fresnel units of the passage (for each harmonic) by Fresnel integrals in
+        u (½φ̈u² = φ̄ − φ*) with the uniform tail term (1/Ω_φ − 1/(φ̈u)) e^{in(φ̄ − φ*)}/(in);
+        beyond, by their expansion Σ h_n e^{inφ̄} [1/(inΩ_φ) − 1/(n²φ̈²u³)], whose next term
+        is 3/(n²φ̈²u⁴) times the last, below 1e-3 of the first there. Compiled
+        (:func:`tumble.kernels.fresnel.passage_sum`); :meth:`inner` is the same by scipy's
+        Fresnel integrals everywhere. Near the passage u is the time from it (there the
+        phase's own error, ~1e-10 of its size, would be magnified by the square root), and
+        the tail term, finite there, is left out (:data:`~tumble.kernels.fresnel.BLEND`).
+        The body's V is then |V + η|."""
+        rel = np.asarray(phase, dtype=float) - self.phase
+        s = np.asarray(t, dtype=float) - self.tau_s
+        weights = self.harmonics * np.exp(1j * self.orders * self.phase)
+        s_tab, c_tab = fresnel_table()
+        return passage_sum(  # type: ignore[no-any-return]
+            np.ascontiguousarray(s), np.ascontiguousarray(rel),
+            np.ascontiguousarray(omega, dtype=float), self.orders, weights, self.accel,
+            SWITCH, s_tab, c_tab,
+        )  # fmt: skip
 
     def inner(self, u: FloatArray, rel: FloatArray, omega: FloatArray) -> ComplexArray:
-        """η by the Fresnel integrals of each harmonic (see :meth:`correction`)."""
+        """η by scipy's Fresnel integrals of each harmonic at every sample (see
+        :meth:`correction`): the reference the compiled sum is tested against."""
         acc = self.accel
         n = self.orders[:, None]
         sign = np.sign(n * acc)
@@ -153,40 +161,12 @@ class Passage:
         s_int, c_int = fresnel(u[None, :] / scale)
         after = u >= 0.0
         inner = scale * ((0.5 + c_int) + 1j * sign * (0.5 + s_int) - after * (1.0 + 1j * sign))
-        # The tail term is finite at u = 0 (both rates vanish there together); within 1e-6 of
-        # the inner scale it is left out, an error of that order relative to the oscillation.
-        near = np.abs(u) * math.sqrt(abs(acc)) < 1e-6
+        near = np.abs(u) * math.sqrt(abs(acc) / math.pi) < BLEND
         with np.errstate(divide="ignore", invalid="ignore"):
             tail = np.where(near, 0.0, 1.0 / omega - 1.0 / (acc * u))
         inner = inner + tail * np.exp(1j * n * rel) / (1j * n)
         weights = self.harmonics[:, None] * np.exp(1j * n * self.phase)
         return np.sum(weights * inner, axis=0)  # type: ignore[no-any-return]
-
-    def outer(self, phase: FloatArray, omega: FloatArray, u: FloatArray) -> ComplexArray:
-        """η away from the passage: the Fresnel integrals' expansion in 1/(φ̈u²),
-        Σ h_n e^{inφ̄} [1/(inΩ_φ) − 1/(n²φ̈²u³)], whose next term is 3/(n²φ̈²u⁴) times the
-        last, below 1e-3 of the first beyond :data:`SWITCH` units; the two sums are
-        periodic in φ̄ and tabulated once (:attr:`_tables`)."""
-        q, r = self._tables
-        at = np.mod(phase, 2.0 * math.pi) * (_TABLE / (2.0 * math.pi))
-        lo = np.minimum(at.astype(np.intp), _TABLE - 1)
-        frac = at - lo
-        first = q[lo] + frac * (q[lo + 1] - q[lo])
-        second = r[lo] + frac * (r[lo + 1] - r[lo])
-        return first / omega - second / (self.accel**2 * u**3)  # type: ignore[no-any-return]
-
-    @functools.cached_property
-    def _tables(self) -> tuple[ComplexArray, ComplexArray]:
-        """Σ h_n e^{inφ}/(in) and Σ h_n e^{inφ}/n² on _TABLE + 1 points of φ ∈ [0, 2π], by
-        an inverse FFT of the kept harmonics."""
-        n = self.orders.astype(np.intp)
-        first = np.zeros(_TABLE, dtype=complex)
-        second = np.zeros(_TABLE, dtype=complex)
-        first[n % _TABLE] = self.harmonics / (1j * n)
-        second[n % _TABLE] = self.harmonics / n**2
-        q = np.fft.ifft(first) * _TABLE
-        r = np.fft.ifft(second) * _TABLE
-        return np.append(q, q[0]), np.append(r, r[0])
 
 
 @functools.cache
@@ -219,12 +199,41 @@ def _harmonics(p: Params, v: float) -> tuple[FloatArray, ComplexArray]:
     return n[keep], h[keep]
 
 
+def _at_passage(
+    p: Params, st: State
+) -> tuple[float, float, float, FloatArray, ComplexArray, FloatArray] | None:
+    """τ1, V* and φ̈ of the passage of ϑ = π/2 from ``st``, with the harmonics' orders, values
+    and the size of each one's jump, |h_n| √(2π/|nφ̈|); None without a passage that theory
+    bridges (see :func:`passage`)."""
+    a3, kappa = float(p.a[2]), p.kappa
+    W0, V0 = st.W, st.k * math.sin(st.theta)
+    tau1 = crossing_time(W0, p)
+    if not 0.0 < tau1 < math.inf or a3 == 0.0 or kappa == 0.0 or V0 <= 0.0:
+        return None
+    if not moment_depends_on_phi(p) or axial_depends_on_phi(p):
+        return None
+    v_star = float(equatorial_momentum(np.array([tau1]), V0, p)[0])
+    accel = -kappa * p.eps * a3 / (1.0 + kappa)
+    n, h = _harmonics(p, v_star)
+    size = np.abs(h) * np.sqrt(2.0 * math.pi / np.abs(n * accel))
+    return tau1, v_star, accel, n, h, size
+
+
+def jump_bound(p: Params, st: State) -> float | None:
+    """The largest jump the passage of ϑ = π/2 from ``st`` can give V, over every phase at the
+    passage: the sum of its harmonics' jumps [1]; None without a passage that theory bridges
+    (see :func:`passage`)."""
+    at = _at_passage(p, st)
+    return None if at is None else float(np.sum(at[5]))
+
+
 def passage(p: Params, st: State) -> Passage | None:
     """The passage of ϑ = π/2 of the averaged run from ``st``, or None if it has none that
     theory bridges: W does not reach 0, the moment does not depend on φ (then (2.2) is exact
     through it), ϑ0 ∈ {0, π} (k passes through 0), or the axial moment depends on φ
     (:func:`~tumble.models.resisting_medium.accuracy.axial_depends_on_phi`: the run warns
-    instead, §10.2).
+    instead, §10.2); or none that matters, its :func:`jump_bound` at most
+    :data:`NEGLIGIBLE` ε.
 
     Parameters
     ----------
@@ -233,35 +242,37 @@ def passage(p: Params, st: State) -> Passage | None:
     st : State
         The initial state (k, ϑ, φ).
     """
-    a3, kappa = float(p.a[2]), p.kappa
-    W0, V0 = st.W, st.k * math.sin(st.theta)
-    tau1 = crossing_time(W0, p)
-    if not 0.0 < tau1 < math.inf or a3 == 0.0 or kappa == 0.0 or V0 <= 0.0:
+    at = _at_passage(p, st)
+    if at is None:
         return None
-    if not moment_depends_on_phi(p) or axial_depends_on_phi(p):
+    tau1, v_star, accel, n, h, size = at
+    if float(np.sum(size)) <= NEGLIGIBLE * p.eps:
         return None
+    kappa, W0, V0 = p.kappa, st.W, st.k * math.sin(st.theta)
     phase_b = 0.5 * float(p.b[1, 0] - p.b[0, 1])
     phase_s = 4.0 * float(p.s[1, 0] - p.s[0, 1]) / (3.0 * math.pi)
+
+    def rate(tau: FloatArray) -> FloatArray:
+        W, V = axial_momentum(tau, W0, p), equatorial_momentum(tau, V0, p)
+        return -kappa * W / (1.0 + kappa) + p.eps * (phase_b + phase_s * V)  # type: ignore[no-any-return]
+
+    # Ω_φ at τ1 is the drag's mean turn (zero for symmetric b and s); Newton on the closed
+    # forms finds where it vanishes, to round-off (Ω' = φ̈ to O(ε) there). The inner solution
+    # is centred there: an offset δτ would enter it as δτ/(φ̈u²).
+    tau_s = tau1
+    for _ in range(8 if phase_b or phase_s else 0):  # W(τ1) = 0: Ω vanishes at τ1 itself
+        step = float(rate(np.array([tau_s]))[0]) / accel
+        tau_s -= step
+        if abs(step) <= 1e-13 * max(1.0, tau_s):
+            break
     x, w = _gauss(PHASE_NODES)
-    nodes = 0.5 * tau1 * (x + 1.0)
-    W = axial_momentum(nodes, W0, p)
-    V = equatorial_momentum(nodes, V0, p)
-    rate = -kappa * W / (1.0 + kappa) + p.eps * (phase_b + phase_s * V)
-    phase1 = st.phi + 0.5 * tau1 * float(np.dot(w, rate))
-    v_star = float(equatorial_momentum(np.array([tau1]), V0, p)[0])
-    accel = -kappa * p.eps * a3 / (1.0 + kappa)
-    # Ω_φ at τ1 is the drag's mean turn; it vanishes a time Ω/|φ̈| later or earlier (W is
-    # linear there to O(ε) over that time).
-    omega1 = p.eps * (phase_b + phase_s * v_star)
-    shift = -omega1 / accel
-    phase = phase1 + omega1 * shift + 0.5 * accel * shift**2
-    n, h = _harmonics(p, v_star)
+    nodes = 0.5 * tau_s * (x + 1.0)
+    phase = st.phi + 0.5 * tau_s * float(np.dot(w, rate(nodes)))
     # The smallest harmonics whose jumps add up to at most _DROPPED·ε are left out.
-    size = np.abs(h) * np.sqrt(2.0 * math.pi / np.abs(n * accel))
     order = np.argsort(size, kind="stable")
     dropped = np.cumsum(size[order]) <= _DROPPED * p.eps
-    keep = np.sort(order[~dropped]) if not dropped.all() else order[-1:]
-    n, h = n[keep], h[keep]
+    keep = np.sort(order[~dropped])
+    n, h, size = n[keep], h[keep], size[keep]
     turn = np.exp(1j * (n * phase + 0.25 * math.pi * np.sign(n * accel)))
     jump = complex(np.sum(h * turn * np.sqrt(2.0 * math.pi / np.abs(n * accel))))
-    return Passage(tau1, tau1 + shift, phase, accel, n, h, v_star, jump)
+    return Passage(tau1, tau_s, phase, accel, n, h, v_star, jump)

@@ -176,3 +176,24 @@ def test_the_compiled_inner_solution_is_the_fresnel_integrals():
     # ½φ̈u² is that small, the sum must not magnify it (the square root and 1/u would).
     noisy = crossing.correction(t, crossing.phase + rel + 1e-6, omega)
     assert np.max(np.abs(noisy - reference)) < 1e-3 * np.max(np.abs(reference))
+
+
+def test_a_passage_that_moves_v_by_less_than_eps_takes_no_step():
+    """The quadratic law's weak harmonics alone (a⊥ = 0, b symmetric): the largest jump is
+    below ε at ε = 1e-2, so no step and no warning; it grows as √ε against ε (the jump is
+    ∝ ε/√|φ̈| ∝ √ε), so at ε = 1e-6 the step is taken."""
+    from tumble.models.resisting_medium.accuracy import validity
+
+    p = rm.Params(eps=1e-2, kappa=0.5, a=[0.0, 0.0, -0.6], b=np.diag([0.6, 0.6, 0.2]),
+                  s=np.diag([0.1, 0.1, 0.1]))  # fmt: skip
+    bound = ps.jump_bound(p, START)
+    assert bound is not None and bound <= ps.NEGLIGIBLE * p.eps
+    assert ps.passage(p, START) is None
+
+    def slow(t):
+        return {"k": np.ones_like(t), "theta": np.ones_like(t)}
+
+    assert "theta_crossing" not in [i.condition for i in validity(p, START, slow, 1e3)]
+    small = p.with_eps(1e-6)
+    assert ps.jump_bound(small, START) / small.eps == pytest.approx(100.0 * bound / p.eps)
+    assert ps.passage(small, START) is not None

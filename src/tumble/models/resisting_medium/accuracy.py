@@ -30,16 +30,14 @@ def moment_depends_on_phi(p: Params) -> bool:
     They do not (and then (2.2) is exact for k, ϑ, even across ϑ = π/2) when a1 = a2 = 0,
     b11 = b22, b12 = −b21, b13 = b23 = b31 = b32 = 0, and s has no entry but s33.
     """
-    a, b, s = p.a, p.b, p.s
-    s_other = s.copy()
-    s_other[2, 2] = 0.0
+    a, b, s = p.a.tolist(), p.b.tolist(), p.s.tolist()  # floats: cheaper than numpy here
     return bool(
         a[0] != 0.0
         or a[1] != 0.0
-        or b[0, 0] != b[1, 1]
-        or b[0, 1] + b[1, 0] != 0.0
-        or np.any(b[[0, 1, 2, 2], [2, 2, 0, 1]] != 0.0)
-        or np.any(s_other != 0.0)
+        or b[0][0] != b[1][1]
+        or b[0][1] + b[1][0] != 0.0
+        or any(b[i][j] != 0.0 for i, j in ((0, 2), (1, 2), (2, 0), (2, 1)))
+        or any(s[i][j] != 0.0 for i in range(3) for j in range(3) if (i, j) != (2, 2))
     )
 
 
@@ -47,7 +45,8 @@ def axial_depends_on_phi(p: Params) -> bool:
     """True if the axial moment m3 of (1.2) depends on φ (b31, b32, s31 or s32 non-zero): then
     W oscillates with φ and its O(ε²) drift moves the phase at the passage by O(1), which the
     first-order run does not know."""
-    return bool(np.any(p.b[2, :2] != 0.0) or np.any(p.s[2, :2] != 0.0))
+    b, s = p.b.tolist(), p.s.tolist()
+    return bool(b[2][0] != 0.0 or b[2][1] != 0.0 or s[2][0] != 0.0 or s[2][1] != 0.0)
 
 
 def _slow_rate_per_k(p: Params, k: FloatArray) -> FloatArray:

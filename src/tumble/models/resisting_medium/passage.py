@@ -176,27 +176,34 @@ def _gauss(nodes: int) -> tuple[FloatArray, FloatArray]:
 
 
 @functools.cache
-def _grid() -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, ComplexArray, FloatArray]:
-    """The φ grid's sin φ, cos φ, sin φ|sin φ|, cos φ|cos φ|, e^{−iφ}, and the orders n = ±1 …
-    ±(_GRID/2 − 1) of the FFT's bins kept (with their mask): built once."""
+def _basis() -> tuple[FloatArray, ComplexArray]:
+    """The orders n = ±1 … ±(_GRID/2 − 1) and, by rows, the harmonics n of e^{−iφ} times 1,
+    sin φ, cos φ, sin φ|sin φ| and cos φ|cos φ| (an FFT on _GRID points): built once."""
     phi = 2.0 * math.pi * np.arange(_GRID) / _GRID
     sin, cos = np.sin(phi), np.cos(phi)
+    rows = np.stack([np.ones(_GRID), sin, cos, sin * np.abs(sin), cos * np.abs(cos)])
+    h = np.fft.fft(np.exp(-1j * phi) * rows, axis=1) / _GRID
     n = np.fft.fftfreq(_GRID, 1.0 / _GRID)
     keep = (n != 0) & (np.abs(n) < _GRID // 2)
-    return sin, cos, sin * np.abs(sin), cos * np.abs(cos), np.exp(-1j * phi), keep
+    return n[keep], np.ascontiguousarray(h[:, keep])
 
 
 def _harmonics(p: Params, v: float) -> tuple[FloatArray, ComplexArray]:
     """The orders n = ±1 … ±(_GRID/2 − 1) and the harmonics h_n of ε e^{−iφ}(m2 + i m1), the
     moment across the axis in the frame turning with φ, on the law (1.2) at W = 0, V = v
-    (body rates w = (v sin φ, v cos φ, 0))."""
-    sin, cos, sin2, cos2, turn, keep = _grid()
+    (body rates w = (v sin φ, v cos φ, 0)): m2 + i m1 = (a2 + i a1)
+    − v[(b21 + i b11) sin φ + (b22 + i b12) cos φ] − v²[(s21 + i s11) sin φ|sin φ|
+    + (s22 + i s12) cos φ|cos φ|], each term's harmonics from :func:`_basis`."""
+    n, basis = _basis()
     a, b, s = p.a, p.b, p.s
-    m1 = a[0] - v * (b[0, 0] * sin + b[0, 1] * cos) - v * v * (s[0, 0] * sin2 + s[0, 1] * cos2)
-    m2 = a[1] - v * (b[1, 0] * sin + b[1, 1] * cos) - v * v * (s[1, 0] * sin2 + s[1, 1] * cos2)
-    h = np.fft.fft(p.eps * turn * (m2 + 1j * m1)) / _GRID
-    n = np.fft.fftfreq(_GRID, 1.0 / _GRID)
-    return n[keep], h[keep]
+    weights = np.array([
+        complex(a[1], a[0]),
+        -v * complex(b[1, 0], b[0, 0]),
+        -v * complex(b[1, 1], b[0, 1]),
+        -v * v * complex(s[1, 0], s[0, 0]),
+        -v * v * complex(s[1, 1], s[0, 1]),
+    ])  # fmt: skip
+    return n, p.eps * (weights @ basis)
 
 
 def _at_passage(

@@ -177,7 +177,7 @@ def to_dataset(model: AnyModel, traj: Trajectory, p: Any) -> xr.Dataset:
         nfev=traj.nfev,
         integrator=traj.integrator or "closed form",
     )
-    if traj.legs:  # a hybrid run's legs (kind, start, end), as text: a NetCDF attribute
+    if traj.legs:  # a hybrid or stepped run's legs (kind, start, end), as text: a NetCDF attribute
         ds.attrs["legs"] = json.dumps([list(leg) for leg in traj.legs])
     return ds
 

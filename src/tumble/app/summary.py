@@ -88,7 +88,8 @@ def run_lines(result: RunResult, shown: tuple[str, ...]) -> list[str]:
         note = lim.get("statement") or lim.get("end_state")
         lines.append(f"predicted limits: {text}" + (f" ({note})" if note else ""))
     for method, ds in result.datasets.items():
-        if "legs" in ds.attrs:  # a hybrid run: its legs, at the times summary.json gives
+        if "legs" in ds.attrs:  # a hybrid run or one with asymptotic steps: its legs, at the
+            # times summary.json gives
             legs = json.loads(ds.attrs["legs"])
             ends = np.array([t for _, a, b in legs for t in (a, b)])
             if scaling is not None:

@@ -98,7 +98,8 @@ def table_text(header: tuple[str, ...], rows: list[tuple[Any, ...]]) -> str:
 
 
 def _legs(ds: xr.Dataset) -> dict[str, Any]:
-    """A hybrid run's legs for its summary: each leg's kind, start and end (model time)."""
+    """A hybrid run's legs, or an averaged run's around its asymptotic steps, for its summary:
+    each leg's kind, start and end (model time)."""
     if "legs" not in ds.attrs:
         return {}
     legs = json.loads(ds.attrs["legs"])

@@ -28,7 +28,7 @@ from tumble.models.base import AveragedForm, AveragingOptions, Breakpoint, Cross
 from tumble.models.inputs.resisting_medium import Params, State
 from tumble.models.resisting_medium.closed_forms import crossing_time, plane_columns
 from tumble.models.resisting_medium.full import full_from_slow, slow_from_full
-from tumble.models.resisting_medium.passage import Passage, passage
+from tumble.models.resisting_medium.passage import Passage, mean_turn, passage
 
 # ---------------------------------------------------------------------------------------------
 # Averaged system (2.2) and its W, V form (2.3).
@@ -46,9 +46,7 @@ def plane_kernel(p: Params, form: int) -> Kernel:
     form : int
         0 for (2.2) in ``[k, ϑ]``, 1 for (2.3) in ``[W, V]``.
     """
-    b, s = p.b, p.s
-    phase_b = 0.5 * float(b[1, 0] - b[0, 1])
-    phase_s = 4.0 * float(s[1, 0] - s[0, 1]) / (3.0 * math.pi)
+    phase_b, phase_s = mean_turn(p)
     packed = [p.eps, float(p.a[2]), p.alpha, p.beta, p.gamma, p.delta, float(form), p.kappa,
               phase_b, phase_s]  # fmt: skip
     return Kernel(KIND_MEDIUM_AVERAGED, np.array(packed))
@@ -307,8 +305,7 @@ def _stepped_form(
     columns with the inner solution added (:class:`~tumble.models.resisting_medium.passage.
     Passage`)."""
     kappa, eps = p.kappa, p.eps
-    phase_b = 0.5 * float(p.b[1, 0] - p.b[0, 1])
-    phase_s = 4.0 * float(p.s[1, 0] - p.s[0, 1]) / (3.0 * math.pi)
+    phase_b, phase_s = mean_turn(p)
 
     def plane(Y: FloatArray) -> tuple[FloatArray, FloatArray]:
         if form == 1:
@@ -330,7 +327,6 @@ def _stepped_form(
 
     return replace(
         plain,
-        name=plain.name,
         equation=f"{plain.equation} with the passage of ϑ = π/2 stepped (stationary phase)",
         slow=(*plain.slow, "phi"),
         initial_state=initial_state,

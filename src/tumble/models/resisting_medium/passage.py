@@ -49,14 +49,24 @@ from tumble.models.resisting_medium.closed_forms import (
     equatorial_momentum,
 )
 
-__all__ = ["INNER", "NEGLIGIBLE", "PHASE_NODES", "SWITCH", "Passage", "jump_bound", "passage"]
+__all__ = [
+    "INNER",
+    "NEGLIGIBLE",
+    "PHASE_NODES",
+    "SWITCH",
+    "Passage",
+    "jump_bound",
+    "mean_turn",
+    "passage",
+]
 
 PHASE_NODES = 64
 """Gauss–Legendre nodes of the mean phase's integral from τ = 0 to the passage, on the closed
 forms of W and V (analytic there: the quadrature is exact to round-off; a test doubles it)."""
 _GRID = 256
 """Points of φ for the harmonics of the equatorial moment at ϑ = π/2: the law (1.2)'s
-harmonics fall as n⁻³ (w|w| has a kink), far below round-off by n = 128."""
+harmonics fall as n⁻³ (the second derivative of w|w| jumps), to ~5e-7 of the first by the
+grid's last bin n = 127, which bounds the aliasing; those kept are far below it."""
 _DROPPED = 1e-2
 """The harmonics left out add at most this fraction of ε to the jump (the tail of the sum)."""
 SWITCH = 4.0
@@ -70,6 +80,14 @@ takes no step there, and no method is warned of it."""
 INNER = 3.0
 """Half-width of the inner region in Fresnel units x = s √(|φ̈|/π) of the first harmonic: the
 span a run reports as its asymptotic leg."""
+
+
+def mean_turn(p: Params) -> tuple[float, float]:
+    """The drag's mean turn of φ: ε times (b21 − b12)/2 and, per unit V, 4(s21 − s12)/(3π),
+    the average of ε(m1 cos φ − m2 sin φ)/V on the law (1.2) (the mean phase's rate beyond
+    −κW/(1+κ))."""
+    b, s = p.b, p.s
+    return 0.5 * float(b[1, 0] - b[0, 1]), 4.0 * float(s[1, 0] - s[0, 1]) / (3.0 * math.pi)
 
 
 @dataclass(frozen=True)
@@ -256,8 +274,7 @@ def passage(p: Params, st: State) -> Passage | None:
     if float(np.sum(size)) <= NEGLIGIBLE * p.eps:
         return None
     kappa, W0, V0 = p.kappa, st.W, st.k * math.sin(st.theta)
-    phase_b = 0.5 * float(p.b[1, 0] - p.b[0, 1])
-    phase_s = 4.0 * float(p.s[1, 0] - p.s[0, 1]) / (3.0 * math.pi)
+    phase_b, phase_s = mean_turn(p)
 
     def rate(tau: FloatArray) -> FloatArray:
         W, V = axial_momentum(tau, W0, p), equatorial_momentum(tau, V0, p)

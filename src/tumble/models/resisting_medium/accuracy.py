@@ -127,7 +127,7 @@ def _crossing_issue(
     if crosses and phi_dependent:
         from tumble.models.resisting_medium.passage import NEGLIGIBLE, jump_bound
 
-        bound = None if axial_depends_on_phi(p) else jump_bound(p, st)
+        bound = jump_bound(p, st)  # None where the axial moment depends on φ
         if bound is not None and bound <= NEGLIGIBLE * p.eps:
             return None  # the passage moves V by less than averaging errs anyway
         if axial_depends_on_phi(p):

@@ -37,10 +37,9 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.special import fresnel
 
 from tumble._typing import ComplexArray, FloatArray
-from tumble.kernels.fresnel import BLEND, fresnel_table, passage_sum
+from tumble.kernels.fresnel import fresnel_table, passage_sum
 from tumble.models.inputs.resisting_medium import Params, State
 from tumble.models.resisting_medium.accuracy import axial_depends_on_phi, moment_depends_on_phi
 from tumble.models.resisting_medium.closed_forms import (
@@ -154,11 +153,11 @@ class Passage:
         u (½φ̈u² = φ̄ − φ*) with the uniform tail term (1/Ω_φ − 1/(φ̈u)) e^{in(φ̄ − φ*)}/(in);
         beyond, by their expansion Σ h_n e^{inφ̄} [1/(inΩ_φ) − 1/(n²φ̈²u³)], whose next term
         is 3/(n²φ̈²u⁴) times the last, below 1e-3 of the first there. Compiled
-        (:func:`tumble.kernels.fresnel.passage_sum`); :meth:`inner` is the same by scipy's
-        Fresnel integrals everywhere. Near the passage u is the time from it (there the
-        phase's own error, ~1e-10 of its size, would be magnified by the square root), and
-        the tail term, finite there, is left out (:data:`~tumble.kernels.fresnel.BLEND`).
-        The body's V is then |V + η|."""
+        (:func:`tumble.kernels.fresnel.passage_sum`; a test holds it to scipy's Fresnel
+        integrals of every harmonic at every sample). Near the passage u is the time from it
+        (there the phase's own error, ~1e-10 of its size, would be magnified by the square
+        root), and the tail term, finite there, is left out
+        (:data:`~tumble.kernels.fresnel.BLEND`). The body's V is then |V + η|."""
         rel = np.asarray(phase, dtype=float) - self.phase
         s = np.asarray(t, dtype=float) - self.tau_s
         weights = self.harmonics * np.exp(1j * self.orders * self.phase)
@@ -168,23 +167,6 @@ class Passage:
             np.ascontiguousarray(omega, dtype=float), self.orders, weights, self.accel,
             SWITCH, s_tab, c_tab,
         )  # fmt: skip
-
-    def inner(self, u: FloatArray, rel: FloatArray, omega: FloatArray) -> ComplexArray:
-        """η by scipy's Fresnel integrals of each harmonic at every sample (see
-        :meth:`correction`): the reference the compiled sum is tested against."""
-        acc = self.accel
-        n = self.orders[:, None]
-        sign = np.sign(n * acc)
-        scale = np.sqrt(math.pi / np.abs(n * acc))
-        s_int, c_int = fresnel(u[None, :] / scale)
-        after = u >= 0.0
-        inner = scale * ((0.5 + c_int) + 1j * sign * (0.5 + s_int) - after * (1.0 + 1j * sign))
-        near = np.abs(u) * math.sqrt(abs(acc) / math.pi) < BLEND
-        with np.errstate(divide="ignore", invalid="ignore"):
-            tail = np.where(near, 0.0, 1.0 / omega - 1.0 / (acc * u))
-        inner = inner + tail * np.exp(1j * n * rel) / (1j * n)
-        weights = self.harmonics[:, None] * np.exp(1j * n * self.phase)
-        return np.sum(weights * inner, axis=0)  # type: ignore[no-any-return]
 
 
 @functools.cache

@@ -87,3 +87,55 @@ def test_the_error_falls_as_eps_squared_at_second_order():
     # The second-order error is a hundred times below the first at these ε (1e-6 against
     # 8e-5 at ε = 1e-2).
     assert np.all(errors[:, 1] < 0.05 * errors[:, 0]), errors
+
+
+@pytest.mark.parametrize("rows", [False, True])
+def test_compiled_orbits_equal_the_python_orbits(monkeypatch, rows):
+    # The terms from the compiled nodes of the orbit and its neighbours against the same with
+    # every orbit built in Python (the compiled nodes refused, as next to a pole), with the
+    # perturbation evaluated per orbit or for all eleven at once (the non-reversible one,
+    # F₂ ≠ 0). The nodes agree within 2.3e-13 (tests/kernels/test_nutation_kernel.py): F₁, ν
+    # and u keep that (measured 2e-15); F₂, v and u₂, built from central differences between
+    # neighbouring orbits 1e-5 of the scale apart, magnify it (measured 1.4e-10 of their size).
+    # Tolerances 50 to 70 times the measured.
+    import tumble.averaging.nutation as nutation
+
+    p, _, x0, _, orbit = _start(1e-2)
+    pert = Perturbation(_perturbation(p).phi_theta, nm.builtin_perturbation(p).phi_z, rows=rows)
+    hint = 0.5 * (orbit.u1 + orbit.u2)
+    compiled = NutationSystem(p.mu, pert, p.eps, hint).terms(0.0, x0, 2)
+
+    def refused(X, u_hint, n):
+        k = X.shape[0]
+        return np.full((k, n), np.nan), np.full((k, n), np.nan), np.full((k, 3), np.nan)
+
+    monkeypatch.setattr(nutation, "orbit_nodes", refused)
+    python = NutationSystem(p.mu, pert, p.eps, hint).terms(0.0, x0, 2)
+
+    def close(a, b, rel):
+        return np.max(np.abs(a - b)) <= rel * np.max(np.abs(b))
+
+    assert close(compiled.first, python.first, 1e-13)
+    assert close(compiled.frequencies, python.frequencies, 1e-13)
+    assert close(compiled.u, python.u, 1e-13)
+    for a, b in ((compiled.second, python.second), (compiled.v, python.v),
+                 (compiled.u2, python.u2)):  # fmt: skip
+        assert close(a, b, 1e-8)
+
+
+def test_potential_gradient_of_several_orbits_and_its_pole():
+    # (k, n) nodes with z of shape (4, k, 1) equal the orbits one by one; an orbit through
+    # θ = 0 (u = 1 with G ≠ R) is named, whichever row it is.
+    from tumble.averaging.nutation import potential_gradient
+    from tumble.averaging.quadrature import AveragingError
+
+    u = np.array([[0.1, -0.4, 0.7], [0.3, 0.2, -0.9]])
+    Z = np.array([[0.2, 0.5, -1.0, 0.3], [0.7, 0.7, 0.4, -0.2]])  # the second G = R
+    rows = potential_gradient(u, Z.T[:, :, None])
+    for r in range(2):
+        assert rows[:, r] == pytest.approx(potential_gradient(u[r], Z[r]), rel=1e-15)
+    u[1, 2] = 1.0  # G − R = 0 there: the pole term is absent, not 0/0
+    assert np.all(np.isfinite(potential_gradient(u, Z.T[:, :, None])))
+    u[0, 1] = 1.0
+    with pytest.raises(AveragingError, match=r"G = 0\.5, R = 0\.2"):
+        potential_gradient(u, Z.T[:, :, None])

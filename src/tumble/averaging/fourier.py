@@ -9,6 +9,7 @@ tools of the second-order averaging of :mod:`tumble.averaging.second_order`.
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Sequence
 
@@ -32,7 +33,13 @@ def _nodes(shape: Sequence[int]) -> list[FloatArray]:
 
 
 def _waves(shape: Sequence[int]) -> list[FloatArray]:
-    """Integer harmonics of each axis, shaped to broadcast over the grid, Nyquist set to 0."""
+    """Integer harmonics of each axis, shaped to broadcast over the grid, Nyquist set to 0
+    (read-only arrays, built once per grid)."""
+    return list(_waves_of(tuple(int(n) for n in shape)))
+
+
+@functools.lru_cache(maxsize=64)
+def _waves_of(shape: tuple[int, ...]) -> tuple[FloatArray, ...]:
     d = len(shape)
     out: list[FloatArray] = []
     for axis, n in enumerate(shape):
@@ -41,8 +48,10 @@ def _waves(shape: Sequence[int]) -> list[FloatArray]:
             k[n // 2] = 0.0  # the Nyquist harmonic is not resolved: treated as absent
         view = [1] * d
         view[axis] = n
-        out.append(k.reshape(view))
-    return out
+        k = k.reshape(view)
+        k.flags.writeable = False
+        out.append(k)
+    return tuple(out)
 
 
 def torus_values(values: ArrayLike, phases: ArrayLike) -> FloatArray:

@@ -29,9 +29,11 @@ coefficient is the grid's aliasing, and it is dropped.
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
-from tumble._typing import ArrayLike, FloatArray
+from tumble._typing import ArrayLike, BoolArray, FloatArray
 from tumble.averaging.quadrature import AveragingError
 from tumble.errors import ParameterError
 
@@ -48,6 +50,21 @@ _NOISE = 1e-13
 
 class SmallDivisorError(AveragingError):
     """A harmonic of the fast right-hand side at (or near) a resonance k·ν = 0."""
+
+
+@functools.lru_cache(maxsize=64)
+def _harmonics(shape: tuple[int, ...]) -> tuple[tuple[FloatArray, ...], FloatArray, BoolArray]:
+    """The integer harmonics k of the grid along each axis (ij indexing), |k|, and where an
+    even axis is at its Nyquist harmonic: built once per grid, read-only."""
+    waves = tuple(np.meshgrid(*(np.fft.fftfreq(n) * n for n in shape), indexing="ij"))
+    k_size = np.sqrt(sum(w * w for w in waves))
+    nyquist = np.zeros(shape, dtype=bool)
+    for axis, n in enumerate(shape):
+        if n % 2 == 0:
+            nyquist |= waves[axis] == -n // 2
+    for a in (*waves, k_size, nyquist):
+        a.flags.writeable = False
+    return waves, np.asarray(k_size, dtype=float), nyquist
 
 
 def zero_mean_antiderivative(
@@ -90,13 +107,8 @@ def zero_mean_antiderivative(
     axes = tuple(range(f.ndim - d, f.ndim))
     shape = f.shape[-d:]
     coef = np.fft.fftn(f, axes=axes)
-    waves = np.meshgrid(*(np.fft.fftfreq(n) * n for n in shape), indexing="ij")
+    waves, k_size, nyquist = _harmonics(shape)
     k_dot_nu = sum(w * v for w, v in zip(waves, nu, strict=True))
-    k_size = np.sqrt(sum(w * w for w in waves))
-    nyquist = np.zeros(shape, dtype=bool)
-    for axis, n in enumerate(shape):
-        if n % 2 == 0:
-            nyquist |= waves[axis] == -n // 2
     size = np.abs(coef).reshape(-1, *shape).max(axis=0)  # over the leading components
     present = size > _NOISE * max(float(size.max()), 1e-300)
     zero = k_size == 0.0

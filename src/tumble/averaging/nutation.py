@@ -38,6 +38,7 @@ from tumble.averaging.second_order import (
     refine_grid,
 )
 from tumble.kernels.limits import NUTATION_MAX, NUTATION_START, SPIN_MAX, SPIN_START
+from tumble.kernels.nutation import orbit_nodes
 from tumble.unperturbed.symmetric_body import NutationOrbit
 
 __all__ = [
@@ -69,12 +70,17 @@ class Perturbation:
         For messages.
     joint : callable, optional
         All five rows at once, shape (5, n).
+    rows : bool
+        The functions also take θ, θ' of shape (k, n) with z of shape (4, k, 1), k slow states
+        at once (numpy broadcasting), returning (k, n) and (4, k, n): the neighbouring orbits
+        of :class:`NutationSystem` are then evaluated in one call.
     """
 
     phi_theta: Callable[[float, FloatArray, FloatArray, FloatArray], Any] | None = None
     phi_z: Callable[[float, FloatArray, FloatArray], Any] | None = None
     name: str = "user"
     joint: Callable[[float, FloatArray, FloatArray, FloatArray], Any] | None = None
+    rows: bool = False
 
     def evaluate(
         self, tau: float, theta: FloatArray, theta_dot: FloatArray, z: FloatArray
@@ -99,22 +105,24 @@ def potential_gradient(u: FloatArray, z: FloatArray) -> FloatArray:
     Parameters
     ----------
     u : ndarray
-        cos θ at the nodes [1].
-    z : ndarray, shape (4,)
+        cos θ at the nodes [1], shape (n,) (or (k, n) for k states).
+    z : ndarray, shape (4,) (or (4, k, 1))
         (R, G, a, b) [1/t, 1/t, 1/t², 1/t²].
     """
     R, G = z[0], z[1]
     # (G − Ru)/(1 − u²) = ½[(G + R)/(1 + u) + (G − R)/(1 − u)] (1.12): a pole term whose
     # coefficient vanishes (G = ±R, the axis passing through ±e_z) is dropped, not 0/0.
-    h = np.zeros_like(u, dtype=float)
+    h = np.zeros(np.broadcast_shapes(np.shape(u), np.shape(R)))
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         for c, d in ((G + R, 1.0 + u), (G - R, 1.0 - u)):
-            if c != 0.0:
-                h = h + 0.5 * c / d
-    if not np.all(np.isfinite(h)):
+            h = h + np.where(c != 0.0, 0.5 * c / d, 0.0)
+    bad = ~np.isfinite(h)
+    if np.any(bad):
+        at = np.unravel_index(int(np.argmax(bad)), h.shape)  # the first orbit that does
+        g_at, r_at = (float(np.broadcast_to(v, h.shape)[at]) for v in (G, R))
         raise AveragingError(
-            f"W_R, W_G = ∓(G − Ru)/(1 − u²) are singular on this orbit (G = {G:.3g}, "
-            f"R = {R:.3g}): it passes through θ = 0 or π to round-off, where the numeric "
+            f"W_R, W_G = ∓(G − Ru)/(1 − u²) are singular on this orbit (G = {g_at:.3g}, "
+            f"R = {r_at:.3g}): it passes through θ = 0 or π to round-off, where the numeric "
             "averages cannot be formed"
         )
     return np.array([-u * h, h, u, u * u])
@@ -514,16 +522,37 @@ class NutationSystem:
         H, R, G, a, b = (float(v) for v in x)
         return NutationOrbit.from_energy(self.mu, a, b, R, G, H, self.u_hint)
 
+    def _on_rows(self, tau: float, X: FloatArray, n: int) -> list[tuple[FloatArray, ...]]:
+        """θ, θ', f (shape (5, n)), Φθ, Φz, ν and the middle of the well, on the orbit of each
+        row of X at the n phase nodes: the nodes of all rows in one compiled call
+        (:func:`tumble.kernels.nutation.orbit_nodes`), the Python orbit's for a row it does
+        not serve (next to a pole, or none: the orbit then says why)."""
+        X = np.ascontiguousarray(X, dtype=float)
+        thetas, dots, info = orbit_nodes(X, self.u_hint, n)
+        for r in np.flatnonzero(np.isnan(info[:, 0])):
+            orbit = self.orbit(X[r])
+            _, thetas[r], dots[r], _ = orbit.nodes(n)
+            info[r] = 2.0 * math.pi / orbit.period, orbit.u1, orbit.u2
+        if self.perturbation.rows:
+            Z = X[:, 1:].T[:, :, None]
+            ph, pz = self.perturbation.evaluate(tau, thetas, dots, Z)
+            gradient = potential_gradient(np.cos(thetas), Z)
+            f = np.concatenate([(ph * dots + np.add.reduce(pz * gradient))[None], pz])
+            parts = [(ph[r], pz[:, r], f[:, r]) for r in range(X.shape[0])]
+        else:
+            parts = []
+            for x, theta, theta_dot in zip(X, thetas, dots, strict=True):
+                ph, pz = self.perturbation.evaluate(tau, theta, theta_dot, x[1:])
+                gradient = potential_gradient(np.cos(theta), x[1:])
+                f = np.concatenate([(ph * theta_dot + np.add.reduce(pz * gradient))[None], pz])
+                parts.append((ph, pz, f))
+        return [(theta, theta_dot, self.eps * f, ph, pz, np.array([nu]), 0.5 * (u1 + u2))
+                for theta, theta_dot, (ph, pz, f), (nu, u1, u2)
+                in zip(thetas, dots, parts, info, strict=True)]  # fmt: skip
+
     def _on(self, tau: float, x: FloatArray, n: int) -> tuple[FloatArray, ...]:
-        """θ, θ', f (shape (5, n)), Φθ, Φz and ν on the orbit of x at the n phase nodes."""
-        orbit = self.orbit(x)
-        _, theta, theta_dot, _ = orbit.nodes(n)
-        z = np.asarray(x[1:], dtype=float)
-        ph, pz = self.perturbation.evaluate(tau, theta, theta_dot, z)
-        f = np.empty((5, n))
-        f[0] = ph * theta_dot + np.add.reduce(pz * potential_gradient(np.cos(theta), z))
-        f[1:] = pz
-        return theta, theta_dot, self.eps * f, ph, pz, np.array([2.0 * math.pi / orbit.period])
+        """:meth:`_on_rows` of the one state x."""
+        return self._on_rows(tau, np.asarray(x, dtype=float)[None, :], n)[0]
 
     def terms(self, t: float, x: ArrayLike, generator_order: int = 1) -> SecondOrder:
         """:class:`~tumble.averaging.second_order.SecondOrder` at the slow state x (t is the
@@ -542,20 +571,18 @@ class NutationSystem:
                 f"the nutation needs more than {GRID_MAX} phase nodes at H = {x[0]:.6g}: "
                 "the orbit is too near a separatrix"
             )
-        theta, _, f, ph, pz, nu = found
-        orbit = self.orbit(x)
-        self.u_hint = 0.5 * (orbit.u1 + orbit.u2)
+        theta, _, f, ph, pz, nu, hint = found
+        self.u_hint = float(hint)
         scale = np.maximum(np.abs(x), 1.0)
         # Neighbouring orbits: Θ, V, f and ν at fixed phase, differentiated in each slow
         # variable.
         d_theta, d_dot, d_f, d_nu = (np.empty((5, n)), np.empty((5, n)), np.empty((5, 5, n)),
                                      np.empty((1, 5)))  # fmt: skip
+        steps = _ORBIT_STEP * scale
+        shifted = self._on_rows(tau, np.concatenate([x + np.diag(steps), x - np.diag(steps)]), n)
         for i in range(5):
-            h = _ORBIT_STEP * scale[i]
-            up, down = x.copy(), x.copy()
-            up[i] += h
-            down[i] -= h
-            a, b = self._on(tau, up, n), self._on(tau, down, n)
+            h = steps[i]
+            a, b = shifted[i], shifted[5 + i]
             d_theta[i] = (a[0] - b[0]) / (2 * h)
             d_dot[i] = (a[1] - b[1]) / (2 * h)
             d_f[:, i] = (a[2] - b[2]) / (2 * h)
@@ -572,7 +599,7 @@ class NutationSystem:
             return np.einsum("cin,in->cn", d_f, u)
 
         def rates_at(y: FloatArray) -> tuple[FloatArray, FloatArray]:
-            _, _, f_y, _, _, nu_y = self._on(tau, y, n)
+            _, _, f_y, _, _, nu_y, _ = self._on(tau, y, n)
             return f_y, nu_y
 
         def drift(first: FloatArray) -> FloatArray:

@@ -73,8 +73,9 @@ def resonance_table(
     present = size > 1e-6 * float(size.max())
     present &= width2 > 0.0
     table: dict[tuple[int, ...], float] = {}
+    full = [np.broadcast_to(w, shape) for w in waves]
     for at in zip(*np.nonzero(present), strict=True):
-        k = tuple(int(np.broadcast_to(w, shape)[at]) for w in waves)
+        k = tuple(int(w[at]) for w in full)
         leading = next((c for c in k if c != 0), 0)
         if leading > 0:  # k = 0 has no width; of ±k the one leading with a positive entry
             table[k] = float(k_nu[at] / math.sqrt(float(width2[at])))

@@ -28,7 +28,7 @@ import numpy as np
 
 from tumble._typing import FloatArray
 from tumble.kernels.codes import NUTATION_SEPARATRIX_TOL
-from tumble.kernels.elliptic import ellipk_mc, elliprd, elliprj
+from tumble.kernels.elliptic import agm, ellipk_mc, elliprd, elliprj, jacobi_quarter
 from tumble.kernels.jit import ENTRY, INLINE, KERNEL, jit
 from tumble.kernels.limits import (
     MODULUS_ROUNDOFF,
@@ -48,6 +48,7 @@ __all__ = [
     "nutation_averaged",
     "nutation_columns",
     "nutation_engine",
+    "orbit_nodes",
     "pressure",
     "pressure_rate",
     "separatrix_distance",
@@ -340,19 +341,25 @@ def _x2_by_trapezoid(u1: float, u2: float, c4: float, q1: float, q0: float) -> f
     return math.nan
 
 
-@jit(KERNEL)
-def well_averages(
-    R: float, G: float, a: float, b: float, E: float, u_hint: float, moments: bool = True
-) -> tuple[float, float, float, float, float, float, float, float, float, float]:
-    """The nutation at energy E in the well nearest to u_hint: (ok, u1, u2, ⟨u⟩, ⟨u²⟩, k²,
-    1 − k², K, β, root case), Serov (1991), eqs. (1.7)–(1.10); ⟨u⟩ and ⟨u²⟩ are NaN unless
-    ``moments`` (the columns need the well only).
+_Chart = tuple[bool, float, float, float, float, float, float, float, float, float, float,
+               float, float, float, bool]  # fmt: skip
 
-    ok is 1.0, or 0.0 with the rest NaN: no motion at this energy, or a separatrix
-    (1 − k² below ``NUTATION_SEPARATRIX_TOL``), or a root inside the motion interval.
+
+@jit(KERNEL)
+def _well_chart(R: float, G: float, a: float, b: float, E: float, u_hint: float) -> _Chart:
+    """The well of energy E nearest to u_hint and its charts, Serov (1991), eqs. (1.7)–(1.10):
+    (ok, u1, u2, k², 1 − k², β², root case, ν, ν of the other chart (case 1), the main
+    chart's anchor u_a and span u_b − u_a, c4, q1, q0 of the deflated quadratic, free).
+
+    The main chart is u = (u_a (1 − σ) + u_b ν σ)/((1 − σ) + ν σ) with σ = sn²(βt) (case 1,
+    anchored at u2, θmax) or σ = sin²(γ/2), γ = am(βt) (case 2, anchored at u1, θmin), as
+    the Python orbit's (:mod:`tumble.unperturbed.symmetric_body.charts`).
+
+    ok is False, the rest NaN: no motion at this energy, or a separatrix (1 − k² below
+    ``NUTATION_SEPARATRIX_TOL``), or a root inside the motion interval.
     """
     nan = math.nan
-    fail = (0.0, nan, nan, nan, nan, nan, nan, nan, nan, nan)
+    fail = (False, nan, nan, nan, nan, nan, nan, nan, nan, nan, nan, nan, nan, nan, False)
     g0, g1, g2 = 2.0 * E - G * G, 2.0 * (G * R - a), -2.0 * b - R * R - 2.0 * E
     g3, g4 = 2.0 * a, 2.0 * b
     u2, u1 = _well(g0, g1, g2, g3, g4, -((G + R) ** 2), -((G - R) ** 2), u_hint)
@@ -365,7 +372,6 @@ def well_averages(
     q0 = g2 + s * q1 - c4 * pr
     free = a == 0.0 and b == 0.0
     case = 1.0
-    x1_closed, x2_closed = nan, nan
     ua, dab, nu, nu_other = u2, u1 - u2, 1.0, 1.0
     if free:  # q ≡ q0 = −(2E + R²): u″ = −(2E + R²)u + GR, harmonic
         m, mc, beta2 = 0.0, 1.0, -q0 / 4.0
@@ -427,6 +433,28 @@ def well_averages(
     m, mc = min(max(m, 0.0), 1.0), min(max(mc, 0.0), 1.0)
     if mc < NUTATION_SEPARATRIX_TOL or not (beta2 > 0.0 and math.isfinite(beta2)):
         return fail
+    return True, u1, u2, m, mc, beta2, case, nu, nu_other, ua, dab, c4, q1, q0, free
+
+
+@jit(KERNEL)
+def well_averages(
+    R: float, G: float, a: float, b: float, E: float, u_hint: float, moments: bool = True
+) -> tuple[float, float, float, float, float, float, float, float, float, float]:
+    """The nutation at energy E in the well nearest to u_hint: (ok, u1, u2, ⟨u⟩, ⟨u²⟩, k²,
+    1 − k², K, β, root case), Serov (1991), eqs. (1.7)–(1.10); ⟨u⟩ and ⟨u²⟩ are NaN unless
+    ``moments`` (the columns need the well only).
+
+    ok is 1.0, or 0.0 with the rest NaN: no motion at this energy, or a separatrix
+    (1 − k² below ``NUTATION_SEPARATRIX_TOL``), or a root inside the motion interval.
+    """
+    nan = math.nan
+    fail = (0.0, nan, nan, nan, nan, nan, nan, nan, nan, nan)
+    ok, u1, u2, m, mc, beta2, case, nu, nu_other, ua, dab, c4, q1, q0, free = _well_chart(
+        R, G, a, b, E, u_hint
+    )
+    if not ok:
+        return fail
+    x1_closed, x2_closed = math.nan, math.nan
     K = ellipk_mc(mc)
     if not moments:
         return 1.0, u1, u2, nan, nan, m, mc, K, math.sqrt(beta2), case
@@ -686,6 +714,68 @@ def nutation_columns(Y: FloatArray, u_hint: float) -> FloatArray:
         out[i, 4] = w[_CASE]
         out[i, 5] = H
     return out
+
+
+POLE_CLEARANCE = 1e-4
+"""The compiled orbit's nodes (:func:`orbit_nodes`) need 1 − u1 and 1 + u2 above this: they
+form 1 ∓ u of the turning points by subtraction, whose error ε_mach/(1 ∓ u) is then below
+1e-12 relative, where the Python orbit refines them to full relative accuracy."""
+
+
+@jit(ENTRY)
+def orbit_nodes(X: FloatArray, u_hint: float, n: int) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """θ [rad] and θ' [rad/t] at the phase nodes t_i = iT/n (i < n) counted from θmax, and
+    (ν = 2π/T, u1, u2) of the orbit of each row ``[H, R, G, a, b]`` of ``X`` in the well
+    nearest to ``u_hint``: shapes (k, n), (k, n), (k, 3).
+
+    The same nodes as the Python orbit's (:meth:`tumble.unperturbed.symmetric_body.
+    NutationOrbit.nodes` of :meth:`~tumble.unperturbed.symmetric_body.NutationOrbit.
+    from_energy`): the chart of :func:`_well_chart` at the Jacobi arguments βt_i + τ0 (τ0 = 0
+    in case 1, 2K in case 2, where θmax is γ = π), reduced to |v_r| ≤ K; θ from 1 ∓ u as the
+    chart's weighted means of the turning points', θ' = −u'/sin θ with u' from dσ/dt, Serov
+    (1991), eqs. (1.9)–(1.10). A row is NaN where the well has no answer (no motion, a
+    separatrix), where the motion is free (a = b = 0) or steady (u1 = u2), or where a turning
+    point is within :data:`POLE_CLEARANCE` of u = ±1: the Python orbit serves those.
+    """
+    k = X.shape[0]
+    theta = np.full((k, n), math.nan)
+    theta_dot = np.full((k, n), math.nan)
+    info = np.full((k, 3), math.nan)
+    for r in range(k):
+        ok, u1, u2, _, mc, beta2, case, nu, _, _, _, _, _, _, free = _well_chart(
+            X[r, 1], X[r, 2], X[r, 3], X[r, 4], X[r, 0], u_hint
+        )
+        if not ok or free or not u1 > u2 or min(1.0 - u1, 1.0 + u2) < POLE_CLEARANCE:
+            continue
+        ua, ub = (u2, u1) if case == 1.0 else (u1, u2)
+        beta = math.sqrt(beta2)
+        big_k = ellipk_mc(mc)
+        ratios, steps, top = agm(mc)
+        kc = math.sqrt(mc)
+        span = (2.0 if case == 1.0 else 4.0) * big_k  # β T
+        info[r, 0] = 2.0 * math.pi * beta / span
+        info[r, 1], info[r, 2] = u1, u2
+        start = 0.0 if case == 1.0 else 2.0 * big_k
+        for i in range(n):
+            v = span * i / n + start
+            j = round(v / (2.0 * big_k))
+            vr = v - 2.0 * big_k * j
+            sv, cn, dn = jacobi_quarter(min(abs(vr), big_k), big_k, kc, ratios, steps, top)
+            sn = sv if vr >= 0.0 else -sv
+            if case == 1.0:
+                sig, sigc = sn * sn, cn * cn
+                dsig = 2.0 * beta * sn * cn * dn  # d(sn²)/dt
+            else:
+                half_s, half_c = sn * sn / (2.0 * (1.0 + cn)), 0.5 * (1.0 + cn)
+                odd = j % 2 == 1
+                sig, sigc = (half_c, half_s) if odd else (half_s, half_c)
+                dsig = (-0.5 if odd else 0.5) * beta * sn * dn  # d sin²(γ/2)/dt
+            den = sigc + nu * sig
+            om = ((1.0 - ua) * sigc + (1.0 - ub) * nu * sig) / den
+            op = ((1.0 + ua) * sigc + (1.0 + ub) * nu * sig) / den
+            theta[r, i] = 2.0 * math.atan2(math.sqrt(om), math.sqrt(op))
+            theta_dot[r, i] = -(ub - ua) * nu * dsig / (den * den) / math.sqrt(om * op)
+    return theta, theta_dot, info
 
 
 @jit(ENTRY)

@@ -22,7 +22,8 @@ from tumble.unperturbed.symmetric_body import NutationOrbit
 def builtin_perturbation(p: Params) -> Perturbation:
     """Φθ, Φz of the descending capsule, §9: pitch and roll damping, pressure Q(τ).
 
-    Φθ = −dθ', Φ_R = −νR, Φ_G = −d(G − Ru) − νRu, Φ_a = a0 Q'(τ), Φ_b = b0 Q'(τ).
+    Φθ = −dθ', Φ_R = −νR, Φ_G = −d(G − Ru) − νRu, Φ_a = a0 Q'(τ), Φ_b = b0 Q'(τ); vectorized
+    over several slow states (``rows``).
 
     Parameters
     ----------
@@ -45,7 +46,7 @@ def builtin_perturbation(p: Params) -> Perturbation:
             [-p.nu * R * one, -p.d * (G - R * u) - p.nu * R * u, float(da) * one, float(db) * one]
         )
 
-    return Perturbation(phi_theta, phi_z, name="§9 (pitch/roll damping, pressure)")
+    return Perturbation(phi_theta, phi_z, name="§9 (pitch/roll damping, pressure)", rows=True)
 
 
 def _builtin_averages(orbit: NutationOrbit, p: Params, tau: float) -> tuple[float, FloatArray]:

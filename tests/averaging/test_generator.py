@@ -78,3 +78,22 @@ def test_bad_input_is_refused():
         zero_mean_antiderivative(np.zeros(8), [1.0, 2.0])
     with pytest.raises(ParameterError, match="finite"):
         zero_mean_antiderivative(np.full(8, np.nan), [1.0])
+
+
+@pytest.mark.parametrize("n", [7, 8, 33])
+def test_one_phase_by_the_real_transform_equals_the_torus_path(n):
+    # One turning phase takes the real transform's half; the same grid as a torus whose
+    # second phase has one node (k₂ = 0 only) takes the general path: equal to round-off,
+    # odd and even n (the Nyquist harmonic dropped by both), with leading components.
+    rng = np.random.default_rng(n)
+    f = rng.normal(size=(3, n))
+    one = zero_mean_antiderivative(f, [1.7])
+    torus = zero_mean_antiderivative(f[..., None], [1.7, 1.0])[..., 0]
+    assert np.max(np.abs(one - torus)) < 1e-15 * n  # measured ≤ 2.2e-16
+
+
+def test_one_phase_at_rest_is_a_small_divisor():
+    # ν = 0: every harmonic present is resonant (the general path judges it, as on a torus).
+    (phi,) = _grid(16)
+    with pytest.raises(SmallDivisorError, match=r"k = \((1|-1),\)"):
+        zero_mean_antiderivative(np.cos(phi), [0.0])

@@ -151,3 +151,21 @@ def test_a_right_hand_side_that_is_not_finite_is_reported():
 
     with pytest.raises(AveragingError, match="not finite"):
         second_order(rates, lambda x: np.array([1.0]), 0.0, [1.0], grid=(4,))
+
+
+@pytest.mark.parametrize("n", [7, 8, 32, 33])
+def test_one_phase_resonance_table_equals_the_torus_path(n):
+    # The one-phase table (the real transform's half) against the same grid as a torus
+    # whose second phase has one node and does not move: the same harmonics 0 < k < n/2
+    # above 1e-6 of the largest, the same distances to round-off (measured 2.3e-16).
+    from tumble.averaging.resonance_widths import resonance_table
+
+    rng = np.random.default_rng(n)
+    f = rng.normal(size=(5, n)) * np.exp(-0.3 * np.arange(n))  # some below 1e-6 of the top
+    jac, drift = rng.normal(size=(1, 5)), rng.normal(size=5)
+    one = resonance_table(f, np.array([1.7]), jac, drift)
+    torus = resonance_table(f[..., None], np.array([1.7, 0.0]),
+                            np.vstack([jac, np.zeros((1, 5))]), drift)  # fmt: skip
+    assert set(one) == {k[:1] for k in torus} and one
+    for k, distance in torus.items():
+        assert one[k[:1]] == pytest.approx(distance, rel=1e-14)

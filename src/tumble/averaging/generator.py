@@ -104,6 +104,16 @@ def zero_mean_antiderivative(
         )
     if not (np.all(np.isfinite(f)) and np.all(np.isfinite(nu))):
         raise ParameterError("values and frequencies must be finite")
+    if d == 1 and nu[0] != 0.0:  # one phase turning: no divisor k·ν = kν can be small
+        n = f.shape[-1]
+        half = np.fft.rfft(f, axis=-1)  # k = 0 … ⌊n/2⌋, the real transform's half
+        divisor = 1j * nu[0] * np.arange(half.shape[-1])
+        divisor[0] = 1.0
+        w = half / divisor
+        w[..., 0] = 0.0
+        if n % 2 == 0:
+            w[..., -1] = 0.0  # the Nyquist harmonic, as below
+        return np.asarray(np.fft.irfft(w, n=n, axis=-1), dtype=float)
     axes = tuple(range(f.ndim - d, f.ndim))
     shape = f.shape[-d:]
     coef = np.fft.fftn(f, axes=axes)

@@ -370,6 +370,18 @@ class _Nodes(NamedTuple):
     r: float  # spin r = R/μ
 
 
+class _Orbits(NamedTuple):
+    """Orbits of k slow states at n phase nodes (:meth:`NutationSystem._on_rows`)."""
+
+    theta: FloatArray  # (k, n) [rad]
+    theta_dot: FloatArray  # (k, n) [rad/t]
+    f: FloatArray  # (k, 5, n): ε(Φθθ' + W^z·Φz, Φz)
+    ph: FloatArray  # (k, n): Φθ
+    pz: FloatArray  # (k, 4, n): Φz
+    nu: FloatArray  # (k,): 2π/T
+    hint: FloatArray  # (k,): the middle of each well, ½(u1 + u2)
+
+
 @dataclass
 class _TorqueAverages:
     """Φθ, Φz of a torque averaged over ψ and φ at given θ nodes (:func:`torque_perturbation`)."""
@@ -522,11 +534,10 @@ class NutationSystem:
         H, R, G, a, b = (float(v) for v in x)
         return NutationOrbit.from_energy(self.mu, a, b, R, G, H, self.u_hint)
 
-    def _on_rows(self, tau: float, X: FloatArray, n: int) -> list[tuple[FloatArray, ...]]:
-        """θ, θ', f (shape (5, n)), Φθ, Φz, ν and the middle of the well, on the orbit of each
-        row of X at the n phase nodes: the nodes of all rows in one compiled call
-        (:func:`tumble.kernels.nutation.orbit_nodes`), the Python orbit's for a row it does
-        not serve (next to a pole, or none: the orbit then says why)."""
+    def _on_rows(self, tau: float, X: FloatArray, n: int) -> _Orbits:
+        """The orbits of the rows of X at their n phase nodes: the nodes of all rows in one
+        compiled call (:func:`tumble.kernels.nutation.orbit_nodes`), the Python orbit's for a
+        row it does not serve (next to a pole, or none: the orbit then says why)."""
         X = np.ascontiguousarray(X, dtype=float)
         thetas, dots, info = orbit_nodes(X, self.u_hint, n)
         for r in np.flatnonzero(np.isnan(info[:, 0])):
@@ -536,33 +547,32 @@ class NutationSystem:
         if self.perturbation.rows:
             Z = X[:, 1:].T[:, :, None]
             ph, pz = self.perturbation.evaluate(tau, thetas, dots, Z)
-            gradient = potential_gradient(np.cos(thetas), Z)
-            f = np.concatenate([(ph * dots + np.add.reduce(pz * gradient))[None], pz])
-            parts = [(ph[r], pz[:, r], f[:, r]) for r in range(X.shape[0])]
+            pz = np.moveaxis(pz, 0, 1)  # (k, 4, n)
+            gradient = np.moveaxis(potential_gradient(np.cos(thetas), Z), 0, 1)
         else:
-            parts = []
-            for x, theta, theta_dot in zip(X, thetas, dots, strict=True):
-                ph, pz = self.perturbation.evaluate(tau, theta, theta_dot, x[1:])
-                gradient = potential_gradient(np.cos(theta), x[1:])
-                f = np.concatenate([(ph * theta_dot + np.add.reduce(pz * gradient))[None], pz])
-                parts.append((ph, pz, f))
-        return [(theta, theta_dot, self.eps * f, ph, pz, np.array([nu]), 0.5 * (u1 + u2))
-                for theta, theta_dot, (ph, pz, f), (nu, u1, u2)
-                in zip(thetas, dots, parts, info, strict=True)]  # fmt: skip
-
-    def _on(self, tau: float, x: FloatArray, n: int) -> tuple[FloatArray, ...]:
-        """:meth:`_on_rows` of the one state x."""
-        return self._on_rows(tau, np.asarray(x, dtype=float)[None, :], n)[0]
+            each = [self.perturbation.evaluate(tau, th, thd, x[1:])
+                    for x, th, thd in zip(X, thetas, dots, strict=True)]  # fmt: skip
+            ph = np.stack([e[0] for e in each])
+            pz = np.stack([e[1] for e in each])
+            gradient = np.stack([potential_gradient(np.cos(th), x[1:])
+                                 for x, th in zip(X, thetas, strict=True)])  # fmt: skip
+        f = np.concatenate([(ph * dots + np.sum(pz * gradient, axis=1))[:, None], pz], axis=1)
+        return _Orbits(thetas, dots, self.eps * f, ph, pz, info[:, 0], 0.5 * (info[:, 1] + info[:, 2]))
 
     def terms(self, t: float, x: ArrayLike, generator_order: int = 1) -> SecondOrder:
         """:class:`~tumble.averaging.second_order.SecondOrder` at the slow state x (t is the
         fast time; the slow time εt is the perturbation's)."""
         x = np.asarray(x, dtype=float)
         tau = self.eps * t
+        scale = np.maximum(np.abs(x), 1.0)
+        # The orbit and its neighbours, Θ, V, f and ν at fixed phase to be differentiated in
+        # each slow variable, in one call; the grid is resolved on the orbit's f.
+        steps = _ORBIT_STEP * scale
+        rows = np.concatenate([x[None, :], x + np.diag(steps), x - np.diag(steps)])
 
-        def on(shape: tuple[int, ...]) -> tuple[FloatArray, tuple[FloatArray, ...]]:
-            values = self._on(tau, x, shape[0])
-            return values[2], values
+        def on(shape: tuple[int, ...]) -> tuple[FloatArray, _Orbits]:
+            orbits = self._on_rows(tau, rows, shape[0])
+            return orbits.f[0], orbits
 
         found, (n,) = refine_grid(on, (self.n,))
         self.n = n  # kept also when refused: the next state starts from the finest grid tried
@@ -571,22 +581,13 @@ class NutationSystem:
                 f"the nutation needs more than {GRID_MAX} phase nodes at H = {x[0]:.6g}: "
                 "the orbit is too near a separatrix"
             )
-        theta, _, f, ph, pz, nu, hint = found
-        self.u_hint = float(hint)
-        scale = np.maximum(np.abs(x), 1.0)
-        # Neighbouring orbits: Θ, V, f and ν at fixed phase, differentiated in each slow
-        # variable.
-        d_theta, d_dot, d_f, d_nu = (np.empty((5, n)), np.empty((5, n)), np.empty((5, 5, n)),
-                                     np.empty((1, 5)))  # fmt: skip
-        steps = _ORBIT_STEP * scale
-        shifted = self._on_rows(tau, np.concatenate([x + np.diag(steps), x - np.diag(steps)]), n)
-        for i in range(5):
-            h = steps[i]
-            a, b = shifted[i], shifted[5 + i]
-            d_theta[i] = (a[0] - b[0]) / (2 * h)
-            d_dot[i] = (a[1] - b[1]) / (2 * h)
-            d_f[:, i] = (a[2] - b[2]) / (2 * h)
-            d_nu[0, i] = (a[5][0] - b[5][0]) / (2 * h)
+        theta, f, ph, pz, nu = found.theta[0], found.f[0], found.ph[0], found.pz[0], found.nu[:1]
+        self.u_hint = float(found.hint[0])
+        up, down, two_h = slice(1, 6), slice(6, 11), 2.0 * steps
+        d_theta = (found.theta[up] - found.theta[down]) / two_h[:, None]
+        d_dot = (found.theta_dot[up] - found.theta_dot[down]) / two_h[:, None]
+        d_f = np.moveaxis((found.f[up] - found.f[down]) / two_h[:, None, None], 0, 1)
+        d_nu = ((found.nu[up] - found.nu[down]) / two_h)[None, :]
         z = x[1:]
         mean_wz = potential_gradient(np.cos(theta), z).mean(axis=1)  # ⟨W_z⟩, (4,)
         theta_z = d_theta[1:] + d_theta[0] * mean_wz[:, None]  # at fixed action
@@ -599,8 +600,8 @@ class NutationSystem:
             return np.einsum("cin,in->cn", d_f, u)
 
         def rates_at(y: FloatArray) -> tuple[FloatArray, FloatArray]:
-            _, _, f_y, _, _, nu_y, _ = self._on(tau, y, n)
-            return f_y, nu_y
+            orbits = self._on_rows(tau, y[None, :], n)
+            return orbits.f[0], orbits.nu[:1]
 
         def drift(first: FloatArray) -> FloatArray:
             size = float(np.max(np.abs(first) / scale))

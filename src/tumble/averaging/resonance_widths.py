@@ -61,6 +61,8 @@ def resonance_table(
     """
     shape = f.shape[1:]
     d = len(shape)
+    if d == 1:
+        return _one_phase_table(f, float(nu[0]), nu_jacobian[0], drift)
     coef = np.fft.fftn(f, axes=tuple(range(1, d + 1))) / math.prod(shape)
     waves = _waves(shape)
     k_nu = sum(w * n for w, n in zip(waves, nu, strict=True))
@@ -80,6 +82,23 @@ def resonance_table(
         if leading > 0:  # k = 0 has no width; of ±k the one leading with a positive entry
             table[k] = float(k_nu[at] / math.sqrt(float(width2[at])))
     return table
+
+
+def _one_phase_table(
+    f: FloatArray, nu: float, nu_gradient: FloatArray, drift: FloatArray
+) -> dict[tuple[int, ...], float]:
+    """:func:`resonance_table` on a one-phase grid, from the real transform's half k ≥ 0 (the
+    coefficient of −k is the conjugate of k's): the same harmonics 0 < k < n/2, the same
+    distances."""
+    n = f.shape[1]
+    coef = np.fft.rfft(f, axis=1) / n
+    k = np.arange(coef.shape[1], dtype=float)
+    k_jac = np.outer(nu_gradient, k)  # k ∂ν/∂x, (m, harmonics)
+    width2 = np.abs(drift @ k_jac) + np.abs(np.sum(k_jac * coef, axis=0))
+    size = np.abs(coef).max(axis=0)
+    present = (size > 1e-6 * float(size.max())) & (width2 > 0.0) & (k > 0) & (2 * k < n)
+    return {(int(h),): float(h * nu / math.sqrt(float(width2[h])))
+            for h in np.flatnonzero(present)}  # fmt: skip
 
 
 def resonance_distance(

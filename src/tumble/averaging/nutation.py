@@ -557,7 +557,8 @@ class NutationSystem:
             gradient = np.stack([potential_gradient(np.cos(th), x[1:])
                                  for x, th in zip(X, thetas, strict=True)])  # fmt: skip
         f = np.concatenate([(ph * dots + np.sum(pz * gradient, axis=1))[:, None], pz], axis=1)
-        return _Orbits(thetas, dots, self.eps * f, ph, pz, info[:, 0], 0.5 * (info[:, 1] + info[:, 2]))
+        middle = 0.5 * (info[:, 1] + info[:, 2])
+        return _Orbits(thetas, dots, self.eps * f, ph, pz, info[:, 0], middle)
 
     def terms(self, t: float, x: ArrayLike, generator_order: int = 1) -> SecondOrder:
         """:class:`~tumble.averaging.second_order.SecondOrder` at the slow state x (t is the

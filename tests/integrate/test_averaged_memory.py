@@ -50,8 +50,8 @@ def _streamed_and_dense(request):
 
 
 # The orbiting body (the triaxial engine, one surface: the separatrix), the rotating field
-# across its separatrix (a terminal event and a restart map), the resisting medium (its angle
-# σ unwrapped), the nonlinear moment (ψ, φ unwrapped).
+# across its separatrix (a terminal event and a restart map), the resisting medium (its step
+# across ϑ = π/2, a restart at a known time), the nonlinear moment (ψ, φ unwrapped).
 CASES = [
     ("ob_envisat_like.toml", 1.0),
     ("rf_transient_x1.toml", 1.0),

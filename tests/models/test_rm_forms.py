@@ -203,3 +203,17 @@ def test_compiled_averaged_run_equals_scipys_across_the_equator(theta0):
         # Two runs at rtol 1e-11 over ~300/h steps, each within ~1e-9 of the exact solution.
         assert np.allclose(compiled.columns[v], scipy.columns[v], rtol=0.0, atol=1e-8), v
         assert np.allclose(compiled.columns[v], closed.columns[v], rtol=0.0, atol=1e-8), v
+
+
+@pytest.mark.parametrize("sigma0", [0.2, 7.0, -9.5])
+def test_averaged_azimuth_is_the_initial_one_on_every_path(sigma0):
+    """σ is constant in (2.2) and (2.3): its column is the initial σ at every sample, on the
+    compiled (streamed, nothing to unwrap) and scipy paths alike, whatever its turn."""
+    p = rm.Params(eps=0.02, kappa=0.5, a=[0.0, 0.0, -0.4], b=np.diag([0.1, 0.1, 0.2]),
+                  s=np.diag([0.05, 0.05, 0.1]))  # fmt: skip
+    st_ = rm.State(1.0, 0.4, sigma0, 0.0, 1.0, 0.0)
+    tau = np.linspace(0.0, 300.0, 301)
+    for integrator in ("auto", "scipy"):
+        run = simulate(M, p, st_, tau, "averaged", integrator=integrator)
+        assert np.array_equal(run.columns["sigma"], np.full(tau.size, sigma0)), integrator
+        assert np.array_equal(run.columns["rho"], np.full(tau.size, 0.4)), integrator

@@ -561,6 +561,9 @@ def _averaged_streamed(
 
     p, tau, initial = run.p, run.tau, run.initial
     angles = [c.name for c in run.model.columns(p, "averaged") if c.unwrap]
+    if avg.angles is not None:  # those the form turns (AveragedForm.angles)
+        turning = avg.angles(p, initial, tau[:0], np.empty((0, y0.size)))
+        angles = [name for name in angles if name in turning]
     parts: list[Columns] = []
     unwrap = UnwrapStream(angles, initial)
 

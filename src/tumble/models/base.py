@@ -282,7 +282,8 @@ class AveragedForm(Generic[P, S]):
     crossing: Crossing | None = None
     # Its unwrapped angle columns alone, equal to those of ``to_columns``, where that is
     # costly: a compiled run evaluates them on every step (to count the turns between samples)
-    # and the other columns at the samples only, as FullForm.angles.
+    # and the other columns at the samples only, as FullForm.angles. A column it leaves out
+    # does not turn (it is constant along the form's solutions) and is not unwrapped.
     angles: Callable[[P, S, FloatArray, FloatArray], Columns] | None = None
     # The inner regions (start, end) of the crossings the form takes by an asymptotic step (a
     # jump its theory gives, through a breakpoint's restart map, and the inner solution in its

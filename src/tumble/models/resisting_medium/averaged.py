@@ -96,6 +96,12 @@ def _columns_wv(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[str,
     return plane_columns(st, np.hypot(Y[:, 0], Y[:, 1]), np.arctan2(Y[:, 1], Y[:, 0]))
 
 
+def _no_turning_angle(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
+    """The angle columns that turn: none, σ being constant in (2.2) and (2.3) (so that a
+    compiled run does not build every column on every step to unwrap it)."""
+    return {}
+
+
 def _plane_form(
     form: int,
     name: str,
@@ -115,6 +121,7 @@ def _plane_form(
         initial_state=lambda p, st: np.array([getattr(st, v) for v in slow]),
         to_columns=to_columns,
         kernel=lambda p: plane_kernel(p, form),
+        angles=_no_turning_angle,
     )
 
 
@@ -319,9 +326,6 @@ def _stepped_form(
         V = np.abs(V + crossing.correction(t, Y[:, 2], omega))
         return plane_columns(st, np.hypot(W, V), np.arctan2(V, W))
 
-    def angles(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
-        return {"sigma": np.full(np.shape(t), st.sigma)}  # σ constant, as (2.2) has it
-
     def initial_state(p: Params, st: State) -> FloatArray:
         return np.append(plain.initial_state(p, st), st.phi)
 
@@ -331,7 +335,6 @@ def _stepped_form(
         slow=(*plain.slow, "phi"),
         initial_state=initial_state,
         to_columns=to_columns,
-        angles=angles,
         breakpoints=(
             Breakpoint.at_time(crossing.tau1),
             Breakpoint.at_time(crossing.tau_s, crossing.restart(form)),

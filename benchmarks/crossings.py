@@ -5,9 +5,11 @@ the whole run (:mod:`tumble.app.bench_crossings`; also part of ``tumble bench``)
     .venv/bin/python benchmarks/crossings.py [-o benchmarks/crossings.json]
     .venv/bin/python benchmarks/crossings.py --from benchmarks/crossings.json [--capture]
 
-Also runs the capture ensembles (1000 full runs of a body driven across the separatrix, twice).
-Prints the table of the performance page as Markdown (``--capture``: the capture table); about
-3 minutes on one core. The exit status is 1 if a target is missed.
+Also runs the capture ensembles (three of 1000 full runs of a body driven across the
+separatrix, and the averaged runs of each). Prints the table of the performance page as
+Markdown (``--capture``: the capture table); about 5 minutes on 2 cores, most of it the
+averaged runs of the ensemble whose torque reads the attitude. The exit status is 1 if a
+target is missed.
 """
 
 from __future__ import annotations
@@ -55,7 +57,8 @@ def main() -> int:
         for by_eps in runs.values()
         for r in by_eps.values()
     )
-    met = met and all(e["difference"] <= CAPTURE_AGREEMENT for e in result["capture"].values())
+    met = met and all(max(e["difference"], e["averaged_difference"]) <= CAPTURE_AGREEMENT
+                      for e in result["capture"].values())  # fmt: skip
     return 0 if met else 1
 
 

@@ -4,7 +4,7 @@
     .venv/bin/python benchmarks/performance.py --from benchmarks/performance.json
 
 Runs :func:`tumble.app.bench.run_benchmark` with its standard settings (1e5 time units at rtol
-1e-10, best of 5; heyoka.py from ``pip install -e .[bench]``; about 25 minutes on 2 cores,
+1e-10, best of 5; heyoka.py from ``pip install -e .[bench]``; about 30 minutes on 2 cores,
 of which scipy's Python right-hand sides take 20),
 writes the JSON of ``tumble bench --json`` and prints the tables of docs/performance-tables.md
 (included by the performance page) as Markdown. ``--from`` prints the tables of an earlier run.

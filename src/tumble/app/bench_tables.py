@@ -277,6 +277,12 @@ def _crossings_table(r: dict[str, Any]) -> Table | None:
                   f"{e['crossed']} crossings", f"x3+: {e['frequency']:.3f} against "
                   f"{e['predicted']:.3f} (≤ {tg['capture_probability']:g} apart: "
                   f"{_yes(near)})")  # fmt: skip
+        if "averaged_difference" in e:
+            near = e["averaged_difference"] <= tg["capture_probability"]
+            t.add_row(escape(f"capture, {name}, averaged"), "", "", f"{e['averaged_s']:.3g}",
+                      f"{e['averaged_crossed']} crossings", f"x3+: {e['frequency']:.3f} "
+                      f"against {e['averaged']:.3f} (≤ {tg['capture_probability']:g} apart: "
+                      f"{_yes(near)})")  # fmt: skip
     return t
 
 

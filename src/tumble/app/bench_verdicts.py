@@ -88,6 +88,10 @@ def verdicts(result: dict[str, Any]) -> list[dict[str, Any]]:
     for name, ensemble in (result.get("capture") or {}).items():
         rows.add(f"capture, {name}: |frequency − predicted| over {ensemble['crossed']} crossings",
                  ensemble["difference"], TARGETS["capture_probability"], False)  # fmt: skip
+        if "averaged_difference" in ensemble:  # (a run before the averaged ensembles: absent)
+            rows.add(f"capture, {name}: |frequency − the averaged runs' prediction| over "
+                     f"{ensemble['averaged_crossed']} crossings", ensemble["averaged_difference"],
+                     TARGETS["capture_probability"], False)  # fmt: skip
     _machine_rows(rows, result)
     return list(rows)
 

@@ -17,10 +17,17 @@
   mean ↔ osculating map for any fast system, with
   :mod:`~tumble.averaging.resonance_widths` (the distance of its phases from a resonance).
 * :mod:`~tumble.averaging.crossing`: a triaxial body crossing the separatrix of the free
-  motion: the probability of each rotation it passes into.
+  motion: the probability of each rotation it passes into, and where a full or an averaged
+  run crosses.
 """
 
-from tumble.averaging.crossing import Crossing, separatrix_crossing, separatrix_motion
+from tumble.averaging.crossing import (
+    Crossing,
+    averaged_crossing,
+    first_crossing,
+    separatrix_crossing,
+    separatrix_motion,
+)
 from tumble.averaging.generator import SmallDivisorError, zero_mean_antiderivative
 from tumble.averaging.quadrature import AVERAGE_RTOL, AveragingError, torus_mean
 from tumble.averaging.spinner import spinner_average
@@ -40,7 +47,9 @@ __all__ = [
     "AveragingError",
     "Crossing",
     "SmallDivisorError",
+    "averaged_crossing",
     "branch_kernel",
+    "first_crossing",
     "nearest_resonance",
     "nearest_resonances",
     "rotation_sense",

@@ -45,7 +45,14 @@ from tumble.bodies import proper_sorting
 from tumble.errors import ParameterError
 from tumble.torques import Torque
 
-__all__ = ["REGIONS", "Crossing", "first_crossing", "separatrix_crossing", "separatrix_motion"]
+__all__ = [
+    "REGIONS",
+    "Crossing",
+    "averaged_crossing",
+    "first_crossing",
+    "separatrix_crossing",
+    "separatrix_motion",
+]
 
 REGIONS = ("x1+", "x1-", "x3+", "x3-")
 """The regions of the Euler–Poinsot motion on the sphere ‖L‖ = const (sorted axes): rotation
@@ -334,3 +341,42 @@ def first_crossing(
     left = ("x1" if left_axis == 0 else "x3") + ("+" if np.median(w[:at, left_axis]) > 0 else "-")
     entered = ("x3" if entered_axis == 2 else "x1") + ("+" if w[k, entered_axis] > 0 else "-")
     return float(times[at]), float(L[at]), left, entered
+
+
+def averaged_crossing(
+    inertia: ArrayLike, t: ArrayLike, L_xi: ArrayLike, T: ArrayLike
+) -> tuple[float, FloatArray] | None:
+    """Where samples of an averaged run first cross the separatrix: the time and the inertial
+    L there, from the first change of sign of r − 1/I2 (r = 2T/‖L‖²), interpolated linearly
+    between its two samples; None if they never cross.
+
+    An averaged run crosses once, on its slow course, and cannot say into which rotation: that
+    is :func:`separatrix_crossing`'s probability at this L (its norm, and its direction for a
+    torque of the attitude), the averaged counterpart of :func:`first_crossing`.
+
+    Parameters
+    ----------
+    inertia : array_like, shape (3,)
+        Principal moments, three different ones [inertia unit].
+    t : array_like, shape (n,)
+        Sample times [time].
+    L_xi : array_like, shape (n, 3)
+        The inertial angular momentum at those times [inertia unit · rad/time].
+    T : array_like, shape (n,)
+        The kinetic energy at those times [inertia unit · rad²/time²].
+
+    Returns
+    -------
+    (float, ndarray of shape (3,)) or None
+        The time [time] and L there [inertia unit · rad/time].
+    """
+    _, (_, i2, _) = _sorted(inertia)
+    times = np.asarray(t, dtype=float)
+    L = np.asarray(L_xi, dtype=float)
+    s = 2.0 * np.asarray(T, dtype=float) * i2 - np.sum(L * L, axis=1)  # ∝ r − 1/I2
+    changed = np.flatnonzero(np.sign(s[1:]) != np.sign(s[:-1]))
+    if not changed.size:
+        return None
+    k = int(changed[0])
+    w = s[k] / (s[k] - s[k + 1])
+    return float(times[k] + w * (times[k + 1] - times[k])), (1.0 - w) * L[k] + w * L[k + 1]

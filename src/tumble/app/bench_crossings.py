@@ -26,6 +26,7 @@ least 1), the largest over the variables, and is judged in units of ε: the targ
 from __future__ import annotations
 
 import copy
+import math
 import time
 from collections.abc import Callable
 from typing import Any
@@ -286,13 +287,13 @@ def _capture(
         c = run.columns
         crossing = averaged_crossing(inertia, run.tau, np.stack([c["L1"], c["L2"], c["L3"]], 1),
                                      c["T"])  # fmt: skip
-        if crossing is not None:
-            L_xi = crossing[1]
+        if crossing is not None:  # it leaves x1+: every body starts with ω1 > 0, and an
+            L_xi = crossing[1]  # averaged run keeps its sense of rotation
             odds = separatrix_crossing(torque, inertia, float(np.linalg.norm(L_xi)), "x1+",
                                        direction=L_xi).probabilities  # fmt: skip
             odds_avg.append(odds["x3+"])
     averaged_s = time.perf_counter() - start
-    from_averaged = float(np.mean(odds_avg))
+    from_averaged = float(np.mean(odds_avg)) if odds_avg else math.nan  # none crossed: NaN
     log(f"capture: τ = {tau:g}, moment {moment:g}, dipole {dipole:g}: {frequency:.3f} against "
         f"{probability:.3f}, and {from_averaged:.3f} from the averaged runs")  # fmt: skip
     return {

@@ -22,11 +22,15 @@ the rotation about L̂ for w2. (The slow rows reproduce the exact rates, a check
 
 The polhode of given (|L|, T) is one of two tori, mirror images through the body, told apart
 by the sign of the body momentum along the polar axis (axis 3 in regime x3, axis 1 in regime
-x1): the ``sign`` of a system, constant away from the separatrix.
+x1): the ``sign`` of a system, constant away from the separatrix. A hybrid run, whose full
+legs may take the body across the separatrix onto either torus, tells the system which one it
+is on from its return on (:meth:`TriaxialSystem.reorient`); the terms at a time are those of
+the torus the body was on then.
 """
 
 from __future__ import annotations
 
+import bisect
 import math
 from collections.abc import Callable
 from typing import Any
@@ -41,12 +45,23 @@ from tumble.averaging.second_order import (
     generator_drift,
     grid_terms,
     refine_grid,
+    resonance_table,
 )
 from tumble.bodies import proper_sorting
 from tumble.rotations import matrix_to_quat, rot_x, rot_z
 from tumble.unperturbed.euler_poinsot import EulerPoinsot, fast_frequencies
 
 __all__ = ["TriaxialSystem"]
+
+
+def _mirror_sign(inertia: FloatArray, x: FloatArray, omega: FloatArray) -> float:
+    """The torus of the body rate ω with slow state x (module notes): the sign of its
+    momentum along the polar axis of its regime."""
+    Is = np.sort(inertia)
+    zs = proper_sorting(inertia) @ np.asarray(omega, dtype=float)
+    polar = 2 if float(x[:3] @ x[:3]) > 2.0 * float(x[3]) * Is[1] else 0
+    return 1.0 if zs[polar] >= 0.0 else -1.0
+
 
 _STEP = 1e-6
 """Central differences between neighbouring motions: steps of this size relative to |L|
@@ -93,6 +108,8 @@ class TriaxialSystem:
         self.sorted = np.sort(self.inertia)
         self.torque = BatchedTorque(torque, None, "the Euler–Poinsot motion")
         self.eps, self.sign = float(eps), float(sign)
+        # The torus from each time on: (time, sign), ascending (reorient).
+        self._signs: list[tuple[float, float]] = [(-math.inf, self.sign)]
         self.auxiliary = np.asarray(auxiliary, dtype=float)
         self.period = forcing_period
         self.grid: tuple[int, ...] = (32, 8) if forcing_period is None else (32, 8, 8)
@@ -115,14 +132,39 @@ class TriaxialSystem:
         A = np.asarray(attitude, dtype=float)
         L_xi = A @ (inertia_ * w)
         x = np.array([*L_xi, 0.5 * float(w @ (inertia_ * w))])
-        Q = proper_sorting(inertia_)
-        zs, Is = Q @ w, np.sort(inertia_)
-        polar = 2 if float(L_xi @ L_xi) > 2.0 * x[3] * Is[1] else 0
-        sign = 1.0 if zs[polar] >= 0.0 else -1.0
         auxiliary = np.zeros(3)
         auxiliary[int(np.argmin(np.abs(L_xi)))] = 1.0
-        system = cls(inertia_, torque, eps, sign, auxiliary, forcing_period)
+        system = cls(inertia_, torque, eps, _mirror_sign(inertia_, x, w), auxiliary,
+                     forcing_period)  # fmt: skip
         return system, x, system.phases_of(x, w, A)
+
+    def reorient(self, t: float, x: FloatArray, omega: FloatArray) -> None:
+        """From time t on, the system is on the torus of the body rate ω (slow state x): its
+        ``sign`` read off ω as :meth:`through` reads it at t = 0. A hybrid run calls it where
+        it returns from the full equations, which may have taken the body across the
+        separatrix onto either torus; the terms at earlier times keep their torus."""
+        sign = _mirror_sign(self.inertia, np.asarray(x, dtype=float), np.asarray(omega))
+        self._signs = [entry for entry in self._signs if entry[0] < t] + [(float(t), sign)]
+        self.sign = sign
+
+    def _at(self, t: float) -> None:
+        """Take the torus the body was on at time t (:meth:`reorient`)."""
+        i = bisect.bisect_right([entry[0] for entry in self._signs], t) - 1
+        self.sign = self._signs[max(i, 0)][1]
+
+    def state_at(self, x: FloatArray, w: ArrayLike) -> tuple[FloatArray, FloatArray]:
+        """The body rate ω [rad/time] and attitude A (body → inertial) at the phases w on the
+        torus of x: the forward map of the module notes at one point, the inverse of
+        :meth:`phases_of`."""
+        x = np.asarray(x, dtype=float)
+        w = np.asarray(w, dtype=float)
+        ep = self._reference(x)
+        tau = np.array([(float(w[0]) % (2.0 * math.pi)) * ep.period / (2.0 * math.pi)])
+        omega = ep.omega(tau)[0]
+        psi, theta, phi = (float(v[0]) for v in ep.euler_angles(tau))
+        C = rot_x(theta) @ rot_z(phi) @ ep.polar_frame
+        A = self._frame(x[:3]) @ rot_z(float(w[1]) + psi - ep.nu2 * float(tau[0])) @ C
+        return omega, A
 
     def phases_of(self, x: FloatArray, omega: FloatArray, attitude: FloatArray) -> FloatArray:
         """The phases (w1, w2[, 0]) of the state (ω, A) on the torus of x [rad]."""
@@ -221,27 +263,15 @@ class TriaxialSystem:
     def terms(self, t: float, x: ArrayLike, generator_order: int = 1) -> SecondOrder:
         """:class:`~tumble.averaging.second_order.SecondOrder` at the slow state x."""
         x = np.asarray(x, dtype=float)
+        self._at(t)
 
-        def on(shape: tuple[int, ...]) -> tuple[FloatArray, tuple[FloatArray, ...]]:
-            rates = self._rates(x, shape)
-            return rates[0], rates
-
-        found, shape = refine_grid(on, self.grid)
-        if found is None:
-            raise AveragingError(
-                f"the Euler–Poinsot motion needs more than {GRID_MAX} phase nodes at "
-                f"x = {x.tolist()}: too near the separatrix"
-            )
-        f, M, A, omega = found
-        self.grid = shape
+        (f, M, A, omega), shape = self._resolved(x)
         n1, n2 = shape[0], shape[1]
-        L = float(np.linalg.norm(x[:3]))
-        steps = np.array([_STEP * L] * 3 + [_STEP * float(x[3])])
+        steps = self._steps(x)
         # Neighbouring motions at fixed phases: the Jacobian's slow columns and ∂f/∂x.
         d_att = np.empty((4, n1, n2, 3))
         d_mom = np.empty((4, n1, 3))
         d_f = np.empty((4, *f.shape))
-        d_nu = np.empty((len(shape), 4))
         for i in range(4):
             up, down = x.copy(), x.copy()
             up[i] += steps[i]
@@ -252,7 +282,6 @@ class TriaxialSystem:
             d_att[i] = _vee(dA @ np.swapaxes(A, -1, -2))
             d_mom[i] = (wu - wd) / (2.0 * steps[i]) * self.inertia
             d_f[:, i] = (fu - fd) / (2.0 * steps[i])
-            d_nu[:, i] = (self.frequencies(up) - self.frequencies(down)) / (2.0 * steps[i])
         # The phases' columns: w1 spectrally, w2 the rotation about L̂.
         k1 = np.fft.fftfreq(n1) * n1
         if n1 % 2 == 0:
@@ -269,7 +298,7 @@ class TriaxialSystem:
         J[..., 3:, :4] = np.moveaxis(d_mom, 0, -1)[:, None]
         J[..., :3, 4] = att_w1
         J[..., 3:, 4] = mom_w1[:, None]
-        J[..., :3, 5] = x[:3] / L
+        J[..., :3, 5] = x[:3] / float(np.linalg.norm(x[:3]))
         rhs = np.zeros((*M.shape[:-1], 6))
         rhs[..., 3:] = M
         if len(shape) > 2:
@@ -294,4 +323,49 @@ class TriaxialSystem:
             h = _STEP / size if size > 0.0 else 0.0
             return generator_drift(rates_at, x, first, h, f)
 
+        d_nu = self._frequency_jacobian(x, steps)
         return grid_terms(t, x, f, g, nu, d_nu, along, drift if generator_order == 2 else None)
+
+    def resonances(self, t: float, x: ArrayLike) -> dict[tuple[int, ...], float]:
+        """The signed distances from the resonances at the slow state x, on the torus the body
+        was on at time t (:func:`~tumble.averaging.second_order.resonance_table`): the terms'
+        table without the generator, defined at a resonance too, where the generator meets a
+        zero divisor."""
+        x = np.asarray(x, dtype=float)
+        self._at(t)
+        (f, *_), _ = self._resolved(x)
+        drift = f.mean(axis=tuple(range(1, f.ndim)))
+        return resonance_table(f, self.frequencies(x), self._frequency_jacobian(x, self._steps(x)),
+                               drift)  # fmt: skip
+
+    def _resolved(self, x: FloatArray) -> tuple[tuple[FloatArray, ...], tuple[int, ...]]:
+        """:meth:`_rates` on the grid that resolves them (from the last one) and its shape."""
+
+        def on(shape: tuple[int, ...]) -> tuple[FloatArray, tuple[FloatArray, ...]]:
+            rates = self._rates(x, shape)
+            return rates[0], rates
+
+        found, shape = refine_grid(on, self.grid)
+        if found is None:
+            raise AveragingError(
+                f"the Euler–Poinsot motion needs more than {GRID_MAX} phase nodes at "
+                f"x = {x.tolist()}: too near the separatrix"
+            )
+        self.grid = shape
+        return found, shape
+
+    @staticmethod
+    def _steps(x: FloatArray) -> FloatArray:
+        """The central differences' steps in (L_ξ, T) (:data:`_STEP`)."""
+        L = float(np.linalg.norm(x[:3]))
+        return np.array([_STEP * L] * 3 + [_STEP * float(x[3])])
+
+    def _frequency_jacobian(self, x: FloatArray, steps: FloatArray) -> FloatArray:
+        """∂ν/∂x by central differences, shape (d, 4)."""
+        columns = []
+        for i in range(4):
+            up, down = x.copy(), x.copy()
+            up[i] += steps[i]
+            down[i] -= steps[i]
+            columns.append((self.frequencies(up) - self.frequencies(down)) / (2.0 * steps[i]))
+        return np.stack(columns, -1)

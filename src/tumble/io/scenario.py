@@ -279,9 +279,10 @@ def run_keys(model: Declaration[Any, Any], variant: Variant[Any, Any]) -> tuple[
     if model.hybrid:
         keys.append(_choice("averaged_method", ("plain", "hybrid"),
                             "hybrid: the bands where averaging fails (ϑ = π/2 for the "
-                            "resisting medium, the gravity gradient's capture for an orbiting "
-                            "body) are crossed on the full equations, re-entered through the "
-                            "osculating → mean map"))  # fmt: skip
+                            "resisting medium, the resonances of the phases and the polhode "
+                            "separatrix for a triaxial body, the gravity gradient's capture "
+                            "for an orbiting body) are crossed on the full equations, "
+                            "re-entered through the osculating → mean map"))  # fmt: skip
     if model.steps:
         doc = ("the averaged equations alone: no asymptotic step across the crossings "
                "theory bridges (ϑ = π/2 of the resisting medium)")  # fmt: skip

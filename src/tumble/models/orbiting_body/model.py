@@ -86,7 +86,10 @@ def _full_columns(p: Params, t: FloatArray, Y: FloatArray) -> dict[str, FloatArr
 
 def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:
     assert tb.MODEL.averaged is not None  # the torqued body has averaged equations
-    form = cast("AveragedForm[Any, State]", tb.MODEL.averaged.form(p, st, options))
+    # The torqued body's form without its own bands: the orbiting body's hybrid run crosses
+    # the gravity gradient's capture instead.
+    plain = replace(options, hybrid=False)
+    form = cast("AveragedForm[Any, State]", tb.MODEL.averaged.form(p, st, plain))
     inner = form.to_columns
 
     def to_columns(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:

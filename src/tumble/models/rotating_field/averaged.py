@@ -24,6 +24,7 @@ from tumble.models.base import AveragedForm, AveragingOptions, Breakpoint
 from tumble.models.inputs.rotating_field import Params, State
 from tumble.models.rotating_field.full import _XI3, _columns_from_momentum
 from tumble.models.triaxial_mean import triaxial_mean_form
+from tumble.rotations import rot_z
 from tumble.unperturbed import (
     energy_from_modulus,
     mean_square_rate,
@@ -255,7 +256,21 @@ def _mean_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[
     for, the mean L_ξ and T beside them."""
     return triaxial_mean_form(p.torque, p.inertia, 1.0, st.z, st.gamma, 2.0 * math.pi, options,
                               lambda L_xi, T: _columns_from_momentum(L_xi, T, p),
-                              "(1.5)")  # fmt: skip
+                              "(1.5)", _BODY_STATE)  # fmt: skip
+
+
+def _full_of_body(t: float, z: FloatArray, A: FloatArray) -> FloatArray:
+    """The state ``[z, Γ by rows]`` of (1.5) at τ = t of the body rate z and the inertial
+    attitude A: Γ = B(τ) A, the field's frame turned by τ about ξ3 (§9)."""
+    return np.concatenate([z, (rot_z(-t) @ A).ravel()])
+
+
+def _body_of_full(t: float, y: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """z and the inertial attitude A = Bᵀ(τ) Γ of a state of (1.5) at τ = t."""
+    return np.asarray(y[:3], dtype=float), rot_z(t) @ np.asarray(y[3:], dtype=float).reshape(3, 3)
+
+
+_BODY_STATE = (_full_of_body, _body_of_full)
 
 
 def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:
@@ -263,7 +278,7 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
     :func:`tumble.averaging.triaxial_average_vector`: the eddy-current torque averaged over the
     polhode, the precession about L and the field's rotation), or the equations of order 2 in
     mean variables (:func:`_mean_form`)."""
-    if options.order == 2:
+    if options.order == 2 or options.hybrid:
         return _mean_form(p, st, options)
     I1, I2, I3 = p.sorted_inertia
     breakpoints: tuple[Breakpoint, ...] = ()

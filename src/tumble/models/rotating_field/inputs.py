@@ -455,5 +455,6 @@ DECLARED: Declaration[Params, State] = Declaration(
     scenario=SCENARIO,
     numeric=True,
     orders=(1, 2),
+    hybrid=True,  # across the resonances and the separatrix (tumble.models.triaxial_mean)
 )
 """What a scenario of the model may ask for."""

@@ -706,6 +706,7 @@ DECLARED: Declaration[Params, State] = Declaration(
     check=_check_method,
     scenario=SCENARIO,
     orders=(1, 2),
+    hybrid=True,  # across the resonances and the separatrix (tumble.models.triaxial_mean)
     check_initial=_check_initial,
     engine=True,
 )

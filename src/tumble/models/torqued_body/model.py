@@ -226,7 +226,14 @@ def _mean_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[
     return triaxial_mean_form(torque, p.inertia, p.eps, st.omega, quat_to_matrix(st.q),
                               period, options,
                               lambda L_xi, T: _momentum_columns(L_xi, T, p),
-                              "Euler's equations")  # fmt: skip
+                              "Euler's equations", _BODY_STATE)  # fmt: skip
+
+
+_BODY_STATE = (
+    lambda t, omega, A: np.concatenate([omega, matrix_to_quat(A)]),
+    lambda t, y: (np.asarray(y[:3], dtype=float), quat_to_matrix(quat_normalize(y[3:]))),
+)
+"""The full state [ω, q] of the body rate and the attitude, and back."""
 
 
 def _averaged_start(p: Params, st: State) -> FloatArray:
@@ -247,7 +254,7 @@ def _averaged_start(p: Params, st: State) -> FloatArray:
 def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedForm[Params, State]:
     """The general engine: the only averaged form of any torque (``averaging`` is moot); of
     order 2 in mean variables (:func:`_mean_form`)."""
-    if options.order == 2:
+    if options.order == 2 or options.hybrid:
         return _mean_form(p, st, options)
     I1, I2, I3 = p.sorted_inertia
     sense = _sense(p, st)

@@ -112,3 +112,24 @@ def test_a_hybrid_run_carries_the_direction_of_l_through_the_separatrix(order, b
     worst_L = max(float(errors[f"L{i}"][1].max()) for i in (1, 2, 3))
     assert worst_L < bound * eps
     assert float(errors["T"][1].max()) < 1e-5
+
+
+@pytest.mark.parametrize(
+    ("run", "hybrid"),
+    [
+        ({}, False),
+        ({"averaging_order": 2}, True),  # auto: order 2 would stop at the first band
+        ({"averaging_order": 2, "averaged_method": "plain"}, False),
+        ({"averaged_method": "hybrid"}, True),
+    ],
+)
+def test_a_run_of_order_2_is_hybrid_unless_asked_plain(run, hybrid):
+    import tomllib
+
+    from files import EXAMPLES
+
+    from tumble.io import parse_scenario
+
+    data = tomllib.loads((EXAMPLES / "rf_transient_x1.toml").read_text())
+    data["run"].update(run)
+    assert parse_scenario(data, "rf_transient_x1.toml").request.averaging.hybrid is hybrid

@@ -277,12 +277,15 @@ def run_keys(model: Declaration[Any, Any], variant: Variant[Any, Any]) -> tuple[
                     "(converted to the mean one) or the mean one"),
         ]  # fmt: skip
     if model.hybrid:
-        keys.append(_choice("averaged_method", ("plain", "hybrid"),
+        keys.append(_choice("averaged_method", ("auto", "plain", "hybrid"),
                             "hybrid: the bands where averaging fails (ϑ = π/2 for the "
                             "resisting medium, the resonances of the phases and the polhode "
                             "separatrix for a triaxial body, the gravity gradient's capture "
                             "for an orbiting body) are crossed on the full equations, "
-                            "re-entered through the osculating → mean map"))  # fmt: skip
+                            "re-entered through the osculating → mean map; plain: the "
+                            "averaged equations throughout (a run of order 2 stops at the "
+                            "first band); auto: hybrid at averaging_order = 2, plain at "
+                            "1"))  # fmt: skip
     if model.steps:
         doc = ("the averaged equations alone: no asymptotic step across the crossings "
                "theory bridges (ϑ = π/2 of the resisting medium)")  # fmt: skip
@@ -699,6 +702,16 @@ def load_user_code(scenario: Scenario, consent: Consent | None = None) -> Scenar
     return scenario
 
 
+def _hybrid(run: Any) -> bool:
+    """Whether the run crosses its bands on the full equations: asked for, or by default at
+    order 2 (which would stop at the first band), unless the averaged equations alone are
+    asked for."""
+    method = getattr(run, "averaged_method", "plain")
+    if method == "auto":
+        return getattr(run, "averaging_order", 1) == 2 and not getattr(run, "averaged_only", False)
+    return bool(method == "hybrid")
+
+
 def _request(model: Declaration[Any, Any], run: Any, built: Any, times: np.ndarray) -> RunRequest:
     """The run request of a validated scenario and its built parameters (every check first,
     then the model loads)."""
@@ -716,7 +729,7 @@ def _request(model: Declaration[Any, Any], run: Any, built: Any, times: np.ndarr
         start=getattr(run, "averaged_init", "exact"),
         order=getattr(run, "averaging_order", 1),
         initial=getattr(run, "initial", "osculating"),
-        hybrid=getattr(run, "averaged_method", "plain") == "hybrid",
+        hybrid=_hybrid(run),
         averaged_only=getattr(run, "averaged_only", False),
     )
     family = getattr(run, "verify_scaling", None)

@@ -78,12 +78,25 @@ def block_entry(kind: int, event: int, args: tuple[Any, ...]) -> Callable[..., A
     with the kind's and the event's compiled functions bound to it; ``args`` are the
     arguments after the functions."""
     fns = addresses(kind, event)
-    key = tuple(numba.typeof(a) for a in args)
+    key = tuple(_cheap_type(a) for a in args)
     entry = _ENTRIES.get(key)
     if entry is None:
-        entry = cast(Any, advance_block).compile((numba.typeof(fns), *key))
+        types = tuple(numba.typeof(a) for a in args)
+        entry = cast(Any, advance_block).compile((numba.typeof(fns), *types))
         _ENTRIES[key] = entry
     return functools.partial(entry, fns)
+
+
+def _cheap_type(value: Any) -> Any:
+    """What numba's type of an argument depends on, read without numba's typeof (from
+    Python some 30 µs an array, half a millisecond a call of seventeen arguments: more than
+    the block's runs themselves): an array's dtype, dimensions, layout, writability and
+    alignment; a scalar's Python type."""
+    if isinstance(value, np.ndarray):
+        flags = value.flags
+        layout = "C" if flags.c_contiguous else "F" if flags.f_contiguous else "A"
+        return (value.dtype.str, value.ndim, layout, flags.writeable, flags.aligned)
+    return type(value)
 
 
 def empty_block(n_runs: int, dim: int, n_eval: int) -> dict[str, FloatArray]:

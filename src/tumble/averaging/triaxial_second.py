@@ -138,6 +138,25 @@ class TriaxialSystem:
                      forcing_period)  # fmt: skip
         return system, x, system.phases_of(x, w, A)
 
+    def _polished(self, ep: EulerPoinsot, s: float, omega: FloatArray) -> float:
+        """The polhode time of ω from ``s``, the search's minimum of |ω(s) − ω|², refined by
+        Gauss–Newton steps along ω̇ = I⁻¹(Iω × ω) (the search finds a minimum only to about
+        √(1e-16) of the period: the distance is flat there), kept while they shorten the
+        distance; modulo the period."""
+        miss = float(np.sum((ep.omega(np.array([s]))[0] - omega) ** 2))
+        for _ in range(4):
+            w = ep.omega(np.array([s]))[0]
+            rate = np.cross(self.inertia * w, w) / self.inertia
+            size = float(rate @ rate)
+            if size == 0.0:  # a uniform rotation: every time is the same state
+                break
+            trial = s - float((w - omega) @ rate) / size
+            trial_miss = float(np.sum((ep.omega(np.array([trial]))[0] - omega) ** 2))
+            if not trial_miss < miss:
+                break
+            s, miss = trial, trial_miss
+        return s % ep.period
+
     def reorient(self, t: float, x: FloatArray, omega: FloatArray) -> None:
         """From time t on, the system is on the torus of the body rate ω (slow state x): its
         ``sign`` read off ω as :meth:`through` reads it at t = 0. A hybrid run calls it where
@@ -182,7 +201,7 @@ class TriaxialSystem:
             method="bounded",
             options={"xatol": 1e-14 * ep.period},
         )
-        t_star = float(best.x) % ep.period
+        t_star = self._polished(ep, float(best.x), np.asarray(omega, dtype=float))
         psi, theta, phi = (float(v[0]) for v in ep.euler_angles(np.array([t_star])))
         C = rot_x(theta) @ rot_z(phi) @ ep.polar_frame
         R = self._frame(x[:3]).T @ attitude @ C.T

@@ -219,3 +219,33 @@ def test_an_interrupt_between_the_two_renames_puts_the_previous_set_back(tmp_pat
     monkeypatch.undo()
     assert (out / "a.csv").read_bytes() == b"old\n"  # at once, not only after the next run
     assert not list(tmp_path.glob(".out.tumble-*"))
+
+
+def test_a_hybrid_runs_mean_columns_may_be_nan_on_its_full_legs_alone():
+    # A hybrid run has no mean state inside a band: its *_mean columns hold NaN on the full
+    # legs (ends included), which the outputs keep; NaN anywhere else, or in another column,
+    # is still an overflow.
+    import json
+
+    import numpy as np
+    import xarray as xr
+
+    from tumble.io.output import _on_full_legs, first_non_finite
+
+    tau = np.linspace(0.0, 10.0, 11)
+    T_mean = np.where((tau >= 4.0) & (tau <= 7.0), np.nan, 1.0)
+    legs = [["averaged", 0.0, 4.0], ["full", 4.0, 7.0], ["averaged", 7.0, 10.0]]
+    ds = xr.Dataset({"T": ("tau", np.ones(11)), "T_mean": ("tau", T_mean)},
+                    coords={"tau": tau}, attrs={"legs": json.dumps(legs)})  # fmt: skip
+    rows = _on_full_legs(ds)
+    assert rows.tolist() == [4.0 <= t <= 7.0 for t in tau]
+    names, cols = ["t", "T", "T_mean"], [tau, ds["T"].values, T_mean]
+    assert first_non_finite("averaged.csv", names, cols, tau, rows) is None
+    assert "T_mean" in first_non_finite("averaged.csv", names, cols, tau)  # no legs: refused
+    T = np.where(tau == 5.0, np.nan, 1.0)
+    assert "column T is nan" in first_non_finite("averaged.csv", names, [tau, T, T_mean], tau, rows)
+    early = np.where(tau == 2.0, np.nan, T_mean)
+    assert "at t = 2" in first_non_finite("averaged.csv", names, [tau, ds["T"].values, early],
+                                          tau, rows)  # fmt: skip
+    plain = xr.Dataset({"T": ("tau", np.ones(11))}, coords={"tau": tau})
+    assert _on_full_legs(plain) is None

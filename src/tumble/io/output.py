@@ -52,16 +52,23 @@ class NonFiniteOutput(IntegrationError):
 
 
 def first_non_finite(
-    file: str, names: list[str], cols: list[np.ndarray], times: np.ndarray
+    file: str,
+    names: list[str],
+    cols: list[np.ndarray],
+    times: np.ndarray,
+    no_mean: np.ndarray | None = None,
 ) -> str | None:
     """Where the first value that is not finite of an output's columns is, in words (the
     file, the column, the value and the time [the first column's unit]); None if every value
-    is finite."""
+    is finite. ``no_mean`` marks the rows where a hybrid run was on the full equations: there
+    its mean columns (``*_mean``) have no value, and NaN is what they hold."""
     for name, col in zip(names, cols, strict=True):
         values = np.asarray(col)
         if values.dtype.kind not in "fc":
             continue
         bad = ~np.isfinite(values)
+        if no_mean is not None and "_mean" in name:
+            bad &= ~(no_mean & np.isnan(values))
         if bad.any():
             i = int(np.flatnonzero(bad)[0])
             return (
@@ -104,6 +111,19 @@ def _legs(ds: xr.Dataset) -> dict[str, Any]:
         return {}
     legs = json.loads(ds.attrs["legs"])
     return {"legs": [{"kind": k, "start": a, "end": b} for k, a, b in legs]}
+
+
+def _on_full_legs(ds: xr.Dataset) -> np.ndarray | None:
+    """The rows of a hybrid run's samples on its full legs (their ends included), or None for
+    a run without one."""
+    full = [(a, b) for kind, a, b in json.loads(ds.attrs.get("legs", "[]")) if kind == "full"]
+    if not full:
+        return None
+    tau = ds["tau"].values
+    rows = np.zeros(tau.shape, dtype=bool)
+    for a, b in full:
+        rows |= (tau >= a) & (tau <= b)
+    return rows
 
 
 def _verify_in_si(
@@ -428,8 +448,9 @@ def render_outputs(
         files[f"{method}.csv"] = csv_text(ds).encode()
         names = [_time_name(ds), *(str(v) for v in ds.data_vars)]
         tau = ds["tau"].values
+        no_mean = _on_full_legs(ds)
         problems.append(first_non_finite(f"{method}.csv", names, [tau, *(ds[v].values
-                                         for v in ds.data_vars)], tau) or "")  # fmt: skip
+                                         for v in ds.data_vars)], tau, no_mean) or "")  # fmt: skip
         nc = ds
         if scaling is not None:
             cols = {str(v): ds[v].values for v in ds.data_vars}
@@ -438,7 +459,7 @@ def render_outputs(
             files[f"{method}_si.csv"] = csv_text(ds, si).encode()
             first = next(iter(si.values()))
             problems.append(first_non_finite(f"{method}_si.csv", list(si), list(si.values()),
-                                             first) or "")  # fmt: skip
+                                             first, no_mean) or "")  # fmt: skip
             nc = _with_si(ds, scaling, si)
         # The same columns with their units, long names and equations as attributes (NetCDF 3,
         # which needs no library beyond scipy); a physical run's SI columns beside them.

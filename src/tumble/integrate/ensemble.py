@@ -31,6 +31,7 @@ from tumble.integrate.trajectory import (
     Trajectory,
     integrated,
     step_legs,
+    turning_angles,
     unwrap_columns,
 )
 from tumble.kernels import EVENT_NONE, Kernel
@@ -318,7 +319,8 @@ def _trajectory(
     """The Trajectory of a point of a block from its samples."""
     try:
         cols = pt.form.to_columns(pt.params, pt.initial, pt.tau, pt.samples)
-        unwrap_columns(model, pt.params, "averaged", cols, pt.initial)
+        turning = turning_angles(model, pt.params, pt.form, pt.initial, pt.y0.size)
+        unwrap_columns(model, pt.params, "averaged", cols, pt.initial, turning)
     except TumbleError as exc:
         return exc
     rerun: list[Trajectory] = []

@@ -33,6 +33,7 @@ from tumble.integrate.trajectory import (
     UnwrapStream,
     integrated,
     step_legs,
+    turning_angles,
     unwrap_columns,
 )
 from tumble.kernels import Kernel
@@ -560,10 +561,7 @@ def _averaged_streamed(
     from tumble.integrate.replay import Filled, stream
 
     p, tau, initial = run.p, run.tau, run.initial
-    angles = [c.name for c in run.model.columns(p, "averaged") if c.unwrap]
-    if avg.angles is not None:  # those the form turns (AveragedForm.angles)
-        turning = avg.angles(p, initial, tau[:0], np.empty((0, y0.size)))
-        angles = [name for name in angles if name in turning]
+    angles = turning_angles(run.model, p, avg, initial, y0.size)
     parts: list[Columns] = []
     unwrap = UnwrapStream(angles, initial)
 

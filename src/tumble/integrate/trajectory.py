@@ -4,7 +4,7 @@
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Collection
 from dataclasses import dataclass, field
 from typing import Any, Generic, TypeVar
 
@@ -16,7 +16,14 @@ from tumble.integrate.limits import MAX_STEPS
 from tumble.integrate.ode import DenseSolution
 from tumble.models.base import AveragedForm, Columns, FullForm, Model
 
-__all__ = ["RunSpec", "Trajectory", "UnwrapStream", "integrated", "unwrap_columns"]
+__all__ = [
+    "RunSpec",
+    "Trajectory",
+    "UnwrapStream",
+    "integrated",
+    "turning_angles",
+    "unwrap_columns",
+]
 
 P = TypeVar("P")
 S = TypeVar("S")
@@ -96,15 +103,36 @@ class Trajectory:
         return Rotation.from_quat(q)
 
 
-def unwrap_columns(model: Model[P, S], p: P, method: str, cols: Columns, initial: S) -> None:
-    """Make angle columns continuous, starting from the initial value, not mod 2π."""
+def unwrap_columns(
+    model: Model[P, S],
+    p: P,
+    method: str,
+    cols: Columns,
+    initial: S,
+    turning: Collection[str] | None = None,
+) -> None:
+    """Make angle columns continuous, starting from the initial value, not mod 2π; with
+    ``turning`` (names), those alone: the others are constant along the run, at their
+    initial values (:func:`turning_angles`)."""
     for c in model.columns(p, method):
-        if c.unwrap and c.name in cols:
+        if c.unwrap and c.name in cols and (turning is None or c.name in turning):
             angle = cols[c.name]
             if angle.size > 1 and np.any(np.abs(np.diff(angle)) >= np.pi):  # else the same
                 angle = np.unwrap(angle)
             start = getattr(initial, c.name, angle[0])
             cols[c.name] = angle + 2.0 * np.pi * np.round((start - angle[0]) / (2.0 * np.pi))
+
+
+def turning_angles(
+    model: Model[P, S], p: P, avg: AveragedForm[P, S], initial: S, dim: int
+) -> list[str]:
+    """The angle columns an averaged run of ``avg`` unwraps: the model's, less those the form
+    says do not turn (``AveragedForm.angles``)."""
+    names = [c.name for c in model.columns(p, "averaged") if c.unwrap]
+    if avg.angles is None:
+        return names
+    turning = avg.angles(p, initial, np.empty(0), np.empty((0, dim)))
+    return [name for name in names if name in turning]
 
 
 class UnwrapStream:

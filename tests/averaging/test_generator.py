@@ -73,6 +73,17 @@ def test_a_resonant_harmonic_is_reported_not_divided_by():
     assert np.max(np.abs(w - np.sin(a))) < 1e-14
 
 
+def test_a_resonant_harmonic_below_the_floor_is_dropped_not_reported():
+    # 1e-9 of the largest (below RESONANT_FLOOR, which the resonance table gives no band):
+    # at its exact resonance its term is dropped, and w is that of the rest to the size of
+    # the dropped oscillation.
+    a, b = _grid(16, 16)
+    w = zero_mean_antiderivative(np.cos(a) + 1e-9 * np.cos(a - 2 * b), [1.0, 0.5])
+    assert np.max(np.abs(w - np.sin(a))) < 1e-14
+    with pytest.raises(SmallDivisorError):  # at the floor's thousandfold it is reported
+        zero_mean_antiderivative(np.cos(a) + 1e-3 * np.cos(a - 2 * b), [1.0, 0.5])
+
+
 def test_bad_input_is_refused():
     with pytest.raises(ParameterError, match="phases"):
         zero_mean_antiderivative(np.zeros(8), [1.0, 2.0])

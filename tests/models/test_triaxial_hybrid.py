@@ -54,6 +54,20 @@ def test_a_return_onto_the_other_torus_leaves_the_earlier_terms_on_theirs():
     assert mirror.frequencies == pytest.approx(before.frequencies, rel=1e-14)
 
 
+def test_a_full_states_bands_are_read_on_its_own_torus():
+    # A full leg may cross the separatrix onto either torus: the band of a full state is read
+    # on the torus of its own body rate, the same table as after a return onto that torus.
+    inertia = np.array([1.0, 2.0, 3.0])
+    torque = ConstantBodyTorque([0.1, -0.2, 0.15])
+    omega = np.array([1.0, 0.3, 0.2])
+    system, x, _ = TriaxialSystem.through(inertia, torque, 1e-2, omega, np.eye(3))
+    mirror = system.resonances(0.0, x, -omega)
+    assert system.resonances(0.0, x, omega) != mirror  # the torque tells the two apart
+    system.reorient(1.0, x, -omega)
+    assert system.resonances(2.0, x) == mirror
+    assert system.resonances(0.5, x) == system.resonances(0.0, x, omega)
+
+
 def _rf_request(eps: float):
     import tomllib
 

@@ -37,15 +37,21 @@ from tumble._typing import ArrayLike, BoolArray, FloatArray
 from tumble.averaging.quadrature import AveragingError
 from tumble.errors import ParameterError
 
-__all__ = ["DIVISOR_RTOL", "SmallDivisorError", "zero_mean_antiderivative"]
+__all__ = ["DIVISOR_RTOL", "RESONANT_FLOOR", "SmallDivisorError", "zero_mean_antiderivative"]
 
 DIVISOR_RTOL = 1e-6
 """A harmonic k is a small divisor when |k·ν| ≤ DIVISOR_RTOL·|k|·max|ν_j| while its coefficient
-is above the round-off of the grid's values: its term of w₁ would be ≥ 1e6 times the size of
-the oscillation it removes."""
+is at least RESONANT_FLOOR of the largest: its term of w₁ would be ≥ 1e6 times the size of the
+oscillation it removes."""
 
-_NOISE = 1e-13
-"""Coefficients below this fraction of the largest one are round-off, not harmonics."""
+RESONANT_FLOOR = 1e-6
+"""A harmonic below this fraction of the largest is no resonance the averaged equations must
+respect: the resonance table gives it no band (its width goes as the square root of its size),
+and at a small divisor its term is dropped rather than reported. Its term at the edge of the
+small divisors, |f̂_k|/(DIVISOR_RTOL·|k|·max|ν|), is then at most the size of the generator's
+largest terms, |f̂|/ν, and far below it for the high harmonics that meet such resonances near a
+separatrix (a rotating field's run of order 2 met k = (22, −2, −2), of coefficient 3.5e-15,
+at k·ν = −7.6e-6)."""
 
 
 class SmallDivisorError(AveragingError):
@@ -90,7 +96,8 @@ def zero_mean_antiderivative(
     Raises
     ------
     SmallDivisorError
-        A harmonic k of f (above round-off) with |k·ν| ≤ divisor_rtol·|k|·max|ν|; the message
+        A harmonic k of f (at least :data:`RESONANT_FLOOR` of the largest) with
+        |k·ν| ≤ divisor_rtol·|k|·max|ν|; the message
         names k, k·ν and the size of the coefficient.
     ParameterError
         Not finite, or a frequency vector that does not match the grid's dimension.
@@ -120,7 +127,7 @@ def zero_mean_antiderivative(
     waves, k_size, nyquist = _harmonics(shape)
     k_dot_nu = sum(w * v for w, v in zip(waves, nu, strict=True))
     size = np.abs(coef).reshape(-1, *shape).max(axis=0)  # over the leading components
-    present = size > _NOISE * max(float(size.max()), 1e-300)
+    present = size > RESONANT_FLOOR * max(float(size.max()), 1e-300)
     zero = k_size == 0.0
     near = ~zero & ~nyquist
     near &= np.abs(k_dot_nu) <= divisor_rtol * k_size * float(np.max(np.abs(nu)))

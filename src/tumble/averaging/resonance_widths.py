@@ -16,6 +16,7 @@ import numpy as np
 
 from tumble._typing import FloatArray
 from tumble.averaging.fourier import _waves
+from tumble.averaging.generator import RESONANT_FLOOR
 
 __all__ = ["RESONANCE_WIDTHS", "nearest_resonance", "resonance_distance", "resonance_table"]
 
@@ -54,7 +55,7 @@ def resonance_table(
     Returns
     -------
     dict
-        k·ν/w_k for each harmonic k above 1e-6 of the largest that can resonate
+        k·ν/w_k for each harmonic k above ``RESONANT_FLOOR`` of the largest that can resonate
         (k·∂ν/∂x ≠ 0), one of each pair ±k (the one whose first non-zero entry is positive).
         Its sign tells on which side of the resonance the state is, so that a step of an
         integrator that jumps a whole band is seen by the sign's change.
@@ -72,7 +73,7 @@ def resonance_table(
     width2 = np.abs(np.tensordot(drift, k_jac, axes=(0, 0)))
     width2 = width2 + np.abs(np.sum(k_jac * coef, axis=0))
     size = np.abs(coef).max(axis=0)
-    present = size > 1e-6 * float(size.max())
+    present = size > RESONANT_FLOOR * float(size.max())
     present &= width2 > 0.0
     table: dict[tuple[int, ...], float] = {}
     full = [np.broadcast_to(w, shape) for w in waves]
@@ -96,7 +97,7 @@ def _one_phase_table(
     k_jac = np.outer(nu_gradient, k)  # k ∂ν/∂x, (m, harmonics)
     width2 = np.abs(drift @ k_jac) + np.abs(np.sum(k_jac * coef, axis=0))
     size = np.abs(coef).max(axis=0)
-    present = (size > 1e-6 * float(size.max())) & (width2 > 0.0) & (k > 0) & (2 * k < n)
+    present = (size > RESONANT_FLOOR * float(size.max())) & (width2 > 0.0) & (k > 0) & (2 * k < n)
     return {(int(h),): float(h * nu / math.sqrt(float(width2[h])))
             for h in np.flatnonzero(present)}  # fmt: skip
 

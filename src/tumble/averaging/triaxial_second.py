@@ -345,13 +345,18 @@ class TriaxialSystem:
         d_nu = self._frequency_jacobian(x, steps)
         return grid_terms(t, x, f, g, nu, d_nu, along, drift if generator_order == 2 else None)
 
-    def resonances(self, t: float, x: ArrayLike) -> dict[tuple[int, ...], float]:
+    def resonances(
+        self, t: float, x: ArrayLike, omega: ArrayLike | None = None
+    ) -> dict[tuple[int, ...], float]:
         """The signed distances from the resonances at the slow state x, on the torus the body
-        was on at time t (:func:`~tumble.averaging.second_order.resonance_table`): the terms'
-        table without the generator, defined at a resonance too, where the generator meets a
-        zero divisor."""
+        was on at time t, or on that of the body rate ω where it is given (a full state's)
+        (:func:`~tumble.averaging.second_order.resonance_table`): the terms' table without the
+        generator, defined at a resonance too, where the generator meets a zero divisor."""
         x = np.asarray(x, dtype=float)
-        self._at(t)
+        if omega is None:
+            self._at(t)
+        else:  # until the next call that takes a time
+            self.sign = _mirror_sign(self.inertia, x, np.asarray(omega, dtype=float))
         (f, *_), _ = self._resolved(x)
         drift = f.mean(axis=tuple(range(1, f.ndim)))
         return resonance_table(f, self.frequencies(x), self._frequency_jacobian(x, self._steps(x)),

@@ -99,11 +99,16 @@ def _bands(
     inertia = system.inertia
     last: list[Any] = [None, {}]  # the last state's table: band and signed ask for it in turn
 
-    def table(x: FloatArray) -> dict[tuple[int, ...], float] | None:
-        key = np.asarray(x[:4], dtype=float).tobytes()
+    def table(
+        x: FloatArray, omega: FloatArray | None = None
+    ) -> dict[tuple[int, ...], float] | None:
+        # On the torus of the body rate ω (a full state's: past the separatrix it may be
+        # either), or on the one the run is on now (a mean state's: asked along the run).
+        key = (np.asarray(x[:4], dtype=float).tobytes(), None if omega is None else omega.tobytes())
         if last[0] != key:
-            try:  # on the torus the run is on now: the band is asked along the run
-                found: dict[tuple[int, ...], float] | None = system.resonances(math.inf, x[:4])
+            try:
+                found: dict[tuple[int, ...], float] | None = system.resonances(math.inf, x[:4],
+                                                                                omega)  # fmt: skip
             except AveragingError:  # no average on the grid: the separatrix is near
                 found = None
             last[:] = [key, found]
@@ -112,8 +117,8 @@ def _bands(
     def signed(z: FloatArray) -> dict[tuple[int, ...], float]:
         return dict(table(z) or {})
 
-    def measure(x: FloatArray) -> float:
-        found = table(x)
+    def measure(x: FloatArray, omega: FloatArray | None = None) -> float:
+        found = table(x, omega)
         if found is None:
             return -1.0
         return nearest_resonance(found)[0] / RESONANCE_WIDTHS - 1.0
@@ -125,7 +130,8 @@ def _bands(
         # Read at t = 0: the distances do not change when the body and its torque turn
         # together about the inertial axis a forcing turns about (a field's), which is all
         # that the time changes in a full state's attitude (the rotating field's frame).
-        return measure(slow_of(*from_body(0.0, y)))
+        omega, A = from_body(0.0, y)
+        return measure(slow_of(omega, A), omega)
 
     def to_full(t: float, z: FloatArray) -> FloatArray:
         x, w = mapping.to_osculating(t, z[:4], z[4:])

@@ -47,18 +47,24 @@ def test_order_2_refuses_the_resonance_the_example_starts_near():
                  "averaged", averaging=replace(request.averaging, order=2))  # fmt: skip
 
 
+def _hybrid_and_full(eps: float, t_end: float, samples: int):
+    """The example at ``eps`` (k² = 0.5): its sample times, its hybrid run of order 2 and its
+    full run."""
+    request = _request(eps, 0.5)
+    model, p, st = request.model, request.params, request.initial
+    tau = np.linspace(0.0, t_end, samples)
+    hybrid = replace(request.averaging, order=2, hybrid=True)
+    run = simulate(model, p, st, tau, "averaged", averaging=hybrid)
+    return tau, run, simulate(model, p, st, tau, "full")
+
+
 def test_a_hybrid_run_that_starts_in_a_band_starts_on_the_full_equations():
     # The example's own state at ε = 1e-2 lies 1.2 widths from 2ν1 = ν2 (the test above):
     # the hybrid run starts on (1.5) from the given state and, the crowded resonances of
     # ε = 1e-2 never releasing it, stays there; it is then the full run, to the tolerance
     # (measured 1.1e-10 against the tolerances' 1e-10 relative over τ = 40).
-    request = _request(1e-2, 0.5)
-    model, p, st = request.model, request.params, request.initial
-    tau = np.linspace(0.0, 40.0, 9)
-    hybrid = replace(request.averaging, order=2, hybrid=True)
-    run = simulate(model, p, st, tau, "averaged", averaging=hybrid)
+    _, run, full = _hybrid_and_full(1e-2, 40.0, 9)
     assert run.legs == (("full", 0.0, 40.0),)
-    full = simulate(model, p, st, tau, "full")
     for v in ("L", "rho", "T"):
         assert run.columns[v] == pytest.approx(full.columns[v], abs=1e-8), v
     assert np.all(np.isnan(run.columns["T_mean"]))
@@ -68,19 +74,14 @@ def test_a_hybrid_run_that_starts_in_a_band_starts_on_the_full_equations():
 def test_a_hybrid_run_of_order_2_goes_on_where_the_plain_one_stops():
     # The example at ε = 1e-3 reaches the band of 2ν1 = ν2 at τ ≈ 69 (3 widths from it),
     # where the run of order 2 stops (at the first stage inside, τ ≈ 81: 20 s of Python
-    # rates, left to the test above at ε = 1e-2); the hybrid one finds the edge inside its
-    # step, hands over to (1.5) there and goes on. Its
-    # error is order 2's before the hand-over and the map's at it (the generator there is
-    # √ε/3 in size, the map's error O(ε²)): measured 3.1e-6, 7.5e-6, 4.1e-6 in L, ρ, T, where
-    # ε² = 1e-6 and the first order's own error is 1e-4.
-    request = _request(1e-3, 0.5)
-    model, p, st = request.model, request.params, request.initial
-    tau = np.linspace(0.0, 120.0, 25)
-    hybrid = replace(request.averaging, order=2, hybrid=True)
-    run = simulate(model, p, st, tau, "averaged", averaging=hybrid)
+    # rates, left to the refusal test above at ε = 1e-2); the hybrid one finds the edge
+    # inside its step, hands over to (1.5) there and goes on. Its error is order 2's before
+    # the hand-over and the map's at it (the generator there is √ε/3 in size, the map's
+    # error O(ε²)): measured 3.1e-6, 7.5e-6, 4.1e-6 in L, ρ, T, where ε² = 1e-6 and the
+    # first order's own error is 1e-4.
+    tau, run, full = _hybrid_and_full(1e-3, 120.0, 25)
     assert [kind for kind, _, _ in run.legs] == ["averaged", "full"]
     assert 60.0 < run.legs[0][2] < 70.0
-    full = simulate(model, p, st, tau, "full")
     for v in ("L", "rho", "T"):
         assert float(np.max(np.abs(run.columns[v] - full.columns[v]))) < 3e-5, v
     # no mean state inside a band

@@ -54,6 +54,16 @@ from tumble.unperturbed.euler_poinsot import EulerPoinsot, fast_frequencies
 __all__ = ["TriaxialSystem"]
 
 
+def _polhode_frames(ep: EulerPoinsot, tau: ArrayLike) -> tuple[FloatArray, ...]:
+    """Along the free motion ``ep`` at times τ: the body rate ω (shape (n, 3)), the rotation
+    C(τ) = Rx(θ) Rz(φ) P_polar without the precession (shape (n, 3, 3)) and the periodic part
+    P = ψ − ν2 τ of the precession (shape (n,)) (module notes)."""
+    tau = np.asarray(tau, dtype=float)
+    psi, theta, phi = ep.euler_angles(tau)
+    C = rot_x(theta) @ rot_z(phi) @ ep.polar_frame
+    return ep.omega(tau), C, psi - ep.nu2 * tau
+
+
 def _mirror_sign(inertia: FloatArray, x: FloatArray, omega: FloatArray) -> float:
     """The torus of the body rate ω with slow state x (module notes): the sign of its
     momentum along the polar axis of its regime."""
@@ -178,12 +188,9 @@ class TriaxialSystem:
         x = np.asarray(x, dtype=float)
         w = np.asarray(w, dtype=float)
         ep = self._reference(x)
-        tau = np.array([(float(w[0]) % (2.0 * math.pi)) * ep.period / (2.0 * math.pi)])
-        omega = ep.omega(tau)[0]
-        psi, theta, phi = (float(v[0]) for v in ep.euler_angles(tau))
-        C = rot_x(theta) @ rot_z(phi) @ ep.polar_frame
-        A = self._frame(x[:3]) @ rot_z(float(w[1]) + psi - ep.nu2 * float(tau[0])) @ C
-        return omega, A
+        tau = (float(w[0]) % (2.0 * math.pi)) * ep.period / (2.0 * math.pi)
+        omega, C, P = _polhode_frames(ep, np.array([tau]))
+        return omega[0], self._frame(x[:3]) @ rot_z(float(w[1]) + float(P[0])) @ C[0]
 
     def phases_of(self, x: FloatArray, omega: FloatArray, attitude: FloatArray) -> FloatArray:
         """The phases (w1, w2[, 0]) of the state (ω, A) on the torus of x [rad]."""
@@ -202,12 +209,11 @@ class TriaxialSystem:
             options={"xatol": 1e-14 * ep.period},
         )
         t_star = self._polished(ep, float(best.x), np.asarray(omega, dtype=float))
-        psi, theta, phi = (float(v[0]) for v in ep.euler_angles(np.array([t_star])))
-        C = rot_x(theta) @ rot_z(phi) @ ep.polar_frame
-        R = self._frame(x[:3]).T @ attitude @ C.T
+        _, C, P = _polhode_frames(ep, np.array([t_star]))
+        R = self._frame(x[:3]).T @ attitude @ C[0].T
         chi = math.atan2(R[1, 0], R[0, 0])
         w1 = 2.0 * math.pi * t_star / ep.period
-        w2 = chi - (psi - ep.nu2 * t_star)
+        w2 = chi - float(P[0])
         return np.array([w1, w2] + ([0.0] if self.period else []))
 
     # -- the unperturbed motion ------------------------------------------------------------
@@ -244,11 +250,7 @@ class TriaxialSystem:
         ep = self._reference(x)
         n1, n2 = shape[0], shape[1]
         w1 = np.arange(n1) * (2.0 * math.pi / n1)
-        tau = w1 * ep.period / (2.0 * math.pi)
-        omega = ep.omega(tau)
-        psi, theta, phi = ep.euler_angles(tau)
-        C = rot_x(theta) @ rot_z(phi) @ ep.polar_frame  # (n1, 3, 3)
-        P = psi - ep.nu2 * tau
+        omega, C, P = _polhode_frames(ep, w1 * ep.period / (2.0 * math.pi))
         w2 = np.arange(n2) * (2.0 * math.pi / n2)
         R = rot_z(w2[None, :] + P[:, None])  # (n1, n2, 3, 3)
         A = self._frame(x[:3]) @ R @ C[:, None]

@@ -72,6 +72,9 @@ def short_stretches(monkeypatch):
 def test_streamed_states_are_the_dense_outputs(name, fraction, short_stretches):
     request = _request(name, fraction)
     _, streamed, dense = _streamed_and_dense(request)
+    # No times at all, asked first: no states, of the run's dimension (not those of the
+    # empty cache of last calls).
+    assert streamed.replay(np.empty(0)).shape == (0, streamed.y_eval.shape[1])
     assert len(streamed.replay._points) > 2  # one inside the run at least
     tau = request.tau
     rng = np.random.default_rng(7)

@@ -102,7 +102,7 @@ class Replay:
     def __call__(self, t: FloatArray) -> FloatArray:
         """States at times ``t`` (any order, within the run's span), shape (m, n)."""
         t = np.atleast_1d(np.asarray(t, dtype=float))
-        if np.array_equal(t, self._last[0]):
+        if t.size and np.array_equal(t, self._last[0]):
             return self._last[1].copy()
         states = self._states(t)
         if t.size > 1:

@@ -404,3 +404,38 @@ def test_the_vectorised_resonance_search_is_the_single_one(period):
         (many,) = nearest_resonances(np.array([nu[0]]), np.array([nu[1]]), period)
         assert (many.m, many.n1, many.n2) == (one.m, one.n1, one.n2)
         assert many.detuning == one.detuning and many.relative == one.relative
+
+
+@pytest.mark.parametrize(
+    ("inertia", "omega"),
+    [([1.0, 2.0, 3.0], [1.0, 0.25, 0.0]), ([2.5, 1.0, 1.8], [0.3, 0.2, 1.1])],
+    ids=["x1", "x3"],
+)
+def test_the_precession_harmonic_is_the_sum_over_the_attitude_and_converged(inertia, omega):
+    # g_m of the part of A M across L, times e^{−iν2 t}, built here from the attitude
+    # matrices (A(t) in the frame of L) instead of the Euler angles; 1024 samples against
+    # the default 512; and a later point of the same polhode (|g| does not depend on where
+    # the period starts). A drag with off-diagonal terms and a body moment, so that odd and
+    # even harmonics are there. Bounds: round-off of sums of 512 terms of size |M| (1e-13).
+    from tumble.averaging import precession_harmonic
+    from tumble.unperturbed.euler_poinsot import EulerPoinsot
+
+    torque = LinearDrag(np.array([[0.3, 0.1, 0.0], [0.1, 0.2, 0.05], [0.0, 0.05, 0.1]]))
+    torque = torque + ConstantBodyTorque(np.array([0.02, -0.01, 0.03]))
+    motion = EulerPoinsot.from_state(inertia, omega)
+    n = 512
+    t = np.arange(n) * (2.0 * math.pi / motion.nu1 / n)
+    moment = np.asarray(torque(0.0, None, motion.omega(t)))
+    f = np.einsum("ij,njk,nk->ni", motion.lframe.T, motion.attitude(t), moment)
+    h = (f[:, 0] + 1j * f[:, 1]) * np.exp(-1j * motion.nu2 * t)
+    later = motion.omega(np.array([0.37 * 2.0 * math.pi / motion.nu1]))[0]
+    sizes = []
+    for k in (1, 2, 3):
+        g = precession_harmonic(torque, inertia, omega, k)
+        assert abs(g - np.mean(h * np.exp(1j * k * motion.nu1 * t))) < 1e-13
+        assert abs(g - precession_harmonic(torque, inertia, omega, k, samples=1024)) < 1e-13
+        assert abs(abs(g) - abs(precession_harmonic(torque, inertia, later, k))) < 1e-13
+        sizes.append(abs(g))
+    assert min(sizes) > 1e-6  # not a test of zeros
+    with pytest.raises(ValueError, match="attitude"):
+        precession_harmonic(GravityGradientTorque(inertia, 1.0), inertia, omega, 1)

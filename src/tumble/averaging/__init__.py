@@ -41,6 +41,7 @@ from tumble.averaging.triaxial import (
     triaxial_average_vector,
     triaxial_kernel,
 )
+from tumble.averaging.triaxial_resonance import precession_harmonic
 
 __all__ = [
     "AVERAGE_RTOL",
@@ -52,6 +53,7 @@ __all__ = [
     "first_crossing",
     "nearest_resonance",
     "nearest_resonances",
+    "precession_harmonic",
     "rotation_sense",
     "sense_turn",
     "separatrix_crossing",

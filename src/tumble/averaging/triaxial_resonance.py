@@ -18,10 +18,11 @@ import numpy as np
 
 from tumble._typing import ArrayLike, FloatArray
 from tumble.errors import check_range
+from tumble.torques import Torque
 from tumble.unperturbed._checks import moments
-from tumble.unperturbed.euler_poinsot import fast_frequencies
+from tumble.unperturbed.euler_poinsot import EulerPoinsot, fast_frequencies
 
-__all__ = ["Resonance", "nearest_resonance", "nearest_resonances"]
+__all__ = ["Resonance", "nearest_resonance", "nearest_resonances", "precession_harmonic"]
 
 
 @dataclass(frozen=True)
@@ -136,3 +137,68 @@ def nearest_resonances(
         m, n1, n2 = (int(v) for v in rel[j])
         out.append(Resonance(float(nu1[k]), float(nu2[k]), forcing, m, n1, n2, d, relative))
     return out
+
+
+HARMONIC_SAMPLES = 512
+"""Samples of one polhode period for :func:`precession_harmonic`: the trapezoidal rule on a
+periodic analytic integrand, converged to round-off for the harmonics k ≤ 8 up to
+|1 − k²| ≈ 1e-3 (the edge of the separatrix band; checked at twice the samples in the
+tests)."""
+
+
+def precession_harmonic(
+    torque: Torque, inertia: ArrayLike, omega: ArrayLike, k: int, samples: int = HARMONIC_SAMPLES
+) -> complex:
+    """The harmonic of a torque of the body rate alone that turns L secularly at the resonance
+    ν2 = k ν1 of the free motion through ``omega``.
+
+    Under a torque M(ω) the rates of |L| and T read the polhode phase alone, but the
+    direction of L turns at A M, which also reads the precession angle ψ about L. In the frame
+    of L (L along its third axis) its part across L is c = e^{iψ} w(polhode phase), and with
+    ψ = ν2 t + a periodic part, c e^{−iν2 t} is periodic in the polhode period 2π/ν1:
+
+        c(t) = Σ_m g_m e^{i(ν2 + m ν1) t}.
+
+    Averaging keeps none of these terms. Where ν2 + m ν1 = 0, at m = −k sgn ν2, the term
+    g_m stands still: passing that resonance at the rate Ω̇ of the detuning Ω = ν2 + m ν1
+    kicks L across itself by |g_m| √(2π/|Ω̇|) (the stationary phase of
+    ∫ g_m e^{iΩ̇ s²/2} ds), O(√ε) for a torque of size ε, in a direction set by the phase
+    at the passage (Neishtadt's passage through resonance;
+    docs/theory/separatrix-crossing.md §5).
+
+    Parameters
+    ----------
+    torque : Torque
+        A torque of the body rate alone (:attr:`~tumble.torques.Torque.rate_only`), with its
+        size [moment unit].
+    inertia : array_like, shape (3,)
+        Principal moments in the user's axes [inertia unit].
+    omega : array_like, shape (3,)
+        A body rate on the polhode (any point: the harmonic's size does not depend on it)
+        [rad/time].
+    k : int
+        The order of the resonance ν2 = k ν1, k ≥ 1.
+    samples : int
+        Samples of one polhode period.
+
+    Returns
+    -------
+    complex
+        g_m, m = −k sgn ν2, in the frame of L at the time of ``omega`` [moment unit]; 0 for
+        a motion without a polhode phase (a pure rotation, a sphere).
+    """
+    if not torque.rate_only:
+        raise ValueError("precession_harmonic: the torque reads the attitude or the time")
+    motion = EulerPoinsot.from_state(inertia, omega)
+    if not (motion.nu1 > 0.0 and math.isfinite(motion.nu1)):
+        return 0j
+    t = np.arange(samples) * (2.0 * math.pi / motion.nu1 / samples)
+    psi, theta, phi = motion.euler_angles(t)
+    w = np.asarray(torque(0.0, None, motion.omega(t)), dtype=float)  # body axes
+    w = w @ motion.polar_frame.T  # the polar frame: body → L-frame is Rz(ψ) Rx(θ) Rz(φ) · P
+    c, s = np.cos(phi), np.sin(phi)
+    x, y = c * w[:, 0] - s * w[:, 1], s * w[:, 0] + c * w[:, 1]
+    y = np.cos(theta) * y - np.sin(theta) * w[:, 2]  # Rx(θ): the part across L is (x, y)
+    m = -k if motion.nu2 >= 0.0 else k
+    h = (x + 1j * y) * np.exp(1j * (psi - motion.nu2 * t) - 1j * m * motion.nu1 * t)
+    return complex(np.mean(h))

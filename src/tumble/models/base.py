@@ -787,8 +787,9 @@ def separatrix_issue(
         f"the averaged motion crosses the separatrix L² = 2T·I2 at {time} = {tau_s:.6g}: "
         "the polhode frequency ν1 → 0 there and averaging is locally invalid; the error after "
         "the crossing is usually first order, theory allows ε|ln ε| (Neishtadt 1975), but the "
-        "direction of L can lose more where the torque turns it: ν2/ν1 runs through every "
-        "integer there, each a resonance (measured ε^0.6; theory of separatrix crossing, §5)",
+        "direction of L can lose more where the torque turns it: on the way there ν2/ν1 "
+        "runs through every integer, each a resonance that can turn L by O(√ε) (theory of "
+        "separatrix crossing, §5)",
         label="the separatrix",
     )
 

@@ -30,8 +30,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from tumble._typing import BoolArray, FloatArray
-from tumble.averaging import branch_kernel, nearest_resonances, rotation_sense
+from tumble.averaging import (
+    branch_kernel,
+    nearest_resonances,
+    precession_harmonic,
+    rotation_sense,
+)
 from tumble.averaging.triaxial import triaxial_average_stage
+from tumble.bodies import proper_sorting
 from tumble.dynamics import rigid_body_rhs
 from tumble.errors import IntegrationError, ParameterError, TumbleError
 from tumble.kernels import EVENT_TRIAXIAL_SEPARATRIX, Kernel, evaluate_rhs
@@ -329,7 +335,8 @@ def validity(p: Params, st: State, slow: SlowPath, tau_end: float) -> list[Valid
         slow rate exceeds VALIDITY_RATIO times the slowest fast frequency: ν1, |ν2| or the
         forcing), ``resonance`` (n1 ν1 + n2 ν2 = m Ω_f, m ≤ 2, |n1|, |n2| ≤ 2, met or
         approached within the resonance width √(slow rate/Ω_ref); for torques that depend on
-        the attitude or on time only).
+        the attitude or on time), or for a torque of the body rate alone the first passage of
+        ν2 = k ν1 that turns L by more than ε|L| (:func:`_precession_issue`).
     """
     if p.eps == 0.0 or tau_end <= 0.0:
         return []
@@ -340,7 +347,9 @@ def validity(p: Params, st: State, slow: SlowPath, tau_end: float) -> list[Valid
     found = [
         _crossing_issue(p, st, slow, grid, cols) if I1 < I2 < I3 else None,
         _not_fast_issue(grid, scales),
-        _resonance_issue(p, grid, scales) if p.attitude_dependent else None,
+        _resonance_issue(p, grid, scales)
+        if p.attitude_dependent
+        else _precession_issue(p, st, grid, cols, scales),
         _unstable_rotation_issue(p, grid, cols, tau_end, _sense(p, st)) if I1 < I2 < I3 else None,
     ]
     return sorted((i for i in found if i is not None), key=lambda i: i.tau)
@@ -360,7 +369,6 @@ def _crossing_issue(
     from dataclasses import replace as changed
 
     from tumble.averaging import separatrix_crossing
-    from tumble.bodies import proper_sorting
 
     omega = proper_sorting(p.inertia) @ st.omega  # sorted axes: the region it starts in
     axis = 0 if _vector_from_slow(p, st)[3] > 1.0 / p.sorted_inertia[1] else 2
@@ -545,6 +553,78 @@ def _resonance_issue(p: Params, grid: FloatArray, sc: _Scales) -> ValidityIssue 
         "lingering O(1)",
         label=f"resonance {n1}·ν1 {sign} {abs(n2)}·ν2 = {rhs}",
     )
+
+
+_MAX_PRECESSION_ORDER = 16  # ν2/ν1 at the edge of the separatrix band (k² = 1 − 1e-3) is ~6
+
+
+def _precession_issue(
+    p: Params, st: State, grid: FloatArray, cols: dict[str, FloatArray], sc: _Scales
+) -> ValidityIssue | None:
+    """The first passage of a resonance ν2 = k ν1 that turns L by more than ε|L|, under a
+    torque of the body rate alone (:func:`precession_passages`)."""
+    for t_r, k, L, kick in precession_passages(p, st, grid, cols, sc):
+        if kick > p.eps * L:
+            return ValidityIssue(
+                "resonance",
+                t_r,
+                f"at t ≈ {t_r:.6g} the averaged motion passes the resonance ν2 = {k}·ν1 "
+                "(polhode ν1, precession ν2 about L): the torque turns L there at a rate the "
+                f"averages drop, by about {kick / L:.2g} of |L| (O(√ε)), in a direction set "
+                "by the phase at the passage, which the averaged run does not follow; |L| and "
+                "T do not see it (docs/theory/separatrix-crossing.md §5)",
+                label=f"resonance ν2 = {k}·ν1",
+            )
+    return None
+
+
+def precession_passages(
+    p: Params, st: State, grid: FloatArray, cols: dict[str, FloatArray], sc: _Scales
+) -> list[tuple[float, int, float, float]]:
+    """The resonances ν2 = k ν1 an averaged run passes under a torque of the body rate alone,
+    away from the separatrix band: (t, k, |L|, the kick to L there) each.
+
+    Its |L| and T do not see the precession angle, but the direction of L does. At each
+    integer k that |ν2|/ν1 passes between two samples, the kick |g| √(2π/|Ω̇|) of the
+    harmonic that stands still there (:func:`tumble.averaging.precession_harmonic`, at
+    (|L|, T) interpolated to the passage; Ω = |ν2| − k ν1 along the samples); none for a
+    torque that is not one of the body rate alone."""
+    if not p.scaled.rate_only:
+        return []
+    nu1, nu2 = sc.nu[:, 0], np.abs(sc.nu[:, 1])
+    ok = sc.away & (nu1 > 0.0)
+    ratio = np.where(ok, nu2 / np.where(nu1 > 0.0, nu1, 1.0), np.nan)
+    sense = _sense(p, st)
+    I1, I2, I3 = p.sorted_inertia
+    Q = proper_sorting(p.inertia)
+    found = []
+    for i in range(grid.size - 1):
+        a, b = ratio[i], ratio[i + 1]
+        if not (np.isfinite(a) and np.isfinite(b)) or a == b:
+            continue
+        low, high = sorted((a, b))
+        for k in range(math.floor(low) + 1, min(math.floor(high), _MAX_PRECESSION_ORDER) + 1):
+            f = (k - a) / (b - a)
+            t_r = float(grid[i] + f * (grid[i + 1] - grid[i]))
+            L = float(cols["L"][i] + f * (cols["L"][i + 1] - cols["L"][i]))
+            T = float(cols["T"][i] + f * (cols["T"][i + 1] - cols["T"][i]))
+            detuning = nu2[i : i + 2] - k * nu1[i : i + 2]
+            rate = abs(float(detuning[1] - detuning[0])) / float(grid[i + 1] - grid[i])
+            omega = _on_polhode(I1, I2, I3, L, T, sense) @ Q
+            g = abs(precession_harmonic(p.scaled, p.inertia, omega, k))
+            kick = g * math.sqrt(2.0 * math.pi / rate) if rate > 0.0 else math.inf
+            found.append((t_r, k, L, kick))
+    return found
+
+
+def _on_polhode(I1: float, I2: float, I3: float, L: float, T: float, sense: float) -> FloatArray:
+    """A body rate (sorted axes) of the free motion at (L, T), where its polhode crosses
+    ω2 = 0 (every polhode does), turning in ``sense`` about the axis it encircles."""
+    w1 = math.sqrt(max((L * L - 2.0 * T * I3) / (I1 * (I1 - I3)), 0.0))
+    w3 = math.sqrt(max((L * L - 2.0 * T * I1) / (I3 * (I3 - I1)), 0.0))
+    if L * L > 2.0 * T * I2:  # regime x3: the sense is ω3's
+        return np.array([w1, 0.0, sense * w3])
+    return np.array([sense * w1, 0.0, w3])
 
 
 # ---------------------------------------------------------------------------------------------

@@ -107,10 +107,11 @@ def test_the_hand_over_maps_are_inverse():
 @pytest.mark.parametrize(("order", "bound"), [(1, 0.5), (2, 0.2)])
 def test_a_hybrid_run_carries_the_direction_of_l_through_the_separatrix(order, bound):
     # The damper-and-drag example at ε = 1e-3 (a spin about x1 taken through the separatrix
-    # to x3): the plain averaged run errs by 4.8ε in L, from the resonances of the polhode
-    # and the precession near the separatrix, which a first-order run without mean phases
-    # cannot follow. The hybrid run in mean variables hands the band to the full equations
-    # (τ ≈ 1507 … 2151) and returns through the map: measured 0.12ε (order 1) and 0.03ε
+    # to x3): the plain averaged run errs by 4.8ε in L, the kick of the passage of
+    # ν2 = 2ν1 at τ ≈ 1648 (tests/averaging/test_crossing.py), which a first-order run
+    # without mean phases cannot follow. The hybrid run in mean variables hands the band to
+    # the full equations (τ ≈ 1507 … 2151: the passage and the separatrix) and returns
+    # through the map: measured 0.12ε (order 1) and 0.03ε
     # (order 2) in L, T within 2e-6. Bounds: 4× and 7× the measured, far below the plain
     # run's 4.8ε.
     from tumble.analysis.verify import slow_errors

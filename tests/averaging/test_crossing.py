@@ -256,7 +256,7 @@ def test_the_direction_of_L_takes_the_predicted_kick_at_the_resonance_nu2_2nu1()
         )
         grid = np.linspace(0.0, float(tau[-1]), 1001)
         cols = averaged.slow(grid)
-        passages = precession_passages(p, st, grid, cols, _Scales.along(p, grid, cols))
+        passages = list(precession_passages(p, st, grid, cols, _Scales.along(p, grid, cols)))
         assert all(kick < 1e-15 * L for _, k, L, kick in passages if k % 2)
         t_r, _, _, kick = next(x for x in passages if x[1] == 2)
 

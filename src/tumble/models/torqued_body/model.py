@@ -24,7 +24,7 @@ Time is the model's t (the ``tau`` column of the outputs); the slow time is εt.
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -580,9 +580,10 @@ def _precession_issue(
 
 def precession_passages(
     p: Params, st: State, grid: FloatArray, cols: dict[str, FloatArray], sc: _Scales
-) -> list[tuple[float, int, float, float]]:
+) -> Iterator[tuple[float, int, float, float]]:
     """The resonances ν2 = k ν1 an averaged run passes under a torque of the body rate alone,
-    away from the separatrix band: (t, k, |L|, the kick to L there) each.
+    away from the separatrix band, in time order: (t, k, |L|, the kick to L there) each, each
+    computed when asked for (a few milliseconds: one polhode period of the free motion).
 
     Its |L| and T do not see the precession angle, but the direction of L does. At each
     integer k that |ν2|/ν1 passes between two samples, the kick |g| √(2π/|Ω̇|) of the
@@ -590,14 +591,13 @@ def precession_passages(
     (|L|, T) interpolated to the passage; Ω = |ν2| − k ν1 along the samples); none for a
     torque that is not one of the body rate alone."""
     if not p.scaled.rate_only:
-        return []
+        return
     nu1, nu2 = sc.nu[:, 0], np.abs(sc.nu[:, 1])
     ok = sc.away & (nu1 > 0.0)
     ratio = np.where(ok, nu2 / np.where(nu1 > 0.0, nu1, 1.0), np.nan)
     sense = _sense(p, st)
     I1, I2, I3 = p.sorted_inertia
     Q = proper_sorting(p.inertia)
-    found = []
     for i in range(grid.size - 1):
         a, b = ratio[i], ratio[i + 1]
         if not (np.isfinite(a) and np.isfinite(b)) or a == b:
@@ -613,8 +613,7 @@ def precession_passages(
             omega = _on_polhode(I1, I2, I3, L, T, sense) @ Q
             g = abs(precession_harmonic(p.scaled, p.inertia, omega, k))
             kick = g * math.sqrt(2.0 * math.pi / rate) if rate > 0.0 else math.inf
-            found.append((t_r, k, L, kick))
-    return found
+            yield t_r, k, L, kick
 
 
 def _on_polhode(I1: float, I2: float, I3: float, L: float, T: float, sense: float) -> FloatArray:

@@ -439,3 +439,5 @@ def test_the_precession_harmonic_is_the_sum_over_the_attitude_and_converged(iner
     assert min(sizes) > 1e-6  # not a test of zeros
     with pytest.raises(ValueError, match="attitude"):
         precession_harmonic(GravityGradientTorque(inertia, 1.0), inertia, omega, 1)
+    with pytest.raises(ValueError, match="at least 1"):
+        precession_harmonic(torque, inertia, omega, 0)

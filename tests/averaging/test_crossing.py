@@ -209,7 +209,7 @@ def test_the_averaged_run_through_the_separatrix_keeps_its_measured_orders():
     # The damper-and-drag example at ε = 1e-3 and 1e-4, averaged against full (rtol 1e-12)
     # over the whole run: the energy, which the damper moves at a rate that does not depend
     # on the precession angle about L, stays first order (measured slope 1.0); L, which the
-    # drag moves through the attitude, loses it before the separatrix (measured 0.58: the
+    # torque turns through the attitude (A M), loses it before the separatrix (measured 0.58: the
     # passage of the resonance ν2 = 2ν1, of O(√ε), test below). The
     # bound 0.8 lies between either measured slope and the other order (1 or 0.5).
     from tumble.analysis.verify import slow_errors
@@ -240,9 +240,10 @@ def test_the_direction_of_L_takes_the_predicted_kick_at_the_resonance_nu2_2nu1()
     # bound 0.15: the jump (4.4 ε and 13 ε) is the difference of the error's means over a
     # window on either side of the passage, which still carry part of the first-order
     # oscillation the averaged run does not follow (±1.5 ε, averaged over about 11 samples
-    # each). The odd harmonics vanish to round-off: the half period of the
-    # polhode turns the body by π about the axis it encircles, which flips the drag's and
-    # the damper's part across L.
+    # each). The odd harmonics vanish to round-off: relative to the frame precessing about
+    # L at ν2, half a polhode period turns the body by π about the axis its polhode
+    # encircles, which the drag and the damper follow, so their part across L repeats every
+    # half period there.
     from tumble.app.bench_crossings import request_at
     from tumble.integrate import simulate
     from tumble.models.torqued_body.model import _Scales, precession_passages
@@ -258,6 +259,7 @@ def test_the_direction_of_L_takes_the_predicted_kick_at_the_resonance_nu2_2nu1()
         cols = averaged.slow(grid)
         passages = list(precession_passages(p, st, grid, cols, _Scales.along(p, grid, cols)))
         assert all(kick < 1e-15 * L for _, k, L, kick in passages if k % 2)
+        assert [t for t, *_ in passages] == sorted(t for t, *_ in passages)  # in time order
         t_r, _, _, kick = next(x for x in passages if x[1] == 2)
 
         def vector(run):

@@ -184,11 +184,19 @@ def precession_harmonic(
     Returns
     -------
     complex
-        g_m, m = −k sgn ν2, in the frame of L at the time of ``omega`` [moment unit]; 0 for
-        a motion without a polhode phase (a pure rotation, a sphere).
+        g_m, m = −k sgn ν2 [moment unit]; 0 for a motion without a polhode phase (a pure
+        rotation, a sphere). Its phase is relative to ``omega``'s point of the polhode (and
+        to a frame of L fixed by the identity attitude there): only |g_m| is meaningful.
+
+    Raises
+    ------
+    ValueError
+        A torque that reads the attitude or the time, or k < 1.
     """
     if not torque.rate_only:
         raise ValueError("precession_harmonic: the torque reads the attitude or the time")
+    if k < 1:
+        raise ValueError(f"precession_harmonic: k = {k} must be at least 1")
     motion = EulerPoinsot.from_state(inertia, omega)
     if not (motion.nu1 > 0.0 and math.isfinite(motion.nu1)):
         return 0j

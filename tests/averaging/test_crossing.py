@@ -5,6 +5,7 @@ averaged run through the crossing keeps the order the theory page states."""
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -93,6 +94,13 @@ def test_the_probabilities_keep_the_symmetries():
     relabelled = InternalDissipation(cycled, 40.0) + ConstantBodyTorque([1e-3, 0.0, 0.0])
     q = separatrix_crossing(relabelled, cycled, 1.0, "x1+").probabilities
     assert q["x3+"] == pytest.approx(p["x3+"], rel=1e-12)
+    # Every labelling of the axes, odd permutations too (their sorting reverses an axis): a
+    # damper's fluxes are those of the sorted body, to round-off.
+    sorted_fluxes = separatrix_crossing(damper, INERTIA, 1.0, "x1+").fluxes
+    for order in itertools.permutations(range(3)):
+        moments = INERTIA[list(order)]
+        fluxes = separatrix_crossing(InternalDissipation(moments, 40.0), moments, 1.0, "x1+").fluxes
+        assert fluxes == pytest.approx(sorted_fluxes, rel=1e-13), order
     # Spun up from x3 (a damper run backwards, an energy source), the body leaves to x1 ± alike.
     source = InternalDissipation(INERTIA, 40.0) * -1.0
     assert separatrix_crossing(source, INERTIA, 1.0, "x3+").probabilities["x1+"] == 0.5

@@ -68,7 +68,7 @@ def _sorted(inertia: ArrayLike) -> tuple[FloatArray, FloatArray]:
     if moments.shape != (3,) or not np.all(moments > 0.0):
         raise ParameterError(f"inertia = {moments.tolist()} must be three positive moments")
     Q = proper_sorting(moments)
-    i1, i2, i3 = Q @ moments
+    i1, i2, i3 = np.abs(Q) @ moments  # Q diag(I) Qᵀ: the reversed axis keeps its moment
     if not (i1 < i2 < i3) or min(i2 - i1, i3 - i2) <= 1e-12 * i3:
         raise ParameterError(
             f"inertia = {moments.tolist()}: a separatrix needs three different moments"

@@ -193,6 +193,8 @@ def precession_harmonic(
     ValueError
         A torque that reads the attitude or the time, or k < 1.
     """
+    from tumble.averaging.triaxial_second import _polhode_frames  # not at start-up
+
     if not torque.rate_only:
         raise ValueError("precession_harmonic: the torque reads the attitude or the time")
     if k < 1:
@@ -201,12 +203,10 @@ def precession_harmonic(
     if not (motion.nu1 > 0.0 and math.isfinite(motion.nu1)):
         return 0j
     t = np.arange(samples) * (2.0 * math.pi / motion.nu1 / samples)
-    psi, theta, phi = motion.euler_angles(t)
-    w = np.asarray(torque(0.0, None, motion.omega(t)), dtype=float)  # body axes
-    w = w @ motion.polar_frame.T  # the polar frame: body → L-frame is Rz(ψ) Rx(θ) Rz(φ) · P
-    c, s = np.cos(phi), np.sin(phi)
-    x, y = c * w[:, 0] - s * w[:, 1], s * w[:, 0] + c * w[:, 1]
-    y = np.cos(theta) * y - np.sin(theta) * w[:, 2]  # Rx(θ): the part across L is (x, y)
+    # body → L-frame is Rz(ψ) C: the moment across L, less the precession's ν2 t, is
+    # e^{i(ψ − ν2 t)} (C M)_{1 + i2}
+    omega, C, periodic = _polhode_frames(motion, t)
+    w = np.einsum("nij,nj->ni", C, np.asarray(torque(0.0, None, omega), dtype=float))
     m = -k if motion.nu2 >= 0.0 else k
-    h = (x + 1j * y) * np.exp(1j * (psi - motion.nu2 * t) - 1j * m * motion.nu1 * t)
+    h = (w[:, 0] + 1j * w[:, 1]) * np.exp(1j * periodic - 1j * m * motion.nu1 * t)
     return complex(np.mean(h))

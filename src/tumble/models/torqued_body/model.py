@@ -35,6 +35,7 @@ from tumble.averaging import (
     nearest_resonances,
     precession_harmonic,
     rotation_sense,
+    sense_turn,
 )
 from tumble.averaging.triaxial import triaxial_average_stage
 from tumble.bodies import proper_sorting
@@ -76,6 +77,7 @@ from tumble.unperturbed.euler_poinsot import (
     EulerPoinsot,
     fast_frequencies,
     modulus_squared_of_states,
+    polhode_point,
 )
 
 __all__ = [
@@ -600,8 +602,6 @@ def precession_passages(
     ok = sc.away & (nu1 > 0.0)
     ratio = np.where(ok, nu2 / np.where(nu1 > 0.0, nu1, 1.0), np.nan)
     sense = _sense(p, st)
-    I1, I2, I3 = p.sorted_inertia
-    Q = proper_sorting(p.inertia)
     for i in range(grid.size - 1):
         a, b = ratio[i], ratio[i + 1]
         if not (np.isfinite(a) and np.isfinite(b)) or a == b:
@@ -615,20 +615,10 @@ def precession_passages(
             T = float(cols["T"][i] + f * (cols["T"][i + 1] - cols["T"][i]))
             detuning = nu2[i : i + 2] - k * nu1[i : i + 2]
             rate = abs(float(detuning[1] - detuning[0])) / float(grid[i + 1] - grid[i])
-            omega = _on_polhode(I1, I2, I3, L, T, sense) @ Q
+            omega = polhode_point(p.inertia, L, T) @ sense_turn(p.inertia, L, T, sense)
             g = abs(precession_harmonic(p.scaled, p.inertia, omega, k))
             kick = g * math.sqrt(2.0 * math.pi / rate) if rate > 0.0 else math.inf
             yield t_r, k, L, kick
-
-
-def _on_polhode(I1: float, I2: float, I3: float, L: float, T: float, sense: float) -> FloatArray:
-    """A body rate (sorted axes) of the free motion at (L, T), where its polhode crosses
-    ω2 = 0 (every polhode does), turning in ``sense`` about the axis it encircles."""
-    w1 = math.sqrt(max((L * L - 2.0 * T * I3) / (I1 * (I1 - I3)), 0.0))
-    w3 = math.sqrt(max((L * L - 2.0 * T * I1) / (I3 * (I3 - I1)), 0.0))
-    if L * L > 2.0 * T * I2:  # regime x3: the sense is ω3's
-        return np.array([w1, 0.0, sense * w3])
-    return np.array([sense * w1, 0.0, w3])
 
 
 # ---------------------------------------------------------------------------------------------

@@ -4,6 +4,7 @@ that notices an edit to any compiled source."""
 from __future__ import annotations
 
 import ast
+import tomllib
 from dataclasses import replace
 from pathlib import Path
 
@@ -15,7 +16,8 @@ from scipy.integrate._ivp import dop853_coefficients as scipy_tableau
 from tumble.dynamics import rigid_body_kernel
 from tumble.integrate import dop853
 from tumble.integrate.dop853 import core, tableau
-from tumble.kernels import jit
+from tumble.kernels import evaluate_rhs, jit
+from tumble.kernels.kinds import KINDS
 from tumble.models import nonlinear_moment as nm
 from tumble.torques import ConstantInertialTorque, LinearDrag
 
@@ -192,3 +194,58 @@ def test_a_breakpoint_surface_on_the_compiled_path_matches_scipys():
     # Two runs at rtol 1e-10 (the same method and controller), a restart each: ~1e-8.
     assert np.allclose(compiled(t), scipy(t), rtol=0.0, atol=1e-7)
     assert abs(compiled(t)[-1, 2] - y0[2]) > 1e-3  # the kick happened
+
+
+def _nm_averaged(eps):
+    """The nonlinear moment's template at ``eps`` over its slow horizon: its averaged
+    (compiled, slow) kernel and start."""
+    from tumble.app.bench import at_eps
+    from tumble.io.scenario import parse_scenario, template
+
+    data = at_eps(tomllib.loads(template("nonlinear_moment")), eps, None, 11)
+    req = parse_scenario(data, "<template>").request
+    avg = req.model.averaged.form(req.params, req.initial, req.model.averaged.check(req.averaging))
+    kernel = avg.kernel(req.params)
+    return kernel, np.asarray(avg.initial_state(req.params, req.initial)), float(req.tau[-1])
+
+
+def test_a_slow_kind_starts_at_the_time_of_a_one_percent_change():
+    # Averaged equations (rates of order ε): Hairer's estimate would start them at about 1e-5
+    # of the slow time at ε = 1e-4, and four tenfold steps would follow before the first the
+    # error asks for. A slow kind starts at h0 = 0.01‖y‖/‖f‖ (its first guess) instead.
+    kernel, y0, t_end = _nm_averaged(1e-4)
+    full = rigid_body_kernel(INERTIA, LinearDrag(0.01 * np.eye(3)))
+    assert KINDS[kernel.kind].slow and not KINDS[full.kind].slow  # full kinds: scipy's start
+    f0 = evaluate_rhs(kernel, 0.0, y0)
+    scale = TOL["atol"] + TOL["rtol"] * np.abs(y0)
+    h0 = 0.01 * np.sqrt(np.mean((y0 / scale) ** 2)) / np.sqrt(np.mean((f0 / scale) ** 2))
+    run = dop853.Integration(kernel, y0, t_end, dop853.Options(**TOL))
+    run.advance()
+    sol = run.solution()
+    assert sol.status == 0
+    # The first step is h0 itself, to round-off: accepted at once (the next grows by the whole
+    # tenfold the controller allows, so its error norm was below (0.9/10)^8 = 4e-9).
+    assert sol.ts[1] - sol.ts[0] == pytest.approx(h0, rel=1e-12)
+    # 6 steps and 92 evaluations over the slow horizon 1.5 (9 steps, 137 evaluations from
+    # Hairer's start).
+    assert sol.ts.size - 1 <= 7
+
+
+def test_a_slow_kinds_steps_do_not_depend_on_eps():
+    # The averaged equations are ε·g(y, εt): from the slow start the whole run is the same in
+    # the slow time at every ε (to round-off in the step sizes), as it should be; Hairer's
+    # start is not (it depends on ε through (0.01/‖f‖)^(1/8)).
+    runs = []
+    for eps in (1e-3, 1e-4):
+        kernel, y0, t_end = _nm_averaged(eps)
+        run = dop853.Integration(kernel, y0, t_end, dop853.Options(**TOL))
+        run.advance()
+        sol = run.solution()
+        runs.append((eps * sol.ts, sol.y[-1], sol.nfev))
+    (s3, y3, n3), (s4, y4, n4) = runs
+    assert n3 == n4 and s3.size == s4.size
+    # The step times agree to 1e-5 (measured 1.4e-6): the controller takes err^(-1/8) of error
+    # estimates formed by cancellation, whose round-off differs between the two time units.
+    # The end states agree within the tolerance.
+    np.testing.assert_allclose(s3, s4, rtol=1e-5, atol=1e-12)
+    np.testing.assert_allclose(y3, y4, rtol=1e-9)

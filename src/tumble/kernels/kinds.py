@@ -47,6 +47,11 @@ class Kind:
         Whether the integrator's step compiles the right-hand side into its stages (a short
         one, whose parameters then stay in registers across them) or calls it (a long one,
         which would otherwise be compiled into the step sixteen times).
+    slow : bool
+        Whether its state moves on the slow time (averaged equations, rates of order ε): the
+        compiled integrator then starts it with no step shorter than the time of a 1 % change
+        (:data:`tumble.integrate.dop853.core.SLOW_START`), where Hairer's estimate would start
+        it some 1e-4 of the step its tolerance allows.
     """
 
     name: str
@@ -55,6 +60,7 @@ class Kind:
     events: frozenset[int] = frozenset()
     compile_s: float = 2.5
     inlined: bool = True
+    slow: bool = False
 
     def allows(self, event: int) -> bool:
         """Whether ``event`` may watch this kind."""
@@ -93,7 +99,7 @@ KINDS: dict[int, Kind] = {
         frozenset({codes.EVENT_THETA_DOT}),
     ),
     codes.KIND_MEDIUM_AVERAGED: Kind(
-        "the averaged equations (2.2)/(2.3)", ("k", "theta", "phi"), MEDIUM_AVERAGED
+        "the averaged equations (2.2)/(2.3)", ("k", "theta", "phi"), MEDIUM_AVERAGED, slow=True
     ),
     codes.KIND_FIELD_AVERAGED: Kind(
         "the rotating field's averaged vector form",
@@ -101,12 +107,17 @@ KINDS: dict[int, Kind] = {
         FIELD_AVERAGED,
         frozenset({codes.EVENT_FIELD_SEPARATRIX}),
         compile_s=3.0,
+        slow=True,
     ),
     codes.KIND_NUTATION_AVERAGED: Kind(
-        "Volosov's averaged equations in the energy form", *_NUTATION, compile_s=5.5, inlined=False
+        "Volosov's averaged equations in the energy form",
+        *_NUTATION,
+        compile_s=5.5,
+        inlined=False,
+        slow=True,
     ),
     codes.KIND_NUTATION_ENGINE: Kind(
-        "the engine's nutation setting", *_NUTATION, compile_s=9.5, inlined=False
+        "the engine's nutation setting", *_NUTATION, compile_s=9.5, inlined=False, slow=True
     ),
     codes.KIND_SPINNER_AVERAGED: Kind(
         "the engine's spinner setting",
@@ -114,24 +125,28 @@ KINDS: dict[int, Kind] = {
         SPINNER_AVERAGED,
         frozenset({codes.EVENT_EQUATOR}),
         inlined=False,
+        slow=True,
     ),
     codes.KIND_TRIAXIAL_AVERAGED: Kind(
         "the engine's triaxial setting, the product rule",
         *_TRIAXIAL,
         compile_s=8.0,
         inlined=False,
+        slow=True,
     ),
     codes.KIND_TRIAXIAL_PHASE_MEANS: Kind(
         "the engine's triaxial setting, the phases averaged exactly",
         *_TRIAXIAL,
         compile_s=8.0,
         inlined=False,
+        slow=True,
     ),
     codes.KIND_TRIAXIAL_CLOSED: Kind(
         "the engine's triaxial setting in closed form",
         *_TRIAXIAL,
         compile_s=7.0,
         inlined=False,
+        slow=True,
     ),
 }
 """Every kind the compiled right-hand side (:func:`tumble.kernels.rhs.rhs`) knows. The compile

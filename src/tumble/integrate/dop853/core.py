@@ -23,8 +23,8 @@ from tumble.integrate.dop853.tableau import N_INTERPOLANT, N_STAGES, N_STAGES_EX
 from tumble.kernels.codes import EVENT_NONE
 from tumble.kernels.jit import ENTRY, INLINE, INNER, INNER_INLINE, KERNEL, jit
 
-__all__ = ["BAD_START", "FRESH", "NOT_FINITE", "OK", "RUNNING", "STEP_TOO_SMALL", "STOPPED",
-           "Chunk", "Options", "Progress", "advance"]  # fmt: skip
+__all__ = ["BAD_START", "FRESH", "NOT_FINITE", "OK", "RUNNING", "SLOW_START", "STEP_TOO_SMALL",
+           "STOPPED", "Chunk", "Options", "Progress", "advance"]  # fmt: skip
 
 _NF = N_INTERPOLANT  # rows of a step's interpolant
 
@@ -37,13 +37,18 @@ RUNNING = 1  # stopped after max_steps, to be resumed
 FRESH = 2  # not started: advance() first evaluates f and chooses the starting step
 STOPPED = 3  # reached the first zero of a terminal event function (a breakpoint)
 
+SLOW_START = -1.0
+"""``Options.first_step`` of a slow system (averaged equations, a kind declared ``slow``):
+Hairer's starting step, but no shorter than the time in which the state changes by 1 %
+(:func:`~tumble.integrate.dop853.steps.initial_step`)."""
+
 
 class Options(NamedTuple):
     """How to integrate: one typed record, passed as it is to the compiled code."""
 
     rtol: float  # relative tolerance of the local error (as scipy's DOP853 reads it)
     atol: float  # absolute tolerance
-    first_step: float = 0.0  # initial step size; 0: Hairer's estimate
+    first_step: float = 0.0  # initial step size; 0: Hairer's estimate; SLOW_START: see there
     record: bool = True  # keep every step's time and state
     dense: bool = True  # keep every step's interpolant (with record)
     event: int = EVENT_NONE  # EVENT_* whose sign changes are located
@@ -125,7 +130,8 @@ def _start(
         if opts.first_step > 0.0:
             h_abs = min(opts.first_step, t_end - t0)
         else:
-            h_abs = initial_step(rhs_fn, p, t0, y, f, t_end, opts.rtol, opts.atol)
+            h_abs = initial_step(rhs_fn, p, t0, y, f, t_end, opts.rtol, opts.atol,
+                                 opts.first_step < 0.0)  # fmt: skip
             nfev += 1
     g = event_fn(t0, y, p) if opts.event != EVENT_NONE else 1.0
     return Progress(RUNNING, t0, h_abs, g, nfev, 0, ie)

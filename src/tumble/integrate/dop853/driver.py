@@ -287,10 +287,13 @@ class Integration:
         p = kernel.params
         self._params = p if p.flags.writeable else p.copy()
         self.t_end = float(t_end)
+        first = float(options.first_step)
+        if first == 0.0 and KINDS[int(kernel.kind)].slow:
+            first = core.SLOW_START
         self.options = options._replace(
             rtol=float(options.rtol),
             atol=float(options.atol),
-            first_step=float(options.first_step),
+            first_step=first,
             record=bool(options.record),
             dense=bool(options.dense and options.record),
             event=int(kernel.event),

@@ -56,9 +56,10 @@ def initial_step(
     With ``slow``, no shorter than Hairer's own first guess h0 = 0.01‖y‖/‖f‖, the time in which
     the state changes by 1 %. His final choice, (0.01/max(‖f‖, ‖f′‖))^(1/8) in the tolerance's
     units, takes every derivative to be of one size: true on the time scale of 1, but a system
-    whose rates are of order ε has its k-th derivative of order ε^k, and there it starts some
-    1e-4 of the step the error allows (1e-5 of the slow time at ε = 1e-4), which the
-    controller's tenfold growth a step then takes four or five steps to undo.
+    whose rates are of order ε has its k-th derivative of order ε^k, and there it starts at
+    1e-5 to 1e-4 of the step the error allows (1e-5 of the slow time at ε = 1e-4, where the
+    step allowed is about 0.4), which the controller's tenfold growth a step then takes four
+    or five steps to undo.
     """
     n = y0.size
     d0 = d1 = 0.0

@@ -51,7 +51,7 @@ class Kind:
         Whether its state moves on the slow time (averaged equations, rates of order ε): the
         compiled integrator then starts it with no step shorter than the time of a 1 % change
         (:data:`tumble.integrate.dop853.core.SLOW_START`), where Hairer's estimate would start
-        it 1e-5 to 1e-4 of the step its tolerance allows.
+        it at 1e-5 to 1e-4 of the step its tolerance allows.
     """
 
     name: str

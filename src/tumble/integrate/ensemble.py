@@ -21,8 +21,8 @@ from tumble._typing import FloatArray
 from tumble.errors import IntegrationError, TumbleError
 from tumble.integrate import dop853
 from tumble.integrate.dop853.block import block_entry, empty_block
-from tumble.integrate.dop853.core import BAD_START, OK, RUNNING, SLOW_START, STOPPED, Chunk
-from tumble.integrate.dop853.driver import _cut, in_call
+from tumble.integrate.dop853.core import BAD_START, OK, RUNNING, STOPPED, Chunk
+from tumble.integrate.dop853.driver import _cut, in_call, starting_step
 from tumble.integrate.limits import FIRST_CHUNK, MAX_STEPS, pace_message
 from tumble.integrate.ode import compiled_breakpoints, joined_pieces, restart_at, split_plan
 from tumble.integrate.simulate import each_on_threads, simulate, start_refusal
@@ -35,7 +35,6 @@ from tumble.integrate.trajectory import (
     unwrap_columns,
 )
 from tumble.kernels import EVENT_NONE, Kernel
-from tumble.kernels.kinds import KINDS
 from tumble.kernels.user import raise_fault
 from tumble.models.base import AveragedForm, AveragingOptions, Breakpoint, Model
 
@@ -212,8 +211,7 @@ def _integrate_group(
     active = np.arange(n)
     kind = group[0].kernel.kind
     event = _watched(group[0])
-    if KINDS[int(kind)].slow:  # the first step as a single run of the kind starts it
-        arrays["first"][:] = SLOW_START
+    arrays["first"][:] = starting_step(kind)  # as a single run of the kind starts
     # Steps a run may take in one call: from FIRST_CHUNK, doubled each call, so that a run
     # whose pace is hopeless is refused early (as a single run is), not after its budget.
     allowance = FIRST_CHUNK

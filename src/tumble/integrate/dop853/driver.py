@@ -40,6 +40,7 @@ __all__ = [
     "solve",
     "solve_batch",
     "solve_many",
+    "starting_step",
     "status_message",
 ]
 
@@ -147,6 +148,14 @@ def _signals_held() -> Iterator[None]:
         previous(signal.SIGINT, None)
     elif received and previous == signal.SIG_DFL:  # deliver it as it would have been
         os.kill(os.getpid(), signal.SIGINT)
+
+
+def starting_step(kind: int, first: float = 0.0) -> float:
+    """``Options.first_step`` of a run of ``kind`` asked to start with ``first``: ``first``,
+    or :data:`~tumble.integrate.dop853.core.SLOW_START` where it is 0 (the estimate) and the
+    kind is declared slow (averaged equations)."""
+    first = float(first)
+    return core.SLOW_START if first == 0.0 and KINDS[int(kind)].slow else first
 
 
 def status_message(status: int) -> str:
@@ -287,13 +296,10 @@ class Integration:
         p = kernel.params
         self._params = p if p.flags.writeable else p.copy()
         self.t_end = float(t_end)
-        first = float(options.first_step)
-        if first == 0.0 and KINDS[int(kernel.kind)].slow:
-            first = core.SLOW_START
         self.options = options._replace(
             rtol=float(options.rtol),
             atol=float(options.atol),
-            first_step=first,
+            first_step=starting_step(kernel.kind, options.first_step),
             record=bool(options.record),
             dense=bool(options.dense and options.record),
             event=int(kernel.event),

@@ -487,21 +487,64 @@ def _event_by_code(code: Any, t: Any, y: Any, p: Any) -> Callable[..., float]:
     return dispatch
 
 
-@jit(ENTRY)
+_EVALUATORS: dict[tuple[str, int], Callable[..., Any]] = {}
+
+
+def _one_kind(what: str, number: int) -> Callable[..., Any]:
+    """The entry ``what`` of :func:`evaluate`, :func:`evaluate_event` or
+    :func:`evaluate_repeatedly` for the kind (event code) ``number`` alone, compiled on first
+    use and cached on disk.
+
+    ``number`` is a constant of the closure, which numba types as a literal: the dispatch of
+    :func:`rhs` (:func:`event`) folds to that kind's kernel, as in the integrator
+    (:func:`tumble.integrate.dop853.functions.kind_functions`). An entry taking the kind at run
+    time would compile every kind's kernel at its first call (a minute and a half from a cold
+    cache) to evaluate one.
+    """
+    key = (what, number)
+    got = _EVALUATORS.get(key)
+    if got is not None:
+        return got
+    if what == "rhs":
+
+        def one(t: float, y: FloatArray, p: FloatArray) -> FloatArray:
+            out = np.empty(y.size)
+            rhs(number, t, y, p, out)
+            return out
+
+    elif what == "event":
+
+        def one(t: float, y: FloatArray, p: FloatArray) -> float:  # type: ignore[misc]
+            return event(number, t, y, p)
+
+    else:
+
+        def one(  # type: ignore[misc]
+            t: float, y: FloatArray, p: FloatArray, n: int, feedback: float
+        ) -> FloatArray:
+            state = y.copy()
+            out = np.empty(y.size)
+            for _ in range(n):
+                rhs(number, t, state, p, out)
+                state[0] += feedback * out[0]
+            return out
+
+    got = _EVALUATORS[key] = cast(Callable[..., Any], jit(ENTRY)(one))
+    return got
+
+
 def evaluate_event(code: int, t: float, y: FloatArray, p: FloatArray) -> float:
-    """The event function ``code`` at (t, y), from Python: the integrator's own code."""
-    return event(code, t, y, p)
+    """The event function ``code`` at (t, y), from Python: the integrator's own code, compiled
+    for that code alone."""
+    return float(_one_kind("event", int(code))(float(t), y, p))
 
 
-@jit(ENTRY)
 def evaluate(kind: int, t: float, y: FloatArray, p: FloatArray) -> FloatArray:
-    """dy/dt of the right-hand side ``kind`` at one state, from Python."""
-    out = np.empty(y.size)
-    rhs(kind, t, y, p, out)
-    return out
+    """dy/dt of the right-hand side ``kind`` at one state, from Python: the integrator's own
+    kernel, compiled for that kind alone (NaN for an unknown kind)."""
+    return cast(FloatArray, _one_kind("rhs", int(kind))(float(t), y, p))
 
 
-@jit(ENTRY)
 def evaluate_repeatedly(
     kind: int, t: float, y: FloatArray, p: FloatArray, n: int, feedback: float
 ) -> FloatArray:
@@ -510,11 +553,7 @@ def evaluate_repeatedly(
 
     Each evaluation adds ``feedback`` times the previous derivative to the state (pass 0.0):
     a dependence the compiler cannot see through, so that it cannot fold the repeated,
-    identical evaluations into one.
+    identical evaluations into one. Compiled for that kind alone, as the integrator is.
     """
-    state = y.copy()
-    out = np.empty(y.size)
-    for _ in range(n):
-        rhs(kind, t, state, p, out)
-        state[0] += feedback * out[0]
-    return out
+    entry = _one_kind("repeat", int(kind))
+    return cast(FloatArray, entry(float(t), y, p, int(n), float(feedback)))

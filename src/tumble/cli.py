@@ -520,8 +520,8 @@ def bench_cmd(
         bool,
         typer.Option(
             "--quick",
-            help="horizon 1e3, one repeat, no compile, start-up, engine, orbit or crossings study "
-            "(a check)",
+            help="horizon 1e3, one repeat, ensembles of 100, no compile, start-up, engine, orbit "
+            "or crossings study (a check)",
         ),
     ] = False,
     horizon: Annotated[
@@ -540,7 +540,7 @@ def bench_cmd(
 
     from rich.status import Status
 
-    from tumble.app.bench import BenchSettings, run_benchmark
+    from tumble.app.bench import ENSEMBLE_SIZE, BenchSettings, run_benchmark
     from tumble.io.output import atomic_write
 
     def work() -> dict[str, Any]:
@@ -554,6 +554,7 @@ def bench_cmd(
             engine=not quick,
             orbit=not quick,
             crossings=not quick,
+            ensemble_size=100 if quick else ENSEMBLE_SIZE,
         )
         with Status("benchmark", console=err) as status:
             return run_benchmark(settings, log=lambda msg: status.update(escape(msg)))

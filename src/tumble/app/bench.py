@@ -145,6 +145,9 @@ class BenchSettings:
     crossings : bool
         Time the examples whose slow motion crosses a separatrix or a resonance, averaged
         against full at ε = 1e-3 and 1e-4 (:mod:`tumble.app.bench_crossings`; about 3 minutes).
+    ensemble_size : int
+        Initial states in each averaged ensemble (:data:`ENSEMBLE_SIZE`; a quick check takes
+        fewer).
     """
 
     horizon: float = 1e5
@@ -159,6 +162,7 @@ class BenchSettings:
     engine: bool = True
     orbit: bool = True
     crossings: bool = True
+    ensemble_size: int = ENSEMBLE_SIZE
 
     def __post_init__(self) -> None:
         if not (self.horizon > 0.0 and math.isfinite(self.horizon)):
@@ -169,6 +173,8 @@ class BenchSettings:
             raise ParameterError(f"--repeat = {self.repeat} must be at least 1")
         if self.batch_size < 2:
             raise ParameterError(f"--batch-size = {self.batch_size} must be at least 2")
+        if self.ensemble_size < 20:
+            raise ParameterError(f"ensemble_size = {self.ensemble_size} must be at least 20")
 
 
 @dataclass(frozen=True)
@@ -654,12 +660,13 @@ def _batch(s: BenchSettings, log: Callable[[str], None]) -> dict[str, Any]:
 
 
 def _averaged_ensemble(name: str, s: BenchSettings, log: Callable[[str], None]) -> dict[str, Any]:
-    """Averaged runs per second of an ensemble of :data:`ENSEMBLE_SIZE` initial states of the
+    """Averaged runs per second of an ensemble of ``s.ensemble_size`` initial states of the
     model's template at ε = 1e-3 (:func:`tumble.integrate.simulate_batch`, ``method =
     "averaged"``) on 1 and on all cores, against one :func:`simulate` per point."""
     rng = np.random.default_rng(8)
     reqs = []
-    for _ in range(ENSEMBLE_SIZE):
+    size = s.ensemble_size
+    for _ in range(size):
         ranges = ENSEMBLE_INITIAL[name]
         initial = {key: float(rng.uniform(lo, hi)) for key, (lo, hi) in ranges.items()}
         reqs.append(_scenario_at(name, 1e-3, None, AVERAGED_SAMPLES, initial))
@@ -676,15 +683,15 @@ def _averaged_ensemble(name: str, s: BenchSettings, log: Callable[[str], None]) 
                    method="averaged", averaging=first.averaging)  # fmt: skip
     rows: dict[str, Any] = {}
     for n in sorted({1, dop853.available_threads()}):
-        log(f"averaged ensemble {name}: {ENSEMBLE_SIZE} runs on {n} thread(s)")
+        log(f"averaged ensemble {name}: {size} runs on {n} thread(s)")
         best, out = _best(functools.partial(ensemble, n), s.repeat)
         failed = sum(not hasattr(o, "columns") for o in out)
-        rows[str(n)] = {"time_s": best, "runs_per_s": ENSEMBLE_SIZE / best, "failed": failed}
+        rows[str(n)] = {"time_s": best, "runs_per_s": size / best, "failed": failed}
     one = rows["1"]["runs_per_s"]
     for key, row in rows.items():
         row["efficiency"] = row["runs_per_s"] / (int(key) * one)
     log(f"averaged ensemble {name}: one simulate() per point")
-    subset = range(0, ENSEMBLE_SIZE, 10)
+    subset = range(0, size, 10)
 
     def singles() -> None:
         for i in subset:
@@ -696,7 +703,7 @@ def _averaged_ensemble(name: str, s: BenchSettings, log: Callable[[str], None]) 
     return {
         "case": f"{name} template at ε = 0.001, initial "
         + ", ".join(f"{k} in [{lo:g}, {hi:g}]" for k, (lo, hi) in ENSEMBLE_INITIAL[name].items()),
-        "size": ENSEMBLE_SIZE,
+        "size": size,
         "threads": rows,
         "single_runs_per_s": len(subset) / single_s,
         "cores": os.cpu_count(),

@@ -156,6 +156,25 @@ def test_sigma_is_constant_to_first_order():
         assert np.max(np.abs(full.columns["sigma"] - 0.3)) < 3 * eps
 
 
+@pytest.mark.parametrize("sigma0", [math.pi - 1e-12, -math.pi + 1e-12, 2.5])
+def test_sigma_stays_on_its_initial_branch_without_unwrapping(sigma0):
+    """The averaged run does not unwrap σ on its steps (it cannot turn, §11.1): each sample's σ
+    is taken within π of the initial one, so that on the branch cut of atan2 round-off in
+    L_ξ2 (or the full run's O(ε) wobble) does not make it jump by 2π; the full run's σ starts
+    on the same branch. Also through a pass of L near 0 (the counter-rotating body)."""
+    eps = 0.02
+    for beta, rho, tau_end in ((1.0, 0.8, 50.0), (0.3, 2.6, 600.0)):
+        p = rf.Params(BODY, beta, eps)
+        st0 = rf.state_from_elements(p, 0.6, rho, sigma0, 0.3, "x3")
+        _, full, avg = averaged_vs_full(p, st0, tau_end, samples=301)
+        first = full.columns["sigma"][0]
+        # atan2 of the initial L_ξ: within round-off of the σ the state was built from.
+        assert abs(first - sigma0) < 1e-9 or abs(abs(first - sigma0) - 2 * math.pi) < 1e-9
+        # σ′ = 0 in the averaged system: round-off only, on the full run's initial branch.
+        assert np.max(np.abs(avg.columns["sigma"] - first)) < 1e-9
+        assert np.max(np.abs(avg.slow(np.linspace(0.0, tau_end, 7))["sigma"] - first)) < 1e-9
+
+
 def test_rho_is_not_monotone_for_a_fast_spin():
     """§11.2 counterexample: at β = π/2 a fast spin (T/L > 1/cos ρ) first tilts away from ξ3
     (ρ′ > 0), in the averaged and in the full model; it still ends at ρ → 0."""

@@ -192,11 +192,25 @@ def _r_to_k2(p: Params, r: ArrayLike) -> FloatArray:
     return modulus_squared_of_ratio(*p.sorted_inertia, np.ravel(r))
 
 
-def _vector_angles(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
-    """σ of :func:`_vector_columns` alone (the column unwrapped on every step); on the ξ3
-    axis, where L has no azimuth, the initial one."""
+def _vector_sigma(p: Params, st: State, Y: FloatArray) -> FloatArray:
+    """The azimuth σ of L_ξ, on the branch of its initial value; on the ξ3 axis, where L has
+    no azimuth, the initial one.
+
+    The averaged equations keep σ constant: dL_ξ/dτ = ε(r D L_ξ + sin²β ξ3) with D =
+    −diag(a, a, sin²β) scales L_ξ1 and L_ξ2 by one factor (§10), and the general engine's
+    average of the same torque equals that form to round-off. So σ needs no unwrapping on the
+    steps: each sample's value is taken within π of the initial one.
+    """
+    first = _initial_sigma(p, st)
     perp = np.hypot(Y[:, 0], Y[:, 1])
-    return {"sigma": np.where(perp > 0.0, np.arctan2(Y[:, 1], Y[:, 0]), _initial_sigma(p, st))}
+    raw = np.where(perp > 0.0, np.arctan2(Y[:, 1], Y[:, 0]), first)
+    return first + np.mod(raw - first + math.pi, 2.0 * math.pi) - math.pi
+
+
+def _no_turning_angle(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
+    """The angle columns that turn: none, σ being constant (:func:`_vector_sigma`), so that a
+    compiled run does not build its columns on every step to unwrap it."""
+    return {}
 
 
 def _vector_columns(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
@@ -206,7 +220,7 @@ def _vector_columns(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[
     return {
         "L": L,
         "rho": np.arctan2(perp, L_xi[:, 2]),
-        **_vector_angles(p, st, t, Y),
+        "sigma": _vector_sigma(p, st, Y),
         "T": 0.5 * r * L * L,
         "k2": _r_to_k2(p, r),
     }
@@ -302,7 +316,7 @@ def _averaged_form(p: Params, st: State, options: AveragingOptions) -> AveragedF
         to_columns=_vector_columns,
         breakpoints=breakpoints,
         kernel=numeric_kernel if numeric else averaged_kernel,
-        angles=_vector_angles,
+        angles=_no_turning_angle,
     )
 
 

@@ -118,6 +118,23 @@ def test_a_kernel_is_checked_against_its_kinds_declaration():
     assert set(KINDS) == {getattr(kernels, n) for n in kernels.__all__ if n.startswith("KIND_")}
 
 
+def test_a_kernel_evaluated_from_python_compiles_its_kind_alone():
+    # Each kind gets its own entry (the kind a constant of the closure, so that its dispatch
+    # folds to that kernel: an entry taking the kind at run time compiled every kind, a
+    # minute and a half from a cold cache); an unknown kind is NaN without compiling anything.
+    from tumble.kernels import rhs
+
+    y = np.array([0.3, 0.2, 1.0, 0.7])
+    p = np.array([0.01, 0.2, 0.8, 1.0, 1.6, 2.2])
+    got = rhs.evaluate(kernels.KIND_FIELD_AVERAGED, 0.0, y, p)
+    assert got.shape == (4,) and np.all(np.isfinite(got))
+    entry = rhs._EVALUATORS[("rhs", kernels.KIND_FIELD_AVERAGED)]
+    assert len(entry.signatures) == 1
+    assert np.all(np.isnan(rhs.evaluate(77, 0.0, y, p)))
+    assert np.all(np.isnan(rhs.evaluate_repeatedly(77, 0.0, y, p, 3, 0.0)))
+    assert ("rhs", 77) not in rhs._EVALUATORS and ("repeat", 77) not in rhs._EVALUATORS
+
+
 def test_kernels_read_no_slot_by_a_literal_position():
     # Compiled code reads its parameters by the declared names (Layout.at); a literal offset
     # such as ``p[4]`` or ``prog[v + 3]`` is allowed only in the generic readers of layout.py.

@@ -541,7 +541,10 @@ def evaluate_event(code: int, t: float, y: FloatArray, p: FloatArray) -> float:
 
 def evaluate(kind: int, t: float, y: FloatArray, p: FloatArray) -> FloatArray:
     """dy/dt of the right-hand side ``kind`` at one state, from Python: the integrator's own
-    kernel, compiled for that kind alone (NaN for an unknown kind)."""
+    kernel, compiled for that kind alone (NaN for an unknown kind, without compiling the
+    dispatch over every kind that compiled code falls back on)."""
+    if int(kind) not in _BY_KIND:
+        return np.full(np.shape(y)[0], math.nan)
     return cast(FloatArray, _one_kind("rhs", int(kind))(float(t), y, p))
 
 
@@ -555,5 +558,7 @@ def evaluate_repeatedly(
     a dependence the compiler cannot see through, so that it cannot fold the repeated,
     identical evaluations into one. Compiled for that kind alone, as the integrator is.
     """
+    if int(kind) not in _BY_KIND:
+        return np.full(np.shape(y)[0], math.nan)
     entry = _one_kind("repeat", int(kind))
     return cast(FloatArray, entry(float(t), y, p, int(n), float(feedback)))

@@ -11,7 +11,7 @@ from typing import Literal
 import numpy as np
 from scipy.special import ellipe, ellipk
 
-from tumble._typing import ArrayLike, FloatArray
+from tumble._typing import FloatArray
 from tumble.averaging.triaxial import triaxial_average_stage, triaxial_kernel
 from tumble.kernels import (
     EVENT_FIELD_SEPARATRIX,
@@ -20,16 +20,13 @@ from tumble.kernels import (
     Kernel,
     evaluate_rhs,
 )
+from tumble.kernels.columns import VECTOR_COLUMNS, vector_columns
 from tumble.models.base import AveragedForm, AveragingOptions, Breakpoint
 from tumble.models.inputs.rotating_field import Params, State
 from tumble.models.rotating_field.full import _XI3, _columns_from_momentum
 from tumble.models.triaxial_mean import triaxial_mean_form
 from tumble.rotations import rot_z
-from tumble.unperturbed import (
-    energy_from_modulus,
-    mean_square_rate,
-    modulus_squared_of_ratio,
-)
+from tumble.unperturbed import energy_from_modulus, mean_square_rate, regime
 
 # ---------------------------------------------------------------------------------------------
 # Averaged equations (3.5)–(3.7) and the vector form, §10.
@@ -187,43 +184,36 @@ def _vector_from_slow(p: Params, st: State) -> FloatArray:
     return np.array([*L_xi, r])
 
 
-def _r_to_k2(p: Params, r: ArrayLike) -> FloatArray:
-    # k² of the current regime as a function of r = 2T/L² only.
-    return modulus_squared_of_ratio(*p.sorted_inertia, np.ravel(r))
-
-
-def _vector_sigma(p: Params, st: State, Y: FloatArray) -> FloatArray:
-    """The azimuth σ of L_ξ, on the branch of its initial value; on the ξ3 axis, where L has
-    no azimuth, the initial one.
-
-    The averaged equations keep σ constant: dL_ξ/dτ = ε(r D L_ξ + sin²β ξ3) with D =
-    −diag(a, a, sin²β) scales L_ξ1 and L_ξ2 by one factor (§10), and the general engine's
-    average of the same torque equals that form to round-off. So σ needs no unwrapping on the
-    steps: each sample's value is taken within π of the initial one.
-    """
-    first = _initial_sigma(p, st)
-    perp = np.hypot(Y[:, 0], Y[:, 1])
-    raw = np.where(perp > 0.0, np.arctan2(Y[:, 1], Y[:, 0]), first)
-    return first + np.mod(raw - first + math.pi, 2.0 * math.pi) - math.pi
-
-
 def _no_turning_angle(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
-    """The angle columns that turn: none, σ being constant (:func:`_vector_sigma`), so that a
+    """The angle columns that turn: none, σ being constant (:func:`_vector_columns`), so that a
     compiled run does not build its columns on every step to unwrap it."""
     return {}
 
 
+def _degenerate(p: Params) -> bool:
+    """Two or three equal moments: k² carries no information (0)."""
+    # Any state's regime says it; the separatrix's energy 2T = L²/I2 is one that always exists.
+    return regime(p.sorted_inertia, 1.0, 0.5 / float(p.sorted_inertia[1])) in (
+        "symmetric",
+        "sphere",
+    )
+
+
 def _vector_columns(p: Params, st: State, t: FloatArray, Y: FloatArray) -> dict[str, FloatArray]:
-    L_xi, r = Y[:, :3], Y[:, 3]
-    L = np.linalg.norm(L_xi, axis=1)
-    perp = np.hypot(L_xi[:, 0], L_xi[:, 1])
-    return {
-        "L": L,
-        "rho": np.arctan2(perp, L_xi[:, 2]),
-        "sigma": _vector_sigma(p, st, Y),
-        "T": 0.5 * r * L * L,
-        "k2": _r_to_k2(p, r),
-    }
+    """L, ρ, σ, T and k² of states ``[L_ξ, r]``, in one compiled pass that holds no lock
+    (:func:`tumble.kernels.columns.vector_columns`; k² as
+    :func:`tumble.unperturbed.modulus_squared_of_ratio` gives it).
+
+    The averaged equations keep σ constant: dL_ξ/dτ = ε(r D L_ξ + sin²β ξ3) with D =
+    −diag(a, a, sin²β) scales L_ξ1 and L_ξ2 by one factor (§10), and the general engine's
+    average of the same torque equals that form to round-off. So σ needs no unwrapping on the
+    steps: each sample's value is taken within π of the initial one (on the ξ3 axis, where L
+    has no azimuth, the initial one).
+    """
+    I1, I2, I3 = (float(v) for v in p.sorted_inertia)
+    table = vector_columns(np.ascontiguousarray(Y, dtype=float), I1, I2, I3, _degenerate(p),
+                           _initial_sigma(p, st))  # fmt: skip
+    return {name: np.ascontiguousarray(table[:, j]) for j, name in enumerate(VECTOR_COLUMNS)}
 
 
 SEPARATRIX_STEP = 1e-10

@@ -32,8 +32,8 @@ def _within_pi(x: float, centre: float) -> float:
 
 @jit(INLINE)
 def _modulus_squared(i1: float, i2: float, i3: float, r: float) -> float:
-    """k² of the regime r = 2T/L² lies in (sorted moments I1 < I2 < I3): 1 in the separatrix
-    band or below the floor of the complementary modulus."""
+    """k² of the regime in which r = 2T/L² lies (sorted moments I1 < I2 < I3): 1 in the
+    separatrix band or below the floor of the complementary modulus."""
     d1 = max(1.0 - r * i1, 0.0)
     d2 = 1.0 - r * i2
     d3 = max(r * i3 - 1.0, 0.0)

@@ -120,7 +120,7 @@ def test_the_angles_alone_are_those_of_the_columns(name):
     # bit for bit, on states spread around its start (the azimuth's whole circle, and the
     # ξ3 axis, where a vector form has no azimuth and keeps the initial one). The models
     # whose averaged form has them: the vector forms [L_ξ, r] whose azimuth turns (the
-    # rotating field's does not: tests/models/test_rf_model.py).
+    # rotating field's does not: tests/models/test_rf_averaged.py).
     model = MODELS[name]
     assert model.averaged is not None
     sc = parse_scenario(tomllib.loads(template(name)), f"<{name} template>")

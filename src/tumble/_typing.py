@@ -19,5 +19,8 @@ ComplexArray = NDArray[np.complex128]
 BoolArray = NDArray[np.bool_]
 """A boolean mask."""
 
+IntArray = NDArray[np.int_]
+"""An array of integers (indices, orders)."""
+
 Json: TypeAlias = float | int | str | bool | list["Json"] | dict[str, "Json"] | None
 """A value a JSON or TOML file can hold."""

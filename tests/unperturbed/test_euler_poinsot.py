@@ -14,12 +14,14 @@ from strategies import inertias, vectors
 
 from tumble.dynamics import rigid_body_rhs
 from tumble.errors import ParameterError, TumbleWarning
+from tumble.kernels.codes import DEGENERATE_RTOL
 from tumble.rotations import matrix_to_euler313, matrix_to_quat, quat_normalize, quat_to_matrix
 from tumble.unperturbed import (
     SEPARATRIX_RTOL,
     EulerPoinsot,
     energy_from_modulus,
     fast_frequencies,
+    fast_frequencies_of_states,
     mean_square_rate,
     modulus_squared,
     regime,
@@ -368,6 +370,57 @@ def test_continuity_across_the_separatrix():
             previous = jump
             nu1, nu2 = fast_frequencies(I1, I2, I3, L, T)
             assert 0.0 < nu1 and abs(nu2 - L / I2) < 1.0 / special.ellipkm1(kc2)
+
+
+def _states_around_the_separatrix(I1, I2, I3, rng):
+    """(L, T) pairs of every kind a run passes: both regimes, the pure rotations, the band
+    around the separatrix down to |1 − k²| of 1e-14 and the separatrix itself, rest."""
+    L = rng.uniform(0.1, 3.0, 40)
+    r = rng.uniform(1.0 / I3, 1.0 / I1, 40)
+    T = [0.5 * r * L * L]
+    L_band, T_band = [0.0], [0.0]  # rest
+    if min(I2 - I1, I3 - I2) > DEGENERATE_RTOL * I3:  # triaxial: k² sets T
+        for reg in ("x3", "x1"):
+            for k2 in (0.0, 0.5, 1 - 1e-3, 1 - 1e-9, 1 - 1e-14, 1.0):
+                L_band.append(1.3)
+                T_band.append(energy_from_modulus(I1, I2, I3, 1.3, k2, reg))
+    return np.concatenate([L, L_band]), np.concatenate([*T, T_band])
+
+
+@pytest.mark.parametrize(
+    "moments",
+    [(1.0, 1.6, 2.2), (1.0, 2.0, 2.5), (0.5, 0.9, 1.1), (1.0, 1.0, 1.6), (0.8, 1.5, 1.5),
+     (2.0, 2.0, 2.0), (1.0, 1.0 + 1e-13, 1.6)],
+)  # fmt: skip
+def test_frequencies_of_many_states_are_those_of_each(moments):
+    """The array form repeats the scalar one's operations in the same order: the same
+    numbers to the last bit, in every regime, on the separatrix, for symmetric bodies (also
+    a pair equal within the degeneracy tolerance), the sphere and rest."""
+    I1, I2, I3 = moments
+    L, T = _states_around_the_separatrix(I1, I2, I3, np.random.default_rng(1979))
+    nu1, nu2 = fast_frequencies_of_states(I1, I2, I3, L, T)
+    each = np.array([fast_frequencies(I1, I2, I3, a, b) for a, b in zip(L, T, strict=True)])
+    np.testing.assert_array_equal(nu1, each[:, 0])
+    np.testing.assert_array_equal(nu2, each[:, 1])
+    one = fast_frequencies_of_states(I1, I2, I3, L[3], T[3])  # a scalar pair: 0-d arrays
+    assert (float(one[0]), float(one[1])) == tuple(each[3])
+
+
+@pytest.mark.parametrize(
+    ("L", "T", "message"),
+    [
+        ([1.0, -1.0], [0.3, 0.3], "both must be ≥ 0"),
+        ([1.0, 0.0], [0.3, 0.1], "must be 0 when L = 0"),
+        ([1.0, 1.0], [0.3, 5.0], "outside the allowed range [1/I3, 1/I1]"),
+        ([1.0, math.nan], [0.3, 0.3], "L"),
+    ],
+)
+def test_frequencies_of_many_states_refuse_as_the_scalar_form(L, T, message):
+    with pytest.raises(ParameterError) as many:
+        fast_frequencies_of_states(1.0, 1.6, 2.2, L, T)
+    with pytest.raises(ParameterError) as one:
+        fast_frequencies(1.0, 1.6, 2.2, L[1], T[1])
+    assert str(many.value) == str(one.value) and message in str(one.value)
 
 
 @given(inertias(), vectors())

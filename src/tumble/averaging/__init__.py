@@ -41,7 +41,7 @@ from tumble.averaging.triaxial import (
     triaxial_average_vector,
     triaxial_kernel,
 )
-from tumble.averaging.triaxial_resonance import precession_harmonic
+from tumble.averaging.triaxial_resonance import nearest_relations, precession_harmonic
 
 __all__ = [
     "AVERAGE_RTOL",
@@ -51,6 +51,7 @@ __all__ = [
     "averaged_crossing",
     "branch_kernel",
     "first_crossing",
+    "nearest_relations",
     "nearest_resonance",
     "nearest_resonances",
     "precession_harmonic",

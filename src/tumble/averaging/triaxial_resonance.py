@@ -13,16 +13,24 @@ from __future__ import annotations
 import itertools
 import math
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
-from tumble._typing import ArrayLike, FloatArray
+from tumble._typing import ArrayLike, FloatArray, IntArray
 from tumble.errors import check_range
 from tumble.torques import Torque
 from tumble.unperturbed._checks import moments
 from tumble.unperturbed.euler_poinsot import EulerPoinsot, fast_frequencies
 
-__all__ = ["Resonance", "nearest_resonance", "nearest_resonances", "precession_harmonic"]
+__all__ = [
+    "Relations",
+    "Resonance",
+    "nearest_relations",
+    "nearest_resonance",
+    "nearest_resonances",
+    "precession_harmonic",
+]
 
 
 @dataclass(frozen=True)
@@ -107,16 +115,29 @@ def _relations(harmonics: int, max_order: int) -> FloatArray:
     return np.array(rows, dtype=float)
 
 
-def nearest_resonances(
+class Relations(NamedTuple):
+    """The nearest relation at each of many states, as arrays of one shape (the fields of
+    :class:`Resonance`, the forcing a scalar)."""
+
+    m: IntArray
+    n1: IntArray
+    n2: IntArray
+    detuning: FloatArray
+    relative: FloatArray
+    forcing: float
+
+
+def nearest_relations(
     nu1: FloatArray,
     nu2: FloatArray,
     forcing_period: float | None = None,
     *,
     max_harmonic: int = 2,
     max_order: int = 2,
-) -> list[Resonance]:
+) -> Relations:
     """:func:`nearest_resonance` at many states at once, from their fast frequencies ν1, ν2
-    (arrays of one shape) [rad/τ]: one vectorised search, the same relation chosen."""
+    (arrays of one shape) [rad/τ]: one vectorised search, the same relation chosen, as
+    arrays (the validity checks scan every sample of a run)."""
     nu1, nu2 = np.asarray(nu1, dtype=float).ravel(), np.asarray(nu2, dtype=float).ravel()
     if forcing_period is None:
         forcing, harmonics = 0.0, 1
@@ -130,13 +151,31 @@ def nearest_resonances(
     # A sphere (ν1 = 0) has no polhode phase to be commensurate: relations with n1 ≠ 0 drop.
     det = np.where((nu1 == 0.0) & (rel[:, 1, None] != 0.0), np.inf, det)
     best = np.argmin(np.abs(det), axis=0)
-    out = []
-    for k, j in enumerate(best):
-        d = float(det[j, k])
-        relative = abs(d) / ref[k] if ref[k] > 0.0 else math.inf
-        m, n1, n2 = (int(v) for v in rel[j])
-        out.append(Resonance(float(nu1[k]), float(nu2[k]), forcing, m, n1, n2, d, relative))
-    return out
+    d = det[best, np.arange(best.size)]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        relative = np.where(ref > 0.0, np.abs(d) / ref, math.inf)
+    chosen = rel[best].astype(int)
+    return Relations(chosen[:, 0], chosen[:, 1], chosen[:, 2], d, relative, forcing)
+
+
+def nearest_resonances(
+    nu1: FloatArray,
+    nu2: FloatArray,
+    forcing_period: float | None = None,
+    *,
+    max_harmonic: int = 2,
+    max_order: int = 2,
+) -> list[Resonance]:
+    """:func:`nearest_relations` as one :class:`Resonance` per state."""
+    nu1, nu2 = np.asarray(nu1, dtype=float).ravel(), np.asarray(nu2, dtype=float).ravel()
+    r = nearest_relations(nu1, nu2, forcing_period, max_harmonic=max_harmonic,
+                          max_order=max_order)  # fmt: skip
+    fields = zip(r.m.tolist(), r.n1.tolist(), r.n2.tolist(), r.detuning.tolist(),
+                 r.relative.tolist(), strict=True)  # fmt: skip
+    return [
+        Resonance(float(a), float(b), r.forcing, m, n1, n2, d, rel)
+        for a, b, (m, n1, n2, d, rel) in zip(nu1, nu2, fields, strict=True)
+    ]
 
 
 HARMONIC_SAMPLES = 512

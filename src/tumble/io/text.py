@@ -3,6 +3,7 @@ reaches a file system call or an import."""
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping
 from typing import Any
 
@@ -11,12 +12,14 @@ from tumble.errors import ScenarioError, shorten
 __all__ = ["check_text"]
 
 
+_CONTROL = re.compile("[\x00-\x1f\x7f-\x9f]")
+"""C0, DEL and C1: the control characters."""
+
+
 def _control_character(text: str) -> str | None:
     """The first control character of ``text`` (C0, DEL, C1), as U+XXXX; None if none."""
-    for ch in text:
-        if ord(ch) < 0x20 or 0x7F <= ord(ch) <= 0x9F:
-            return f"U+{ord(ch):04X}"
-    return None
+    found = _CONTROL.search(text)
+    return None if found is None else f"U+{ord(found.group()):04X}"
 
 
 def check_text(data: Any, path: str = "") -> None:

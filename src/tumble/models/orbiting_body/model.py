@@ -76,7 +76,7 @@ def _full_columns(p: Params, t: FloatArray, Y: FloatArray) -> dict[str, FloatArr
     cols = tb.FULL.to_columns(p, t, Y)
     # Attitude and rates in the scenario's body axes: A_user = A_principal Rᵀ, ω_user = R ω.
     A = quat_to_matrix(quat_normalize(Y[:, 3:])) @ p.axes.T
-    q = np.array([matrix_to_quat(a) for a in A])
+    q = matrix_to_quat(A)
     w = Y[:, :3] @ p.axes.T
     size = np.linalg.norm(w, axis=1, keepdims=True)
     axis = w / np.where(size > 0.0, size, 1.0)

@@ -12,7 +12,7 @@ import numpy as np
 from tumble._typing import BoolArray, FloatArray
 from tumble.models.base import SlowPath, ValidityIssue, first_time, separatrix_issue
 from tumble.models.inputs.rotating_field import Params, State
-from tumble.unperturbed import fast_frequencies
+from tumble.unperturbed import fast_frequencies_of_states
 
 VALIDITY_RATIO = 0.1
 """``ε/I ≪ 1`` and ``fast ≫ slow`` are taken to hold while the ratio stays below this value."""
@@ -26,13 +26,8 @@ RESONANCE_ORDERS = (2, 2)
 
 
 def _frequencies(p: Params, cols: dict[str, FloatArray]) -> dict[str, FloatArray]:
-    nu = np.array(
-        [
-            fast_frequencies(*p.sorted_inertia, L, T)
-            for L, T in zip(cols["L"], cols["T"], strict=True)
-        ]
-    )
-    return {"nu1": nu[:, 0], "nu2": nu[:, 1]}
+    nu1, nu2 = fast_frequencies_of_states(*p.sorted_inertia, cols["L"], cols["T"])
+    return {"nu1": nu1, "nu2": nu2}
 
 
 def diagnostics(p: Params, st: State, cols: dict[str, FloatArray]) -> dict[str, FloatArray]:

@@ -32,7 +32,7 @@ import numpy as np
 from tumble._typing import BoolArray, FloatArray
 from tumble.averaging import (
     branch_kernel,
-    nearest_resonances,
+    nearest_relations,
     precession_harmonic,
     rotation_sense,
     sense_turn,
@@ -75,7 +75,7 @@ from tumble.models.triaxial_mean import MEAN_SLOW, triaxial_mean_form
 from tumble.rotations import matrix_to_quat, quat_normalize, quat_to_matrix
 from tumble.unperturbed.euler_poinsot import (
     EulerPoinsot,
-    fast_frequencies,
+    fast_frequencies_of_states,
     modulus_squared_of_states,
     polhode_point,
 )
@@ -459,7 +459,7 @@ class _Scales:
     def along(cls, p: Params, grid: FloatArray, cols: dict[str, FloatArray]) -> _Scales:
         I1, I2, I3 = p.sorted_inertia
         L, T = cols["L"], cols["T"]
-        nu = np.array([fast_frequencies(I1, I2, I3, Li, Ti) for Li, Ti in zip(L, T, strict=True)])
+        nu = np.stack(fast_frequencies_of_states(I1, I2, I3, L, T), axis=1)
         forcing = 0.0 if p.forcing_period is None else 2.0 * math.pi / p.forcing_period
         if I1 == I3 or _spin_free(p):
             # A sphere: the rotation about L is its only phase. A symmetric body under a
@@ -528,18 +528,18 @@ def _resonance_issue(p: Params, grid: FloatArray, sc: _Scales) -> ValidityIssue 
     width = math.sqrt(float(np.max(sc.rate)) / max(float(np.max(sc.slowest)), 1e-300))
     first: tuple[float, tuple[int, int, int]] | None = None
     prev: tuple[tuple[int, int, int], float] | None = None
-    found = nearest_resonances(sc.nu[:, 0], sc.nu[:, 1], p.forcing_period)
+    found = nearest_relations(sc.nu[:, 0], sc.nu[:, 1], p.forcing_period)
     for i in range(grid.size):
         if not sc.away[i]:
             prev = None
             continue
-        res = found[i]
-        key = (res.m, res.n1, res.n2)
-        crossed = prev is not None and prev[0] == key and prev[1] * res.detuning < 0.0
-        if res.relative <= width or crossed:
+        key = (int(found.m[i]), int(found.n1[i]), int(found.n2[i]))
+        detuning = float(found.detuning[i])
+        crossed = prev is not None and prev[0] == key and prev[1] * detuning < 0.0
+        if found.relative[i] <= width or crossed:
             first = (float(grid[i]), key)
             break
-        prev = (key, res.detuning)
+        prev = (key, detuning)
     if first is None:
         return None
     tau_r, (m, n1, n2) = first

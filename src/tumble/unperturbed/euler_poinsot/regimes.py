@@ -438,6 +438,68 @@ def fast_frequencies(I1: float, I2: float, I3: float, L: float, T: float) -> tup
     return nu1, _mean_precession(side, I1, I2, I3, L, mc)
 
 
+@_DOC
+def fast_frequencies_of_states(
+    I1: float, I2: float, I3: float, L: ArrayLike, T: ArrayLike
+) -> tuple[FloatArray, FloatArray]:
+    """:func:`fast_frequencies` for many states (L, T) at once, with the same operations in
+    the same order on arrays (the validity checks evaluate it at every sample of a run).
+
+    Parameters
+    ----------
+    {{moments}}
+    L, T : array_like
+        Angular momentum magnitudes [inertia unit · rad/τ] and kinetic energies
+        [inertia unit · (rad/τ)²], broadcasting.
+
+    Returns
+    -------
+    nu1, nu2 : ndarray
+        [rad/τ], of the broadcast shape: the values of :func:`fast_frequencies`.
+
+    Raises
+    ------
+    ParameterError
+        As :func:`fast_frequencies`, for the first state it refuses.
+    """
+    _check_sorted(I1, I2, I3)
+    L, T = np.broadcast_arrays(np.asarray(L, dtype=float), np.asarray(T, dtype=float))
+    rest = L == 0.0
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        r = 2.0 * T / L / L
+        d1, d2, d3 = 1.0 - r * I1, 1.0 - r * I2, r * I3 - 1.0
+        refused = ~(np.isfinite(L) & np.isfinite(T)) | (L < 0.0) | (T < 0.0)
+        refused |= np.where(rest, T != 0.0, (d1 < -ENERGY_RTOL) | (d3 < -ENERGY_RTOL))
+        if np.any(refused):  # the scalar function's message for the first one
+            i = np.unravel_index(int(np.argmax(refused)), L.shape)
+            _classify(I1, I2, I3, float(L[i]), float(T[i]))
+        d1, d3 = np.maximum(d1, 0.0), np.maximum(d3, 0.0)
+        sym = _symmetry(I1, I2, I3)
+        if sym == "sphere":
+            return np.zeros(L.shape), np.where(rest, 0.0, L / I2)
+        if sym:  # one side for every state, m = 0
+            nu = L * (np.sqrt(d1 * (I3 - I2) / (I1 * I2 * I3)) if sym == "x3" else
+                      np.sqrt(d3 * (I2 - I1) / (I1 * I2 * I3)))  # fmt: skip
+            ratio = np.full(L.shape, _pi_over_k(_characteristic(sym, I1, I2, I3), 1.0))
+            nu1, x3 = nu, np.full(L.shape, sym == "x3")
+        else:
+            x3 = d2 >= 0.0  # the side of a separatrix state too
+            nu = L * np.where(x3, np.sqrt(d1 * (I3 - I2) / (I1 * I2 * I3)),
+                              np.sqrt(d3 * (I2 - I1) / (I1 * I2 * I3)))  # fmt: skip
+            den = np.where(x3, (I3 - I2) * d1, (I2 - I1) * d3)
+            mc = np.where(x3, (I3 - I1) * d2 / den, -(I3 - I1) * d2 / den)
+            mc = np.where(mc < _MC_FLOOR, 0.0, np.minimum(mc, 1.0))
+            positive = np.where(mc > 0.0, mc, 1.0)  # R_F and R_J where mc > 0 only
+            rf = special.elliprf(0.0, positive, 1.0)
+            nu1 = np.where(mc == 0.0, 0.0, 0.5 * math.pi * nu / rf)
+            n = np.where(x3, _characteristic("x3", I1, I2, I3), _characteristic("x1", I1, I2, I3))
+            rj = special.elliprj(0.0, positive, 1.0, 1.0 - n)
+            ratio = np.where(mc == 0.0, 1.0 / (1.0 - n), 1.0 + n / 3.0 * rj / rf)
+        span = L * (I3 - I1) / (I1 * I3) * ratio
+        nu2 = np.where(x3, L / I3 + span, L / I1 - span)
+        return np.where(rest, 0.0, nu1), np.where(rest, 0.0, nu2)
+
+
 def polhode_point(inertia: ArrayLike, L: float, T: float) -> FloatArray:
     """The body rate, in the axes of ``inertia``, where the Euler–Poinsot polhode of momentum
     L and energy T crosses the plane of the smallest and the largest moments (z2 = 0 in

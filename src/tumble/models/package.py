@@ -43,6 +43,9 @@ def model_exports(package: str) -> tuple[Callable[[str], Any], Callable[[], list
         names and the model module's public ones.
     """
     namespace = vars(sys.modules[package])
+    # Whether a name is a submodule, found once: the search walks the file system, and the
+    # models' numerics read names of their packages (``tb.FULL``) on every call.
+    submodules: dict[str, bool] = {}
 
     def _model() -> Any:
         return importlib.import_module(f"{package}.model")
@@ -50,7 +53,9 @@ def model_exports(package: str) -> tuple[Callable[[str], Any], Callable[[], list
     def __getattr__(name: str) -> Any:
         if name.startswith("__"):  # dunder probes (pickle, doctest, …) do not load the numerics
             raise AttributeError(f"module {package!r} has no attribute {name!r}")
-        if importlib.util.find_spec(f"{package}.{name}") is not None:
+        if name not in submodules:
+            submodules[name] = importlib.util.find_spec(f"{package}.{name}") is not None
+        if submodules[name]:
             # A submodule: ``from <package> import inputs`` asks for it as an attribute
             # first, which must not load the numerics (validation stays light).
             return importlib.import_module(f"{package}.{name}")

@@ -12,8 +12,12 @@ in that list.
 
 from __future__ import annotations
 
+import hashlib
+import os
 import sys
+import tempfile
 import threading
+import time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -31,6 +35,7 @@ __all__ = [
     "INNER_INLINE",
     "KERNEL",
     "OVERLOAD",
+    "compile_lock",
     "compile_notice",
     "jit",
     "set_compile_notifier",
@@ -141,3 +146,73 @@ def compile_notice(estimate_s: float) -> Iterator[None]:
         yield
     finally:
         timer.cancel()
+
+
+COMPILE_WAIT_S = 600.0
+"""Longest wait for another process's compile of the same function [s]; then this process
+compiles it too (a compile from an empty cache takes at most about a minute)."""
+
+_LOCK_POLL_S = 0.05
+_HELD = threading.local()  # .names: the locks this thread holds
+
+
+def _lock_path(name: str) -> str:
+    """A lock file for ``name``, private to this user, this installation and its numba cache
+    (a temporary directory is writable where the package's own may not be)."""
+    where = f"{_PACKAGE}|{getattr(numba.config, 'CACHE_DIR', '')}|{sys.version_info[:2]}"
+    digest = hashlib.sha256(f"{where}|{name}".encode()).hexdigest()[:24]
+    uid = os.getuid() if hasattr(os, "getuid") else 0
+    return os.path.join(tempfile.gettempdir(), f"tumble-compile-{uid}-{digest}.lock")
+
+
+@contextmanager
+def compile_lock(name: str) -> Iterator[None]:
+    """Around the compilation of the function ``name``: one process of this machine compiles
+    it at a time, so that the others, started together (a Dask cluster's workers, the test
+    suite's), load it from the disk cache instead of compiling it again, each for up to a
+    minute.
+
+    An advisory lock (``fcntl.flock``) on a file per name, released when its holder finishes or
+    dies; waited for up to :data:`COMPILE_WAIT_S`, then not at all. Where there is no
+    ``fcntl`` (Windows) or no lock file can be made, every process compiles on its own, as
+    numba alone does. Re-entered by the same thread (a compile that compiles another locked
+    function), it does not lock again; another thread waits as another process does.
+    """
+    try:
+        import fcntl
+    except ImportError:  # pragma: no cover - not on POSIX
+        yield
+        return
+    held: set[str] = _HELD.__dict__.setdefault("names", set())
+    if name in held:
+        yield
+        return
+    try:
+        handle = os.open(_lock_path(name), os.O_RDWR | os.O_CREAT, 0o600)
+    except OSError:
+        yield
+        return
+    try:
+        deadline = time.monotonic() + COMPILE_WAIT_S
+        while True:
+            try:
+                fcntl.flock(handle, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                locked = True
+                break
+            except BlockingIOError:
+                if time.monotonic() > deadline:
+                    locked = False
+                    break
+                time.sleep(_LOCK_POLL_S)
+            except OSError:  # a file system without locks
+                locked = False
+                break
+        held.add(name)
+        try:
+            yield
+        finally:
+            held.discard(name)
+            if locked:
+                fcntl.flock(handle, fcntl.LOCK_UN)
+    finally:
+        os.close(handle)

@@ -56,7 +56,7 @@ from tumble._typing import FloatArray
 from tumble.kernels import codes
 from tumble.kernels.elliptic import elliprd, elliprf
 from tumble.kernels.frames import quaternion_rates
-from tumble.kernels.jit import ENTRY, INLINE, KERNEL, OVERLOAD, jit
+from tumble.kernels.jit import ENTRY, INLINE, KERNEL, OVERLOAD, compile_lock, jit
 from tumble.kernels.layout import mat_vec, vec3
 from tumble.kernels.nutation import (
     nutation_averaged,
@@ -529,8 +529,17 @@ def _one_kind(what: str, number: int) -> Callable[..., Any]:
                 state[0] += feedback * out[0]
             return out
 
-    got = _EVALUATORS[key] = cast(Callable[..., Any], jit(ENTRY)(one))
-    return got
+    dispatcher = jit(ENTRY)(one)
+
+    def first(*args: Any) -> Any:
+        # The first call compiles (another process compiling the same: load it after).
+        with compile_lock(f"{what}-{number}"):
+            value = dispatcher(*args)
+        _EVALUATORS[key] = dispatcher
+        return value
+
+    _EVALUATORS[key] = first
+    return first
 
 
 def evaluate_event(code: int, t: float, y: FloatArray, p: FloatArray) -> float:

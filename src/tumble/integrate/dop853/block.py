@@ -20,7 +20,7 @@ from numba.typed import List
 from tumble._typing import FloatArray
 from tumble.integrate.dop853.core import FRESH, Options, Progress, advance
 from tumble.integrate.dop853.functions import addresses
-from tumble.kernels.jit import ENTRY, jit
+from tumble.kernels.jit import ENTRY, compile_lock, jit
 
 __all__ = ["advance_block", "block_entry"]
 
@@ -81,8 +81,9 @@ def block_entry(kind: int, event: int, args: tuple[Any, ...]) -> Callable[..., A
     key = tuple(_cheap_type(a) for a in args)
     entry = _ENTRIES.get(key)
     if entry is None:
-        types = tuple(numba.typeof(a) for a in args)
-        entry = cast(Any, advance_block).compile((numba.typeof(fns), *types))
+        signature = (numba.typeof(fns), *(numba.typeof(a) for a in args))
+        with compile_lock(f"advance_block-{signature}"):
+            entry = cast(Any, advance_block).compile(signature)
         _ENTRIES[key] = entry
     return functools.partial(entry, fns)
 

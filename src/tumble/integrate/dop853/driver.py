@@ -26,7 +26,7 @@ from tumble.integrate.dop853.functions import addresses
 from tumble.integrate.dop853.tableau import N_INTERPOLANT
 from tumble.integrate.limits import user_code_wait
 from tumble.kernels import Kernel
-from tumble.kernels.jit import compile_notice
+from tumble.kernels.jit import compile_lock, compile_notice
 from tumble.kernels.kinds import KINDS
 from tumble.kernels.user import any_armed, armed_names, calls, raise_fault
 
@@ -196,7 +196,8 @@ def _specialised(kind: int, event: int, args: tuple[Any, ...]) -> Callable[..., 
             loop = _LOOPS.get(key[2:])
             if loop is None:
                 signature = (numba.typeof(fns), *(numba.typeof(a) for a in args))
-                loop = cast(Any, core.advance).compile(signature)
+                with compile_lock(f"advance-{signature}"):
+                    loop = cast(Any, core.advance).compile(signature)
                 _LOOPS[key[2:]] = loop
             entry = functools.partial(loop, fns)
         _ENTRIES[key] = entry

@@ -36,7 +36,7 @@ from numba.extending import intrinsic
 
 from tumble.integrate.dop853.steps import step_stages
 from tumble.kernels.codes import EVENT_NONE
-from tumble.kernels.jit import KERNEL, jit
+from tumble.kernels.jit import KERNEL, compile_lock, jit
 from tumble.kernels.kinds import KINDS
 from tumble.kernels.rhs import event, rhs
 
@@ -151,7 +151,8 @@ def called_step(rhs_fn, p, t, h, y, K, y_new, tmp, rtol, atol, extended):  # typ
 def _called_step() -> Compiled:
     """:func:`called_step`, compiled on first use."""
     if not _CALLED:
-        _CALLED.append(_compiled(STEP, called_step))
+        with compile_lock("called-step"):
+            _CALLED.append(_compiled(STEP, called_step))
     return _CALLED[0]
 
 
@@ -180,8 +181,10 @@ def kind_functions(kind: int) -> KindFunctions:
         def kind_rhs(t, y, p, out):  # type: ignore[no-untyped-def]
             rhs(kind, t, y, p, out)
 
-        step = _compiled(STEP, kind_step) if KINDS[kind].inlined else _called_step()
-        got = KindFunctions(step, _compiled(RHS, kind_rhs))
+        step = _called_step() if not KINDS[kind].inlined else None
+        with compile_lock(f"kind-{kind}"):  # another process compiling it: load it after
+            step = _compiled(STEP, kind_step) if step is None else step
+            got = KindFunctions(step, _compiled(RHS, kind_rhs))
         _KINDS[kind] = got
     return got
 
@@ -201,7 +204,8 @@ def event_function(code: int) -> Compiled:
             def watched(t, y, p):  # type: ignore[no-untyped-def]
                 return event(code, t, y, p)
 
-        got = _compiled(EVENT, watched)
+        with compile_lock(f"event-{code}"):
+            got = _compiled(EVENT, watched)
         _EVENTS[code] = got
     return got
 

@@ -37,6 +37,11 @@ _DOC = DocSections(
     T : float
         Kinetic energy [inertia unit · (rad/τ)²].
     """,
+    states="""
+    L, T : array_like
+        Angular momentum magnitudes [inertia unit · rad/τ] and kinetic energies
+        [inertia unit · (rad/τ)²], broadcasting.
+    """,
 )
 
 
@@ -291,9 +296,7 @@ def modulus_squared_of_states(
     Parameters
     ----------
     {{moments}}
-    L, T : array_like
-        Angular momentum magnitudes [inertia unit · rad/τ] and kinetic energies
-        [inertia unit · (rad/τ)²], broadcasting.
+    {{states}}
     """
     L, T = np.broadcast_arrays(np.asarray(L, dtype=float), np.asarray(T, dtype=float))
     moving = L > 0.0
@@ -448,9 +451,7 @@ def fast_frequencies_of_states(
     Parameters
     ----------
     {{moments}}
-    L, T : array_like
-        Angular momentum magnitudes [inertia unit · rad/τ] and kinetic energies
-        [inertia unit · (rad/τ)²], broadcasting.
+    {{states}}
 
     Returns
     -------

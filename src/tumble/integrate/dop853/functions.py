@@ -181,9 +181,10 @@ def kind_functions(kind: int) -> KindFunctions:
         def kind_rhs(t, y, p, out):  # type: ignore[no-untyped-def]
             rhs(kind, t, y, p, out)
 
-        step = _called_step() if not KINDS[kind].inlined else None
-        with compile_lock(f"kind-{kind}"):  # another process compiling it: load it after
-            step = _compiled(STEP, kind_step) if step is None else step
+        # Another process compiling the kind: load it after. (The shared step takes its own
+        # lock inside this one; nothing takes them the other way round.)
+        with compile_lock(f"kind-{kind}"):
+            step = _compiled(STEP, kind_step) if KINDS[kind].inlined else _called_step()
             got = KindFunctions(step, _compiled(RHS, kind_rhs))
         _KINDS[kind] = got
     return got

@@ -36,6 +36,7 @@ exclude_patterns = [
     "sunlight-year-table.md",
     "crossings-table.md",
     "capture-table.md",
+    "averaged-floor-table.md",
 ]
 
 # Equations: $…$ and $$…$$ in Markdown; \\tag{1.1} keeps a paper's own equation number.

@@ -44,6 +44,8 @@ TABLES = [
      "benchmarks/crossings.py"),
     ("capture-table.md", "crossings.json", "bench_crossings.capture_markdown",
      lambda r: r["capture"], "benchmarks/crossings.py --capture"),
+    ("averaged-floor-table.md", "averaged_floor.json", "bench_floor.markdown", _runs,
+     "benchmarks/averaged_floor.py"),
 ]  # fmt: skip
 
 

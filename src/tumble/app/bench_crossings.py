@@ -169,19 +169,24 @@ def crossing_study(repeat: int, log: Callable[[str], None]) -> dict[str, Any]:
     return {name: {f"{eps:g}": _case(name, eps, repeat, log) for eps in EPS} for name in CASES}
 
 
+def study_table(
+    head: tuple[str, str], result: dict[str, Any], row: Callable[[str, str, dict[str, Any]], str]
+) -> str:
+    """A study's Markdown table: its header and rule lines ``head``, then ``row(name, ε key,
+    figures)`` for every case of ``result`` (keyed by name, then by ε)."""
+    lines = [*head]
+    for name, by_eps in result.items():
+        lines += [row(name, key, r) for key, r in by_eps.items()]
+    return "\n".join(lines)
+
+
 def markdown(result: dict[str, Any]) -> str:
     """The study as a Markdown table."""
-    lines = [
-        "| example | ε | full [s] | averaged [s] | speed-up | largest slow error | in ε |",
-        "|---|---|---|---|---|---|---|",
-    ]
-    for name, by_eps in result.items():
-        for key, r in by_eps.items():
-            lines.append(
-                f"| {name} ({r['method']}) | {key} | {r['full_s']:.3f} | {r['averaged_s']:.4f} "
-                f"| {r['speedup']:.0f}× | {r['error']:.2e} | {r['error_in_eps']:.0f} |"
-            )
-    return "\n".join(lines)
+    head = ("| example | ε | full [s] | averaged [s] | speed-up | largest slow error | in ε |",
+            "|---|---|---|---|---|---|---|")  # fmt: skip
+    return study_table(head, result, lambda name, key, r: (
+        f"| {name} ({r['method']}) | {key} | {r['full_s']:.3f} | {r['averaged_s']:.4f} "
+        f"| {r['speedup']:.0f}× | {r['error']:.2e} | {r['error_in_eps']:.0f} |"))  # fmt: skip
 
 
 CAPTURE: dict[str, tuple[float, float, float]] = {

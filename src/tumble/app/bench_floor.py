@@ -158,24 +158,19 @@ def floor_study(repeat: int, log: Callable[[str], None]) -> dict[str, Any]:
 
 def markdown(result: dict[str, Any]) -> str:
     """The study as the performance page's table."""
+    from tumble.app.bench_crossings import study_table
 
     def ms(seconds: float) -> str:
         return f"{1e3 * seconds:.3g}"
 
-    lines = [
-        "| case | ε | target | full [ms] | budget [ms] | averaged [ms] | evaluations [ms] "
-        "(count × µs) | integration [ms] | columns [ms] | floor / budget |",
-        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|",
-    ]
-    for name, by_eps in result.items():
-        for key, r in by_eps.items():
-            lines.append(
-                f"| {name} ({r['source']}) | {key} | {r['target']:.0f}× | {ms(r['full_s'])} | "
-                f"{ms(r['budget_s'])} | {ms(r['averaged_s'])} | {ms(r['evaluations_s'])} "
-                f"({r['run_nfev']} × {r['eval_us']:.2g}) | {ms(r['integration_s'])} | "
-                f"{ms(r['columns_s'])} | {r['floor_over_budget']:.2f} |"
-            )
-    return "\n".join(lines)
+    head = ("| case | ε | target | full [ms] | budget [ms] | averaged [ms] | evaluations [ms] "
+            "(count × µs) | integration [ms] | columns [ms] | floor / budget |",
+            "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")  # fmt: skip
+    return study_table(head, result, lambda name, key, r: (
+        f"| {name} ({r['source']}) | {key} | {r['target']:.0f}× | {ms(r['full_s'])} | "
+        f"{ms(r['budget_s'])} | {ms(r['averaged_s'])} | {ms(r['evaluations_s'])} "
+        f"({r['run_nfev']} × {r['eval_us']:.2g}) | {ms(r['integration_s'])} | "
+        f"{ms(r['columns_s'])} | {r['floor_over_budget']:.2f} |"))  # fmt: skip
 
 
 def over_budget(result: dict[str, Any]) -> list[str]:
